@@ -1,0 +1,278 @@
+// Hard-shadow throughput of the oracle against plain Embree loops over the same rays.
+//
+//   bench_hard_shadow [--size N] [--grid G] [--reps R]
+//
+// Generates a scene of at least 100k triangles (a bumpy terrain grid plus floating spheres),
+// traces the primary rays once, then for each light times, median of R repetitions:
+//   oracle   traceHardShadows (ray setup from the surface buffer, cone and facing tests, 16-wide
+//            packets over 4x4 tiles, writing V and cos)
+//   occ1     rtcOccluded1 over the same rays, prepared beforehand
+//   occ16    rtcOccluded16 over the same rays in the same 4x4-tile packets, prepared beforehand
+// and checks that all three give the same visibility for every ray. Not a test: it prints figures.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <glm/geometric.hpp>
+
+#include "core/camera.h"
+#include "oracle/accel.h"
+#include "oracle/hard_shadow.h"
+#include "oracle/surface_buffer.h"
+
+using namespace so;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+MeshPrimitive terrain(int n) {
+    MeshPrimitive m;
+    m.name = "terrain";
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            double x = -20.0 + 40.0 * i / n, z = 20.0 - 40.0 * j / n;
+            double y =
+                0.8 * std::sin(0.4 * x) * std::cos(0.33 * z) + 0.25 * std::sin(1.7 * x + 0.9 * z);
+            m.wsPositions.push_back({x, y, z});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, d = a + uint32_t(n + 1), e = d + 1;
+            m.indices.insert(m.indices.end(), {a, d, e, a, e, b});
+        }
+    return m;
+}
+
+MeshPrimitive sphere(const glm::dvec3& c, double r, int n, int mrings) {
+    MeshPrimitive m;
+    m.name = "sphere";
+    for (int j = 0; j <= mrings; ++j)
+        for (int i = 0; i <= n; ++i) {
+            double th = M_PI * j / mrings, ph = 2 * M_PI * i / n;
+            m.wsPositions.push_back(c + r * glm::dvec3(std::sin(th) * std::cos(ph), std::cos(th),
+                                                       std::sin(th) * std::sin(ph)));
+        }
+    for (int j = 0; j < mrings; ++j)
+        for (int i = 0; i < n; ++i) {
+            uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, d = a + uint32_t(n + 1), e = d + 1;
+            m.indices.insert(m.indices.end(), {a, b, e, a, e, d});
+        }
+    return m;
+}
+
+template <class F>
+double medianSeconds(int reps, F&& f) {
+    std::vector<double> t;
+    for (int r = 0; r < reps; ++r) {
+        auto t0 = Clock::now();
+        f();
+        t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int size = 1024, grid = 256, reps = 7;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        std::string a = argv[i];
+        int v = std::atoi(argv[i + 1]);
+        if (a == "--size")
+            size = v;
+        else if (a == "--grid")
+            grid = v;
+        else if (a == "--reps")
+            reps = v;
+        else {
+            std::fprintf(stderr, "usage: bench_hard_shadow [--size N] [--grid G] [--reps R]\n");
+            return 2;
+        }
+    }
+    Scene scene;
+    scene.meshes.push_back(terrain(grid));
+    for (int k = 0; k < 16; ++k) {
+        double a = 2 * M_PI * k / 16;
+        scene.meshes.push_back(
+            sphere({9 * std::cos(a), 3.0 + (k % 3), 9 * std::sin(a)}, 1.2, 48, 24));
+    }
+    scene.camera.wsEye = {0, 22, 26};
+    scene.camera.wsTarget = {0, 0, 0};
+    scene.camera.vfovDeg = 55;
+    scene.camera.width = scene.camera.height = size;
+    scene.lights.push_back({"point", LightType::Point, {2, 14, 3}, {0, -1, 0}, 45, 0});
+    scene.lights.push_back(
+        {"sun", LightType::Directional, {0, 0, 0}, glm::normalize(glm::dvec3(0.5, -1, 0.3)), 0, 0});
+    finalizeScene(scene);
+
+    const int threads = int(std::thread::hardware_concurrency());
+    std::printf("scene: %zu triangles, %dx%d pixels, %d threads, Embree %s, median of %d runs\n",
+                scene.stats.triangles, size, size, threads, EmbreeDevice::version().c_str(), reps);
+    EmbreeDevice device("threads=0");
+    Accel accel(scene, device);
+    Camera camera(scene.camera);
+    tbb::task_arena arena(threads);
+    SurfaceBuffer sb;
+    arena.execute([&] { sb = tracePrimary(accel, camera, nullptr); });
+
+    const size_t n = size_t(sb.width) * size_t(sb.height);
+    std::vector<float> V(n), C(n);
+    for (const Light& light : scene.lights) {
+        HardLight hl = makeHardLight(light, accel.frame());
+        HardShadowStats st;
+        auto runOracle = [&] {
+            arena.execute(
+                [&] { st = traceHardShadows(accel, sb, hl, V.data(), C.data(), nullptr); });
+        };
+
+        // The same rays, prepared outside the timing: packets in the oracle's 4x4-tile order.
+        const int tilesX = (sb.width + 3) / 4, tilesY = (sb.height + 3) / 4;
+        std::vector<RTCRay16> packets(size_t(tilesX) * size_t(tilesY));
+        // Embree reads the valid mask with aligned vector loads.
+        struct alignas(64) Valid16 {
+            int v[16];
+            int& operator[](int k) { return v[k]; }
+            int* data() { return v; }
+        };
+        std::vector<Valid16> valid(packets.size());
+        std::vector<RTCRay> singles;
+        std::vector<size_t> singlePixel;
+        for (int ty = 0; ty < tilesY; ++ty)
+            for (int tx = 0; tx < tilesX; ++tx) {
+                size_t p = size_t(ty) * size_t(tilesX) + size_t(tx);
+                RTCRay16& r = packets[p];
+                std::memset(&r, 0, sizeof r);
+                for (int k = 0; k < 16; ++k) {
+                    valid[p][k] = 0;
+                    int x = tx * 4 + (k & 3), y = ty * 4 + (k >> 2);
+                    if (x >= sb.width || y >= sb.height) continue;
+                    size_t i = size_t(y) * size_t(sb.width) + size_t(x);
+                    ShadowRaySetup s = setupShadowRay(sb, sb.slot(x, y), hl);
+                    if (s.kind != ShadowRayKind::Traced) continue;
+                    valid[p][k] = -1;
+                    r.org_x[k] = s.org.x, r.org_y[k] = s.org.y, r.org_z[k] = s.org.z;
+                    r.dir_x[k] = s.dir.x, r.dir_y[k] = s.dir.y, r.dir_z[k] = s.dir.z;
+                    r.tnear[k] = 0.0f, r.tfar[k] = s.tfar, r.mask[k] = 0xFFFFFFFFu;
+                    RTCRay one{};
+                    one.org_x = s.org.x, one.org_y = s.org.y, one.org_z = s.org.z;
+                    one.dir_x = s.dir.x, one.dir_y = s.dir.y, one.dir_z = s.dir.z;
+                    one.tnear = 0.0f, one.tfar = s.tfar, one.mask = 0xFFFFFFFFu;
+                    singles.push_back(one);
+                    singlePixel.push_back(i);
+                }
+            }
+        const size_t rays = singles.size();
+
+        std::vector<RTCRay> work1;
+        std::vector<RTCRay16> work16;
+        // Each timed loop starts from a fresh copy of its rays (Embree overwrites tfar), made
+        // outside the timing.
+        auto runOcc1 = [&] {
+            arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, rays, 1024),
+                                  [&](const tbb::blocked_range<size_t>& r) {
+                                      setEmbreeFloatMode();
+                                      RTCIntersectContext ctx;
+                                      rtcInitIntersectContext(&ctx);
+                                      for (size_t i = r.begin(); i != r.end(); ++i)
+                                          rtcOccluded1(accel.rtcScene(), &ctx, &work1[i]);
+                                  });
+            });
+        };
+        auto runOcc16 = [&] {
+            arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, work16.size(), 64),
+                                  [&](const tbb::blocked_range<size_t>& r) {
+                                      setEmbreeFloatMode();
+                                      RTCIntersectContext ctx;
+                                      rtcInitIntersectContext(&ctx);
+                                      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                                      for (size_t p = r.begin(); p != r.end(); ++p) {
+                                          bool any = false;
+                                          for (int k = 0; k < 16; ++k) any |= valid[p][k] != 0;
+                                          if (any)
+                                              rtcOccluded16(valid[p].data(), accel.rtcScene(), &ctx,
+                                                            &work16[p]);
+                                      }
+                                  });
+            });
+        };
+        // Interleaved, so that whatever else the machine does falls on all three alike; the ratio
+        // is taken per repetition and its median reported.
+        std::vector<double> tO, t1s, t16s, r1, r16;
+        for (int r = 0; r < reps; ++r) {
+            tO.push_back(medianSeconds(1, runOracle));
+            work1 = singles;
+            t1s.push_back(medianSeconds(1, runOcc1));
+            work16 = packets;
+            t16s.push_back(medianSeconds(1, runOcc16));
+            r1.push_back(t1s.back() / tO.back());
+            r16.push_back(t16s.back() / tO.back());
+        }
+        auto median = [](std::vector<double> v) {
+            std::sort(v.begin(), v.end());
+            return v[v.size() / 2];
+        };
+        const double tOracle = median(tO), t1 = median(t1s), t16 = median(t16s);
+        // The oracle's own work without tracing: setting up every pixel's ray and writing V, cos.
+        std::vector<double> tSetup;
+        for (int rep = 0; rep < reps; ++rep)
+            tSetup.push_back(medianSeconds(1, [&] {
+                arena.execute([&] {
+                    tbb::parallel_for(tbb::blocked_range<size_t>(0, sb.slotCount(), 4096),
+                                      [&](const tbb::blocked_range<size_t>& r) {
+                                          for (size_t i = r.begin(); i != r.end(); ++i) {
+                                              ShadowRaySetup s = setupShadowRay(sb, i, hl);
+                                              V[i % n] = s.tfar;
+                                              C[i % n] = float(s.cosine);
+                                          }
+                                      });
+                });
+            }));
+        std::printf("  setup only: %.2f ms, oracle %.2f ms, occluded16 %.2f ms\n",
+                    1e3 * median(tSetup), 1e3 * tOracle, 1e3 * t16);
+        runOracle();
+
+        // Same rays, same answers.
+        size_t mismatch1 = 0, mismatch16 = 0;
+        for (size_t j = 0; j < rays; ++j)
+            mismatch1 += (work1[j].tfar >= 0.0f) != (V[singlePixel[j]] == 1.0f);
+        for (int ty = 0; ty < tilesY; ++ty)
+            for (int tx = 0; tx < tilesX; ++tx) {
+                size_t p = size_t(ty) * size_t(tilesX) + size_t(tx);
+                for (int k = 0; k < 16; ++k) {
+                    if (!valid[p][k]) continue;
+                    size_t i =
+                        size_t(ty * 4 + (k >> 2)) * size_t(sb.width) + size_t(tx * 4 + (k & 3));
+                    mismatch16 += (work16[p].tfar[k] >= 0.0f) != (V[i] == 1.0f);
+                }
+            }
+        double mOracle = double(st.traced) / tOracle / 1e6, m1 = double(rays) / t1 / 1e6,
+               m16 = double(rays) / t16 / 1e6;
+        std::printf("light %-6s %zu rays (%.1f%% occluded)\n", light.name.c_str(), rays,
+                    100.0 * double(st.occluded) / double(std::max<uint64_t>(1, st.traced)));
+        std::printf("  oracle        %7.2f Mrays/s\n", mOracle);
+        std::printf(
+            "  rtcOccluded1  %7.2f Mrays/s   oracle / occluded1  = %.2f (median of per-run "
+            "ratios)\n",
+            m1, median(r1));
+        std::printf(
+            "  rtcOccluded16 %7.2f Mrays/s   oracle / occluded16 = %.2f (median of per-run ratios; "
+            "target >= 0.80)\n",
+            m16, median(r16));
+        std::printf("  same answers: %s (%zu / %zu mismatches)\n",
+                    mismatch1 + mismatch16 == 0 ? "yes" : "NO", mismatch1, mismatch16);
+        if (st.traced != rays || mismatch1 || mismatch16) return 1;
+    }
+    return 0;
+}

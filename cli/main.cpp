@@ -1,0 +1,49 @@
+// shadow-oracle: one program, one subcommand per job (docs/cli.md). Exit codes: 0 success,
+// 2 bad input (one line on stderr naming the file and field), 1 anything else.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "core/error.h"
+#include "core/version.h"
+#include "oracle/trace_command.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"shadow-oracle: how wrong are your real-time shadows?"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version",
+                         std::string(so::kToolVersion) + " (" + so::kGitRevision + ")");
+
+    so::TraceCommandOptions trace;
+    CLI::App* traceCmd = app.add_subcommand(
+        "trace", "ground-truth shadows with Embree: oracle.exr, oracle.json, previews");
+    traceCmd->add_option("scene", trace.scenePath, "scene file (.json, .gltf or .glb)")->required();
+    traceCmd->add_option("--out", trace.outDir, "output folder (created if missing)")->required();
+    traceCmd->add_option("--width", trace.oracle.width, "image width (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+    traceCmd
+        ->add_option("--height", trace.oracle.height, "image height (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+    traceCmd->add_option("--threads", trace.oracle.threads, "worker threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    bool quiet = false;
+    traceCmd->add_flag("--quiet", quiet, "no progress output");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
+    trace.oracle.progress = !quiet;
+    try {
+        if (app.got_subcommand(traceCmd)) return so::runTraceCommand(trace);
+    } catch (const so::InputError& e) {
+        std::cerr << e.what() << std::endl;
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << std::endl;
+        return 1;
+    }
+    return 1;
+}

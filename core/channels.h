@@ -1,0 +1,38 @@
+// The one place that names EXR channels (docs/exr-channels.md). Both the oracle and the raster
+// path write through these names, so a comparison can read either file by the same names.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace so::channels {
+
+inline constexpr const char* kHit = "A";  // 1 where the primary ray hit, else 0
+inline constexpr const char* kPX = "P.X";
+inline constexpr const char* kPY = "P.Y";
+inline constexpr const char* kPZ = "P.Z";
+inline constexpr const char* kNX = "N.X";
+inline constexpr const char* kNY = "N.Y";
+inline constexpr const char* kNZ = "N.Z";
+inline constexpr const char* kDepth = "Z";  // distance from the eye along the ray, world units
+inline constexpr const char* kMeshId = "id.mesh";
+inline constexpr const char* kPrimId = "id.prim";
+
+// Per-light channel suffixes: "<light name>.<suffix>".
+inline constexpr const char* kVisibility = "V";
+inline constexpr const char* kCosine = "cos";
+
+std::string lightChannel(const std::string& lightName, const char* suffix);
+
+// The per-pixel geometry channels every output carries, in a fixed order.
+const std::vector<std::string>& geometryChannels();
+
+// A light name must be usable as an EXR layer: 1 to 64 characters from [A-Za-z0-9_-], starting
+// with a letter or '_', and not one of the layer names the geometry channels use ("P", "N", "id").
+bool isValidLayerName(const std::string& name);
+
+// For names that come from glTF files: replaces invalid characters with '_', prefixes reserved or
+// empty names, and truncates. The result passes isValidLayerName.
+std::string sanitizeLayerName(const std::string& name, const std::string& fallback);
+
+}  // namespace so::channels

@@ -1,0 +1,83 @@
+#include <algorithm>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+
+#include "core/error.h"
+#include "core/image.h"
+
+namespace so {
+
+float* ChannelImage::addChannel(const std::string& name, float fill) {
+    SO_CHECK(!has(name));
+    names_.push_back(name);
+    planes_.emplace_back(pixelCount(), fill);
+    return planes_.back().data();
+}
+
+bool ChannelImage::has(const std::string& name) const {
+    return std::find(names_.begin(), names_.end(), name) != names_.end();
+}
+
+float* ChannelImage::channel(const std::string& name) {
+    auto it = std::find(names_.begin(), names_.end(), name);
+    if (it == names_.end()) checkFailed(__FILE__, __LINE__, "channel exists", name, "");
+    return planes_[size_t(it - names_.begin())].data();
+}
+
+const float* ChannelImage::channel(const std::string& name) const {
+    return const_cast<ChannelImage*>(this)->channel(name);
+}
+
+void writeExr(const std::string& path, const ChannelImage& image,
+              const std::vector<std::pair<std::string, std::string>>& attributes) {
+    Imf::Header header(image.width(), image.height());
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const auto& [key, value] : attributes) header.insert(key, Imf::StringAttribute(value));
+    Imf::FrameBuffer fb;
+    for (const std::string& name : image.names()) {
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        char* base = reinterpret_cast<char*>(const_cast<float*>(image.channel(name)));
+        fb.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                   sizeof(float) * size_t(image.width())));
+    }
+    try {
+        Imf::OutputFile file(path.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(image.height());
+    } catch (const std::exception& e) {
+        throwInputError(path, "", std::string("cannot write EXR: ") + printable(e.what(), 200));
+    }
+}
+
+ChannelImage readExr(const std::string& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        int width = dw.max.x - dw.min.x + 1, height = dw.max.y - dw.min.y + 1;
+        ChannelImage image(width, height);
+        Imf::FrameBuffer fb;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end();
+             ++it) {
+            float* plane = image.addChannel(it.name());
+            char* base =
+                reinterpret_cast<char*>(plane) -
+                (ptrdiff_t(dw.min.x) + ptrdiff_t(dw.min.y) * width) * ptrdiff_t(sizeof(float));
+            fb.insert(it.name(),
+                      Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(width)));
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        return image;
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throwInputError(path, "", std::string("cannot read EXR: ") + printable(e.what(), 200));
+    }
+}
+
+}  // namespace so

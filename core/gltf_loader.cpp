@@ -1,0 +1,1179 @@
+// Safe glTF 2.0 loading on top of tinygltf 2.7 (see ../shared/notes/gltf.md for its known holes).
+//
+// PUBLIC CONTRACT: traversal order and mesh numbering. Mesh ids in the output images (id.mesh)
+// are indices into GltfContent::meshes, so this order must never change silently:
+//   * The scene drawn is `scene` if the file sets it, else scenes[0]; a file without scenes draws
+//     every root node (a node that is no node's child) in index order.
+//   * Nodes are visited depth-first, pre-order, children in the order listed. A node reachable
+//     along several paths (instancing) is visited once per path.
+//   * World transform = wsFromFile * parent chain * node local, in double; the local transform is
+//     `matrix` if given, else T * R * S (the quaternion is normalised).
+//   * For each visited node with a mesh, each primitive of that mesh, in order, becomes one
+//     MeshPrimitive named "FILE#<node name or nodeN>/<mesh name or meshM>/primK". Triangle lists
+//     are kept as is; strips become (i, i+1, i+2) with odd i swapped to (i+1, i, i+2), fans become
+//     (0, i+1, i+2). Point and line primitives, and primitives with no triangle, produce no
+//     MeshPrimitive (and so no id): they are counted in skippedPrimitives with a warning.
+//   * The camera is the first node in that order with a `camera` (if that camera is orthographic,
+//     there is no camera, with a warning); lights (KHR_lights_punctual) are listed in that order,
+//     one per visit of a node that has one, named after the light and made unique ("_2", "_3"...).
+//
+// Safety: everything tinygltf would read or we will read is checked first, partly on the raw JSON
+// before tinygltf sees it (URIs, GLB chunks, nesting depth, integer ranges, image bufferViews)
+// because tinygltf 2.7 either reports those problems vaguely or reads out of bounds on them.
+#include "core/gltf_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <set>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <nlohmann/json.hpp>
+
+// Must match tinygltf_impl.cpp so that the declarations (Model, TinyGLTF) are the same.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include "core/channels.h"
+#include "core/error.h"
+
+namespace so {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+// tinygltf converts extras and extensions recursively (ParseJsonAsValue), so a deeply nested file
+// would overflow the stack. Real files nest fewer than 10 levels.
+constexpr int kMaxJsonDepth = 64;
+
+struct Context {
+    std::string displayName;
+    LoadLimits limits;
+    GltfContent* out = nullptr;
+    std::string folderPrefix;  // absolute folder of the glTF file, ending in '/'
+    fs::path canonicalFolder;
+    // Set by the filesystem callbacks, which cannot throw through tinygltf's C-style interface.
+    std::string fsField, fsError;
+};
+
+[[noreturn]] void fail(const Context& ctx, const std::string& field, const std::string& message) {
+    throwInputError(ctx.displayName, field, message);
+}
+
+std::string idx(const char* array, size_t i) {
+    return std::string(array) + "[" + std::to_string(i) + "]";
+}
+
+std::string quoted(const std::string& s) {
+    return "'" + printable(s) + "'";
+}
+
+// tinygltf's messages end in newlines and may hold several lines.
+std::string oneLine(const std::string& s) {
+    std::string joined;
+    size_t start = 0;
+    while (start < s.size()) {
+        size_t end = s.find('\n', start);
+        if (end == std::string::npos) end = s.size();
+        std::string line = s.substr(start, end - start);
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        if (!line.empty()) joined += (joined.empty() ? "" : "; ") + line;
+        start = end + 1;
+    }
+    return printable(joined, 300);
+}
+
+std::vector<std::string> lines(const std::string& s) {
+    std::vector<std::string> result;
+    size_t start = 0;
+    while (start < s.size()) {
+        size_t end = s.find('\n', start);
+        if (end == std::string::npos) end = s.size();
+        std::string line = s.substr(start, end - start);
+        if (!line.empty()) result.push_back(printable(line, 200));
+        start = end + 1;
+    }
+    return result;
+}
+
+// ---- Files --------------------------------------------------------------------------------------
+
+// Exactly what tinygltf's dlib::urldecode does, so that the path checked is the path opened.
+std::string urlDecode(const std::string& s) {
+    auto hex = [](unsigned char c) -> unsigned char {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return 0;
+    };
+    std::string out;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '+') {
+            out += ' ';
+        } else if (s[i] == '%' && s.size() > i + 2) {
+            out += static_cast<char>((hex(static_cast<unsigned char>(s[i + 1])) << 4) |
+                                     hex(static_cast<unsigned char>(s[i + 2])));
+            i += 2;
+        } else {
+            out += s[i];
+        }
+    }
+    return out;
+}
+
+// Why a URI may not be opened, or "" if it is a plain relative path inside the folder.
+std::string unsafeUriReason(const std::string& uri) {
+    if (uri.empty()) return "empty URI";
+    for (unsigned char c : uri)
+        if (c < 0x20 || c == 0x7f) return "control characters in URI";
+    if (uri[0] == '/' || uri[0] == '\\') return "absolute paths are not allowed";
+    // A scheme ("http:", "file:", also a drive letter "C:") comes before the first '/'.
+    size_t colon = uri.find(':');
+    if (colon != std::string::npos && colon < uri.find_first_of("/\\"))
+        return "URI scheme '" + printable(uri.substr(0, colon + 1), 20) +
+               "' is not allowed (only relative paths inside the model's folder, or base64 data: "
+               "URIs)";
+    size_t start = 0;
+    while (start <= uri.size()) {
+        size_t end = uri.find_first_of("/\\", start);
+        if (end == std::string::npos) end = uri.size();
+        if (uri.compare(start, end - start, "..") == 0 && end - start == 2)
+            return "'..' is not allowed (files must be inside the model's folder)";
+        start = end + 1;
+    }
+    return "";
+}
+
+bool insideFolder(const fs::path& canonicalFolder, const fs::path& p) {
+    std::error_code ec;
+    fs::path c = fs::weakly_canonical(p, ec);
+    if (ec) return false;
+    fs::path rel = c.lexically_relative(canonicalFolder);
+    return !rel.empty() && *rel.begin() != ".." && !rel.is_absolute();
+}
+
+// Reads a whole regular file, refusing it before reading if it is over the limits. Returns an
+// error text, or "" on success.
+std::string readCapped(Context& ctx, const fs::path& p, std::vector<unsigned char>& data) {
+    std::error_code ec;
+    // A FIFO or device could block or never end: only regular files are opened.
+    if (!fs::is_regular_file(p, ec)) return "not found or not a regular file";
+    uint64_t size = fs::file_size(p, ec);
+    if (ec) return "cannot get the file size";
+    if (size > ctx.limits.maxFileBytes)
+        return "file is " + std::to_string(size) + " bytes, over the limit of " +
+               std::to_string(ctx.limits.maxFileBytes);
+    if (ctx.out->bytesRead + size > ctx.limits.maxTotalBytes)
+        return "files read total " + std::to_string(ctx.out->bytesRead + size) +
+               " bytes, over the limit of " + std::to_string(ctx.limits.maxTotalBytes);
+    std::ifstream in(p, std::ios::binary);
+    if (!in) return "cannot open";
+    data.resize(static_cast<size_t>(size));
+    if (size > 0) in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(size));
+    if (!in || static_cast<uint64_t>(in.gcount()) != size) return "read error (file changed?)";
+    ctx.out->filesRead.push_back(p);
+    ctx.out->bytesRead += size;
+    return "";
+}
+
+// tinygltf asks for files as base_dir + "/" + decoded URI (and, failing that, relative to the
+// working directory): only the first form, with a safe relative part, is ever answered.
+bool allowedPath(const Context& ctx, const std::string& p) {
+    if (p.size() <= ctx.folderPrefix.size() ||
+        p.compare(0, ctx.folderPrefix.size(), ctx.folderPrefix) != 0)
+        return false;
+    if (!unsafeUriReason(p.substr(ctx.folderPrefix.size())).empty()) return false;
+    return insideFolder(ctx.canonicalFolder, p);
+}
+
+bool fsFileExists(const std::string& p, void* user) {
+    const auto* ctx = static_cast<const Context*>(user);
+    std::error_code ec;
+    return allowedPath(*ctx, p) && fs::is_regular_file(p, ec);
+}
+
+std::string fsExpandFilePath(const std::string& p, void*) {
+    return p;
+}
+
+bool fsReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& p,
+                     void* user) {
+    auto* ctx = static_cast<Context*>(user);
+    std::string e = allowedPath(*ctx, p) ? readCapped(*ctx, p, *out) : "outside the model's folder";
+    if (e.empty()) return true;
+    if (ctx->fsError.empty()) {
+        ctx->fsField = "buffers";
+        ctx->fsError = quoted(p) + ": " + e;
+    }
+    if (err) *err = e;
+    return false;
+}
+
+bool fsWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                      void*) {
+    if (err) *err = "writing is disabled";
+    return false;
+}
+
+// Images are never decoded (only geometry matters here), so their data is accepted unread.
+bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                 const unsigned char*, int, void*) {
+    return true;
+}
+
+// ---- Raw JSON checks, before tinygltf -----------------------------------------------------------
+
+void checkJsonDepth(const Context& ctx, const unsigned char* p, size_t n) {
+    int depth = 0;
+    bool inString = false;
+    for (size_t i = 0; i < n; ++i) {
+        unsigned char c = p[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                fail(ctx, "",
+                     "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+bool isSizeKey(const std::string& k) {
+    return k == "byteOffset" || k == "byteLength" || k == "count" || k == "byteStride";
+}
+
+// Properties tinygltf reads with GetInt, which wraps 4294967296 to 0.
+bool isIntKey(const std::string& k) {
+    static const std::set<std::string> keys = {"buffer",    "bufferView",
+                                               "mesh",      "camera",
+                                               "skin",      "children",
+                                               "nodes",     "scene",
+                                               "indices",   "material",
+                                               "mode",      "index",
+                                               "source",    "sampler",
+                                               "light",     "node",
+                                               "texCoord",  "skeleton",
+                                               "joints",    "input",
+                                               "output",    "inverseBindMatrices",
+                                               "magFilter", "minFilter",
+                                               "wrapS",     "wrapT"};
+    return keys.count(k) > 0;
+}
+
+// tinygltf reads sizes as size_t but ignores a negative or fractional optional one (treating
+// "byteOffset": -4 as 0), and reads indices as int, wrapping 4294967296 to 0: both would silently
+// draw the wrong data, so they are rejected here with the JSON path.
+void checkNumbers(const Context& ctx, const Json& j, const std::string& path,
+                  const std::string& key, const std::string& parentKey) {
+    if (j.is_object()) {
+        // Other extensions are not interpreted, so their numbers cannot mislead.
+        if (key == "extras" || (parentKey == "extensions" && key != "KHR_lights_punctual")) return;
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            const std::string& k = it.key();
+            std::string sub = path.empty() ? k : path + "." + k;
+            if (isSizeKey(k) && !it.value().is_number_unsigned())
+                fail(ctx, printable(sub, 120), "must be a non-negative integer");
+            checkNumbers(ctx, it.value(), sub, k, key);
+        }
+    } else if (j.is_array()) {
+        for (size_t i = 0; i < j.size(); ++i)
+            checkNumbers(ctx, j[i], path + "[" + std::to_string(i) + "]", key, parentKey);
+    } else if (j.is_number_integer() &&
+               (isIntKey(key) || parentKey == "attributes" || parentKey == "targets")) {
+        bool fits = j.is_number_unsigned()
+                        ? j.get<uint64_t>() <= uint64_t(std::numeric_limits<int32_t>::max())
+                        : j.get<int64_t>() >= std::numeric_limits<int32_t>::min();
+        if (!fits) fail(ctx, printable(path, 120), "integer out of range");
+    }
+}
+
+const Json* member(const Json& j, const char* key) {
+    if (!j.is_object()) return nullptr;
+    auto it = j.find(key);
+    return it == j.end() ? nullptr : &*it;
+}
+
+// Buffer URIs: checked, located and size-checked here so that errors name the field (tinygltf's
+// own messages do not), and nothing outside the folder is ever opened. Image URIs are never
+// opened at all (TINYGLTF_NO_EXTERNAL_IMAGE), so an image URI pointing outside the folder, or at a
+// missing file, is harmless and not an error.
+void checkBuffers(Context& ctx, const Json& doc, bool glb, std::optional<uint64_t> binSize) {
+    const Json* buffers = member(doc, "buffers");
+    if (!buffers || !buffers->is_array()) return;
+    uint64_t planned = ctx.out->bytesRead;
+    for (size_t i = 0; i < buffers->size(); ++i) {
+        const Json& b = (*buffers)[i];
+        std::string field = idx("buffers", i);
+        if (!b.is_object()) fail(ctx, field, "not a JSON object");
+        const Json* uri = member(b, "uri");
+        const Json* len = member(b, "byteLength");
+        if (!uri) {
+            // tinygltf would hand the BIN chunk to every buffer without a URI.
+            if (!glb || i != 0) fail(ctx, field + ".uri", "missing");
+            if (!binSize) fail(ctx, field, "no uri and the GLB file has no BIN chunk");
+            if (len && len->is_number_unsigned() && len->get<uint64_t>() > *binSize)
+                fail(ctx, field + ".byteLength",
+                     std::to_string(len->get<uint64_t>()) + " exceeds the GLB BIN chunk (" +
+                         std::to_string(*binSize) + " bytes)");
+            continue;
+        }
+        if (!uri->is_string()) fail(ctx, field + ".uri", "not a string");
+        const std::string& s = uri->get_ref<const std::string&>();
+        if (s.rfind("data:", 0) == 0) {
+            if (!tinygltf::IsDataURI(s))
+                fail(ctx, field + ".uri",
+                     "unsupported data URI (only base64 application/octet-stream or "
+                     "application/gltf-buffer)");
+            continue;
+        }
+        for (const std::string& form : {s, urlDecode(s)}) {
+            std::string reason = unsafeUriReason(form);
+            if (!reason.empty()) fail(ctx, field + ".uri", quoted(s) + ": " + reason);
+        }
+        fs::path p = ctx.folderPrefix + urlDecode(s);
+        std::error_code ec;
+        if (!fs::is_regular_file(p, ec))
+            fail(ctx, field + ".uri", quoted(s) + ": file not found (or not a regular file)");
+        if (!insideFolder(ctx.canonicalFolder, p))
+            fail(ctx, field + ".uri",
+                 quoted(s) + ": resolves (through a link) outside the model's folder");
+        uint64_t size = fs::file_size(p, ec);
+        if (ec) fail(ctx, field + ".uri", quoted(s) + ": cannot get the file size");
+        if (size > ctx.limits.maxFileBytes)
+            fail(ctx, field + ".uri",
+                 quoted(s) + ": file is " + std::to_string(size) + " bytes, over the limit of " +
+                     std::to_string(ctx.limits.maxFileBytes));
+        planned += size;
+        if (planned > ctx.limits.maxTotalBytes)
+            fail(ctx, field + ".uri",
+                 quoted(s) + ": files read total " + std::to_string(planned) +
+                     " bytes, over the limit of " + std::to_string(ctx.limits.maxTotalBytes));
+        if (len && len->is_number_unsigned() && len->get<uint64_t>() != size)
+            fail(ctx, field + ".byteLength",
+                 std::to_string(len->get<uint64_t>()) + " does not match the size of " + quoted(s) +
+                     " (" + std::to_string(size) + " bytes)");
+    }
+}
+
+// tinygltf hands &buffer.data[bufferView.byteOffset] to the image callback without any check,
+// so image bufferViews are checked against the declared buffer sizes before it runs (tinygltf
+// makes every loaded buffer exactly byteLength long).
+void checkImageBufferViews(const Context& ctx, const Json& doc) {
+    const Json* images = member(doc, "images");
+    if (!images || !images->is_array()) return;
+    const Json* views = member(doc, "bufferViews");
+    const Json* buffers = member(doc, "buffers");
+    for (size_t i = 0; i < images->size(); ++i) {
+        const Json* bv = member((*images)[i], "bufferView");
+        if (!bv) continue;
+        std::string field = idx("images", i) + ".bufferView";
+        if (!bv->is_number_integer() || bv->get<int64_t>() < 0 || !views || !views->is_array() ||
+            bv->get<uint64_t>() >= views->size())
+            fail(ctx, field, "not a valid bufferView index");
+        const Json& view = (*views)[bv->get<size_t>()];
+        const Json* b = member(view, "buffer");
+        if (!b || !b->is_number_integer() || b->get<int64_t>() < 0 || !buffers ||
+            !buffers->is_array() || b->get<uint64_t>() >= buffers->size())
+            fail(ctx, field, "its bufferView has no valid buffer");
+        const Json* len = member((*buffers)[b->get<size_t>()], "byteLength");
+        const Json* off = member(view, "byteOffset");
+        const Json* vlen = member(view, "byteLength");
+        uint64_t o = off && off->is_number_unsigned() ? off->get<uint64_t>() : 0;
+        uint64_t l = vlen && vlen->is_number_unsigned() ? vlen->get<uint64_t>() : 0;
+        uint64_t end = 0;
+        if (!len || !len->is_number_unsigned() || l == 0 || __builtin_add_overflow(o, l, &end) ||
+            end > len->get<uint64_t>())
+            fail(ctx, field, "its bufferView is empty or outside its buffer");
+    }
+}
+
+// tinygltf's messages for these name no field.
+void checkAssetAndViews(const Context& ctx, const Json& doc) {
+    const Json* asset = member(doc, "asset");
+    const Json* version = asset ? member(*asset, "version") : nullptr;
+    if (!version || !version->is_string())
+        fail(ctx, "asset.version", "missing (not a glTF 2.0 file?)");
+    if (version->get_ref<const std::string&>().rfind("2.", 0) != 0)
+        fail(ctx, "asset.version",
+             "unsupported glTF version " + quoted(version->get_ref<const std::string&>()));
+    const Json* views = member(doc, "bufferViews");
+    if (!views || !views->is_array()) return;
+    for (size_t i = 0; i < views->size(); ++i) {
+        const Json* stride = member((*views)[i], "byteStride");
+        if (!stride) continue;
+        uint64_t v = stride->get<uint64_t>();  // checkNumbers made it unsigned
+        if (v < 4 || v > 252 || v % 4 != 0)
+            fail(ctx, idx("bufferViews", i) + ".byteStride",
+                 std::to_string(v) + " must be a multiple of 4 in [4, 252]");
+    }
+}
+
+// tinygltf fails the whole load on a bad light with a message that names no light.
+void checkLights(const Context& ctx, const Json& doc) {
+    const Json* ext = member(doc, "extensions");
+    const Json* khr = ext ? member(*ext, "KHR_lights_punctual") : nullptr;
+    const Json* lights = khr ? member(*khr, "lights") : nullptr;
+    if (!lights) return;
+    if (!lights->is_array()) fail(ctx, "KHR_lights_punctual.lights", "not an array");
+    for (size_t i = 0; i < lights->size(); ++i) {
+        std::string field = "KHR_lights_punctual." + idx("lights", i);
+        const Json& l = (*lights)[i];
+        const Json* type = member(l, "type");
+        if (!type || !type->is_string()) fail(ctx, field + ".type", "missing or not a string");
+        const std::string& t = type->get_ref<const std::string&>();
+        if (t != "point" && t != "directional" && t != "spot")
+            fail(ctx, field + ".type", "unknown light type " + quoted(t));
+        if (t == "spot" && !(member(l, "spot") && member(l, "spot")->is_object()))
+            fail(ctx, field + ".spot", "a spot light needs a 'spot' object");
+    }
+}
+
+// tinygltf silently drops a primitive it cannot parse, which would renumber the meshes after it.
+void checkPrimitivesParse(const Context& ctx, const Json& doc) {
+    const Json* meshes = member(doc, "meshes");
+    if (!meshes || !meshes->is_array()) return;
+    for (size_t m = 0; m < meshes->size(); ++m) {
+        const Json* prims = member((*meshes)[m], "primitives");
+        if (!prims) continue;
+        if (!prims->is_array()) fail(ctx, idx("meshes", m) + ".primitives", "not an array");
+        for (size_t k = 0; k < prims->size(); ++k) {
+            const Json* attrs = member((*prims)[k], "attributes");
+            if (!attrs || !attrs->is_object())
+                fail(ctx, idx("meshes", m) + "." + idx("primitives", k) + ".attributes",
+                     "missing or not an object");
+        }
+    }
+}
+
+// ---- GLB container ------------------------------------------------------------------------------
+
+uint32_t readU32(const unsigned char* p) {
+    return uint32_t(p[0]) | (uint32_t(p[1]) << 8) | (uint32_t(p[2]) << 16) | (uint32_t(p[3]) << 24);
+}
+
+struct GlbChunks {
+    const unsigned char* json = nullptr;
+    size_t jsonSize = 0;
+    std::optional<uint64_t> binSize;
+};
+
+// Checks the layout more strictly than tinygltf, with messages that say which length is wrong.
+GlbChunks glbChunks(const Context& ctx, const std::vector<unsigned char>& d) {
+    if (d.size() < 20)
+        fail(ctx, "GLB header",
+             "file too short for a GLB header (" + std::to_string(d.size()) + " bytes)");
+    if (readU32(&d[4]) != 2)
+        fail(ctx, "GLB header.version", "unsupported version " + std::to_string(readU32(&d[4])));
+    uint64_t length = readU32(&d[8]);
+    if (length != d.size())
+        fail(ctx, "GLB header.length",
+             std::to_string(length) + " does not match the file size " + std::to_string(d.size()) +
+                 " (truncated file?)");
+    uint64_t jsonLength = readU32(&d[12]);
+    if (readU32(&d[16]) != 0x4E4F534Au) fail(ctx, "GLB chunk 0", "first chunk is not JSON");
+    if (jsonLength == 0 || 20 + jsonLength > length)
+        fail(ctx, "GLB chunk 0.chunkLength",
+             std::to_string(jsonLength) + " does not fit the file (" + std::to_string(length - 20) +
+                 " bytes after the header)");
+    // tinygltf looks for the BIN chunk right after jsonLength bytes, so padding is required.
+    if (jsonLength % 4 != 0)
+        fail(
+            ctx, "GLB chunk 0.chunkLength",
+            std::to_string(jsonLength) + " is not a multiple of 4 (the JSON chunk must be padded)");
+    GlbChunks c;
+    c.json = d.data() + 20;
+    c.jsonSize = static_cast<size_t>(jsonLength);
+    uint64_t pos = 20 + jsonLength;
+    if (pos < length) {
+        if (pos + 8 > length) fail(ctx, "GLB chunk 1", "truncated chunk header");
+        uint64_t binLength = readU32(&d[pos]);
+        if (pos + 8 + binLength > length)
+            fail(ctx, "GLB chunk 1.chunkLength",
+                 std::to_string(binLength) + " does not fit the file (" +
+                     std::to_string(length - pos - 8) + " bytes left)");
+        if (readU32(&d[pos + 4]) != 0x004E4942u)
+            fail(ctx, "GLB chunk 1", "second chunk is not BIN");
+        c.binSize = binLength;
+    }
+    return c;
+}
+
+// ---- Validated access to the loaded model ----------------------------------------------------
+
+struct AccessorData {
+    const unsigned char* base = nullptr;
+    uint64_t stride = 0;
+    uint64_t count = 0;
+    int componentType = 0;
+};
+
+uint64_t componentSize(int componentType) {
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
+        case TINYGLTF_COMPONENT_TYPE_INT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+            return 8;
+        default:
+            return 0;
+    }
+}
+
+uint64_t componentCount(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR:
+            return 1;
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        case TINYGLTF_TYPE_MAT2:
+            return 4;
+        case TINYGLTF_TYPE_MAT3:
+            return 9;
+        case TINYGLTF_TYPE_MAT4:
+            return 16;
+        default:
+            return 0;
+    }
+}
+
+void checkBufferViews(const Context& ctx, const tinygltf::Model& model) {
+    for (size_t i = 0; i < model.bufferViews.size(); ++i) {
+        const tinygltf::BufferView& bv = model.bufferViews[i];
+        std::string field = idx("bufferViews", i);
+        if (bv.buffer < 0 || size_t(bv.buffer) >= model.buffers.size())
+            fail(ctx, field + ".buffer",
+                 std::to_string(bv.buffer) + " out of range (" +
+                     std::to_string(model.buffers.size()) + " buffers)");
+        uint64_t size = model.buffers[size_t(bv.buffer)].data.size();
+        uint64_t end = 0;
+        bool overflow =
+            __builtin_add_overflow(uint64_t(bv.byteOffset), uint64_t(bv.byteLength), &end);
+        if (overflow || end > size)
+            fail(ctx, field,
+                 "byteOffset + byteLength exceeds " + idx("buffers", size_t(bv.buffer)) +
+                     ".byteLength (" + (overflow ? std::string("overflow") : std::to_string(end)) +
+                     " > " + std::to_string(size) + ")");
+    }
+}
+
+// `usedAs` names the reference (e.g. "meshes[0].primitives[1].indices") for range errors.
+// `checkType` runs before the byte range is checked, so a wrong type is reported as such rather
+// than as a range error computed with the wrong element size.
+template <typename CheckType>
+AccessorData checkedAccessor(const Context& ctx, const tinygltf::Model& model, const Json& doc,
+                             int index, const std::string& usedAs, CheckType&& checkType) {
+    if (index < 0 || size_t(index) >= model.accessors.size())
+        fail(ctx, usedAs,
+             "accessor " + std::to_string(index) + " out of range (" +
+                 std::to_string(model.accessors.size()) + " accessors)");
+    const tinygltf::Accessor& a = model.accessors[size_t(index)];
+    std::string field = idx("accessors", size_t(index));
+    const Json* accessors = member(doc, "accessors");
+    if (a.sparse.isSparse ||
+        (accessors && accessors->is_array() && size_t(index) < accessors->size() &&
+         member((*accessors)[size_t(index)], "sparse")))
+        fail(ctx, field + ".sparse", "sparse accessors are not supported");
+    checkType(a);
+    if (a.bufferView < 0)
+        fail(ctx, field, "accessors without a bufferView (all zeros) are not supported");
+    if (size_t(a.bufferView) >= model.bufferViews.size())
+        fail(ctx, field + ".bufferView",
+             std::to_string(a.bufferView) + " out of range (" +
+                 std::to_string(model.bufferViews.size()) + " bufferViews)");
+    if (a.count == 0) fail(ctx, field + ".count", "must be at least 1");
+    const tinygltf::BufferView& bv = model.bufferViews[size_t(a.bufferView)];
+    std::string bvField = idx("bufferViews", size_t(a.bufferView));
+    uint64_t elementSize = componentSize(a.componentType) * componentCount(a.type);
+    if (elementSize == 0) fail(ctx, field, "invalid componentType or type");
+    uint64_t stride = bv.byteStride == 0 ? elementSize : uint64_t(bv.byteStride);
+    // tinygltf has already required byteStride % 4 == 0 and <= 252.
+    if (bv.byteStride != 0 && (stride < elementSize || stride > 252 || stride % 4 != 0))
+        fail(ctx, bvField + ".byteStride",
+             std::to_string(bv.byteStride) + " must be a multiple of 4 in [" +
+                 std::to_string(elementSize) + ", 252] for " + field);
+    uint64_t span = 0, end = 0;
+    bool overflow = __builtin_mul_overflow(stride, uint64_t(a.count - 1), &span) ||
+                    __builtin_add_overflow(span, uint64_t(a.byteOffset), &end) ||
+                    __builtin_add_overflow(end, elementSize, &end);
+    if (overflow || end > bv.byteLength)
+        fail(ctx, field,
+             "byteOffset + stride*(count-1) + elementSize exceeds " + bvField + ".byteLength (" +
+                 (overflow ? std::string("overflows 64 bits") : std::to_string(end)) + " > " +
+                 std::to_string(bv.byteLength) + ")");
+    // checkBufferViews has put the whole bufferView inside its buffer.
+    AccessorData d;
+    d.base = model.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset + a.byteOffset;
+    d.stride = stride;
+    d.count = a.count;
+    d.componentType = a.componentType;
+    return d;
+}
+
+bool allFinite(const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+bool allFinite(const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+glm::dmat4 localTransform(const Context& ctx, const tinygltf::Node& n, size_t i) {
+    std::string field = idx("nodes", i);
+    auto checkArray = [&](const std::vector<double>& v, size_t want, const char* name) {
+        if (v.empty()) return false;
+        if (v.size() != want)
+            fail(ctx, field + "." + name,
+                 "expected " + std::to_string(want) + " numbers, got " + std::to_string(v.size()));
+        if (!allFinite(v)) fail(ctx, field + "." + name, "non-finite value");
+        return true;
+    };
+    if (checkArray(n.matrix, 16, "matrix")) {
+        glm::dmat4 m(1.0);
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[size_t(c * 4 + r)];
+        if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+            fail(ctx, field + ".matrix", "not affine (last row must be 0 0 0 1)");
+        return m;
+    }
+    glm::dmat4 t(1.0), r(1.0), s(1.0);
+    if (checkArray(n.translation, 3, "translation"))
+        t[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
+    if (checkArray(n.rotation, 4, "rotation")) {
+        glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+        double len = glm::length(q);
+        if (!(len > 0.0) || !std::isfinite(len))
+            fail(ctx, field + ".rotation", "zero-length quaternion");
+        r = glm::mat4_cast(q / len);
+    }
+    if (checkArray(n.scale, 3, "scale")) {
+        s[0][0] = n.scale[0];
+        s[1][1] = n.scale[1];
+        s[2][2] = n.scale[2];
+    }
+    return t * r * s;
+}
+
+// Rejects cycles anywhere in the node graph, iteratively (a hostile file must not exhaust the
+// stack).
+void checkNodeGraph(const Context& ctx, const tinygltf::Model& model) {
+    const size_t n = model.nodes.size();
+    for (size_t i = 0; i < n; ++i)
+        for (size_t c = 0; c < model.nodes[i].children.size(); ++c) {
+            int child = model.nodes[i].children[c];
+            if (child < 0 || size_t(child) >= n)
+                fail(ctx, idx("nodes", i) + "." + idx("children", c),
+                     std::to_string(child) + " out of range (" + std::to_string(n) + " nodes)");
+        }
+    enum : char { kNew, kOnPath, kDone };
+    std::vector<char> state(n, kNew);
+    std::vector<std::pair<size_t, size_t>> stack;  // node, next child
+    for (size_t root = 0; root < n; ++root) {
+        if (state[root] != kNew) continue;
+        stack.push_back({root, 0});
+        state[root] = kOnPath;
+        while (!stack.empty()) {
+            auto& [node, next] = stack.back();
+            const auto& children = model.nodes[node].children;
+            if (next == children.size()) {
+                state[node] = kDone;
+                stack.pop_back();
+                continue;
+            }
+            size_t child = size_t(children[next++]);
+            if (state[child] == kOnPath)
+                fail(ctx, idx("nodes", node) + ".children",
+                     "cycle in the node graph (back to " + idx("nodes", child) + ")");
+            if (state[child] == kNew) {
+                state[child] = kOnPath;
+                stack.push_back({child, 0});
+            }
+        }
+    }
+}
+
+struct Instance {
+    size_t node;
+    glm::dmat4 world;
+};
+
+// Calls visit(Instance) in traversal order. Instances are not stored: only what they produce is.
+template <typename Visit>
+void traverse(const Context& ctx, const tinygltf::Model& model, const Json& doc,
+              const glm::dmat4& wsFromFile, Visit&& visit) {
+    std::vector<int> roots;
+    if (model.scenes.empty()) {
+        std::vector<char> isChild(model.nodes.size(), 0);
+        for (const auto& n : model.nodes)
+            for (int c : n.children) isChild[size_t(c)] = 1;
+        for (size_t i = 0; i < model.nodes.size(); ++i)
+            if (!isChild[i]) roots.push_back(int(i));
+    } else {
+        if (member(doc, "scene") && model.defaultScene < 0)
+            fail(ctx, "scene", "must be a non-negative integer");
+        size_t s = model.defaultScene >= 0 ? size_t(model.defaultScene) : 0;
+        if (s >= model.scenes.size())
+            fail(ctx, "scene",
+                 std::to_string(s) + " out of range (" + std::to_string(model.scenes.size()) +
+                     " scenes)");
+        roots = model.scenes[s].nodes;
+        for (size_t i = 0; i < roots.size(); ++i)
+            if (roots[i] < 0 || size_t(roots[i]) >= model.nodes.size())
+                fail(ctx, idx("scenes", s) + "." + idx("nodes", i),
+                     std::to_string(roots[i]) + " out of range (" +
+                         std::to_string(model.nodes.size()) + " nodes)");
+    }
+    std::vector<glm::dmat4> local(model.nodes.size());
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+        local[i] = localTransform(ctx, model.nodes[i], i);
+
+    // Shared subtrees multiply (a chain of nodes each listing the next twice expands to 2^depth
+    // instances), so the number of node instances is counted first, in topological order with
+    // saturating sums (the graph has no cycle), and bounded like the number of meshes.
+    const size_t n = model.nodes.size();
+    std::vector<uint64_t> instances(n, 0);
+    std::vector<size_t> parents(n, 0);
+    for (const auto& node : model.nodes)
+        for (int c : node.children) ++parents[size_t(c)];
+    for (int r : roots)
+        instances[size_t(r)] = std::min<uint64_t>(instances[size_t(r)] + 1, 1ull << 62);
+    std::vector<size_t> ready;
+    for (size_t i = 0; i < n; ++i)
+        if (parents[i] == 0) ready.push_back(i);
+    uint64_t total = 0;
+    while (!ready.empty()) {
+        size_t i = ready.back();
+        ready.pop_back();
+        total = std::min<uint64_t>(total + instances[i], 1ull << 62);
+        for (int c : model.nodes[i].children) {
+            instances[size_t(c)] =
+                std::min<uint64_t>(instances[size_t(c)] + instances[i], 1ull << 62);
+            if (--parents[size_t(c)] == 0) ready.push_back(size_t(c));
+        }
+    }
+    const uint64_t maxInstances = ctx.limits.maxMeshes + n;
+    if (total > maxInstances)
+        fail(ctx, "nodes",
+             "the scene expands to " +
+                 (total >= (1ull << 62) ? std::string("over 2^62") : std::to_string(total)) +
+                 " node instances, more than " + std::to_string(maxInstances));
+    struct Item {
+        size_t node;
+        int depth;
+        glm::dmat4 parent;
+    };
+    std::vector<Item> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+        stack.push_back({size_t(*it), 1, wsFromFile});
+    while (!stack.empty()) {
+        Item item = stack.back();
+        stack.pop_back();
+        std::string field = idx("nodes", item.node);
+        if (item.depth > ctx.limits.maxNodeDepth)
+            fail(ctx, field,
+                 "node hierarchy deeper than " + std::to_string(ctx.limits.maxNodeDepth) +
+                     " levels");
+        glm::dmat4 world = item.parent * local[item.node];
+        if (!allFinite(world)) fail(ctx, field, "world transform is not finite");
+        visit(Instance{item.node, world});
+        const auto& children = model.nodes[item.node].children;
+        for (auto it = children.rbegin(); it != children.rend(); ++it)
+            stack.push_back({size_t(*it), item.depth + 1, world});
+    }
+}
+
+glm::dvec3 unitDirection(const Context& ctx, const glm::dmat4& m, const glm::dvec3& local,
+                         const std::string& field) {
+    glm::dvec3 d = glm::dvec3(m * glm::dvec4(local, 0.0));
+    double len = glm::length(d);
+    if (!(len > 0.0) || !std::isfinite(len))
+        fail(ctx, field, "transform collapses a direction to zero");
+    return d / len;
+}
+
+void addCamera(const Context& ctx, const tinygltf::Model& model, const Instance& inst,
+               std::optional<CameraDesc>& camera, bool& cameraSeen) {
+    const tinygltf::Node& node = model.nodes[inst.node];
+    if (node.camera < 0 || cameraSeen) return;
+    cameraSeen = true;
+    const tinygltf::Camera& cam = model.cameras[size_t(node.camera)];
+    std::string field = idx("cameras", size_t(node.camera));
+    if (cam.type != "perspective") {
+        ctx.out->warnings.push_back(field + ": " + printable(cam.type) +
+                                    " camera ignored (only perspective cameras are used)");
+        return;
+    }
+    double yfov = cam.perspective.yfov * 180.0 / std::numbers::pi;
+    if (!(yfov > 0.0 && yfov < 180.0))
+        fail(ctx, field + ".perspective.yfov", "must be in (0, pi) radians");
+    std::string nodeField = idx("nodes", inst.node);
+    CameraDesc c;
+    c.wsEye = glm::dvec3(inst.world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    c.wsTarget = c.wsEye + unitDirection(ctx, inst.world, {0.0, 0.0, -1.0}, nodeField);
+    c.wsUp = unitDirection(ctx, inst.world, {0.0, 1.0, 0.0}, nodeField);
+    c.vfovDeg = yfov;
+    const double side = std::max(1, ctx.limits.maxImageSide);
+    double ar = cam.perspective.aspectRatio;
+    // Clamped as doubles: converting an out-of-range double to int is undefined.
+    c.height = int(std::min(512.0, side));
+    c.width = int(ar > 0.0 ? std::clamp(std::round(512.0 * ar), 1.0, side) : std::min(512.0, side));
+    camera = c;
+}
+
+void addLight(const Context& ctx, const tinygltf::Model& model, const Instance& inst,
+              std::set<std::string>& names) {
+    const tinygltf::Node& node = model.nodes[inst.node];
+    auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end()) return;
+    std::string field = idx("nodes", inst.node) + ".extensions.KHR_lights_punctual.light";
+    const tinygltf::Value& v = ext->second.Get("light");
+    if (!v.IsInt()) fail(ctx, field, "missing or not an integer");
+    int li = v.Get<int>();
+    if (li < 0 || size_t(li) >= model.lights.size())
+        fail(ctx, field,
+             "light " + std::to_string(li) + " out of range (" +
+                 std::to_string(model.lights.size()) + " lights)");
+    if (ctx.out->lights.size() >= ctx.limits.maxLights)
+        fail(ctx, "KHR_lights_punctual",
+             "more than " + std::to_string(ctx.limits.maxLights) + " lights in the scene");
+    const tinygltf::Light& src = model.lights[size_t(li)];
+    std::string lightField = "KHR_lights_punctual." + idx("lights", size_t(li));
+    Light l;
+    l.wsPosition = glm::dvec3(inst.world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    if (src.type == "point") {
+        l.type = LightType::Point;
+    } else {
+        // Normalising drops the node's (uniform) scale, which glTF says lights ignore.
+        l.wsDirection = unitDirection(ctx, inst.world, {0.0, 0.0, -1.0}, idx("nodes", inst.node));
+        l.type = src.type == "spot" ? LightType::Spot : LightType::Directional;
+        if (l.type == LightType::Spot) {
+            double inner = src.spot.innerConeAngle * 180.0 / std::numbers::pi;
+            double outer = src.spot.outerConeAngle * 180.0 / std::numbers::pi;
+            if (!(inner >= 0.0 && inner <= outer && outer > 0.0 && outer <= 90.0))
+                fail(ctx, lightField + ".spot",
+                     "need 0 <= innerConeAngle <= outerConeAngle <= pi/2 and outerConeAngle > 0");
+            l.innerConeDeg = inner;
+            l.outerConeDeg = outer;
+        }
+    }
+    std::string base = channels::sanitizeLayerName(src.name, "light" + std::to_string(li));
+    std::string name = base;
+    for (size_t n = 2; names.count(name); ++n) {
+        std::string suffix = "_" + std::to_string(n);
+        name = base.substr(0, 64 - suffix.size()) + suffix;
+    }
+    SO_CHECK(channels::isValidLayerName(name));
+    names.insert(name);
+    l.name = name;
+    ctx.out->lights.push_back(std::move(l));
+}
+
+struct PlannedPrimitive {
+    Instance instance;
+    size_t mesh, prim;
+    AccessorData positions;
+    std::optional<AccessorData> indices;
+    int mode;
+    uint64_t elements;  // index count, or vertex count when not indexed
+    uint64_t triangles;
+};
+
+std::string primField(size_t mesh, size_t prim) {
+    return idx("meshes", mesh) + "." + idx("primitives", prim);
+}
+
+uint32_t readIndex(const AccessorData& a, uint64_t i) {
+    const unsigned char* p = a.base + i * a.stride;
+    switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return p[0];
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return v;
+        }
+        default: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+    }
+}
+
+MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const PlannedPrimitive& pp) {
+    const Instance& inst = pp.instance;
+    const tinygltf::Node& node = model.nodes[inst.node];
+    const tinygltf::Mesh& mesh = model.meshes[pp.mesh];
+    const tinygltf::Primitive& prim = mesh.primitives[pp.prim];
+    std::string field = primField(pp.mesh, pp.prim);
+    MeshPrimitive out;
+    out.name = ctx.displayName + "#" +
+               (node.name.empty() ? "node" + std::to_string(inst.node) : printable(node.name)) +
+               "/" + (mesh.name.empty() ? "mesh" + std::to_string(pp.mesh) : printable(mesh.name)) +
+               "/prim" + std::to_string(pp.prim);
+
+    const std::string posField = idx("accessors", size_t(prim.attributes.at("POSITION")));
+    out.wsPositions.resize(size_t(pp.positions.count));
+    for (uint64_t i = 0; i < pp.positions.count; ++i) {
+        float f[3];
+        std::memcpy(f, pp.positions.base + i * pp.positions.stride, sizeof f);
+        if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
+            fail(ctx, posField, "POSITION " + std::to_string(i) + " is not finite");
+        glm::dvec3 p = glm::dvec3(inst.world * glm::dvec4(f[0], f[1], f[2], 1.0));
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            fail(ctx, idx("nodes", inst.node),
+                 "world position of " + field + " vertex " + std::to_string(i) + " is not finite");
+        out.wsPositions[size_t(i)] = p;
+    }
+
+    std::vector<uint32_t> elements(size_t(pp.elements));
+    for (uint64_t i = 0; i < pp.elements; ++i) {
+        uint32_t v = pp.indices ? readIndex(*pp.indices, i) : uint32_t(i);
+        if (v >= pp.positions.count)
+            fail(ctx, field + ".indices",
+                 "index " + std::to_string(v) + " (element " + std::to_string(i) +
+                     ") >= vertex count " + std::to_string(pp.positions.count));
+        elements[size_t(i)] = v;
+    }
+    if (pp.mode == TINYGLTF_MODE_TRIANGLES) {
+        out.indices = std::move(elements);
+    } else {
+        out.indices.reserve(size_t(pp.triangles) * 3);
+        for (size_t i = 0; i < size_t(pp.triangles); ++i) {
+            if (pp.mode == TINYGLTF_MODE_TRIANGLE_FAN)
+                out.indices.insert(out.indices.end(),
+                                   {elements[0], elements[i + 1], elements[i + 2]});
+            else if (i % 2 == 0)
+                out.indices.insert(out.indices.end(),
+                                   {elements[i], elements[i + 1], elements[i + 2]});
+            else
+                out.indices.insert(out.indices.end(),
+                                   {elements[i + 1], elements[i], elements[i + 2]});
+        }
+    }
+    return out;
+}
+
+void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
+             const glm::dmat4& wsFromFile) {
+    GltfContent& out = *ctx.out;
+    checkBufferViews(ctx, model);
+    for (size_t i = 0; i < model.nodes.size(); ++i) {
+        const tinygltf::Node& n = model.nodes[i];
+        if (n.mesh < -1 || n.mesh >= int(model.meshes.size()))
+            fail(ctx, idx("nodes", i) + ".mesh",
+                 std::to_string(n.mesh) + " out of range (" + std::to_string(model.meshes.size()) +
+                     " meshes)");
+        if (n.camera < -1 || n.camera >= int(model.cameras.size()))
+            fail(ctx, idx("nodes", i) + ".camera",
+                 std::to_string(n.camera) + " out of range (" +
+                     std::to_string(model.cameras.size()) + " cameras)");
+    }
+    checkNodeGraph(ctx, model);
+
+    // Pass 1: validate and count everything, so that limits are checked before allocating.
+    std::vector<PlannedPrimitive> plan;
+    size_t nonTriangle = 0, empty = 0;
+    uint64_t totalTriangles = 0, totalVertices = 0;
+    bool skinsOrMorphs = false, cameraSeen = false;
+    std::set<std::string> lightNames;
+    traverse(ctx, model, doc, wsFromFile, [&](const Instance& inst) {
+        const tinygltf::Node& node = model.nodes[inst.node];
+        addCamera(ctx, model, inst, out.camera, cameraSeen);
+        addLight(ctx, model, inst, lightNames);
+        if (node.mesh < 0) return;
+        skinsOrMorphs |= node.skin >= 0 || !node.weights.empty();
+        const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
+        for (size_t k = 0; k < mesh.primitives.size(); ++k) {
+            const tinygltf::Primitive& prim = mesh.primitives[k];
+            std::string field = primField(size_t(node.mesh), k);
+            skinsOrMorphs |= !prim.targets.empty();
+            if (prim.mode < TINYGLTF_MODE_POINTS || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+                fail(ctx, field + ".mode", "invalid mode " + std::to_string(prim.mode));
+            if (prim.mode < TINYGLTF_MODE_TRIANGLES) {
+                ++nonTriangle;
+                continue;
+            }
+            PlannedPrimitive pp{inst, size_t(node.mesh), k, {}, std::nullopt, prim.mode, 0, 0};
+            auto pos = prim.attributes.find("POSITION");
+            if (pos == prim.attributes.end()) fail(ctx, field + ".attributes", "no POSITION");
+            pp.positions = checkedAccessor(
+                ctx, model, doc, pos->second, field + ".attributes.POSITION",
+                [&](const tinygltf::Accessor& a) {
+                    if (a.type != TINYGLTF_TYPE_VEC3 ||
+                        a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+                        fail(ctx, idx("accessors", size_t(pos->second)),
+                             "POSITION must be VEC3 FLOAT (quantized positions are not supported)");
+                });
+            if (pp.positions.count > 3 * ctx.limits.maxTrianglesPerMesh)
+                fail(
+                    ctx, idx("accessors", size_t(pos->second)) + ".count",
+                    std::to_string(pp.positions.count) + " vertices, over 3 x maxTrianglesPerMesh");
+            pp.elements = pp.positions.count;
+            if (prim.indices >= 0) {
+                pp.indices = checkedAccessor(
+                    ctx, model, doc, prim.indices, field + ".indices",
+                    [&](const tinygltf::Accessor& a) {
+                        if (a.type != TINYGLTF_TYPE_SCALAR ||
+                            (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                             a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                             a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+                            fail(ctx, field + ".indices",
+                                 idx("accessors", size_t(prim.indices)) +
+                                     " must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                                     "UNSIGNED_INT");
+                    });
+                pp.elements = pp.indices->count;
+            }
+            if (pp.mode == TINYGLTF_MODE_TRIANGLES) {
+                if (pp.elements % 3 != 0)
+                    fail(ctx, field + (pp.indices ? ".indices" : ".attributes.POSITION"),
+                         "TRIANGLES with " + std::to_string(pp.elements) +
+                             " elements, not a multiple of 3");
+                pp.triangles = pp.elements / 3;
+            } else {
+                pp.triangles = pp.elements < 3 ? 0 : pp.elements - 2;
+            }
+            if (pp.triangles == 0) {
+                ++empty;
+                continue;
+            }
+            if (pp.triangles > ctx.limits.maxTrianglesPerMesh)
+                fail(ctx, field,
+                     std::to_string(pp.triangles) + " triangles, over the limit of " +
+                         std::to_string(ctx.limits.maxTrianglesPerMesh));
+            if (plan.size() + 1 > ctx.limits.maxMeshes)
+                fail(ctx, "meshes",
+                     "more than " + std::to_string(ctx.limits.maxMeshes) + " drawn primitives");
+            totalTriangles += pp.triangles;
+            totalVertices += pp.positions.count;
+            if (totalTriangles > ctx.limits.maxTotalTriangles)
+                fail(ctx, "meshes",
+                     "more than " + std::to_string(ctx.limits.maxTotalTriangles) +
+                         " triangles in all");
+            if (totalVertices > 3 * ctx.limits.maxTotalTriangles)
+                fail(ctx, "meshes",
+                     "more than " + std::to_string(3 * ctx.limits.maxTotalTriangles) +
+                         " vertices in all");
+            plan.push_back(pp);
+        }
+    });
+    if (nonTriangle > 0)
+        out.warnings.push_back(std::to_string(nonTriangle) +
+                               " point or line primitive(s) skipped (only triangles are traced)");
+    if (empty > 0)
+        out.warnings.push_back(std::to_string(empty) + " primitive(s) with no triangle skipped");
+    if (skinsOrMorphs)
+        out.warnings.push_back("skins and morph targets are ignored (meshes drawn in rest pose)");
+    out.skippedPrimitives = nonTriangle + empty;
+
+    // Pass 2: build.
+    out.meshes.reserve(plan.size());
+    for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, pp));
+}
+
+}  // namespace
+
+GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
+                     const glm::dmat4& wsFromFile, const LoadLimits& limits) {
+    GltfContent content;
+    Context ctx;
+    ctx.displayName = displayName;
+    ctx.limits = limits;
+    ctx.out = &content;
+    std::error_code ec;
+    fs::path folder = fs::absolute(path, ec).lexically_normal().parent_path();
+    if (ec) fail(ctx, "", "cannot resolve the path");
+    ctx.folderPrefix = folder.string();
+    if (ctx.folderPrefix.empty() || ctx.folderPrefix.back() != '/') ctx.folderPrefix += '/';
+    ctx.canonicalFolder = fs::weakly_canonical(folder, ec);
+    if (ec) fail(ctx, "", "cannot resolve the folder");
+
+    std::vector<unsigned char> data;
+    std::string err = readCapped(ctx, path, data);
+    if (!err.empty()) fail(ctx, "", err);
+    if (data.empty()) fail(ctx, "", "file is empty");
+    if (data.size() > std::numeric_limits<uint32_t>::max())
+        fail(ctx, "", "file is 4 GiB or more (tinygltf limit)");
+
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    const bool glb = data.size() >= 4 && std::memcmp(data.data(), "glTF", 4) == 0;
+    if (ext == ".glb" && !glb) fail(ctx, "GLB header", "bad magic (not a binary glTF file)");
+
+    GlbChunks chunks{data.data(), data.size(), std::nullopt};
+    if (glb) chunks = glbChunks(ctx, data);
+    const unsigned char* json = chunks.json;
+    const size_t jsonSize = chunks.jsonSize;
+
+    checkJsonDepth(ctx, json, jsonSize);
+    Json doc;
+    try {
+        doc = Json::parse(json, json + jsonSize);
+    } catch (const Json::exception& e) {
+        fail(ctx, "", "not valid JSON: " + printable(e.what(), 200));
+    }
+    if (!doc.is_object()) fail(ctx, "", "not a glTF file (the JSON is not an object)");
+    checkNumbers(ctx, doc, "", "", "");
+    checkAssetAndViews(ctx, doc);
+    checkBuffers(ctx, doc, glb, chunks.binSize);
+    checkImageBufferViews(ctx, doc);
+    checkLights(ctx, doc);
+    checkPrimitivesParse(ctx, doc);
+
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(ignoreImage, nullptr);
+    loader.SetFsCallbacks(
+        {fsFileExists, fsExpandFilePath, fsReadWholeFile, fsWriteWholeFile, &ctx});
+    tinygltf::Model model;
+    std::string warn;
+    err.clear();
+    bool ok =
+        glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data.data(),
+                                          static_cast<unsigned int>(data.size()), ctx.folderPrefix)
+            : loader.LoadASCIIFromString(&model, &err, &warn,
+                                         reinterpret_cast<const char*>(data.data()),
+                                         static_cast<unsigned int>(data.size()), ctx.folderPrefix);
+    if (!ok) {
+        if (!ctx.fsError.empty()) fail(ctx, ctx.fsField, ctx.fsError);
+        if (err.find("Spot light description not found") != std::string::npos)
+            fail(ctx, "KHR_lights_punctual.lights", oneLine(err));
+        fail(ctx, "",
+             "invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
+    }
+    // tinygltf also reports some problems without failing (e.g. a misaligned GLB chunk).
+    for (const std::string* text : {&warn, &err})
+        for (const std::string& w : lines(*text)) content.warnings.push_back(w);
+    convert(ctx, model, doc, wsFromFile);
+    return content;
+}
+
+}  // namespace so

@@ -1,0 +1,32 @@
+// Safe loading of glTF 2.0 (.gltf / .glb) through tinygltf 2.7: images are never decoded, no URI
+// may leave the folder of the file, every accessor is checked against its buffer, and sizes are
+// capped (see ../shared/notes/gltf.md for why each of these is needed).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "core/scene.h"
+
+namespace so {
+
+struct GltfContent {
+    std::vector<MeshPrimitive> meshes;  // in drawn order (docs/scene-format.md, "Mesh numbering")
+    std::optional<CameraDesc> camera;   // first camera node in traversal order, if any
+    std::vector<Light> lights;          // KHR_lights_punctual, named and made unique
+    size_t skippedPrimitives = 0;
+    std::vector<std::string> warnings;
+    std::vector<std::filesystem::path> filesRead;  // for the content hash
+    uint64_t bytesRead = 0;
+};
+
+// Loads the default scene of a glTF file, applying `wsFromFile` (the scene file's placement) after
+// the node transforms. `displayName` is the name used in error messages.
+GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
+                     const glm::dmat4& wsFromFile, const LoadLimits& limits);
+
+}  // namespace so

@@ -1,0 +1,44 @@
+// A multi-channel float image addressed by channel name: what the oracle and the raster path fill
+// and what the EXR writer stores. Planar, row 0 at the top (docs/conventions.md).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace so {
+
+class ChannelImage {
+  public:
+    ChannelImage() = default;
+    ChannelImage(int width, int height) : width_(width), height_(height) {}
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    size_t pixelCount() const { return size_t(width_) * size_t(height_); }
+
+    // Adds a channel filled with `fill`; the name must be new.
+    float* addChannel(const std::string& name, float fill = 0.0f);
+    bool has(const std::string& name) const;
+    float* channel(const std::string& name);              // CHECKs that it exists
+    const float* channel(const std::string& name) const;  // CHECKs that it exists
+    const std::vector<std::string>& names() const { return names_; }
+
+  private:
+    int width_ = 0, height_ = 0;
+    std::vector<std::string> names_;
+    std::vector<std::vector<float>> planes_;
+};
+
+// Writes all channels as 32-bit float, ZIP-compressed scanlines, with string attributes (e.g.
+// provenance). Deterministic: the same image gives the same bytes.
+void writeExr(const std::string& path, const ChannelImage& image,
+              const std::vector<std::pair<std::string, std::string>>& attributes = {});
+// Reads every channel as float. Throws InputError on a bad file.
+ChannelImage readExr(const std::string& path);
+
+// 8-bit sRGB PNG from linear RGB floats in [0,1] (interleaved, row 0 at the top).
+void writePngRgb(const std::string& path, int width, int height,
+                 const std::vector<float>& linearRgb);
+
+}  // namespace so

@@ -1,0 +1,53 @@
+#include "core/progress.h"
+
+#include <unistd.h>
+#include <algorithm>
+#include <cstdio>
+
+namespace so {
+
+using Clock = std::chrono::steady_clock;
+
+Progress::Progress(std::string label, uint64_t total, bool enabled)
+    : label_(std::move(label)),
+      total_(total),
+      enabled_(enabled),
+      tty_(isatty(STDERR_FILENO) != 0),
+      start_(Clock::now()),
+      lastDraw_(start_) {}
+
+Progress::~Progress() {
+    if (drawn_) draw(done_.load(), true);
+}
+
+void Progress::advance(uint64_t n) {
+    uint64_t done = done_.fetch_add(n) + n;
+    if (!enabled_) return;
+    auto now = Clock::now();
+    // Nothing for the first second: short runs stay quiet.
+    auto sinceStart = now - start_;
+    auto interval = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(5000);
+    if (sinceStart < std::chrono::seconds(1)) return;
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock() || now - lastDraw_ < interval) return;
+    lastDraw_ = now;
+    draw(done, false);
+}
+
+void Progress::draw(uint64_t done, bool final) {
+    double frac = total_ ? std::min(1.0, double(done) / double(total_)) : 1.0;
+    double secs = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (tty_) {
+        const int width = 30;
+        int filled = int(frac * width + 0.5);
+        std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%% %6.1fs", label_.c_str(), filled,
+                     "==============================", width - filled, "", 100.0 * frac, secs);
+        if (final) std::fputc('\n', stderr);
+    } else {
+        std::fprintf(stderr, "%s: %5.1f%% after %.1fs\n", label_.c_str(), 100.0 * frac, secs);
+    }
+    std::fflush(stderr);
+    drawn_ = true;
+}
+
+}  // namespace so

@@ -1,0 +1,102 @@
+// The scene model shared by the oracle and the raster path: parsed once, then plain immutable data.
+// Everything here is in world space and in double precision; each path converts to its own
+// precision and frame (the oracle recentres before going to float, see oracle/local_frame.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace so {
+
+// Axis-aligned box in world space. Empty until a point is added.
+struct Bounds3d {
+    glm::dvec3 lo{std::numeric_limits<double>::infinity()};
+    glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
+    bool empty() const { return !(lo.x <= hi.x); }
+    void extend(const glm::dvec3& p);
+    void extend(const Bounds3d& b);
+    glm::dvec3 center() const { return 0.5 * (lo + hi); }
+    glm::dvec3 diagonal() const { return hi - lo; }
+    double extent() const;  // length of the diagonal
+};
+
+// What the scene file says about the camera; camera.h turns it into rays and matrices.
+struct CameraDesc {
+    glm::dvec3 wsEye{0.0};
+    glm::dvec3 wsTarget{0.0, 0.0, -1.0};
+    glm::dvec3 wsUp{0.0, 1.0, 0.0};
+    double vfovDeg = 40.0;  // full vertical field of view
+    int width = 512;
+    int height = 512;
+};
+
+enum class LightType { Point, Directional, Spot };
+const char* lightTypeName(LightType t);
+
+struct Light {
+    std::string name;  // unique in the scene, a valid EXR layer name (see channels.h)
+    LightType type = LightType::Point;
+    glm::dvec3 wsPosition{0.0};              // point, spot
+    glm::dvec3 wsDirection{0.0, -1.0, 0.0};  // directional, spot: unit, the way light travels
+    double outerConeDeg = 45.0;              // spot: half-angle of the lit cone
+    double innerConeDeg = 0.0;               // spot: half-angle of full intensity (raster only)
+};
+
+// One drawn mesh primitive (a glTF primitive instanced by one node). Its index in Scene::meshes
+// is its `id.mesh`; the triangle index within `indices` / 3 is its `id.prim`.
+struct MeshPrimitive {
+    std::string name;                     // "FILE#node/mesh/primitive", for people
+    std::vector<glm::dvec3> wsPositions;  // node transforms and scene-file placement applied
+    std::vector<uint32_t> indices;        // 3 per triangle, all < wsPositions.size()
+    size_t degenerateTriangles = 0;       // zero-area in double; kept (ids stay stable), counted
+    size_t triangleCount() const { return indices.size() / 3; }
+};
+
+struct SceneStats {
+    size_t triangles = 0;
+    size_t degenerateTriangles = 0;
+    size_t skippedPrimitives = 0;  // non-triangle glTF primitives (points, lines), counted
+    std::vector<std::string> warnings;
+    bool totalTrianglesExceeded(const struct LoadLimits& limits) const;
+};
+
+struct Scene {
+    std::filesystem::path path;  // the file the user named
+    std::string contentHash;     // hash of the scene file and every file it references
+    CameraDesc camera;
+    std::vector<MeshPrimitive> meshes;
+    std::vector<Light> lights;
+    std::vector<std::string> effects;  // as given, validated; default {"hard"}
+    Bounds3d wsBounds;                 // of all mesh vertices
+    SceneStats stats;
+};
+
+// Limits that bound every allocation a hostile file could cause. Documented in
+// docs/scene-format.md; a file beyond them is an input error, never a crash.
+struct LoadLimits {
+    uint64_t maxFileBytes = uint64_t(1) << 30;   // any one file read (scene, .gltf, .bin, .glb)
+    uint64_t maxTotalBytes = uint64_t(4) << 30;  // all files of one scene together
+    uint64_t maxTrianglesPerMesh = uint64_t(1) << 24;  // id.prim is stored exactly in float32
+    uint64_t maxMeshes = uint64_t(1) << 24;            // id.mesh likewise
+    uint64_t maxTotalTriangles = uint64_t(1) << 28;
+    int maxImageSide = 16384;
+    uint64_t maxImagePixels = uint64_t(1) << 26;
+    int maxNodeDepth = 256;
+    size_t maxLights = 64;
+};
+
+// Loads a scene file (.json, see docs/scene-format.md) or a bare .gltf/.glb. Throws InputError
+// with a one-line message naming the file and the field.
+Scene loadScene(const std::filesystem::path& path, const LoadLimits& limits = {});
+
+// Counts degenerate triangles, fills bounds and stats. Used by the loaders and by tests that
+// build scenes in code.
+void finalizeScene(Scene& scene);
+
+}  // namespace so

@@ -1,0 +1,476 @@
+// The scene file parser (docs/scene-format.md, scene_format 1) and loadScene's dispatch.
+// Strict on purpose: an unknown key is almost always a typo that would otherwise silently change
+// what is measured, so every object lists the keys it accepts.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/camera.h"
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/gltf_loader.h"
+#include "core/hash.h"
+#include "core/scene.h"
+
+namespace so {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr int kSceneFormat = 1;
+
+std::string readFileCapped(const std::filesystem::path& path, const std::string& display,
+                           uint64_t maxBytes) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throwInputError(display, "",
+                        std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+    uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) throwInputError(display, "", "cannot read its size: " + ec.message());
+    if (size > maxBytes)
+        throwInputError(
+            display, "",
+            "file is " + std::to_string(size) + " bytes, limit is " + std::to_string(maxBytes));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throwInputError(display, "", "cannot be opened");
+    std::string bytes(size, '\0');
+    in.read(bytes.data(), std::streamsize(size));
+    if (uint64_t(in.gcount()) != size) throwInputError(display, "", "short read");
+    return bytes;
+}
+
+// Typed, path-tracking access to a JSON value, so every error names the field as a user wrote it.
+class Reader {
+  public:
+    explicit Reader(std::string file) : file_(std::move(file)) {}
+    const std::string& file() const { return file_; }
+
+    [[noreturn]] void fail(const std::string& field, const std::string& msg) const {
+        throwInputError(file_, field, msg);
+    }
+
+    void requireObject(const json& j, const std::string& field) const {
+        if (!j.is_object()) fail(field, "expected an object, got " + typeName(j));
+    }
+
+    void checkKeys(const json& j, const std::string& field,
+                   std::initializer_list<const char*> allowed,
+                   const std::string& context = "") const {
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            bool ok = std::any_of(allowed.begin(), allowed.end(),
+                                  [&](const char* a) { return it.key() == a; });
+            if (!ok) {
+                std::string list;
+                for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+                fail(join(field, it.key()), "unknown key" + context + " (valid: " + list + ")");
+            }
+        }
+    }
+
+    double number(const json& j, const std::string& field) const {
+        if (!j.is_number()) fail(field, "expected a number, got " + typeName(j));
+        double v = j.get<double>();
+        if (!std::isfinite(v)) fail(field, "not a finite number");
+        return v;
+    }
+
+    int integer(const json& j, const std::string& field, int lo, int hi) const {
+        if (!j.is_number_integer() && !(j.is_number_float() && isIntegral(j.get<double>())))
+            fail(field, "expected an integer, got " + (j.is_number() ? dumpShort(j) : typeName(j)));
+        double v = j.get<double>();
+        if (v < lo || v > hi)
+            fail(field, dumpShort(j) + " is out of range [" + std::to_string(lo) + ", " +
+                            std::to_string(hi) + "]");
+        return int(v);
+    }
+
+    std::string string(const json& j, const std::string& field) const {
+        if (!j.is_string()) fail(field, "expected a string, got " + typeName(j));
+        return j.get<std::string>();
+    }
+
+    glm::dvec3 vec3(const json& j, const std::string& field) const {
+        if (!j.is_array() || j.size() != 3)
+            fail(field,
+                 "expected an array of 3 numbers, got " +
+                     (j.is_array() ? "an array of " + std::to_string(j.size()) : typeName(j)));
+        glm::dvec3 v;
+        for (int i = 0; i < 3; ++i) v[i] = number(j[i], field + "[" + std::to_string(i) + "]");
+        return v;
+    }
+
+    glm::dvec3 unitVec3(const json& j, const std::string& field) const {
+        glm::dvec3 v = vec3(j, field);
+        double len = glm::length(v);
+        if (!(len > 0.0) || !std::isfinite(len)) fail(field, "zero length");
+        return v / len;
+    }
+
+    static std::string join(const std::string& parent, const std::string& key) {
+        return parent.empty() ? key : parent + "." + key;
+    }
+    static std::string index(const std::string& parent, size_t i) {
+        return parent + "[" + std::to_string(i) + "]";
+    }
+
+    static std::string typeName(const json& j) {
+        switch (j.type()) {
+            case json::value_t::null:
+                return "null";
+            case json::value_t::object:
+                return "an object";
+            case json::value_t::array:
+                return "an array";
+            case json::value_t::string:
+                return "a string";
+            case json::value_t::boolean:
+                return "a boolean";
+            default:
+                return "a number";
+        }
+    }
+
+  private:
+    static bool isIntegral(double v) { return std::isfinite(v) && v == std::floor(v); }
+    static std::string dumpShort(const json& j) { return printable(j.dump(), 40); }
+    std::string file_;
+};
+
+// Parses JSON and rejects duplicate keys in any object, which nlohmann would silently resolve to
+// the last one.
+json parseStrict(const std::string& text, const Reader& r) {
+    std::vector<std::set<std::string>> keysPerDepth;
+    std::string duplicate;
+    auto callback = [&](int depth, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::object_start) {
+            if (keysPerDepth.size() <= size_t(depth)) keysPerDepth.resize(depth + 1);
+            keysPerDepth[depth].clear();
+        } else if (event == json::parse_event_t::key && duplicate.empty()) {
+            // Keys are reported at the depth of the object that owns them.
+            size_t d = size_t(depth > 0 ? depth - 1 : 0);
+            if (keysPerDepth.size() <= d) keysPerDepth.resize(d + 1);
+            if (!keysPerDepth[d].insert(parsed.get<std::string>()).second)
+                duplicate = parsed.get<std::string>();
+        }
+        return true;
+    };
+    json j;
+    try {
+        j = json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/false);
+    } catch (const json::parse_error& e) {
+        // nlohmann's message already names line and column; keep its last clause on one line.
+        std::string what = e.what();
+        auto pos = what.find("parse error");
+        r.fail("", "invalid JSON: " +
+                       printable(pos == std::string::npos ? what : what.substr(pos), 160));
+    } catch (const json::out_of_range& e) {
+        // A number beyond double range (1e999): nlohmann names the literal but not where it is.
+        std::string what = e.what();
+        auto q1 = what.find('\''), q2 = what.rfind('\'');
+        std::string literal =
+            q1 != std::string::npos && q2 > q1 ? what.substr(q1 + 1, q2 - q1 - 1) : "";
+        std::string where;
+        if (auto at = literal.empty() ? std::string::npos : text.find(literal);
+            at != std::string::npos) {
+            size_t line = 1 + size_t(std::count(text.begin(), text.begin() + long(at), '\n'));
+            size_t lineStart = text.rfind('\n', at);
+            size_t column = at - (lineStart == std::string::npos ? 0 : lineStart + 1) + 1;
+            where = "line " + std::to_string(line) + ", column " + std::to_string(column) + ": ";
+        }
+        r.fail("",
+               "invalid JSON: " + where + "number " + printable(literal, 40) + " is not finite");
+    } catch (const json::exception& e) {
+        r.fail("", "invalid JSON: " + printable(e.what(), 160));
+    }
+    if (!duplicate.empty()) r.fail(printable(duplicate, 40), "duplicate key");
+    return j;
+}
+
+// A geometry path must stay inside the scene file's folder (no absolute paths, no "..").
+std::filesystem::path resolveInside(const std::filesystem::path& folder, const std::string& rel,
+                                    const Reader& r, const std::string& field) {
+    if (rel.empty()) r.fail(field, "empty path");
+    if (rel.find('\0') != std::string::npos) r.fail(field, "path contains a NUL byte");
+    std::filesystem::path p(rel);
+    if (p.is_absolute() || p.has_root_name() || p.has_root_directory())
+        r.fail(field, "absolute paths are not allowed (paths are relative to the scene file)");
+    // "scheme:..." (http:, file:, data:...) is a URL, not a path.
+    auto colon = rel.find(':');
+    if (colon != std::string::npos && colon > 0 &&
+        std::all_of(rel.begin(), rel.begin() + long(colon), [](char c) {
+            return std::isalnum((unsigned char)c) || c == '+' || c == '-' || c == '.';
+        }))
+        r.fail(field, "URLs are not allowed (paths are relative to the scene file)");
+    for (const auto& part : p.lexically_normal())
+        if (part == "..") r.fail(field, "path leaves the scene's folder");
+    return folder / p;
+}
+
+struct Loaded {
+    Scene scene;
+    std::vector<std::pair<std::filesystem::path, std::string>> files;  // for the hash
+};
+
+void parseLights(const json& jl, const Reader& r, const LoadLimits& limits, Scene& scene) {
+    if (!jl.is_array()) r.fail("lights", "expected an array, got " + Reader::typeName(jl));
+    if (jl.empty()) r.fail("lights", "a scene needs at least one light");
+    if (jl.size() > limits.maxLights)
+        r.fail("lights",
+               std::to_string(jl.size()) + " lights, limit is " + std::to_string(limits.maxLights));
+    std::set<std::string> names;
+    for (size_t i = 0; i < jl.size(); ++i) {
+        std::string f = Reader::index("lights", i);
+        const json& j = jl[i];
+        r.requireObject(j, f);
+        if (!j.contains("type")) r.fail(f + ".type", "missing");
+        if (!j.contains("name")) r.fail(f + ".name", "missing");
+        Light light;
+        light.name = r.string(j["name"], f + ".name");
+        if (!channels::isValidLayerName(light.name))
+            r.fail(f + ".name", "\"" + printable(light.name, 40) +
+                                    "\" is not a valid layer name (1-64 of [A-Za-z0-9_-], starting "
+                                    "with a letter or '_', not P, N, id, A or Z)");
+        if (!names.insert(light.name).second)
+            r.fail(f + ".name", "duplicate light name \"" + light.name + "\"");
+        std::string type = r.string(j["type"], f + ".type");
+        auto need = [&](const char* key) -> const json& {
+            if (!j.contains(key))
+                r.fail(f + "." + key, std::string("missing (required for a ") + type + " light)");
+            return j[key];
+        };
+        if (type == "point") {
+            r.checkKeys(j, f, {"name", "type", "position"}, " for a point light");
+            light.type = LightType::Point;
+            light.wsPosition = r.vec3(need("position"), f + ".position");
+        } else if (type == "directional") {
+            r.checkKeys(j, f, {"name", "type", "direction"}, " for a directional light");
+            light.type = LightType::Directional;
+            light.wsDirection = r.unitVec3(need("direction"), f + ".direction");
+        } else if (type == "spot") {
+            r.checkKeys(
+                j, f, {"name", "type", "position", "direction", "outer_cone_deg", "inner_cone_deg"},
+                " for a spot light");
+            light.type = LightType::Spot;
+            light.wsPosition = r.vec3(need("position"), f + ".position");
+            light.wsDirection = r.unitVec3(need("direction"), f + ".direction");
+            light.outerConeDeg = r.number(need("outer_cone_deg"), f + ".outer_cone_deg");
+            if (!(light.outerConeDeg > 0.0 && light.outerConeDeg <= 90.0))
+                r.fail(f + ".outer_cone_deg", "must be in (0, 90] degrees (a half-angle)");
+            light.innerConeDeg = 0.0;
+            if (j.contains("inner_cone_deg")) {
+                light.innerConeDeg = r.number(j["inner_cone_deg"], f + ".inner_cone_deg");
+                if (!(light.innerConeDeg >= 0.0 && light.innerConeDeg <= light.outerConeDeg))
+                    r.fail(f + ".inner_cone_deg", "must be in [0, outer_cone_deg]");
+            }
+        } else {
+            r.fail(f + ".type", "unknown light type \"" + printable(type, 40) +
+                                    "\" (valid: point, directional, spot)");
+        }
+        scene.lights.push_back(light);
+    }
+}
+
+CameraDesc parseCamera(const json& j, const Reader& r, const LoadLimits& limits, bool& given) {
+    CameraDesc c;
+    given = true;
+    r.requireObject(j, "camera");
+    r.checkKeys(j, "camera", {"eye", "target", "up", "vfov_deg", "width", "height"});
+    if (!j.contains("eye")) r.fail("camera.eye", "missing");
+    if (!j.contains("target")) r.fail("camera.target", "missing");
+    c.wsEye = r.vec3(j["eye"], "camera.eye");
+    c.wsTarget = r.vec3(j["target"], "camera.target");
+    if (j.contains("up")) c.wsUp = r.vec3(j["up"], "camera.up");
+    if (j.contains("vfov_deg")) c.vfovDeg = r.number(j["vfov_deg"], "camera.vfov_deg");
+    if (j.contains("width"))
+        c.width = r.integer(j["width"], "camera.width", 1, limits.maxImageSide);
+    if (j.contains("height"))
+        c.height = r.integer(j["height"], "camera.height", 1, limits.maxImageSide);
+    if (!(c.vfovDeg > 0.0 && c.vfovDeg < 180.0)) r.fail("camera.vfov_deg", "must be in (0, 180)");
+    glm::dvec3 forward = c.wsTarget - c.wsEye;
+    if (!(glm::length(forward) > 0.0)) r.fail("camera.target", "equals camera.eye");
+    if (!(glm::length(c.wsUp) > 0.0)) r.fail("camera.up", "zero length");
+    double s = glm::length(glm::cross(glm::normalize(forward), glm::normalize(c.wsUp)));
+    if (!(s > 1e-9)) r.fail("camera.up", "parallel to the viewing direction");
+    if (uint64_t(c.width) * uint64_t(c.height) > limits.maxImagePixels)
+        r.fail("camera.width", "image of " + std::to_string(c.width) + "x" +
+                                   std::to_string(c.height) + " exceeds the pixel limit " +
+                                   std::to_string(limits.maxImagePixels));
+    return c;
+}
+
+void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const LoadLimits& limits,
+             const std::string& display) {
+    totalBytes += g.bytesRead;
+    if (totalBytes > limits.maxTotalBytes)
+        throwInputError(
+            display, "",
+            "the scene's files total more than " + std::to_string(limits.maxTotalBytes) + " bytes");
+    for (const MeshPrimitive& m : g.meshes) scene.meshes.push_back(m);
+    if (scene.meshes.size() > limits.maxMeshes)
+        throwInputError(display, "",
+                        "more than " + std::to_string(limits.maxMeshes) + " drawn meshes");
+    scene.stats.skippedPrimitives += g.skippedPrimitives;
+    for (const std::string& w : g.warnings) scene.stats.warnings.push_back(w);
+}
+
+Scene loadSceneJson(const std::filesystem::path& path, const std::string& display,
+                    const LoadLimits& limits) {
+    Reader r(display);
+    std::string text =
+        readFileCapped(path, display, std::min<uint64_t>(limits.maxFileBytes, 64u << 20));
+    json root = parseStrict(text, r);
+    r.requireObject(root, "");
+    r.checkKeys(root, "", {"scene_format", "geometry", "camera", "lights", "effects"});
+    if (!root.contains("scene_format")) r.fail("scene_format", "missing (this tool reads 1)");
+    int format = r.integer(root["scene_format"], "scene_format", 0, 1 << 30);
+    if (format != kSceneFormat)
+        r.fail("scene_format", "unsupported version " + std::to_string(format) +
+                                   " (this tool reads " + std::to_string(kSceneFormat) + ")");
+
+    Scene scene;
+    scene.path = path;
+    ContentHasher hasher;
+    hasher.add(text);
+    std::filesystem::path folder = path.parent_path();
+    uint64_t totalBytes = text.size();
+
+    if (!root.contains("geometry")) r.fail("geometry", "missing");
+    const json& jg = root["geometry"];
+    if (!jg.is_array()) r.fail("geometry", "expected an array, got " + Reader::typeName(jg));
+    for (size_t i = 0; i < jg.size(); ++i) {
+        std::string f = Reader::index("geometry", i);
+        const json& j = jg[i];
+        r.requireObject(j, f);
+        r.checkKeys(j, f, {"file", "translate", "scale"});
+        if (!j.contains("file")) r.fail(f + ".file", "missing");
+        std::string rel = r.string(j["file"], f + ".file");
+        std::filesystem::path file = resolveInside(folder, rel, r, f + ".file");
+        glm::dvec3 translate(0.0), scale(1.0);
+        if (j.contains("translate")) translate = r.vec3(j["translate"], f + ".translate");
+        if (j.contains("scale")) {
+            scale = j["scale"].is_number() ? glm::dvec3(r.number(j["scale"], f + ".scale"))
+                                           : r.vec3(j["scale"], f + ".scale");
+            if (scale.x == 0.0 || scale.y == 0.0 || scale.z == 0.0)
+                r.fail(f + ".scale", "zero scale flattens the geometry");
+        }
+        std::string ext = file.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+        if (ext != ".gltf" && ext != ".glb")
+            r.fail(f + ".file", "\"" + printable(rel, 60) + "\" is not a .gltf or .glb file");
+        glm::dmat4 wsFromFile = glm::scale(glm::translate(glm::dmat4(1.0), translate), scale);
+        std::string gltfDisplay =
+            (std::filesystem::path(display).parent_path() / rel).lexically_normal().string();
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec))
+            r.fail(f + ".file", "\"" + printable(rel, 60) + "\": no such file");
+        GltfContent g = loadGltf(file, gltfDisplay, wsFromFile, limits);
+        for (const auto& fr : g.filesRead) {
+            std::string relName = fr.lexically_relative(folder).generic_string();
+            hasher.addFile(fr, relName);
+        }
+        addGltf(scene, g, totalBytes, limits, display);
+    }
+    if (jg.empty())
+        scene.stats.warnings.push_back("the scene has no geometry: every pixel is background");
+
+    bool cameraGiven = false;
+    if (root.contains("camera")) scene.camera = parseCamera(root["camera"], r, limits, cameraGiven);
+
+    if (!root.contains("lights")) r.fail("lights", "missing");
+    parseLights(root["lights"], r, limits, scene);
+
+    scene.effects = {"hard"};
+    if (root.contains("effects")) {
+        const json& je = root["effects"];
+        if (!je.is_array())
+            r.fail("effects", "expected an array of strings, got " + Reader::typeName(je));
+        scene.effects.clear();
+        std::set<std::string> seen;
+        for (size_t i = 0; i < je.size(); ++i) {
+            std::string f = Reader::index("effects", i);
+            std::string e = r.string(je[i], f);
+            if (e == "penumbra" || e == "contact")
+                r.fail(f, "\"" + e + "\" is reserved but not implemented by this version");
+            if (e != "hard") r.fail(f, "unknown effect \"" + printable(e, 40) + "\" (valid: hard)");
+            if (!seen.insert(e).second) r.fail(f, "\"" + e + "\" listed twice");
+            scene.effects.push_back(e);
+        }
+        if (scene.effects.empty())
+            r.fail("effects", "empty: nothing to simulate (omit it for [\"hard\"])");
+    }
+
+    finalizeScene(scene);
+    if (scene.stats.totalTrianglesExceeded(limits))
+        r.fail("geometry",
+               "more than " + std::to_string(limits.maxTotalTriangles) + " triangles in all");
+    if (!cameraGiven) {
+        scene.camera = defaultFraming(scene.wsBounds);
+        scene.stats.warnings.push_back("no camera given: using the default framing of the bounds");
+    }
+    scene.contentHash = hasher.hex();
+    return scene;
+}
+
+Scene loadSceneGltf(const std::filesystem::path& path, const std::string& display,
+                    const LoadLimits& limits) {
+    GltfContent g = loadGltf(path, display, glm::dmat4(1.0), limits);
+    Scene scene;
+    scene.path = path;
+    uint64_t totalBytes = 0;
+    addGltf(scene, g, totalBytes, limits, display);
+    ContentHasher hasher;
+    std::filesystem::path folder = path.parent_path();
+    for (const auto& fr : g.filesRead)
+        hasher.addFile(fr, fr.lexically_relative(folder).generic_string());
+    scene.lights = g.lights;
+    if (scene.lights.empty()) {
+        Light sun;
+        sun.name = "sun";
+        sun.type = LightType::Directional;
+        sun.wsDirection = glm::normalize(glm::dvec3(-0.3, -1.0, -0.5));
+        scene.lights.push_back(sun);
+        scene.stats.warnings.push_back(
+            "the glTF file has no KHR_lights_punctual lights: added the default directional light "
+            "\"sun\" travelling along (-0.3, -1, -0.5)");
+    }
+    scene.effects = {"hard"};
+    finalizeScene(scene);
+    if (scene.stats.totalTrianglesExceeded(limits))
+        throwInputError(
+            display, "meshes",
+            "more than " + std::to_string(limits.maxTotalTriangles) + " triangles in all");
+    if (g.camera) {
+        scene.camera = *g.camera;
+    } else {
+        scene.camera = defaultFraming(scene.wsBounds);
+        scene.stats.warnings.push_back(
+            "no camera in the glTF file: using the default framing of the bounds");
+    }
+    scene.contentHash = hasher.hex();
+    return scene;
+}
+
+}  // namespace
+
+Scene loadScene(const std::filesystem::path& path, const LoadLimits& limits) {
+    std::string display = path.string();
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throwInputError(display, "", "no such file");
+    if (ext == ".json") return loadSceneJson(path, display, limits);
+    if (ext == ".gltf" || ext == ".glb") return loadSceneGltf(path, display, limits);
+    throwInputError(
+        display, "",
+        "unknown scene file type \"" + printable(ext, 16) + "\" (expected .json, .gltf or .glb)");
+}
+
+}  // namespace so

@@ -1,0 +1,50 @@
+#include "oracle/accel.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace so {
+
+Accel::Accel(const Scene& scene, const EmbreeDevice& device)
+    : frame_(LocalFrame::fit(scene.wsBounds)), rtcScene_(device) {
+    RTCScene s = rtcScene_.get();
+    // Robust: watertight along shared edges, which is what a ground truth needs (contact lines,
+    // closed meshes). High build quality: built once, traced many times.
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    meshes_.reserve(scene.meshes.size());
+    for (size_t id = 0; id < scene.meshes.size(); ++id) {
+        const MeshPrimitive& mesh = scene.meshes[id];
+        MeshData data{{}, mesh.indices};
+        data.lsPositions.reserve(mesh.wsPositions.size());
+        for (const glm::dvec3& ws : mesh.wsPositions)
+            data.lsPositions.push_back(frame_.lsFromWs(ws));
+
+        RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               data.lsPositions.size()));
+        for (size_t i = 0; i < data.lsPositions.size(); ++i) {
+            for (int k = 0; k < 3; ++k) {
+                float f = float(data.lsPositions[i][k]);
+                // The loader rejected non-finite input and the frame keeps |ls| near 1, so this
+                // only fires on a bug; Embree would otherwise drop the triangle silently.
+                SO_CHECK(std::isfinite(f));
+                vb[3 * i + k] = f;
+            }
+        }
+        auto* ib = static_cast<uint32_t*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                    3 * sizeof(uint32_t), mesh.triangleCount()));
+        std::copy(mesh.indices.begin(), mesh.indices.end(), ib);
+        rtcSetGeometryMask(g, 0xFFFFFFFFu);
+        rtcCommitGeometry(g);
+        rtcAttachGeometryByID(s, g, unsigned(id));
+        rtcReleaseGeometry(g);  // the scene holds its own reference
+        meshes_.push_back(std::move(data));
+    }
+    rtcCommitScene(s);
+}
+
+}  // namespace so

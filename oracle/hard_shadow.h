@@ -1,0 +1,62 @@
+// Exact hard shadows for point, spot and directional lights: one shadow ray per pixel that can see
+// the light, traced as coherent 16-ray packets over 4x4 pixel tiles.
+//
+// Per pixel (docs/oracle.md):
+//   background (no primary hit)        V = 0, cos = 0, no ray
+//   cos <= 0 (light behind the normal) V = 0, no ray   ("attached" shadow)
+//   spot, outside the outer cone       V = 0, no ray   ("outside_cone")
+//   otherwise                          V = 1 if the segment from the offset origin to the light
+//                                      (stopping the offset margin short of it; directional: to
+//                                      infinity) is unoccluded, else 0.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "core/scene.h"
+#include "oracle/accel.h"
+#include "oracle/surface_buffer.h"
+
+namespace so {
+
+class Progress;
+
+// A punctual light in the local frame.
+struct HardLight {
+    LightType type = LightType::Point;
+    glm::dvec3 lsPosition{0.0};
+    glm::dvec3 lsDirection{0.0, -1.0, 0.0};  // the way light travels, unit
+    double cosOuter = -1.0;                  // spot: cos of the outer half-angle
+    float lsEndMargin = 0.0f;                // the segment stops this far short of the light
+    glm::vec3 lsPositionF{0.0f}, lsDirectionF{0.0f, -1.0f, 0.0f};  // the same, as the rays use them
+    float cosOuterF = -1.0f;
+};
+HardLight makeHardLight(const Light& light, const LocalFrame& frame);
+
+enum class ShadowRayKind : uint8_t { Background, Attached, OutsideCone, Traced };
+
+// One pixel's shadow ray: its kind, the cosine to the light, and for Traced the ray itself
+// (direction unit, tnear = 0). Shared by the oracle and the benchmark's plain Embree loops so both
+// trace exactly the same rays.
+struct ShadowRaySetup {
+    ShadowRayKind kind = ShadowRayKind::Background;
+    double cosine = 0.0;
+    glm::vec3 org{0.0f}, dir{0.0f};
+    float tfar = 0.0f;
+};
+// `slot` indexes the tile-major surface buffer (SurfaceBuffer::slot).
+ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLight& light);
+
+struct HardShadowStats {
+    uint64_t traced = 0, occluded = 0;
+    uint64_t skippedBackground = 0, skippedAttached = 0, skippedOutsideCone = 0;
+    double seconds = 0.0;
+};
+
+// Fills V and cos (one float per pixel each). Runs in parallel inside the caller's task arena.
+HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
+                                 const HardLight& light, float* V, float* cosine,
+                                 Progress* progress);
+
+}  // namespace so

@@ -1,0 +1,161 @@
+#include "oracle/oracle.h"
+
+#include <chrono>
+#include <limits>
+#include <thread>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+#include <tbb/version.h>
+
+#include "core/camera.h"
+#include "core/channels.h"
+#include "core/progress.h"
+#include "oracle/accel.h"
+#include "oracle/hard_shadow.h"
+#include "oracle/surface_buffer.h"
+
+namespace so {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+void fillGeometryChannels(const SurfaceBuffer& sb, const Accel& accel, ChannelImage& img) {
+    namespace ch = channels;
+    float* A = img.addChannel(ch::kHit);
+    float* P[3] = {img.addChannel(ch::kPX), img.addChannel(ch::kPY), img.addChannel(ch::kPZ)};
+    float* N[3] = {img.addChannel(ch::kNX), img.addChannel(ch::kNY), img.addChannel(ch::kNZ)};
+    float* Z = img.addChannel(ch::kDepth, std::numeric_limits<float>::infinity());
+    float* mesh = img.addChannel(ch::kMeshId, -1.0f);
+    float* prim = img.addChannel(ch::kPrimId, -1.0f);
+    const LocalFrame& frame = accel.frame();
+    for (size_t s = 0; s < sb.slotCount(); ++s) {
+        const size_t i = sb.pixelOfSlot(s);
+        if (i == SIZE_MAX || !sb.hit[s]) continue;
+        A[i] = 1.0f;
+        const glm::dvec3 ws = frame.wsFromLs(glm::dvec3(sb.lsPoint[s]));
+        for (int k = 0; k < 3; ++k) {
+            P[k][i] = float(ws[k]);
+            N[k][i] = sb.lsNormal[s][k];
+        }
+        Z[i] = sb.wsDepth[s];
+        // Exact in float: the loader caps meshes and triangles per mesh at 2^24.
+        mesh[i] = float(sb.meshId[s]);
+        prim[i] = float(sb.primId[s]);
+    }
+}
+
+}  // namespace
+
+CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
+    CameraDesc desc = scene.camera;
+    if (options.width > 0) desc.width = options.width;
+    if (options.height > 0) desc.height = options.height;
+    return desc;
+}
+
+OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
+    const int threads =
+        options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+    const CameraDesc camDesc = effectiveCamera(scene, options);
+    const Camera camera(camDesc);
+    nlohmann::json phases = nlohmann::json::object();
+
+    // The BVH is built with a fixed configuration whatever --threads says, so that the same scene
+    // always gives the same tree and therefore the same closest hit on exact ties.
+    auto t0 = Clock::now();
+    EmbreeDevice device("threads=0");
+    std::unique_ptr<Accel> accel;
+    accel = std::make_unique<Accel>(scene, device);
+    phases["build_bvh"] = secondsSince(t0);
+
+    // Tracing uses exactly the requested number of threads, even above the core count (the
+    // determinism tests oversubscribe on purpose); TBB would otherwise cap the arena and warn.
+    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    tbb::task_arena arena(threads);
+
+    OracleResult result;
+    result.image = ChannelImage(camera.width(), camera.height());
+    const uint64_t pixels = uint64_t(camera.width()) * uint64_t(camera.height());
+
+    t0 = Clock::now();
+    SurfaceBuffer sb;
+    {
+        Progress progress("primary rays", pixels, options.progress);
+        arena.execute([&] { sb = tracePrimary(*accel, camera, &progress); });
+    }
+    phases["primary"] = secondsSince(t0);
+    fillGeometryChannels(sb, *accel, result.image);
+
+    nlohmann::json lights = nlohmann::json::array();
+    double shadowSeconds = 0.0;
+    uint64_t shadowRays = 0;
+    for (const Light& light : scene.lights) {
+        float* V =
+            result.image.addChannel(channels::lightChannel(light.name, channels::kVisibility));
+        float* cosine =
+            result.image.addChannel(channels::lightChannel(light.name, channels::kCosine));
+        const HardLight hl = makeHardLight(light, accel->frame());
+        HardShadowStats st;
+        {
+            Progress progress("shadow rays " + light.name, pixels, options.progress);
+            arena.execute([&] { st = traceHardShadows(*accel, sb, hl, V, cosine, &progress); });
+        }
+        shadowSeconds += st.seconds;
+        shadowRays += st.traced;
+        lights.push_back({
+            {"name", light.name},
+            {"type", lightTypeName(light.type)},
+            {"method", "hard: one shadow ray per pixel"},
+            {"rays_traced", st.traced},
+            {"rays_occluded", st.occluded},
+            {"rays_skipped",
+             {{"background", st.skippedBackground},
+              {"attached", st.skippedAttached},
+              {"outside_cone", st.skippedOutsideCone}}},
+            {"seconds", st.seconds},
+            {"rays_per_second", st.seconds > 0 ? double(st.traced) / st.seconds : 0.0},
+        });
+    }
+    phases["shadow"] = shadowSeconds;
+
+    const LocalFrame& frame = accel->frame();
+    const double sceneExtent = scene.wsBounds.extent();
+    result.stats = {
+        {"image", {{"width", camera.width()}, {"height", camera.height()}}},
+        {"threads", threads},
+        {"phases_seconds", phases},
+        {"shadow_rays", shadowRays},
+        {"shadow_rays_per_second", shadowSeconds > 0 ? double(shadowRays) / shadowSeconds : 0.0},
+        {"lights", lights},
+        {"frame",
+         {{"ws_center", {frame.wsCenter.x, frame.wsCenter.y, frame.wsCenter.z}},
+          {"scale_exponent", frame.exponent}}},
+        {"offset_policy",
+         {{"method",
+           "Waechter-Binder integer-ulp offset (Ray Tracing Gems ch. 6): 256 ulp along the "
+           "geometric "
+           "normal (1/65536 linear below |x| = 1/32), in the recentred frame scaled by "
+           "2^-exponent; "
+           "rays to a light stop the same margin short of it"},
+          {"max_blind_distance", frame.wsLength(sb.lsMaxOffset)},
+          {"max_blind_distance_relative",
+           sceneExtent > 0 ? frame.wsLength(sb.lsMaxOffset) / sceneExtent : 0.0},
+          {"note", "occluders closer to a surface than its blind distance are not seen"}}},
+        {"embree",
+         {{"version", EmbreeDevice::version()},
+          {"scene_flags", "robust"},
+          {"build_quality", "high"}}},
+        {"tbb",
+         {{"version",
+           std::to_string(TBB_VERSION_MAJOR) + "." + std::to_string(TBB_VERSION_MINOR)}}},
+    };
+    return result;
+}
+
+}  // namespace so

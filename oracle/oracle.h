@@ -1,0 +1,30 @@
+// The oracle: ground-truth shadows for a scene (docs/oracle.md). runOracle computes; the trace
+// command (trace_command.h) writes the files.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace so {
+
+struct OracleOptions {
+    int width = 0, height = 0;  // 0: the scene camera's size
+    int threads = 0;            // 0: all hardware threads
+    bool progress = true;
+};
+
+struct OracleResult {
+    ChannelImage image;    // channels as in docs/exr-channels.md
+    nlohmann::json stats;  // the oracle.json content that depends on the run
+};
+
+// The camera description actually used (scene camera with the option's width and height).
+CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options);
+
+OracleResult runOracle(const Scene& scene, const OracleOptions& options);
+
+}  // namespace so

@@ -1,0 +1,98 @@
+#include "oracle/surface_buffer.h"
+
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+#include "core/progress.h"
+#include "oracle/offset.h"
+
+namespace so {
+
+SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress) {
+    SurfaceBuffer sb;
+    sb.width = camera.width();
+    sb.height = camera.height();
+    sb.tilesX = (sb.width + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
+    sb.tilesY = (sb.height + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
+    const size_t n = size_t(sb.tilesX) * size_t(sb.tilesY) * 16;
+    sb.hit.assign(n, 0);
+    sb.meshId.assign(n, 0);
+    sb.primId.assign(n, 0);
+    sb.lsPoint.assign(n, glm::vec3(0.0f));
+    sb.lsNormal.assign(n, glm::vec3(0.0f));
+    sb.lsRayOrigin.assign(n, glm::vec3(0.0f));
+    sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
+    const LocalFrame& frame = accel.frame();
+    sb.lsEye = frame.lsFromWs(camera.wsEye());
+    const glm::vec3 lsEyeF(sb.lsEye);
+
+    // Per-tile-row maxima, reduced in a fixed order afterwards so the result is thread-count
+    // independent.
+    std::vector<double> rowMaxOffset(size_t(sb.tilesY), 0.0);
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, sb.tilesY), [&](const tbb::blocked_range<int>& rows) {
+            setEmbreeFloatMode();
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            for (int ty = rows.begin(); ty != rows.end(); ++ty) {
+                double rowMax = 0.0;
+                for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
+                     s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s) {
+                    const size_t pixel = sb.pixelOfSlot(s);
+                    if (pixel == SIZE_MAX) continue;
+                    const int x = int(pixel % size_t(sb.width)), y = int(pixel / size_t(sb.width));
+                    // The direction is the same in world and local space: the frame only translates
+                    // and scales uniformly.
+                    const glm::dvec3 wsDir = camera.generateRay(x, y).direction;
+                    RTCRayHit rh;
+                    rh.ray.org_x = lsEyeF.x;
+                    rh.ray.org_y = lsEyeF.y;
+                    rh.ray.org_z = lsEyeF.z;
+                    rh.ray.dir_x = float(wsDir.x);
+                    rh.ray.dir_y = float(wsDir.y);
+                    rh.ray.dir_z = float(wsDir.z);
+                    rh.ray.tnear = 0.0f;
+                    rh.ray.tfar = std::numeric_limits<float>::infinity();
+                    rh.ray.mask =
+                        0xFFFFFFFFu;  // a zero mask would hit nothing (Embree masks are on)
+                    rh.ray.time = 0.0f;
+                    rh.ray.flags = 0;
+                    rh.ray.id = unsigned(pixel);
+                    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+                    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                    rtcIntersect1(accel.rtcScene(), &ctx, &rh);
+                    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+
+                    glm::dvec3 a, b, c;
+                    accel.triangle(rh.hit.geomID, rh.hit.primID, a, b, c);
+                    const double u = rh.hit.u, v = rh.hit.v;
+                    // Rebuilt on the double triangle, not org + t*dir: the hit then lies on the
+                    // surface to the precision of the stored float whatever the ray's length.
+                    const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
+                    glm::dvec3 ng = glm::cross(b - a, c - a);
+                    ng /= glm::length(ng);  // a hit triangle has non-zero area
+                    if (glm::dot(ng, wsDir) > 0.0) ng = -ng;
+                    sb.hit[s] = 1;
+                    sb.meshId[s] = rh.hit.geomID;
+                    sb.primId[s] = rh.hit.primID;
+                    sb.lsPoint[s] = glm::vec3(p);
+                    sb.lsNormal[s] = glm::vec3(ng);
+                    sb.lsRayOrigin[s] = offsetRayOrigin(sb.lsPoint[s], sb.lsNormal[s]);
+                    sb.wsDepth[s] = float(frame.wsLength(glm::length(p - sb.lsEye)));
+                    rowMax = std::max(rowMax, glm::length(glm::dvec3(sb.lsRayOrigin[s]) - p));
+                }
+                rowMaxOffset[size_t(ty)] = rowMax;
+                if (progress)
+                    progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
+            }
+        });
+    for (double m : rowMaxOffset) sb.lsMaxOffset = std::max(sb.lsMaxOffset, m);
+    return sb;
+}
+
+}  // namespace so

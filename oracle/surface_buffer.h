@@ -1,0 +1,53 @@
+// The primary pass: one ray per pixel centre, and what each pixel sees, in the local frame.
+//
+// Stored tile-major (4x4 pixel tiles, 16 consecutive entries per tile, tiles in row order) because
+// the shadow passes trace one 16-ray packet per tile: they then read this buffer sequentially,
+// which is what keeps the oracle close to a bare Embree packet loop (bench/).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/camera.h"
+#include "oracle/accel.h"
+
+namespace so {
+
+class Progress;
+
+struct SurfaceBuffer {
+    static constexpr int kTile = 4;
+    int width = 0, height = 0;
+    int tilesX = 0, tilesY = 0;
+    glm::dvec3 lsEye{0.0};
+    // One entry per slot (tilesX * tilesY * 16); slots outside the image have hit = 0.
+    std::vector<uint8_t> hit;            // 1 where the primary ray hit
+    std::vector<uint32_t> meshId;        // id.mesh (Embree geomID)
+    std::vector<uint32_t> primId;        // id.prim (Embree primID = triangle in index order)
+    std::vector<glm::vec3> lsPoint;      // rebuilt from the barycentrics on the double triangle
+    std::vector<glm::vec3> lsNormal;     // unit geometric normal (from double), facing the camera
+    std::vector<glm::vec3> lsRayOrigin;  // offset origin for rays leaving on the normal's side
+    std::vector<float> wsDepth;          // distance from the eye, world units
+    double lsMaxOffset = 0.0;            // the largest origin offset: the oracle's blind distance
+
+    size_t slotCount() const { return hit.size(); }
+    // Slot of pixel (x, y); the inverse is pixelOfSlot.
+    size_t slot(int x, int y) const {
+        return (size_t(y / kTile) * size_t(tilesX) + size_t(x / kTile)) * 16 +
+               size_t((y % kTile) * kTile + x % kTile);
+    }
+    // Row-major pixel index of a slot, or SIZE_MAX for padding slots outside the image.
+    size_t pixelOfSlot(size_t s) const {
+        size_t tile = s / 16, k = s % 16;
+        int x = int(tile % size_t(tilesX)) * kTile + int(k % kTile);
+        int y = int(tile / size_t(tilesX)) * kTile + int(k / kTile);
+        return (x < width && y < height) ? size_t(y) * size_t(width) + size_t(x) : SIZE_MAX;
+    }
+};
+
+// Traces the primary rays in parallel (call inside the caller's tbb::task_arena).
+SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress);
+
+}  // namespace so

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""Writes the shipped default scenes and their meshes (committed; re-run only to change them).
+
+All meshes are plain glTF 2.0 with an embedded base64 buffer: float32 positions, uint32 indices,
+counter-clockwise outward winding. Output is deterministic (fixed formulas, no randomness).
+"""
+import base64, json, math, os, struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+MESHES = os.path.join(HERE, "meshes")
+
+
+def write_gltf(name, positions, indices):
+    pos = b"".join(struct.pack("<3f", *p) for p in positions)
+    idx = b"".join(struct.pack("<I", i) for i in indices)
+    buf = pos + idx
+    lo = [min(p[k] for p in positions) for k in range(3)]
+    hi = [max(p[k] for p in positions) for k in range(3)]
+    g = {
+        "asset": {"version": "2.0", "generator": "shadow-oracle scenes/make_scenes.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "name": name}],
+        "meshes": [{"name": name, "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
+        "buffers": [{"byteLength": len(buf),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(buf).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos), "target": 34962},
+                        {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx), "target": 34963}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                       "min": lo, "max": hi},
+                      {"bufferView": 1, "componentType": 5125, "count": len(indices), "type": "SCALAR"}],
+    }
+    with open(os.path.join(MESHES, name + ".gltf"), "w") as f:
+        json.dump(g, f, separators=(",", ":"))
+        f.write("\n")
+
+
+def grid(n, m, f):
+    """(n+1) x (m+1) vertices from f(i/n, j/m); two triangles per cell, facing +Y for f = xz-plane."""
+    pos = [f(i / n, j / m) for j in range(m + 1) for i in range(n + 1)]
+    idx = []
+    for j in range(m):
+        for i in range(n):
+            a = j * (n + 1) + i
+            b, d = a + 1, a + n + 1
+            e = d + 1
+            idx += [a, d, e, a, e, b]
+    return pos, idx
+
+
+def box(lo, hi):
+    pos = [((hi[0] if k & 1 else lo[0]), (hi[1] if k & 2 else lo[1]), (hi[2] if k & 4 else lo[2])) for k in range(8)]
+    faces = [(0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6)]
+    idx = []
+    for a, b, c, d in faces:
+        idx += [a, b, c, a, c, d]
+    return pos, idx
+
+
+def uv_sphere(center, r, n=48, m=24):
+    pos, idx = [], []
+    pos.append((center[0], center[1] + r, center[2]))
+    for j in range(1, m):
+        th = math.pi * j / m
+        for i in range(n):
+            ph = 2 * math.pi * i / n
+            pos.append((center[0] + r * math.sin(th) * math.cos(ph), center[1] + r * math.cos(th),
+                        center[2] - r * math.sin(th) * math.sin(ph)))
+    pos.append((center[0], center[1] - r, center[2]))
+    south = len(pos) - 1
+    ring = lambda j, i: 1 + (j - 1) * n + (i % n)
+    for i in range(n):
+        idx += [0, ring(1, i), ring(1, i + 1)]
+        idx += [south, ring(m - 1, i + 1), ring(m - 1, i)]
+    for j in range(1, m - 1):
+        for i in range(n):
+            a, b, c, d = ring(j, i), ring(j, i + 1), ring(j + 1, i), ring(j + 1, i + 1)
+            idx += [a, c, d, a, d, b]
+    return pos, idx
+
+
+def cylinder(center, r, h, n=48):
+    pos, idx = [], []
+    for y in (0.0, h):
+        for i in range(n):
+            ph = 2 * math.pi * i / n
+            pos.append((center[0] + r * math.cos(ph), center[1] + y, center[2] - r * math.sin(ph)))
+    bottom_c, top_c = len(pos), len(pos) + 1
+    pos += [(center[0], center[1], center[2]), (center[0], center[1] + h, center[2])]
+    for i in range(n):
+        a, b = i, (i + 1) % n
+        idx += [a, b, b + n, a, b + n, a + n]
+        idx += [top_c, a + n, b + n]
+        idx += [bottom_c, b, a]
+    return pos, idx
+
+
+def torus(center, R, r, n=64, m=24):
+    pos, idx = [], []
+    for i in range(n):
+        u = 2 * math.pi * i / n
+        for j in range(m):
+            v = 2 * math.pi * j / m
+            pos.append((center[0] + (R + r * math.cos(v)) * math.cos(u), center[1] + r * math.sin(v),
+                        center[2] - (R + r * math.cos(v)) * math.sin(u)))
+    for i in range(n):
+        for j in range(m):
+            a, b = i * m + j, ((i + 1) % n) * m + j
+            c, d = i * m + (j + 1) % m, ((i + 1) % n) * m + (j + 1) % m
+            idx += [a, b, d, a, d, c]
+    return pos, idx
+
+
+def terrain_height(x, z):
+    # Sums of sines: smooth hills with ridges; deterministic.
+    return (0.9 * math.sin(0.45 * x) * math.cos(0.38 * z) + 0.35 * math.sin(1.3 * x + 0.7 * z)
+            + 0.18 * math.cos(2.1 * z - 0.9 * x) + 0.08 * math.sin(4.3 * x) * math.sin(3.7 * z))
+
+
+def scene(name, geometry, camera, lights, effects=("hard",)):
+    s = {"scene_format": 1, "geometry": geometry, "camera": camera, "lights": lights, "effects": list(effects)}
+    with open(os.path.join(HERE, name), "w") as f:
+        json.dump(s, f, indent=2)
+        f.write("\n")
+
+
+def main():
+    os.makedirs(MESHES, exist_ok=True)
+    write_gltf("floor", *grid(8, 8, lambda u, v: (-10 + 20 * u, 0.0, 10 - 20 * v)))
+    write_gltf("unit_box", *box((-0.5, 0.0, -0.5), (0.5, 1.0, 0.5)))
+    write_gltf("sphere", *uv_sphere((0.0, 0.0, 0.0), 1.0))
+    write_gltf("cylinder", *cylinder((0.0, 0.0, 0.0), 1.0, 1.0))
+    write_gltf("torus", *torus((0.0, 0.0, 0.0), 1.0, 0.3))
+    write_gltf("terrain", *grid(160, 160, lambda u, v: (-16 + 32 * u, terrain_height(-16 + 32 * u, 16 - 32 * v), 16 - 32 * v)))
+
+    scene("contact_box.scene.json",
+          [{"file": "meshes/floor.gltf"},
+           {"file": "meshes/unit_box.gltf", "translate": [0, 0, 0], "scale": [2, 1.5, 2]}],
+          {"eye": [-5.5, 4.0, -6.0], "target": [0.0, 0.5, 0.0], "up": [0, 1, 0], "vfov_deg": 40,
+           "width": 640, "height": 480},
+          [{"name": "key", "type": "point", "position": [3.0, 5.0, 2.5]}])
+
+    scene("spot_objects.scene.json",
+          [{"file": "meshes/floor.gltf"},
+           {"file": "meshes/unit_box.gltf", "translate": [-2.5, 0, 0.5], "scale": [1.2, 2.0, 1.2]},
+           {"file": "meshes/sphere.gltf", "translate": [0.5, 1.0, -1.5], "scale": 1.0},
+           {"file": "meshes/cylinder.gltf", "translate": [2.5, 0, 1.5], "scale": [0.6, 2.5, 0.6]},
+           {"file": "meshes/torus.gltf", "translate": [0.0, 0.3, 2.5], "scale": 0.9}],
+          {"eye": [0.0, 9.0, 11.0], "target": [0.0, 0.5, 0.0], "up": [0, 1, 0], "vfov_deg": 45,
+           "width": 640, "height": 480},
+          [{"name": "cone", "type": "spot", "position": [1.5, 8.0, 3.0], "direction": [-0.15, -1.0, -0.3],
+            "outer_cone_deg": 32, "inner_cone_deg": 26},
+           {"name": "fill", "type": "point", "position": [-6.0, 4.0, 6.0]}])
+
+    # The sun 8 degrees above the horizon: long shadows, many points near grazing.
+    el = math.radians(8.0)
+    az = math.radians(35.0)
+    sun = [-math.cos(el) * math.cos(az), -math.sin(el), -math.cos(el) * math.sin(az)]
+    scene("terrain_sun.scene.json",
+          [{"file": "meshes/terrain.gltf"}],
+          {"eye": [-14.0, 9.0, 18.0], "target": [1.0, -1.0, -2.0], "up": [0, 1, 0], "vfov_deg": 45,
+           "width": 640, "height": 480},
+          [{"name": "sun", "type": "directional", "direction": [round(c, 6) for c in sun]}])
+
+
+if __name__ == "__main__":
+    main()

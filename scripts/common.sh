@@ -1,0 +1,53 @@
+# Shared by scripts/demo and scripts/test: install what is missing, configure, build.
+# Sourced, not run.
+set -euo pipefail
+
+SO_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+SO_JOBS="${SO_JOBS:-$(nproc 2>/dev/null || echo 2)}"
+
+# Debian 12 packages the build needs. Checked one by one so a second run installs nothing.
+SO_PACKAGES=(
+  cmake g++ make git
+  libembree-dev libglm-dev libopenexr-dev libtbb-dev nlohmann-json3-dev
+  libtinygltf-dev libcli11-dev libxxhash-dev libpng-dev
+  googletest libgtest-dev
+  clang-format
+)
+
+so_install_packages() {
+  local missing=()
+  for p in "${SO_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "Installing missing Debian packages: ${missing[*]}"
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "error: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+# so_build DIR [cmake -D options...] -- [targets...]
+so_build() {
+  local dir="$1"; shift
+  local opts=() targets=()
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do opts+=("$1"); shift; done
+  [ $# -gt 0 ] && shift
+  targets=("$@")
+  # Warnings are errors in CI builds; a user's newer compiler should not break the demo.
+  local werror=OFF
+  [ "${CI:-}" = "true" ] && werror=ON
+  if [ ! -f "$dir/CMakeCache.txt" ]; then
+    cmake -S "$SO_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DSHADOW_ORACLE_WERROR="$werror" "${opts[@]}" >/dev/null
+  else
+    cmake -S "$SO_ROOT" -B "$dir" -DSHADOW_ORACLE_WERROR="$werror" "${opts[@]}" >/dev/null
+  fi
+  if [ ${#targets[@]} -gt 0 ]; then
+    cmake --build "$dir" -j "$SO_JOBS" --target "${targets[@]}"
+  else
+    cmake --build "$dir" -j "$SO_JOBS"
+  fi
+}

@@ -1,0 +1,109 @@
+// The command line as a user meets it: exit codes, one-line errors, and byte-identical output
+// files whatever the thread count.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode = -1;
+    std::string stderrText;
+};
+
+RunResult run(const std::string& args) {
+    const fs::path errFile =
+        fs::temp_directory_path() / ("so_cli_test_" + std::to_string(::getpid()) + ".err");
+    std::string cmd = std::string(SO_CLI_PATH) + " " + args + " > /dev/null 2> " + errFile.string();
+    int status = std::system(cmd.c_str());
+    RunResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::ifstream in(errFile);
+    r.stderrText.assign(std::istreambuf_iterator<char>(in), {});
+    fs::remove(errFile);
+    return r;
+}
+
+std::string readBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(Cli, EveryBrokenFileExitsTwoWithOneLine) {
+    const fs::path out = fs::temp_directory_path() / "so_cli_broken_out";
+    size_t files = 0;
+    for (const char* corpus : {"broken_scene", "broken_gltf"}) {
+        for (const auto& entry : fs::directory_iterator(fs::path(SO_TEST_DATA_DIR) / corpus)) {
+            const std::string ext = entry.path().extension().string();
+            const bool sceneFile = std::string(corpus) == "broken_scene"
+                                       ? ext == ".json"
+                                       : (ext == ".gltf" || ext == ".glb");
+            if (!sceneFile) continue;
+            ++files;
+            RunResult r =
+                run("trace '" + entry.path().string() + "' --out " + out.string() + " --quiet");
+            EXPECT_EQ(r.exitCode, 2) << entry.path() << ": " << r.stderrText;
+            EXPECT_EQ(std::count(r.stderrText.begin(), r.stderrText.end(), '\n'), 1)
+                << entry.path() << ": " << r.stderrText;
+            // It names the file: the scene itself, or for mesh errors the glTF file it references.
+            const bool namesScene = r.stderrText.rfind(entry.path().string() + ": ", 0) == 0;
+            const bool namesMesh =
+                r.stderrText.rfind(entry.path().parent_path().string() + "/", 0) == 0 &&
+                r.stderrText.find(".gltf: ") != std::string::npos;
+            EXPECT_TRUE(namesScene || namesMesh) << r.stderrText;
+        }
+    }
+    EXPECT_GT(files, 100u);
+}
+
+TEST(Cli, BadArgumentsExitTwo) {
+    EXPECT_EQ(run("").exitCode, 2);
+    EXPECT_EQ(run("trace").exitCode, 2);
+    EXPECT_EQ(run("frobnicate x").exitCode, 2);
+    EXPECT_EQ(run("trace " SO_SCENES_DIR "/contact_box.scene.json --out /tmp/x --width 0").exitCode,
+              2);
+    RunResult missing = run("trace /nonexistent/scene.json --out /tmp/x");
+    EXPECT_EQ(missing.exitCode, 2);
+    EXPECT_EQ(missing.stderrText, "/nonexistent/scene.json: no such file\n");
+}
+
+TEST(Cli, ShippedScenesTraceIdenticallyAtAnyThreadCount) {
+    for (const char* name : {"contact_box", "spot_objects", "terrain_sun"}) {
+        const std::string scene = std::string(SO_SCENES_DIR) + "/" + name + ".scene.json";
+        std::string first;
+        for (int threads : {1, 2, 5}) {
+            const fs::path out = fs::temp_directory_path() /
+                                 ("so_cli_det_" + std::string(name) + std::to_string(threads));
+            RunResult r =
+                run("trace " + scene + " --out " + out.string() +
+                    " --width 200 --height 150 --quiet --threads " + std::to_string(threads));
+            ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+            std::string bytes = readBytes(out / "oracle.exr");
+            ASSERT_GT(bytes.size(), 1000u);
+            if (first.empty()) first = bytes;
+            EXPECT_TRUE(bytes == first)
+                << name << ": oracle.exr differs with " << threads << " threads";
+            // The JSON is complete and counts every pixel once per light.
+            nlohmann::json j = nlohmann::json::parse(readBytes(out / "oracle.json"));
+            for (const auto& light : j["lights"]) {
+                uint64_t total = light["rays_traced"].get<uint64_t>();
+                for (const auto& [reason, count] : light["rays_skipped"].items())
+                    total += count.get<uint64_t>();
+                EXPECT_EQ(total, 200u * 150u) << name;
+                EXPECT_TRUE(fs::exists(out / (light["name"].get<std::string>() + ".png")));
+            }
+        }
+    }
+}
+
+}  // namespace

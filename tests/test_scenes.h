@@ -1,0 +1,36 @@
+// Scenes built in code for the oracle tests, with the exact geometry kept beside them so each
+// test can compute its closed-form answer in double.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "oracle/oracle.h"
+
+namespace so::test {
+
+// A parallelogram centred at c spanned by the full edge vectors u and v, split into n x n cells
+// (2 triangles each) so shadow rays cross many shared edges.
+MeshPrimitive makeGrid(const glm::dvec3& c, const glm::dvec3& u, const glm::dvec3& v, int n,
+                       const std::string& name);
+// An axis-aligned closed box, outward-facing triangles.
+MeshPrimitive makeBox(const glm::dvec3& lo, const glm::dvec3& hi, const std::string& name);
+
+// Receiver: the plane y = 0, [-8, 8]^2 (mesh 0). Occluder: the square y = 2, [-1.5, 1]x[-1, 1.25]
+// (mesh 1). Lights: a point, a spot and a directional light above. All coordinates are dyadic so
+// a power-of-two scale or a dyadic translation is exact.
+struct SquareOccluderScene {
+    static constexpr double kOccluderY = 2.0;
+    static constexpr double kX0 = -1.5, kX1 = 1.0, kZ0 = -1.0, kZ1 = 1.25;
+    Scene scene;
+};
+SquareOccluderScene makeSquareOccluderScene(int width, int height);
+
+// Applies p -> p * scale + translate to every position in the scene (meshes, camera, lights).
+Scene transformScene(const Scene& scene, double scale, const glm::dvec3& translate);
+
+// Runs the oracle quietly.
+ChannelImage runQuiet(const Scene& scene, int threads = 0);
+
+}  // namespace so::test
