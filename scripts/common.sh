@@ -37,13 +37,12 @@ so_build() {
   while [ $# -gt 0 ] && [ "$1" != "--" ]; do opts+=("$1"); shift; done
   [ $# -gt 0 ] && shift
   targets=("$@")
-  # Warnings are errors in CI builds; a user's newer compiler should not break the demo.
-  local werror=OFF
-  [ "${CI:-}" = "true" ] && werror=ON
+  # Warnings are errors in CI builds; a user's newer compiler should not break the demo. Set only
+  # when the folder is first configured, so demo and test never flip it and rebuild everything.
   if [ ! -f "$dir/CMakeCache.txt" ]; then
+    local werror=OFF
+    [ "${CI:-}" = "true" ] && werror=ON
     cmake -S "$SO_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DSHADOW_ORACLE_WERROR="$werror" "${opts[@]}" >/dev/null
-  else
-    cmake -S "$SO_ROOT" -B "$dir" -DSHADOW_ORACLE_WERROR="$werror" "${opts[@]}" >/dev/null
   fi
   if [ ${#targets[@]} -gt 0 ]; then
     cmake --build "$dir" -j "$SO_JOBS" --target "${targets[@]}"
