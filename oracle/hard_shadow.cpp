@@ -29,45 +29,75 @@ HardLight makeHardLight(const Light& light, const LocalFrame& frame) {
     return h;
 }
 
-ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLight& light) {
-    ShadowRaySetup s;
-    if (!sb.hit[slot]) return s;
-    const glm::dvec3 n(sb.lsNormal[slot]);
+void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, PacketSetup& ps) {
+    // Branch-free loops over the 16 lanes, so the compiler vectorises them: this setup runs once
+    // per shadow ray and is what separates the oracle from a bare Embree loop (bench/).
+    const float* px = &sb.lsPointX[base];
+    const float* py = &sb.lsPointY[base];
+    const float* pz = &sb.lsPointZ[base];
+    const float* nx = &sb.lsNormalX[base];
+    const float* ny = &sb.lsNormalY[base];
+    const float* nz = &sb.lsNormalZ[base];
+    const glm::vec3 d = light.lsDirectionF;
+    float spotCos[16];
     if (light.type == LightType::Directional) {
-        s.cosine = -glm::dot(n, light.lsDirection);
-        if (!(s.cosine > 0.0)) {
-            s.kind = ShadowRayKind::Attached;
-            return s;
+        for (int k = 0; k < 16; ++k) {
+            ps.cosine[k] = -(nx[k] * d.x + ny[k] * d.y + nz[k] * d.z);
+            ps.dirX[k] = -d.x;
+            ps.dirY[k] = -d.y;
+            ps.dirZ[k] = -d.z;
+            ps.tfar[k] = std::numeric_limits<float>::infinity();
+            spotCos[k] = 1.0f;
         }
-        s.kind = ShadowRayKind::Traced;
-        s.org = sb.lsRayOrigin[slot];
-        s.dir = glm::vec3(-light.lsDirection);
-        s.tfar = std::numeric_limits<float>::infinity();
-        return s;
+    } else {
+        // From the surface point, not the offset origin: the origin sits up to 256 ulp above the
+        // surface along the normal, which at grazing incidence would lower the cosine by as much
+        // as the cosine itself. Float is enough (the cosine's error is ~1e-7, a hundred times
+        // below the grazing angles the tests check). The ray, aimed along this direction from the
+        // offset origin, ends within the offset of the light, which the doubled margin allows.
+        const glm::vec3 l = light.lsPositionF;
+        const float endMargin = 2.0f * light.lsEndMargin;
+        for (int k = 0; k < 16; ++k) {
+            const float tx = l.x - px[k], ty = l.y - py[k], tz = l.z - pz[k];
+            const float dist = std::sqrt(tx * tx + ty * ty + tz * tz);
+            const float inv = 1.0f / dist;
+            const float wx = tx * inv, wy = ty * inv, wz = tz * inv;
+            ps.cosine[k] = nx[k] * wx + ny[k] * wy + nz[k] * wz;
+            spotCos[k] = -(wx * d.x + wy * d.y + wz * d.z);
+            ps.dirX[k] = wx;
+            ps.dirY[k] = wy;
+            ps.dirZ[k] = wz;
+            ps.tfar[k] = std::max(0.0f, dist - endMargin);
+        }
     }
-    // From the surface point, not the offset origin: the origin sits up to 256 ulp above the
-    // surface along the normal, which at grazing incidence would lower the cosine by as much as
-    // the cosine itself. Float is enough here (the cosine's error is ~1e-7, a hundred times below
-    // the grazing angles the tests check) and keeps this per-ray setup cheap: it bounds the
-    // oracle's throughput (bench/).
-    const glm::vec3 toLight = light.lsPositionF - sb.lsPoint[slot];
-    const float dist = std::sqrt(glm::dot(toLight, toLight));
-    const glm::vec3 w = toLight * (1.0f / dist);
-    s.cosine = glm::dot(sb.lsNormal[slot], w);
-    if (!(s.cosine > 0.0)) {
-        s.kind = ShadowRayKind::Attached;
-        return s;
+    const bool spot = light.type == LightType::Spot;
+    for (int k = 0; k < 16; ++k) {
+        if (!sb.hit[base + size_t(k)]) {
+            ps.kind[k] = ShadowRayKind::Background;
+            ps.cosine[k] = 0.0f;
+        } else if (!(ps.cosine[k] >
+                     0.0f)) {  // NaN (a point at the light itself) counts as facing away
+            ps.kind[k] = ShadowRayKind::Attached;
+        } else if (spot && spotCos[k] < light.cosOuterF) {
+            ps.kind[k] = ShadowRayKind::OutsideCone;
+        } else {
+            ps.kind[k] = ShadowRayKind::Traced;
+        }
     }
-    if (light.type == LightType::Spot && -glm::dot(w, light.lsDirectionF) < light.cosOuterF) {
-        s.kind = ShadowRayKind::OutsideCone;
-        return s;
-    }
-    s.kind = ShadowRayKind::Traced;
-    s.org = sb.lsRayOrigin[slot];
-    // Aimed along the surface point's direction: from the offset origin the ray then ends within
-    // the offset of the light, which the doubled end margin allows for.
-    s.dir = w;
-    s.tfar = std::max(0.0f, dist - 2.0f * light.lsEndMargin);
+}
+
+ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLight& light) {
+    // Through the packet code, so the benchmark's plain loops trace exactly the oracle's rays.
+    PacketSetup ps;
+    const size_t base = slot - slot % 16;
+    setupPacket(sb, base, light, ps);
+    const int k = int(slot % 16);
+    ShadowRaySetup s;
+    s.kind = ps.kind[k];
+    s.cosine = ps.cosine[k];
+    s.org = sb.lsRayOrigin(slot);
+    s.dir = {ps.dirX[k], ps.dirY[k], ps.dirZ[k]};
+    s.tfar = ps.tfar[k];
     return s;
 }
 
@@ -86,63 +116,61 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
             ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
             alignas(64) RTCRay16 ray;
             alignas(64) int valid[16];
-            size_t lanePixel[16];
+            PacketSetup ps;
+            uint64_t counts[5] = {0, 0, 0, 0, 0};  // per ShadowRayKind
             for (int ty = range.begin(); ty != range.end(); ++ty) {
                 for (int tx = 0; tx < sb.tilesX; ++tx) {
                     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
                     const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
+                    setupPacket(sb, base, light, ps);
+                    // Lanes outside the image (the last tile row or column) are not traced or
+                    // written.
+                    const int cols = std::min(SurfaceBuffer::kTile, sb.width - x0);
+                    const int rows = std::min(SurfaceBuffer::kTile, sb.height - y0);
                     int active = 0;
                     for (int k = 0; k < 16; ++k) {
-                        valid[k] = 0;
-                        const int x = x0 + (k & 3), y = y0 + (k >> 2);
-                        if (x >= sb.width || y >= sb.height) continue;
-                        const size_t pixel = size_t(y) * size_t(sb.width) + size_t(x);
-                        const ShadowRaySetup s = setupShadowRay(sb, base + size_t(k), light);
-                        cosine[pixel] = float(s.cosine);
-                        V[pixel] = 0.0f;
-                        switch (s.kind) {
-                            case ShadowRayKind::Background:
-                                ++st.skippedBackground;
-                                continue;
-                            case ShadowRayKind::Attached:
-                                ++st.skippedAttached;
-                                continue;
-                            case ShadowRayKind::OutsideCone:
-                                ++st.skippedOutsideCone;
-                                continue;
-                            case ShadowRayKind::Traced:
-                                break;
+                        const bool inside = (k & 3) < cols && (k >> 2) < rows;
+                        const ShadowRayKind kind = inside ? ps.kind[k] : ShadowRayKind::Padding;
+                        ++counts[int(kind)];
+                        valid[k] = kind == ShadowRayKind::Traced ? -1 : 0;
+                        active += kind == ShadowRayKind::Traced;
+                    }
+                    if (active) {
+                        for (int k = 0; k < 16; ++k) {
+                            ray.org_x[k] = sb.lsOriginX[base + size_t(k)];
+                            ray.org_y[k] = sb.lsOriginY[base + size_t(k)];
+                            ray.org_z[k] = sb.lsOriginZ[base + size_t(k)];
+                            ray.dir_x[k] = ps.dirX[k];
+                            ray.dir_y[k] = ps.dirY[k];
+                            ray.dir_z[k] = ps.dirZ[k];
+                            ray.tnear[k] = 0.0f;
+                            ray.tfar[k] = ps.tfar[k];
+                            ray.time[k] = 0.0f;
+                            ray.mask[k] = 0xFFFFFFFFu;
+                            ray.flags[k] = 0;
                         }
-                        valid[k] = -1;
-                        lanePixel[k] = pixel;
-                        ray.org_x[k] = s.org.x;
-                        ray.org_y[k] = s.org.y;
-                        ray.org_z[k] = s.org.z;
-                        ray.dir_x[k] = s.dir.x;
-                        ray.dir_y[k] = s.dir.y;
-                        ray.dir_z[k] = s.dir.z;
-                        ray.tnear[k] = 0.0f;
-                        ray.tfar[k] = s.tfar;
-                        ray.time[k] = 0.0f;
-                        ray.mask[k] = 0xFFFFFFFFu;
-                        ray.id[k] = unsigned(pixel);
-                        ray.flags[k] = 0;
-                        ++active;
+                        rtcOccluded16(valid, accel.rtcScene(), &ctx, &ray);
                     }
-                    if (!active) continue;
-                    rtcOccluded16(valid, accel.rtcScene(), &ctx, &ray);
-                    for (int k = 0; k < 16; ++k) {
-                        if (!valid[k]) continue;
-                        // Embree sets tfar to -inf on a hit.
-                        const bool lit = ray.tfar[k] >= 0.0f;
-                        V[lanePixel[k]] = lit ? 1.0f : 0.0f;
-                        st.occluded += lit ? 0 : 1;
+                    // Write back row by row: each tile row is contiguous in the image. Embree sets
+                    // tfar to -inf on a hit; lanes not traced keep V = 0.
+                    for (int r = 0; r < rows; ++r) {
+                        const size_t row = size_t(y0 + r) * size_t(sb.width) + size_t(x0);
+                        for (int c = 0; c < cols; ++c) {
+                            const int k = r * 4 + c;
+                            const bool lit = valid[k] && ray.tfar[k] >= 0.0f;
+                            V[row + size_t(c)] = lit ? 1.0f : 0.0f;
+                            cosine[row + size_t(c)] = ps.cosine[k];
+                            st.occluded += (valid[k] && !lit) ? 1 : 0;
+                        }
                     }
-                    st.traced += uint64_t(active);
                 }
                 if (progress)
                     progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
             }
+            st.skippedBackground += counts[int(ShadowRayKind::Background)];
+            st.skippedAttached += counts[int(ShadowRayKind::Attached)];
+            st.skippedOutsideCone += counts[int(ShadowRayKind::OutsideCone)];
+            st.traced += counts[int(ShadowRayKind::Traced)];
         });
     HardShadowStats total;
     partial.combine_each([&](const HardShadowStats& s) {

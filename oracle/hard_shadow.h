@@ -34,7 +34,8 @@ struct HardLight {
 };
 HardLight makeHardLight(const Light& light, const LocalFrame& frame);
 
-enum class ShadowRayKind : uint8_t { Background, Attached, OutsideCone, Traced };
+// Padding: a lane of an edge tile that lies outside the image (never reported).
+enum class ShadowRayKind : uint8_t { Background, Attached, OutsideCone, Traced, Padding };
 
 // One pixel's shadow ray: its kind, the cosine to the light, and for Traced the ray itself
 // (direction unit, tnear = 0). Shared by the oracle and the benchmark's plain Embree loops so both
@@ -45,6 +46,17 @@ struct ShadowRaySetup {
     glm::vec3 org{0.0f}, dir{0.0f};
     float tfar = 0.0f;
 };
+// The 16 lanes of one tile (slots base .. base + 15) at once; setupShadowRay is one lane of it.
+struct PacketSetup {
+    alignas(64) float cosine[16];
+    alignas(64) float dirX[16];
+    alignas(64) float dirY[16];
+    alignas(64) float dirZ[16];
+    alignas(64) float tfar[16];
+    ShadowRayKind kind[16];
+};
+void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, PacketSetup& ps);
+
 // `slot` indexes the tile-major surface buffer (SurfaceBuffer::slot).
 ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLight& light);
 

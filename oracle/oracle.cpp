@@ -38,10 +38,10 @@ void fillGeometryChannels(const SurfaceBuffer& sb, const Accel& accel, ChannelIm
         const size_t i = sb.pixelOfSlot(s);
         if (i == SIZE_MAX || !sb.hit[s]) continue;
         A[i] = 1.0f;
-        const glm::dvec3 ws = frame.wsFromLs(glm::dvec3(sb.lsPoint[s]));
+        const glm::dvec3 ws = frame.wsFromLs(glm::dvec3(sb.lsPoint(s)));
         for (int k = 0; k < 3; ++k) {
             P[k][i] = float(ws[k]);
-            N[k][i] = sb.lsNormal[s][k];
+            N[k][i] = sb.lsNormal(s)[k];
         }
         Z[i] = sb.wsDepth[s];
         // Exact in float: the loader caps meshes and triangles per mesh at 2^24.

@@ -22,9 +22,9 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
     sb.hit.assign(n, 0);
     sb.meshId.assign(n, 0);
     sb.primId.assign(n, 0);
-    sb.lsPoint.assign(n, glm::vec3(0.0f));
-    sb.lsNormal.assign(n, glm::vec3(0.0f));
-    sb.lsRayOrigin.assign(n, glm::vec3(0.0f));
+    for (auto* v : {&sb.lsPointX, &sb.lsPointY, &sb.lsPointZ, &sb.lsNormalX, &sb.lsNormalY,
+                    &sb.lsNormalZ, &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ})
+        v->assign(n, 0.0f);
     sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
     const LocalFrame& frame = accel.frame();
     sb.lsEye = frame.lsFromWs(camera.wsEye());
@@ -80,11 +80,13 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                     sb.hit[s] = 1;
                     sb.meshId[s] = rh.hit.geomID;
                     sb.primId[s] = rh.hit.primID;
-                    sb.lsPoint[s] = glm::vec3(p);
-                    sb.lsNormal[s] = glm::vec3(ng);
-                    sb.lsRayOrigin[s] = offsetRayOrigin(sb.lsPoint[s], sb.lsNormal[s]);
+                    const glm::vec3 pf(p), nf(ng);
+                    const glm::vec3 org = offsetRayOrigin(pf, nf);
+                    sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
+                    sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
+                    sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
                     sb.wsDepth[s] = float(frame.wsLength(glm::length(p - sb.lsEye)));
-                    rowMax = std::max(rowMax, glm::length(glm::dvec3(sb.lsRayOrigin[s]) - p));
+                    rowMax = std::max(rowMax, glm::length(glm::dvec3(org) - p));
                 }
                 rowMaxOffset[size_t(ty)] = rowMax;
                 if (progress)

@@ -23,16 +23,24 @@ struct SurfaceBuffer {
     int tilesX = 0, tilesY = 0;
     glm::dvec3 lsEye{0.0};
     // One entry per slot (tilesX * tilesY * 16); slots outside the image have hit = 0.
-    std::vector<uint8_t> hit;            // 1 where the primary ray hit
-    std::vector<uint32_t> meshId;        // id.mesh (Embree geomID)
-    std::vector<uint32_t> primId;        // id.prim (Embree primID = triangle in index order)
-    std::vector<glm::vec3> lsPoint;      // rebuilt from the barycentrics on the double triangle
-    std::vector<glm::vec3> lsNormal;     // unit geometric normal (from double), facing the camera
-    std::vector<glm::vec3> lsRayOrigin;  // offset origin for rays leaving on the normal's side
-    std::vector<float> wsDepth;          // distance from the eye, world units
-    double lsMaxOffset = 0.0;            // the largest origin offset: the oracle's blind distance
+    std::vector<uint8_t> hit;      // 1 where the primary ray hit
+    std::vector<uint32_t> meshId;  // id.mesh (Embree geomID)
+    std::vector<uint32_t> primId;  // id.prim (Embree primID = triangle in index order)
+    // Per-component arrays (structure of arrays): a packet's 16 lanes are then contiguous in each,
+    // and its ray setup vectorises (hard_shadow.cpp).
+    std::vector<float> lsPointX, lsPointY,
+        lsPointZ;  // rebuilt from barycentrics on the double triangle
+    std::vector<float> lsNormalX, lsNormalY,
+        lsNormalZ;  // unit geometric normal (from double), facing the camera
+    std::vector<float> lsOriginX, lsOriginY,
+        lsOriginZ;               // offset origin for rays leaving on the normal's side
+    std::vector<float> wsDepth;  // distance from the eye, world units
+    double lsMaxOffset = 0.0;    // the largest origin offset: the oracle's blind distance
 
     size_t slotCount() const { return hit.size(); }
+    glm::vec3 lsPoint(size_t s) const { return {lsPointX[s], lsPointY[s], lsPointZ[s]}; }
+    glm::vec3 lsNormal(size_t s) const { return {lsNormalX[s], lsNormalY[s], lsNormalZ[s]}; }
+    glm::vec3 lsRayOrigin(size_t s) const { return {lsOriginX[s], lsOriginY[s], lsOriginZ[s]}; }
     // Slot of pixel (x, y); the inverse is pixelOfSlot.
     size_t slot(int x, int y) const {
         return (size_t(y / kTile) * size_t(tilesX) + size_t(x / kTile)) * 16 +
