@@ -6,9 +6,11 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/progress.h"
 
 namespace so {
 
@@ -34,7 +36,8 @@ const float* ChannelImage::channel(const std::string& name) const {
 }
 
 void writeExr(const std::string& path, const ChannelImage& image,
-              const std::vector<std::pair<std::string, std::string>>& attributes) {
+              const std::vector<std::pair<std::string, std::string>>& attributes, int threads,
+              Progress* progress) {
     Imf::Header header(image.width(), image.height());
     header.compression() = Imf::ZIP_COMPRESSION;
     for (const auto& [key, value] : attributes) header.insert(key, Imf::StringAttribute(value));
@@ -46,9 +49,17 @@ void writeExr(const std::string& path, const ChannelImage& image,
                                    sizeof(float) * size_t(image.width())));
     }
     try {
+        // Compression is most of the time on large images; OpenEXR spreads it over threads and
+        // still writes the blocks in order, so the bytes do not depend on the thread count.
+        Imf::setGlobalThreadCount(threads > 1 ? threads : 0);
         Imf::OutputFile file(path.c_str(), header);
         file.setFrameBuffer(fb);
-        file.writePixels(image.height());
+        const int block = 256;  // scanlines per call: enough to keep the threads busy
+        for (int y = 0; y < image.height(); y += block) {
+            const int n = std::min(block, image.height() - y);
+            file.writePixels(n);
+            if (progress) progress->advance(uint64_t(n) * uint64_t(image.width()));
+        }
     } catch (const std::exception& e) {
         throwInputError(path, "", std::string("cannot write EXR: ") + printable(e.what(), 200));
     }

@@ -30,10 +30,14 @@ class ChannelImage {
     std::vector<std::vector<float>> planes_;
 };
 
+class Progress;
+
 // Writes all channels as 32-bit float, ZIP-compressed scanlines, with string attributes (e.g.
-// provenance). Deterministic: the same image gives the same bytes.
+// provenance). Deterministic: the same image gives the same bytes whatever `threads` (OpenEXR
+// compresses blocks in parallel but writes them in order). `progress` may be null.
 void writeExr(const std::string& path, const ChannelImage& image,
-              const std::vector<std::pair<std::string, std::string>>& attributes = {});
+              const std::vector<std::pair<std::string, std::string>>& attributes = {},
+              int threads = 1, Progress* progress = nullptr);
 // Reads every channel as float. Throws InputError on a bad file.
 ChannelImage readExr(const std::string& path);
 

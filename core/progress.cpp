@@ -24,12 +24,14 @@ void Progress::advance(uint64_t n) {
     uint64_t done = done_.fetch_add(n) + n;
     if (!enabled_) return;
     auto now = Clock::now();
-    // Nothing for the first second: short runs stay quiet.
+    // Short runs stay quiet: a bar after one second on a terminal; otherwise a first line after
+    // two seconds, then one every five.
     auto sinceStart = now - start_;
-    auto interval = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(5000);
-    if (sinceStart < std::chrono::seconds(1)) return;
+    if (sinceStart < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(2))) return;
     std::unique_lock lock(mutex_, std::try_to_lock);
-    if (!lock.owns_lock() || now - lastDraw_ < interval) return;
+    if (!lock.owns_lock()) return;
+    auto interval = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(5000);
+    if (drawn_ && now - lastDraw_ < interval) return;
     lastDraw_ = now;
     draw(done, false);
 }

@@ -10,6 +10,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/version.h"
 #include "oracle/embree_handles.h"
 
@@ -62,9 +63,13 @@ int runTraceCommand(const TraceCommandOptions& options) {
     t0 = Clock::now();
     const std::filesystem::path out(options.outDir);
     const std::string exrPath = (out / "oracle.exr").string();
-    writeExr(exrPath, result.image,
-             {{"shadowOracle/sceneHash", scene.contentHash},
-              {"shadowOracle/toolVersion", std::string(kToolVersion) + " " + kGitRevision}});
+    {
+        Progress progress("writing " + exrPath, result.image.pixelCount(), options.oracle.progress);
+        writeExr(exrPath, result.image,
+                 {{"shadowOracle/sceneHash", scene.contentHash},
+                  {"shadowOracle/toolVersion", std::string(kToolVersion) + " " + kGitRevision}},
+                 result.stats["threads"].get<int>(), &progress);
+    }
     std::vector<std::string> previews;
     for (const Light& light : scene.lights) {
         std::string png = (out / (light.name + ".png")).string();
