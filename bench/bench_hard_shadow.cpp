@@ -131,8 +131,9 @@ int main(int argc, char** argv) {
         HardLight hl = makeHardLight(light, accel.frame());
         HardShadowStats st;
         auto runOracle = [&] {
-            arena.execute(
-                [&] { st = traceHardShadows(accel, sb, hl, V.data(), C.data(), nullptr); });
+            arena.execute([&] {
+                st = traceHardShadows(accel, sb, hl, V.data(), C.data(), nullptr, nullptr);
+            });
         };
 
         // The same rays, prepared outside the timing: packets in the oracle's 4x4-tile order.

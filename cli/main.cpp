@@ -26,6 +26,24 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 16384));
     traceCmd->add_option("--threads", trace.oracle.threads, "worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
+    traceCmd->add_option("--seed", trace.oracle.area.seed,
+                         "seed of the area-light sample sequences (default 0)");
+    traceCmd
+        ->add_option(
+            "--target-error", trace.oracle.area.targetError,
+            "area lights: stop a pixel when its 95% half-width is below this (default 0.01)")
+        ->check(CLI::Range(1e-4, 0.5));
+    traceCmd
+        ->add_option("--max-spp", trace.oracle.area.maxSpp,
+                     "area lights: most samples per pixel (default 16384)")
+        ->check(CLI::Range(16, 1 << 20));
+    auto* sppOpt =
+        traceCmd
+            ->add_option("--spp", trace.oracle.area.fixedSpp,
+                         "area lights: exactly this many samples per pixel (no adaptivity)")
+            ->check(CLI::Range(1, 1 << 20));
+    sppOpt->excludes("--target-error");
+    sppOpt->excludes("--max-spp");
     bool quiet = false;
     traceCmd->add_flag("--quiet", quiet, "no progress output");
 

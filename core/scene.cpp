@@ -29,8 +29,26 @@ const char* lightTypeName(LightType t) {
             return "directional";
         case LightType::Spot:
             return "spot";
+        case LightType::Rect:
+            return "rect";
+        case LightType::Disk:
+            return "disk";
+        case LightType::Sphere:
+            return "sphere";
     }
     return "?";
+}
+
+glm::dvec3 Light::wsEmitNormal() const {
+    if (type == LightType::Rect) return glm::normalize(glm::cross(wsU, wsV));
+    if (type == LightType::Disk) return wsNormal;
+    return glm::dvec3(0.0);
+}
+
+bool Scene::hasEffect(const std::string& e) const {
+    for (const std::string& x : effects)
+        if (x == e) return true;
+    return false;
 }
 
 bool SceneStats::totalTrianglesExceeded(const LoadLimits& limits) const {

@@ -36,8 +36,11 @@ struct CameraDesc {
     int height = 512;
 };
 
-enum class LightType { Point, Directional, Spot };
+enum class LightType { Point, Directional, Spot, Rect, Disk, Sphere };
 const char* lightTypeName(LightType t);
+inline bool isAreaLight(LightType t) {
+    return t == LightType::Rect || t == LightType::Disk || t == LightType::Sphere;
+}
 
 struct Light {
     std::string name;  // unique in the scene, a valid EXR layer name (see channels.h)
@@ -46,6 +49,12 @@ struct Light {
     glm::dvec3 wsDirection{0.0, -1.0, 0.0};  // directional, spot: unit, the way light travels
     double outerConeDeg = 45.0;              // spot: half-angle of the lit cone
     double innerConeDeg = 0.0;               // spot: half-angle of full intensity (raster only)
+    // Area lights: wsPosition is the centre.
+    glm::dvec3 wsU{0.0}, wsV{0.0};  // rect: full edge vectors; emits on the side of cross(u, v)
+    glm::dvec3 wsNormal{0.0};       // disk: unit, the side it emits on
+    double radius = 0.0;            // disk, sphere
+    // Rect and disk emit on one side only: the unit normal of that side (zero for other types).
+    glm::dvec3 wsEmitNormal() const;
 };
 
 // One drawn mesh primitive (a glTF primitive instanced by one node). Its index in Scene::meshes
@@ -73,7 +82,8 @@ struct Scene {
     std::vector<MeshPrimitive> meshes;
     std::vector<Light> lights;
     std::vector<std::string> effects;  // as given, validated; default {"hard"}
-    Bounds3d wsBounds;                 // of all mesh vertices
+    bool hasEffect(const std::string& e) const;
+    Bounds3d wsBounds;  // of all mesh vertices
     SceneStats stats;
 };
 

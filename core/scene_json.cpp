@@ -270,9 +270,33 @@ void parseLights(const json& jl, const Reader& r, const LoadLimits& limits, Scen
                 if (!(light.innerConeDeg >= 0.0 && light.innerConeDeg <= light.outerConeDeg))
                     r.fail(f + ".inner_cone_deg", "must be in [0, outer_cone_deg]");
             }
+        } else if (type == "rect") {
+            r.checkKeys(j, f, {"name", "type", "center", "u", "v"}, " for a rect light");
+            light.type = LightType::Rect;
+            light.wsPosition = r.vec3(need("center"), f + ".center");
+            light.wsU = r.vec3(need("u"), f + ".u");
+            light.wsV = r.vec3(need("v"), f + ".v");
+            const double lu = glm::length(light.wsU), lv = glm::length(light.wsV);
+            if (!(lu > 0.0)) r.fail(f + ".u", "zero length (zero area)");
+            if (!(lv > 0.0)) r.fail(f + ".v", "zero length (zero area)");
+            const double area = glm::length(glm::cross(light.wsU, light.wsV));
+            if (!(area > 1e-9 * lu * lv)) r.fail(f + ".v", "parallel to u (zero area)");
+        } else if (type == "disk") {
+            r.checkKeys(j, f, {"name", "type", "center", "normal", "radius"}, " for a disk light");
+            light.type = LightType::Disk;
+            light.wsPosition = r.vec3(need("center"), f + ".center");
+            light.wsNormal = r.unitVec3(need("normal"), f + ".normal");
+            light.radius = r.number(need("radius"), f + ".radius");
+            if (!(light.radius > 0.0)) r.fail(f + ".radius", "must be positive");
+        } else if (type == "sphere") {
+            r.checkKeys(j, f, {"name", "type", "center", "radius"}, " for a sphere light");
+            light.type = LightType::Sphere;
+            light.wsPosition = r.vec3(need("center"), f + ".center");
+            light.radius = r.number(need("radius"), f + ".radius");
+            if (!(light.radius > 0.0)) r.fail(f + ".radius", "must be positive");
         } else {
             r.fail(f + ".type", "unknown light type \"" + printable(type, 40) +
-                                    "\" (valid: point, directional, spot)");
+                                    "\" (valid: point, directional, spot, rect, disk, sphere)");
         }
         scene.lights.push_back(light);
     }
@@ -319,6 +343,24 @@ void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const Loa
                         "more than " + std::to_string(limits.maxMeshes) + " drawn meshes");
     scene.stats.skippedPrimitives += g.skippedPrimitives;
     for (const std::string& w : g.warnings) scene.stats.warnings.push_back(w);
+}
+
+// A scene that asks for something its lights cannot show, or has lights that its effects leave
+// cheap, is told so: silence would read as "simulated".
+void warnAboutEffects(Scene& scene) {
+    bool anyArea = false;
+    for (const Light& l : scene.lights) anyArea |= isAreaLight(l.type);
+    if (scene.hasEffect("penumbra") && !anyArea)
+        scene.stats.warnings.push_back(
+            "effects: \"penumbra\" is listed but the scene has no area light (rect, disk, sphere): "
+            "nothing to sample");
+    if (!scene.hasEffect("penumbra"))
+        for (const Light& l : scene.lights)
+            if (isAreaLight(l.type))
+                scene.stats.warnings.push_back(
+                    "light \"" + l.name + "\" is a " + lightTypeName(l.type) +
+                    " light but effects lacks \"penumbra\": traced as a point "
+                    "light at its centre");
 }
 
 Scene loadSceneJson(const std::filesystem::path& path, const std::string& display,
@@ -397,9 +439,9 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         for (size_t i = 0; i < je.size(); ++i) {
             std::string f = Reader::index("effects", i);
             std::string e = r.string(je[i], f);
-            if (e == "penumbra" || e == "contact")
-                r.fail(f, "\"" + e + "\" is reserved but not implemented by this version");
-            if (e != "hard") r.fail(f, "unknown effect \"" + printable(e, 40) + "\" (valid: hard)");
+            if (e != "hard" && e != "penumbra" && e != "contact")
+                r.fail(f, "unknown effect \"" + printable(e, 40) +
+                              "\" (valid: hard, penumbra, contact)");
             if (!seen.insert(e).second) r.fail(f, "\"" + e + "\" listed twice");
             scene.effects.push_back(e);
         }
@@ -407,6 +449,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
             r.fail("effects", "empty: nothing to simulate (omit it for [\"hard\"])");
     }
 
+    warnAboutEffects(scene);
     finalizeScene(scene);
     if (scene.stats.totalTrianglesExceeded(limits))
         r.fail("geometry",

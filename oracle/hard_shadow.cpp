@@ -17,12 +17,16 @@ namespace so {
 
 HardLight makeHardLight(const Light& light, const LocalFrame& frame) {
     HardLight h;
-    h.type = light.type;
+    // Without the penumbra effect an area light is traced as a point light at its centre; rect
+    // and disk lights still emit on one side only.
+    h.type = isAreaLight(light.type) ? LightType::Point : light.type;
+    h.oneSided = light.type == LightType::Rect || light.type == LightType::Disk;
+    if (h.oneSided) h.lsEmitNormalF = glm::vec3(light.wsEmitNormal());
     h.lsPosition = frame.lsFromWs(light.wsPosition);
     h.lsDirection = glm::normalize(light.wsDirection);
     if (light.type == LightType::Spot)
         h.cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
-    if (light.type != LightType::Directional) h.lsEndMargin = offsetMargin(glm::vec3(h.lsPosition));
+    if (h.type != LightType::Directional) h.lsEndMargin = offsetMargin(glm::vec3(h.lsPosition));
     h.lsPositionF = glm::vec3(h.lsPosition);
     h.lsDirectionF = glm::vec3(h.lsDirection);
     h.cosOuterF = float(h.cosOuter);
@@ -40,6 +44,7 @@ void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, P
     const float* nz = &sb.lsNormalZ[base];
     const glm::vec3 d = light.lsDirectionF;
     float spotCos[16];
+    float behindDot[16];  // one-sided emitters: > 0 where p is on the emitting side
     if (light.type == LightType::Directional) {
         for (int k = 0; k < 16; ++k) {
             ps.cosine[k] = -(nx[k] * d.x + ny[k] * d.y + nz[k] * d.z);
@@ -48,6 +53,7 @@ void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, P
             ps.dirZ[k] = -d.z;
             ps.tfar[k] = std::numeric_limits<float>::infinity();
             spotCos[k] = 1.0f;
+            behindDot[k] = 1.0f;
         }
     } else {
         // From the surface point, not the offset origin: the origin sits up to 256 ulp above the
@@ -68,6 +74,8 @@ void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, P
             ps.dirY[k] = wy;
             ps.dirZ[k] = wz;
             ps.tfar[k] = std::max(0.0f, dist - endMargin);
+            behindDot[k] = -(light.lsEmitNormalF.x * tx + light.lsEmitNormalF.y * ty +
+                             light.lsEmitNormalF.z * tz);
         }
     }
     const bool spot = light.type == LightType::Spot;
@@ -80,6 +88,8 @@ void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, P
             ps.kind[k] = ShadowRayKind::Attached;
         } else if (spot && spotCos[k] < light.cosOuterF) {
             ps.kind[k] = ShadowRayKind::OutsideCone;
+        } else if (light.oneSided && !(behindDot[k] > 0.0f)) {
+            ps.kind[k] = ShadowRayKind::BehindLight;
         } else {
             ps.kind[k] = ShadowRayKind::Traced;
         }
@@ -102,10 +112,11 @@ ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLi
 }
 
 HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
-                                 const HardLight& light, float* V, float* cosine,
+                                 const HardLight& light, float* V, float* cosine, float* occDist,
                                  Progress* progress) {
     auto t0 = std::chrono::steady_clock::now();
     tbb::combinable<HardShadowStats> partial;
+    const LocalFrame& frame = accel.frame();
 
     tbb::parallel_for(
         tbb::blocked_range<int>(0, sb.tilesY), [&](const tbb::blocked_range<int>& range) {
@@ -114,10 +125,11 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
             ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-            alignas(64) RTCRay16 ray;
+            alignas(64) RTCRayHit16 rayHit;
+            RTCRay16& ray = rayHit.ray;
             alignas(64) int valid[16];
             PacketSetup ps;
-            uint64_t counts[5] = {0, 0, 0, 0, 0};  // per ShadowRayKind
+            uint64_t counts[int(ShadowRayKind::Count)] = {};
             for (int ty = range.begin(); ty != range.end(); ++ty) {
                 for (int tx = 0; tx < sb.tilesX; ++tx) {
                     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
@@ -149,7 +161,15 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
                             ray.mask[k] = 0xFFFFFFFFu;
                             ray.flags[k] = 0;
                         }
-                        rtcOccluded16(valid, accel.rtcScene(), &ctx, &ray);
+                        if (occDist) {
+                            // The contact effect: the closest occluder, not just any.
+                            for (int k = 0; k < 16; ++k)
+                                rayHit.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                            rtcIntersect16(valid, accel.rtcScene(), &ctx, &rayHit);
+                            st.closestHitQueries += uint64_t(active);
+                        } else {
+                            rtcOccluded16(valid, accel.rtcScene(), &ctx, &ray);
+                        }
                     }
                     // Write back row by row: each tile row is contiguous in the image. Embree sets
                     // tfar to -inf on a hit; lanes not traced keep V = 0.
@@ -157,10 +177,17 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
                         const size_t row = size_t(y0 + r) * size_t(sb.width) + size_t(x0);
                         for (int c = 0; c < cols; ++c) {
                             const int k = r * 4 + c;
-                            const bool lit = valid[k] && ray.tfar[k] >= 0.0f;
+                            const bool lit = valid[k] && (occDist ? rayHit.hit.geomID[k] ==
+                                                                        RTC_INVALID_GEOMETRY_ID
+                                                                  : ray.tfar[k] >= 0.0f);
                             V[row + size_t(c)] = lit ? 1.0f : 0.0f;
                             cosine[row + size_t(c)] = ps.cosine[k];
                             st.occluded += (valid[k] && !lit) ? 1 : 0;
+                            if (occDist)
+                                occDist[row + size_t(c)] =
+                                    !valid[k] ? -1.0f
+                                    : lit     ? std::numeric_limits<float>::infinity()
+                                              : float(frame.wsLength(ray.tfar[k]));
                         }
                     }
                 }
@@ -170,6 +197,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
             st.skippedBackground += counts[int(ShadowRayKind::Background)];
             st.skippedAttached += counts[int(ShadowRayKind::Attached)];
             st.skippedOutsideCone += counts[int(ShadowRayKind::OutsideCone)];
+            st.skippedBehindLight += counts[int(ShadowRayKind::BehindLight)];
             st.traced += counts[int(ShadowRayKind::Traced)];
         });
     HardShadowStats total;
@@ -179,6 +207,8 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         total.skippedBackground += s.skippedBackground;
         total.skippedAttached += s.skippedAttached;
         total.skippedOutsideCone += s.skippedOutsideCone;
+        total.skippedBehindLight += s.skippedBehindLight;
+        total.closestHitQueries += s.closestHitQueries;
     });
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return total;

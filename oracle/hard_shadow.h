@@ -5,6 +5,7 @@
 //   background (no primary hit)        V = 0, cos = 0, no ray
 //   cos <= 0 (light behind the normal) V = 0, no ray   ("attached" shadow)
 //   spot, outside the outer cone       V = 0, no ray   ("outside_cone")
+//   rect/disk at its centre, behind it V = 0, no ray   ("behind_light")
 //   otherwise                          V = 1 if the segment from the offset origin to the light
 //                                      (stopping the offset margin short of it; directional: to
 //                                      infinity) is unoccluded, else 0.
@@ -31,11 +32,21 @@ struct HardLight {
     float lsEndMargin = 0.0f;                // the segment stops this far short of the light
     glm::vec3 lsPositionF{0.0f}, lsDirectionF{0.0f, -1.0f, 0.0f};  // the same, as the rays use them
     float cosOuterF = -1.0f;
+    bool oneSided = false;          // a rect or disk light traced at its centre
+    glm::vec3 lsEmitNormalF{0.0f};  // its emitting side
 };
 HardLight makeHardLight(const Light& light, const LocalFrame& frame);
 
 // Padding: a lane of an edge tile that lies outside the image (never reported).
-enum class ShadowRayKind : uint8_t { Background, Attached, OutsideCone, Traced, Padding };
+enum class ShadowRayKind : uint8_t {
+    Background,
+    Attached,
+    OutsideCone,
+    BehindLight,
+    Traced,
+    Padding,
+    Count
+};
 
 // One pixel's shadow ray: its kind, the cosine to the light, and for Traced the ray itself
 // (direction unit, tnear = 0). Shared by the oracle and the benchmark's plain Embree loops so both
@@ -62,13 +73,18 @@ ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLi
 
 struct HardShadowStats {
     uint64_t traced = 0, occluded = 0;
-    uint64_t skippedBackground = 0, skippedAttached = 0, skippedOutsideCone = 0;
+    uint64_t skippedBackground = 0, skippedAttached = 0, skippedOutsideCone = 0,
+             skippedBehindLight = 0;
+    uint64_t closestHitQueries = 0;  // only with occDist (the contact effect)
     double seconds = 0.0;
 };
 
-// Fills V and cos (one float per pixel each). Runs in parallel inside the caller's task arena.
+// Fills V and cos (one float per pixel each). With occDist (the contact effect) the rays are
+// closest-hit queries and occDist gets the distance to the first occluder in world units (+inf
+// where unoccluded, -1 where no ray was traced); without it, cheaper any-hit queries. Runs in
+// parallel inside the caller's task arena.
 HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
-                                 const HardLight& light, float* V, float* cosine,
+                                 const HardLight& light, float* V, float* cosine, float* occDist,
                                  Progress* progress);
 
 }  // namespace so

@@ -13,6 +13,7 @@
 #include "core/channels.h"
 #include "core/progress.h"
 #include "oracle/accel.h"
+#include "oracle/area_light.h"
 #include "oracle/hard_shadow.h"
 #include "oracle/surface_buffer.h"
 
@@ -95,32 +96,109 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     nlohmann::json lights = nlohmann::json::array();
     double shadowSeconds = 0.0;
     uint64_t shadowRays = 0;
-    for (const Light& light : scene.lights) {
-        float* V =
-            result.image.addChannel(channels::lightChannel(light.name, channels::kVisibility));
-        float* cosine =
-            result.image.addChannel(channels::lightChannel(light.name, channels::kCosine));
-        const HardLight hl = makeHardLight(light, accel->frame());
-        HardShadowStats st;
-        {
-            Progress progress("shadow rays " + light.name, pixels, options.progress);
-            arena.execute([&] { st = traceHardShadows(*accel, sb, hl, V, cosine, &progress); });
+    const bool penumbra = scene.hasEffect("penumbra");
+    const bool contact = scene.hasEffect("contact");
+    uint64_t closestHitQueries = 0;
+    for (size_t li = 0; li < scene.lights.size(); ++li) {
+        const Light& light = scene.lights[li];
+        namespace ch = channels;
+        float* V = result.image.addChannel(ch::lightChannel(light.name, ch::kVisibility));
+        float* cosine = result.image.addChannel(ch::lightChannel(light.name, ch::kCosine));
+        // Channels exist only for what the scene asks for: no occ_dist without "contact".
+        float* occDist =
+            contact ? result.image.addChannel(ch::lightChannel(light.name, ch::kOccluderDistance))
+                    : nullptr;
+        const bool sampled = penumbra && isAreaLight(light.type);
+        nlohmann::json lj = {{"name", light.name}, {"type", lightTypeName(light.type)}};
+        Progress progress("shadow rays " + light.name, pixels, options.progress);
+        if (sampled) {
+            float* stderr_ = result.image.addChannel(ch::lightChannel(light.name, ch::kStdErr));
+            float* spp = result.image.addChannel(ch::lightChannel(light.name, ch::kSpp));
+            const AreaLight al = makeAreaLight(light, accel->frame());
+            AreaShadowStats st;
+            arena.execute([&] {
+                st = traceAreaShadows(*accel, sb, al, options.area, uint32_t(li), V, stderr_, spp,
+                                      cosine, &progress);
+            });
+            shadowSeconds += st.seconds;
+            shadowRays += st.raysTraced;
+            const double raysPerSample =
+                st.samples ? double(st.raysTraced) / double(st.samples) : 0.0;
+            const double uniformSamples = st.uniformSppForWorst * double(st.pixelsSampled);
+            lj["method"] = options.area.fixedSpp > 0 ? "sampled (penumbra), fixed spp"
+                                                     : "sampled (penumbra), adaptive";
+            lj["sampling"] = light.type == LightType::Sphere ? "solid angle of the visible cap"
+                                                             : "uniform by area";
+            lj["rays_traced"] = st.raysTraced;
+            lj["rays_occluded"] = st.raysOccluded;
+            lj["rays_skipped"] = {{"background", st.skippedBackground},
+                                  {"below_horizon", st.skippedBelowHorizon},
+                                  {"behind_light", st.skippedBehindLight},
+                                  {"inside_light", st.skippedInsideLight}};
+            lj["samples"] = st.samples;
+            lj["samples_without_ray"] = st.samples - st.raysTraced;
+            lj["pixels_sampled"] = st.pixelsSampled;
+            lj["spp_mean"] = st.pixelsSampled ? double(st.samples) / double(st.pixelsSampled) : 0.0;
+            lj["spp_max"] = st.maxSpp;
+            lj["target_error"] = options.area.fixedSpp > 0
+                                     ? nlohmann::json(nullptr)
+                                     : nlohmann::json(options.area.targetError);
+            lj["max_spp"] = options.area.fixedSpp > 0 ? options.area.fixedSpp : options.area.maxSpp;
+            lj["share_reached_target"] =
+                st.pixelsSampled ? double(st.reachedTarget) / double(st.pixelsSampled) : 1.0;
+            lj["worst_half_width"] = st.worstHalfWidth;
+            lj["uniform_equivalent"] = {{"spp", st.uniformSppForWorst},
+                                        {"samples", uniformSamples},
+                                        {"rays", uniformSamples * raysPerSample},
+                                        {"note",
+                                         "a uniform run reaching the same worst-pixel half-width "
+                                         "(estimated from each pixel's variance)"}};
+            lj["sampling_efficiency"] = st.samplingEfficiency;
+            lj["seconds"] = st.seconds;
+            lj["rays_per_second"] = st.seconds > 0 ? double(st.raysTraced) / st.seconds : 0.0;
         }
-        shadowSeconds += st.seconds;
-        shadowRays += st.traced;
-        lights.push_back({
-            {"name", light.name},
-            {"type", lightTypeName(light.type)},
-            {"method", "hard: one shadow ray per pixel"},
-            {"rays_traced", st.traced},
-            {"rays_occluded", st.occluded},
-            {"rays_skipped",
-             {{"background", st.skippedBackground},
-              {"attached", st.skippedAttached},
-              {"outside_cone", st.skippedOutsideCone}}},
-            {"seconds", st.seconds},
-            {"rays_per_second", st.seconds > 0 ? double(st.traced) / st.seconds : 0.0},
-        });
+        // Hard lights, area lights without "penumbra" (a point at the centre), and the contact
+        // rays of sampled area lights (to the centre) all go through the hard-shadow pass.
+        if (!sampled || contact) {
+            std::vector<float> scratch;
+            float* hardV = V;
+            float* hardCos = cosine;
+            if (sampled) {  // only the occluder distance is wanted
+                scratch.assign(2 * size_t(pixels), 0.0f);
+                hardV = scratch.data();
+                hardCos = scratch.data() + pixels;
+            }
+            const HardLight hl = makeHardLight(light, accel->frame());
+            HardShadowStats st;
+            arena.execute([&] {
+                st = traceHardShadows(*accel, sb, hl, hardV, hardCos, occDist,
+                                      sampled ? nullptr : &progress);
+            });
+            shadowSeconds += st.seconds;
+            shadowRays += st.traced;
+            closestHitQueries += st.closestHitQueries;
+            nlohmann::json skipped = {{"background", st.skippedBackground},
+                                      {"attached", st.skippedAttached}};
+            if (light.type == LightType::Spot) skipped["outside_cone"] = st.skippedOutsideCone;
+            if (hl.oneSided) skipped["behind_light"] = st.skippedBehindLight;
+            nlohmann::json hard = {
+                {"rays_traced", st.traced},
+                {"rays_occluded", st.occluded},
+                {"rays_skipped", skipped},
+                {"closest_hit_queries", st.closestHitQueries},
+                {"seconds", st.seconds},
+                {"rays_per_second", st.seconds > 0 ? double(st.traced) / st.seconds : 0.0}};
+            if (sampled) {
+                lj["contact_rays"] = hard;
+            } else {
+                lj["method"] =
+                    isAreaLight(light.type)
+                        ? "point at the centre (no \"penumbra\" effect): one shadow ray per pixel"
+                        : "hard: one shadow ray per pixel";
+                lj.update(hard);
+            }
+        }
+        lights.push_back(lj);
     }
     phases["shadow"] = shadowSeconds;
 
@@ -131,6 +209,9 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
         {"threads", threads},
         {"phases_seconds", phases},
         {"shadow_rays", shadowRays},
+        {"closest_hit_queries", closestHitQueries},
+        {"effects", scene.effects},
+        {"seed", options.area.seed},
         {"shadow_rays_per_second", shadowSeconds > 0 ? double(shadowRays) / shadowSeconds : 0.0},
         {"lights", lights},
         {"frame",

@@ -8,6 +8,7 @@
 
 #include "core/image.h"
 #include "core/scene.h"
+#include "oracle/area_shadow.h"
 
 namespace so {
 
@@ -15,6 +16,7 @@ struct OracleOptions {
     int width = 0, height = 0;  // 0: the scene camera's size
     int threads = 0;            // 0: all hardware threads
     bool progress = true;
+    AreaSampling area;  // area lights, when the scene asks for "penumbra"
 };
 
 struct OracleResult {

@@ -111,6 +111,64 @@ def torus(center, R, r, n=64, m=24):
     return pos, idx
 
 
+def boulder(subdiv=5):
+    """An icosphere displaced by a few octaves of smooth deterministic noise: a rock-like mesh."""
+    t = (1 + 5 ** 0.5) / 2
+    verts = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
+             (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
+             (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    verts = [tuple(c / math.sqrt(sum(x * x for x in v)) for c in v) for v in verts]
+    for _ in range(subdiv):
+        cache, nf = {}, []
+        def mid(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in cache:
+                m = [(verts[a][k] + verts[b][k]) / 2 for k in range(3)]
+                l = math.sqrt(sum(x * x for x in m))
+                verts.append(tuple(x / l for x in m))
+                cache[key] = len(verts) - 1
+            return cache[key]
+        for a, b, c in faces:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            nf += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = nf
+    def bump(x, y, z):
+        return (0.18 * math.sin(2.1 * x + 1.3 * y) * math.cos(1.7 * z - 0.4 * x) + 0.09 * math.sin(4.7 * y + 3.1 * z)
+                + 0.05 * math.cos(7.3 * x - 5.9 * z + 2.2 * y) + 0.025 * math.sin(13.1 * x + 11.7 * y - 9.3 * z))
+    pos = []
+    for x, y, z in verts:
+        r = 1.0 + bump(x, y, z)
+        pos.append((r * x * 1.3, r * y * 0.8 + 0.55, r * z))
+    return pos, [i for f in faces for i in f]
+
+
+def torus_knot(p=2, q=3, n=360, m=20, R=1.0, r=0.22):
+    def curve(t):
+        rr = math.cos(q * t) + 2
+        return (rr * math.cos(p * t) / 3 * R * 1.5, math.sin(q * t) / 3 * R * 1.5, rr * math.sin(p * t) / 3 * R * 1.5)
+    pos, idx = [], []
+    for i in range(n):
+        t = 2 * math.pi * i / n
+        c0, c1 = curve(t), curve(t + 1e-3)
+        tng = [c1[k] - c0[k] for k in range(3)]
+        l = math.sqrt(sum(x * x for x in tng)); tng = [x / l for x in tng]
+        up = (0.0, 1.0, 0.0)
+        b = [tng[1] * up[2] - tng[2] * up[1], tng[2] * up[0] - tng[0] * up[2], tng[0] * up[1] - tng[1] * up[0]]
+        l = math.sqrt(sum(x * x for x in b)); b = [x / l for x in b]
+        nn = [b[1] * tng[2] - b[2] * tng[1], b[2] * tng[0] - b[0] * tng[2], b[0] * tng[1] - b[1] * tng[0]]
+        for j in range(m):
+            a = 2 * math.pi * j / m
+            pos.append(tuple(c0[k] + r * (math.cos(a) * nn[k] + math.sin(a) * b[k]) for k in range(3)))
+    for i in range(n):
+        for j in range(m):
+            a0, a1 = i * m + j, i * m + (j + 1) % m
+            b0, b1 = ((i + 1) % n) * m + j, ((i + 1) % n) * m + (j + 1) % m
+            idx += [a0, b0, b1, a0, b1, a1]
+    return pos, idx
+
+
 def terrain_height(x, z):
     # Sums of sines: smooth hills with ridges; deterministic.
     return (0.9 * math.sin(0.45 * x) * math.cos(0.38 * z) + 0.35 * math.sin(1.3 * x + 0.7 * z)
@@ -151,6 +209,29 @@ def main():
           [{"name": "cone", "type": "spot", "position": [1.5, 8.0, 3.0], "direction": [-0.15, -1.0, -0.3],
             "outer_cone_deg": 32, "inner_cone_deg": 26},
            {"name": "fill", "type": "point", "position": [-6.0, 4.0, 6.0]}])
+
+    write_gltf("square", *grid(1, 1, lambda u, v: (-1 + 2 * u, 0.0, 1 - 2 * v)))
+    write_gltf("boulder", *boulder())
+    write_gltf("torus_knot", *torus_knot())
+
+    # Closed form: a rectangular light, a parallel square occluder and a plane (docs/oracle.md).
+    scene("penumbra_square.scene.json",
+          [{"file": "meshes/floor.gltf"},
+           {"file": "meshes/square.gltf", "translate": [0, 1.5, 0]}],
+          {"eye": [0.0, 7.0, 6.0], "target": [0.0, 0.0, 0.0], "up": [0, 1, 0], "vfov_deg": 40,
+           "width": 320, "height": 240},
+          [{"name": "panel", "type": "rect", "center": [0.5, 4.0, 0.25], "u": [2.0, 0, 0], "v": [0, 0, 1.5]}],
+          effects=("penumbra",))
+
+    # A sphere light over rock-like and knotted meshes, with occluder distances for contact.
+    scene("sphere_light.scene.json",
+          [{"file": "meshes/floor.gltf"},
+           {"file": "meshes/boulder.gltf", "translate": [-1.2, 0, 0.3]},
+           {"file": "meshes/torus_knot.gltf", "translate": [1.8, 1.3, -0.4], "scale": 0.8}],
+          {"eye": [0.0, 5.5, 8.0], "target": [0.2, 0.6, 0.0], "up": [0, 1, 0], "vfov_deg": 42,
+           "width": 320, "height": 240},
+          [{"name": "globe", "type": "sphere", "center": [0.8, 4.5, 1.5], "radius": 0.6}],
+          effects=("penumbra", "contact"))
 
     # The sun 8 degrees above the horizon: long shadows, many points near grazing.
     el = math.radians(8.0)

@@ -1,0 +1,63 @@
+// Area lights in the local frame, and how the oracle samples them (docs/oracle.md).
+//
+// The shadow factor is V(p) = integral_L v G dA / integral_L G dA with G = cos_p cos_y / r^2
+// (one-sided cos_y for rect and disk). Samples y_i with pdf p_i give weights w_i = G_i / p_i and
+// the ratio estimator V = sum w_i v_i / sum w_i, which is exactly 1 where nothing blocks.
+//   rect, disk: uniform by area (disk: concentric map), w = max(cos_p,0) max(cos_y,0) / r^2
+//   sphere:     uniform in the solid angle of the visible cap (sphere-cap sampling), w =
+//   max(cos_p,0)
+// (constant factors common to all samples of a pixel are dropped: they cancel in the ratio).
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "core/scene.h"
+#include "oracle/local_frame.h"
+
+namespace so {
+
+struct AreaLight {
+    LightType type = LightType::Rect;
+    glm::vec3 lsCenter{0.0f};
+    glm::vec3 lsU{0.0f}, lsV{0.0f};    // rect: full edges
+    glm::vec3 lsEmitNormal{0.0f};      // rect, disk: unit
+    glm::vec3 lsE1{0.0f}, lsE2{0.0f};  // disk: unit axes in its plane
+    float lsRadius = 0.0f;             // disk, sphere
+    float lsEndMargin = 0.0f;          // shadow rays stop this far short of the light
+    // Rect corners / disk extents, for the horizon test, in double.
+    glm::dvec3 dCenter{0.0}, dU{0.0}, dV{0.0}, dEmitNormal{0.0};
+    double dRadius = 0.0;
+};
+AreaLight makeAreaLight(const Light& light, const LocalFrame& frame);
+
+enum class AreaSkip : uint8_t { None, BelowHorizon, BehindLight, InsideLight };
+
+// What one pixel needs to sample the light: computed once per pixel.
+struct AreaPixel {
+    glm::vec3 p{0.0f}, n{0.0f};
+    // sphere: cone towards the centre
+    glm::vec3 wc{0.0f}, t1{0.0f}, t2{0.0f};
+    float dist = 0.0f, oneMinusCosMax = 0.0f, radius2 = 0.0f;
+};
+
+// Whether the pixel at p (unit normal n) can receive light at all: the light entirely below the
+// horizon, p behind a one-sided emitter, or p inside a sphere light get V = 0 without rays.
+AreaSkip classifyAreaPixel(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n);
+AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm::vec3& n);
+
+// Up to 16 samples (indices first .. first + count - 1 of the pixel's sequence `seed`): unit
+// directions from p, segment lengths (tfar) and weights; weight 0 means "no ray" (below the
+// horizon or behind the emitter). Lanes >= count get weight 0.
+struct AreaBatch {
+    alignas(64) float dirX[16];
+    alignas(64) float dirY[16];
+    alignas(64) float dirZ[16];
+    alignas(64) float tfar[16];
+    alignas(64) float weight[16];
+};
+void sampleAreaBatch(const AreaLight& light, const AreaPixel& px, uint32_t seed, uint32_t first,
+                     int count, AreaBatch& b);
+
+}  // namespace so

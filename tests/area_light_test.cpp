@@ -1,0 +1,383 @@
+// Area lights: the sampled shadow factor against Lambert's closed form, its confidence intervals,
+// convergence, adaptive effort, and the effects switches.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "core/channels.h"
+#include "lambert.h"
+#include "oracle/area_shadow.h"
+#include "oracle/sobol.h"
+#include "test_scenes.h"
+
+namespace so::test {
+namespace {
+
+namespace ch = channels;
+
+// A rect light 2 x 1.5 at height 4 emitting down, a 2 x 2 square occluder at height 1.5, the floor.
+struct PenumbraScene {
+    AxisRect light{4.0, -0.5, 1.5, -0.5, 1.0};
+    AxisRect occluder{1.5, -1.0, 1.0, -1.0, 1.0};
+    Scene scene;
+};
+
+PenumbraScene makePenumbraScene(int w, int h) {
+    PenumbraScene s;
+    Scene& sc = s.scene;
+    sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
+    sc.meshes.push_back(makeGrid({0, s.occluder.y, 0}, {2, 0, 0}, {0, 0, -2}, 1, "occluder"));
+    Light l;
+    l.name = "panel";
+    l.type = LightType::Rect;
+    l.wsPosition = {0.5 * (s.light.x0 + s.light.x1), s.light.y, 0.5 * (s.light.z0 + s.light.z1)};
+    l.wsU = {s.light.x1 - s.light.x0, 0, 0};
+    l.wsV = {0, 0, s.light.z1 - s.light.z0};  // cross(u, v) points down: it lights the floor
+    sc.lights = {l};
+    sc.effects = {"hard", "penumbra"};
+    sc.camera.wsEye = {0.25, 6.0, 5.0};
+    sc.camera.wsTarget = {0.25, 0.0, 0.0};
+    sc.camera.vfovDeg = 36;
+    sc.camera.width = w;
+    sc.camera.height = h;
+    finalizeScene(sc);
+    return s;
+}
+
+struct OracleRun {
+    ChannelImage img;
+    nlohmann::json stats;
+};
+
+OracleRun run(const Scene& scene, const AreaSampling& area, int threads = 0) {
+    OracleOptions o;
+    o.progress = false;
+    o.threads = threads;
+    o.area = area;
+    OracleResult r = runOracle(scene, o);
+    return {std::move(r.image), std::move(r.stats)};
+}
+
+struct Exact {
+    std::vector<double> v;  // per pixel, NaN where no hit
+};
+
+Exact exactImage(const PenumbraScene& s, const ChannelImage& img) {
+    Exact e;
+    e.v.assign(img.pixelCount(), NAN);
+    const float* A = img.channel(ch::kHit);
+    for (size_t i = 0; i < img.pixelCount(); ++i) {
+        if (A[i] == 0.0f) continue;
+        glm::dvec3 p(img.channel(ch::kPX)[i], img.channel(ch::kPY)[i], img.channel(ch::kPZ)[i]);
+        glm::dvec3 n(img.channel(ch::kNX)[i], img.channel(ch::kNY)[i], img.channel(ch::kNZ)[i]);
+        e.v[i] = exactRectLightRectOccluderV(p, n, s.light, s.occluder);
+    }
+    return e;
+}
+
+bool isPenumbra(double v) {
+    return v > 1e-9 && v < 1.0 - 1e-9;
+}
+
+double normalTwoSidedP(double z) {
+    return std::erfc(std::fabs(z) / std::sqrt(2.0));
+}
+
+TEST(AreaLight, ClosedFormPenumbraWithinStatedIntervals) {
+    PenumbraScene s = makePenumbraScene(112, 84);
+    OracleRun r = run(s.scene, AreaSampling{});  // default target 0.01
+    Exact exact = exactImage(s, r.img);
+    const float* V = r.img.channel("panel.V");
+    const float* SE = r.img.channel("panel.stderr");
+    double absSum = 0.0;
+    size_t hits = 0, penumbra = 0, covered = 0, umbra = 0, lit = 0;
+    double minP = 1.0;
+    for (size_t i = 0; i < r.img.pixelCount(); ++i) {
+        if (std::isnan(exact.v[i])) continue;
+        ++hits;
+        absSum += std::fabs(V[i] - exact.v[i]);
+        if (!isPenumbra(exact.v[i])) {
+            (exact.v[i] == 0.0 ? umbra : lit) += 1;
+            continue;
+        }
+        ++penumbra;
+        covered += std::fabs(V[i] - exact.v[i]) <= 1.959963984540054 * SE[i];
+        if (SE[i] > 0) minP = std::min(minP, normalTwoSidedP((V[i] - exact.v[i]) / SE[i]));
+    }
+    const double mae = absSum / double(hits);
+    const double coverage = double(covered) / double(penumbra);
+    // Sidak: the family of `penumbra` per-pixel tests at significance 0.01.
+    const double sidak = 1.0 - std::pow(1.0 - 0.01, 1.0 / double(penumbra));
+    std::printf(
+        "[ closed form ] %zu pixels (%zu penumbra, %zu umbra, %zu lit): mean |V - exact| = %.5f, "
+        "coverage of 95%% intervals = %.4f, smallest p = %.3g (Sidak threshold %.3g)\n",
+        hits, penumbra, umbra, lit, mae, coverage, minP, sidak);
+    ASSERT_GT(penumbra, 1000u);
+    ASSERT_GT(umbra, 200u);
+    EXPECT_LE(mae, 0.003);
+    EXPECT_GE(coverage, 0.93);
+    EXPECT_GT(minP, sidak);
+}
+
+// The stated intervals must not be too wide either: a uniform 64-spp run whose intervals were, say,
+// ten times too wide would cover 100% and pass the test above. At nominal 95% coverage with
+// conservative (independent-sample) variances, the realised errors of stratified samples are
+// smaller than stated, but not by orders of magnitude.
+TEST(AreaLight, IntervalsAreNotVacuous) {
+    PenumbraScene s = makePenumbraScene(64, 48);
+    AreaSampling fixed;
+    fixed.fixedSpp = 64;
+    OracleRun r = run(s.scene, fixed);
+    Exact exact = exactImage(s, r.img);
+    const float* V = r.img.channel("panel.V");
+    const float* SE = r.img.channel("panel.stderr");
+    double sumSq = 0.0, sumVar = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < r.img.pixelCount(); ++i) {
+        if (std::isnan(exact.v[i]) || !isPenumbra(exact.v[i])) continue;
+        sumSq += (V[i] - exact.v[i]) * (V[i] - exact.v[i]);
+        sumVar += double(SE[i]) * SE[i];
+        ++n;
+    }
+    ASSERT_GT(n, 200u);
+    const double ratio = std::sqrt(sumSq / sumVar);  // realised RMS error / stated stderr
+    std::printf("[ intervals ] at 64 spp: realised RMS error / stated standard error = %.3f\n",
+                ratio);
+    EXPECT_LT(ratio, 1.0);   // conservative
+    EXPECT_GT(ratio, 0.05);  // but not vacuous
+}
+
+TEST(AreaLight, UnoccludedLightsGiveExactlyOne) {
+    for (LightType type : {LightType::Rect, LightType::Disk, LightType::Sphere}) {
+        Scene sc;
+        // A tilted plane: for some pixels part of the light is below the horizon.
+        sc.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 3, -12}, 6, "plane"));
+        Light l;
+        l.name = "L";
+        l.type = type;
+        l.wsPosition = {0.5, 2.0, 0.25};
+        l.wsU = {1.5, 0, 0};
+        l.wsV = {0, 0, 1.0};
+        l.wsNormal = {0, -1, 0};
+        l.radius = 0.8;
+        sc.lights = {l};
+        sc.effects = {"penumbra"};
+        sc.camera.wsEye = {0, 9, 9};
+        sc.camera.wsTarget = {0, 0, 0};
+        sc.camera.width = sc.camera.height = 64;
+        finalizeScene(sc);
+        AreaSampling fixed;
+        fixed.fixedSpp = 48;
+        OracleRun r = run(sc, fixed);
+        const float* spp = r.img.channel("L.spp");
+        const float* V = r.img.channel("L.V");
+        size_t sampled = 0;
+        for (size_t i = 0; i < r.img.pixelCount(); ++i) {
+            if (spp[i] == 0.0f) continue;
+            ++sampled;
+            ASSERT_EQ(V[i], 1.0f) << lightTypeName(type) << " pixel " << i;
+        }
+        EXPECT_GT(sampled, r.img.pixelCount() / 3) << lightTypeName(type);
+    }
+}
+
+TEST(AreaLight, ConvergenceSlope) {
+    PenumbraScene s = makePenumbraScene(64, 48);
+    std::vector<double> logN, logErr;
+    Exact exact;
+    for (int spp : {16, 64, 256, 1024}) {
+        AreaSampling fixed;
+        fixed.fixedSpp = spp;
+        OracleRun r = run(s.scene, fixed);
+        if (exact.v.empty()) exact = exactImage(s, r.img);
+        const float* V = r.img.channel("panel.V");
+        double sum = 0.0;
+        size_t n = 0;
+        for (size_t i = 0; i < r.img.pixelCount(); ++i) {
+            if (std::isnan(exact.v[i]) || !isPenumbra(exact.v[i])) continue;
+            sum += std::fabs(V[i] - exact.v[i]);
+            ++n;
+        }
+        logN.push_back(std::log(double(spp)));
+        logErr.push_back(std::log(sum / double(n)));
+        std::printf("[ convergence ] %4d spp: mean |V - exact| over %zu penumbra pixels = %.6f\n",
+                    spp, n, sum / double(n));
+    }
+    // Least-squares slope of log error against log spp.
+    const double mx = std::accumulate(logN.begin(), logN.end(), 0.0) / 4,
+                 my = std::accumulate(logErr.begin(), logErr.end(), 0.0) / 4;
+    double sxy = 0, sxx = 0;
+    for (int k = 0; k < 4; ++k) {
+        sxy += (logN[k] - mx) * (logErr[k] - my);
+        sxx += (logN[k] - mx) * (logN[k] - mx);
+    }
+    const double slope = sxy / sxx;
+    std::printf("[ convergence ] log-log slope = %.3f (independent samples would give -0.5)\n",
+                slope);
+    EXPECT_LE(slope, -0.5);
+}
+
+TEST(AreaLight, AdaptiveNeedsFourTimesFewerRaysThanUniform) {
+    PenumbraScene s = makePenumbraScene(96, 72);
+    OracleRun adaptive = run(s.scene, AreaSampling{});
+    const auto& la = adaptive.stats["lights"][0];
+    const double worstA = la["worst_half_width"].get<double>();
+    const uint64_t raysA = la["rays_traced"].get<uint64_t>();
+    // A uniform run with as many samples everywhere as the adaptive run's hardest pixel.
+    AreaSampling uniform;
+    uniform.fixedSpp = int(la["spp_max"].get<uint64_t>());
+    OracleRun u = run(s.scene, uniform);
+    const auto& lu = u.stats["lights"][0];
+    const double worstU = lu["worst_half_width"].get<double>();
+    const uint64_t raysU = lu["rays_traced"].get<uint64_t>();
+    const double ratio = double(raysU) / double(raysA);
+    std::printf(
+        "[ adaptive ] adaptive: %llu rays, worst half-width %.5f; uniform at %d spp: %llu rays, "
+        "worst "
+        "half-width %.5f; ratio %.2f (the JSON's estimate: %.0f rays)\n",
+        (unsigned long long)raysA, worstA, uniform.fixedSpp, (unsigned long long)raysU, worstU,
+        ratio, la["uniform_equivalent"]["rays"].get<double>());
+    EXPECT_LE(worstU, worstA * 1.05)
+        << "the uniform run must reach the same worst-pixel half-width";
+    EXPECT_GE(ratio, 4.0);
+}
+
+TEST(AreaLight, SameImageAtAnyThreadCount) {
+    PenumbraScene s = makePenumbraScene(48, 36);
+    AreaSampling a;
+    a.targetError = 0.03;
+    OracleRun ref = run(s.scene, a, 1);
+    for (int threads : {2, 5}) {
+        OracleRun r = run(s.scene, a, threads);
+        for (const std::string& name : ref.img.names())
+            EXPECT_EQ(0, std::memcmp(ref.img.channel(name), r.img.channel(name),
+                                     ref.img.pixelCount() * sizeof(float)))
+                << name << " differs with " << threads << " threads";
+    }
+    // And a different seed gives different samples.
+    a.seed = 7;
+    OracleRun other = run(s.scene, a, 1);
+    EXPECT_NE(0, std::memcmp(ref.img.channel("panel.V"), other.img.channel("panel.V"),
+                             ref.img.pixelCount() * sizeof(float)));
+}
+
+TEST(Effects, WithoutPenumbraOneRayPerLitFacingPixel) {
+    PenumbraScene s = makePenumbraScene(64, 48);
+    s.scene.effects = {"hard"};
+    OracleRun r = run(s.scene, AreaSampling{});
+    const float* A = r.img.channel(ch::kHit);
+    const float* C = r.img.channel("panel.cos");
+    uint64_t facing = 0;
+    for (size_t i = 0; i < r.img.pixelCount(); ++i) facing += A[i] != 0.0f && C[i] > 0.0f;
+    const auto& l = r.stats["lights"][0];
+    EXPECT_EQ(l["rays_traced"].get<uint64_t>(), facing);
+    EXPECT_FALSE(r.img.has("panel.stderr"));
+    EXPECT_FALSE(r.img.has("panel.spp"));
+    EXPECT_NE(l["method"].get<std::string>().find("centre"), std::string::npos);
+    // A hard light's V is 0 or 1.
+    const float* V = r.img.channel("panel.V");
+    for (size_t i = 0; i < r.img.pixelCount(); ++i) ASSERT_TRUE(V[i] == 0.0f || V[i] == 1.0f);
+}
+
+TEST(Effects, ContactOnlyWhenAsked) {
+    Scene sc;
+    sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
+    sc.meshes.push_back(makeBox({-1, 0, -1}, {1, 1.5, 1}, "box"));
+    sc.lights = {{"key", LightType::Point, {2.5, 5.0, 1.5}, {0, -1, 0}, 0, 0}};
+    sc.camera.wsEye = {-5, 6, -6};
+    sc.camera.wsTarget = {0, 0.5, 0};
+    sc.camera.width = sc.camera.height = 96;
+    sc.effects = {"hard"};
+    finalizeScene(sc);
+    OracleRun without = run(sc, AreaSampling{});
+    EXPECT_FALSE(without.img.has("key.occ_dist"));
+    EXPECT_EQ(without.stats["closest_hit_queries"].get<uint64_t>(), 0u);
+
+    sc.effects = {"hard", "contact"};
+    OracleRun with = run(sc, AreaSampling{});
+    ASSERT_TRUE(with.img.has("key.occ_dist"));
+    EXPECT_EQ(with.stats["closest_hit_queries"].get<uint64_t>(),
+              with.stats["lights"][0]["rays_traced"].get<uint64_t>());
+    // Same visibility either way.
+    EXPECT_EQ(0, std::memcmp(without.img.channel("key.V"), with.img.channel("key.V"),
+                             with.img.pixelCount() * sizeof(float)));
+    // The distance to the box along the ray, against a slab test in double.
+    const float* D = with.img.channel("key.occ_dist");
+    const float* V = with.img.channel("key.V");
+    const float* mesh = with.img.channel(ch::kMeshId);
+    size_t checked = 0;
+    for (size_t i = 0; i < with.img.pixelCount(); ++i) {
+        if (mesh[i] != 0.0f || V[i] != 0.0f || D[i] < 0.0f) continue;
+        glm::dvec3 p(with.img.channel(ch::kPX)[i], with.img.channel(ch::kPY)[i],
+                     with.img.channel(ch::kPZ)[i]);
+        glm::dvec3 d = glm::normalize(glm::dvec3(2.5, 5.0, 1.5) - p);
+        double t0 = 0, t1 = 1e30;
+        const glm::dvec3 lo(-1, 0, -1), hi(1, 1.5, 1);
+        for (int k = 0; k < 3; ++k) {
+            double a = (lo[k] - p[k]) / d[k], b = (hi[k] - p[k]) / d[k];
+            t0 = std::max(t0, std::min(a, b));
+            t1 = std::min(t1, std::max(a, b));
+        }
+        if (!(t0 < t1)) continue;  // grazing an edge: the float point may see it differently
+        EXPECT_NEAR(D[i], t0, 1e-4 * (1.0 + t0)) << "pixel " << i;
+        ++checked;
+    }
+    EXPECT_GT(checked, 300u);
+    // Unoccluded pixels have +inf, untraced -1.
+    for (size_t i = 0; i < with.img.pixelCount(); ++i) {
+        if (V[i] == 1.0f) {
+            ASSERT_TRUE(std::isinf(D[i]));
+        }
+    }
+}
+
+TEST(Effects, WarningsForWhatTheLightsCannotShow) {
+    // Checked through the loader: see SceneLoader tests for the files; here the oracle's side:
+    // contact rays of a sampled area light go to its centre and are counted separately.
+    PenumbraScene s = makePenumbraScene(32, 24);
+    s.scene.effects = {"penumbra", "contact"};
+    AreaSampling fixed;
+    fixed.fixedSpp = 16;
+    OracleRun r = run(s.scene, fixed);
+    const auto& l = r.stats["lights"][0];
+    ASSERT_TRUE(l.contains("contact_rays"));
+    EXPECT_EQ(l["contact_rays"]["closest_hit_queries"].get<uint64_t>(),
+              l["contact_rays"]["rays_traced"].get<uint64_t>());
+    EXPECT_TRUE(r.img.has("panel.occ_dist"));
+}
+
+TEST(Sampling, SixteenSampleBlocksAreStratified) {
+    for (uint32_t seed : {0u, 1u, 0xdeadbeefu})
+        for (uint32_t block = 0; block < 32; ++block)
+            for (int kx : {1, 2, 4, 8, 16}) {
+                std::set<int> cells;
+                for (uint32_t i = 0; i < 16; ++i) {
+                    float u, v;
+                    sobol2D(block * 16 + i, seed, u, v);
+                    ASSERT_TRUE(u >= 0.0f && u < 1.0f && v >= 0.0f && v < 1.0f);
+                    cells.insert(int(u * kx) * 100 + int(v * (16 / kx)));
+                }
+                ASSERT_EQ(cells.size(), 16u)
+                    << "seed " << seed << " block " << block << " " << kx << "x" << 16 / kx;
+            }
+}
+
+TEST(Sampling, AllAgreeingSamplesAreNotCertain) {
+    // 16 of 16 lit, equal weights: the interval must not collapse to a point.
+    RatioEstimate e = ratioEstimate(16, 16, 16, 16, 16);
+    EXPECT_EQ(e.V, 1.0);
+    EXPECT_NEAR(e.stderr_, 0.066, 0.002);
+    // An always-lit pixel reaches a half-width of 0.01 only after ~270 samples.
+    int n = 16;
+    while (1.96 * ratioEstimate(n, n, n, n, uint64_t(n)).stderr_ > 0.01) n += 16;
+    EXPECT_GE(n, 256);
+    EXPECT_LE(n, 288);
+}
+
+}  // namespace
+}  // namespace so::test
