@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/error.h"
 #include "oracle/offset.h"
 #include "oracle/sobol.h"
 
@@ -71,10 +72,79 @@ AreaSkip classifyAreaPixel(const AreaLight& light, const glm::dvec3& p, const gl
     }
 }
 
+namespace {
+
+// sin and cos on [-pi/4, pi/4] by their Taylor polynomials (errors below 1e-8, under float's
+// resolution): unlike std::sin/cos these vectorise, and the samplers call them for every sample.
+inline void sincosQuarterPi(float x, float& s, float& c) {
+    const float x2 = x * x;
+    s = x *
+        (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
+    c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
+}
+
+// sin and cos of 2 pi v for v in [0, 1): reduced to a quarter turn around pi/4 + q pi/2.
+inline void sincos2Pi(float v, float& s, float& c) {
+    const float q = float(int(v * 4.0f));  // v >= 0: truncation is floor, and vectorises
+    const float x =
+        2.0f * std::numbers::pi_v<float> * (v - 0.25f * q) - std::numbers::pi_v<float> / 4;
+    float sx, cx;
+    sincosQuarterPi(x, sx, cx);
+    const float h = std::numbers::sqrt2_v<float> / 2;
+    const float c0 = h * (cx - sx), s0 = h * (sx + cx);  // angle pi/4 + x
+    c = q == 0.0f ? c0 : q == 1.0f ? -s0 : q == 2.0f ? -c0 : s0;
+    s = q == 0.0f ? s0 : q == 1.0f ? c0 : q == 2.0f ? -s0 : -c0;
+}
+
+}  // namespace
+
+// Sutherland-Hodgman against the plane through p with normal n: the part of the rect above p's
+// horizon, as a fan of triangles with their cumulative area shares.
+static void clipRectToHorizon(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n,
+                              AreaPixel& px) {
+    glm::dvec3 in[4];
+    double d[4];
+    bool allAbove = true;
+    for (int k = 0; k < 4; ++k) {
+        const double su = (k == 0 || k == 3) ? -0.5 : 0.5, sv = k < 2 ? -0.5 : 0.5;
+        in[k] = light.dCenter + su * light.dU + sv * light.dV;
+        d[k] = glm::dot(n, in[k] - p);
+        allAbove &= d[k] > 0.0;
+    }
+    if (allAbove) return;
+    glm::dvec3 out[5];
+    int m = 0;
+    for (int k = 0; k < 4; ++k) {
+        const int j = (k + 1) % 4;
+        if (d[k] > 0.0) out[m++] = in[k];
+        if ((d[k] > 0.0) != (d[j] > 0.0))
+            out[m++] = in[k] + (d[k] / (d[k] - d[j])) * (in[j] - in[k]);
+    }
+    if (m < 3) return;  // nothing (measurable) above: classifyAreaPixel decides those
+    double area[3], total = 0.0;
+    const int tris = m - 2;
+    for (int t = 0; t < tris; ++t) {
+        area[t] = 0.5 * glm::length(glm::cross(out[t + 1] - out[0], out[t + 2] - out[0]));
+        total += area[t];
+    }
+    if (!(total > 0.0)) return;
+    double acc = 0.0;
+    for (int t = 0; t < tris; ++t) {
+        px.tri[t][0] = glm::vec3(out[0]);
+        px.tri[t][1] = glm::vec3(out[t + 1]);
+        px.tri[t][2] = glm::vec3(out[t + 2]);
+        acc += area[t];
+        px.triCdf[t] = float(acc / total);
+    }
+    px.triCdf[tris - 1] = 1.0f;
+    px.clippedTriangles = tris;
+}
+
 AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm::vec3& n) {
     AreaPixel px;
     px.p = p;
     px.n = n;
+    if (light.type == LightType::Rect) clipRectToHorizon(light, glm::dvec3(p), glm::dvec3(n), px);
     if (light.type == LightType::Sphere) {
         const glm::dvec3 d = glm::dvec3(light.lsCenter) - glm::dvec3(p);
         const double dist = glm::length(d);
@@ -98,55 +168,85 @@ AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm
 void sampleAreaBatch(const AreaLight& light, const AreaPixel& px, uint32_t seed, uint32_t first,
                      int count, AreaBatch& b) {
     float su[16], sv[16];
-    for (int k = 0; k < 16; ++k) sobol2D(first + uint32_t(k), seed, su[k], sv[k]);
+    sobol2DBlock16(first, seed, su, sv);
     const float margin = 2.0f * light.lsEndMargin;
     if (light.type == LightType::Sphere) {
         for (int k = 0; k < 16; ++k) {
             const float cosT = 1.0f - su[k] * px.oneMinusCosMax;
             const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
-            const float phi = 2.0f * std::numbers::pi_v<float> * sv[k];
-            const float cx = std::cos(phi) * sinT, cy = std::sin(phi) * sinT;
-            const glm::vec3 d = cx * px.t1 + cy * px.t2 + cosT * px.wc;
+            float sinPhi, cosPhi;
+            sincos2Pi(sv[k], sinPhi, cosPhi);
+            const float cx = cosPhi * sinT, cy = sinPhi * sinT;
+            const float dx = cx * px.t1.x + cy * px.t2.x + cosT * px.wc.x;
+            const float dy = cx * px.t1.y + cy * px.t2.y + cosT * px.wc.y;
+            const float dz = cx * px.t1.z + cy * px.t2.z + cosT * px.wc.z;
             // Distance to the near side of the sphere along d.
             const float b2 = px.dist * cosT;
             const float disc = std::max(0.0f, px.radius2 - px.dist * px.dist * sinT * sinT);
             const float t = b2 - std::sqrt(disc);
-            const float cosP = glm::dot(px.n, d);
-            b.dirX[k] = d.x;
-            b.dirY[k] = d.y;
-            b.dirZ[k] = d.z;
+            const float cosP = px.n.x * dx + px.n.y * dy + px.n.z * dz;
+            b.dirX[k] = dx;
+            b.dirY[k] = dy;
+            b.dirZ[k] = dz;
             b.tfar[k] = std::max(0.0f, t - margin);
-            b.weight[k] = (k < count && cosP > 0.0f) ? cosP : 0.0f;
+            b.weight[k] = ((k < count) & (cosP > 0.0f)) ? cosP : 0.0f;
         }
         return;
     }
-    for (int k = 0; k < 16; ++k) {
-        glm::vec3 y;
-        if (light.type == LightType::Rect) {
-            y = light.lsCenter + (su[k] - 0.5f) * light.lsU + (sv[k] - 0.5f) * light.lsV;
-        } else {
-            // Shirley-Chiu concentric map: area-preserving and keeps the strata compact.
-            const float a = 2.0f * su[k] - 1.0f, c = 2.0f * sv[k] - 1.0f;
-            const bool first4 = std::fabs(a) > std::fabs(c);
-            const float r = first4 ? a : c;
-            const float theta =
-                first4 ? (std::numbers::pi_v<float> / 4) * (c / (a == 0.0f ? 1.0f : a))
-                       : (std::numbers::pi_v<float> / 2) -
-                             (std::numbers::pi_v<float> / 4) * (a / (c == 0.0f ? 1.0f : c));
-            y = light.lsCenter +
-                light.lsRadius * r * (std::cos(theta) * light.lsE1 + std::sin(theta) * light.lsE2);
+    // Sample points first, one branch-free loop per shape, then one loop for all.
+    float yx[16], yy[16], yz[16];
+    if (light.type == LightType::Rect && px.clippedTriangles == 0) {
+        for (int k = 0; k < 16; ++k) {
+            const glm::vec3 y =
+                light.lsCenter + (su[k] - 0.5f) * light.lsU + (sv[k] - 0.5f) * light.lsV;
+            yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
         }
-        const glm::vec3 d = y - px.p;
-        const float r2 = glm::dot(d, d);
+    } else if (light.type == LightType::Rect) {
+        for (int k = 0; k < 16; ++k) {
+            // Pick a triangle by area with u, reuse the rest of u inside it (keeps strata).
+            int t = 0;
+            while (t + 1 < px.clippedTriangles && su[k] >= px.triCdf[t]) ++t;
+            const float lo = t ? px.triCdf[t - 1] : 0.0f;
+            const float uu =
+                std::min(0.99999994f, (su[k] - lo) / std::max(px.triCdf[t] - lo, 1e-30f));
+            const float r = std::sqrt(uu);
+            const glm::vec3 y = (1.0f - r) * px.tri[t][0] + (r * (1.0f - sv[k])) * px.tri[t][1] +
+                                (r * sv[k]) * px.tri[t][2];
+            yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
+        }
+    } else {
+        for (int k = 0; k < 16; ++k) {
+            // Shirley-Chiu concentric map: area-preserving and keeps the strata compact. Its angle
+            // is within pi/4 of an axis, where the polynomials are accurate.
+            const float a = 2.0f * su[k] - 1.0f, c = 2.0f * sv[k] - 1.0f;
+            const bool nearX = std::fabs(a) > std::fabs(c);
+            const float r = nearX ? a : c;
+            const float num = nearX ? c : a, den = nearX ? a : c;
+            const float ratio = num / (den == 0.0f ? 1.0f : den);
+            float sq, cq;
+            sincosQuarterPi((std::numbers::pi_v<float> / 4) * ratio, sq, cq);
+            // nearX: angle = pi/4 * ratio; otherwise pi/2 - pi/4 * ratio (cos and sin swap).
+            const float cosT = nearX ? cq : sq, sinT = nearX ? sq : cq;
+            const float e1 = light.lsRadius * r * cosT, e2 = light.lsRadius * r * sinT;
+            yx[k] = light.lsCenter.x + e1 * light.lsE1.x + e2 * light.lsE2.x;
+            yy[k] = light.lsCenter.y + e1 * light.lsE1.y + e2 * light.lsE2.y;
+            yz[k] = light.lsCenter.z + e1 * light.lsE1.z + e2 * light.lsE2.z;
+        }
+    }
+    for (int k = 0; k < 16; ++k) {
+        const float dx = yx[k] - px.p.x, dy = yy[k] - px.p.y, dz = yz[k] - px.p.z;
+        const float r2 = dx * dx + dy * dy + dz * dz;
         const float dist = std::sqrt(r2);
-        const glm::vec3 w = d * (1.0f / dist);
-        const float cosP = glm::dot(px.n, w);
-        const float cosY = -glm::dot(light.lsEmitNormal, w);
-        b.dirX[k] = w.x;
-        b.dirY[k] = w.y;
-        b.dirZ[k] = w.z;
+        const float inv = 1.0f / dist;
+        const float wx = dx * inv, wy = dy * inv, wz = dz * inv;
+        const float cosP = px.n.x * wx + px.n.y * wy + px.n.z * wz;
+        const float cosY =
+            -(light.lsEmitNormal.x * wx + light.lsEmitNormal.y * wy + light.lsEmitNormal.z * wz);
+        b.dirX[k] = wx;
+        b.dirY[k] = wy;
+        b.dirZ[k] = wz;
         b.tfar[k] = std::max(0.0f, dist - margin);
-        b.weight[k] = (k < count && cosP > 0.0f && cosY > 0.0f) ? cosP * cosY / r2 : 0.0f;
+        b.weight[k] = ((k < count) & (cosP > 0.0f) & (cosY > 0.0f)) ? cosP * cosY / r2 : 0.0f;
     }
 }
 

@@ -3,7 +3,8 @@
 // The shadow factor is V(p) = integral_L v G dA / integral_L G dA with G = cos_p cos_y / r^2
 // (one-sided cos_y for rect and disk). Samples y_i with pdf p_i give weights w_i = G_i / p_i and
 // the ratio estimator V = sum w_i v_i / sum w_i, which is exactly 1 where nothing blocks.
-//   rect, disk: uniform by area (disk: concentric map), w = max(cos_p,0) max(cos_y,0) / r^2
+//   rect, disk: uniform by area (disk: concentric map), w = max(cos_p,0) max(cos_y,0) / r^2;
+//               a rect partly below the receiver's horizon is clipped to it first
 //   sphere:     uniform in the solid angle of the visible cap (sphere-cap sampling), w =
 //   max(cos_p,0)
 // (constant factors common to all samples of a pixel are dropped: they cancel in the ratio).
@@ -40,6 +41,11 @@ struct AreaPixel {
     // sphere: cone towards the centre
     glm::vec3 wc{0.0f}, t1{0.0f}, t2{0.0f};
     float dist = 0.0f, oneMinusCosMax = 0.0f, radius2 = 0.0f;
+    // rect partly below the horizon: the part above it, as a fan of up to 3 triangles sampled by
+    // area, so that no sample is spent where G = 0 (grazing receivers would otherwise get none).
+    int clippedTriangles = 0;
+    glm::vec3 tri[3][3];
+    float triCdf[3] = {0, 0, 0};
 };
 
 // Whether the pixel at p (unit normal n) can receive light at all: the light entirely below the

@@ -20,6 +20,10 @@ constexpr double kZ = 1.959963984540054;  // two-sided 95%
 constexpr double kPrior = 0.5 * kZ * kZ;  // Agresti-Coull: z^2/2 pseudo-samples each way
 }  // namespace
 
+uint32_t areaPixelSeed(uint32_t seed, uint32_t stream, uint32_t pixel) {
+    return hashCombine(hashCombine(seed, stream), pixel);
+}
+
 RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint64_t nonZero) {
     RatioEstimate e;
     if (nonZero == 0 || !(sw > 0.0)) {
@@ -50,7 +54,6 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
     tbb::combinable<Partial> partial;
     // Per-pixel per-sample variance and half-width, for the uniform-run estimate (fixed order).
     std::vector<float> perSampleVar(sb.slotCount(), 0.0f), halfWidth(sb.slotCount(), 0.0f);
-    const uint32_t streamSeed = hashCombine(sampling.seed, stream);
     const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
 
     tbb::parallel_for(
@@ -94,7 +97,8 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                     }
                     ++st.pixelsSampled;
                     const AreaPixel px = prepareAreaPixel(light, p, n);
-                    const uint32_t pixelSeed = hashCombine(streamSeed, uint32_t(pixel));
+                    const uint32_t pixelSeed =
+                        areaPixelSeed(sampling.seed, stream, uint32_t(pixel));
                     for (int k = 0; k < 16; ++k) {
                         ray.org_x[k] = org.x;
                         ray.org_y[k] = org.y;
@@ -164,6 +168,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         total.raysOccluded += s.raysOccluded;
         total.pixelsSampled += s.pixelsSampled;
         total.reachedTarget += s.reachedTarget;
+        total.pixelsWithoutUsableSamples += s.pixelsWithoutUsableSamples;
         total.maxSpp = std::max(total.maxSpp, s.maxSpp);
         total.skippedBackground += s.skippedBackground;
         total.skippedBelowHorizon += s.skippedBelowHorizon;

@@ -32,6 +32,9 @@ struct AreaSampling {
 struct AreaShadowStats {
     uint64_t samples = 0, raysTraced = 0, raysOccluded = 0;
     uint64_t pixelsSampled = 0, reachedTarget = 0, maxSpp = 0;
+    // Pixels where the light is above the horizon only by a sliver no sample found: reported as
+    // V = 0 with the widest interval, and left out of worstHalfWidth (they carry no estimate).
+    uint64_t pixelsWithoutUsableSamples = 0;
     uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
              skippedInsideLight = 0;
     double worstHalfWidth = 0.0;  // the largest 1.96 * stderr over sampled pixels
@@ -46,6 +49,10 @@ struct RatioEstimate {
     double V = 0.0, stderr_ = 0.0;
 };
 RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint64_t nonZero);
+
+// The seed of one pixel's sample sequence: `stream` separates lights, `pixel` is the row-major
+// pixel index. The sequence depends on nothing else, so the image is the same at any thread count.
+uint32_t areaPixelSeed(uint32_t seed, uint32_t stream, uint32_t pixel);
 
 // `stream` separates the sample sequences of different lights. Writes V, stderr, spp and cos
 // (towards the centre) per pixel. Runs in parallel inside the caller's task arena.

@@ -138,6 +138,7 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
             lj["samples"] = st.samples;
             lj["samples_without_ray"] = st.samples - st.raysTraced;
             lj["pixels_sampled"] = st.pixelsSampled;
+            lj["pixels_without_usable_samples"] = st.pixelsWithoutUsableSamples;
             lj["spp_mean"] = st.pixelsSampled ? double(st.samples) / double(st.pixelsSampled) : 0.0;
             lj["spp_max"] = st.maxSpp;
             lj["target_error"] = options.area.fixedSpp > 0

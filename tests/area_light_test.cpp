@@ -367,6 +367,20 @@ TEST(Sampling, SixteenSampleBlocksAreStratified) {
             }
 }
 
+TEST(Sampling, BlockGeneratorMatchesPointByPoint) {
+    for (uint32_t seed : {0u, 99u})
+        for (uint32_t first : {0u, 16u, 1024u, 65536u + 48u}) {
+            float u[16], v[16];
+            sobol2DBlock16(first, seed, u, v);
+            for (uint32_t k = 0; k < 16; ++k) {
+                float a, b;
+                sobol2D(first + k, seed, a, b);
+                ASSERT_EQ(u[k], a);
+                ASSERT_EQ(v[k], b);
+            }
+        }
+}
+
 TEST(Sampling, AllAgreeingSamplesAreNotCertain) {
     // 16 of 16 lit, equal weights: the interval must not collapse to a point.
     RatioEstimate e = ratioEstimate(16, 16, 16, 16, 16);
