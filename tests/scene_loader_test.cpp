@@ -95,6 +95,34 @@ TEST(SceneLoader, TranslateAndScaleApply) {
     EXPECT_FALSE(s.stats.warnings.empty());
 }
 
+// Effects that the lights cannot show, and area lights left cheap, are reported, not silent.
+TEST(SceneLoader, EffectsWarnings) {
+    const fs::path dir = fs::temp_directory_path() / "so_scene_effects_test";
+    fs::create_directories(dir);
+    fs::copy_file(kData / "valid" / "tri.gltf", dir / "tri.gltf",
+                  fs::copy_options::overwrite_existing);
+    auto warnings = [&](const std::string& lights, const std::string& effects) {
+        std::ofstream(dir / "s.json")
+            << R"({"scene_format": 1, "geometry": [{"file": "tri.gltf"}], "lights": [)" << lights
+            << "]" << (effects.empty() ? "" : R"(, "effects": )" + effects) << "}";
+        Scene s = loadScene(dir / "s.json");
+        std::string all;
+        for (const std::string& w : s.stats.warnings) all += w + "\n";
+        return all;
+    };
+    const std::string point = R"({"name": "k", "type": "point", "position": [0, 3, 0]})";
+    const std::string rect =
+        R"({"name": "panel", "type": "rect", "center": [0, 3, 0], "u": [1, 0, 0], "v": [0, 0, 1]})";
+    EXPECT_NE(warnings(point, R"(["penumbra"])").find("no area light"), std::string::npos);
+    EXPECT_NE(warnings(rect, R"(["hard"])").find("traced as a point light at its centre"),
+              std::string::npos);
+    EXPECT_EQ(warnings(rect, R"(["penumbra", "contact"])").find("penumbra"), std::string::npos);
+    Scene s = loadScene(dir / "s.json");
+    EXPECT_TRUE(s.hasEffect("contact"));
+    EXPECT_EQ(s.lights[0].type, LightType::Rect);
+    EXPECT_NEAR(s.lights[0].wsEmitNormal().y, -1.0, 1e-15);  // cross((1,0,0), (0,0,1)) = (0,-1,0)
+}
+
 TEST(SceneLoader, DegenerateTrianglesAreCountedNotDropped) {
     Scene s;
     MeshPrimitive m;
