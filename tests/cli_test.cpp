@@ -85,9 +85,9 @@ TEST(Cli, ShippedScenesTraceIdenticallyAtAnyThreadCount) {
         for (int threads : {1, 2, 5}) {
             const fs::path out = fs::temp_directory_path() /
                                  ("so_cli_det_" + std::string(name) + std::to_string(threads));
-            RunResult r =
-                run("trace " + scene + " --out " + out.string() +
-                    " --width 200 --height 150 --quiet --threads " + std::to_string(threads));
+            RunResult r = run("trace " + scene + " --out " + out.string() +
+                              " --width 200 --height 150 --quiet --target-error 0.03 --threads " +
+                              std::to_string(threads));
             ASSERT_EQ(r.exitCode, 0) << r.stderrText;
             std::string bytes = readBytes(out / "oracle.exr");
             ASSERT_GT(bytes.size(), 1000u);
