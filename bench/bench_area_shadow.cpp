@@ -22,7 +22,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <CLI/CLI.hpp>
+
 #include "bench_scene.h"
+#include "bench_util.h"
 #include "core/camera.h"
 #include "oracle/area_shadow.h"
 #include "oracle/oracle.h"
@@ -30,17 +33,8 @@
 
 using namespace so;
 using namespace so::bench;
-using Clock = std::chrono::steady_clock;
 
 namespace {
-
-double seconds(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
 std::vector<Light> benchLights() {
     Light rect;
@@ -65,24 +59,16 @@ std::vector<Light> benchLights() {
 
 int main(int argc, char** argv) {
     int size = 256, spp = 64, reps = 5, adaptiveSize = 128;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        std::string a = argv[i];
-        int v = std::atoi(argv[i + 1]);
-        if (a == "--size")
-            size = v;
-        else if (a == "--spp")
-            spp = v;
-        else if (a == "--reps")
-            reps = v;
-        else if (a == "--adaptive-size")
-            adaptiveSize = v;
-        else {
-            std::fprintf(
-                stderr,
-                "usage: bench_area_shadow [--size N] [--spp S] [--reps R] [--adaptive-size M]\n");
-            return 2;
-        }
-    }
+    CLI::App app{
+        "area-light shadow rays: the oracle against a plain Embree loop over the same rays"};
+    app.add_option("--size", size, "image side for the throughput runs")
+        ->check(CLI::Range(16, 4096));
+    app.add_option("--spp", spp, "samples per pixel for the throughput runs")
+        ->check(CLI::Range(16, 4096));
+    app.add_option("--reps", reps, "repetitions (median reported)")->check(CLI::Range(1, 100));
+    app.add_option("--adaptive-size", adaptiveSize, "image side for adaptive vs uniform")
+        ->check(CLI::Range(8, 1024));
+    CLI11_PARSE(app, argc, argv);
     Scene scene = makeBenchScene(256, size);
     const int threads = int(std::thread::hardware_concurrency());
     std::printf("scene: %zu triangles, %dx%d pixels, %d spp, %d threads, median of %d runs\n",
@@ -162,11 +148,11 @@ int main(int argc, char** argv) {
         for (int r = 0; r < reps; ++r) {
             auto t0 = Clock::now();
             runOracle();
-            tO.push_back(seconds(t0));
+            tO.push_back(secondsSince(t0));
             work = packets;  // outside the timing: Embree overwrites tfar
             t0 = Clock::now();
             runPlain();
-            tP.push_back(seconds(t0));
+            tP.push_back(secondsSince(t0));
             ratio.push_back(tP.back() / tO.back());
         }
         // The plain loop's hits, through the same ratio estimator, give the oracle's V.

@@ -24,7 +24,10 @@
 #include <tbb/task_arena.h>
 #include <glm/geometric.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include "bench_scene.h"
+#include "bench_util.h"
 #include "core/camera.h"
 #include "oracle/accel.h"
 #include "oracle/hard_shadow.h"
@@ -32,40 +35,17 @@
 
 using namespace so;
 using namespace so::bench;
-using Clock = std::chrono::steady_clock;
 
-namespace {
-
-template <class F>
-double medianSeconds(int reps, F&& f) {
-    std::vector<double> t;
-    for (int r = 0; r < reps; ++r) {
-        auto t0 = Clock::now();
-        f();
-        t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-    }
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
     int size = 1024, grid = 256, reps = 7;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        std::string a = argv[i];
-        int v = std::atoi(argv[i + 1]);
-        if (a == "--size")
-            size = v;
-        else if (a == "--grid")
-            grid = v;
-        else if (a == "--reps")
-            reps = v;
-        else {
-            std::fprintf(stderr, "usage: bench_hard_shadow [--size N] [--grid G] [--reps R]\n");
-            return 2;
-        }
-    }
+    CLI::App app{"hard-shadow rays: the oracle against plain Embree loops over the same rays"};
+    app.add_option("--size", size, "image side")->check(CLI::Range(16, 8192));
+    app.add_option("--grid", grid, "terrain grid cells per side (2 grid^2 triangles)")
+        ->check(CLI::Range(8, 4096));
+    app.add_option("--reps", reps, "repetitions (median reported)")->check(CLI::Range(1, 100));
+    CLI11_PARSE(app, argc, argv);
     Scene scene = makeBenchScene(grid, size);
     scene.lights.push_back({"point", LightType::Point, {2, 14, 3}, {0, -1, 0}, 45, 0});
     scene.lights.push_back(
@@ -168,24 +148,20 @@ int main(int argc, char** argv) {
         // is taken per repetition and its median reported.
         std::vector<double> tO, t1s, t16s, r1, r16;
         for (int r = 0; r < reps; ++r) {
-            tO.push_back(medianSeconds(1, runOracle));
+            tO.push_back(timeOnce(runOracle));
             work1 = singles;
-            t1s.push_back(medianSeconds(1, runOcc1));
+            t1s.push_back(timeOnce(runOcc1));
             work16 = packets;
-            t16s.push_back(medianSeconds(1, runOcc16));
+            t16s.push_back(timeOnce(runOcc16));
             r1.push_back(t1s.back() / tO.back());
             r16.push_back(t16s.back() / tO.back());
         }
-        auto median = [](std::vector<double> v) {
-            std::sort(v.begin(), v.end());
-            return v[v.size() / 2];
-        };
         const double tOracle = median(tO), t1 = median(t1s), t16 = median(t16s);
         // The oracle's own work without tracing: setting up every packet's rays.
         std::vector<double> tSetup;
         std::vector<float> sink(size_t(tilesX) * size_t(tilesY));
         for (int rep = 0; rep < reps; ++rep)
-            tSetup.push_back(medianSeconds(1, [&] {
+            tSetup.push_back(timeOnce([&] {
                 arena.execute([&] {
                     tbb::parallel_for(tbb::blocked_range<size_t>(0, sink.size(), 64),
                                       [&](const tbb::blocked_range<size_t>& r) {
