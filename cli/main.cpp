@@ -7,6 +7,9 @@
 #include "core/error.h"
 #include "core/version.h"
 #include "oracle/trace_command.h"
+#include "raster_compare/gl_context.h"
+#include "raster_compare/raster_command.h"
+#include "raster_compare/technique.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"shadow-oracle: how wrong are your real-time shadows?"};
@@ -47,6 +50,29 @@ int main(int argc, char** argv) {
     bool quiet = false;
     traceCmd->add_flag("--quiet", quiet, "no progress output");
 
+    so::RasterCommandOptions raster;
+    std::string techniqueHelp;
+    for (const so::ShadowTechnique* t : so::allTechniques())
+        techniqueHelp += "\n  " + t->name() + ": " + t->summary();
+    CLI::App* rasterCmd = app.add_subcommand(
+        "raster", "render with an OpenGL shadow-map technique: raster.exr, raster.json, previews");
+    rasterCmd->add_option("scene", raster.scenePath, "scene file (.json, .gltf or .glb)")
+        ->required();
+    rasterCmd->add_option("--out", raster.outDir, "output folder (created if missing)")->required();
+    rasterCmd->add_option("--technique", raster.technique, "shadow technique:" + techniqueHelp)
+        ->required();
+    rasterCmd->add_option("--set", raster.settings,
+                          "technique parameter key=value (repeatable; see docs/techniques.md)");
+    rasterCmd
+        ->add_option("--width", raster.raster.width, "image width (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+    rasterCmd
+        ->add_option("--height", raster.raster.height, "image height (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+    rasterCmd
+        ->add_option("--frames", raster.raster.frames, "timed frames, median reported (default 5)")
+        ->check(CLI::Range(1, 1000));
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -56,6 +82,10 @@ int main(int argc, char** argv) {
     trace.oracle.progress = !quiet;
     try {
         if (app.got_subcommand(traceCmd)) return so::runTraceCommand(trace);
+        if (app.got_subcommand(rasterCmd)) return so::runRasterCommand(raster);
+    } catch (const so::GlUnavailable& e) {
+        std::cerr << "error: no OpenGL: " << e.what() << std::endl;
+        return 1;
     } catch (const so::InputError& e) {
         std::cerr << e.what() << std::endl;
         return 2;

@@ -7,9 +7,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/local_frame.h"
 #include "core/scene.h"
 #include "oracle/embree_handles.h"
-#include "oracle/local_frame.h"
 
 namespace so {
 

@@ -14,8 +14,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/local_frame.h"
 #include "core/scene.h"
-#include "oracle/local_frame.h"
 
 namespace so {
 

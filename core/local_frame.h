@@ -1,4 +1,4 @@
-// The frame the oracle traces in: world space recentred on the geometry's bounds and scaled by a
+// The frame both paths work in: world space recentred on the geometry's bounds and scaled by a
 // power of two, computed in double before anything becomes float. Because the offset and the scale
 // are exact, a scene translated by a dyadic amount or scaled by 2^k reaches Embree as the very same
 // floats, so the ground truth does not depend on where the scene sits in the world.

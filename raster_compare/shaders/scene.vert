@@ -1,0 +1,15 @@
+// Every pass draws the scene with this vertex shader: positions in the local frame
+// (core/local_frame.h), one face normal per vertex (triangles are not shared, so gl_PrimitiveID
+// is the triangle's index in its mesh's index buffer).
+layout(location = 0) in vec3 a_lsPosition;
+layout(location = 1) in vec3 a_lsFaceNormal;
+uniform mat4 u_clipFromLocal;
+out vec3 v_lsPosition;
+flat out vec3 v_lsFaceNormal;
+// The geometry and visibility passes must produce the very same depths (depth test EQUAL).
+invariant gl_Position;
+void main() {
+    v_lsPosition = a_lsPosition;
+    v_lsFaceNormal = a_lsFaceNormal;
+    gl_Position = u_clipFromLocal * vec4(a_lsPosition, 1.0);
+}

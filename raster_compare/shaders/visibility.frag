@@ -1,0 +1,121 @@
+// Visibility of one light per pixel, V in [0, 1], with the technique chosen by #defines:
+//   LIGHT_ORTHO (directional), LIGHT_SPOT, LIGHT_CUBE (point and area lights, at the centre);
+//   BIAS_CONSTANT, BIAS_SLOPE_ALPHA/MIN/MAX, NORMAL_OFFSET_K, PCF_RADIUS (techniques/*.cpp).
+// Depths are compared as linear distances along the map's view axis, so biases are lengths:
+// in texels, the world size of one shadow-map texel at the receiver.
+in vec3 v_lsPosition;
+flat in vec3 v_lsFaceNormal;
+uniform vec3 u_lsEye;
+uniform vec3 u_lsLightPosition;
+uniform vec3 u_lsLightDirection;  // the way light travels
+uniform float u_cosOuter;
+uniform mat4 u_lightClipFromLocal;
+uniform mat4 u_lightViewFromLocal;
+uniform float u_near;
+uniform float u_far;
+uniform float u_texelScale;  // ortho: texel size; perspective: texel size per unit of depth
+#ifdef LIGHT_CUBE
+uniform samplerCube u_map;
+#else
+uniform sampler2D u_map;
+#endif
+layout(location = 0) out float o_visibility;
+
+#ifndef PCF_RADIUS
+#define PCF_RADIUS 0
+#endif
+
+float linearDepth(float z) {
+#ifdef LIGHT_ORTHO
+    return u_near + z * (u_far - u_near);
+#else
+    return u_near * u_far / (u_far - z * (u_far - u_near));
+#endif
+}
+
+float texelWorld(float depth) {
+#ifdef LIGHT_ORTHO
+    return u_texelScale;
+#else
+    return depth * u_texelScale;
+#endif
+}
+
+#ifdef LIGHT_CUBE
+float lookup(vec3 q, float bias) {
+    vec3 v = q - u_lsLightPosition;
+    vec3 a = abs(v);
+    float d = max(a.x, max(a.y, a.z));
+    if (d > u_far) return 1.0;
+    // Tangent axes of the face the direction falls on, one texel apart at depth d.
+    vec3 t1 = a.x >= a.y && a.x >= a.z ? vec3(0, 1, 0) : vec3(1, 0, 0);
+    vec3 t2 = a.z >= a.x && a.z >= a.y ? vec3(0, 1, 0) : vec3(0, 0, 1);
+    float step = u_texelScale * d;
+    float lit = 0.0;
+    for (int dy = -PCF_RADIUS; dy <= PCF_RADIUS; ++dy)
+        for (int dx = -PCF_RADIUS; dx <= PCF_RADIUS; ++dx) {
+            float z = texture(u_map, v + step * (float(dx) * t1 + float(dy) * t2)).r;
+            lit += d - bias <= linearDepth(z) ? 1.0 : 0.0;
+        }
+    return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+}
+float receiverDepth(vec3 q) {
+    vec3 a = abs(q - u_lsLightPosition);
+    return max(a.x, max(a.y, a.z));
+}
+#else
+float lookup(vec3 q, float bias) {
+    vec4 c = u_lightClipFromLocal * vec4(q, 1.0);
+    vec2 uv = c.xy / c.w * 0.5 + 0.5;
+    float d = -(u_lightViewFromLocal * vec4(q, 1.0)).z;
+    // Outside the map's frustum nothing was rendered that could shadow it.
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || d > u_far) return 1.0;
+    ivec2 size = textureSize(u_map, 0);
+    ivec2 base = ivec2(floor(uv * vec2(size)));
+    float lit = 0.0;
+    for (int dy = -PCF_RADIUS; dy <= PCF_RADIUS; ++dy)
+        for (int dx = -PCF_RADIUS; dx <= PCF_RADIUS; ++dx) {
+            ivec2 ij = clamp(base + ivec2(dx, dy), ivec2(0), size - 1);
+            lit += d - bias <= linearDepth(texelFetch(u_map, ij, 0).r) ? 1.0 : 0.0;
+        }
+    return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+}
+float receiverDepth(vec3 q) { return -(u_lightViewFromLocal * vec4(q, 1.0)).z; }
+#endif
+
+void main() {
+    vec3 p = v_lsPosition;
+    vec3 n = normalize(v_lsFaceNormal);
+    if (dot(n, p - u_lsEye) > 0.0) n = -n;
+#ifdef LIGHT_ORTHO
+    vec3 l = -u_lsLightDirection;
+#else
+    vec3 l = normalize(u_lsLightPosition - p);
+#endif
+    float ndotl = dot(n, l);
+    // The oracle's conventions: facing away, or outside a spot's cone, is unlit.
+    if (ndotl <= 0.0) {
+        o_visibility = 0.0;
+        return;
+    }
+#ifdef LIGHT_SPOT
+    if (dot(-l, u_lsLightDirection) < u_cosOuter) {
+        o_visibility = 0.0;
+        return;
+    }
+#endif
+    float texel = texelWorld(receiverDepth(p));
+    vec3 q = p;
+#ifdef NORMAL_OFFSET_K
+    q += n * (NORMAL_OFFSET_K * texel * (1.0 - ndotl));
+#endif
+    float bias = 0.0;
+#ifdef BIAS_CONSTANT
+    bias += BIAS_CONSTANT * texel;
+#endif
+#ifdef BIAS_SLOPE_ALPHA
+    float tanTheta = sqrt(max(0.0, 1.0 - ndotl * ndotl)) / ndotl;
+    bias += clamp(BIAS_SLOPE_ALPHA * tanTheta, BIAS_SLOPE_MIN, BIAS_SLOPE_MAX) * texel;
+#endif
+    o_visibility = lookup(q, bias);
+}

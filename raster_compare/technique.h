@@ -1,0 +1,57 @@
+// The shadow-map techniques behind one small interface (docs/techniques.md). Each technique lives
+// in one file under techniques/ with its parameter table and defaults at the top; the shader code
+// is shared (shaders/visibility.frag) and a technique chooses its variant by #defines.
+//
+// Lengths in parameters are in texels: multiples of the world-space size of one shadow-map texel
+// at the receiver, so the same setting means the same thing at any scene scale or resolution.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace so {
+
+struct ParamSpec {
+    std::string name;
+    double defaultValue;
+    double min, max;
+    bool integer;
+    std::string doc;
+};
+
+// Parameter values after validation: every parameter of the technique, defaults filled in.
+using ParamValues = std::map<std::string, double>;
+
+class ShadowTechnique {
+  public:
+    virtual ~ShadowTechnique() = default;
+    virtual std::string name() const = 0;
+    virtual std::string summary() const = 0;
+    // The technique's own parameters (the common ones, resolution and depth_format, are added).
+    virtual std::vector<ParamSpec> ownParams() const = 0;
+    // #defines for the visibility shader.
+    virtual std::string shaderDefines(const ParamValues& p) const = 0;
+    // GL state for the shadow-map pass (polygon offset, culling); called with the pass bound.
+    virtual void beginShadowPass(const ParamValues&) const {}
+    virtual void endShadowPass(const ParamValues&) const {}
+
+    std::vector<ParamSpec> params() const;
+    // Parses "key=value" settings; unknown keys and out-of-range values are InputErrors naming
+    // the valid keys and the range.
+    ParamValues parse(const std::vector<std::string>& settings) const;
+};
+
+const std::vector<const ShadowTechnique*>& allTechniques();
+// Throws InputError listing the valid names.
+const ShadowTechnique& findTechnique(const std::string& name);
+
+// The technique files register through these.
+const ShadowTechnique& basicTechnique();
+const ShadowTechnique& biasTechnique();
+const ShadowTechnique& slopeBiasTechnique();
+const ShadowTechnique& polygonOffsetTechnique();
+const ShadowTechnique& normalOffsetTechnique();
+const ShadowTechnique& pcfTechnique();
+
+}  // namespace so

@@ -1,0 +1,41 @@
+// pcf: percentage-closer filtering: the binary depth test averaged over a kernel x kernel grid of
+// texels around the lookup (the tests are averaged, never the depths), with a slope-scaled bias.
+//
+// | parameter | default | range   | meaning                                  |
+// |-----------|---------|---------|------------------------------------------|
+// | kernel    | 3       | 1..15   | grid side in texels (odd)                 |
+// | alpha     | 1.0     | 0..100  | slope-bias factor (as slope-bias)         |
+// | min       | 0.1     | 0..1000 | smallest bias, texels                     |
+// | max       | 10.0    | 0..1000 | largest bias, texels                      |
+#include "raster_compare/technique.h"
+
+#include "core/error.h"
+
+namespace so {
+namespace {
+class Pcf final : public ShadowTechnique {
+    std::string name() const override { return "pcf"; }
+    std::string summary() const override {
+        return "NxN grid percentage-closer filtering, compare per tap";
+    }
+    std::vector<ParamSpec> ownParams() const override {
+        return {{"kernel", 3, 1, 15, true, "grid side in texels, odd"},
+                {"alpha", 1.0, 0.0, 100.0, false, "slope-bias factor"},
+                {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
+                {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
+    }
+    std::string shaderDefines(const ParamValues& p) const override {
+        const int kernel = int(p.at("kernel"));
+        if (kernel % 2 == 0) throwInputError("technique pcf", "kernel", "must be odd");
+        return "#define PCF_RADIUS " + std::to_string(kernel / 2) + "\n#define BIAS_SLOPE_ALPHA " +
+               std::to_string(p.at("alpha")) + "\n#define BIAS_SLOPE_MIN " +
+               std::to_string(p.at("min")) + "\n#define BIAS_SLOPE_MAX " +
+               std::to_string(p.at("max")) + "\n";
+    }
+};
+}  // namespace
+const ShadowTechnique& pcfTechnique() {
+    static const Pcf t;
+    return t;
+}
+}  // namespace so

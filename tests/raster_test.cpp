@@ -1,0 +1,236 @@
+// The raster path against the oracle (ctest label "gl"; skipped with the reason where no EGL
+// display or GL 4.5 context can be had).
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <numbers>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "core/channels.h"
+#include "core/error.h"
+#include "raster_compare/gl_context.h"
+#include "raster_compare/rasterizer.h"
+#include "raster_compare/technique.h"
+#include "test_scenes.h"
+
+namespace so::test {
+namespace {
+
+namespace ch = channels;
+
+// One context for the whole binary: creating one per test costs more than the tests.
+GlContext* glContext(std::string& why) {
+    static std::unique_ptr<GlContext> gl;
+    static std::string reason;
+    static bool tried = false;
+    if (!tried) {
+        tried = true;
+        try {
+            gl = std::make_unique<GlContext>();
+        } catch (const GlUnavailable& e) {
+            reason = e.what();
+        }
+    }
+    why = reason;
+    return gl.get();
+}
+
+#define REQUIRE_GL()                                                   \
+    std::string whyNoGl;                                               \
+    GlContext* gl = glContext(whyNoGl);                                \
+    if (!gl) GTEST_SKIP() << "no OpenGL 4.5 through EGL: " << whyNoGl; \
+    (void)gl
+
+ChannelImage raster(const Scene& scene, const std::string& technique,
+                    const std::vector<std::string>& settings) {
+    std::string why;
+    const ShadowTechnique& t = findTechnique(technique);
+    RasterOptions o;
+    o.frames = 1;
+    o.warmup = 0;
+    return renderRaster(scene, t, t.parse(settings), o, *glContext(why)).image;
+}
+
+// Pixels to compare: both paths see the same triangle and the oracle says the light faces it.
+// `boundaryRadius`: also leave out pixels within that many pixels of an oracle shadow boundary.
+struct Comparison {
+    size_t counted = 0, agree = 0, falseShadow = 0, falseLit = 0, oracleLit = 0, oracleShadow = 0;
+    double agreement() const { return counted ? double(agree) / double(counted) : 0.0; }
+};
+
+Comparison compare(const ChannelImage& oracle, const ChannelImage& raster, const std::string& light,
+                   int boundaryRadius) {
+    const int w = oracle.width(), h = oracle.height();
+    const float* Vo = oracle.channel(ch::lightChannel(light, ch::kVisibility));
+    const float* Co = oracle.channel(ch::lightChannel(light, ch::kCosine));
+    const float* Vr = raster.channel(ch::lightChannel(light, ch::kVisibility));
+    const float *mo = oracle.channel(ch::kMeshId), *po = oracle.channel(ch::kPrimId);
+    const float *mr = raster.channel(ch::kMeshId), *pr = raster.channel(ch::kPrimId);
+    const float* Ao = oracle.channel(ch::kHit);
+    std::vector<uint8_t> boundary(size_t(w) * size_t(h), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (Ao[i] == 0.0f) continue;
+            for (int d = 0; d < 2; ++d) {
+                const int xn = x + (d == 0), yn = y + (d == 1);
+                if (xn >= w || yn >= h) continue;
+                const size_t j = size_t(yn) * size_t(w) + size_t(xn);
+                if (Ao[j] != 0.0f && (Vo[i] > 0.5f) != (Vo[j] > 0.5f))
+                    boundary[i] = boundary[j] = 1;
+            }
+        }
+    Comparison c;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (Ao[i] == 0.0f || Co[i] <= 0.0f || mo[i] != mr[i] || po[i] != pr[i]) continue;
+            bool near = false;
+            for (int dy = -boundaryRadius; dy <= boundaryRadius && !near; ++dy)
+                for (int dx = -boundaryRadius; dx <= boundaryRadius && !near; ++dx) {
+                    const int xx = x + dx, yy = y + dy;
+                    near = xx >= 0 && yy >= 0 && xx < w && yy < h &&
+                           boundary[size_t(yy) * size_t(w) + size_t(xx)];
+                }
+            if (near) continue;
+            ++c.counted;
+            const bool lo = Vo[i] > 0.5f, lr = Vr[i] > 0.5f;
+            (lo ? c.oracleLit : c.oracleShadow) += 1;
+            c.agree += lo == lr;
+            c.falseShadow += lo && !lr;
+            c.falseLit += !lo && lr;
+        }
+    return c;
+}
+
+Scene loadShipped(const char* name, int w, int h) {
+    Scene s = loadScene(std::string(SO_SCENES_DIR) + "/" + name + ".scene.json");
+    s.camera.width = w;
+    s.camera.height = h;
+    return s;
+}
+
+TEST(Raster, CameraPassSeesWhatTheOracleSees) {
+    REQUIRE_GL();
+    for (const char* name : {"contact_box", "spot_objects", "terrain_sun"}) {
+        Scene s = loadShipped(name, 200, 150);
+        ChannelImage o = runQuiet(s), r = raster(s, "basic", {});
+        size_t both = 0, same = 0, hitDiff = 0;
+        for (size_t i = 0; i < o.pixelCount(); ++i) {
+            const bool ho = o.channel(ch::kHit)[i] != 0.0f, hr = r.channel(ch::kHit)[i] != 0.0f;
+            hitDiff += ho != hr;
+            if (!ho || !hr) continue;
+            ++both;
+            same += o.channel(ch::kMeshId)[i] == r.channel(ch::kMeshId)[i] &&
+                    o.channel(ch::kPrimId)[i] == r.channel(ch::kPrimId)[i];
+        }
+        std::printf(
+            "[ camera ] %s: %zu of %zu pixels see the same triangle, %zu differ in hit/miss\n",
+            name, same, both, hitDiff);
+        EXPECT_GE(double(same) / double(both), 0.99) << name;
+        EXPECT_LE(double(hitDiff) / double(o.pixelCount()), 0.002) << name;
+    }
+}
+
+// The plumbing check: with acne biased away, the raster path agrees with the oracle wherever
+// shadow mapping has no inherent error (away from shadow boundaries). Plain `basic` is measured
+// too but held only to "never lights a shadowed pixel": on receivers tilted to the map a texel's
+// stored depth differs from the receiver's by up to half a texel times tan(theta) at any depth
+// precision, so it shows slope acne even at 4096 with a float map (issue 4 expected >= 99%; the
+// measured figure is printed and reported).
+TEST(Raster, AgreementAwayFromBoundariesAt4096) {
+    REQUIRE_GL();
+    Scene s = loadShipped("contact_box", 320, 240);
+    ChannelImage o = runQuiet(s);
+    Comparison basic =
+        compare(o, raster(s, "basic", {"resolution=4096", "depth_format=32"}), "key", 2);
+    Comparison slope =
+        compare(o, raster(s, "slope-bias", {"resolution=4096", "depth_format=32"}), "key", 2);
+    std::printf(
+        "[ agreement ] 4096/32f, %zu pixels: basic %.4f (%zu false shadow, %zu false lit), "
+        "slope-bias %.5f "
+        "(%zu false shadow, %zu false lit)\n",
+        basic.counted, basic.agreement(), basic.falseShadow, basic.falseLit, slope.agreement(),
+        slope.falseShadow, slope.falseLit);
+    ASSERT_GT(slope.oracleShadow, 2000u);
+    EXPECT_GE(slope.agreement(), 0.99);
+    EXPECT_LE(double(basic.falseLit) / double(basic.counted), 0.001);
+}
+
+// A plane lit at a grazing angle: basic shows acne, slope-bias removes it.
+TEST(Raster, AcneAtGrazingAndSlopeBiasCuresIt) {
+    REQUIRE_GL();
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, 0}, {20, 0, 0}, {0, 0, -20}, 8, "plane"));
+    const double el = 12.0 * std::numbers::pi / 180.0;
+    s.lights = {{"sun",
+                 LightType::Directional,
+                 {0, 0, 0},
+                 glm::dvec3(-std::cos(el), -std::sin(el), -0.2),
+                 0,
+                 0}};
+    s.lights[0].wsDirection = glm::normalize(s.lights[0].wsDirection);
+    s.camera.wsEye = {0, 12, 14};
+    s.camera.wsTarget = {0, 0, 0};
+    s.camera.width = 200;
+    s.camera.height = 150;
+    finalizeScene(s);
+    ChannelImage o = runQuiet(s);
+    Comparison basic = compare(o, raster(s, "basic", {"resolution=1024"}), "sun", 0);
+    Comparison slope = compare(o, raster(s, "slope-bias", {"resolution=1024"}), "sun", 0);
+    const double acneBasic = double(basic.falseShadow) / double(basic.oracleLit);
+    const double acneSlope = double(slope.falseShadow) / double(slope.oracleLit);
+    std::printf(
+        "[ acne ] false shadow on oracle-lit pixels: basic %.4f, slope-bias %.5f (%zu pixels)\n",
+        acneBasic, acneSlope, basic.oracleLit);
+    ASSERT_GT(basic.oracleLit, 10000u);
+    EXPECT_GT(acneBasic, 0.05);
+    EXPECT_LT(acneSlope, 0.005);
+}
+
+// A large constant bias detaches the shadow from the box's base: lit pixels where the oracle
+// has shadow, right at the contact.
+TEST(Raster, LargeBiasPeterPans) {
+    REQUIRE_GL();
+    Scene s = loadShipped("contact_box", 320, 240);
+    ChannelImage o = runQuiet(s);
+    // The box is solid: the map holds its lit faces, some 2 units from the floor behind it along
+    // the light's rays, so the shadow detaches only once the bias is of that order (300 texels is
+    // about 1.5 units here).
+    Comparison small = compare(o, raster(s, "bias", {"bias=1"}), "key", 0);
+    Comparison large = compare(o, raster(s, "bias", {"bias=300"}), "key", 0);
+    std::printf(
+        "[ peter-panning ] false lit: bias=1 %zu, bias=300 %zu of %zu oracle-shadowed pixels\n",
+        small.falseLit, large.falseLit, large.oracleShadow);
+    EXPECT_GT(large.falseLit, 200u);
+    EXPECT_GT(large.falseLit, 10 * std::max<size_t>(small.falseLit, 10));
+}
+
+TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
+    for (const ShadowTechnique* t : allTechniques()) {
+        EXPECT_THROW(t->parse({"no_such_key=1"}), InputError) << t->name();
+        EXPECT_THROW(t->parse({"resolution=8"}), InputError) << t->name();
+        EXPECT_THROW(t->parse({"resolution=abc"}), InputError) << t->name();
+        EXPECT_THROW(t->parse({"depth_format=20"}), InputError) << t->name();
+        EXPECT_THROW(t->parse({"resolution"}), InputError) << t->name();
+        for (const ParamSpec& p : t->params()) {
+            EXPECT_THROW(t->parse({p.name + "=" + std::to_string(p.max * 2 + 1)}), InputError)
+                << t->name() << " " << p.name;
+            EXPECT_NO_THROW(t->parse({p.name + "=" + std::to_string(p.defaultValue)}))
+                << t->name() << " " << p.name;
+        }
+        try {
+            t->parse({"bogus=1"});
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("resolution"), std::string::npos)
+                << "the error lists the valid keys";
+        }
+    }
+    EXPECT_THROW(findTechnique("nope"), InputError);
+    EXPECT_THROW(pcfTechnique().shaderDefines(pcfTechnique().parse({"kernel=4"})), InputError);
+}
+
+}  // namespace
+}  // namespace so::test
