@@ -55,7 +55,8 @@ ParamValues ShadowTechnique::parse(const std::vector<std::string>& settings) con
 const std::vector<const ShadowTechnique*>& allTechniques() {
     static const std::vector<const ShadowTechnique*> all = {
         &basicTechnique(),         &biasTechnique(),         &slopeBiasTechnique(),
-        &polygonOffsetTechnique(), &normalOffsetTechnique(), &pcfTechnique()};
+        &polygonOffsetTechnique(), &normalOffsetTechnique(), &pcfTechnique(),
+        &backFacesTechnique()};
     return all;
 }
 

@@ -53,5 +53,6 @@ const ShadowTechnique& slopeBiasTechnique();
 const ShadowTechnique& polygonOffsetTechnique();
 const ShadowTechnique& normalOffsetTechnique();
 const ShadowTechnique& pcfTechnique();
+const ShadowTechnique& backFacesTechnique();
 
 }  // namespace so

@@ -44,7 +44,7 @@ def grid(n, m, f):
             a = j * (n + 1) + i
             b, d = a + 1, a + n + 1
             e = d + 1
-            idx += [a, d, e, a, e, b]
+            idx += [a, e, d, a, b, e]  # counter-clockwise seen from +Y
     return pos, idx
 
 

@@ -1,5 +1,6 @@
 // The raster path against the oracle (ctest label "gl"; skipped with the reason where no EGL
 // display or GL 4.5 context can be had).
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -206,6 +207,83 @@ TEST(Raster, LargeBiasPeterPans) {
         small.falseLit, large.falseLit, large.oracleShadow);
     EXPECT_GT(large.falseLit, 200u);
     EXPECT_GT(large.falseLit, 10 * std::max<size_t>(small.falseLit, 10));
+}
+
+// A point light inside a room with a ring of pillars and plates above and below it: shadows fall
+// through all six cube faces. Agreement per face, and along the seams between faces.
+TEST(Raster, CubeMapShadowsOnAllSixFacesWithoutSeams) {
+    REQUIRE_GL();
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, 0}, {14, 0, 0}, {0, 0, -14}, 8, "floor"));
+    s.meshes.push_back(makeGrid({0, 3, 0}, {14, 0, 0}, {0, 0, 14}, 8, "ceiling"));
+    for (int k = 0; k < 8; ++k) {
+        const double a = 2 * std::numbers::pi * (k + 0.3) / 8;
+        const glm::dvec3 c(2.0 * std::cos(a), 0, 2.0 * std::sin(a));
+        s.meshes.push_back(
+            makeBox(c + glm::dvec3(-0.2, 0.4, -0.2), c + glm::dvec3(0.2, 2.6, 0.2), "pillar"));
+    }
+    s.meshes.push_back(makeBox({-0.5, 0.4, -0.4}, {0.4, 0.5, 0.5}, "plate below"));
+    s.meshes.push_back(makeBox({-0.4, 2.5, -0.5}, {0.5, 2.6, 0.4}, "plate above"));
+    const glm::dvec3 light(0.1, 1.5, 0.05);
+    s.lights = {{"bulb", LightType::Point, light, {0, -1, 0}, 0, 0}};
+    s.camera.wsEye = {0.3, 1.5, 5.5};
+    s.camera.wsTarget = {0.0, 1.5, 0.0};
+    s.camera.vfovDeg = 110;
+    s.camera.width = 320;
+    s.camera.height = 240;
+    finalizeScene(s);
+    ChannelImage o = runQuiet(s), r = raster(s, "slope-bias", {"resolution=2048"});
+    const float* Vo = o.channel("bulb.V");
+    const float* Vr = r.channel("bulb.V");
+    const float* Co = o.channel("bulb.cos");
+    size_t counted[6] = {}, agree[6] = {}, shadowed[6] = {}, seam = 0, seamAgree = 0;
+    for (size_t i = 0; i < o.pixelCount(); ++i) {
+        if (o.channel(ch::kHit)[i] == 0.0f || Co[i] <= 0.0f ||
+            o.channel(ch::kMeshId)[i] != r.channel(ch::kMeshId)[i] ||
+            o.channel(ch::kPrimId)[i] != r.channel(ch::kPrimId)[i])
+            continue;
+        const glm::dvec3 v =
+            glm::dvec3(o.channel(ch::kPX)[i], o.channel(ch::kPY)[i], o.channel(ch::kPZ)[i]) - light;
+        const glm::dvec3 a = glm::abs(v);
+        const int axis = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+        const int face = 2 * axis + (v[axis] < 0 ? 1 : 0);
+        const bool same = (Vo[i] > 0.5f) == (Vr[i] > 0.5f);
+        ++counted[face];
+        agree[face] += same;
+        shadowed[face] += Vo[i] < 0.5f;
+        // Near a seam: the two largest components within 2% of each other.
+        double m[3] = {a.x, a.y, a.z};
+        std::sort(m, m + 3);
+        if (m[1] > 0.98 * m[2]) {
+            ++seam;
+            seamAgree += same;
+        }
+    }
+    const char* names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+    for (int f = 0; f < 6; ++f) {
+        const double ag = counted[f] ? double(agree[f]) / double(counted[f]) : 0.0;
+        std::printf("[ cube ] face %s: %zu pixels, %zu shadowed, agreement %.4f\n", names[f],
+                    counted[f], shadowed[f], ag);
+        EXPECT_GT(counted[f], 200u) << names[f];
+        EXPECT_GT(shadowed[f], 20u) << names[f] << ": the face must carry shadows";
+        EXPECT_GE(ag, 0.97) << names[f];
+    }
+    std::printf("[ cube ] %zu pixels within 2%% of a seam, agreement %.4f\n", seam,
+                double(seamAgree) / double(std::max<size_t>(seam, 1)));
+    EXPECT_GT(seam, 100u);
+    EXPECT_GE(double(seamAgree) / double(seam), 0.97);
+}
+
+// Back faces in the map: no acne on the closed box scene without any bias.
+TEST(Raster, BackFacesNeedNoBiasOnClosedGeometry) {
+    REQUIRE_GL();
+    Scene s = loadShipped("contact_box", 320, 240);
+    ChannelImage o = runQuiet(s);
+    Comparison c =
+        compare(o, raster(s, "back-faces", {"resolution=4096", "depth_format=32"}), "key", 2);
+    std::printf("[ back-faces ] agreement %.5f of %zu pixels (%zu false shadow, %zu false lit)\n",
+                c.agreement(), c.counted, c.falseShadow, c.falseLit);
+    EXPECT_GE(c.agreement(), 0.99);
 }
 
 TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
