@@ -207,35 +207,74 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
 
     // Per light: camera, shadow map, visibility program and target.
     struct LightPass {
-        const Light* light;
+        const Light* light = nullptr;
         LightCamera cam;
         GlTexture map;
         std::vector<GlFramebuffer> mapFbos;
         GlProgram visProg;
         GlTexture visTex;
         GlFramebuffer visFbo;
+        // Filtered techniques: moments rendered per face, blurred twice into `map`.
+        GlProgram momentsProg;
+        GlTexture faceTex, tempTex, faceDepth;
+        GlFramebuffer faceFbo, tempFbo;
     };
+    const bool filtered = technique.filtered();
+    const int blur = technique.blurRadius(params);
+    const std::array<float, 4> farMoments = technique.farMoments(params);
+    GlProgram blurProg = buildProgram("", shaders::fullscreen_vert, shaders::blur_frag);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     std::vector<LightPass> passes;
     for (const Light& light : scene.lights) {
-        LightPass lp{&light, fitLightCamera(light, frame, lsBounds, resolution), {}, {}, {}, {},
-                     {}};
+        LightPass lp;
+        lp.light = &light;
+        lp.cam = fitLightCamera(light, frame, lsBounds, resolution);
         const bool cube = lp.cam.kind == LightCamera::Kind::Cube;
         lp.map = makeTexture(cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D);
-        glTextureStorage2D(lp.map.get(), 1, depthFormat(depthBits), resolution, resolution);
-        // Point sampling: the techniques do their own filtering and comparison in the shader.
-        glTextureParameteri(lp.map.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(lp.map.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureStorage2D(lp.map.get(), 1, filtered ? GL_RGBA32F : depthFormat(depthBits),
+                           resolution, resolution);
+        // Point sampling: the techniques do their own filtering and comparison in the shader;
+        // moment maps are filtered bilinearly, which is what they are for.
+        const GLint filter = filtered ? GL_LINEAR : GL_NEAREST;
+        glTextureParameteri(lp.map.get(), GL_TEXTURE_MIN_FILTER, filter);
+        glTextureParameteri(lp.map.get(), GL_TEXTURE_MAG_FILTER, filter);
         glTextureParameteri(lp.map.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(lp.map.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glTextureParameteri(lp.map.get(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+        const GLenum attachment = filtered ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT;
         for (int f = 0; f < lp.cam.faces; ++f) {
             GlFramebuffer fbo = makeFramebuffer();
             if (cube)
-                glNamedFramebufferTextureLayer(fbo.get(), GL_DEPTH_ATTACHMENT, lp.map.get(), 0, f);
+                glNamedFramebufferTextureLayer(fbo.get(), attachment, lp.map.get(), 0, f);
             else
-                glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, lp.map.get(), 0);
-            glNamedFramebufferDrawBuffer(fbo.get(), GL_NONE);
+                glNamedFramebufferTexture(fbo.get(), attachment, lp.map.get(), 0);
+            glNamedFramebufferDrawBuffer(fbo.get(), filtered ? GL_COLOR_ATTACHMENT0 : GL_NONE);
             lp.mapFbos.push_back(std::move(fbo));
+        }
+        if (filtered) {
+            auto square = [&](GLenum format, bool linear) {
+                GlTexture t = makeTexture(GL_TEXTURE_2D);
+                glTextureStorage2D(t.get(), 1, format, resolution, resolution);
+                glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER,
+                                    linear ? GL_LINEAR : GL_NEAREST);
+                glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER,
+                                    linear ? GL_LINEAR : GL_NEAREST);
+                glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+                glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+                return t;
+            };
+            lp.faceTex = square(GL_RGBA32F, false);
+            lp.tempTex = square(GL_RGBA32F, false);
+            lp.faceDepth = square(depthFormat(depthBits), false);
+            lp.faceFbo = makeFramebuffer();
+            glNamedFramebufferTexture(lp.faceFbo.get(), GL_COLOR_ATTACHMENT0, lp.faceTex.get(), 0);
+            glNamedFramebufferTexture(lp.faceFbo.get(), GL_DEPTH_ATTACHMENT, lp.faceDepth.get(), 0);
+            lp.tempFbo = makeFramebuffer();
+            glNamedFramebufferTexture(lp.tempFbo.get(), GL_COLOR_ATTACHMENT0, lp.tempTex.get(), 0);
+            lp.momentsProg = buildProgram(technique.shaderDefines(params), shaders::scene_vert,
+                                          shaders::moments_frag);
+            setFloat(lp.momentsProg.get(), "u_near", lp.cam.near);
+            setFloat(lp.momentsProg.get(), "u_far", lp.cam.far);
         }
         std::string defines = cube                                      ? "#define LIGHT_CUBE\n"
                               : lp.cam.kind == LightCamera::Kind::Ortho ? "#define LIGHT_ORTHO\n"
@@ -277,11 +316,41 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
             glDepthFunc(GL_LESS);
             technique.beginShadowPass(params);
             for (int f = 0; f < lp.cam.faces; ++f) {
-                glBindFramebuffer(GL_FRAMEBUFFER, lp.mapFbos[size_t(f)].get());
                 const float one = 1.0f;
-                glClearNamedFramebufferfv(lp.mapFbos[size_t(f)].get(), GL_DEPTH, 0, &one);
-                setMat4(depthProg.get(), "u_clipFromLocal", lp.cam.clipFromLocal(f));
-                drawScene(depthProg.get(), false);
+                if (!filtered) {
+                    glBindFramebuffer(GL_FRAMEBUFFER, lp.mapFbos[size_t(f)].get());
+                    glClearNamedFramebufferfv(lp.mapFbos[size_t(f)].get(), GL_DEPTH, 0, &one);
+                    setMat4(depthProg.get(), "u_clipFromLocal", lp.cam.clipFromLocal(f));
+                    drawScene(depthProg.get(), false);
+                    continue;
+                }
+                // Moments of this face, then the two blur directions into the map's face.
+                glBindFramebuffer(GL_FRAMEBUFFER, lp.faceFbo.get());
+                glClearNamedFramebufferfv(lp.faceFbo.get(), GL_COLOR, 0, farMoments.data());
+                glClearNamedFramebufferfv(lp.faceFbo.get(), GL_DEPTH, 0, &one);
+                glUseProgram(lp.momentsProg.get());
+                setMat4(lp.momentsProg.get(), "u_clipFromLocal", lp.cam.clipFromLocal(f));
+                setMat4(lp.momentsProg.get(), "u_lightViewFromLocal",
+                        lp.cam.viewFromLocal[size_t(f)]);
+                drawScene(lp.momentsProg.get(), false);
+                glDisable(GL_DEPTH_TEST);
+                glUseProgram(blurProg.get());
+                glProgramUniform1i(blurProg.get(), glGetUniformLocation(blurProg.get(), "u_radius"),
+                                   blur);
+                glProgramUniform1i(blurProg.get(), glGetUniformLocation(blurProg.get(), "u_source"),
+                                   0);
+                const float texel = 1.0f / float(resolution);
+                glBindFramebuffer(GL_FRAMEBUFFER, lp.tempFbo.get());
+                glBindTextureUnit(0, lp.faceTex.get());
+                glProgramUniform2f(blurProg.get(), glGetUniformLocation(blurProg.get(), "u_step"),
+                                   texel, 0.0f);
+                glDrawArrays(GL_TRIANGLES, 0, 3);
+                glBindFramebuffer(GL_FRAMEBUFFER, lp.mapFbos[size_t(f)].get());
+                glBindTextureUnit(0, lp.tempTex.get());
+                glProgramUniform2f(blurProg.get(), glGetUniformLocation(blurProg.get(), "u_step"),
+                                   0.0f, texel);
+                glDrawArrays(GL_TRIANGLES, 0, 3);
+                glEnable(GL_DEPTH_TEST);
             }
             technique.endShadowPass(params);
             timer.end();

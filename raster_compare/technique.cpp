@@ -56,7 +56,8 @@ const std::vector<const ShadowTechnique*>& allTechniques() {
     static const std::vector<const ShadowTechnique*> all = {
         &basicTechnique(),         &biasTechnique(),         &slopeBiasTechnique(),
         &polygonOffsetTechnique(), &normalOffsetTechnique(), &pcfTechnique(),
-        &backFacesTechnique()};
+        &backFacesTechnique(),     &vsmTechnique(),          &esmTechnique(),
+        &evsmTechnique()};
     return all;
 }
 

@@ -6,6 +6,7 @@
 // at the receiver, so the same setting means the same thing at any scene scale or resolution.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -35,6 +36,12 @@ class ShadowTechnique {
     // GL state for the shadow-map pass (polygon offset, culling); called with the pass bound.
     virtual void beginShadowPass(const ParamValues&) const {}
     virtual void endShadowPass(const ParamValues&) const {}
+    // Filtered techniques (vsm, esm, evsm) render moments instead of a depth map, blurred by a
+    // separable Gaussian of this radius in texels (0: none).
+    virtual bool filtered() const { return false; }
+    virtual int blurRadius(const ParamValues&) const { return 0; }
+    // The moments of the far plane (t = 1), which the moment map is cleared to.
+    virtual std::array<float, 4> farMoments(const ParamValues&) const { return {1, 1, 0, 0}; }
 
     std::vector<ParamSpec> params() const;
     // Parses "key=value" settings; unknown keys and out-of-range values are InputErrors naming
@@ -54,5 +61,8 @@ const ShadowTechnique& polygonOffsetTechnique();
 const ShadowTechnique& normalOffsetTechnique();
 const ShadowTechnique& pcfTechnique();
 const ShadowTechnique& backFacesTechnique();
+const ShadowTechnique& vsmTechnique();
+const ShadowTechnique& esmTechnique();
+const ShadowTechnique& evsmTechnique();
 
 }  // namespace so

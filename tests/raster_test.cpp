@@ -286,6 +286,64 @@ TEST(Raster, BackFacesNeedNoBiasOnClosedGeometry) {
     EXPECT_GE(c.agreement(), 0.99);
 }
 
+// Two overlapping occluders at very different depths: where the oracle says umbra, VSM's Chebyshev
+// bound over blurred moments lets light through (light bleeding); PCF does not.
+TEST(Raster, VsmBleedsLightUnderOverlappingOccluders) {
+    REQUIRE_GL();
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 0, -12}, 4, "floor"));
+    s.meshes.push_back(makeGrid({-0.5, 0.6, 0}, {3, 0, 0}, {0, 0, -3}, 1, "low plate"));
+    s.meshes.push_back(makeGrid({0.8, 4.0, 0.3}, {3, 0, 0}, {0, 0, -3}, 1, "high plate"));
+    s.lights = {{"sun",
+                 LightType::Directional,
+                 {0, 0, 0},
+                 glm::normalize(glm::dvec3(0.15, -1.0, 0.1)),
+                 0,
+                 0}};
+    // Low, so that the floor under both plates is in view.
+    s.camera.wsEye = {-1, 2.2, 7};
+    s.camera.wsTarget = {0.3, 0, 0};
+    s.camera.width = 240;
+    s.camera.height = 180;
+    finalizeScene(s);
+    ChannelImage o = runQuiet(s);
+    // Umbra interior: floor pixels with oracle V = 0 at least 3 pixels from any other pixel, so
+    // that the filtering every technique does at an umbra's edge does not count as bleeding.
+    const int w = o.width(), h = o.height();
+    const float* Vo = o.channel("sun.V");
+    auto umbraAt = [&](int x, int y) {
+        const size_t i = size_t(y) * size_t(w) + size_t(x);
+        return o.channel(ch::kMeshId)[i] == 0.0f && Vo[i] == 0.0f;
+    };
+    auto bleeding = [&](const ChannelImage& r) {
+        const float* Vr = r.channel("sun.V");
+        size_t umbra = 0, bleed = 0;
+        for (int y = 3; y < h - 3; ++y)
+            for (int x = 3; x < w - 3; ++x) {
+                bool interior = true;
+                for (int dy = -3; dy <= 3 && interior; ++dy)
+                    for (int dx = -3; dx <= 3 && interior; ++dx) interior = umbraAt(x + dx, y + dy);
+                const size_t i = size_t(y) * size_t(w) + size_t(x);
+                if (!interior || r.channel(ch::kMeshId)[i] != 0.0f) continue;
+                ++umbra;
+                bleed += Vr[i] > 0.1f;
+            }
+        return std::make_pair(umbra, bleed);
+    };
+    const auto [umbra, vsmBleed] =
+        bleeding(raster(s, "vsm", {"resolution=1024", "blur=12", "bleed_reduction=0"}));
+    const auto [umbra2, pcfBleed] = bleeding(raster(s, "pcf", {"resolution=1024", "kernel=7"}));
+    const auto [umbra3, vsmReduced] =
+        bleeding(raster(s, "vsm", {"resolution=1024", "blur=12", "bleed_reduction=0.5"}));
+    (void)umbra2;
+    (void)umbra3;
+    std::printf("[ bleeding ] floor umbra pixels with V > 0.1: vsm %zu, pcf %zu of %zu\n", vsmBleed,
+                pcfBleed, umbra);
+    ASSERT_GT(umbra, 1000u);
+    EXPECT_GT(vsmBleed, umbra / 50);
+    EXPECT_LT(pcfBleed, umbra / 500 + 1);
+}
+
 TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
     for (const ShadowTechnique* t : allTechniques()) {
         EXPECT_THROW(t->parse({"no_such_key=1"}), InputError) << t->name();

@@ -41,12 +41,39 @@ float texelWorld(float depth) {
 #endif
 }
 
+#if defined(VSM) || defined(ESM) || defined(EVSM)
+// Filtered techniques: the moment map, bilinearly filtered (and blurred), at the lookup.
+float chebyshev(vec2 m, float t, float minVariance) {
+    if (t <= m.x) return 1.0;
+    float variance = max(m.y - m.x * m.x, minVariance);
+    float d = t - m.x;
+    return variance / (variance + d * d);
+}
+// Light-bleeding reduction: p below `amount` counts as shadow, the rest rescaled to [0, 1].
+float reduceBleeding(float p) { return clamp((p - BLEED_REDUCTION) / (1.0 - BLEED_REDUCTION), 0.0, 1.0); }
+float filtered(vec4 m, float t) {
+#if defined(VSM)
+    return reduceBleeding(chebyshev(m.xy, t, MIN_VARIANCE));
+#elif defined(ESM)
+    return clamp(exp(-ESM_C * t) * m.x, 0.0, 1.0);
+#else
+    float p = exp(EVSM_CPOS * t), n = -exp(-EVSM_CNEG * t);
+    float vp = chebyshev(m.xy, p, MIN_VARIANCE * EVSM_CPOS * EVSM_CPOS * p * p);
+    float vn = chebyshev(m.zw, n, MIN_VARIANCE * EVSM_CNEG * EVSM_CNEG * n * n);
+    return reduceBleeding(min(vp, vn));
+#endif
+}
+#endif
+
 #ifdef LIGHT_CUBE
 float lookup(vec3 q, float bias) {
     vec3 v = q - u_lsLightPosition;
     vec3 a = abs(v);
     float d = max(a.x, max(a.y, a.z));
     if (d > u_far) return 1.0;
+#if defined(VSM) || defined(ESM) || defined(EVSM)
+    return filtered(texture(u_map, v), clamp((d - bias - u_near) / (u_far - u_near), 0.0, 1.0));
+#endif
     // Tangent axes of the face the direction falls on, one texel apart at depth d.
     vec3 t1 = a.x >= a.y && a.x >= a.z ? vec3(0, 1, 0) : vec3(1, 0, 0);
     vec3 t2 = a.z >= a.x && a.z >= a.y ? vec3(0, 1, 0) : vec3(0, 0, 1);
@@ -70,6 +97,9 @@ float lookup(vec3 q, float bias) {
     float d = -(u_lightViewFromLocal * vec4(q, 1.0)).z;
     // Outside the map's frustum nothing was rendered that could shadow it.
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || d > u_far) return 1.0;
+#if defined(VSM) || defined(ESM) || defined(EVSM)
+    return filtered(texture(u_map, uv), clamp((d - bias - u_near) / (u_far - u_near), 0.0, 1.0));
+#endif
     ivec2 size = textureSize(u_map, 0);
     ivec2 base = ivec2(floor(uv * vec2(size)));
     float lit = 0.0;
@@ -115,7 +145,8 @@ void main() {
 #endif
 #ifdef BIAS_SLOPE_ALPHA
     float tanTheta = sqrt(max(0.0, 1.0 - ndotl * ndotl)) / ndotl;
-    bias += clamp(BIAS_SLOPE_ALPHA * tanTheta, BIAS_SLOPE_MIN, BIAS_SLOPE_MAX) * texel;
+    // A filter's outer taps see the receiver's plane PCF_RADIUS texels away, that much deeper.
+    bias += clamp(BIAS_SLOPE_ALPHA * tanTheta, BIAS_SLOPE_MIN, BIAS_SLOPE_MAX) * texel * (1.0 + float(PCF_RADIUS));
 #endif
     o_visibility = lookup(q, bias);
 }

@@ -1,5 +1,6 @@
 // pcf: percentage-closer filtering: the binary depth test averaged over a kernel x kernel grid of
-// texels around the lookup (the tests are averaged, never the depths), with a slope-scaled bias.
+// texels around the lookup (the tests are averaged, never the depths), with a slope-scaled bias
+// times (1 + kernel / 2): the outer taps see the receiver's plane that many texels away.
 //
 // | parameter | default | range   | meaning                                  |
 // |-----------|---------|---------|------------------------------------------|
