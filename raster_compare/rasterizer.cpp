@@ -241,6 +241,12 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
         glTextureParameteri(lp.map.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(lp.map.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glTextureParameteri(lp.map.get(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+        if (technique.hardwareCompare()) {
+            glTextureParameteri(lp.map.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+            glTextureParameteri(lp.map.get(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+            glTextureParameteri(lp.map.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glTextureParameteri(lp.map.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        }
         const GLenum attachment = filtered ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT;
         for (int f = 0; f < lp.cam.faces; ++f) {
             GlFramebuffer fbo = makeFramebuffer();

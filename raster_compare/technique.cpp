@@ -56,8 +56,8 @@ const std::vector<const ShadowTechnique*>& allTechniques() {
     static const std::vector<const ShadowTechnique*> all = {
         &basicTechnique(),         &biasTechnique(),         &slopeBiasTechnique(),
         &polygonOffsetTechnique(), &normalOffsetTechnique(), &pcfTechnique(),
-        &backFacesTechnique(),     &vsmTechnique(),          &esmTechnique(),
-        &evsmTechnique()};
+        &backFacesTechnique(),     &hwPcfTechnique(),        &vsmTechnique(),
+        &esmTechnique(),           &evsmTechnique()};
     return all;
 }
 

@@ -39,6 +39,8 @@ class ShadowTechnique {
     // Filtered techniques (vsm, esm, evsm) render moments instead of a depth map, blurred by a
     // separable Gaussian of this radius in texels (0: none).
     virtual bool filtered() const { return false; }
+    // The map is sampled with the hardware depth compare and GL_LINEAR filtering.
+    virtual bool hardwareCompare() const { return false; }
     virtual int blurRadius(const ParamValues&) const { return 0; }
     // The moments of the far plane (t = 1), which the moment map is cleared to.
     virtual std::array<float, 4> farMoments(const ParamValues&) const { return {1, 1, 0, 0}; }
@@ -61,6 +63,7 @@ const ShadowTechnique& polygonOffsetTechnique();
 const ShadowTechnique& normalOffsetTechnique();
 const ShadowTechnique& pcfTechnique();
 const ShadowTechnique& backFacesTechnique();
+const ShadowTechnique& hwPcfTechnique();
 const ShadowTechnique& vsmTechnique();
 const ShadowTechnique& esmTechnique();
 const ShadowTechnique& evsmTechnique();

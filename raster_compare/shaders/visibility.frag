@@ -14,7 +14,11 @@ uniform mat4 u_lightViewFromLocal;
 uniform float u_near;
 uniform float u_far;
 uniform float u_texelScale;  // ortho: texel size; perspective: texel size per unit of depth
-#ifdef LIGHT_CUBE
+#if defined(HW_PCF) && defined(LIGHT_CUBE)
+uniform samplerCubeShadow u_map;
+#elif defined(HW_PCF)
+uniform sampler2DShadow u_map;
+#elif defined(LIGHT_CUBE)
 uniform samplerCube u_map;
 #else
 uniform sampler2D u_map;
@@ -23,6 +27,9 @@ layout(location = 0) out float o_visibility;
 
 #ifndef PCF_RADIUS
 #define PCF_RADIUS 0
+#endif
+#ifndef BLEED_REDUCTION
+#define BLEED_REDUCTION 0.0
 #endif
 
 float linearDepth(float z) {
@@ -40,6 +47,25 @@ float texelWorld(float depth) {
     return depth * u_texelScale;
 #endif
 }
+
+// The window depth the hardware compares against, for a linear depth d.
+float windowDepth(float d) {
+#ifdef LIGHT_ORTHO
+    return (d - u_near) / (u_far - u_near);
+#else
+    return u_far * (d - u_near) / (d * (u_far - u_near));
+#endif
+}
+
+#ifdef POISSON
+// 16 points of a Poisson disk in the unit disk.
+const vec2 kPoisson[16] = vec2[](vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
+                                 vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
+                                 vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
+                                 vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
+                                 vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
+                                 vec2(0.14383161, -0.14100790));
+#endif
 
 #if defined(VSM) || defined(ESM) || defined(EVSM)
 // Filtered techniques: the moment map, bilinearly filtered (and blurred), at the lookup.
@@ -73,18 +99,29 @@ float lookup(vec3 q, float bias) {
     if (d > u_far) return 1.0;
 #if defined(VSM) || defined(ESM) || defined(EVSM)
     return filtered(texture(u_map, v), clamp((d - bias - u_near) / (u_far - u_near), 0.0, 1.0));
-#endif
+#elif defined(HW_PCF)
+    return texture(u_map, vec4(v, windowDepth(d - bias)));
+#else
     // Tangent axes of the face the direction falls on, one texel apart at depth d.
     vec3 t1 = a.x >= a.y && a.x >= a.z ? vec3(0, 1, 0) : vec3(1, 0, 0);
     vec3 t2 = a.z >= a.x && a.z >= a.y ? vec3(0, 1, 0) : vec3(0, 0, 1);
     float step = u_texelScale * d;
     float lit = 0.0;
+#ifdef POISSON
+    for (int k = 0; k < 16; ++k) {
+        vec2 o = kPoisson[k] * (float(PCF_RADIUS) + 0.5);
+        lit += d - bias <= linearDepth(texture(u_map, v + step * (o.x * t1 + o.y * t2)).r) ? 1.0 : 0.0;
+    }
+    return lit / 16.0;
+#else
     for (int dy = -PCF_RADIUS; dy <= PCF_RADIUS; ++dy)
         for (int dx = -PCF_RADIUS; dx <= PCF_RADIUS; ++dx) {
             float z = texture(u_map, v + step * (float(dx) * t1 + float(dy) * t2)).r;
             lit += d - bias <= linearDepth(z) ? 1.0 : 0.0;
         }
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+#endif
+#endif
 }
 float receiverDepth(vec3 q) {
     vec3 a = abs(q - u_lsLightPosition);
@@ -99,16 +136,28 @@ float lookup(vec3 q, float bias) {
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || d > u_far) return 1.0;
 #if defined(VSM) || defined(ESM) || defined(EVSM)
     return filtered(texture(u_map, uv), clamp((d - bias - u_near) / (u_far - u_near), 0.0, 1.0));
-#endif
+#elif defined(HW_PCF)
+    return texture(u_map, vec3(uv, windowDepth(d - bias)));
+#else
     ivec2 size = textureSize(u_map, 0);
-    ivec2 base = ivec2(floor(uv * vec2(size)));
     float lit = 0.0;
+#ifdef POISSON
+    for (int k = 0; k < 16; ++k) {
+        vec2 o = kPoisson[k] * (float(PCF_RADIUS) + 0.5);
+        ivec2 ij = clamp(ivec2(floor(uv * vec2(size) + o)), ivec2(0), size - 1);
+        lit += d - bias <= linearDepth(texelFetch(u_map, ij, 0).r) ? 1.0 : 0.0;
+    }
+    return lit / 16.0;
+#else
+    ivec2 base = ivec2(floor(uv * vec2(size)));
     for (int dy = -PCF_RADIUS; dy <= PCF_RADIUS; ++dy)
         for (int dx = -PCF_RADIUS; dx <= PCF_RADIUS; ++dx) {
             ivec2 ij = clamp(base + ivec2(dx, dy), ivec2(0), size - 1);
             lit += d - bias <= linearDepth(texelFetch(u_map, ij, 0).r) ? 1.0 : 0.0;
         }
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+#endif
+#endif
 }
 float receiverDepth(vec3 q) { return -(u_lightViewFromLocal * vec4(q, 1.0)).z; }
 #endif

@@ -5,9 +5,10 @@
 // | parameter | default | range   | meaning                                  |
 // |-----------|---------|---------|------------------------------------------|
 // | kernel    | 3       | 1..15   | grid side in texels (odd)                 |
-// | alpha     | 1.0     | 0..100  | slope-bias factor (as slope-bias)         |
-// | min       | 0.1     | 0..1000 | smallest bias, texels                     |
-// | max       | 10.0    | 0..1000 | largest bias, texels                      |
+// | pattern   | 0       | 0..1    | 0: kernel x kernel grid; 1: 16-tap Poisson disk of radius
+// kernel/2 | | alpha     | 1.0     | 0..100  | slope-bias factor (as slope-bias)         | | min |
+// 0.1     | 0..1000 | smallest bias, texels                     | | max       | 10.0    | 0..1000 |
+// largest bias, texels                      |
 #include "raster_compare/technique.h"
 
 #include "core/error.h"
@@ -21,6 +22,7 @@ class Pcf final : public ShadowTechnique {
     }
     std::vector<ParamSpec> ownParams() const override {
         return {{"kernel", 3, 1, 15, true, "grid side in texels, odd"},
+                {"pattern", 0, 0, 1, true, "0: grid, 1: 16-tap Poisson disk"},
                 {"alpha", 1.0, 0.0, 100.0, false, "slope-bias factor"},
                 {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
                 {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
@@ -28,7 +30,8 @@ class Pcf final : public ShadowTechnique {
     std::string shaderDefines(const ParamValues& p) const override {
         const int kernel = int(p.at("kernel"));
         if (kernel % 2 == 0) throwInputError("technique pcf", "kernel", "must be odd");
-        return "#define PCF_RADIUS " + std::to_string(kernel / 2) + "\n#define BIAS_SLOPE_ALPHA " +
+        return std::string(p.at("pattern") == 1.0 ? "#define POISSON\n" : "") +
+               "#define PCF_RADIUS " + std::to_string(kernel / 2) + "\n#define BIAS_SLOPE_ALPHA " +
                std::to_string(p.at("alpha")) + "\n#define BIAS_SLOPE_MIN " +
                std::to_string(p.at("min")) + "\n#define BIAS_SLOPE_MAX " +
                std::to_string(p.at("max")) + "\n";
