@@ -77,6 +77,19 @@ TEST(Cli, BadArgumentsExitTwo) {
     EXPECT_EQ(missing.stderrText, "/nonexistent/scene.json: no such file\n");
 }
 
+TEST(Cli, RasterBadArgumentsExitTwo) {
+    const std::string scene = std::string(SO_SCENES_DIR) + "/contact_box.scene.json";
+    RunResult unknown = run("raster " + scene + " --out /tmp/x --technique nope");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.stderrText.find("valid: basic"), std::string::npos) << unknown.stderrText;
+    RunResult badKey = run("raster " + scene + " --out /tmp/x --technique pcf --set kernal=3");
+    EXPECT_EQ(badKey.exitCode, 2);
+    EXPECT_NE(badKey.stderrText.find("kernel"), std::string::npos) << badKey.stderrText;
+    EXPECT_EQ(run("raster " + scene + " --out /tmp/x --technique pcf --set kernel=99").exitCode, 2);
+    EXPECT_EQ(run("raster " + scene + " --out /tmp/x --technique pcf --set kernel=4").exitCode, 2);
+    EXPECT_EQ(run("raster /nonexistent.json --out /tmp/x --technique basic").exitCode, 2);
+}
+
 TEST(Cli, ShippedScenesTraceIdenticallyAtAnyThreadCount) {
     for (const char* name :
          {"contact_box", "spot_objects", "terrain_sun", "penumbra_square", "sphere_light"}) {
