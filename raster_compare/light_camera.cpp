@@ -33,7 +33,7 @@ void enclose(const glm::dvec3& eye, const Bounds3d& b, double& near, double& far
 }  // namespace
 
 LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bounds3d& b,
-                           int resolution) {
+                           int resolution, const Bounds3d* lsReceivers) {
     LightCamera lc;
     lc.lsPosition = frame.lsFromWs(light.wsPosition);
     lc.lsDirection = glm::normalize(light.wsDirection);
@@ -44,13 +44,23 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
         const glm::dvec3 eye = centre - lc.lsDirection * (2.0 * radius);
         lc.viewFromLocal[0] = glm::lookAtRH(eye, centre, anyUp(lc.lsDirection));
         // Fit the box's corners in the light frame; square texels.
-        glm::dvec3 lo(1e300), hi(-1e300);
-        for (int k = 0; k < 8; ++k) {
-            glm::dvec3 c((k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y,
-                         (k & 4) ? b.hi.z : b.lo.z);
-            glm::dvec3 v = glm::dvec3(lc.viewFromLocal[0] * glm::dvec4(c, 1.0));
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
+        auto fit = [&](const Bounds3d& box, glm::dvec3& lo, glm::dvec3& hi) {
+            lo = glm::dvec3(1e300);
+            hi = glm::dvec3(-1e300);
+            for (int k = 0; k < 8; ++k) {
+                glm::dvec3 c((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y,
+                             (k & 4) ? box.hi.z : box.lo.z);
+                glm::dvec3 v = glm::dvec3(lc.viewFromLocal[0] * glm::dvec4(c, 1.0));
+                lo = glm::min(lo, v);
+                hi = glm::max(hi, v);
+            }
+        };
+        glm::dvec3 lo, hi;
+        fit(b, lo, hi);
+        if (lsReceivers && !lsReceivers->empty()) {
+            glm::dvec3 rlo, rhi;
+            fit(*lsReceivers, rlo, rhi);
+            lo.x = rlo.x, lo.y = rlo.y, hi.x = rhi.x, hi.y = rhi.y;
         }
         const double half = 0.5 * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01;
         const double cx = 0.5 * (lo.x + hi.x), cy = 0.5 * (lo.y + hi.y);

@@ -32,7 +32,11 @@ struct LightCamera {
     glm::dmat4 clipFromLocal(int face) const { return clipFromView * viewFromLocal[size_t(face)]; }
 };
 
+// `lsReceivers` (optional, directional lights only): fit the map's x and y to these bounds (the
+// receivers the camera sees) instead of the whole scene's; depth still spans the whole scene, so
+// every occluder between the light and those receivers is in the map. Exact: along parallel rays
+// only occluders inside the receivers' footprint can shadow them.
 LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bounds3d& lsBounds,
-                           int resolution);
+                           int resolution, const Bounds3d* lsReceivers = nullptr);
 
 }  // namespace so

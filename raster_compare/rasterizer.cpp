@@ -205,6 +205,30 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
     const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(geometryFbo.get(), 3, buffers);
 
+    // fit = 1: one camera pass first, to know which receivers are in view (local-frame bounds).
+    Bounds3d lsReceivers;
+    const bool fitToReceivers = params.count("fit") && params.at("fit") == 1.0;
+    if (fitToReceivers) {
+        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glDepthFunc(GL_GREATER);
+        glViewport(0, 0, W, H);
+        glBindFramebuffer(GL_FRAMEBUFFER, geometryFbo.get());
+        const float zero4[4] = {0, 0, 0, 0}, zero = 0.0f;
+        glClearNamedFramebufferfv(geometryFbo.get(), GL_COLOR, 0, zero4);
+        glClearNamedFramebufferfv(geometryFbo.get(), GL_DEPTH, 0, &zero);
+        glUseProgram(geometryProg.get());
+        drawScene(geometryProg.get(), true);
+        std::vector<float> pos(size_t(W) * size_t(H) * 4);
+        glGetTextureImage(positionTex.get(), 0, GL_RGBA, GL_FLOAT,
+                          GLsizei(pos.size() * sizeof(float)), pos.data());
+        for (size_t i = 0; i < size_t(W) * size_t(H); ++i)
+            if (pos[4 * i + 3] != 0.0f)
+                lsReceivers.extend(glm::dvec3(pos[4 * i], pos[4 * i + 1], pos[4 * i + 2]));
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+
     // Per light: camera, shadow map, visibility program and target.
     struct LightPass {
         const Light* light = nullptr;
@@ -228,7 +252,8 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
     for (const Light& light : scene.lights) {
         LightPass lp;
         lp.light = &light;
-        lp.cam = fitLightCamera(light, frame, lsBounds, resolution);
+        lp.cam = fitLightCamera(light, frame, lsBounds, resolution,
+                                fitToReceivers ? &lsReceivers : nullptr);
         const bool cube = lp.cam.kind == LightCamera::Kind::Cube;
         lp.map = makeTexture(cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D);
         glTextureStorage2D(lp.map.get(), 1, filtered ? GL_RGBA32F : depthFormat(depthBits),

@@ -12,6 +12,8 @@ std::vector<ParamSpec> ShadowTechnique::params() const {
     std::vector<ParamSpec> p = {
         {"resolution", 2048, 16, 16384, true, "shadow map side in texels (cube maps: per face)"},
         {"depth_format", 24, 16, 32, true, "depth buffer bits: 16, 24 (fixed point) or 32 (float)"},
+        {"fit", 0, 0, 1, true,
+         "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"},
     };
     for (const ParamSpec& s : ownParams()) p.push_back(s);
     return p;

@@ -372,6 +372,32 @@ TEST(Raster, EveryTechniqueRendersEveryLightKind) {
     }
 }
 
+// A directional map fitted only to the receivers in view: smaller texels, and no occluder lost.
+TEST(Raster, DirectionalFitToVisibleReceivers) {
+    REQUIRE_GL();
+    Scene s = loadShipped("terrain_sun", 200, 150);
+    s.camera.vfovDeg = 15;  // a close-up of part of the terrain
+    std::string why;
+    const ShadowTechnique& t = findTechnique("slope-bias");
+    RasterOptions o;
+    o.frames = 1;
+    o.warmup = 0;
+    RasterResult whole = renderRaster(s, t, t.parse({"resolution=1024"}), o, *glContext(why));
+    RasterResult fitted =
+        renderRaster(s, t, t.parse({"resolution=1024", "fit=1"}), o, *glContext(why));
+    const double texelWhole = whole.stats["lights"][0]["texel_size"].get<double>();
+    const double texelFitted = fitted.stats["lights"][0]["texel_size"].get<double>();
+    ChannelImage oracle = runQuiet(s);
+    Comparison cw = compare(oracle, whole.image, "sun", 2),
+               cf = compare(oracle, fitted.image, "sun", 2);
+    std::printf(
+        "[ fit ] texel %.5f -> %.5f; agreement away from boundaries %.4f -> %.4f (%zu pixels)\n",
+        texelWhole, texelFitted, cw.agreement(), cf.agreement(), cf.counted);
+    EXPECT_LT(texelFitted, 0.8 * texelWhole);
+    EXPECT_GE(cf.agreement(), 0.99);
+    EXPECT_GE(cf.agreement(), cw.agreement() - 0.001);
+}
+
 TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
     for (const ShadowTechnique* t : allTechniques()) {
         EXPECT_THROW(t->parse({"no_such_key=1"}), InputError) << t->name();
