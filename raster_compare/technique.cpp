@@ -54,6 +54,18 @@ ParamValues ShadowTechnique::parse(const std::vector<std::string>& settings) con
     return values;
 }
 
+std::vector<ParamSpec> slopeBiasParams() {
+    return {{"alpha", 1.0, 0.0, 100.0, false, "slope factor"},
+            {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
+            {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
+}
+
+std::string slopeBiasDefines(const ParamValues& p) {
+    return "#define BIAS_SLOPE_ALPHA " + std::to_string(p.at("alpha")) +
+           "\n#define BIAS_SLOPE_MIN " + std::to_string(p.at("min")) + "\n#define BIAS_SLOPE_MAX " +
+           std::to_string(p.at("max")) + "\n";
+}
+
 const std::vector<const ShadowTechnique*>& allTechniques() {
     static const std::vector<const ShadowTechnique*> all = {
         &basicTechnique(),         &biasTechnique(),         &slopeBiasTechnique(),

@@ -51,6 +51,11 @@ class ShadowTechnique {
     ParamValues parse(const std::vector<std::string>& settings) const;
 };
 
+// The slope-scaled bias shared by slope-bias, pcf and hw-pcf: its parameters (alpha, min, max,
+// in texels) and its #defines.
+std::vector<ParamSpec> slopeBiasParams();
+std::string slopeBiasDefines(const ParamValues& p);
+
 const std::vector<const ShadowTechnique*>& allTechniques();
 // Throws InputError listing the valid names.
 const ShadowTechnique& findTechnique(const std::string& name);

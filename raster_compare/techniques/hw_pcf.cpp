@@ -17,15 +17,9 @@ class HwPcf final : public ShadowTechnique {
     std::string summary() const override {
         return "the sampler's GL_LINEAR depth compare (driver-defined filter)";
     }
-    std::vector<ParamSpec> ownParams() const override {
-        return {{"alpha", 1.0, 0.0, 100.0, false, "slope-bias factor"},
-                {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
-                {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
-    }
+    std::vector<ParamSpec> ownParams() const override { return slopeBiasParams(); }
     std::string shaderDefines(const ParamValues& p) const override {
-        return "#define HW_PCF\n#define BIAS_SLOPE_ALPHA " + std::to_string(p.at("alpha")) +
-               "\n#define BIAS_SLOPE_MIN " + std::to_string(p.at("min")) +
-               "\n#define BIAS_SLOPE_MAX " + std::to_string(p.at("max")) + "\n";
+        return "#define HW_PCF\n" + slopeBiasDefines(p);
     }
     bool hardwareCompare() const override { return true; }
 };

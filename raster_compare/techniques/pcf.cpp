@@ -21,20 +21,16 @@ class Pcf final : public ShadowTechnique {
         return "NxN grid percentage-closer filtering, compare per tap";
     }
     std::vector<ParamSpec> ownParams() const override {
-        return {{"kernel", 3, 1, 15, true, "grid side in texels, odd"},
-                {"pattern", 0, 0, 1, true, "0: grid, 1: 16-tap Poisson disk"},
-                {"alpha", 1.0, 0.0, 100.0, false, "slope-bias factor"},
-                {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
-                {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
+        std::vector<ParamSpec> p = {{"kernel", 3, 1, 15, true, "grid side in texels, odd"},
+                                    {"pattern", 0, 0, 1, true, "0: grid, 1: 16-tap Poisson disk"}};
+        for (const ParamSpec& s : slopeBiasParams()) p.push_back(s);
+        return p;
     }
     std::string shaderDefines(const ParamValues& p) const override {
         const int kernel = int(p.at("kernel"));
         if (kernel % 2 == 0) throwInputError("technique pcf", "kernel", "must be odd");
         return std::string(p.at("pattern") == 1.0 ? "#define POISSON\n" : "") +
-               "#define PCF_RADIUS " + std::to_string(kernel / 2) + "\n#define BIAS_SLOPE_ALPHA " +
-               std::to_string(p.at("alpha")) + "\n#define BIAS_SLOPE_MIN " +
-               std::to_string(p.at("min")) + "\n#define BIAS_SLOPE_MAX " +
-               std::to_string(p.at("max")) + "\n";
+               "#define PCF_RADIUS " + std::to_string(kernel / 2) + "\n" + slopeBiasDefines(p);
     }
 };
 }  // namespace

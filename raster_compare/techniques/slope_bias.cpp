@@ -16,16 +16,8 @@ class SlopeBias final : public ShadowTechnique {
     std::string summary() const override {
         return "slope-scaled bias clamp(alpha tan(acos(n.l)), min, max)";
     }
-    std::vector<ParamSpec> ownParams() const override {
-        return {{"alpha", 1.0, 0.0, 100.0, false, "slope factor"},
-                {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
-                {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
-    }
-    std::string shaderDefines(const ParamValues& p) const override {
-        return "#define BIAS_SLOPE_ALPHA " + std::to_string(p.at("alpha")) +
-               "\n#define BIAS_SLOPE_MIN " + std::to_string(p.at("min")) +
-               "\n#define BIAS_SLOPE_MAX " + std::to_string(p.at("max")) + "\n";
-    }
+    std::vector<ParamSpec> ownParams() const override { return slopeBiasParams(); }
+    std::string shaderDefines(const ParamValues& p) const override { return slopeBiasDefines(p); }
 };
 }  // namespace
 const ShadowTechnique& slopeBiasTechnique() {
