@@ -1,0 +1,251 @@
+#include "raster_compare/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/channels.h"
+
+namespace so {
+
+namespace {
+
+namespace ch = channels;
+constexpr double kZ = 1.959963984540054;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Squared Euclidean distance transform of one row or column, the lower envelope of parabolas
+// (Felzenszwalb and Huttenlocher, "Distance Transforms of Sampled Functions", 2012). "No seed" is a
+// large finite value rather than infinity, so that differences stay defined.
+constexpr double kFar = 1e30;
+void edt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>& v,
+           std::vector<double>& z) {
+    const int n = int(f.size());
+    int k = 0;
+    v[0] = 0;
+    z[0] = -1e300;
+    z[1] = 1e300;
+    auto cross = [&](int q, int p) {
+        return ((f[size_t(q)] + double(q) * q) - (f[size_t(p)] + double(p) * p)) / (2.0 * (q - p));
+    };
+    for (int q = 1; q < n; ++q) {
+        double s = cross(q, v[size_t(k)]);
+        while (s <= z[size_t(k)]) {
+            --k;
+            s = cross(q, v[size_t(k)]);
+        }
+        ++k;
+        v[size_t(k)] = q;
+        z[size_t(k)] = s;
+        z[size_t(k) + 1] = 1e300;
+    }
+    k = 0;
+    for (int q = 0; q < n; ++q) {
+        while (z[size_t(k) + 1] < q) ++k;
+        const int p = v[size_t(k)];
+        d[size_t(q)] = double(q - p) * (q - p) + f[size_t(p)];
+    }
+}
+
+// Distance in pixels from every pixel to the nearest pixel of `seed` (+inf if there is none).
+std::vector<float> distanceTo(const std::vector<uint8_t>& seed, int w, int h) {
+    std::vector<double> g(seed.size());
+    for (size_t i = 0; i < seed.size(); ++i) g[i] = seed[i] ? 0.0 : kFar;
+    const size_t n = size_t(std::max(w, h));
+    std::vector<double> f, d;
+    std::vector<double> z(n + 1);
+    std::vector<int> v(n);
+    for (int x = 0; x < w; ++x) {
+        f.resize(size_t(h));
+        d.resize(size_t(h));
+        for (int y = 0; y < h; ++y) f[size_t(y)] = g[size_t(y) * size_t(w) + size_t(x)];
+        edt1d(f, d, v, z);
+        for (int y = 0; y < h; ++y) g[size_t(y) * size_t(w) + size_t(x)] = d[size_t(y)];
+    }
+    std::vector<float> out(seed.size());
+    for (int y = 0; y < h; ++y) {
+        f.assign(g.begin() + long(size_t(y) * size_t(w)),
+                 g.begin() + long(size_t(y + 1) * size_t(w)));
+        d.resize(size_t(w));
+        edt1d(f, d, v, z);
+        for (int x = 0; x < w; ++x)
+            out[size_t(y) * size_t(w) + size_t(x)] =
+                d[size_t(x)] >= 0.5 * kFar ? kInf : float(std::sqrt(d[size_t(x)]));
+    }
+    return out;
+}
+
+// Shadow boundary pixels: lit (V > 0.5) hit pixels with a shadowed hit 4-neighbour. Marking only
+// the lit side makes a shadow shifted by k pixels measure exactly k.
+std::vector<uint8_t> boundaries(const float* A, const float* V, int w, int h) {
+    std::vector<uint8_t> b(size_t(w) * size_t(h), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (A[i] == 0.0f || !(V[i] > 0.5f)) continue;
+            const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+            for (int k = 0; k < 4; ++k) {
+                if (nx[k] < 0 || ny[k] < 0 || nx[k] >= w || ny[k] >= h) continue;
+                const size_t j = size_t(ny[k]) * size_t(w) + size_t(nx[k]);
+                if (A[j] != 0.0f && !(V[j] > 0.5f)) b[i] = 1;
+            }
+        }
+    return b;
+}
+
+double percentile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t k =
+        std::min(v.size() - 1, size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0));
+    return v[k];
+}
+
+}  // namespace
+
+LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage& raster,
+                                 const std::string& light, const MetricOptions& options) {
+    const int w = oracle.width(), h = oracle.height();
+    const size_t n = oracle.pixelCount();
+    const float* Ao = oracle.channel(ch::kHit);
+    const float* Ar = raster.channel(ch::kHit);
+    const float* Vo = oracle.channel(ch::lightChannel(light, ch::kVisibility));
+    const float* Vr = raster.channel(ch::lightChannel(light, ch::kVisibility));
+    const float* Co = oracle.channel(ch::lightChannel(light, ch::kCosine));
+    const float *mo = oracle.channel(ch::kMeshId), *po = oracle.channel(ch::kPrimId);
+    const float *mr = raster.channel(ch::kMeshId), *pr = raster.channel(ch::kPrimId);
+    const std::string seName = ch::lightChannel(light, ch::kStdErr),
+                      occName = ch::lightChannel(light, ch::kOccluderDistance);
+    const float* SE = oracle.has(seName) ? oracle.channel(seName) : nullptr;
+    const float* D = oracle.has(occName) ? oracle.channel(occName) : nullptr;
+    const bool area = SE != nullptr;
+
+    LightMetrics m;
+    std::vector<uint8_t> counted(n, 0);
+    for (size_t i = 0; i < n; ++i) {
+        if (Ao[i] == 0.0f || Ar[i] == 0.0f) {
+            ++m.excludedBackground;
+        } else if (mo[i] != mr[i] || po[i] != pr[i]) {
+            ++m.excludedDifferentSurface;
+        } else if (!(Co[i] > 0.0f)) {
+            ++m.excludedFacingAway;
+        } else {
+            counted[i] = 1;
+            ++m.counted;
+        }
+    }
+    const std::vector<uint8_t> bo = boundaries(Ao, Vo, w, h), br = boundaries(Ar, Vr, w, h);
+    const std::vector<float> toOracleBoundary = distanceTo(bo, w, h),
+                             toRasterBoundary = distanceTo(br, w, h);
+
+    double sumAbs = 0, sumSq = 0;
+    size_t falseShadow = 0, falseLit = 0;
+    size_t acneEligible = 0, acne = 0, aliasEligible = 0, aliased = 0, ppEligible = 0, pp = 0,
+           umbra = 0, bleed = 0, pen = 0;
+    double leak = 0.0, penAbs = 0.0, penHard = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        if (!counted[i]) continue;
+        const double o = Vo[i], r = Vr[i];
+        // An area light's difference within the oracle's own 95% interval is not an error.
+        const double hw = area ? kZ * SE[i] : 0.0;
+        const double err = std::max(0.0, std::fabs(r - o) - hw);
+        sumAbs += err;
+        sumSq += err * err;
+        m.maxAbs = std::max(m.maxAbs, err);
+        const bool fs = area ? r < o - hw : r < o - 0.5;
+        const bool fl = area ? r > o + hw : r > o + 0.5;
+        falseShadow += fs;
+        falseLit += fl;
+        const bool fullyLit = o == 1.0;
+        const bool inUmbra = area ? o <= hw : o == 0.0;
+        if (fullyLit && toOracleBoundary[i] > float(options.boundaryRadius)) {
+            ++acneEligible;
+            acne += fs;
+        }
+        if (toOracleBoundary[i] <= float(options.boundaryRadius)) {
+            ++aliasEligible;
+            aliased += fs || fl;
+        }
+        if (D && inUmbra && D[i] >= 0.0f && D[i] < options.contactThreshold) {
+            ++ppEligible;
+            if (fl) {
+                ++pp;
+                leak = std::max(leak, double(D[i]));
+            }
+        }
+        if (inUmbra) {
+            ++umbra;
+            bleed += r > o + 0.1;
+        }
+        if (area && o > 0.0 && o < 1.0) {
+            ++pen;
+            penAbs += err;
+            penHard +=
+                (r - o) * (o < 0.5 ? -1.0 : 1.0);  // > 0: more extreme than the truth (too hard)
+        }
+    }
+    const auto share = [](size_t a, size_t b) { return b ? double(a) / double(b) : 0.0; };
+    m.mae = m.counted ? sumAbs / double(m.counted) : 0.0;
+    m.rmse = m.counted ? std::sqrt(sumSq / double(m.counted)) : 0.0;
+    m.falseShadowRate = share(falseShadow, m.counted);
+    m.falseLitRate = share(falseLit, m.counted);
+    m.acneRate = share(acne, acneEligible);
+    m.aliasingRate = share(aliased, aliasEligible);
+    if (D) {
+        m.peterPanningRate = share(pp, ppEligible);
+        m.lightLeakDistance = leak;
+    }
+    if (options.filteredTechnique) m.lightBleedingRate = share(bleed, umbra);
+    if (area) {
+        m.penumbraMae = pen ? penAbs / double(pen) : 0.0;
+        m.penumbraBias = pen ? penHard / double(pen) : 0.0;
+    }
+    // Boundary displacement, both ways: each raster boundary pixel to the nearest oracle one and
+    // each oracle boundary pixel to the nearest raster one.
+    std::vector<double> dist;
+    for (size_t i = 0; i < n; ++i) {
+        if (br[i] && std::isfinite(toOracleBoundary[i])) dist.push_back(toOracleBoundary[i]);
+        if (bo[i] && std::isfinite(toRasterBoundary[i])) dist.push_back(toRasterBoundary[i]);
+    }
+    m.boundaryDisplacement.pixels = dist.size();
+    if (!dist.empty()) {
+        double s = 0.0;
+        for (double d : dist) s += d;
+        m.boundaryDisplacement.mean = s / double(dist.size());
+        m.boundaryDisplacement.p95 = percentile(dist, 0.95);
+        m.boundaryDisplacement.max = *std::max_element(dist.begin(), dist.end());
+    }
+    return m;
+}
+
+nlohmann::json LightMetrics::toJson() const {
+    auto opt = [](const std::optional<double>& v) {
+        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    const double total =
+        double(counted + excludedBackground + excludedDifferentSurface + excludedFacingAway);
+    return {{"counted_pixels", counted},
+            {"excluded_share",
+             {{"background", total > 0 ? excludedBackground / total : 0.0},
+              {"different_surface", total > 0 ? excludedDifferentSurface / total : 0.0},
+              {"facing_away", total > 0 ? excludedFacingAway / total : 0.0}}},
+            {"mae", mae},
+            {"rmse", rmse},
+            {"max_abs", maxAbs},
+            {"false_shadow_rate", falseShadowRate},
+            {"false_lit_rate", falseLitRate},
+            {"acne_rate", acneRate},
+            {"peter_panning_rate", opt(peterPanningRate)},
+            {"light_leak_distance", opt(lightLeakDistance)},
+            {"boundary_displacement_px",
+             {{"mean", boundaryDisplacement.mean},
+              {"p95", boundaryDisplacement.p95},
+              {"max", boundaryDisplacement.max}}},
+            {"aliasing_rate", aliasingRate},
+            {"light_bleeding_rate", opt(lightBleedingRate)},
+            {"penumbra_mae", opt(penumbraMae)},
+            {"penumbra_bias", opt(penumbraBias)}};
+}
+
+}  // namespace so

@@ -1,0 +1,45 @@
+// Error of a technique's shadows against the oracle, split by artifact (docs/metrics.md: the names
+// and definitions are a public contract). Pure functions of two images, so they are tested on
+// synthetic pairs with known answers (tests/metrics_test.cpp).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+
+namespace so {
+
+struct MetricOptions {
+    int boundaryRadius = 2;  // r: pixels from an oracle shadow boundary
+    double contactThreshold =
+        0.0;  // occluder distance below which a shadow is "at contact" (world units)
+    bool filteredTechnique = false;  // light bleeding is only measured for filtered techniques
+};
+
+struct BoundaryDisplacement {
+    double mean = 0.0, p95 = 0.0, max = 0.0;
+    size_t pixels = 0;  // boundary pixels measured (both images)
+};
+
+struct LightMetrics {
+    size_t counted = 0;
+    size_t excludedBackground = 0, excludedDifferentSurface = 0, excludedFacingAway = 0;
+    double mae = 0.0, rmse = 0.0, maxAbs = 0.0;
+    double falseShadowRate = 0.0, falseLitRate = 0.0;
+    double acneRate = 0.0;
+    std::optional<double> peterPanningRate, lightLeakDistance;  // need the oracle's occ_dist
+    BoundaryDisplacement boundaryDisplacement;
+    double aliasingRate = 0.0;
+    std::optional<double> lightBleedingRate;          // filtered techniques only
+    std::optional<double> penumbraMae, penumbraBias;  // area lights only (oracle stderr present)
+    nlohmann::json toJson() const;
+};
+
+// `oracle` and `raster` follow docs/exr-channels.md; `light` names the light.
+LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage& raster,
+                                 const std::string& light, const MetricOptions& options);
+
+}  // namespace so

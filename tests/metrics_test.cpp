@@ -1,0 +1,161 @@
+// The metric functions on synthetic image pairs whose answers are known by construction.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/channels.h"
+#include "raster_compare/metrics.h"
+
+namespace so {
+namespace {
+
+namespace ch = channels;
+
+// Every pixel hits triangle 0 of mesh 0, faces the light, and is lit; callers paint V.
+ChannelImage flatImage(int w, int h) {
+    ChannelImage img(w, h);
+    img.addChannel(ch::kHit, 1.0f);
+    for (const char* c : {ch::kPX, ch::kPY, ch::kPZ, ch::kNX, ch::kNZ}) img.addChannel(c, 0.0f);
+    img.addChannel(ch::kNY, 1.0f);
+    img.addChannel(ch::kDepth, 1.0f);
+    img.addChannel(ch::kMeshId, 0.0f);
+    img.addChannel(ch::kPrimId, 0.0f);
+    img.addChannel(ch::lightChannel("L", ch::kVisibility), 1.0f);
+    img.addChannel(ch::lightChannel("L", ch::kCosine), 1.0f);
+    return img;
+}
+float& at(ChannelImage& img, const char* suffix, int x, int y) {
+    return img.channel(ch::lightChannel("L", suffix))[size_t(y) * size_t(img.width()) + size_t(x)];
+}
+
+TEST(Metrics, ShadowShiftedByKPixelsMeasuresK) {
+    for (int k : {1, 3, 8}) {
+        ChannelImage o = flatImage(96, 64), r = flatImage(96, 64);
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 96; ++x) {
+                at(o, ch::kVisibility, x, y) = x < 40 ? 1.0f : 0.0f;
+                at(r, ch::kVisibility, x, y) = x < 40 + k ? 1.0f : 0.0f;
+            }
+        LightMetrics m = computeLightMetrics(o, r, "L", {});
+        EXPECT_DOUBLE_EQ(m.boundaryDisplacement.mean, double(k));
+        EXPECT_DOUBLE_EQ(m.boundaryDisplacement.p95, double(k));
+        EXPECT_DOUBLE_EQ(m.boundaryDisplacement.max, double(k));
+        EXPECT_EQ(m.boundaryDisplacement.pixels, 128u);
+        EXPECT_DOUBLE_EQ(m.falseLitRate, double(k * 64) / (96.0 * 64.0));
+        EXPECT_EQ(m.falseShadowRate, 0.0);
+    }
+}
+
+TEST(Metrics, InjectedAcneGivesItsDensityAndNoAliasing) {
+    ChannelImage o = flatImage(120, 80), r = flatImage(120, 80);
+    // A shadow block in the middle, so that there are boundaries to stay away from.
+    for (int y = 30; y < 50; ++y)
+        for (int x = 50; x < 70; ++x)
+            at(o, ch::kVisibility, x, y) = at(r, ch::kVisibility, x, y) = 0.0f;
+    MetricOptions opt;
+    opt.boundaryRadius = 2;
+    size_t eligible = 0, injected = 0;
+    for (int y = 0; y < 80; ++y)
+        for (int x = 0; x < 120; ++x) {
+            if (at(o, ch::kVisibility, x, y) != 1.0f) continue;
+            // Brute-force Euclidean distance to the boundary pixels (lit, 4-adjacent to the
+            // block): an independent check of the metric's distance transform.
+            double d = 1e9;
+            for (int t = 30; t < 50; ++t)
+                d = std::min({d, std::hypot(x - 49, y - t), std::hypot(x - 70, y - t)});
+            for (int t = 50; t < 70; ++t)
+                d = std::min({d, std::hypot(x - t, y - 29), std::hypot(x - t, y - 50)});
+            if (d <= 2.0) continue;
+            ++eligible;
+            if ((x * 7 + y * 3) % 10 == 0) {
+                at(r, ch::kVisibility, x, y) = 0.0f;
+                ++injected;
+            }
+        }
+    LightMetrics m = computeLightMetrics(o, r, "L", opt);
+    EXPECT_DOUBLE_EQ(m.acneRate, double(injected) / double(eligible));
+    EXPECT_EQ(m.aliasingRate, 0.0);
+    EXPECT_GT(injected, 500u);
+}
+
+TEST(Metrics, DetachedContactGivesTheInjectedLeakDistance) {
+    ChannelImage o = flatImage(100, 40), r = flatImage(100, 40);
+    float* occ = o.addChannel(ch::lightChannel("L", ch::kOccluderDistance), -1.0f);
+    // Shadow from column 30 on; the occluder is 0.05 units further away per column from there.
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 100; ++x) {
+            const size_t i = size_t(y) * 100 + size_t(x);
+            if (x >= 30) {
+                at(o, ch::kVisibility, x, y) = 0.0f;
+                occ[i] = 0.05f * float(x - 30 + 1);
+                // The raster shadow starts 6 columns late: detached from the contact.
+                at(r, ch::kVisibility, x, y) = x >= 36 ? 0.0f : 1.0f;
+            } else {
+                occ[i] = std::numeric_limits<float>::infinity();
+            }
+        }
+    MetricOptions opt;
+    opt.contactThreshold = 0.5;  // columns 30..38 are "at contact" (occ_dist 0.05 .. 0.45)
+    LightMetrics m = computeLightMetrics(o, r, "L", opt);
+    ASSERT_TRUE(m.lightLeakDistance && m.peterPanningRate);
+    EXPECT_FLOAT_EQ(float(*m.lightLeakDistance), 0.05f * 6.0f);  // the last detached column, 35
+    EXPECT_DOUBLE_EQ(*m.peterPanningRate, 6.0 / 9.0);
+}
+
+TEST(Metrics, BrighterUmbraGivesTheInjectedBleedingRateForFilteredTechniques) {
+    ChannelImage o = flatImage(80, 80), r = flatImage(80, 80);
+    size_t umbra = 0, bright = 0;
+    for (int y = 0; y < 80; ++y)
+        for (int x = 0; x < 80; ++x) {
+            if (x < 40) continue;
+            at(o, ch::kVisibility, x, y) = 0.0f;
+            ++umbra;
+            const bool b = (x + y) % 4 == 0;
+            at(r, ch::kVisibility, x, y) = b ? 0.3f : 0.05f;  // 0.05: within the 0.1 allowance
+            bright += b;
+        }
+    MetricOptions opt;
+    opt.filteredTechnique = true;
+    LightMetrics m = computeLightMetrics(o, r, "L", opt);
+    ASSERT_TRUE(m.lightBleedingRate);
+    EXPECT_DOUBLE_EQ(*m.lightBleedingRate, double(bright) / double(umbra));
+    opt.filteredTechnique = false;
+    EXPECT_FALSE(computeLightMetrics(o, r, "L", opt).lightBleedingRate)
+        << "only measured for filtered techniques";
+}
+
+TEST(Metrics, AreaLightIntervalsAndPenumbraBias) {
+    ChannelImage o = flatImage(50, 10), r = flatImage(50, 10);
+    o.addChannel(ch::lightChannel("L", ch::kStdErr), 0.01f);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 50; ++x) {
+            const float v = 0.1f + 0.016f * float(x);  // a ramp, strictly inside (0, 1)
+            at(o, ch::kVisibility, x, y) = v;
+            // Within the interval (1.96 * 0.01) on the left half; too hard by 0.1 on the right.
+            at(r, ch::kVisibility, x, y) = x < 25 ? v + 0.015f : (v < 0.5f ? v - 0.1f : v + 0.1f);
+        }
+    LightMetrics m = computeLightMetrics(o, r, "L", {});
+    ASSERT_TRUE(m.penumbraMae && m.penumbraBias);
+    // Left half: no error; right half: 0.1 - 0.0196 each.
+    EXPECT_NEAR(m.mae, 0.5 * (0.1 - 1.96 * 0.01), 1e-6);
+    EXPECT_NEAR(*m.penumbraMae, m.mae, 1e-12);
+    EXPECT_GT(*m.penumbraBias, 0.04) << "too hard is positive";
+}
+
+TEST(Metrics, ExclusionsAreCountedByReason) {
+    ChannelImage o = flatImage(10, 10), r = flatImage(10, 10);
+    o.channel(ch::kHit)[0] = 0.0f;                             // background
+    r.channel(ch::kPrimId)[1] = 5.0f;                          // another triangle
+    o.channel(ch::lightChannel("L", ch::kCosine))[2] = -0.5f;  // facing away
+    LightMetrics m = computeLightMetrics(o, r, "L", {});
+    EXPECT_EQ(m.excludedBackground, 1u);
+    EXPECT_EQ(m.excludedDifferentSurface, 1u);
+    EXPECT_EQ(m.excludedFacingAway, 1u);
+    EXPECT_EQ(m.counted, 97u);
+    EXPECT_TRUE(m.toJson().contains("boundary_displacement_px"));
+}
+
+}  // namespace
+}  // namespace so
