@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/version.h"
 #include "oracle/trace_command.h"
+#include "raster_compare/compare_command.h"
 #include "raster_compare/gl_context.h"
 #include "raster_compare/raster_command.h"
 #include "raster_compare/technique.h"
@@ -73,6 +74,43 @@ int main(int argc, char** argv) {
         ->add_option("--frames", raster.raster.frames, "timed frames, median reported (default 5)")
         ->check(CLI::Range(1, 1000));
 
+    so::CompareOptions compare;
+    CLI::App* compareCmd = app.add_subcommand(
+        "compare", "the oracle against techniques: metrics.json, metrics.csv, error EXRs");
+    compareCmd->add_option("scene", compare.scenePath, "scene file (.json, .gltf or .glb)")
+        ->required();
+    compareCmd->add_option("--out", compare.outDir, "output folder (created if missing)")
+        ->required();
+    compareCmd->add_option("--technique", compare.techniques, "NAME[:key=value,...] (repeatable)")
+        ->required();
+    compareCmd
+        ->add_option("--width", compare.raster.width, "image width (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+    compareCmd
+        ->add_option("--height", compare.raster.height,
+                     "image height (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+    compareCmd
+        ->add_option("--frames", compare.raster.frames, "timed frames per technique (default 5)")
+        ->check(CLI::Range(1, 1000));
+    compareCmd
+        ->add_option("--threads", compare.oracle.threads, "oracle threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    compareCmd->add_option("--seed", compare.oracle.area.seed,
+                           "oracle area-light seed (default 0)");
+    compareCmd
+        ->add_option("--target-error", compare.oracle.area.targetError,
+                     "oracle area-light target (default 0.01)")
+        ->check(CLI::Range(1e-4, 0.5));
+    compareCmd->add_option("--cache", compare.cacheDir,
+                           "oracle cache folder (default: $XDG_CACHE_HOME/shadow-oracle)");
+    bool noCache = false;
+    compareCmd->add_flag("--no-cache", noCache, "always trace the oracle, and do not store it");
+    compareCmd
+        ->add_option("--boundary-radius", compare.boundaryRadius,
+                     "r of docs/metrics.md (default 2)")
+        ->check(CLI::Range(0, 64));
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -80,9 +118,12 @@ int main(int argc, char** argv) {
         return code == 0 ? 0 : 2;
     }
     trace.oracle.progress = !quiet;
+    compare.useCache = !noCache;
+    compare.oracle.progress = false;
     try {
         if (app.got_subcommand(traceCmd)) return so::runTraceCommand(trace);
         if (app.got_subcommand(rasterCmd)) return so::runRasterCommand(raster);
+        if (app.got_subcommand(compareCmd)) return so::runCompareCommand(compare);
     } catch (const so::GlUnavailable& e) {
         std::cerr << "error: no OpenGL: " << e.what() << std::endl;
         return 1;

@@ -105,7 +105,8 @@ double percentile(std::vector<double> v, double q) {
 }  // namespace
 
 LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage& raster,
-                                 const std::string& light, const MetricOptions& options) {
+                                 const std::string& light, const MetricOptions& options,
+                                 ErrorMaps* maps) {
     const int w = oracle.width(), h = oracle.height();
     const size_t n = oracle.pixelCount();
     const float* Ao = oracle.channel(ch::kHit);
@@ -120,6 +121,10 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
     const float* SE = oracle.has(seName) ? oracle.channel(seName) : nullptr;
     const float* D = oracle.has(occName) ? oracle.channel(occName) : nullptr;
     const bool area = SE != nullptr;
+    if (maps)
+        for (auto* v : {&maps->acne, &maps->peterPanning, &maps->aliasing, &maps->bleeding,
+                        &maps->penumbra, &maps->error})
+            v->assign(oracle.pixelCount(), 0.0f);
 
     LightMetrics m;
     std::vector<uint8_t> counted(n, 0);
@@ -152,6 +157,7 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
         const double err = std::max(0.0, std::fabs(r - o) - hw);
         sumAbs += err;
         sumSq += err * err;
+        if (maps) maps->error[i] = float(err);
         m.maxAbs = std::max(m.maxAbs, err);
         const bool fs = area ? r < o - hw : r < o - 0.5;
         const bool fl = area ? r > o + hw : r > o + 0.5;
@@ -162,25 +168,30 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
         if (fullyLit && toOracleBoundary[i] > float(options.boundaryRadius)) {
             ++acneEligible;
             acne += fs;
+            if (maps && fs) maps->acne[i] = 1.0f;
         }
         if (toOracleBoundary[i] <= float(options.boundaryRadius)) {
             ++aliasEligible;
             aliased += fs || fl;
+            if (maps && (fs || fl)) maps->aliasing[i] = 1.0f;
         }
         if (D && inUmbra && D[i] >= 0.0f && D[i] < options.contactThreshold) {
             ++ppEligible;
             if (fl) {
                 ++pp;
                 leak = std::max(leak, double(D[i]));
+                if (maps) maps->peterPanning[i] = 1.0f;
             }
         }
         if (inUmbra) {
             ++umbra;
             bleed += r > o + 0.1;
+            if (maps && options.filteredTechnique && r > o + 0.1) maps->bleeding[i] = 1.0f;
         }
         if (area && o > 0.0 && o < 1.0) {
             ++pen;
             penAbs += err;
+            if (maps && err > 0.0) maps->penumbra[i] = 1.0f;
             penHard +=
                 (r - o) * (o < 0.5 ? -1.0 : 1.0);  // > 0: more extreme than the truth (too hard)
         }

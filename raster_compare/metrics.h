@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -38,8 +39,16 @@ struct LightMetrics {
     nlohmann::json toJson() const;
 };
 
-// `oracle` and `raster` follow docs/exr-channels.md; `light` names the light.
+// Per-pixel error classes, for the error EXRs and the report's maps: 1 where the pixel counts
+// towards that class's metric as an error, else 0; `error` is the pixel's error (see mae).
+struct ErrorMaps {
+    std::vector<float> acne, peterPanning, aliasing, bleeding, penumbra, error;
+};
+
+// `oracle` and `raster` follow docs/exr-channels.md; `light` names the light. `maps`, if given,
+// receives the per-pixel classes.
 LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage& raster,
-                                 const std::string& light, const MetricOptions& options);
+                                 const std::string& light, const MetricOptions& options,
+                                 ErrorMaps* maps = nullptr);
 
 }  // namespace so

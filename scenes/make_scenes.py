@@ -196,7 +196,8 @@ def main():
            {"file": "meshes/unit_box.gltf", "translate": [0, 0, 0], "scale": [2, 1.5, 2]}],
           {"eye": [-5.5, 4.0, -6.0], "target": [0.0, 0.5, 0.0], "up": [0, 1, 0], "vfov_deg": 40,
            "width": 640, "height": 480},
-          [{"name": "key", "type": "point", "position": [3.0, 5.0, 2.5]}])
+          [{"name": "key", "type": "point", "position": [3.0, 5.0, 2.5]}],
+          effects=("hard", "contact"))  # occluder distances: peter-panning is what this scene is for
 
     scene("spot_objects.scene.json",
           [{"file": "meshes/floor.gltf"},

@@ -1,9 +1,14 @@
 // The raster path against the oracle (ctest label "gl"; skipped with the reason where no EGL
 // display or GL 4.5 context can be had).
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+
 #include <cstdlib>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -396,6 +401,44 @@ TEST(Raster, DirectionalFitToVisibleReceivers) {
     EXPECT_LT(texelFitted, 0.8 * texelWhole);
     EXPECT_GE(cf.agreement(), 0.99);
     EXPECT_GE(cf.agreement(), cw.agreement() - 0.001);
+}
+
+// issue 5's end-to-end expectations, through the compare command on a shipped scene.
+TEST(Compare, EndToEndOnTheContactScene) {
+    REQUIRE_GL();
+    const std::string out = "/tmp/so_compare_e2e_" + std::to_string(::getpid());
+    const std::string cmd =
+        std::string(SO_CLI_PATH) + " compare " + SO_SCENES_DIR +
+        "/contact_box.scene.json --width 320 --height 240 --frames 1 --no-cache --out " + out +
+        " --technique basic:resolution=1024 --technique slope-bias:resolution=1024 --technique "
+        "bias:bias=1"
+        " --technique bias:bias=300 --technique pcf:resolution=1024,kernel=5 > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream in(out + "/metrics.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    auto metric = [&](const std::string& label, const std::string& name) {
+        for (const auto& r : j["results"])
+            if (r["label"] == label) return r["lights"]["key"][name];
+        ADD_FAILURE() << label;
+        return nlohmann::json();
+    };
+    const double acneBasic = metric("basic:resolution=1024", "acne_rate").get<double>();
+    const double acneSlope = metric("slope-bias:resolution=1024", "acne_rate").get<double>();
+    const double ppSmall = metric("bias:bias=1", "peter_panning_rate").get<double>();
+    const double ppLarge = metric("bias:bias=300", "peter_panning_rate").get<double>();
+    const double p95Basic =
+        metric("basic:resolution=1024", "boundary_displacement_px")["p95"].get<double>();
+    const double p95Pcf =
+        metric("pcf:resolution=1024,kernel=5", "boundary_displacement_px")["p95"].get<double>();
+    std::printf(
+        "[ compare ] acne basic %.4f vs slope-bias %.4f; peter-panning bias=1 %.4f vs bias=300 "
+        "%.4f; "
+        "boundary p95 basic %.2f vs pcf %.2f px\n",
+        acneBasic, acneSlope, ppSmall, ppLarge, p95Basic, p95Pcf);
+    EXPECT_LT(acneSlope, acneBasic);
+    EXPECT_GT(ppLarge, ppSmall);
+    EXPECT_LT(p95Pcf, p95Basic);
+    std::filesystem::remove_all(out);
 }
 
 TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
