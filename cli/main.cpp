@@ -8,6 +8,7 @@
 #include "core/version.h"
 #include "oracle/trace_command.h"
 #include "raster_compare/compare_command.h"
+#include "raster_compare/gate_command.h"
 #include "raster_compare/gl_context.h"
 #include "raster_compare/raster_command.h"
 #include "raster_compare/technique.h"
@@ -111,6 +112,13 @@ int main(int argc, char** argv) {
                      "r of docs/metrics.md (default 2)")
         ->check(CLI::Range(0, 64));
 
+    so::GateOptions gate;
+    CLI::App* gateCmd = app.add_subcommand(
+        "gate", "limits on metrics.json as an exit code: 0 all hold, 1 a limit fails, 2 bad input");
+    gateCmd->add_option("metrics", gate.metricsPath, "metrics.json from compare")->required();
+    gateCmd->add_option("--limits", gate.limitsPath, "limits file (docs/gate.md)")->required();
+    gateCmd->add_option("--junit", gate.junitPath, "also write JUnit XML here");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -124,6 +132,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand(traceCmd)) return so::runTraceCommand(trace);
         if (app.got_subcommand(rasterCmd)) return so::runRasterCommand(raster);
         if (app.got_subcommand(compareCmd)) return so::runCompareCommand(compare);
+        if (app.got_subcommand(gateCmd)) return so::runGateCommand(gate);
     } catch (const so::GlUnavailable& e) {
         std::cerr << "error: no OpenGL: " << e.what() << std::endl;
         return 1;

@@ -1,10 +1,12 @@
 // The raster path against the oracle (ctest label "gl"; skipped with the reason where no EGL
 // display or GL 4.5 context can be had).
+#include <sys/wait.h>
 #include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <cstdlib>
 #include <memory>
@@ -16,6 +18,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "raster_compare/gate_command.h"
 #include "raster_compare/gl_context.h"
 #include "raster_compare/rasterizer.h"
 #include "raster_compare/technique.h"
@@ -439,6 +442,102 @@ TEST(Compare, EndToEndOnTheContactScene) {
     EXPECT_GT(ppLarge, ppSmall);
     EXPECT_LT(p95Pcf, p95Basic);
     std::filesystem::remove_all(out);
+}
+
+// A minimal well-formedness check: balanced tags, one root, quoted attributes.
+bool wellFormedXml(const std::string& x) {
+    std::vector<std::string> stack;
+    size_t i = x.find("?>");
+    if (x.rfind("<?xml", 0) != 0 || i == std::string::npos) return false;
+    int roots = 0;
+    for (i += 2; (i = x.find('<', i)) != std::string::npos;) {
+        const size_t end = x.find('>', i);
+        if (end == std::string::npos) return false;
+        std::string tag = x.substr(i + 1, end - i - 1);
+        if (std::count(tag.begin(), tag.end(), '"') % 2) return false;
+        if (tag[0] == '/') {
+            if (stack.empty() || stack.back() != tag.substr(1)) return false;
+            stack.pop_back();
+        } else if (tag.back() != '/') {
+            if (stack.empty()) ++roots;
+            stack.push_back(tag.substr(0, tag.find(' ')));
+        }
+        i = end + 1;
+    }
+    return stack.empty() && roots == 1;
+}
+
+int runCli(const std::string& args, std::string* output = nullptr) {
+    const std::string log = "/tmp/so_gate_" + std::to_string(::getpid()) + ".log";
+    const int status =
+        std::system((std::string(SO_CLI_PATH) + " " + args + " > " + log + " 2>&1").c_str());
+    if (output) {
+        std::ifstream in(log);
+        output->assign(std::istreambuf_iterator<char>(in), {});
+    }
+    std::filesystem::remove(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The shipped scenes, gated with the shipped example limits; and the gate's exit codes.
+TEST(Gate, ShippedScenesPassTheExampleLimitsAndTheExitCodesHold) {
+    REQUIRE_GL();
+    const std::string dir = "/tmp/so_gate_" + std::to_string(::getpid());
+    ASSERT_EQ(
+        runCli("compare " SO_SCENES_DIR
+               "/contact_box.scene.json --width 240 --height 180 --frames 1 --no-cache --out " +
+               dir +
+               " --technique basic --technique slope-bias --technique pcf:kernel=5 --technique "
+               "bias:bias=300"),
+        0);
+    std::string out;
+    // The example limits: everything but the large bias passes; it peter-pans.
+    EXPECT_EQ(
+        runCli("gate " + dir + "/metrics.json --limits " SO_SCENES_DIR "/limits.json --junit " +
+                   dir + "/gate.xml",
+               &out),
+        1)
+        << out;
+    EXPECT_NE(out.find("FAIL contact_box.scene.json key bias:bias=300 peter_panning_rate"),
+              std::string::npos)
+        << out;
+    // Every failing line is the large bias's (it peter-pans and its shadow edge is displaced);
+    // one line per failing limit, then the summary.
+    std::istringstream lines(out);
+    size_t failLines = 0;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("FAIL ", 0) != 0) continue;
+        ++failLines;
+        EXPECT_NE(line.find("bias:bias=300"), std::string::npos) << line;
+    }
+    EXPECT_NE(out.find(std::to_string(failLines) + " failed"), std::string::npos) << out;
+    std::ifstream xin(dir + "/gate.xml");
+    const std::string xml((std::istreambuf_iterator<char>(xin)), {});
+    EXPECT_TRUE(wellFormedXml(xml)) << xml;
+    EXPECT_NE(xml.find("<failure"), std::string::npos);
+    // Limits that hold: exit 0.
+    std::ofstream(dir + "/loose.json") << R"({"limits_format": 1, "default": {"acne_rate": 1.0}})";
+    EXPECT_EQ(runCli("gate " + dir + "/metrics.json --limits " + dir + "/loose.json", &out), 0)
+        << out;
+    // Bad input: exit 2 with one line naming the file and field.
+    std::ofstream(dir + "/typo.json") << R"({"limits_format": 1, "default": {"acne_rat": 0.1}})";
+    EXPECT_EQ(runCli("gate " + dir + "/metrics.json --limits " + dir + "/typo.json", &out), 2)
+        << out;
+    EXPECT_NE(out.find("typo.json: default.acne_rat: unknown metric"), std::string::npos) << out;
+    std::ofstream(dir + "/broken.json") << "{ not json";
+    EXPECT_EQ(runCli("gate " + dir + "/metrics.json --limits " + dir + "/broken.json", &out), 2)
+        << out;
+    EXPECT_EQ(runCli("gate " + dir + "/nope.json --limits " + dir + "/loose.json", &out), 2) << out;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Gate, GlobPatterns) {
+    EXPECT_TRUE(globMatch("*", "anything"));
+    EXPECT_TRUE(globMatch("pcf*", "pcf:kernel=5"));
+    EXPECT_TRUE(globMatch("contact_box*", "contact_box.scene.json"));
+    EXPECT_TRUE(globMatch("b?sic", "basic"));
+    EXPECT_FALSE(globMatch("pcf", "pcf:kernel=5"));
+    EXPECT_FALSE(globMatch("*.gltf", "scene.json"));
 }
 
 TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
