@@ -44,5 +44,8 @@ ChannelImage readExr(const std::string& path);
 // 8-bit sRGB PNG from linear RGB floats in [0,1] (interleaved, row 0 at the top).
 void writePngRgb(const std::string& path, int width, int height,
                  const std::vector<float>& linearRgb);
+// The same PNG in memory (for reports that embed their images).
+std::vector<unsigned char> encodePngRgb(int width, int height, const std::vector<float>& linearRgb);
+std::string base64(const std::vector<unsigned char>& bytes);
 
 }  // namespace so

@@ -52,4 +52,48 @@ void writePngRgb(const std::string& path, int width, int height,
     if (std::fclose(f) != 0) throwInputError(path, "", "cannot finish writing the file");
 }
 
+static void appendToVector(png_structp png, png_bytep data, png_size_t length) {
+    auto* out = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(png));
+    out->insert(out->end(), data, data + length);
+}
+
+std::vector<unsigned char> encodePngRgb(int width, int height,
+                                        const std::vector<float>& linearRgb) {
+    SO_CHECK_EQ(linearRgb.size(), size_t(width) * size_t(height) * 3);
+    std::vector<uint8_t> pixels(linearRgb.size());
+    for (size_t i = 0; i < linearRgb.size(); ++i) pixels[i] = toSrgb8(linearRgb[i]);
+    std::vector<unsigned char> out;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    SO_CHECK(png && info);
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        throwInputError("(memory)", "", "cannot encode PNG");
+    }
+    png_set_write_fn(png, &out, appendToVector, nullptr);
+    png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int y = 0; y < height; ++y)
+        png_write_row(png, pixels.data() + size_t(y) * size_t(width) * 3);
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return out;
+}
+
+std::string base64(const std::vector<unsigned char>& b) {
+    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string o;
+    o.reserve((b.size() + 2) / 3 * 4);
+    for (size_t i = 0; i < b.size(); i += 3) {
+        const uint32_t v = uint32_t(b[i]) << 16 | (i + 1 < b.size() ? uint32_t(b[i + 1]) << 8 : 0) |
+                           (i + 2 < b.size() ? uint32_t(b[i + 2]) : 0);
+        o += t[(v >> 18) & 63];
+        o += t[(v >> 12) & 63];
+        o += i + 1 < b.size() ? t[(v >> 6) & 63] : '=';
+        o += i + 2 < b.size() ? t[v & 63] : '=';
+    }
+    return o;
+}
+
 }  // namespace so

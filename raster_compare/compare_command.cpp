@@ -13,6 +13,7 @@
 #include "core/version.h"
 #include "raster_compare/gl_context.h"
 #include "raster_compare/metrics.h"
+#include "raster_compare/report.h"
 #include "raster_compare/technique.h"
 
 namespace so {
@@ -150,6 +151,9 @@ int runCompareCommand(const CompareOptions& options) {
     metricOptions.boundaryRadius = options.boundaryRadius;
     metricOptions.contactThreshold = options.contactThresholdRelative * extent;
     nlohmann::json results = nlohmann::json::array();
+    ReportInput report;
+    report.sceneFile = options.scenePath;
+    for (const Light& l : scene.lights) report.lights.push_back(l.name);
     std::ofstream csv(out / "metrics.csv");
     csv << "scene,light,technique,label,metric,value\n";
     for (size_t t = 0; t < specs.size(); ++t) {
@@ -163,6 +167,8 @@ int runCompareCommand(const CompareOptions& options) {
         std::ofstream(dir / "raster.json") << r.stats.dump(2) << "\n";
         metricOptions.filteredTechnique = technique.filtered();
         ChannelImage errors(r.image.width(), r.image.height());
+        ReportTechnique rt;
+        rt.label = specs[t].label;
         nlohmann::json lights = nlohmann::json::object();
         for (size_t li = 0; li < scene.lights.size(); ++li) {
             const Light& light = scene.lights[li];
@@ -175,6 +181,7 @@ int runCompareCommand(const CompareOptions& options) {
                           {"visibility_ms", rl["visibility_ms"]},
                           {"frame_ms", r.stats["timings"]["wall_ms"]}};
             lights[light.name] = lj;
+            rt.lights.push_back(lj);
             const std::vector<float>* planes[] = {&maps.acne,     &maps.peterPanning,
                                                   &maps.aliasing, &maps.bleeding,
                                                   &maps.penumbra, &maps.error};
@@ -184,6 +191,7 @@ int runCompareCommand(const CompareOptions& options) {
                 float* dst = errors.addChannel(light.name + "." + names[k]);
                 std::copy(planes[k]->begin(), planes[k]->end(), dst);
             }
+            rt.maps.push_back(std::move(maps));
             std::vector<std::pair<std::string, nlohmann::json>> rows;
             flatten(lj, "", rows);
             for (const auto& [metric, value] : rows)
@@ -192,6 +200,8 @@ int runCompareCommand(const CompareOptions& options) {
                     << ',' << (value.is_null() ? "" : value.dump()) << "\n";
         }
         writeExr((out / ("error_" + specs[t].fileLabel + ".exr")).string(), errors);
+        rt.image = std::move(r.image);
+        report.techniques.push_back(std::move(rt));
         nlohmann::json paramJson = nlohmann::json::object();
         for (const auto& [k, v] : params[t]) paramJson[k] = v;
         results.push_back({{"technique", specs[t].name},
@@ -217,6 +227,10 @@ int runCompareCommand(const CompareOptions& options) {
          {{"renderer", gl.renderer()}, {"version", gl.version()}, {"platform", gl.platform()}}},
         {"results", results}};
     std::ofstream(out / "metrics.json") << metrics.dump(2) << "\n";
+    report.oracle = std::move(oracleImage);
+    report.provenance = {
+        {"tool", metrics["tool"]}, {"scene_hash", scene.contentHash}, {"gl", metrics["gl"]}};
+    writeReport((out / "report.html").string(), report);
     std::cout << "compared " << options.scenePath << ": " << specs.size() << " techniques, oracle "
               << (cached ? "from the cache" : "traced") << "\n  " << (out / "metrics.json").string()
               << "\n  " << (out / "metrics.csv").string() << "\n";

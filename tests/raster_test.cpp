@@ -441,6 +441,24 @@ TEST(Compare, EndToEndOnTheContactScene) {
     EXPECT_LT(acneSlope, acneBasic);
     EXPECT_GT(ppLarge, ppSmall);
     EXPECT_LT(p95Pcf, p95Basic);
+    // The report: one file that needs nothing else, with the oracle, each technique and its error
+    // map inline, the chart and the table.
+    std::ifstream rin(out + "/report.html");
+    const std::string report((std::istreambuf_iterator<char>(rin)), {});
+    auto count = [&](const std::string& needle) {
+        size_t n = 0;
+        for (size_t at = report.find(needle); at != std::string::npos;
+             at = report.find(needle, at + 1))
+            ++n;
+        return n;
+    };
+    EXPECT_EQ(count("<img "), 1u + 2u * 5u);
+    EXPECT_EQ(count("src=\"data:image/png;base64,"), count("<img "));
+    EXPECT_EQ(count("http://") + count("https://") + count("<link") + count("src=\"/"), 0u)
+        << "self-contained";
+    EXPECT_EQ(count("<svg"), 1u);
+    EXPECT_EQ(count("<circle"), 5u);
+    EXPECT_NE(report.find("<table id=\"metrics\">"), std::string::npos);
     std::filesystem::remove_all(out);
 }
 
