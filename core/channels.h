@@ -21,9 +21,10 @@ inline constexpr const char* kPrimId = "id.prim";
 // Per-light channel suffixes: "<light name>.<suffix>".
 inline constexpr const char* kVisibility = "V";
 inline constexpr const char* kCosine = "cos";
-inline constexpr const char* kStdErr = "stderr";              // sampled area lights
-inline constexpr const char* kSpp = "spp";                    // sampled area lights
-inline constexpr const char* kOccluderDistance = "occ_dist";  // the contact effect
+inline constexpr const char* kStdErr = "stderr";                    // sampled area lights
+inline constexpr const char* kSpp = "spp";                          // sampled area lights
+inline constexpr const char* kOccluderDistance = "occ_dist";        // the contact effect
+inline constexpr const char* kPredictedAliasing = "aliasing_pred";  // raster.exr only
 
 std::string lightChannel(const std::string& lightName, const char* suffix);
 

@@ -220,6 +220,27 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
         if (bo[i] && std::isfinite(toRasterBoundary[i])) dist.push_back(toRasterBoundary[i]);
     }
     m.boundaryDisplacement.pixels = dist.size();
+    const std::string apName = ch::lightChannel(light, ch::kPredictedAliasing);
+    if (raster.has(apName)) {
+        const float* AP = raster.channel(apName);
+        double sum = 0.0;
+        for (size_t i = 0; i < n; ++i)
+            if (counted[i]) sum += AP[i];
+        m.predictedAliasingMean = m.counted ? sum / double(m.counted) : 0.0;
+        // Where the prediction says texels are large, raster shadow edges should stray further.
+        double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+        size_t k = 0;
+        for (size_t i = 0; i < n; ++i) {
+            if (!br[i] || !std::isfinite(toOracleBoundary[i]) || !(AP[i] > 0.0f)) continue;
+            const double x = std::log(double(AP[i])), y = toOracleBoundary[i];
+            sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+            ++k;
+        }
+        const double cov = sxy - sx * sy / double(std::max<size_t>(k, 1));
+        const double vx = sxx - sx * sx / double(std::max<size_t>(k, 1)),
+                     vy = syy - sy * sy / double(std::max<size_t>(k, 1));
+        if (k >= 10 && vx > 0.0 && vy > 0.0) m.aliasingCorrelation = cov / std::sqrt(vx * vy);
+    }
     if (!dist.empty()) {
         double s = 0.0;
         for (double d : dist) s += d;
@@ -256,7 +277,10 @@ nlohmann::json LightMetrics::toJson() const {
             {"aliasing_rate", aliasingRate},
             {"light_bleeding_rate", opt(lightBleedingRate)},
             {"penumbra_mae", opt(penumbraMae)},
-            {"penumbra_bias", opt(penumbraBias)}};
+            {"penumbra_bias", opt(penumbraBias)},
+            {"predicted_aliasing",
+             {{"mean", opt(predictedAliasingMean)},
+              {"correlation_with_boundary_error", opt(aliasingCorrelation)}}}};
 }
 
 }  // namespace so

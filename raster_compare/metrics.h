@@ -36,6 +36,9 @@ struct LightMetrics {
     double aliasingRate = 0.0;
     std::optional<double> lightBleedingRate;          // filtered techniques only
     std::optional<double> penumbraMae, penumbraBias;  // area lights only (oracle stderr present)
+    // With the raster's NAME.aliasing_pred: its mean over counted pixels, and the Pearson
+    // correlation of its log with the boundary displacement at the raster's boundary pixels.
+    std::optional<double> predictedAliasingMean, aliasingCorrelation;
     nlohmann::json toJson() const;
 };
 

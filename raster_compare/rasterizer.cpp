@@ -236,7 +236,7 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
         GlTexture map;
         std::vector<GlFramebuffer> mapFbos;
         GlProgram visProg;
-        GlTexture visTex;
+        GlTexture visTex, aliasTex;
         GlFramebuffer visFbo;
         // Filtered techniques: moments rendered per face, blurred twice into `map`.
         GlProgram momentsProg;
@@ -327,7 +327,14 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
         lp.visTex = makeTarget(GL_R32F);
         lp.visFbo = makeFramebuffer();
         glNamedFramebufferTexture(lp.visFbo.get(), GL_COLOR_ATTACHMENT0, lp.visTex.get(), 0);
+        lp.aliasTex = makeTarget(GL_R32F);
+        glNamedFramebufferTexture(lp.visFbo.get(), GL_COLOR_ATTACHMENT1, lp.aliasTex.get(), 0);
+        const GLenum visBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(lp.visFbo.get(), 2, visBuffers);
         glNamedFramebufferTexture(lp.visFbo.get(), GL_DEPTH_ATTACHMENT, cameraDepth.get(), 0);
+        setFloat(
+            vp, "u_pixelScale",
+            2.0 * std::tan(0.5 * camDesc.vfovDeg * 3.14159265358979323846 / 180.0) / double(H));
         passes.push_back(std::move(lp));
     }
 
@@ -406,6 +413,7 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
             timer.begin(lp.light->name + ".visibility");
             glBindFramebuffer(GL_FRAMEBUFFER, lp.visFbo.get());
             glClearNamedFramebufferfv(lp.visFbo.get(), GL_COLOR, 0, zero4);
+            glClearNamedFramebufferfv(lp.visFbo.get(), GL_COLOR, 1, zero4);
             glUseProgram(lp.visProg.get());
             glBindTextureUnit(0, lp.map.get());
             drawScene(lp.visProg.get(), false);
@@ -464,10 +472,15 @@ RasterResult renderRaster(const Scene& scene, const ShadowTechnique& technique,
     for (LightPass& lp : passes) {
         const std::vector<float> vis = read(lp.visTex.get(), GL_RED, 1);
         float* V = img.addChannel(ch::lightChannel(lp.light->name, ch::kVisibility));
+        const std::vector<float> alias = read(lp.aliasTex.get(), GL_RED, 1);
+        float* AP = img.addChannel(ch::lightChannel(lp.light->name, ch::kPredictedAliasing));
         for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x)
-                V[size_t(y) * size_t(W) + size_t(x)] =
-                    vis[size_t(H - 1 - y) * size_t(W) + size_t(x)];
+            for (int x = 0; x < W; ++x) {
+                const size_t src = size_t(H - 1 - y) * size_t(W) + size_t(x),
+                             dst = size_t(y) * size_t(W) + size_t(x);
+                V[dst] = vis[src];
+                AP[dst] = alias[src];
+            }
         nlohmann::json faces = nlohmann::json::array();
         const glm::dmat4 lsFromWs = glm::inverse(wsFromLs);
         for (int f = 0; f < lp.cam.faces; ++f) {

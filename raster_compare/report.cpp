@@ -73,6 +73,21 @@ std::vector<float> errorMap(const ChannelImage& oracle, const ErrorMaps& m,
     return rgb;
 }
 
+// Predicted aliasing on a log ramp: blue where a texel is smaller than a pixel, white at 1, red
+// where it covers several pixels (saturating at 1/8 and 8).
+std::vector<float> aliasingMap(const ChannelImage& raster, const std::string& light) {
+    const float* AP = raster.channel(ch::lightChannel(light, ch::kPredictedAliasing));
+    std::vector<float> rgb(raster.pixelCount() * 3, 0.05f);
+    for (size_t i = 0; i < raster.pixelCount(); ++i) {
+        if (!(AP[i] > 0.0f)) continue;
+        const float t = std::clamp(std::log2(AP[i]) / 3.0f, -1.0f, 1.0f);
+        rgb[3 * i] = t > 0 ? 1.0f : 1.0f + t;
+        rgb[3 * i + 1] = 1.0f - std::fabs(t);
+        rgb[3 * i + 2] = t < 0 ? 1.0f : 1.0f - t;
+    }
+    return rgb;
+}
+
 std::string num(const nlohmann::json& v, int digits = 4) {
     if (!v.is_number()) return "–";
     char buf[32];
@@ -195,6 +210,14 @@ footer{margin-top:32px;font-size:12px;color:#666}
               << imgTag(w, h, errorMap(in.oracle, t.maps[li], light), t.label + " errors")
               << "<p>errors of " << html(t.label) << ": mae " << num(t.lights[li]["mae"])
               << "</p></div>";
+            if (t.image.has(ch::lightChannel(light, ch::kPredictedAliasing))) {
+                const nlohmann::json& pa = t.lights[li]["predicted_aliasing"];
+                o << "<div class=\"card\">"
+                  << imgTag(w, h, aliasingMap(t.image, light), t.label + " predicted aliasing")
+                  << "<p>predicted aliasing (texel / pixel footprint; blue &lt; 1 &lt; red): mean "
+                  << num(pa["mean"], 3) << ", correlation with boundary error "
+                  << num(pa["correlation_with_boundary_error"], 2) << "</p></div>";
+            }
         }
         o << "</div><h3>Error against time</h3>" << chart(in, li);
     }

@@ -144,6 +144,31 @@ TEST(Metrics, AreaLightIntervalsAndPenumbraBias) {
     EXPECT_GT(*m.penumbraBias, 0.04) << "too hard is positive";
 }
 
+// Where the prediction says texels are larger, the shadow edge strays further: positive
+// correlation; the opposite prediction gives a negative one.
+TEST(Metrics, PredictedAliasingCorrelatesWithBoundaryDisplacement) {
+    for (bool agree : {true, false}) {
+        ChannelImage o = flatImage(96, 64), r = flatImage(96, 64);
+        float* AP = r.addChannel(ch::lightChannel("L", ch::kPredictedAliasing), 0.0f);
+        for (int y = 0; y < 64; ++y) {
+            const int shift = y < 32 ? 1 : 6;
+            for (int x = 0; x < 96; ++x) {
+                at(o, ch::kVisibility, x, y) = x < 40 ? 1.0f : 0.0f;
+                at(r, ch::kVisibility, x, y) = x < 40 + shift ? 1.0f : 0.0f;
+                AP[size_t(y) * 96 + size_t(x)] = float(agree ? shift : 7 - shift);
+            }
+        }
+        LightMetrics m = computeLightMetrics(o, r, "L", {});
+        ASSERT_TRUE(m.aliasingCorrelation && m.predictedAliasingMean);
+        if (agree) {
+            EXPECT_GT(*m.aliasingCorrelation, 0.9);
+        } else {
+            EXPECT_LT(*m.aliasingCorrelation, -0.9);
+        }
+        EXPECT_DOUBLE_EQ(*m.predictedAliasingMean, 3.5);
+    }
+}
+
 TEST(Metrics, ExclusionsAreCountedByReason) {
     ChannelImage o = flatImage(10, 10), r = flatImage(10, 10);
     o.channel(ch::kHit)[0] = 0.0f;                             // background

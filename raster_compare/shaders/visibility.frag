@@ -23,7 +23,11 @@ uniform samplerCube u_map;
 #else
 uniform sampler2D u_map;
 #endif
+uniform float u_pixelScale;  // camera pixel size per unit of distance (2 tan(vfov / 2) / height)
 layout(location = 0) out float o_visibility;
+// Predicted aliasing (Lloyd et al.): the shadow-map texel's footprint on the receiver over the
+// camera pixel's footprint there; > 1 means a texel covers more than a pixel.
+layout(location = 1) out float o_aliasing;
 
 #ifndef PCF_RADIUS
 #define PCF_RADIUS 0
@@ -172,6 +176,9 @@ void main() {
     vec3 l = normalize(u_lsLightPosition - p);
 #endif
     float ndotl = dot(n, l);
+    vec3 toEye = u_lsEye - p;
+    float pixel = length(toEye) * u_pixelScale / max(abs(dot(n, normalize(toEye))), 1e-3);
+    o_aliasing = 0.0;
     // The oracle's conventions: facing away, or outside a spot's cone, is unlit.
     if (ndotl <= 0.0) {
         o_visibility = 0.0;
@@ -184,6 +191,7 @@ void main() {
     }
 #endif
     float texel = texelWorld(receiverDepth(p));
+    o_aliasing = (texel / max(ndotl, 1e-3)) / pixel;
     vec3 q = p;
 #ifdef NORMAL_OFFSET_K
     q += n * (NORMAL_OFFSET_K * texel * (1.0 - ndotl));
