@@ -574,6 +574,26 @@ TEST(Gate, ShippedScenesPassTheExampleLimits) {
     std::filesystem::remove_all(dir);
 }
 
+// The predicted aliasing is texel over pixel footprint: a map with 4x fewer texels per side gives
+// exactly 4x the prediction on every pixel.
+TEST(Raster, PredictedAliasingScalesWithResolution) {
+    REQUIRE_GL();
+    Scene s = loadShipped("spot_objects", 160, 120);
+    ChannelImage fine = raster(s, "slope-bias", {"resolution=2048"}),
+                 coarse = raster(s, "slope-bias", {"resolution=512"});
+    for (const Light& l : s.lights) {
+        const float* a = fine.channel(ch::lightChannel(l.name, ch::kPredictedAliasing));
+        const float* b = coarse.channel(ch::lightChannel(l.name, ch::kPredictedAliasing));
+        size_t n = 0;
+        for (size_t i = 0; i < fine.pixelCount(); ++i) {
+            if (!(a[i] > 0.0f)) continue;
+            ++n;
+            ASSERT_NEAR(b[i] / a[i], 4.0f, 1e-4f) << l.name << " pixel " << i;
+        }
+        EXPECT_GT(n, 5000u) << l.name;
+    }
+}
+
 TEST(Gate, GlobPatterns) {
     EXPECT_TRUE(globMatch("*", "anything"));
     EXPECT_TRUE(globMatch("pcf*", "pcf:kernel=5"));
