@@ -13,6 +13,14 @@
 #include "raster_compare/raster_command.h"
 #include "raster_compare/technique.h"
 
+// --width and --height, the same for every subcommand that renders.
+static void addImageSize(CLI::App* cmd, int& width, int& height) {
+    cmd->add_option("--width", width, "image width (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", height, "image height (default: the scene camera's)")
+        ->check(CLI::Range(1, 16384));
+}
+
 int main(int argc, char** argv) {
     CLI::App app{"shadow-oracle: how wrong are your real-time shadows?"};
     app.require_subcommand(1);
@@ -24,11 +32,7 @@ int main(int argc, char** argv) {
         "trace", "ground-truth shadows with Embree: oracle.exr, oracle.json, previews");
     traceCmd->add_option("scene", trace.scenePath, "scene file (.json, .gltf or .glb)")->required();
     traceCmd->add_option("--out", trace.outDir, "output folder (created if missing)")->required();
-    traceCmd->add_option("--width", trace.oracle.width, "image width (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
-    traceCmd
-        ->add_option("--height", trace.oracle.height, "image height (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
+    addImageSize(traceCmd, trace.oracle.width, trace.oracle.height);
     traceCmd->add_option("--threads", trace.oracle.threads, "worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     traceCmd->add_option("--seed", trace.oracle.area.seed,
@@ -65,12 +69,7 @@ int main(int argc, char** argv) {
         ->required();
     rasterCmd->add_option("--set", raster.settings,
                           "technique parameter key=value (repeatable; see docs/techniques.md)");
-    rasterCmd
-        ->add_option("--width", raster.raster.width, "image width (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
-    rasterCmd
-        ->add_option("--height", raster.raster.height, "image height (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
+    addImageSize(rasterCmd, raster.raster.width, raster.raster.height);
     rasterCmd
         ->add_option("--frames", raster.raster.frames, "timed frames, median reported (default 5)")
         ->check(CLI::Range(1, 1000));
@@ -84,13 +83,7 @@ int main(int argc, char** argv) {
         ->required();
     compareCmd->add_option("--technique", compare.techniques, "NAME[:key=value,...] (repeatable)")
         ->required();
-    compareCmd
-        ->add_option("--width", compare.raster.width, "image width (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
-    compareCmd
-        ->add_option("--height", compare.raster.height,
-                     "image height (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
+    addImageSize(compareCmd, compare.raster.width, compare.raster.height);
     compareCmd
         ->add_option("--frames", compare.raster.frames, "timed frames per technique (default 5)")
         ->check(CLI::Range(1, 1000));
