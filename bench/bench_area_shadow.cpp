@@ -131,18 +131,10 @@ int main(int argc, char** argv) {
         }
         std::vector<Packet> work;
         auto runPlain = [&] {
-            arena.execute([&] {
-                tbb::parallel_for(tbb::blocked_range<size_t>(0, work.size(), 64),
-                                  [&](const tbb::blocked_range<size_t>& r) {
-                                      setEmbreeFloatMode();
-                                      RTCIntersectContext ctx;
-                                      rtcInitIntersectContext(&ctx);
-                                      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-                                      for (size_t i = r.begin(); i != r.end(); ++i)
-                                          rtcOccluded16(work[i].valid, accel.rtcScene(), &ctx,
-                                                        &work[i].ray);
-                                  });
-            });
+            forEachWithContext(
+                arena, work.size(), 64, true, [&](RTCIntersectContext& ctx, size_t i) {
+                    rtcOccluded16(work[i].valid, accel.rtcScene(), &ctx, &work[i].ray);
+                });
         };
         std::vector<double> tO, tP, ratio;
         for (int r = 0; r < reps; ++r) {

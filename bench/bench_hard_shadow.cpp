@@ -115,34 +115,17 @@ int main(int argc, char** argv) {
         // Each timed loop starts from a fresh copy of its rays (Embree overwrites tfar), made
         // outside the timing.
         auto runOcc1 = [&] {
-            arena.execute([&] {
-                tbb::parallel_for(tbb::blocked_range<size_t>(0, rays, 1024),
-                                  [&](const tbb::blocked_range<size_t>& r) {
-                                      setEmbreeFloatMode();
-                                      RTCIntersectContext ctx;
-                                      rtcInitIntersectContext(&ctx);
-                                      for (size_t i = r.begin(); i != r.end(); ++i)
-                                          rtcOccluded1(accel.rtcScene(), &ctx, &work1[i]);
-                                  });
+            forEachWithContext(arena, rays, 1024, false, [&](RTCIntersectContext& ctx, size_t i) {
+                rtcOccluded1(accel.rtcScene(), &ctx, &work1[i]);
             });
         };
         auto runOcc16 = [&] {
-            arena.execute([&] {
-                tbb::parallel_for(tbb::blocked_range<size_t>(0, work16.size(), 64),
-                                  [&](const tbb::blocked_range<size_t>& r) {
-                                      setEmbreeFloatMode();
-                                      RTCIntersectContext ctx;
-                                      rtcInitIntersectContext(&ctx);
-                                      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-                                      for (size_t p = r.begin(); p != r.end(); ++p) {
-                                          bool any = false;
-                                          for (int k = 0; k < 16; ++k) any |= valid[p][k] != 0;
-                                          if (any)
-                                              rtcOccluded16(valid[p].data(), accel.rtcScene(), &ctx,
-                                                            &work16[p]);
-                                      }
-                                  });
-            });
+            forEachWithContext(
+                arena, work16.size(), 64, true, [&](RTCIntersectContext& ctx, size_t p) {
+                    bool any = false;
+                    for (int k = 0; k < 16; ++k) any |= valid[p][k] != 0;
+                    if (any) rtcOccluded16(valid[p].data(), accel.rtcScene(), &ctx, &work16[p]);
+                });
         };
         // Interleaved, so that whatever else the machine does falls on all three alike; the ratio
         // is taken per repetition and its median reported.

@@ -5,6 +5,13 @@
 #include <chrono>
 #include <vector>
 
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "oracle/embree_handles.h"
+
 namespace so::bench {
 
 using Clock = std::chrono::steady_clock;
@@ -24,6 +31,23 @@ double timeOnce(F&& f) {
     const auto t0 = Clock::now();
     f();
     return secondsSince(t0);
+}
+
+// The scaffolding of the plain Embree baselines: items 0 .. n-1 in parallel inside `arena`, each
+// task with the float mode Embree asks for and its own intersect context, so that the loops being
+// compared differ only in the Embree call `body(ctx, i)` makes.
+template <class F>
+void forEachWithContext(tbb::task_arena& arena, size_t n, size_t grain, bool coherent, F&& body) {
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain),
+                          [&](const tbb::blocked_range<size_t>& r) {
+                              setEmbreeFloatMode();
+                              RTCIntersectContext ctx;
+                              rtcInitIntersectContext(&ctx);
+                              if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                              for (size_t i = r.begin(); i != r.end(); ++i) body(ctx, i);
+                          });
+    });
 }
 
 }  // namespace so::bench
