@@ -6,10 +6,12 @@
 // On the generated scene of bench_scene.h (167,936 triangles), per light (rect, disk, sphere):
 //   oracle    traceAreaShadows at a fixed S spp: per-pixel classification, Sobol sampling of the
 //             light, 16-ray packets, the ratio estimator and its interval
-//   occ16     rtcOccluded16 over exactly those packets, prepared beforehand
-// interleaved R times (median of per-run ratios), and a check that the plain loop's hits give the
-// oracle's V. Then, at M x M pixels, the adaptive run (target 0.01) against a uniform run with as
-// many samples per pixel as the adaptive run's hardest pixel.
+//   occ16     rtcOccluded16 over exactly those packets, prepared beforehand, on a plain Embree
+//             scene (no origin-triangle filter: the oracle's price includes it)
+// interleaved R times (median of per-run ratios), and a count of the pixels where the plain loop's
+// hits do not give the oracle's V (self-intersections the filter rejects). Then, at M x M pixels,
+// the adaptive run (target 0.01) against a uniform run with as many samples per pixel as the
+// adaptive run's hardest pixel.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -75,6 +77,7 @@ int main(int argc, char** argv) {
                 scene.stats.triangles, size, size, spp, threads, reps);
     EmbreeDevice device("threads=0");
     Accel accel(scene, device);
+    Accel plain(scene, device, /*originFilter=*/false);
     Camera camera(scene.camera);
     tbb::task_arena arena(threads);
     SurfaceBuffer sb;
@@ -133,7 +136,7 @@ int main(int argc, char** argv) {
         auto runPlain = [&] {
             forEachWithContext(
                 arena, work.size(), 64, true, [&](RTCIntersectContext& ctx, size_t i) {
-                    rtcOccluded16(work[i].valid, accel.rtcScene(), &ctx, &work[i].ray);
+                    rtcOccluded16(work[i].valid, plain.rtcScene(), &ctx, &work[i].ray);
                 });
         };
         std::vector<double> tO, tP, ratio;
@@ -170,10 +173,11 @@ int main(int argc, char** argv) {
             "  rtcOccluded16 %7.2f Mrays/s   oracle / occluded16 = %.2f (median of per-run ratios; "
             "target >= 0.80)\n",
             mP, median(ratio));
-        std::printf("  same answers: %s (%zu pixels differ, %llu vs %llu rays)\n",
-                    mismatches == 0 && rays == st.raysTraced ? "yes" : "NO", mismatches,
-                    (unsigned long long)rays, (unsigned long long)st.raysTraced);
-        failures += mismatches != 0 || rays != st.raysTraced;
+        std::printf(
+            "  pixels whose V the origin filter changes: %zu; same rays: %s (%llu vs %llu)\n",
+            mismatches, rays == st.raysTraced ? "yes" : "NO", (unsigned long long)rays,
+            (unsigned long long)st.raysTraced);
+        failures += rays != st.raysTraced;
     }
 
     // Adaptive against uniform at the same worst-pixel half-width, on a smaller image.

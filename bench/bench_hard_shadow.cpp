@@ -8,7 +8,10 @@
 //            packets over 4x4 tiles, writing V and cos)
 //   occ1     rtcOccluded1 over the same rays, prepared beforehand
 //   occ16    rtcOccluded16 over the same rays in the same 4x4-tile packets, prepared beforehand
-// and checks that all three give the same visibility for every ray. Not a test: it prints figures.
+// The two baselines trace a plain Embree scene (no filter), so the oracle's price includes its
+// origin-triangle filter (accel.h); the rays whose answer that filter changes are counted (they
+// are the self-intersections a bare loop with the oracle's tiny offset would get). Not a test: it
+// prints figures.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
                 scene.stats.triangles, size, size, threads, EmbreeDevice::version().c_str(), reps);
     EmbreeDevice device("threads=0");
     Accel accel(scene, device);
+    Accel plain(scene, device, /*originFilter=*/false);
     Camera camera(scene.camera);
     tbb::task_arena arena(threads);
     SurfaceBuffer sb;
@@ -116,7 +120,7 @@ int main(int argc, char** argv) {
         // outside the timing.
         auto runOcc1 = [&] {
             forEachWithContext(arena, rays, 1024, false, [&](RTCIntersectContext& ctx, size_t i) {
-                rtcOccluded1(accel.rtcScene(), &ctx, &work1[i]);
+                rtcOccluded1(plain.rtcScene(), &ctx, &work1[i]);
             });
         };
         auto runOcc16 = [&] {
@@ -124,7 +128,7 @@ int main(int argc, char** argv) {
                 arena, work16.size(), 64, true, [&](RTCIntersectContext& ctx, size_t p) {
                     bool any = false;
                     for (int k = 0; k < 16; ++k) any |= valid[p][k] != 0;
-                    if (any) rtcOccluded16(valid[p].data(), accel.rtcScene(), &ctx, &work16[p]);
+                    if (any) rtcOccluded16(valid[p].data(), plain.rtcScene(), &ctx, &work16[p]);
                 });
         };
         // Interleaved, so that whatever else the machine does falls on all three alike; the ratio
@@ -160,7 +164,7 @@ int main(int argc, char** argv) {
                     1e3 * median(tSetup), 1e3 * tOracle, 1e3 * t16);
         runOracle();
 
-        // Same rays, same answers.
+        // Same rays; answers differ only where the origin filter rejected a self-intersection.
         size_t mismatch1 = 0, mismatch16 = 0;
         for (size_t j = 0; j < rays; ++j)
             mismatch1 += (work1[j].tfar >= 0.0f) != (V[singlePixel[j]] == 1.0f);
@@ -187,9 +191,10 @@ int main(int argc, char** argv) {
             "  rtcOccluded16 %7.2f Mrays/s   oracle / occluded16 = %.2f (median of per-run ratios; "
             "target >= 0.80)\n",
             m16, median(r16));
-        std::printf("  same answers: %s (%zu / %zu mismatches)\n",
-                    mismatch1 + mismatch16 == 0 ? "yes" : "NO", mismatch1, mismatch16);
-        if (st.traced != rays || mismatch1 || mismatch16) return 1;
+        std::printf(
+            "  answers changed by the origin filter: %zu (occluded1), %zu (occluded16) of %zu\n",
+            mismatch1, mismatch16, rays);
+        if (st.traced != rays) return 1;
     }
     return 0;
 }

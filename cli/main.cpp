@@ -55,6 +55,15 @@ int main(int argc, char** argv) {
     sppOpt->excludes("--max-spp");
     bool quiet = false;
     traceCmd->add_flag("--quiet", quiet, "no progress output");
+    traceCmd
+        ->add_option("--verify", trace.oracle.verify.pixels,
+                     "re-trace N random pixels per light (plus up to N near the horizon) with an "
+                     "independent exact tracer; exit 3 on any disagreement")
+        ->check(CLI::Range(0, 1 << 20));
+    traceCmd
+        ->add_option("--verify-samples", trace.oracle.verify.areaSamples,
+                     "reference samples per area-light pixel checked (default 4096)")
+        ->check(CLI::Range(64, 1 << 20));
 
     so::RasterCommandOptions raster;
     std::string techniqueHelp;
@@ -96,6 +105,11 @@ int main(int argc, char** argv) {
         ->add_option("--target-error", compare.oracle.area.targetError,
                      "oracle area-light target (default 0.01)")
         ->check(CLI::Range(1e-4, 0.5));
+    compareCmd
+        ->add_option("--verify", compare.oracle.verify.pixels,
+                     "re-trace N random pixels per light (plus up to N near the horizon) of the "
+                     "oracle with an independent exact tracer; exit 3 on any disagreement")
+        ->check(CLI::Range(0, 1 << 20));
     compareCmd->add_option("--cache", compare.cacheDir,
                            "oracle cache folder (default: $XDG_CACHE_HOME/shadow-oracle)");
     bool noCache = false;

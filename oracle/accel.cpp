@@ -1,12 +1,28 @@
 #include "oracle/accel.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/error.h"
 
 namespace so {
 
-Accel::Accel(const Scene& scene, const EmbreeDevice& device)
+namespace {
+
+// Rejects a candidate hit on the triangle the ray leaves from. The mesh's first global index is
+// the geometry's user data; the ray's id holds the origin triangle's global index.
+void skipOriginTriangle(const RTCFilterFunctionNArguments* args) {
+    const unsigned base = unsigned(reinterpret_cast<uintptr_t>(args->geometryUserPtr));
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const unsigned origin = RTCRayN_id(args->ray, args->N, i);
+        if (origin == base + RTCHitN_primID(args->hit, args->N, i)) args->valid[i] = 0;
+    }
+}
+
+}  // namespace
+
+Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
     : frame_(LocalFrame::fit(scene.wsBounds)), rtcScene_(device) {
     RTCScene s = rtcScene_.get();
     // Robust: watertight along shared edges, which is what a ground truth needs (contact lines,
@@ -14,8 +30,12 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device)
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
     meshes_.reserve(scene.meshes.size());
+    uint64_t base = 0;
     for (size_t id = 0; id < scene.meshes.size(); ++id) {
         const MeshPrimitive& mesh = scene.meshes[id];
+        // The loader caps the total at 2^28 triangles: the global index fits a ray id.
+        SO_CHECK(base + mesh.triangleCount() < uint64_t(kNoOriginTriangle));
+        meshBase_.push_back(unsigned(base));
         MeshData data{{}, mesh.indices};
         data.lsPositions.reserve(mesh.wsPositions.size());
         for (const glm::dvec3& ws : mesh.wsPositions)
@@ -39,10 +59,16 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device)
                                     3 * sizeof(uint32_t), mesh.triangleCount()));
         std::copy(mesh.indices.begin(), mesh.indices.end(), ib);
         rtcSetGeometryMask(g, 0xFFFFFFFFu);
+        if (originFilter) {
+            rtcSetGeometryUserData(g, reinterpret_cast<void*>(uintptr_t(base)));
+            rtcSetGeometryOccludedFilterFunction(g, skipOriginTriangle);
+            rtcSetGeometryIntersectFilterFunction(g, skipOriginTriangle);
+        }
         rtcCommitGeometry(g);
         rtcAttachGeometryByID(s, g, unsigned(id));
         rtcReleaseGeometry(g);  // the scene holds its own reference
         meshes_.push_back(std::move(data));
+        base += mesh.triangleCount();
     }
     rtcCommitScene(s);
 }

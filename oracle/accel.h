@@ -1,8 +1,14 @@
 // The Embree scene the oracle traces: built once from the scene model, in the local frame
 // (local_frame.h), robust mode, one Embree geometry per drawn mesh primitive with geomID = id.mesh.
 // Keeps the double-precision local vertices so hit points and normals are rebuilt exactly.
+//
+// Shadow rays skip the triangle they leave from: every geometry carries an occlusion and an
+// intersection filter that rejects a hit on the triangle whose global index is the ray's `id`
+// (kNoOriginTriangle: skip nothing). With that second line of defence the origin needs only a
+// tiny offset (offset.h), so the ray stays where it should be along its whole length.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -13,9 +19,13 @@
 
 namespace so {
 
+// The ray `id` of rays that leave from no surface (primary rays).
+inline constexpr unsigned kNoOriginTriangle = 0xFFFFFFFFu;
+
 class Accel {
   public:
-    Accel(const Scene& scene, const EmbreeDevice& device);
+    // originFilter = false builds the plain Embree scene the benchmarks' baselines trace.
+    Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter = true);
     Accel(const Accel&) = delete;
     Accel& operator=(const Accel&) = delete;
 
@@ -29,6 +39,14 @@ class Accel {
         b = m.lsPositions[m.indices[3 * prim + 1]];
         c = m.lsPositions[m.indices[3 * prim + 2]];
     }
+    // The ray id that makes a shadow ray skip triangle `prim` of mesh `mesh` (< 2^28 by the
+    // loader's limits, so it never equals kNoOriginTriangle).
+    unsigned originId(unsigned mesh, unsigned prim) const { return meshBase_[mesh] + prim; }
+    const std::vector<glm::dvec3>& lsPositions(unsigned mesh) const {
+        return meshes_[mesh].lsPositions;
+    }
+    const std::vector<uint32_t>& indices(unsigned mesh) const { return meshes_[mesh].indices; }
+    size_t meshCount() const { return meshes_.size(); }
 
   private:
     struct MeshData {
@@ -38,6 +56,7 @@ class Accel {
     LocalFrame frame_;
     EmbreeScene rtcScene_;
     std::vector<MeshData> meshes_;
+    std::vector<unsigned> meshBase_;  // global index of each mesh's first triangle
 };
 
 }  // namespace so

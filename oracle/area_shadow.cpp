@@ -107,7 +107,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                         ray.time[k] = 0.0f;
                         ray.mask[k] = 0xFFFFFFFFu;
                         ray.flags[k] = 0;
-                        ray.id[k] = unsigned(pixel);
+                        ray.id[k] = sb.originId[s];  // the filter skips this triangle
                     }
                     double sw = 0, swv = 0, sw2 = 0, sw2v = 0;
                     uint64_t nonZero = 0;

@@ -106,6 +106,7 @@ ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLi
     s.kind = ps.kind[k];
     s.cosine = ps.cosine[k];
     s.org = sb.lsRayOrigin(slot);
+    s.originId = sb.originId[slot];
     s.dir = {ps.dirX[k], ps.dirY[k], ps.dirZ[k]};
     s.tfar = ps.tfar[k];
     return s;
@@ -160,6 +161,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
                             ray.time[k] = 0.0f;
                             ray.mask[k] = 0xFFFFFFFFu;
                             ray.flags[k] = 0;
+                            ray.id[k] = sb.originId[base + size_t(k)];  // skipped by the filter
                         }
                         if (occDist) {
                             // The contact effect: the closest occluder, not just any.

@@ -51,6 +51,27 @@ void fillGeometryChannels(const SurfaceBuffer& sb, const Accel& accel, ChannelIm
     }
 }
 
+nlohmann::json offsetPolicyJson(OffsetPolicy policy, const LocalFrame& frame,
+                                const SurfaceBuffer& sb, double sceneExtent) {
+    const double blind = frame.wsLength(sb.lsMaxOffset);
+    const std::string method =
+        policy == OffsetPolicy::ErrorBound
+            ? "error bound: the hit point rebuilt in double on the double triangle, the origin "
+              "moved 16 * 2^-24 along the geometric normal in the recentred frame scaled by "
+              "2^-exponent, and the triangle the ray leaves from skipped by an Embree filter"
+            : "legacy: Waechter-Binder integer-ulp offset, 256 ulp along the geometric normal "
+              "(test only)";
+    return {{"method", method},
+            {"skips_origin_triangle", true},
+            {"max_blind_distance", blind},
+            {"max_blind_distance_relative", sceneExtent > 0 ? blind / sceneExtent : 0.0},
+            {"note",
+             "the shadow ray starts this far from the surface along the normal: an occluder that "
+             "comes closer to the ray than that, at the surface or anywhere along it, may be "
+             "missed; rays to a light stop a margin of 256 ulp of the light's coordinates short of "
+             "it"}};
+}
+
 }  // namespace
 
 CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
@@ -88,10 +109,20 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     SurfaceBuffer sb;
     {
         Progress progress("primary rays", pixels, options.progress);
-        arena.execute([&] { sb = tracePrimary(*accel, camera, &progress); });
+        arena.execute([&] { sb = tracePrimary(*accel, camera, &progress, options.offsetPolicy); });
     }
     phases["primary"] = secondsSince(t0);
     fillGeometryChannels(sb, *accel, result.image);
+
+    // The independent re-trace, built once for all lights (verify.h).
+    std::unique_ptr<Verifier> verifier;
+    double verifyBuildSeconds = 0.0;
+    if (options.verify.pixels > 0) {
+        t0 = Clock::now();
+        verifier = std::make_unique<Verifier>(scene, accel->frame(), camera, options.verify,
+                                              options.area.seed);
+        verifyBuildSeconds = secondsSince(t0);
+    }
 
     nlohmann::json lights = nlohmann::json::array();
     double shadowSeconds = 0.0;
@@ -200,6 +231,16 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
             }
         }
         lights.push_back(lj);
+        if (verifier) {
+            const float* stderr_ =
+                sampled ? result.image.channel(ch::lightChannel(light.name, ch::kStdErr)) : nullptr;
+            const float* spp =
+                sampled ? result.image.channel(ch::lightChannel(light.name, ch::kSpp)) : nullptr;
+            arena.execute([&] {
+                result.verification.push_back(
+                    verifier->verifyLight(light, uint32_t(li), sampled, sb, V, stderr_, spp));
+            });
+        }
     }
     phases["shadow"] = shadowSeconds;
 
@@ -218,17 +259,7 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
         {"frame",
          {{"ws_center", {frame.wsCenter.x, frame.wsCenter.y, frame.wsCenter.z}},
           {"scale_exponent", frame.exponent}}},
-        {"offset_policy",
-         {{"method",
-           "Waechter-Binder integer-ulp offset (Ray Tracing Gems ch. 6): 256 ulp along the "
-           "geometric "
-           "normal (1/65536 linear below |x| = 1/32), in the recentred frame scaled by "
-           "2^-exponent; "
-           "rays to a light stop the same margin short of it"},
-          {"max_blind_distance", frame.wsLength(sb.lsMaxOffset)},
-          {"max_blind_distance_relative",
-           sceneExtent > 0 ? frame.wsLength(sb.lsMaxOffset) / sceneExtent : 0.0},
-          {"note", "occluders closer to a surface than its blind distance are not seen"}}},
+        {"offset_policy", offsetPolicyJson(options.offsetPolicy, frame, sb, sceneExtent)},
         {"embree",
          {{"version", EmbreeDevice::version()},
           {"scene_flags", "robust"},
@@ -237,6 +268,13 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
          {{"version",
            std::to_string(TBB_VERSION_MAJOR) + "." + std::to_string(TBB_VERSION_MINOR)}}},
     };
+    if (verifier) {
+        result.stats["verify"] = verificationJson(result.verification, options.verify,
+                                                  accel->frame(), verifyBuildSeconds);
+        double verifySeconds = verifyBuildSeconds;
+        for (const LightVerification& l : result.verification) verifySeconds += l.seconds;
+        result.stats["phases_seconds"]["verify"] = verifySeconds;
+    }
     return result;
 }
 

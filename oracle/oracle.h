@@ -9,6 +9,8 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "oracle/area_shadow.h"
+#include "oracle/offset.h"
+#include "oracle/verify.h"
 
 namespace so {
 
@@ -17,11 +19,16 @@ struct OracleOptions {
     int threads = 0;            // 0: all hardware threads
     bool progress = true;
     AreaSampling area;  // area lights, when the scene asks for "penumbra"
+    // Not on the command line: Legacy256Ulp exists only for the tests that show the verifier
+    // catches the occluders it missed (oracle/offset.h).
+    OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound;
+    VerifyOptions verify;  // --verify N: re-trace N pixels per light independently (verify.h)
 };
 
 struct OracleResult {
-    ChannelImage image;    // channels as in docs/exr-channels.md
-    nlohmann::json stats;  // the oracle.json content that depends on the run
+    ChannelImage image;                           // channels as in docs/exr-channels.md
+    nlohmann::json stats;                         // the oracle.json content that depends on the run
+    std::vector<LightVerification> verification;  // with --verify: one per light
 };
 
 // The camera description actually used (scene camera with the option's width and height).

@@ -8,12 +8,13 @@
 #include <glm/geometric.hpp>
 
 #include "core/progress.h"
-#include "oracle/offset.h"
 
 namespace so {
 
-SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress) {
+SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
+                           OffsetPolicy offsetPolicy) {
     SurfaceBuffer sb;
+    sb.offsetPolicy = offsetPolicy;
     sb.width = camera.width();
     sb.height = camera.height();
     sb.tilesX = (sb.width + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
@@ -22,6 +23,7 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
     sb.hit.assign(n, 0);
     sb.meshId.assign(n, 0);
     sb.primId.assign(n, 0);
+    sb.originId.assign(n, kNoOriginTriangle);
     for (auto* v : {&sb.lsPointX, &sb.lsPointY, &sb.lsPointZ, &sb.lsNormalX, &sb.lsNormalY,
                     &sb.lsNormalZ, &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ})
         v->assign(n, 0.0f);
@@ -61,7 +63,7 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                         0xFFFFFFFFu;  // a zero mask would hit nothing (Embree masks are on)
                     rh.ray.time = 0.0f;
                     rh.ray.flags = 0;
-                    rh.ray.id = unsigned(pixel);
+                    rh.ray.id = kNoOriginTriangle;  // leaves from no surface: skip nothing
                     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
                     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -80,8 +82,11 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                     sb.hit[s] = 1;
                     sb.meshId[s] = rh.hit.geomID;
                     sb.primId[s] = rh.hit.primID;
+                    sb.originId[s] = accel.originId(rh.hit.geomID, rh.hit.primID);
                     const glm::vec3 pf(p), nf(ng);
-                    const glm::vec3 org = offsetRayOrigin(pf, nf);
+                    const glm::vec3 org = offsetPolicy == OffsetPolicy::ErrorBound
+                                              ? errorBoundOrigin(p, ng)
+                                              : offsetRayOrigin(pf, nf);
                     sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
                     sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
                     sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;

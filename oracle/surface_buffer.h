@@ -12,6 +12,7 @@
 
 #include "core/camera.h"
 #include "oracle/accel.h"
+#include "oracle/offset.h"
 
 namespace so {
 
@@ -23,9 +24,10 @@ struct SurfaceBuffer {
     int tilesX = 0, tilesY = 0;
     glm::dvec3 lsEye{0.0};
     // One entry per slot (tilesX * tilesY * 16); slots outside the image have hit = 0.
-    std::vector<uint8_t> hit;      // 1 where the primary ray hit
-    std::vector<uint32_t> meshId;  // id.mesh (Embree geomID)
-    std::vector<uint32_t> primId;  // id.prim (Embree primID = triangle in index order)
+    std::vector<uint8_t> hit;        // 1 where the primary ray hit
+    std::vector<uint32_t> meshId;    // id.mesh (Embree geomID)
+    std::vector<uint32_t> primId;    // id.prim (Embree primID = triangle in index order)
+    std::vector<uint32_t> originId;  // the hit triangle's Accel::originId: shadow rays skip it
     // Per-component arrays (structure of arrays): a packet's 16 lanes are then contiguous in each,
     // and its ray setup vectorises (hard_shadow.cpp).
     std::vector<float> lsPointX, lsPointY,
@@ -35,7 +37,8 @@ struct SurfaceBuffer {
     std::vector<float> lsOriginX, lsOriginY,
         lsOriginZ;               // offset origin for rays leaving on the normal's side
     std::vector<float> wsDepth;  // distance from the eye, world units
-    double lsMaxOffset = 0.0;    // the largest origin offset: the oracle's blind distance
+    double lsMaxOffset = 0.0;    // the largest |origin - hit point|: the oracle's blind distance
+    OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound;
 
     size_t slotCount() const { return hit.size(); }
     glm::vec3 lsPoint(size_t s) const { return {lsPointX[s], lsPointY[s], lsPointZ[s]}; }
@@ -56,6 +59,7 @@ struct SurfaceBuffer {
 };
 
 // Traces the primary rays in parallel (call inside the caller's tbb::task_arena).
-SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress);
+SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
+                           OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound);
 
 }  // namespace so

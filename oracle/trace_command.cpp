@@ -79,7 +79,7 @@ int runTraceCommand(const TraceCommandOptions& options) {
     const double writeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
     nlohmann::json j = {
-        {"format_version", 1},
+        {"format_version", 2},
         {"tool",
          {{"name", "shadow-oracle"}, {"version", kToolVersion}, {"git_revision", kGitRevision}}},
         {"scene",
@@ -115,6 +115,22 @@ int runTraceCommand(const TraceCommandOptions& options) {
               << cam.width << "x" << cam.height << ", " << scene.lights.size() << " lights)\n"
               << "  " << exrPath << "\n  " << (out / "oracle.json").string() << "\n";
     for (const std::string& p : previews) std::cout << "  " << p << "\n";
+    if (!result.verification.empty()) {
+        const uint64_t bad = disagreementCount(result.verification);
+        uint64_t checked = 0, ambiguous = 0;
+        for (const LightVerification& l : result.verification)
+            checked += l.checked, ambiguous += l.ambiguous;
+        std::cout << "verified " << checked
+                  << " pixels against an independent exact re-trace: " << bad << " disagreements, "
+                  << ambiguous << " within the tolerance ("
+                  << result.stats["phases_seconds"]["verify"].get<double>() << " s)\n";
+        if (bad) {
+            std::cerr << "error: " << options.scenePath << ": verify: " << bad
+                      << " pixels where the oracle disagrees with the exact re-trace (listed in "
+                      << (out / "oracle.json").string() << ", verify.lights[].pixels)\n";
+            return 3;
+        }
+    }
     return 0;
 }
 

@@ -66,6 +66,8 @@ std::string oracleKey(const Scene& scene, const OracleOptions& o) {
                               {"target_error", o.area.targetError},
                               {"max_spp", o.area.maxSpp},
                               {"spp", o.area.fixedSpp},
+                              {"verify", o.verify.pixels},
+                              {"verify_samples", o.verify.areaSamples},
                               {"tool", std::string(kToolVersion) + " " + kGitRevision}};
     return hashBytes(k.dump());
 }
@@ -236,6 +238,18 @@ int runCompareCommand(const CompareOptions& options) {
     std::cout << "compared " << options.scenePath << ": " << specs.size() << " techniques, oracle "
               << (cached ? "from the cache" : "traced") << "\n  " << (out / "metrics.json").string()
               << "\n  " << (out / "metrics.csv").string() << "\n";
+    // --verify: the oracle re-traced independently (docs/oracle.md#verification); a ground truth
+    // that disagrees with it must not pass silently, cached or not.
+    if (oracleStats.contains("verify")) {
+        const uint64_t bad = oracleStats["verify"]["disagreements"].get<uint64_t>();
+        std::cout << "  oracle verified: " << bad << " disagreements\n";
+        if (bad) {
+            std::cerr << "error: " << options.scenePath << ": verify: " << bad
+                      << " pixels where the oracle disagrees with the exact re-trace (metrics.json "
+                         "oracle.stats.verify)\n";
+            return 3;
+        }
+    }
     return 0;
 }
 

@@ -15,9 +15,14 @@ SO_PACKAGES=(
   clang-format
 )
 
+# Only the tests need these: libcgal-demo ships the Stanford bunny (in its data.tar.gz) that the
+# oracle is re-traced on.
+SO_TEST_PACKAGES=(libcgal-demo)
+
+# so_install_packages [extra packages...]
 so_install_packages() {
   local missing=()
-  for p in "${SO_PACKAGES[@]}"; do
+  for p in "${SO_PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0

@@ -1,0 +1,403 @@
+#include "oracle/verify.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+#include "oracle/offset.h"
+
+namespace so {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Below this |cos| (or cone / emitter test value) the reference calls a facing test a tie: the
+// oracle decides it on float normals and points (error ~1e-7).
+constexpr double kCosTie = 1e-6;
+
+// SplitMix64: the reference's own random numbers, unrelated to the oracle's Sobol sequences.
+struct SplitMix {
+    uint64_t s;
+    uint64_t next() {
+        uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
+};
+
+uint64_t mix(uint64_t a, uint64_t b) {
+    SplitMix m{a * 0x100000001B3ull ^ b};
+    return m.next();
+}
+
+// Two-sided standard normal quantile: z with P(|Z| > z) = alpha, by bisection on erfc.
+double normalQuantileTwoSided(double alpha) {
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (std::erfc(mid / std::numbers::sqrt2) > alpha ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+std::vector<std::vector<glm::dvec3>> toLocal(const Scene& scene, const LocalFrame& frame) {
+    std::vector<std::vector<glm::dvec3>> out(scene.meshes.size());
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        out[m].reserve(scene.meshes[m].wsPositions.size());
+        for (const glm::dvec3& ws : scene.meshes[m].wsPositions)
+            out[m].push_back(frame.lsFromWs(ws));
+    }
+    return out;
+}
+
+std::vector<ExactTracer::MeshView> views(const std::vector<std::vector<glm::dvec3>>& ls,
+                                         const Scene& scene) {
+    std::vector<ExactTracer::MeshView> v;
+    for (size_t m = 0; m < ls.size(); ++m) v.push_back({&ls[m], &scene.meshes[m].indices});
+    return v;
+}
+
+// The light seen from p as the hard-shadow pass sees it (area lights: a point at the centre).
+struct HardTarget {
+    glm::dvec3 dir{0.0};
+    double tMax = kInf;
+};
+
+}  // namespace
+
+// The reference's view of one pixel: its own primary hit.
+struct Verifier::PixelRef {
+    glm::dvec3 p{0.0}, n{0.0};  // hit point on the double triangle, normal facing the eye
+    TriangleId id;
+    double lsPointGap = 0.0;  // |oracle's hit point - p|: the primary hit's own uncertainty
+};
+
+Verifier::Verifier(const Scene& scene, const LocalFrame& frame, const Camera& camera,
+                   const VerifyOptions& options, uint32_t seed)
+    : lsPositions_(toLocal(scene, frame)),
+      tracer_(views(lsPositions_, scene)),
+      frame_(frame),
+      camera_(camera),
+      options_(options),
+      seed_(seed) {
+    for (const MeshPrimitive& m : scene.meshes) indices_.push_back(&m.indices);
+}
+
+std::vector<size_t> Verifier::choosePixels(const Light& light, uint32_t lightIndex,
+                                           const SurfaceBuffer& sb, uint64_t& random,
+                                           uint64_t& nearHorizon) const {
+    // Candidates: pixels with a primary hit (slots), in slot order; near-horizon ones apart.
+    const double sinHorizon = std::sin(options_.horizonDeg * std::numbers::pi / 180.0);
+    const glm::dvec3 lsLight = frame_.lsFromWs(light.wsPosition);
+    std::vector<size_t> hits, horizon;
+    for (size_t s = 0; s < sb.slotCount(); ++s) {
+        if (sb.pixelOfSlot(s) == SIZE_MAX || !sb.hit[s]) continue;
+        hits.push_back(s);
+        const glm::dvec3 p(sb.lsPoint(s)), n(sb.lsNormal(s));
+        const glm::dvec3 toLight =
+            light.type == LightType::Directional ? -light.wsDirection : glm::normalize(lsLight - p);
+        if (std::fabs(glm::dot(n, toLight)) < sinHorizon) horizon.push_back(s);
+    }
+    // A partial Fisher-Yates shuffle with the seed: the same pixels at any thread count.
+    SplitMix rng{mix(mix(seed_, lightIndex), 0x7665726966ull)};
+    auto pick = [&](std::vector<size_t>& from, size_t count) {
+        count = std::min(count, from.size());
+        for (size_t i = 0; i < count; ++i)
+            std::swap(from[i], from[i + size_t(rng.next() % (from.size() - i))]);
+        from.resize(count);
+        return from;
+    };
+    std::vector<size_t> chosen = pick(hits, size_t(options_.pixels));
+    random = chosen.size();
+    std::sort(chosen.begin(), chosen.end());
+    std::vector<size_t> extra;
+    for (size_t s : pick(horizon, size_t(options_.pixels)))
+        if (!std::binary_search(chosen.begin(), chosen.end(), s)) extra.push_back(s);
+    nearHorizon = extra.size();
+    chosen.insert(chosen.end(), extra.begin(), extra.end());
+    return chosen;
+}
+
+// Re-traces the primary ray. Returns false when the pixel cannot be checked further: the
+// reference sees a different surface (a disagreement unless within the tolerance).
+bool Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot, PixelRef& ref,
+                       VerifyDisagreement& d, bool& ambiguous) const {
+    const glm::dvec3 lsEye = sb.lsEye;
+    const glm::dvec3 dir = camera_.generateRay(x, y).direction;
+    const ExactTracer::Hit h = tracer_.closestHit(lsEye, dir, 0.0, kInf);
+    const TriangleId oracleId{sb.meshId[slot], sb.primId[slot]};
+    ambiguous = false;
+    if (h.found && sb.hit[slot] && h.id == oracleId) {
+        const std::vector<glm::dvec3>& P = lsPositions_[h.id.mesh];
+        const std::vector<uint32_t>& I = *indices_[h.id.mesh];
+        const glm::dvec3 a = P[I[3 * h.id.prim]], b = P[I[3 * h.id.prim + 1]],
+                         c = P[I[3 * h.id.prim + 2]];
+        ref.p = (1.0 - h.b1 - h.b2) * a + h.b1 * b + h.b2 * c;
+        ref.n = glm::normalize(glm::cross(b - a, c - a));
+        if (glm::dot(ref.n, dir) > 0.0) ref.n = -ref.n;
+        ref.id = h.id;
+        ref.lsPointGap = glm::length(glm::dvec3(sb.lsPoint(slot)) - ref.p);
+        return true;
+    }
+    // Different surfaces: ambiguous if the ray passes within the tolerance of an edge or a
+    // surface on the way to the farther of the two hits, or both hits lie at the same depth
+    // (coplanar duplicates: which one is "first" is a tie).
+    const double tOracle = sb.hit[slot] ? glm::length(glm::dvec3(sb.lsPoint(slot)) - lsEye) : kInf;
+    const double tRef = h.found ? h.t : kInf;
+    const double tFar = std::max(tOracle, tRef);
+    const double tEnd = std::isfinite(tFar) ? tFar * (1.0 + 1e-6) : kInf;
+    const ExactTracer::SegmentQuery q =
+        tracer_.segment(lsEye, dir, tEnd, TriangleId{}, kTolAbs, kTolPerT);
+    ambiguous = q.ambiguous || std::fabs(tOracle - tRef) <= kTolAbs + kTolPerT * tRef;
+    d.kind = "primary";
+    d.oracleV = sb.hit[slot] ? 1.0 : 0.0;
+    d.referenceV = h.found ? 1.0 : 0.0;
+    d.wsMargin = frame_.wsLength(q.margin);
+    d.wsOccluderDist = frame_.wsLength(tRef);
+    return false;
+}
+
+void Verifier::hardPixel(const Light& light, const PixelRef& ref, const SurfaceBuffer& sb,
+                         size_t slot, float oracleV, VerifyDisagreement& d, int& verdict) const {
+    (void)sb;
+    (void)slot;
+    HardTarget tgt;
+    const glm::dvec3 lsPos = frame_.lsFromWs(light.wsPosition);
+    double tie = kInf;  // the smallest facing/cone/emitter test value: near 0 is a tie
+    if (light.type == LightType::Directional) {
+        tgt.dir = -light.wsDirection;
+    } else {
+        const glm::dvec3 w = lsPos - ref.p;
+        const double dist = glm::length(w);
+        tgt.dir = w / dist;
+        // The oracle's segment stops short of the light by twice its end margin (hard_shadow.cpp).
+        tgt.tMax = std::max(0.0, dist - 2.0 * double(offsetMargin(glm::vec3(lsPos))));
+        if (light.type == LightType::Spot) {
+            const double cosCone = glm::dot(-tgt.dir, light.wsDirection);
+            const double cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
+            if (cosCone < cosOuter) verdict = 0;
+            tie = std::min(tie, std::fabs(cosCone - cosOuter));
+        }
+        if (light.type == LightType::Rect || light.type == LightType::Disk) {
+            const double behind = glm::dot(light.wsEmitNormal(), -w) / dist;
+            if (!(behind > 0.0)) verdict = 0;
+            tie = std::min(tie, std::fabs(behind));
+        }
+    }
+    d.cosine = glm::dot(ref.n, tgt.dir);
+    if (!(d.cosine > 0.0)) verdict = 0;
+    tie = std::min(tie, std::fabs(d.cosine));
+    d.kind = "shadow";
+    d.oracleV = oracleV;
+    d.wsOccluderDist = kInf;
+    bool ambiguous = tie < kCosTie;
+    double refV = 0.0;
+    if (verdict != 0) {  // faces the light, inside the cone: trace the segment
+        const ExactTracer::SegmentQuery q =
+            tracer_.segment(ref.p, tgt.dir, tgt.tMax, ref.id, kTolAbs + ref.lsPointGap, kTolPerT);
+        refV = q.occluded ? 0.0 : 1.0;
+        ambiguous = ambiguous || q.ambiguous;
+        d.wsMargin = frame_.wsLength(q.margin);
+        d.wsOccluderDist = frame_.wsLength(q.firstHitT);
+    }
+    d.referenceV = refV;
+    // verdict: 1 agree, 2 ambiguous, 3 disagree
+    verdict = double(oracleV) == refV ? 1 : ambiguous ? 2 : 3;
+}
+
+void Verifier::areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
+                         float oracleV, float oracleStderr, float oracleSpp, double z,
+                         VerifyDisagreement& d, int& verdict) const {
+    const double s = frame_.lsLength(1.0);
+    const glm::dvec3 c = frame_.lsFromWs(light.wsPosition);
+    const glm::dvec3 U = light.wsU * s, Vv = light.wsV * s, m = light.wsEmitNormal();
+    const double R = light.radius * s;
+    // An orthonormal basis of the disk's plane.
+    const glm::dvec3 helper = std::fabs(m.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 e1 =
+        light.type == LightType::Disk ? glm::normalize(glm::cross(helper, m)) : glm::dvec3(0.0);
+    const glm::dvec3 e2 = glm::cross(m, e1);
+    SplitMix rng{mix(mix(mix(seed_, lightIndex), pixel), 0x61726561ull)};
+    double sw = 0, swv = 0, sw2 = 0, sw2v = 0;
+    uint64_t nonZero = 0;
+    for (int i = 0; i < options_.areaSamples; ++i) {
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        glm::dvec3 y, ny;
+        if (light.type == LightType::Rect) {
+            y = c + (u1 - 0.5) * U + (u2 - 0.5) * Vv;
+            ny = m;
+        } else if (light.type == LightType::Disk) {
+            const double r = R * std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
+            y = c + r * (std::cos(phi) * e1 + std::sin(phi) * e2);
+            ny = m;
+        } else {  // sphere: uniform by area over the whole sphere
+            const double zc = 1.0 - 2.0 * u1, rr = std::sqrt(std::max(0.0, 1.0 - zc * zc));
+            const double phi = 2.0 * std::numbers::pi * u2;
+            ny = glm::dvec3(rr * std::cos(phi), rr * std::sin(phi), zc);
+            y = c + R * ny;
+        }
+        const glm::dvec3 w = y - ref.p;
+        const double dist = glm::length(w);
+        const glm::dvec3 dir = w / dist;
+        const double G =
+            std::max(0.0, glm::dot(ref.n, dir)) * std::max(0.0, -glm::dot(ny, dir)) / (dist * dist);
+        if (!(G > 0.0)) continue;
+        // Stop just short of the light: geometry touching it does not block it (as the oracle).
+        const bool blocked = tracer_.occluded(ref.p, dir, 0.0, dist * (1.0 - 1e-7), ref.id);
+        const double v = blocked ? 0.0 : 1.0;
+        sw += G, swv += G * v, sw2 += G * G, sw2v += G * G * v;
+        ++nonZero;
+    }
+    d.kind = "area";
+    d.oracleV = oracleV;
+    d.oracleHalfWidth = 1.959963984540054 * double(oracleStderr);
+    d.cosine = glm::dot(ref.n, glm::normalize(c - ref.p));
+    if (oracleSpp == 0.0f || nonZero == 0) {
+        // The oracle skipped the pixel (light below the horizon, behind it) or the reference
+        // found no sample with G > 0: compare only where both measured something.
+        d.referenceV = nonZero ? swv / sw : 0.0;
+        verdict = (oracleSpp == 0.0f) == (nonZero == 0) ? 1 : 2;
+        return;
+    }
+    // Ratio estimator with independent samples, and the same z^2/2 pseudo-samples each way as
+    // the oracle so that unanimous samples do not claim certainty.
+    const double prior = 0.5 * 1.959963984540054 * 1.959963984540054;
+    const double wbar = sw / double(nonZero), W = sw + 2.0 * prior * wbar;
+    const double Va = (swv + prior * wbar) / W;
+    const double ss = sw2v * (1.0 - 2.0 * Va) + Va * Va * sw2 +
+                      prior * wbar * wbar * ((1.0 - Va) * (1.0 - Va) + Va * Va);
+    const double refStderr = std::sqrt(std::max(0.0, ss)) / W;
+    d.referenceV = swv / sw;
+    d.referenceHalfWidth = 1.959963984540054 * refStderr;
+    const double se =
+        std::sqrt(double(oracleStderr) * double(oracleStderr) + refStderr * refStderr);
+    verdict = std::fabs(double(oracleV) - d.referenceV) <= z * se ? 1 : 3;
+}
+
+LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
+                                        const SurfaceBuffer& sb, const float* V,
+                                        const float* stderr_, const float* spp) const {
+    const auto t0 = Clock::now();
+    LightVerification out;
+    out.light = light.name;
+    out.sampled = sampled;
+    const std::vector<size_t> slots =
+        choosePixels(light, lightIndex, sb, out.random, out.nearHorizon);
+    out.checked = slots.size();
+    out.zThreshold =
+        normalQuantileTwoSided(options_.familyAlpha / double(std::max<size_t>(1, slots.size())));
+    std::vector<int> verdicts(slots.size(), 0);
+    std::vector<VerifyDisagreement> found(slots.size());
+    std::vector<uint8_t> primaryDiffers(slots.size(), 0);
+    tbb::parallel_for(size_t(0), slots.size(), [&](size_t i) {
+        const size_t slot = slots[i];
+        const size_t pixel = sb.pixelOfSlot(slot);
+        VerifyDisagreement& d = found[i];
+        d.x = int(pixel % size_t(sb.width));
+        d.y = int(pixel / size_t(sb.width));
+        d.nearHorizon = i >= out.random;
+        PixelRef ref;
+        bool ambiguous = false;
+        if (!primary(d.x, d.y, sb, slot, ref, d, ambiguous)) {
+            primaryDiffers[i] = ambiguous;
+            verdicts[i] = ambiguous ? 2 : 3;
+            return;
+        }
+        int verdict = -1;
+        if (sampled)
+            areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel], spp[pixel],
+                      out.zThreshold, d, verdict);
+        else
+            hardPixel(light, ref, sb, slot, V[pixel], d, verdict);
+        verdicts[i] = verdict;
+    });
+    for (size_t i = 0; i < slots.size(); ++i) {
+        out.agree += verdicts[i] == 1;
+        out.ambiguous += verdicts[i] == 2;
+        out.primaryDiffers += primaryDiffers[i];
+        if (verdicts[i] == 3) {
+            ++out.disagree;
+            out.disagreements.push_back(found[i]);
+        }
+    }
+    out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return out;
+}
+
+uint64_t disagreementCount(const std::vector<LightVerification>& lights) {
+    uint64_t n = 0;
+    for (const LightVerification& l : lights) n += l.disagree;
+    return n;
+}
+
+nlohmann::json verificationJson(const std::vector<LightVerification>& lights,
+                                const VerifyOptions& options, const LocalFrame& frame,
+                                double buildSeconds) {
+    nlohmann::json arr = nlohmann::json::array();
+    double seconds = buildSeconds;
+    auto num = [](double v) {
+        return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
+    for (const LightVerification& l : lights) {
+        nlohmann::json dis = nlohmann::json::array();
+        for (const VerifyDisagreement& d : l.disagreements) {
+            nlohmann::json j = {{"x", d.x},
+                                {"y", d.y},
+                                {"kind", d.kind},
+                                {"near_horizon", d.nearHorizon},
+                                {"cos", d.cosine},
+                                {"oracle_V", d.oracleV},
+                                {"reference_V", d.referenceV}};
+            if (d.kind == "area") {
+                j["oracle_half_width"] = d.oracleHalfWidth;
+                j["reference_half_width"] = d.referenceHalfWidth;
+            } else {
+                j["margin"] = num(d.wsMargin);
+                j["reference_occluder_distance"] = num(d.wsOccluderDist);
+            }
+            dis.push_back(j);
+        }
+        nlohmann::json lj = {{"name", l.light},
+                             {"test", l.sampled ? "area: |V - V_ref| <= z * combined stderr"
+                                                : "hard: exact re-trace, V must match"},
+                             {"pixels_checked", l.checked},
+                             {"random", l.random},
+                             {"near_horizon", l.nearHorizon},
+                             {"agree", l.agree},
+                             {"ambiguous", l.ambiguous},
+                             {"primary_differs_within_tolerance", l.primaryDiffers},
+                             {"disagreements", l.disagree},
+                             {"pixels", dis},
+                             {"seconds", l.seconds}};
+        if (l.sampled) lj["z"] = l.zThreshold;
+        arr.push_back(lj);
+        seconds += l.seconds;
+    }
+    return {{"method",
+             "independent re-trace in double precision (own BVH, no Embree) from the primary ray "
+             "on; area lights by independent uniform samples of the light"},
+            {"pixels_per_light", options.pixels},
+            {"horizon_deg", options.horizonDeg},
+            {"area_samples", options.areaSamples},
+            {"family_alpha", options.familyAlpha},
+            {"tolerance",
+             {{"abs", frame.wsLength(Verifier::kTolAbs)},
+              {"per_unit_distance", Verifier::kTolPerT},
+              {"note",
+               "a hard-light pixel is ambiguous where the reference ray passes closer than abs + "
+               "per_unit_distance * t + |oracle origin - hit point| to changing its answer"}}},
+            {"disagreements", disagreementCount(lights)},
+            {"seconds", seconds},
+            {"build_bvh_seconds", buildSeconds},
+            {"lights", arr}};
+}
+
+}  // namespace so

@@ -1,0 +1,108 @@
+// The oracle checks itself (`trace --verify N`, docs/oracle.md#verification): pixels chosen at
+// random with the seed, plus pixels whose light sits near the receiver's horizon, are traced again
+// by an independent exact tracer in double precision (exact_tracer.h: its own BVH, no Embree),
+// from the primary ray on.
+//
+//   hard lights (and area lights without "penumbra"): the reference's V is 0 or 1; any difference
+//     is a disagreement unless the reference ray passes within the tolerance of changing its answer
+//     (an edge, a surface it starts on, the attached-shadow or cone boundary): then "ambiguous".
+//   sampled area lights: the reference estimates V from independent uniform samples of the light
+//     (its own sampler and random numbers); a disagreement is |V - V_ref| above z times the
+//     combined standard error, z Bonferroni-corrected over the pixels checked (family-wise false
+//     alarm rate 1%).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/camera.h"
+#include "core/local_frame.h"
+#include "core/scene.h"
+#include "oracle/exact_tracer.h"
+#include "oracle/surface_buffer.h"
+
+namespace so {
+
+struct VerifyOptions {
+    int pixels = 0;  // random pixels per light; 0: no verification
+    double horizonDeg =
+        3.0;  // plus pixels whose light is this close to the horizon (up to `pixels`)
+    int areaSamples = 4096;     // reference samples per area-light pixel
+    double familyAlpha = 0.01;  // area lights: chance of any false alarm over a light's pixels
+};
+
+// One pixel where the reference disagrees with the oracle.
+struct VerifyDisagreement {
+    int x = 0, y = 0;
+    std::string kind;  // "shadow", "primary", "area"
+    bool nearHorizon = false;
+    double cosine = 0.0;  // towards the light (centre), at the reference's hit point
+    double oracleV = 0.0, referenceV = 0.0;
+    double oracleHalfWidth = 0.0, referenceHalfWidth = 0.0;  // area: 95% half-widths
+    double wsMargin = 0.0;        // hard: how far the reference ray is from changing its answer
+    double wsOccluderDist = 0.0;  // hard: the reference's first occluder (inf: none)
+};
+
+struct LightVerification {
+    std::string light;
+    bool sampled = false;  // an area light with "penumbra"
+    uint64_t checked = 0, random = 0, nearHorizon = 0;
+    uint64_t agree = 0, ambiguous = 0, disagree = 0;
+    uint64_t primaryDiffers = 0;  // a different triangle seen, within the tolerance (ambiguous)
+    double zThreshold = 0.0;      // area: the Bonferroni z used
+    std::vector<VerifyDisagreement> disagreements;  // all of them
+    double seconds = 0.0;
+};
+
+class Verifier {
+  public:
+    // Builds the reference BVH from the scene's double-precision vertices in `frame`.
+    Verifier(const Scene& scene, const LocalFrame& frame, const Camera& camera,
+             const VerifyOptions& options, uint32_t seed);
+
+    // V, halfWidth (nullable for hard lights) and spp (nullable) are the oracle's channels.
+    LightVerification verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
+                                  const SurfaceBuffer& sb, const float* V, const float* stderr_,
+                                  const float* spp) const;
+    const ExactTracer& tracer() const { return tracer_; }
+
+    // The tolerance of the hard-light test, in local units (where the scene's half-extent is in
+    // [0.5, 1)): kTolAbs + kTolPerT * t, plus the distance between the oracle's hit point and the
+    // reference's (two traces of the same primary ray). This is the oracle's promise: an occluder
+    // that the shadow ray clips by more than that is seen. The oracle's own origin offset
+    // (offset.h) must stay inside it, so it is not added: an offset that hides occluders is a
+    // disagreement, which is how the 256-ulp offset of issue 9 shows.
+    static constexpr double kTolAbs = 1.0 / 1048576.0;   // 2^-20: ~1e-6 of the scene's size
+    static constexpr double kTolPerT = 1.0 / 2097152.0;  // 2^-21: of a float direction, per unit
+
+  private:
+    struct PixelRef;
+    std::vector<size_t> choosePixels(const Light& light, uint32_t lightIndex,
+                                     const SurfaceBuffer& sb, uint64_t& random,
+                                     uint64_t& nearHorizon) const;
+    bool primary(int x, int y, const SurfaceBuffer& sb, size_t slot, PixelRef& ref,
+                 VerifyDisagreement& d, bool& ambiguous) const;
+    void hardPixel(const Light& light, const PixelRef& ref, const SurfaceBuffer& sb, size_t slot,
+                   float oracleV, VerifyDisagreement& d, int& verdict) const;
+    void areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
+                   float oracleV, float oracleStderr, float oracleSpp, double z,
+                   VerifyDisagreement& d, int& verdict) const;
+
+    std::vector<std::vector<glm::dvec3>> lsPositions_;
+    std::vector<const std::vector<uint32_t>*> indices_;
+    ExactTracer tracer_;
+    LocalFrame frame_;
+    Camera camera_;
+    VerifyOptions options_;
+    uint32_t seed_;
+};
+
+nlohmann::json verificationJson(const std::vector<LightVerification>& lights,
+                                const VerifyOptions& options, const LocalFrame& frame,
+                                double buildSeconds);
+uint64_t disagreementCount(const std::vector<LightVerification>& lights);
+
+}  // namespace so
