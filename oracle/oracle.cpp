@@ -11,6 +11,7 @@
 
 #include "core/camera.h"
 #include "core/channels.h"
+#include "core/error.h"
 #include "core/progress.h"
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
@@ -74,6 +75,8 @@ nlohmann::json offsetPolicyJson(OffsetPolicy policy, const LocalFrame& frame,
 
 }  // namespace
 
+constexpr size_t kVerifyMaxTriangles = size_t(1) << 25;  // about 7 GB for the reference
+
 CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
     CameraDesc desc = scene.camera;
     if (options.width > 0) desc.width = options.width;
@@ -118,6 +121,13 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     std::unique_ptr<Verifier> verifier;
     double verifyBuildSeconds = 0.0;
     if (options.verify.pixels > 0) {
+        // The reference keeps about 200 bytes per triangle (triangles, nodes, the double
+        // vertices): refuse rather than exhaust memory on a huge scene.
+        if (scene.stats.triangles > kVerifyMaxTriangles)
+            throwInputError(scene.path.string(), "--verify",
+                            "the scene has " + std::to_string(scene.stats.triangles) +
+                                " triangles; the exact re-trace handles at most " +
+                                std::to_string(kVerifyMaxTriangles));
         t0 = Clock::now();
         verifier = std::make_unique<Verifier>(scene, accel->frame(), camera, options.verify,
                                               options.area.seed);
