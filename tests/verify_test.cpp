@@ -88,6 +88,48 @@ std::string describe(const LightVerification& l) {
     return s;
 }
 
+// The bunny at 320x240 under bunnyLights(), every pixel verified; nullopt where it is absent.
+std::optional<OracleResult> verifiedBunnyHardLights(OffsetPolicy policy, const char* label,
+                                                    std::string& whyNot) {
+    const MeshPrimitive* bunny = bunnyMesh(whyNot);
+    if (!bunny) return std::nullopt;
+    Scene scene = makeBunnyScene(*bunny, 320, 240);
+    scene.lights = bunnyLights();
+    finalizeScene(scene);
+    OracleResult r = runVerified(scene, 320 * 240, policy);
+    printSummary(label, r.verification);
+    return r;
+}
+
+// The oracle's result on a scene, and a verifier over every pixel, for tests that tamper with the
+// oracle's V before verifying it.
+struct VerifierRig {
+    explicit VerifierRig(const Scene& scene)
+        : options(quietOptions()),
+          result(runOracle(scene, options)),
+          accel(scene, device),
+          camera(effectiveCamera(scene, options)),
+          sb(tracePrimary(accel, camera, nullptr)),
+          verifier(scene, accel.frame(), camera, everyPixel(camera), 0) {}
+    static OracleOptions quietOptions() {
+        OracleOptions o;
+        o.progress = false;
+        return o;
+    }
+    static VerifyOptions everyPixel(const Camera& c) {
+        VerifyOptions vo;
+        vo.pixels = c.width() * c.height();
+        return vo;
+    }
+    OracleOptions options;
+    OracleResult result;
+    EmbreeDevice device;
+    Accel accel;
+    Camera camera;
+    SurfaceBuffer sb;
+    Verifier verifier;
+};
+
 }  // namespace
 
 // The closed-form scene: every pixel re-traced, none may disagree.
@@ -105,16 +147,10 @@ TEST(Verify, SquareOccluderSceneAgreesEverywhere) {
 // exactly those, and nothing else.
 TEST(Verify, FlippedPixelsAreFoundAndNothingElse) {
     SquareOccluderScene s = makeSquareOccluderScene(64, 48);
-    OracleOptions o;
-    o.progress = false;
-    OracleResult r = runOracle(s.scene, o);
-    EmbreeDevice device;
-    Accel accel(s.scene, device);
-    const Camera camera(effectiveCamera(s.scene, o));
-    SurfaceBuffer sb = tracePrimary(accel, camera, nullptr);
-    VerifyOptions vo;
-    vo.pixels = 64 * 48;
-    Verifier verifier(s.scene, accel.frame(), camera, vo, 0);
+    VerifierRig rig(s.scene);
+    const OracleResult& r = rig.result;
+    const SurfaceBuffer& sb = rig.sb;
+    const Verifier& verifier = rig.verifier;
     const Light& light = s.scene.lights[2];
     std::vector<float> V(
         r.image.channel(ch::lightChannel(light.name, ch::kVisibility)),
@@ -146,16 +182,10 @@ TEST(Verify, ShiftedPenumbraEstimatesAreFound) {
     s.scene.lights = {rect};
     s.scene.effects = {"hard", "penumbra"};
     finalizeScene(s.scene);
-    OracleOptions o;
-    o.progress = false;
-    OracleResult r = runOracle(s.scene, o);
-    EmbreeDevice device;
-    Accel accel(s.scene, device);
-    const Camera camera(effectiveCamera(s.scene, o));
-    SurfaceBuffer sb = tracePrimary(accel, camera, nullptr);
-    VerifyOptions vo;
-    vo.pixels = 64 * 48;
-    Verifier verifier(s.scene, accel.frame(), camera, vo, 0);
+    VerifierRig rig(s.scene);
+    const OracleResult& r = rig.result;
+    const SurfaceBuffer& sb = rig.sb;
+    const Verifier& verifier = rig.verifier;
     const float* V0 = r.image.channel(ch::lightChannel("panel", ch::kVisibility));
     const float* SE = r.image.channel(ch::lightChannel("panel", ch::kStdErr));
     const float* SPP = r.image.channel(ch::lightChannel("panel", ch::kSpp));
@@ -179,15 +209,11 @@ TEST(Verify, ShiftedPenumbraEstimatesAreFound) {
 // Issue 9: on the scanned bunny, hard shadows from 13 lights, every pixel re-traced exactly.
 TEST(Verify, BunnyHardShadowsAgreeWithExactRetrace) {
     std::string why;
-    const MeshPrimitive* bunny = bunnyMesh(why);
-    if (!bunny) GTEST_SKIP() << why;
-    Scene scene = makeBunnyScene(*bunny, 320, 240);
-    scene.lights = bunnyLights();
-    finalizeScene(scene);
-    OracleResult r = runVerified(scene, 320 * 240, OffsetPolicy::ErrorBound);
-    printSummary("bunny, hard lights", r.verification);
+    std::optional<OracleResult> r =
+        verifiedBunnyHardLights(OffsetPolicy::ErrorBound, "bunny, hard lights", why);
+    if (!r) GTEST_SKIP() << why;
     uint64_t ambiguous = 0, checked = 0;
-    for (const LightVerification& l : r.verification) {
+    for (const LightVerification& l : r->verification) {
         EXPECT_EQ(l.disagree, 0u) << describe(l);
         ambiguous += l.ambiguous;
         checked += l.checked;
@@ -200,15 +226,11 @@ TEST(Verify, BunnyHardShadowsAgreeWithExactRetrace) {
 // exact re-trace sees: the check can fail, and all its findings have the oracle too lit.
 TEST(Verify, LegacyOffsetMissesBunnyOccludersAndTheCheckSaysSo) {
     std::string why;
-    const MeshPrimitive* bunny = bunnyMesh(why);
-    if (!bunny) GTEST_SKIP() << why;
-    Scene scene = makeBunnyScene(*bunny, 320, 240);
-    scene.lights = bunnyLights();
-    finalizeScene(scene);
-    OracleResult r = runVerified(scene, 320 * 240, OffsetPolicy::Legacy256Ulp);
-    printSummary("bunny, hard lights, legacy 256-ulp offset", r.verification);
+    std::optional<OracleResult> r = verifiedBunnyHardLights(
+        OffsetPolicy::Legacy256Ulp, "bunny, hard lights, legacy 256-ulp offset", why);
+    if (!r) GTEST_SKIP() << why;
     uint64_t disagree = 0;
-    for (const LightVerification& l : r.verification) {
+    for (const LightVerification& l : r->verification) {
         disagree += l.disagree;
         for (const VerifyDisagreement& d : l.disagreements) {
             std::printf("  %s (%d, %d): cos %.3f, reference occluder at %.4f, margin %.2e\n",
