@@ -165,10 +165,8 @@ bool Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot, Pixel
     return false;
 }
 
-void Verifier::hardPixel(const Light& light, const PixelRef& ref, const SurfaceBuffer& sb,
-                         size_t slot, float oracleV, VerifyDisagreement& d, int& verdict) const {
-    (void)sb;
-    (void)slot;
+void Verifier::hardPixel(const Light& light, const PixelRef& ref, float oracleV,
+                         VerifyDisagreement& d, int& verdict) const {
     HardTarget tgt;
     const glm::dvec3 lsPos = frame_.lsFromWs(light.wsPosition);
     double tie = kInf;  // the smallest facing/cone/emitter test value: near 0 is a tie
@@ -316,7 +314,7 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
             areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel], spp[pixel],
                       out.zThreshold, d, verdict);
         else
-            hardPixel(light, ref, sb, slot, V[pixel], d, verdict);
+            hardPixel(light, ref, V[pixel], d, verdict);
         verdicts[i] = verdict;
     });
     for (size_t i = 0; i < slots.size(); ++i) {

@@ -85,8 +85,8 @@ class Verifier {
                                      uint64_t& nearHorizon) const;
     bool primary(int x, int y, const SurfaceBuffer& sb, size_t slot, PixelRef& ref,
                  VerifyDisagreement& d, bool& ambiguous) const;
-    void hardPixel(const Light& light, const PixelRef& ref, const SurfaceBuffer& sb, size_t slot,
-                   float oracleV, VerifyDisagreement& d, int& verdict) const;
+    void hardPixel(const Light& light, const PixelRef& ref, float oracleV, VerifyDisagreement& d,
+                   int& verdict) const;
     void areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
                    float oracleV, float oracleStderr, float oracleSpp, double z,
                    VerifyDisagreement& d, int& verdict) const;
