@@ -43,11 +43,6 @@ class Accel {
     // The ray id that makes a shadow ray skip triangle `prim` of mesh `mesh` (< 2^28 by the
     // loader's limits, so it never equals kNoOriginTriangle).
     unsigned originId(unsigned mesh, unsigned prim) const { return meshBase_[mesh] + prim; }
-    const std::vector<glm::dvec3>& lsPositions(unsigned mesh) const {
-        return meshes_[mesh].lsPositions;
-    }
-    const std::vector<uint32_t>& indices(unsigned mesh) const { return meshes_[mesh].indices; }
-    size_t meshCount() const { return meshes_.size(); }
 
   private:
     struct MeshData {

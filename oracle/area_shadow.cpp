@@ -16,7 +16,7 @@
 namespace so {
 
 namespace {
-constexpr double kZ = 1.959963984540054;  // two-sided 95%
+constexpr double kZ = kZ95;
 constexpr double kPrior = 0.5 * kZ * kZ;  // Agresti-Coull: z^2/2 pseudo-samples each way
 }  // namespace
 

@@ -22,6 +22,9 @@ namespace so {
 
 class Progress;
 
+// Two-sided 95% normal quantile: every interval the oracle states is V +- kZ95 * stderr.
+inline constexpr double kZ95 = 1.959963984540054;
+
 struct AreaSampling {
     double targetError = 0.01;  // 95% half-width
     int maxSpp = 16384;

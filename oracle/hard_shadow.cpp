@@ -106,7 +106,6 @@ ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLi
     s.kind = ps.kind[k];
     s.cosine = ps.cosine[k];
     s.org = sb.lsRayOrigin(slot);
-    s.originId = sb.originId[slot];
     s.dir = {ps.dirX[k], ps.dirY[k], ps.dirZ[k]};
     s.tfar = ps.tfar[k];
     return s;

@@ -56,7 +56,6 @@ struct ShadowRaySetup {
     double cosine = 0.0;
     glm::vec3 org{0.0f}, dir{0.0f};
     float tfar = 0.0f;
-    unsigned originId = 0;  // the ray id: the triangle the ray leaves from (Accel filter)
 };
 // The 16 lanes of one tile (slots base .. base + 15) at once; setupShadowRay is one lane of it.
 struct PacketSetup {

@@ -18,7 +18,6 @@
 #include <cmath>
 #include <cstdint>
 
-#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 namespace so {

@@ -14,7 +14,6 @@ namespace so {
 SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
                            OffsetPolicy offsetPolicy) {
     SurfaceBuffer sb;
-    sb.offsetPolicy = offsetPolicy;
     sb.width = camera.width();
     sb.height = camera.height();
     sb.tilesX = (sb.width + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;

@@ -38,7 +38,6 @@ struct SurfaceBuffer {
         lsOriginZ;               // offset origin for rays leaving on the normal's side
     std::vector<float> wsDepth;  // distance from the eye, world units
     double lsMaxOffset = 0.0;    // the largest |origin - hit point|: the oracle's blind distance
-    OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound;
 
     size_t slotCount() const { return hit.size(); }
     glm::vec3 lsPoint(size_t s) const { return {lsPointX[s], lsPointY[s], lsPointZ[s]}; }

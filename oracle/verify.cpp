@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "oracle/area_shadow.h"
 #include "oracle/offset.h"
 
 namespace so {
@@ -126,15 +127,14 @@ std::vector<size_t> Verifier::choosePixels(const Light& light, uint32_t lightInd
     return chosen;
 }
 
-// Re-traces the primary ray. Returns false when the pixel cannot be checked further: the
-// reference sees a different surface (a disagreement unless within the tolerance).
-bool Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot, PixelRef& ref,
-                       VerifyDisagreement& d, bool& ambiguous) const {
+// Re-traces the primary ray. Anything but Agree ends the pixel's check: the reference sees a
+// different surface (a disagreement unless within the tolerance).
+Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot,
+                                    PixelRef& ref, VerifyDisagreement& d) const {
     const glm::dvec3 lsEye = sb.lsEye;
     const glm::dvec3 dir = camera_.generateRay(x, y).direction;
     const ExactTracer::Hit h = tracer_.closestHit(lsEye, dir, 0.0, kInf);
     const TriangleId oracleId{sb.meshId[slot], sb.primId[slot]};
-    ambiguous = false;
     if (h.found && sb.hit[slot] && h.id == oracleId) {
         const std::vector<glm::dvec3>& P = lsPositions_[h.id.mesh];
         const std::vector<uint32_t>& I = *indices_[h.id.mesh];
@@ -145,7 +145,7 @@ bool Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot, Pixel
         if (glm::dot(ref.n, dir) > 0.0) ref.n = -ref.n;
         ref.id = h.id;
         ref.lsPointGap = glm::length(glm::dvec3(sb.lsPoint(slot)) - ref.p);
-        return true;
+        return Verdict::Agree;
     }
     // Different surfaces: ambiguous if the ray passes within the tolerance of an edge or a
     // surface on the way to the farther of the two hits, or both hits lie at the same depth
@@ -156,18 +156,19 @@ bool Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot, Pixel
     const double tEnd = std::isfinite(tFar) ? tFar * (1.0 + 1e-6) : kInf;
     const ExactTracer::SegmentQuery q =
         tracer_.segment(lsEye, dir, tEnd, TriangleId{}, kTolAbs, kTolPerT);
-    ambiguous = q.ambiguous || std::fabs(tOracle - tRef) <= kTolAbs + kTolPerT * tRef;
+    const bool ambiguous = q.ambiguous || std::fabs(tOracle - tRef) <= kTolAbs + kTolPerT * tRef;
     d.kind = "primary";
     d.oracleV = sb.hit[slot] ? 1.0 : 0.0;
     d.referenceV = h.found ? 1.0 : 0.0;
     d.wsMargin = frame_.wsLength(q.margin);
     d.wsOccluderDist = frame_.wsLength(tRef);
-    return false;
+    return ambiguous ? Verdict::Ambiguous : Verdict::Disagree;
 }
 
-void Verifier::hardPixel(const Light& light, const PixelRef& ref, float oracleV,
-                         VerifyDisagreement& d, int& verdict) const {
+Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, float oracleV,
+                                      VerifyDisagreement& d) const {
     HardTarget tgt;
+    bool reaches = true;  // faces the light, inside its cone, on its emitting side
     const glm::dvec3 lsPos = frame_.lsFromWs(light.wsPosition);
     double tie = kInf;  // the smallest facing/cone/emitter test value: near 0 is a tie
     if (light.type == LightType::Directional) {
@@ -181,24 +182,24 @@ void Verifier::hardPixel(const Light& light, const PixelRef& ref, float oracleV,
         if (light.type == LightType::Spot) {
             const double cosCone = glm::dot(-tgt.dir, light.wsDirection);
             const double cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
-            if (cosCone < cosOuter) verdict = 0;
+            reaches = reaches && !(cosCone < cosOuter);
             tie = std::min(tie, std::fabs(cosCone - cosOuter));
         }
         if (light.type == LightType::Rect || light.type == LightType::Disk) {
             const double behind = glm::dot(light.wsEmitNormal(), -w) / dist;
-            if (!(behind > 0.0)) verdict = 0;
+            reaches = reaches && behind > 0.0;
             tie = std::min(tie, std::fabs(behind));
         }
     }
     d.cosine = glm::dot(ref.n, tgt.dir);
-    if (!(d.cosine > 0.0)) verdict = 0;
+    reaches = reaches && d.cosine > 0.0;
     tie = std::min(tie, std::fabs(d.cosine));
     d.kind = "shadow";
     d.oracleV = oracleV;
     d.wsOccluderDist = kInf;
     bool ambiguous = tie < kCosTie;
     double refV = 0.0;
-    if (verdict != 0) {  // faces the light, inside the cone: trace the segment
+    if (reaches) {
         const ExactTracer::SegmentQuery q =
             tracer_.segment(ref.p, tgt.dir, tgt.tMax, ref.id, kTolAbs + ref.lsPointGap, kTolPerT);
         refV = q.occluded ? 0.0 : 1.0;
@@ -207,13 +208,14 @@ void Verifier::hardPixel(const Light& light, const PixelRef& ref, float oracleV,
         d.wsOccluderDist = frame_.wsLength(q.firstHitT);
     }
     d.referenceV = refV;
-    // verdict: 1 agree, 2 ambiguous, 3 disagree
-    verdict = double(oracleV) == refV ? 1 : ambiguous ? 2 : 3;
+    return double(oracleV) == refV ? Verdict::Agree
+           : ambiguous             ? Verdict::Ambiguous
+                                   : Verdict::Disagree;
 }
 
-void Verifier::areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
-                         float oracleV, float oracleStderr, float oracleSpp, double z,
-                         VerifyDisagreement& d, int& verdict) const {
+Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, size_t pixel,
+                                      const PixelRef& ref, float oracleV, float oracleStderr,
+                                      float oracleSpp, double z, VerifyDisagreement& d) const {
     const double s = frame_.lsLength(1.0);
     const glm::dvec3 c = frame_.lsFromWs(light.wsPosition);
     const glm::dvec3 U = light.wsU * s, Vv = light.wsV * s, m = light.wsEmitNormal();
@@ -256,28 +258,22 @@ void Verifier::areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, 
     }
     d.kind = "area";
     d.oracleV = oracleV;
-    d.oracleHalfWidth = 1.959963984540054 * double(oracleStderr);
+    d.oracleHalfWidth = kZ95 * double(oracleStderr);
     d.cosine = glm::dot(ref.n, glm::normalize(c - ref.p));
     if (oracleSpp == 0.0f || nonZero == 0) {
         // The oracle skipped the pixel (light below the horizon, behind it) or the reference
         // found no sample with G > 0: compare only where both measured something.
         d.referenceV = nonZero ? swv / sw : 0.0;
-        verdict = (oracleSpp == 0.0f) == (nonZero == 0) ? 1 : 2;
-        return;
+        return (oracleSpp == 0.0f) == (nonZero == 0) ? Verdict::Agree : Verdict::Ambiguous;
     }
-    // Ratio estimator with independent samples, and the same z^2/2 pseudo-samples each way as
-    // the oracle so that unanimous samples do not claim certainty.
-    const double prior = 0.5 * 1.959963984540054 * 1.959963984540054;
-    const double wbar = sw / double(nonZero), W = sw + 2.0 * prior * wbar;
-    const double Va = (swv + prior * wbar) / W;
-    const double ss = sw2v * (1.0 - 2.0 * Va) + Va * Va * sw2 +
-                      prior * wbar * wbar * ((1.0 - Va) * (1.0 - Va) + Va * Va);
-    const double refStderr = std::sqrt(std::max(0.0, ss)) / W;
-    d.referenceV = swv / sw;
-    d.referenceHalfWidth = 1.959963984540054 * refStderr;
+    // The oracle's ratio estimator and prior (a formula, not a trace): with independent samples
+    // its delta-method standard error is honest.
+    const RatioEstimate est = ratioEstimate(sw, swv, sw2, sw2v, nonZero);
+    d.referenceV = est.V;
+    d.referenceHalfWidth = kZ95 * est.stderr_;
     const double se =
-        std::sqrt(double(oracleStderr) * double(oracleStderr) + refStderr * refStderr);
-    verdict = std::fabs(double(oracleV) - d.referenceV) <= z * se ? 1 : 3;
+        std::sqrt(double(oracleStderr) * double(oracleStderr) + est.stderr_ * est.stderr_);
+    return std::fabs(double(oracleV) - d.referenceV) <= z * se ? Verdict::Agree : Verdict::Disagree;
 }
 
 LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
@@ -292,7 +288,7 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
     out.checked = slots.size();
     out.zThreshold =
         normalQuantileTwoSided(options_.familyAlpha / double(std::max<size_t>(1, slots.size())));
-    std::vector<int> verdicts(slots.size(), 0);
+    std::vector<Verdict> verdicts(slots.size(), Verdict::Agree);
     std::vector<VerifyDisagreement> found(slots.size());
     std::vector<uint8_t> primaryDiffers(slots.size(), 0);
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t i) {
@@ -303,25 +299,21 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
         d.y = int(pixel / size_t(sb.width));
         d.nearHorizon = i >= out.random;
         PixelRef ref;
-        bool ambiguous = false;
-        if (!primary(d.x, d.y, sb, slot, ref, d, ambiguous)) {
-            primaryDiffers[i] = ambiguous;
-            verdicts[i] = ambiguous ? 2 : 3;
+        const Verdict seen = primary(d.x, d.y, sb, slot, ref, d);
+        if (seen != Verdict::Agree) {
+            primaryDiffers[i] = seen == Verdict::Ambiguous;
+            verdicts[i] = seen;
             return;
         }
-        int verdict = -1;
-        if (sampled)
-            areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel], spp[pixel],
-                      out.zThreshold, d, verdict);
-        else
-            hardPixel(light, ref, V[pixel], d, verdict);
-        verdicts[i] = verdict;
+        verdicts[i] = sampled ? areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel],
+                                          spp[pixel], out.zThreshold, d)
+                              : hardPixel(light, ref, V[pixel], d);
     });
     for (size_t i = 0; i < slots.size(); ++i) {
-        out.agree += verdicts[i] == 1;
-        out.ambiguous += verdicts[i] == 2;
+        out.agree += verdicts[i] == Verdict::Agree;
+        out.ambiguous += verdicts[i] == Verdict::Ambiguous;
         out.primaryDiffers += primaryDiffers[i];
-        if (verdicts[i] == 3) {
+        if (verdicts[i] == Verdict::Disagree) {
             ++out.disagree;
             out.disagreements.push_back(found[i]);
         }

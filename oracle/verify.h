@@ -59,6 +59,8 @@ struct LightVerification {
 
 class Verifier {
   public:
+    enum class Verdict { Agree, Ambiguous, Disagree };
+
     // Builds the reference BVH from the scene's double-precision vertices in `frame`.
     Verifier(const Scene& scene, const LocalFrame& frame, const Camera& camera,
              const VerifyOptions& options, uint32_t seed);
@@ -83,13 +85,14 @@ class Verifier {
     std::vector<size_t> choosePixels(const Light& light, uint32_t lightIndex,
                                      const SurfaceBuffer& sb, uint64_t& random,
                                      uint64_t& nearHorizon) const;
-    bool primary(int x, int y, const SurfaceBuffer& sb, size_t slot, PixelRef& ref,
-                 VerifyDisagreement& d, bool& ambiguous) const;
-    void hardPixel(const Light& light, const PixelRef& ref, float oracleV, VerifyDisagreement& d,
-                   int& verdict) const;
-    void areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
-                   float oracleV, float oracleStderr, float oracleSpp, double z,
-                   VerifyDisagreement& d, int& verdict) const;
+    // Agree: the reference sees the oracle's triangle (ref is set); otherwise the pixel stops here.
+    Verdict primary(int x, int y, const SurfaceBuffer& sb, size_t slot, PixelRef& ref,
+                    VerifyDisagreement& d) const;
+    Verdict hardPixel(const Light& light, const PixelRef& ref, float oracleV,
+                      VerifyDisagreement& d) const;
+    Verdict areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
+                      float oracleV, float oracleStderr, float oracleSpp, double z,
+                      VerifyDisagreement& d) const;
 
     std::vector<std::vector<glm::dvec3>> lsPositions_;
     std::vector<const std::vector<uint32_t>*> indices_;
