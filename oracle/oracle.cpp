@@ -1,6 +1,7 @@
 #include "oracle/oracle.h"
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <thread>
 
@@ -55,11 +56,14 @@ void fillGeometryChannels(const SurfaceBuffer& sb, const Accel& accel, ChannelIm
 nlohmann::json offsetPolicyJson(OffsetPolicy policy, const LocalFrame& frame,
                                 const SurfaceBuffer& sb, double sceneExtent) {
     const double blind = frame.wsLength(sb.lsMaxOffset);
+    // The multiple is read off the constant, so the text cannot drift from the code.
     const std::string method =
         policy == OffsetPolicy::ErrorBound
             ? "error bound: the hit point rebuilt in double on the double triangle, the origin "
-              "moved 16 * 2^-24 along the geometric normal in the recentred frame scaled by "
-              "2^-exponent, and the triangle the ray leaves from skipped by an Embree filter"
+              "moved " +
+                  std::to_string(int(std::ldexp(kLsOriginOffset, 24))) +
+                  " * 2^-24 along the geometric normal in the recentred frame scaled by "
+                  "2^-exponent, and the triangle the ray leaves from skipped by an Embree filter"
             : "legacy: Waechter-Binder integer-ulp offset, 256 ulp along the geometric normal "
               "(test only)";
     return {{"method", method},
