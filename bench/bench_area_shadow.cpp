@@ -187,22 +187,19 @@ int main(int argc, char** argv) {
     OracleOptions o;
     o.progress = false;
     OracleResult adaptive = runOracle(small, o);
-    const auto& la = adaptive.stats["lights"][0];
-    o.area.fixedSpp = int(la["spp_max"].get<uint64_t>());
+    const OracleAreaStats& la = *adaptive.stats.lights[0].area;
+    o.area.fixedSpp = int(la.sppMax);
     OracleResult uniform = runOracle(small, o);
-    const auto& lu = uniform.stats["lights"][0];
+    const OracleAreaStats& lu = *uniform.stats.lights[0].area;
     std::printf("adaptive vs uniform (rect light, %dx%d, target 0.01):\n", adaptiveSize,
                 adaptiveSize);
     std::printf(
         "  adaptive  %12llu rays, mean %.0f spp, max %llu spp, worst half-width %.4f, %.2f s\n",
-        (unsigned long long)la["rays_traced"].get<uint64_t>(), la["spp_mean"].get<double>(),
-        (unsigned long long)la["spp_max"].get<uint64_t>(), la["worst_half_width"].get<double>(),
-        la["seconds"].get<double>());
+        (unsigned long long)la.raysTraced, la.sppMean(), (unsigned long long)la.sppMax,
+        la.worstHalfWidth, la.seconds);
     std::printf("  uniform   %12llu rays at %d spp, worst half-width %.4f, %.2f s\n",
-                (unsigned long long)lu["rays_traced"].get<uint64_t>(), o.area.fixedSpp,
-                lu["worst_half_width"].get<double>(), lu["seconds"].get<double>());
-    std::printf(
-        "  uniform / adaptive rays = %.2f\n",
-        double(lu["rays_traced"].get<uint64_t>()) / double(la["rays_traced"].get<uint64_t>()));
+                (unsigned long long)lu.raysTraced, o.area.fixedSpp, lu.worstHalfWidth, lu.seconds);
+    std::printf("  uniform / adaptive rays = %.2f\n",
+                double(lu.raysTraced) / double(la.raysTraced));
     return failures ? 1 : 0;
 }

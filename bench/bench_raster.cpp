@@ -12,9 +12,9 @@
 #include <CLI/CLI.hpp>
 
 #include "core/scene.h"
-#include "raster_compare/gl_context.h"
-#include "raster_compare/rasterizer.h"
-#include "raster_compare/technique.h"
+#include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/technique.h"
 
 using namespace so;
 
@@ -45,20 +45,22 @@ int main(int argc, char** argv) {
                 "camera ms", "wall ms", "ratios to basic (shadow, visibility, wall)");
     for (int res : {1024, 2048, 4096}) {
         std::map<std::string, double> basicMs;
-        for (const ShadowTechnique* t : allTechniques()) {
-            const ParamValues p = t->parse({"resolution=" + std::to_string(res)});
-            const RasterResult r = renderRaster(scene, *t, p, options, *gl);
+        // basic first: it is the baseline of the ratios.
+        std::vector<std::string> names = {"basic"};
+        for (const TechniqueInfo* t : allTechniques())
+            if (t->name != "basic") names.push_back(t->name);
+        for (const std::string& name : names) {
+            const std::unique_ptr<Technique> t =
+                createTechnique(name, {"resolution=" + std::to_string(res)});
+            const RasterResult r = renderRaster(scene, *t, options, *gl);
             double shadow = 0, vis = 0;
-            for (const auto& l : r.stats["lights"]) {
-                shadow += l["shadow_map_ms"].get<double>();
-                vis += l["visibility_ms"].get<double>();
-            }
-            const double cam = r.stats["timings"]["camera_ms"].get<double>(),
-                         wall = r.stats["timings"]["wall_ms"].get<double>();
-            if (t->name() == "basic") basicMs = {{"shadow", shadow}, {"vis", vis}, {"wall", wall}};
-            std::printf("%-15s %5d %11.2f %11.2f %9.2f %9.2f   %.2f %.2f %.2f\n", t->name().c_str(),
-                        res, shadow, vis, cam, wall, shadow / basicMs["shadow"],
-                        vis / basicMs["vis"], wall / basicMs["wall"]);
+            for (const RasterLightStats& l : r.stats.lights)
+                for (const auto& [pass, ms] : l.passMs) (pass == "visibility" ? vis : shadow) += ms;
+            const double cam = r.stats.timings.cameraMs, wall = r.stats.timings.wallMs;
+            if (name == "basic") basicMs = {{"shadow", shadow}, {"vis", vis}, {"wall", wall}};
+            std::printf("%-15s %5d %11.2f %11.2f %9.2f %9.2f   %.2f %.2f %.2f\n", name.c_str(), res,
+                        shadow, vis, cam, wall, shadow / basicMs["shadow"], vis / basicMs["vis"],
+                        wall / basicMs["wall"]);
         }
     }
     return 0;

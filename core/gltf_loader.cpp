@@ -1,4 +1,5 @@
-// Safe glTF 2.0 loading on top of tinygltf 2.7 (see ../shared/notes/gltf.md for its known holes).
+// Safe glTF 2.0 loading on top of tinygltf 2.7 (its known holes:
+// tests/data/broken_gltf/expected.tsv).
 //
 // PUBLIC CONTRACT: traversal order and mesh numbering. Mesh ids in the output images (id.mesh)
 // are indices into GltfContent::meshes, so this order must never change silently:

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <thread>
+#include <utility>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -13,6 +15,7 @@
 #include "core/camera.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/geometry_channels.h"
 #include "core/progress.h"
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
@@ -29,35 +32,21 @@ double secondsSince(Clock::time_point t) {
 }
 
 void fillGeometryChannels(const SurfaceBuffer& sb, const Accel& accel, ChannelImage& img) {
-    namespace ch = channels;
-    float* A = img.addChannel(ch::kHit);
-    float* P[3] = {img.addChannel(ch::kPX), img.addChannel(ch::kPY), img.addChannel(ch::kPZ)};
-    float* N[3] = {img.addChannel(ch::kNX), img.addChannel(ch::kNY), img.addChannel(ch::kNZ)};
-    float* Z = img.addChannel(ch::kDepth, std::numeric_limits<float>::infinity());
-    float* mesh = img.addChannel(ch::kMeshId, -1.0f);
-    float* prim = img.addChannel(ch::kPrimId, -1.0f);
+    GeometryChannelWriter out(img);
     const LocalFrame& frame = accel.frame();
     for (size_t s = 0; s < sb.slotCount(); ++s) {
         const size_t i = sb.pixelOfSlot(s);
         if (i == SIZE_MAX || !sb.hit[s]) continue;
-        A[i] = 1.0f;
-        const glm::dvec3 ws = frame.wsFromLs(glm::dvec3(sb.lsPoint(s)));
-        for (int k = 0; k < 3; ++k) {
-            P[k][i] = float(ws[k]);
-            N[k][i] = sb.lsNormal(s)[k];
-        }
-        Z[i] = sb.wsDepth[s];
-        // Exact in float: the loader caps meshes and triangles per mesh at 2^24.
-        mesh[i] = float(sb.meshId[s]);
-        prim[i] = float(sb.primId[s]);
+        out.set(i, frame.wsFromLs(glm::dvec3(sb.lsPoint(s))), sb.lsNormal(s), sb.wsDepth[s],
+                float(sb.meshId[s]), float(sb.primId[s]));
     }
 }
 
-nlohmann::json offsetPolicyJson(OffsetPolicy policy, const LocalFrame& frame,
-                                const SurfaceBuffer& sb, double sceneExtent) {
-    const double blind = frame.wsLength(sb.lsMaxOffset);
+OracleOffsetStats offsetPolicyStats(OffsetPolicy policy, const LocalFrame& frame,
+                                    const SurfaceBuffer& sb, double sceneExtent) {
+    OracleOffsetStats o;
     // The multiple is read off the constant, so the text cannot drift from the code.
-    const std::string method =
+    o.method =
         policy == OffsetPolicy::ErrorBound
             ? "error bound: the hit point rebuilt in double on the double triangle, the origin "
               "moved " +
@@ -66,20 +55,191 @@ nlohmann::json offsetPolicyJson(OffsetPolicy policy, const LocalFrame& frame,
                   "2^-exponent, and the triangle the ray leaves from skipped by an Embree filter"
             : "legacy: Waechter-Binder integer-ulp offset, 256 ulp along the geometric normal "
               "(test only)";
-    return {{"method", method},
-            {"skips_origin_triangle", true},
-            {"max_blind_distance", blind},
-            {"max_blind_distance_relative", sceneExtent > 0 ? blind / sceneExtent : 0.0},
-            {"note",
-             "the shadow ray starts this far from the surface along the normal: an occluder that "
-             "comes closer to the ray than that, at the surface or anywhere along it, may be "
-             "missed; rays to a light stop a margin of 256 ulp of the light's coordinates short of "
-             "it"}};
+    o.skipsOriginTriangle = true;
+    o.maxBlindDistance = frame.wsLength(sb.lsMaxOffset);
+    o.maxBlindDistanceRelative = sceneExtent > 0 ? o.maxBlindDistance / sceneExtent : 0.0;
+    return o;
+}
+
+// What the passes over the lights share.
+struct LightPass {
+    const Scene& scene;
+    const OracleOptions& options;
+    const Accel& accel;
+    const SurfaceBuffer& sb;
+    tbb::task_arena& arena;
+    ChannelImage& image;
+    uint64_t pixels;
+    bool penumbra, contact;
+};
+
+// An area light with "penumbra": sampled, with V, stderr, spp and cos.
+OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, float* cosine,
+                                  Progress& progress) {
+    namespace ch = channels;
+    const Light& light = p.scene.lights[li];
+    float* stderr_ = p.image.addChannel(ch::lightChannel(light.name, ch::kStdErr));
+    float* spp = p.image.addChannel(ch::lightChannel(light.name, ch::kSpp));
+    const AreaLight al = makeAreaLight(light, p.accel.frame());
+    const AreaSampling& sampling = p.options.area;
+    AreaShadowStats st;
+    p.arena.execute([&] {
+        st = traceAreaShadows(p.accel, p.sb, al, sampling, li, V, stderr_, spp, cosine, &progress);
+    });
+    OracleAreaStats s;
+    s.sampling =
+        light.type == LightType::Sphere ? "solid angle of the visible cap" : "uniform by area";
+    s.raysTraced = st.raysTraced;
+    s.raysOccluded = st.raysOccluded;
+    s.skippedBackground = st.skippedBackground;
+    s.skippedBelowHorizon = st.skippedBelowHorizon;
+    s.skippedBehindLight = st.skippedBehindLight;
+    s.skippedInsideLight = st.skippedInsideLight;
+    s.samples = st.samples;
+    s.pixelsSampled = st.pixelsSampled;
+    s.pixelsWithoutUsableSamples = st.pixelsWithoutUsableSamples;
+    s.sppMax = st.maxSpp;
+    if (sampling.fixedSpp <= 0) s.targetError = sampling.targetError;
+    s.maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
+    s.shareReachedTarget =
+        st.pixelsSampled ? double(st.reachedTarget) / double(st.pixelsSampled) : 1.0;
+    s.worstHalfWidth = st.worstHalfWidth;
+    s.uniformSpp = st.uniformSppForWorst;
+    s.samplingEfficiency = st.samplingEfficiency;
+    s.seconds = st.seconds;
+    return s;
+}
+
+// One shadow ray per pixel to a point: hard lights, area lights without "penumbra" (to the
+// centre), and the contact rays of sampled area lights (to the centre; then only occDist is kept).
+OracleHardStats traceHardLight(const LightPass& p, uint32_t li, bool sampled, float* V,
+                               float* cosine, float* occDist, Progress& progress) {
+    const Light& light = p.scene.lights[li];
+    std::vector<float> scratch;
+    if (sampled) {  // only the occluder distance is wanted
+        scratch.assign(2 * size_t(p.pixels), 0.0f);
+        V = scratch.data();
+        cosine = scratch.data() + p.pixels;
+    }
+    const HardLight hl = makeHardLight(light, p.accel.frame());
+    HardShadowStats st;
+    p.arena.execute([&] {
+        st = traceHardShadows(p.accel, p.sb, hl, V, cosine, occDist, sampled ? nullptr : &progress);
+    });
+    OracleHardStats s;
+    s.raysTraced = st.traced;
+    s.raysOccluded = st.occluded;
+    s.skippedBackground = st.skippedBackground;
+    s.skippedAttached = st.skippedAttached;
+    if (light.type == LightType::Spot) s.skippedOutsideCone = st.skippedOutsideCone;
+    if (hl.oneSided) s.skippedBehindLight = st.skippedBehindLight;
+    s.closestHitQueries = st.closestHitQueries;
+    s.seconds = st.seconds;
+    return s;
+}
+
+// Adds the light's channels (docs/exr-channels.md) and traces it.
+OracleLightStats traceLight(const LightPass& p, uint32_t li) {
+    namespace ch = channels;
+    const Light& light = p.scene.lights[li];
+    float* V = p.image.addChannel(ch::lightChannel(light.name, ch::kVisibility));
+    float* cosine = p.image.addChannel(ch::lightChannel(light.name, ch::kCosine));
+    // Channels exist only for what the scene asks for: no occ_dist without "contact".
+    float* occDist = p.contact
+                         ? p.image.addChannel(ch::lightChannel(light.name, ch::kOccluderDistance))
+                         : nullptr;
+    OracleLightStats l;
+    l.name = light.name;
+    l.type = light.type;
+    const bool sampled = p.penumbra && isAreaLight(light.type);
+    Progress progress("shadow rays " + light.name, p.pixels, p.options.progress);
+    if (sampled) {
+        l.area = traceSampledLight(p, li, V, cosine, progress);
+        l.method = p.options.area.fixedSpp > 0 ? "sampled (penumbra), fixed spp"
+                                               : "sampled (penumbra), adaptive";
+    } else {
+        l.method = isAreaLight(light.type)
+                       ? "point at the centre (no \"penumbra\" effect): one shadow ray per pixel"
+                       : "hard: one shadow ray per pixel";
+    }
+    if (!sampled || p.contact)
+        l.hard = traceHardLight(p, li, sampled, V, cosine, occDist, progress);
+    return l;
+}
+
+// The independent re-trace of one light (verify.h), from the channels just written.
+LightVerification verifyLight(const LightPass& p, const Verifier& verifier, uint32_t li,
+                              bool sampled) {
+    namespace ch = channels;
+    const Light& light = p.scene.lights[li];
+    const float* V = p.image.channel(ch::lightChannel(light.name, ch::kVisibility));
+    const float* stderr_ =
+        sampled ? p.image.channel(ch::lightChannel(light.name, ch::kStdErr)) : nullptr;
+    const float* spp = sampled ? p.image.channel(ch::lightChannel(light.name, ch::kSpp)) : nullptr;
+    LightVerification out;
+    p.arena.execute([&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp); });
+    return out;
+}
+
+constexpr size_t kVerifyMaxTriangles = size_t(1) << 25;  // about 7 GB for the reference
+
+// The reference for --verify, built once for all lights; null without --verify.
+std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& options,
+                                       const LocalFrame& frame, const Camera& camera,
+                                       OracleStats& stats) {
+    if (options.verify.pixels <= 0) return nullptr;
+    // The reference keeps about 200 bytes per triangle (triangles, nodes, the double vertices):
+    // refuse rather than exhaust memory on a huge scene.
+    if (scene.stats.triangles > kVerifyMaxTriangles)
+        throwInputError(scene.path.string(), "--verify",
+                        "the scene has " + std::to_string(scene.stats.triangles) +
+                            " triangles; the exact re-trace handles at most " +
+                            std::to_string(kVerifyMaxTriangles));
+    const auto t0 = Clock::now();
+    auto verifier =
+        std::make_unique<Verifier>(scene, frame, camera, options.verify, options.area.seed);
+    OracleVerifyStats& v = stats.verify.emplace();
+    v.buildSeconds = secondsSince(t0);
+    v.options = options.verify;
+    v.wsToleranceAbs = frame.wsLength(Verifier::kTolAbs);
+    v.tolerancePerUnitDistance = Verifier::kTolPerT;
+    return verifier;
+}
+
+// Every light in scene order, each verified right after it is traced (with --verify).
+void traceLights(const LightPass& p, const Verifier* verifier, OracleStats& stats) {
+    for (size_t li = 0; li < p.scene.lights.size(); ++li) {
+        OracleLightStats l = traceLight(p, uint32_t(li));
+        if (l.area) {
+            stats.shadowSeconds += l.area->seconds;
+            stats.shadowRays += l.area->raysTraced;
+        }
+        if (l.hard) {
+            stats.shadowSeconds += l.hard->seconds;
+            stats.shadowRays += l.hard->raysTraced;
+            stats.closestHitQueries += l.hard->closestHitQueries;
+        }
+        if (verifier)
+            stats.verify->lights.push_back(verifyLight(p, *verifier, uint32_t(li), l.sampled()));
+        stats.lights.push_back(std::move(l));
+    }
+}
+
+// The fields of the stats that describe the setup rather than the tracing.
+void describeSetup(const Scene& scene, const OracleOptions& options, const Accel& accel,
+                   const SurfaceBuffer& sb, OracleStats& stats) {
+    stats.effects = scene.effects;
+    stats.seed = options.area.seed;
+    const LocalFrame& frame = accel.frame();
+    stats.frame.wsCenter = frame.wsCenter;
+    stats.frame.scaleExponent = frame.exponent;
+    stats.offsetPolicy =
+        offsetPolicyStats(options.offsetPolicy, frame, sb, scene.wsBounds.extent());
+    stats.embree = {EmbreeDevice::version(), "robust", "high"};
+    stats.tbbVersion = std::to_string(TBB_VERSION_MAJOR) + "." + std::to_string(TBB_VERSION_MINOR);
 }
 
 }  // namespace
-
-constexpr size_t kVerifyMaxTriangles = size_t(1) << 25;  // about 7 GB for the reference
 
 CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
     CameraDesc desc = scene.camera;
@@ -89,26 +249,27 @@ CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
 }
 
 OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
-    const int threads =
+    OracleResult result;
+    OracleStats& stats = result.stats;
+    stats.threads =
         options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-    const CameraDesc camDesc = effectiveCamera(scene, options);
-    const Camera camera(camDesc);
-    nlohmann::json phases = nlohmann::json::object();
+    const Camera camera(effectiveCamera(scene, options));
+    stats.width = camera.width();
+    stats.height = camera.height();
 
     // The BVH is built with a fixed configuration whatever --threads says, so that the same scene
     // always gives the same tree and therefore the same closest hit on exact ties.
     auto t0 = Clock::now();
     EmbreeDevice device("threads=0");
-    std::unique_ptr<Accel> accel;
-    accel = std::make_unique<Accel>(scene, device);
-    phases["build_bvh"] = secondsSince(t0);
+    const Accel accel(scene, device);
+    stats.buildBvhSeconds = secondsSince(t0);
 
     // Tracing uses exactly the requested number of threads, even above the core count (the
     // determinism tests oversubscribe on purpose); TBB would otherwise cap the arena and warn.
-    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    tbb::task_arena arena(threads);
+    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                    size_t(stats.threads));
+    tbb::task_arena arena(stats.threads);
 
-    OracleResult result;
     result.image = ChannelImage(camera.width(), camera.height());
     const uint64_t pixels = uint64_t(camera.width()) * uint64_t(camera.height());
 
@@ -116,179 +277,24 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     SurfaceBuffer sb;
     {
         Progress progress("primary rays", pixels, options.progress);
-        arena.execute([&] { sb = tracePrimary(*accel, camera, &progress, options.offsetPolicy); });
+        arena.execute([&] { sb = tracePrimary(accel, camera, &progress, options.offsetPolicy); });
     }
-    phases["primary"] = secondsSince(t0);
-    fillGeometryChannels(sb, *accel, result.image);
+    stats.primarySeconds = secondsSince(t0);
+    fillGeometryChannels(sb, accel, result.image);
 
-    // The independent re-trace, built once for all lights (verify.h).
-    std::unique_ptr<Verifier> verifier;
-    double verifyBuildSeconds = 0.0;
-    if (options.verify.pixels > 0) {
-        // The reference keeps about 200 bytes per triangle (triangles, nodes, the double
-        // vertices): refuse rather than exhaust memory on a huge scene.
-        if (scene.stats.triangles > kVerifyMaxTriangles)
-            throwInputError(scene.path.string(), "--verify",
-                            "the scene has " + std::to_string(scene.stats.triangles) +
-                                " triangles; the exact re-trace handles at most " +
-                                std::to_string(kVerifyMaxTriangles));
-        t0 = Clock::now();
-        verifier = std::make_unique<Verifier>(scene, accel->frame(), camera, options.verify,
-                                              options.area.seed);
-        verifyBuildSeconds = secondsSince(t0);
-    }
-
-    nlohmann::json lights = nlohmann::json::array();
-    double shadowSeconds = 0.0;
-    uint64_t shadowRays = 0;
-    const bool penumbra = scene.hasEffect("penumbra");
-    const bool contact = scene.hasEffect("contact");
-    uint64_t closestHitQueries = 0;
-    for (size_t li = 0; li < scene.lights.size(); ++li) {
-        const Light& light = scene.lights[li];
-        namespace ch = channels;
-        float* V = result.image.addChannel(ch::lightChannel(light.name, ch::kVisibility));
-        float* cosine = result.image.addChannel(ch::lightChannel(light.name, ch::kCosine));
-        // Channels exist only for what the scene asks for: no occ_dist without "contact".
-        float* occDist =
-            contact ? result.image.addChannel(ch::lightChannel(light.name, ch::kOccluderDistance))
-                    : nullptr;
-        const bool sampled = penumbra && isAreaLight(light.type);
-        nlohmann::json lj = {{"name", light.name}, {"type", lightTypeName(light.type)}};
-        Progress progress("shadow rays " + light.name, pixels, options.progress);
-        if (sampled) {
-            float* stderr_ = result.image.addChannel(ch::lightChannel(light.name, ch::kStdErr));
-            float* spp = result.image.addChannel(ch::lightChannel(light.name, ch::kSpp));
-            const AreaLight al = makeAreaLight(light, accel->frame());
-            AreaShadowStats st;
-            arena.execute([&] {
-                st = traceAreaShadows(*accel, sb, al, options.area, uint32_t(li), V, stderr_, spp,
-                                      cosine, &progress);
-            });
-            shadowSeconds += st.seconds;
-            shadowRays += st.raysTraced;
-            const double raysPerSample =
-                st.samples ? double(st.raysTraced) / double(st.samples) : 0.0;
-            const double uniformSamples = st.uniformSppForWorst * double(st.pixelsSampled);
-            lj["method"] = options.area.fixedSpp > 0 ? "sampled (penumbra), fixed spp"
-                                                     : "sampled (penumbra), adaptive";
-            lj["sampling"] = light.type == LightType::Sphere ? "solid angle of the visible cap"
-                                                             : "uniform by area";
-            lj["rays_traced"] = st.raysTraced;
-            lj["rays_occluded"] = st.raysOccluded;
-            lj["rays_skipped"] = {{"background", st.skippedBackground},
-                                  {"below_horizon", st.skippedBelowHorizon},
-                                  {"behind_light", st.skippedBehindLight},
-                                  {"inside_light", st.skippedInsideLight}};
-            lj["samples"] = st.samples;
-            lj["samples_without_ray"] = st.samples - st.raysTraced;
-            lj["pixels_sampled"] = st.pixelsSampled;
-            lj["pixels_without_usable_samples"] = st.pixelsWithoutUsableSamples;
-            lj["spp_mean"] = st.pixelsSampled ? double(st.samples) / double(st.pixelsSampled) : 0.0;
-            lj["spp_max"] = st.maxSpp;
-            lj["target_error"] = options.area.fixedSpp > 0
-                                     ? nlohmann::json(nullptr)
-                                     : nlohmann::json(options.area.targetError);
-            lj["max_spp"] = options.area.fixedSpp > 0 ? options.area.fixedSpp : options.area.maxSpp;
-            lj["share_reached_target"] =
-                st.pixelsSampled ? double(st.reachedTarget) / double(st.pixelsSampled) : 1.0;
-            lj["worst_half_width"] = st.worstHalfWidth;
-            lj["uniform_equivalent"] = {{"spp", st.uniformSppForWorst},
-                                        {"samples", uniformSamples},
-                                        {"rays", uniformSamples * raysPerSample},
-                                        {"note",
-                                         "a uniform run reaching the same worst-pixel half-width "
-                                         "(estimated from each pixel's variance)"}};
-            lj["sampling_efficiency"] = st.samplingEfficiency;
-            lj["seconds"] = st.seconds;
-            lj["rays_per_second"] = st.seconds > 0 ? double(st.raysTraced) / st.seconds : 0.0;
-        }
-        // Hard lights, area lights without "penumbra" (a point at the centre), and the contact
-        // rays of sampled area lights (to the centre) all go through the hard-shadow pass.
-        if (!sampled || contact) {
-            std::vector<float> scratch;
-            float* hardV = V;
-            float* hardCos = cosine;
-            if (sampled) {  // only the occluder distance is wanted
-                scratch.assign(2 * size_t(pixels), 0.0f);
-                hardV = scratch.data();
-                hardCos = scratch.data() + pixels;
-            }
-            const HardLight hl = makeHardLight(light, accel->frame());
-            HardShadowStats st;
-            arena.execute([&] {
-                st = traceHardShadows(*accel, sb, hl, hardV, hardCos, occDist,
-                                      sampled ? nullptr : &progress);
-            });
-            shadowSeconds += st.seconds;
-            shadowRays += st.traced;
-            closestHitQueries += st.closestHitQueries;
-            nlohmann::json skipped = {{"background", st.skippedBackground},
-                                      {"attached", st.skippedAttached}};
-            if (light.type == LightType::Spot) skipped["outside_cone"] = st.skippedOutsideCone;
-            if (hl.oneSided) skipped["behind_light"] = st.skippedBehindLight;
-            nlohmann::json hard = {
-                {"rays_traced", st.traced},
-                {"rays_occluded", st.occluded},
-                {"rays_skipped", skipped},
-                {"closest_hit_queries", st.closestHitQueries},
-                {"seconds", st.seconds},
-                {"rays_per_second", st.seconds > 0 ? double(st.traced) / st.seconds : 0.0}};
-            if (sampled) {
-                lj["contact_rays"] = hard;
-            } else {
-                lj["method"] =
-                    isAreaLight(light.type)
-                        ? "point at the centre (no \"penumbra\" effect): one shadow ray per pixel"
-                        : "hard: one shadow ray per pixel";
-                lj.update(hard);
-            }
-        }
-        lights.push_back(lj);
-        if (verifier) {
-            const float* stderr_ =
-                sampled ? result.image.channel(ch::lightChannel(light.name, ch::kStdErr)) : nullptr;
-            const float* spp =
-                sampled ? result.image.channel(ch::lightChannel(light.name, ch::kSpp)) : nullptr;
-            arena.execute([&] {
-                result.verification.push_back(
-                    verifier->verifyLight(light, uint32_t(li), sampled, sb, V, stderr_, spp));
-            });
-        }
-    }
-    phases["shadow"] = shadowSeconds;
-
-    const LocalFrame& frame = accel->frame();
-    const double sceneExtent = scene.wsBounds.extent();
-    result.stats = {
-        {"image", {{"width", camera.width()}, {"height", camera.height()}}},
-        {"threads", threads},
-        {"phases_seconds", phases},
-        {"shadow_rays", shadowRays},
-        {"closest_hit_queries", closestHitQueries},
-        {"effects", scene.effects},
-        {"seed", options.area.seed},
-        {"shadow_rays_per_second", shadowSeconds > 0 ? double(shadowRays) / shadowSeconds : 0.0},
-        {"lights", lights},
-        {"frame",
-         {{"ws_center", {frame.wsCenter.x, frame.wsCenter.y, frame.wsCenter.z}},
-          {"scale_exponent", frame.exponent}}},
-        {"offset_policy", offsetPolicyJson(options.offsetPolicy, frame, sb, sceneExtent)},
-        {"embree",
-         {{"version", EmbreeDevice::version()},
-          {"scene_flags", "robust"},
-          {"build_quality", "high"}}},
-        {"tbb",
-         {{"version",
-           std::to_string(TBB_VERSION_MAJOR) + "." + std::to_string(TBB_VERSION_MINOR)}}},
-    };
-    if (verifier) {
-        result.stats["verify"] = verificationJson(result.verification, options.verify,
-                                                  accel->frame(), verifyBuildSeconds);
-        double verifySeconds = verifyBuildSeconds;
-        for (const LightVerification& l : result.verification) verifySeconds += l.seconds;
-        result.stats["phases_seconds"]["verify"] = verifySeconds;
-    }
+    const std::unique_ptr<Verifier> verifier =
+        makeVerifier(scene, options, accel.frame(), camera, stats);
+    const LightPass pass{scene,
+                         options,
+                         accel,
+                         sb,
+                         arena,
+                         result.image,
+                         pixels,
+                         scene.hasEffect("penumbra"),
+                         scene.hasEffect("contact")};
+    traceLights(pass, verifier.get(), stats);
+    describeSetup(scene, options, accel, sb, stats);
     return result;
 }
 

@@ -1,15 +1,13 @@
 // The oracle: ground-truth shadows for a scene (docs/oracle.md). runOracle computes; the trace
-// command (trace_command.h) writes the files.
+// command (cli/trace_command.h) writes the files; oracle_cache.h keeps them for the compare
+// command.
 #pragma once
-
-#include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "core/image.h"
 #include "core/scene.h"
 #include "oracle/area_shadow.h"
 #include "oracle/offset.h"
+#include "oracle/oracle_stats.h"
 #include "oracle/verify.h"
 
 namespace so {
@@ -26,9 +24,9 @@ struct OracleOptions {
 };
 
 struct OracleResult {
-    ChannelImage image;                           // channels as in docs/exr-channels.md
-    nlohmann::json stats;                         // the oracle.json content that depends on the run
-    std::vector<LightVerification> verification;  // with --verify: one per light
+    ChannelImage image;  // channels as in docs/exr-channels.md
+    OracleStats stats;   // the oracle.json content that depends on the run (toJson); with
+                         // --verify, stats.verify has one LightVerification per light
 };
 
 // The camera description actually used (scene camera with the option's width and height).

@@ -16,8 +16,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/camera.h"
 #include "core/local_frame.h"
 #include "core/scene.h"
@@ -103,9 +101,6 @@ class Verifier {
     uint32_t seed_;
 };
 
-nlohmann::json verificationJson(const std::vector<LightVerification>& lights,
-                                const VerifyOptions& options, const LocalFrame& frame,
-                                double buildSeconds);
 uint64_t disagreementCount(const std::vector<LightVerification>& lights);
 
 }  // namespace so

@@ -51,7 +51,7 @@ PenumbraScene makePenumbraScene(int w, int h) {
 
 struct OracleRun {
     ChannelImage img;
-    nlohmann::json stats;
+    OracleStats stats;
 };
 
 OracleRun run(const Scene& scene, const AreaSampling& area, int threads = 0) {
@@ -287,23 +287,25 @@ TEST(AreaLight, ConvergenceSlope) {
 TEST(AreaLight, AdaptiveNeedsFourTimesFewerRaysThanUniform) {
     PenumbraScene s = makePenumbraScene(96, 72);
     OracleRun adaptive = run(s.scene, AreaSampling{});
-    const auto& la = adaptive.stats["lights"][0];
-    const double worstA = la["worst_half_width"].get<double>();
-    const uint64_t raysA = la["rays_traced"].get<uint64_t>();
+    ASSERT_TRUE(adaptive.stats.lights[0].area);
+    const OracleAreaStats& la = *adaptive.stats.lights[0].area;
+    const double worstA = la.worstHalfWidth;
+    const uint64_t raysA = la.raysTraced;
     // A uniform run with as many samples everywhere as the adaptive run's hardest pixel.
     AreaSampling uniform;
-    uniform.fixedSpp = int(la["spp_max"].get<uint64_t>());
+    uniform.fixedSpp = int(la.sppMax);
     OracleRun u = run(s.scene, uniform);
-    const auto& lu = u.stats["lights"][0];
-    const double worstU = lu["worst_half_width"].get<double>();
-    const uint64_t raysU = lu["rays_traced"].get<uint64_t>();
+    ASSERT_TRUE(u.stats.lights[0].area);
+    const OracleAreaStats& lu = *u.stats.lights[0].area;
+    const double worstU = lu.worstHalfWidth;
+    const uint64_t raysU = lu.raysTraced;
     const double ratio = double(raysU) / double(raysA);
     std::printf(
         "[ adaptive ] adaptive: %llu rays, worst half-width %.5f; uniform at %d spp: %llu rays, "
         "worst "
         "half-width %.5f; ratio %.2f (the JSON's estimate: %.0f rays)\n",
         (unsigned long long)raysA, worstA, uniform.fixedSpp, (unsigned long long)raysU, worstU,
-        ratio, la["uniform_equivalent"]["rays"].get<double>());
+        ratio, la.uniformRays());
     EXPECT_LE(worstU, worstA * 1.05)
         << "the uniform run must reach the same worst-pixel half-width";
     EXPECT_GE(ratio, 4.0);
@@ -336,11 +338,13 @@ TEST(Effects, WithoutPenumbraOneRayPerLitFacingPixel) {
     const float* C = r.img.channel("panel.cos");
     uint64_t facing = 0;
     for (size_t i = 0; i < r.img.pixelCount(); ++i) facing += A[i] != 0.0f && C[i] > 0.0f;
-    const auto& l = r.stats["lights"][0];
-    EXPECT_EQ(l["rays_traced"].get<uint64_t>(), facing);
+    const OracleLightStats& l = r.stats.lights[0];
+    ASSERT_TRUE(l.hard);
+    EXPECT_FALSE(l.sampled());
+    EXPECT_EQ(l.hard->raysTraced, facing);
     EXPECT_FALSE(r.img.has("panel.stderr"));
     EXPECT_FALSE(r.img.has("panel.spp"));
-    EXPECT_NE(l["method"].get<std::string>().find("centre"), std::string::npos);
+    EXPECT_NE(l.method.find("centre"), std::string::npos);
     // A hard light's V is 0 or 1.
     const float* V = r.img.channel("panel.V");
     for (size_t i = 0; i < r.img.pixelCount(); ++i) ASSERT_TRUE(V[i] == 0.0f || V[i] == 1.0f);
@@ -358,13 +362,13 @@ TEST(Effects, ContactOnlyWhenAsked) {
     finalizeScene(sc);
     OracleRun without = run(sc, AreaSampling{});
     EXPECT_FALSE(without.img.has("key.occ_dist"));
-    EXPECT_EQ(without.stats["closest_hit_queries"].get<uint64_t>(), 0u);
+    EXPECT_EQ(without.stats.closestHitQueries, 0u);
 
     sc.effects = {"hard", "contact"};
     OracleRun with = run(sc, AreaSampling{});
     ASSERT_TRUE(with.img.has("key.occ_dist"));
-    EXPECT_EQ(with.stats["closest_hit_queries"].get<uint64_t>(),
-              with.stats["lights"][0]["rays_traced"].get<uint64_t>());
+    ASSERT_TRUE(with.stats.lights[0].hard);
+    EXPECT_EQ(with.stats.closestHitQueries, with.stats.lights[0].hard->raysTraced);
     // Same visibility either way.
     EXPECT_EQ(0, std::memcmp(without.img.channel("key.V"), with.img.channel("key.V"),
                              with.img.pixelCount() * sizeof(float)));
@@ -406,10 +410,10 @@ TEST(Effects, WarningsForWhatTheLightsCannotShow) {
     AreaSampling fixed;
     fixed.fixedSpp = 16;
     OracleRun r = run(s.scene, fixed);
-    const auto& l = r.stats["lights"][0];
-    ASSERT_TRUE(l.contains("contact_rays"));
-    EXPECT_EQ(l["contact_rays"]["closest_hit_queries"].get<uint64_t>(),
-              l["contact_rays"]["rays_traced"].get<uint64_t>());
+    const OracleLightStats& l = r.stats.lights[0];
+    ASSERT_TRUE(l.sampled());
+    ASSERT_TRUE(l.hard);  // the contact rays
+    EXPECT_EQ(l.hard->closestHitQueries, l.hard->raysTraced);
     EXPECT_TRUE(r.img.has("panel.occ_dist"));
 }
 

@@ -2,12 +2,14 @@
 // files whatever the thread count.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -81,7 +83,8 @@ TEST(Cli, RasterBadArgumentsExitTwo) {
     const std::string scene = std::string(SO_SCENES_DIR) + "/contact_box.scene.json";
     RunResult unknown = run("raster " + scene + " --out /tmp/x --technique nope");
     EXPECT_EQ(unknown.exitCode, 2);
-    EXPECT_NE(unknown.stderrText.find("valid: basic"), std::string::npos) << unknown.stderrText;
+    EXPECT_NE(unknown.stderrText.find("valid: "), std::string::npos) << unknown.stderrText;
+    EXPECT_NE(unknown.stderrText.find("basic"), std::string::npos) << unknown.stderrText;
     RunResult badKey = run("raster " + scene + " --out /tmp/x --technique pcf --set kernal=3");
     EXPECT_EQ(badKey.exitCode, 2);
     EXPECT_NE(badKey.stderrText.find("kernel"), std::string::npos) << badKey.stderrText;
@@ -120,6 +123,51 @@ TEST(Cli, ShippedScenesTraceIdenticallyAtAnyThreadCount) {
             }
         }
     }
+}
+
+}  // namespace
+
+namespace {
+
+std::string runStdout(const std::string& args) {
+    const fs::path outFile =
+        fs::temp_directory_path() / ("so_cli_test_" + std::to_string(::getpid()) + ".out");
+    const std::string cmd = std::string(SO_CLI_PATH) + " " + args + " > " + outFile.string();
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::string text = readBytes(outFile);
+    fs::remove(outFile);
+    return text;
+}
+
+// docs/techniques.md's tables are generated from the techniques' parameter tables: the document
+// must say exactly what the code validates.
+TEST(Docs, TechniqueTablesMatchTheCode) {
+    const std::string doc = readBytes(fs::path(SO_DOCS_DIR) / "techniques.md");
+    const std::string begin = "<!-- BEGIN techniques (generated: scripts/update-docs) -->\n\n",
+                      end = "<!-- END techniques -->";
+    const size_t a = doc.find(begin), b = doc.find(end);
+    ASSERT_NE(a, std::string::npos);
+    ASSERT_NE(b, std::string::npos);
+    EXPECT_EQ(doc.substr(a + begin.size(), b - a - begin.size()),
+              runStdout("techniques --markdown"))
+        << "docs/techniques.md is stale: run scripts/update-docs";
+}
+
+// The listing as JSON: every technique with its parameters, ranges and defaults.
+TEST(Cli, TechniquesListingAsJson) {
+    const nlohmann::json j = nlohmann::json::parse(runStdout("techniques --json"));
+    EXPECT_EQ(j["format_version"], 1);
+    std::vector<std::string> names;
+    for (const auto& t : j["techniques"]) {
+        names.push_back(t["name"]);
+        EXPECT_FALSE(t["summary"].get<std::string>().empty());
+        for (const auto& p : t["parameters"]) {
+            EXPECT_LE(p["min"].get<double>(), p["default"].get<double>()) << t["name"] << p;
+            EXPECT_LE(p["default"].get<double>(), p["max"].get<double>()) << t["name"] << p;
+        }
+    }
+    for (const char* name : {"basic", "pcf", "vsm", "evsm", "hw-pcf"})
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/channels.h"
-#include "raster_compare/metrics.h"
+#include "raster_compare/compare/metrics.h"
 
 namespace so {
 namespace {

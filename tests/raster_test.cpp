@@ -18,10 +18,11 @@
 
 #include "core/channels.h"
 #include "core/error.h"
-#include "raster_compare/gate_command.h"
-#include "raster_compare/gl_context.h"
-#include "raster_compare/rasterizer.h"
-#include "raster_compare/technique.h"
+#include "raster_compare/compare/gate.h"
+#include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/technique.h"
 #include "test_scenes.h"
 
 namespace so::test {
@@ -55,11 +56,10 @@ GlContext* glContext(std::string& why) {
 ChannelImage raster(const Scene& scene, const std::string& technique,
                     const std::vector<std::string>& settings) {
     std::string why;
-    const ShadowTechnique& t = findTechnique(technique);
     RasterOptions o;
     o.frames = 1;
     o.warmup = 0;
-    return renderRaster(scene, t, t.parse(settings), o, *glContext(why)).image;
+    return renderRaster(scene, *createTechnique(technique, settings), o, *glContext(why)).image;
 }
 
 // Pixels to compare: both paths see the same triangle and the oracle says the light faces it.
@@ -364,16 +364,16 @@ TEST(Raster, EveryTechniqueRendersEveryLightKind) {
                         0,
                         0});
     ChannelImage o = runQuiet(s);
-    for (const ShadowTechnique* t : allTechniques()) {
-        ChannelImage r = raster(s, t->name(), {"resolution=1024"});
+    for (const TechniqueInfo* t : allTechniques()) {
+        ChannelImage r = raster(s, t->name, {"resolution=1024"});
         for (const Light& l : s.lights) {
             Comparison c = compare(o, r, l.name, 3);
-            std::printf("[ techniques ] %-15s %-5s agreement %.4f of %zu\n", t->name().c_str(),
+            std::printf("[ techniques ] %-15s %-5s agreement %.4f of %zu\n", t->name.c_str(),
                         l.name.c_str(), c.agreement(), c.counted);
             // basic, a constant bias (which cannot follow the slope) and polygon-offset
             // (driver-defined units) may show acne; the slope-aware and filtered ones must not.
-            if (t->name() != "basic" && t->name() != "bias" && t->name() != "polygon-offset") {
-                EXPECT_GE(c.agreement(), 0.97) << t->name() << " " << l.name;
+            if (t->name != "basic" && t->name != "bias" && t->name != "polygon-offset") {
+                EXPECT_GE(c.agreement(), 0.97) << t->name << " " << l.name;
             }
             EXPECT_GT(c.counted, 1000u);
         }
@@ -386,15 +386,16 @@ TEST(Raster, DirectionalFitToVisibleReceivers) {
     Scene s = loadShipped("terrain_sun", 200, 150);
     s.camera.vfovDeg = 15;  // a close-up of part of the terrain
     std::string why;
-    const ShadowTechnique& t = findTechnique("slope-bias");
     RasterOptions o;
     o.frames = 1;
     o.warmup = 0;
-    RasterResult whole = renderRaster(s, t, t.parse({"resolution=1024"}), o, *glContext(why));
-    RasterResult fitted =
-        renderRaster(s, t, t.parse({"resolution=1024", "fit=1"}), o, *glContext(why));
-    const double texelWhole = whole.stats["lights"][0]["texel_size"].get<double>();
-    const double texelFitted = fitted.stats["lights"][0]["texel_size"].get<double>();
+    RasterResult whole =
+        renderRaster(s, *createTechnique("slope-bias", {"resolution=1024"}), o, *glContext(why));
+    RasterResult fitted = renderRaster(
+        s, *createTechnique("slope-bias", {"resolution=1024", "fit=1"}), o, *glContext(why));
+    ASSERT_TRUE(whole.stats.lights[0].texelSizeIsAbsolute);
+    const double texelWhole = whole.stats.lights[0].texelSize;
+    const double texelFitted = fitted.stats.lights[0].texelSize;
     ChannelImage oracle = runQuiet(s);
     Comparison cw = compare(oracle, whole.image, "sun", 2),
                cf = compare(oracle, fitted.image, "sun", 2);
@@ -604,27 +605,82 @@ TEST(Gate, GlobPatterns) {
 }
 
 TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
-    for (const ShadowTechnique* t : allTechniques()) {
-        EXPECT_THROW(t->parse({"no_such_key=1"}), InputError) << t->name();
-        EXPECT_THROW(t->parse({"resolution=8"}), InputError) << t->name();
-        EXPECT_THROW(t->parse({"resolution=abc"}), InputError) << t->name();
-        EXPECT_THROW(t->parse({"depth_format=20"}), InputError) << t->name();
-        EXPECT_THROW(t->parse({"resolution"}), InputError) << t->name();
-        for (const ParamSpec& p : t->params()) {
-            EXPECT_THROW(t->parse({p.name + "=" + std::to_string(p.max * 2 + 1)}), InputError)
-                << t->name() << " " << p.name;
-            EXPECT_NO_THROW(t->parse({p.name + "=" + std::to_string(p.defaultValue)}))
-                << t->name() << " " << p.name;
+    for (const TechniqueInfo* t : allTechniques()) {
+        auto create = [&](const std::vector<std::string>& settings) {
+            return createTechnique(t->name, settings);
+        };
+        EXPECT_THROW(create({"no_such_key=1"}), InputError) << t->name;
+        EXPECT_THROW(create({"resolution=8"}), InputError) << t->name;
+        EXPECT_THROW(create({"resolution=abc"}), InputError) << t->name;
+        EXPECT_THROW(create({"depth_format=20"}), InputError) << t->name;
+        EXPECT_THROW(create({"resolution"}), InputError) << t->name;
+        for (const ParamSpec& p : t->params) {
+            EXPECT_THROW(create({p.name + "=" + std::to_string(p.max * 2 + 1)}), InputError)
+                << t->name << " " << p.name;
+            EXPECT_NO_THROW(create({p.name + "=" + std::to_string(p.defaultValue)}))
+                << t->name << " " << p.name;
         }
         try {
-            t->parse({"bogus=1"});
+            create({"bogus=1"});
+            ADD_FAILURE() << t->name << " accepted bogus=1";
         } catch (const InputError& e) {
             EXPECT_NE(std::string(e.what()).find("resolution"), std::string::npos)
                 << "the error lists the valid keys";
         }
     }
-    EXPECT_THROW(findTechnique("nope"), InputError);
-    EXPECT_THROW(pcfTechnique().shaderDefines(pcfTechnique().parse({"kernel=4"})), InputError);
+    EXPECT_THROW(createTechnique("nope", {}), InputError);
+    EXPECT_THROW(createTechnique("pcf", {"kernel=4"}), InputError) << "an even kernel";
+}
+
+// Every registered technique constructs at its defaults, reports every parameter of its table,
+// and a created technique is of the family it is listed under.
+TEST(Raster, RegistryListsEveryTechniqueWithItsTable) {
+    const std::vector<const TechniqueInfo*> all = allTechniques();
+    EXPECT_GE(all.size(), 11u);
+    for (const TechniqueInfo* t : all) {
+        const std::unique_ptr<Technique> created = createTechnique(t->name, {});
+        EXPECT_EQ(created->name(), t->name);
+        EXPECT_EQ(created->values().all().size(), t->params.size()) << t->name;
+        for (const ParamSpec& p : t->params)
+            EXPECT_EQ(created->values().real(p.name), p.defaultValue) << t->name << " " << p.name;
+        if (t->family == ShadowMapTechnique::kFamily) {
+            EXPECT_NE(dynamic_cast<const ShadowMapTechnique*>(created.get()), nullptr) << t->name;
+        }
+    }
+}
+
+// A setting reaches the shader at full precision: std::to_string once made min_variance=1e-7 the
+// literal 0.000000.
+TEST(Raster, ShaderNumbersKeepFullPrecision) {
+    for (const char* value : {"1e-07", "1.2345678901234567e-05", "0.0099999999999999985"}) {
+        const std::unique_ptr<Technique> vsm =
+            createTechnique("vsm", {std::string("min_variance=") + value});
+        const std::string defines = dynamic_cast<const ShadowMapTechnique&>(*vsm).shaderDefines();
+        const std::string key = "#define MIN_VARIANCE ";
+        const size_t at = defines.find(key);
+        ASSERT_NE(at, std::string::npos) << defines;
+        const std::string literal =
+            defines.substr(at + key.size(), defines.find('\n', at) - at - key.size());
+        EXPECT_EQ(std::strtod(literal.c_str(), nullptr), std::strtod(value, nullptr))
+            << "literal " << literal << " for " << value;
+    }
+    EXPECT_EQ(glslFloat(1.0), "1.0") << "GLSL reads 1 as an int";
+    EXPECT_EQ(glslFloat(1e-7), "9.9999999999999995e-08");
+    EXPECT_EQ(std::strtod(glslFloat(0.1).c_str(), nullptr), 0.1);
+}
+
+// With the smallest variance floor the Chebyshev bound must see it: min_variance=1e-7 and 1e-3
+// render different images (with to_string both were 0.000000 and 0.001000; 1e-7 was lost).
+TEST(Raster, SmallVarianceFloorReachesTheShader) {
+    REQUIRE_GL();
+    Scene s = loadShipped("contact_box", 160, 120);
+    const ChannelImage tiny = raster(s, "vsm", {"resolution=256", "min_variance=1e-7"});
+    const ChannelImage zero = raster(s, "vsm", {"resolution=256", "min_variance=0"});
+    const float* a = tiny.channel(ch::lightChannel(s.lights[0].name, ch::kVisibility));
+    const float* b = zero.channel(ch::lightChannel(s.lights[0].name, ch::kVisibility));
+    size_t differ = 0;
+    for (size_t i = 0; i < tiny.pixelCount(); ++i) differ += a[i] != b[i];
+    EXPECT_GT(differ, 0u) << "min_variance=1e-7 rendered exactly as min_variance=0";
 }
 
 }  // namespace

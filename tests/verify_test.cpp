@@ -15,6 +15,7 @@
 
 #include "bunny_scene.h"
 #include "core/channels.h"
+#include "core/error.h"
 #include "oracle/accel.h"
 #include "oracle/oracle.h"
 #include "oracle/surface_buffer.h"
@@ -58,7 +59,9 @@ OracleResult runVerified(const Scene& scene, int pixels, OffsetPolicy policy,
     o.offsetPolicy = policy;
     o.verify.pixels = pixels;
     o.verify.areaSamples = areaSamples;
-    return runOracle(scene, o);
+    OracleResult r = runOracle(scene, o);
+    SO_CHECK(r.stats.verify.has_value());  // the tests below read stats.verify->lights
+    return r;
 }
 
 // One line per test for the log: what was checked and found (docs/oracle.md quotes these).
@@ -97,7 +100,7 @@ std::optional<OracleResult> verifiedBunnyHardLights(OffsetPolicy policy, const c
     scene.lights = bunnyLights();
     finalizeScene(scene);
     OracleResult r = runVerified(scene, 320 * 240, policy);
-    printSummary(label, r.verification);
+    printSummary(label, r.stats.verify->lights);
     return r;
 }
 
@@ -136,8 +139,8 @@ struct VerifierRig {
 TEST(Verify, SquareOccluderSceneAgreesEverywhere) {
     SquareOccluderScene s = makeSquareOccluderScene(96, 72);
     OracleResult r = runVerified(s.scene, 96 * 72, OffsetPolicy::ErrorBound);
-    ASSERT_EQ(r.verification.size(), s.scene.lights.size());
-    for (const LightVerification& l : r.verification) {
+    ASSERT_EQ(r.stats.verify->lights.size(), s.scene.lights.size());
+    for (const LightVerification& l : r.stats.verify->lights) {
         EXPECT_EQ(l.disagree, 0u) << describe(l);
         EXPECT_GT(l.agree, l.checked * 9 / 10) << l.light;
     }
@@ -213,7 +216,7 @@ TEST(Verify, BunnyHardShadowsAgreeWithExactRetrace) {
         verifiedBunnyHardLights(OffsetPolicy::ErrorBound, "bunny, hard lights", why);
     if (!r) GTEST_SKIP() << why;
     uint64_t ambiguous = 0, checked = 0;
-    for (const LightVerification& l : r->verification) {
+    for (const LightVerification& l : r->stats.verify->lights) {
         EXPECT_EQ(l.disagree, 0u) << describe(l);
         ambiguous += l.ambiguous;
         checked += l.checked;
@@ -230,7 +233,7 @@ TEST(Verify, LegacyOffsetMissesBunnyOccludersAndTheCheckSaysSo) {
         OffsetPolicy::Legacy256Ulp, "bunny, hard lights, legacy 256-ulp offset", why);
     if (!r) GTEST_SKIP() << why;
     uint64_t disagree = 0;
-    for (const LightVerification& l : r->verification) {
+    for (const LightVerification& l : r->stats.verify->lights) {
         disagree += l.disagree;
         for (const VerifyDisagreement& d : l.disagreements) {
             std::printf("  %s (%d, %d): cos %.3f, reference occluder at %.4f, margin %.2e\n",
@@ -256,9 +259,9 @@ TEST(Verify, BunnyRectLightPenumbraAgreesWithIndependentSamples) {
     scene.effects = {"hard", "penumbra"};
     finalizeScene(scene);
     OracleResult r = runVerified(scene, 150, OffsetPolicy::ErrorBound);
-    printSummary("bunny, rect light", r.verification);
-    ASSERT_EQ(r.verification.size(), 1u);
-    const LightVerification& l = r.verification[0];
+    printSummary("bunny, rect light", r.stats.verify->lights);
+    ASSERT_EQ(r.stats.verify->lights.size(), 1u);
+    const LightVerification& l = r.stats.verify->lights[0];
     EXPECT_EQ(l.disagree, 0u) << describe(l);
     EXPECT_GT(l.nearHorizon, 20u);
     EXPECT_GT(l.agree, l.checked * 9 / 10);

@@ -1,0 +1,230 @@
+#include "cli/compare_command.h"
+
+#include <cctype>
+#include <fstream>
+#include <iostream>
+
+#include "cli/output.h"
+#include "core/channels.h"
+#include "core/error.h"
+#include "raster_compare/compare/report.h"
+#include "raster_compare/gl/gl_context.h"
+
+namespace so {
+
+namespace fs = std::filesystem;
+
+TechniqueSpec parseTechniqueSpec(const std::string& spec) {
+    TechniqueSpec t;
+    t.label = spec;
+    const auto colon = spec.find(':');
+    t.name = spec.substr(0, colon);
+    if (t.name.empty())
+        throwInputError("command line", "--technique",
+                        "empty technique name in \"" + printable(spec, 60) + "\"");
+    if (colon != std::string::npos) {
+        std::string rest = spec.substr(colon + 1);
+        size_t start = 0;
+        while (start <= rest.size()) {
+            const size_t comma = rest.find(',', start);
+            const std::string kv =
+                rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+            if (!kv.empty()) t.settings.push_back(kv);
+            if (comma == std::string::npos) break;
+            start = comma + 1;
+        }
+    }
+    for (char c : spec)
+        t.fileLabel += (std::isalnum((unsigned char)c) || c == '-' || c == '.') ? c : '_';
+    return t;
+}
+
+namespace {
+
+void flatten(const nlohmann::json& j, const std::string& prefix,
+             std::vector<std::pair<std::string, nlohmann::json>>& out) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const std::string name = prefix.empty() ? it.key() : prefix + "." + it.key();
+        if (it->is_object())
+            flatten(*it, name, out);
+        else
+            out.emplace_back(name, *it);
+    }
+}
+
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+// A technique as the user asked for it, created (and so validated) before any work starts.
+struct TechniqueRun {
+    TechniqueSpec spec;
+    std::unique_ptr<Technique> technique;
+};
+
+// Everything one compare run shares between its techniques.
+struct CompareJob {
+    const CompareOptions& options;
+    const Scene& scene;
+    const CachedOracle& oracle;
+    const GlContext& gl;
+    MetricOptions metricOptions;
+    fs::path out;
+    std::ofstream csv;
+};
+
+// What the light's own passes and the visibility pass cost (docs/metrics.md, cost).
+TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSeconds) {
+    TechniqueCost cost;
+    for (const auto& [pass, ms] : stats.lights[li].passMs)
+        (pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs) += ms;
+    cost.frameMs = stats.timings.wallMs;
+    cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
+    return cost;
+}
+
+void writeCsvRows(CompareJob& job, const TechniqueSpec& spec, const LightComparison& lc) {
+    std::vector<std::pair<std::string, nlohmann::json>> rows;
+    flatten(lc.toJson(), "", rows);
+    for (const auto& [metric, value] : rows)
+        job.csv << csvField(job.options.scenePath) << ',' << csvField(lc.light) << ','
+                << csvField(spec.name) << ',' << csvField(spec.label) << ',' << metric << ','
+                << (value.is_null() ? "" : value.dump()) << "\n";
+}
+
+// The error EXR of one technique: per light, one channel per artifact class and the error.
+void writeErrorExr(const fs::path& path, const std::vector<LightComparison>& lights, int w, int h) {
+    ChannelImage errors(w, h);
+    for (const LightComparison& lc : lights) {
+        for (const ArtifactClass& c : kArtifactClasses) {
+            const std::vector<float>& plane = lc.maps.of(c.id);
+            std::copy(plane.begin(), plane.end(), errors.addChannel(lc.light + "." + c.layer));
+        }
+        std::copy(lc.maps.error.begin(), lc.maps.error.end(),
+                  errors.addChannel(lc.light + "." + kErrorLayer));
+    }
+    writeExr(path.string(), errors);
+}
+
+// Renders one technique, measures it against the oracle per light, writes its files and CSV rows;
+// `row` gets its entry of metrics.json's results.
+ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, nlohmann::json& row) {
+    std::cerr << "rendering " << run.spec.label << "\n";
+    RasterResult r = renderRaster(job.scene, *run.technique, job.options.raster, job.gl);
+    const fs::path dir = job.out / run.spec.fileLabel;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    writeExr((dir / "raster.exr").string(), r.image, {{"shadowOracle/technique", run.spec.label}});
+    writeJsonFile(dir / "raster.json", toJson(r.stats));
+    job.metricOptions.filteredTechnique = run.technique->filtered();
+    ReportTechnique rt;
+    rt.label = run.spec.label;
+    nlohmann::json lights = nlohmann::json::object();
+    for (size_t li = 0; li < job.scene.lights.size(); ++li) {
+        LightComparison lc;
+        lc.light = job.scene.lights[li].name;
+        lc.metrics =
+            computeLightMetrics(job.oracle.image, r.image, lc.light, job.metricOptions, &lc.maps);
+        lc.cost = techniqueCost(r.stats, li, job.oracle.stats.lights[li].seconds());
+        lights[lc.light] = lc.toJson();
+        writeCsvRows(job, run.spec, lc);
+        rt.lights.push_back(std::move(lc));
+    }
+    writeErrorExr(job.out / ("error_" + run.spec.fileLabel + ".exr"), rt.lights, r.image.width(),
+                  r.image.height());
+    rt.image = std::move(r.image);
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& [k, v] : run.technique->values().all()) params[k] = v;
+    row = {{"technique", run.spec.name},
+           {"label", run.spec.label},
+           {"parameters", params},
+           {"timings", toJson(r.stats.timings)},
+           {"lights", lights}};
+    return rt;
+}
+
+nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results) {
+    const Scene& scene = job.scene;
+    return {{"schema_version", 1},
+            {"tool", toolJson()},
+            {"scene",
+             {{"file", job.options.scenePath},
+              {"hash", scene.contentHash},
+              {"extent", scene.wsBounds.extent()},
+              {"effects", scene.effects}}},
+            {"options",
+             {{"boundary_radius_px", job.options.boundaryRadius},
+              {"contact_threshold", job.metricOptions.contactThreshold}}},
+            {"oracle",
+             {{"cached", job.oracle.fromCache},
+              {"key", job.oracle.key},
+              {"stats", toJson(job.oracle.stats)}}},
+            {"gl", toJson(GlInfo{job.gl.renderer(), job.gl.version(), job.gl.platform()})},
+            {"results", results}};
+}
+
+// --verify: the oracle re-traced independently (docs/oracle.md#verification); a ground truth that
+// disagrees with it must not pass silently, cached or not.
+int verifyExitCode(const CompareOptions& options, const OracleStats& stats) {
+    if (!stats.verified()) return 0;
+    const uint64_t bad = stats.disagreements();
+    std::cout << "  oracle verified: " << bad << " disagreements\n";
+    if (!bad) return 0;
+    std::cerr << "error: " << options.scenePath << ": verify: " << bad
+              << " pixels where the oracle disagrees with the exact re-trace (metrics.json "
+                 "oracle.stats.verify)\n";
+    return 3;
+}
+
+}  // namespace
+
+int runCompareCommand(const CompareOptions& options) {
+    // Everything the user can get wrong is checked before any work starts.
+    std::vector<TechniqueRun> runs;
+    for (const std::string& s : options.techniques) {
+        TechniqueSpec spec = parseTechniqueSpec(s);
+        std::unique_ptr<Technique> technique = createTechnique(spec.name, spec.settings);
+        runs.push_back({std::move(spec), std::move(technique)});
+    }
+    const Scene scene = loadScene(options.scenePath);
+    printSceneWarnings(options.scenePath, scene);
+    const fs::path out = makeOutputDir(options.outDir);
+
+    // The oracle, from the cache when the same scene content and options were traced before.
+    OracleOptions oracleOptions = options.oracle;
+    if (options.raster.width > 0) oracleOptions.width = options.raster.width;
+    if (options.raster.height > 0) oracleOptions.height = options.raster.height;
+    const CachedOracle oracle =
+        traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+    writeExr((out / "oracle.exr").string(), oracle.image,
+             {{"shadowOracle/sceneHash", scene.contentHash}});
+
+    GlContext gl;
+    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv")};
+    job.metricOptions.boundaryRadius = options.boundaryRadius;
+    job.metricOptions.contactThreshold = options.contactThresholdRelative * scene.wsBounds.extent();
+    job.csv << "scene,light,technique,label,metric,value\n";
+    ReportInput report;
+    report.sceneFile = options.scenePath;
+    for (const Light& l : scene.lights) report.lights.push_back(l.name);
+    nlohmann::json results = nlohmann::json::array();
+    for (const TechniqueRun& run : runs)
+        report.techniques.push_back(compareTechnique(job, run, results.emplace_back()));
+
+    const nlohmann::json metrics = metricsJson(job, results);
+    writeJsonFile(out / "metrics.json", metrics);
+    report.oracle = oracle.image;
+    report.provenance = {
+        {"tool", metrics["tool"]}, {"scene_hash", scene.contentHash}, {"gl", metrics["gl"]}};
+    writeReport((out / "report.html").string(), report);
+    std::cout << "compared " << options.scenePath << ": " << runs.size() << " techniques, oracle "
+              << (oracle.fromCache ? "from the cache" : "traced") << "\n  "
+              << (out / "metrics.json").string() << "\n  " << (out / "metrics.csv").string()
+              << "\n";
+    return verifyExitCode(options, oracle.stats);
+}
+
+}  // namespace so

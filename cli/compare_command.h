@@ -1,0 +1,38 @@
+// `shadow-oracle compare`: the oracle (reused from a cache keyed by scene content and oracle
+// options) against each technique, metrics per scene x light x technique (docs/metrics.md), written
+// as metrics.json, metrics.csv and an error EXR per technique (docs/cli.md).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "oracle/oracle_cache.h"
+#include "raster_compare/gl/renderer.h"
+
+namespace so {
+
+struct TechniqueSpec {
+    std::string name;
+    std::vector<std::string> settings;  // key=value
+    std::string label;                  // "name" or "name:k=v,k=v", as given
+    std::string fileLabel;              // the label made safe for file names
+};
+// "name[:key=value,...]"; throws InputError on an empty name.
+TechniqueSpec parseTechniqueSpec(const std::string& spec);
+
+struct CompareOptions {
+    std::string scenePath;
+    std::string outDir;
+    std::vector<std::string> techniques;
+    OracleOptions oracle;
+    RasterOptions raster;
+    std::filesystem::path cacheDir;  // empty: defaultOracleCacheDir()
+    bool useCache = true;
+    int boundaryRadius = 2;
+    double contactThresholdRelative = 0.01;  // of the scene's bounding-box diagonal
+};
+
+int runCompareCommand(const CompareOptions& options);
+
+}  // namespace so

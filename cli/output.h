@@ -1,0 +1,35 @@
+// What every command's output shares: the output folder, the provenance block of its JSON files,
+// the scene's warnings on stderr and the preview images (one grey scale: core/preview.h).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace so {
+
+// Creates the folder (and its parents); an InputError naming --out when it cannot.
+std::filesystem::path makeOutputDir(const std::string& dir);
+
+// {"name": "shadow-oracle", "version": ..., "git_revision": ...}: every JSON file carries it.
+nlohmann::json toolJson();
+// "<tool version> <git revision>", for EXR attributes.
+std::string toolVersionString();
+
+// The scene loader's warnings, one "warning: <file>: <text>" line each on stderr.
+void printSceneWarnings(const std::string& scenePath, const Scene& scene);
+
+// One PNG per light, "<dir>/<light>.png", in the grey scale of core/preview.h (with the light's
+// cosine channel when the image has one). Returns the paths written.
+std::vector<std::string> writePreviews(const std::filesystem::path& dir, const ChannelImage& image,
+                                       const std::vector<Light>& lights);
+
+// Writes `j` (indented) to the file, or an InputError naming it.
+void writeJsonFile(const std::filesystem::path& path, const nlohmann::json& j);
+
+}  // namespace so

@@ -1,0 +1,20 @@
+#include "core/preview.h"
+
+#include <algorithm>
+
+#include "core/channels.h"
+
+namespace so {
+
+std::vector<float> shadowGrey(const ChannelImage& image, const float* V, const float* cosine) {
+    const float* A = image.channel(channels::kHit);
+    std::vector<float> rgb(image.pixelCount() * 3);
+    for (size_t i = 0; i < image.pixelCount(); ++i) {
+        const float c = cosine ? std::max(cosine[i], 0.0f) : 1.0f;
+        const float g = A[i] == 0.0f ? 0.05f : 0.08f + 0.8f * c * V[i];
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = g;
+    }
+    return rgb;
+}
+
+}  // namespace so

@@ -1,0 +1,135 @@
+#include "oracle/oracle_cache.h"
+
+#include <unistd.h>
+#include <atomic>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/version.h"
+
+namespace so {
+
+namespace fs = std::filesystem;
+
+fs::path defaultOracleCacheDir() {
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+        return fs::path(x) / "shadow-oracle";
+    if (const char* h = std::getenv("HOME"); h && *h)
+        return fs::path(h) / ".cache" / "shadow-oracle";
+    return fs::temp_directory_path() / "shadow-oracle-cache";
+}
+
+// The oracle's result is a function of the scene's content, the options that change it and the
+// code that made it: all go into the key. Entries made before keep their keys: change nothing here
+// without a reason to invalidate them.
+std::string oracleCacheKey(const Scene& scene, const OracleOptions& o) {
+    const CameraDesc cam = effectiveCamera(scene, o);
+    const nlohmann::json k = {{"scene", scene.contentHash},
+                              {"width", cam.width},
+                              {"height", cam.height},
+                              {"seed", o.area.seed},
+                              {"target_error", o.area.targetError},
+                              {"max_spp", o.area.maxSpp},
+                              {"spp", o.area.fixedSpp},
+                              {"verify", o.verify.pixels},
+                              {"verify_samples", o.verify.areaSamples},
+                              {"tool", std::string(kToolVersion) + " " + kGitRevision}};
+    return hashBytes(k.dump());
+}
+
+namespace {
+
+// Why an entry that reads cannot be the one asked for (a collision, a hand-edited file), or "".
+std::string staleReason(const CachedOracle& c, const Scene& scene, const OracleOptions& options) {
+    const CameraDesc cam = effectiveCamera(scene, options);
+    if (c.image.width() != cam.width || c.image.height() != cam.height)
+        return "oracle.exr is " + std::to_string(c.image.width()) + "x" +
+               std::to_string(c.image.height());
+    if (c.stats.width != cam.width || c.stats.height != cam.height)
+        return "oracle.json has another image size";
+    if (c.stats.lights.size() != scene.lights.size()) return "oracle.json has other lights";
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const std::string& name = scene.lights[i].name;
+        if (c.stats.lights[i].name != name) return "oracle.json has other lights";
+        if (!c.image.has(channels::lightChannel(name, channels::kVisibility)))
+            return "oracle.exr has no visibility for light " + name;
+    }
+    if (c.stats.verified() != (options.verify.pixels > 0))
+        return "oracle.json's verification does not match --verify";
+    return "";
+}
+
+// Fills `out` from the entry; false (with a warning when the entry exists) if it cannot be used.
+bool loadEntry(const fs::path& entry, const Scene& scene, const OracleOptions& options,
+               CachedOracle& out) {
+    const fs::path exr = entry / "oracle.exr", json = entry / "oracle.json";
+    std::error_code ec;
+    if (!fs::exists(exr, ec) || !fs::exists(json, ec)) return false;
+    std::string why;
+    try {
+        out.image = readExr(exr.string());
+        std::ifstream in(json);
+        const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+        if (j.is_discarded()) throwInputError(json.string(), "", "not valid JSON");
+        out.stats = oracleStatsFromJson(j, json.string());
+        why = staleReason(out, scene, options);
+    } catch (const InputError& e) {
+        why = e.what();
+    }
+    if (why.empty()) return true;
+    std::cerr << "warning: oracle cache entry " << entry.string() << " unusable (" << why
+              << "): tracing again\n";
+    return false;
+}
+
+// Written under a temporary name and renamed, so a crash never leaves half an entry.
+void storeEntry(const fs::path& entry, const ChannelImage& image, const OracleStats& stats) {
+    static std::atomic<unsigned> counter{0};
+    const fs::path tmp = entry.string() + ".tmp" + std::to_string(::getpid()) + "." +
+                         std::to_string(counter.fetch_add(1));
+    std::error_code ec;
+    try {
+        fs::create_directories(tmp, ec);
+        if (ec) throw std::runtime_error("cannot create " + tmp.string() + ": " + ec.message());
+        writeExr((tmp / "oracle.exr").string(), image);
+        std::ofstream json(tmp / "oracle.json");
+        json << toJson(stats).dump(2) << "\n";
+        json.close();
+        if (!json) throw std::runtime_error("cannot write " + (tmp / "oracle.json").string());
+        fs::remove_all(entry, ec);
+        fs::rename(tmp, entry, ec);
+        if (ec)
+            throw std::runtime_error("cannot rename to " + entry.string() + ": " + ec.message());
+    } catch (const std::exception& e) {
+        std::cerr << "warning: oracle cache: not stored (" << e.what() << ")\n";
+        fs::remove_all(tmp, ec);
+    }
+}
+
+}  // namespace
+
+CachedOracle traceOrLoad(const Scene& scene, const OracleOptions& oracle,
+                         const OracleCacheOptions& cache) {
+    CachedOracle out;
+    out.key = oracleCacheKey(scene, oracle);
+    const fs::path entry = (cache.dir.empty() ? defaultOracleCacheDir() : cache.dir) / out.key;
+    if (cache.use && loadEntry(entry, scene, oracle, out)) {
+        out.fromCache = true;
+        return out;
+    }
+    OracleResult r = runOracle(scene, oracle);
+    out.image = std::move(r.image);
+    out.stats = std::move(r.stats);
+    if (cache.use) storeEntry(entry, out.image, out.stats);
+    return out;
+}
+
+}  // namespace so

@@ -1,0 +1,467 @@
+#include "oracle/oracle_stats.h"
+
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "core/error.h"
+
+namespace so {
+
+using nlohmann::json;
+
+double OracleHardStats::raysPerSecond() const {
+    return seconds > 0 ? double(raysTraced) / seconds : 0.0;
+}
+
+double OracleAreaStats::sppMean() const {
+    return pixelsSampled ? double(samples) / double(pixelsSampled) : 0.0;
+}
+
+double OracleAreaStats::uniformSamples() const {
+    return uniformSpp * double(pixelsSampled);
+}
+
+double OracleAreaStats::uniformRays() const {
+    const double raysPerSample = samples ? double(raysTraced) / double(samples) : 0.0;
+    return uniformSamples() * raysPerSample;
+}
+
+double OracleAreaStats::raysPerSecond() const {
+    return seconds > 0 ? double(raysTraced) / seconds : 0.0;
+}
+
+double OracleLightStats::seconds() const {
+    if (area) return area->seconds;
+    return hard ? hard->seconds : 0.0;
+}
+
+double OracleVerifyStats::seconds() const {
+    double s = buildSeconds;
+    for (const LightVerification& l : lights) s += l.seconds;
+    return s;
+}
+
+double OracleStats::shadowRaysPerSecond() const {
+    return shadowSeconds > 0 ? double(shadowRays) / shadowSeconds : 0.0;
+}
+
+// ---- writing ---------------------------------------------------------------------------------
+
+namespace {
+
+// The texts that are the same in every run: written, never read.
+constexpr const char* kUniformNote =
+    "a uniform run reaching the same worst-pixel half-width (estimated from each pixel's "
+    "variance)";
+constexpr const char* kOffsetNote =
+    "the shadow ray starts this far from the surface along the normal: an occluder that comes "
+    "closer to the ray than that, at the surface or anywhere along it, may be missed; rays to a "
+    "light stop a margin of 256 ulp of the light's coordinates short of it";
+constexpr const char* kVerifyMethod =
+    "independent re-trace in double precision (own BVH, no Embree) from the primary ray on; area "
+    "lights by independent uniform samples of the light";
+constexpr const char* kToleranceNote =
+    "a hard-light pixel is ambiguous where the reference ray passes closer than abs + "
+    "per_unit_distance * t + |oracle origin - hit point| to changing its answer";
+constexpr const char* kAreaTest = "area: |V - V_ref| <= z * combined stderr";
+constexpr const char* kHardTest = "hard: exact re-trace, V must match";
+
+json finiteOrNull(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+json hardJson(const OracleHardStats& s) {
+    json skipped = {{"background", s.skippedBackground}, {"attached", s.skippedAttached}};
+    if (s.skippedOutsideCone) skipped["outside_cone"] = *s.skippedOutsideCone;
+    if (s.skippedBehindLight) skipped["behind_light"] = *s.skippedBehindLight;
+    return {{"rays_traced", s.raysTraced}, {"rays_occluded", s.raysOccluded},
+            {"rays_skipped", skipped},     {"closest_hit_queries", s.closestHitQueries},
+            {"seconds", s.seconds},        {"rays_per_second", s.raysPerSecond()}};
+}
+
+json areaJson(const OracleAreaStats& s) {
+    return {{"sampling", s.sampling},
+            {"rays_traced", s.raysTraced},
+            {"rays_occluded", s.raysOccluded},
+            {"rays_skipped",
+             {{"background", s.skippedBackground},
+              {"below_horizon", s.skippedBelowHorizon},
+              {"behind_light", s.skippedBehindLight},
+              {"inside_light", s.skippedInsideLight}}},
+            {"samples", s.samples},
+            {"samples_without_ray", s.samplesWithoutRay()},
+            {"pixels_sampled", s.pixelsSampled},
+            {"pixels_without_usable_samples", s.pixelsWithoutUsableSamples},
+            {"spp_mean", s.sppMean()},
+            {"spp_max", s.sppMax},
+            {"target_error", s.targetError ? json(*s.targetError) : json(nullptr)},
+            {"max_spp", s.maxSpp},
+            {"share_reached_target", s.shareReachedTarget},
+            {"worst_half_width", s.worstHalfWidth},
+            {"uniform_equivalent",
+             {{"spp", s.uniformSpp},
+              {"samples", s.uniformSamples()},
+              {"rays", s.uniformRays()},
+              {"note", kUniformNote}}},
+            {"sampling_efficiency", s.samplingEfficiency},
+            {"seconds", s.seconds},
+            {"rays_per_second", s.raysPerSecond()}};
+}
+
+json lightJson(const OracleLightStats& l) {
+    json j = {{"name", l.name}, {"type", lightTypeName(l.type)}, {"method", l.method}};
+    if (l.area) {
+        j.update(areaJson(*l.area));
+        if (l.hard) j["contact_rays"] = hardJson(*l.hard);
+    } else if (l.hard) {
+        j.update(hardJson(*l.hard));
+    }
+    return j;
+}
+
+json disagreementJson(const VerifyDisagreement& d) {
+    json j = {{"x", d.x},
+              {"y", d.y},
+              {"kind", d.kind},
+              {"near_horizon", d.nearHorizon},
+              {"cos", d.cosine},
+              {"oracle_V", d.oracleV},
+              {"reference_V", d.referenceV}};
+    if (d.kind == "area") {
+        j["oracle_half_width"] = d.oracleHalfWidth;
+        j["reference_half_width"] = d.referenceHalfWidth;
+    } else {
+        j["margin"] = finiteOrNull(d.wsMargin);
+        j["reference_occluder_distance"] = finiteOrNull(d.wsOccluderDist);
+    }
+    return j;
+}
+
+json lightVerificationJson(const LightVerification& l) {
+    json pixels = json::array();
+    for (const VerifyDisagreement& d : l.disagreements) pixels.push_back(disagreementJson(d));
+    json j = {{"name", l.light},
+              {"test", l.sampled ? kAreaTest : kHardTest},
+              {"pixels_checked", l.checked},
+              {"random", l.random},
+              {"near_horizon", l.nearHorizon},
+              {"agree", l.agree},
+              {"ambiguous", l.ambiguous},
+              {"primary_differs_within_tolerance", l.primaryDiffers},
+              {"disagreements", l.disagree},
+              {"pixels", pixels},
+              {"seconds", l.seconds}};
+    if (l.sampled) j["z"] = l.zThreshold;
+    return j;
+}
+
+json verifyJson(const OracleVerifyStats& v) {
+    json lights = json::array();
+    for (const LightVerification& l : v.lights) lights.push_back(lightVerificationJson(l));
+    return {{"method", kVerifyMethod},
+            {"pixels_per_light", v.options.pixels},
+            {"horizon_deg", v.options.horizonDeg},
+            {"area_samples", v.options.areaSamples},
+            {"family_alpha", v.options.familyAlpha},
+            {"tolerance",
+             {{"abs", v.wsToleranceAbs},
+              {"per_unit_distance", v.tolerancePerUnitDistance},
+              {"note", kToleranceNote}}},
+            {"disagreements", v.disagreements()},
+            {"seconds", v.seconds()},
+            {"build_bvh_seconds", v.buildSeconds},
+            {"lights", lights}};
+}
+
+}  // namespace
+
+json toJson(const OracleStats& s) {
+    json phases = {{"build_bvh", s.buildBvhSeconds},
+                   {"primary", s.primarySeconds},
+                   {"shadow", s.shadowSeconds}};
+    if (s.verify) phases["verify"] = s.verify->seconds();
+    json lights = json::array();
+    for (const OracleLightStats& l : s.lights) lights.push_back(lightJson(l));
+    const glm::dvec3& c = s.frame.wsCenter;
+    json j = {
+        {"image", {{"width", s.width}, {"height", s.height}}},
+        {"threads", s.threads},
+        {"phases_seconds", phases},
+        {"shadow_rays", s.shadowRays},
+        {"closest_hit_queries", s.closestHitQueries},
+        {"effects", s.effects},
+        {"seed", s.seed},
+        {"shadow_rays_per_second", s.shadowRaysPerSecond()},
+        {"lights", lights},
+        {"frame", {{"ws_center", {c.x, c.y, c.z}}, {"scale_exponent", s.frame.scaleExponent}}},
+        {"offset_policy",
+         {{"method", s.offsetPolicy.method},
+          {"skips_origin_triangle", s.offsetPolicy.skipsOriginTriangle},
+          {"max_blind_distance", s.offsetPolicy.maxBlindDistance},
+          {"max_blind_distance_relative", s.offsetPolicy.maxBlindDistanceRelative},
+          {"note", kOffsetNote}}},
+        {"embree",
+         {{"version", s.embree.version},
+          {"scene_flags", s.embree.sceneFlags},
+          {"build_quality", s.embree.buildQuality}}},
+        {"tbb", {{"version", s.tbbVersion}}},
+    };
+    if (s.verify) j["verify"] = verifyJson(*s.verify);
+    return j;
+}
+
+// ---- reading ---------------------------------------------------------------------------------
+
+namespace {
+
+// Typed access to one JSON object; every failure is an InputError naming the field's full path.
+class Fields {
+  public:
+    Fields(const json& j, const std::string& file, std::string path)
+        : j_(j), file_(file), path_(std::move(path)) {
+        if (!j_.is_object()) fail(path_.empty() ? "(top level)" : path_, "must be an object");
+    }
+
+    bool has(const char* key) const { return j_.contains(key); }
+    Fields object(const char* key) const { return Fields(at(key), file_, name(key)); }
+    // The elements of an array, each checked to be an object.
+    std::vector<Fields> objects(const char* key) const {
+        const json& a = at(key);
+        if (!a.is_array()) fail(name(key), "must be an array");
+        std::vector<Fields> out;
+        for (size_t i = 0; i < a.size(); ++i)
+            out.emplace_back(a[i], file_, name(key) + "[" + std::to_string(i) + "]");
+        return out;
+    }
+    std::string str(const char* key) const {
+        const json& v = at(key);
+        if (!v.is_string()) fail(name(key), "must be a string");
+        return v.get<std::string>();
+    }
+    std::vector<std::string> strings(const char* key) const {
+        const json& v = at(key);
+        if (!v.is_array()) fail(name(key), "must be an array of strings");
+        std::vector<std::string> out;
+        for (const json& e : v) {
+            if (!e.is_string()) fail(name(key), "must be an array of strings");
+            out.push_back(e.get<std::string>());
+        }
+        return out;
+    }
+    bool boolean(const char* key) const {
+        const json& v = at(key);
+        if (!v.is_boolean()) fail(name(key), "must be true or false");
+        return v.get<bool>();
+    }
+    uint64_t u64(const char* key) const {
+        const json& v = at(key);
+        if (v.is_number_unsigned()) return v.get<uint64_t>();
+        if (v.is_number_integer() && v.get<int64_t>() >= 0) return uint64_t(v.get<int64_t>());
+        fail(name(key), "must be a non-negative integer");
+    }
+    uint32_t u32(const char* key) const {
+        const uint64_t v = u64(key);
+        if (v > std::numeric_limits<uint32_t>::max()) fail(name(key), "out of range");
+        return uint32_t(v);
+    }
+    int i32(const char* key) const {
+        const json& v = at(key);
+        if (!v.is_number_integer()) fail(name(key), "must be an integer");
+        if (v.is_number_unsigned() ? v.get<uint64_t>() > uint64_t(std::numeric_limits<int>::max())
+                                   : (v.get<int64_t>() < std::numeric_limits<int>::min() ||
+                                      v.get<int64_t>() > std::numeric_limits<int>::max()))
+            fail(name(key), "out of range");
+        return int(v.get<int64_t>());
+    }
+    // A number; null (how nlohmann writes a non-finite number) reads as NaN.
+    double number(const char* key) const {
+        const json& v = at(key);
+        if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
+        if (!v.is_number()) fail(name(key), "must be a number");
+        return v.get<double>();
+    }
+    std::optional<double> optionalNumber(const char* key) const {
+        if (at(key).is_null()) return std::nullopt;
+        return number(key);
+    }
+    glm::dvec3 vec3(const char* key) const {
+        const json& v = at(key);
+        if (!v.is_array() || v.size() != 3) fail(name(key), "must be an array of 3 numbers");
+        glm::dvec3 out;
+        for (int k = 0; k < 3; ++k) {
+            if (!v[k].is_number()) fail(name(key), "must be an array of 3 numbers");
+            out[k] = v[k].get<double>();
+        }
+        return out;
+    }
+    [[noreturn]] void fail(const std::string& field, const std::string& message) const {
+        throwInputError(file_, field, message);
+    }
+    std::string name(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  private:
+    const json& at(const char* key) const {
+        const auto it = j_.find(key);
+        if (it == j_.end()) fail(name(key), "missing");
+        return *it;
+    }
+    const json& j_;
+    const std::string& file_;
+    std::string path_;
+};
+
+OracleHardStats readHard(const Fields& f) {
+    OracleHardStats s;
+    s.raysTraced = f.u64("rays_traced");
+    s.raysOccluded = f.u64("rays_occluded");
+    const Fields skipped = f.object("rays_skipped");
+    s.skippedBackground = skipped.u64("background");
+    s.skippedAttached = skipped.u64("attached");
+    if (skipped.has("outside_cone")) s.skippedOutsideCone = skipped.u64("outside_cone");
+    if (skipped.has("behind_light")) s.skippedBehindLight = skipped.u64("behind_light");
+    s.closestHitQueries = f.u64("closest_hit_queries");
+    s.seconds = f.number("seconds");
+    return s;
+}
+
+OracleAreaStats readArea(const Fields& f) {
+    OracleAreaStats s;
+    s.sampling = f.str("sampling");
+    s.raysTraced = f.u64("rays_traced");
+    s.raysOccluded = f.u64("rays_occluded");
+    const Fields skipped = f.object("rays_skipped");
+    s.skippedBackground = skipped.u64("background");
+    s.skippedBelowHorizon = skipped.u64("below_horizon");
+    s.skippedBehindLight = skipped.u64("behind_light");
+    s.skippedInsideLight = skipped.u64("inside_light");
+    s.samples = f.u64("samples");
+    if (s.samples < s.raysTraced) f.fail(f.name("samples"), "fewer than rays_traced");
+    s.pixelsSampled = f.u64("pixels_sampled");
+    s.pixelsWithoutUsableSamples = f.u64("pixels_without_usable_samples");
+    s.sppMax = f.u64("spp_max");
+    s.targetError = f.optionalNumber("target_error");
+    s.maxSpp = f.i32("max_spp");
+    s.shareReachedTarget = f.number("share_reached_target");
+    s.worstHalfWidth = f.number("worst_half_width");
+    s.uniformSpp = f.object("uniform_equivalent").number("spp");
+    s.samplingEfficiency = f.number("sampling_efficiency");
+    s.seconds = f.number("seconds");
+    return s;
+}
+
+LightType readLightType(const Fields& f) {
+    const std::string name = f.str("type");
+    for (LightType t : {LightType::Point, LightType::Directional, LightType::Spot, LightType::Rect,
+                        LightType::Disk, LightType::Sphere})
+        if (name == lightTypeName(t)) return t;
+    f.fail(f.name("type"), "unknown light type \"" + printable(name, 40) + "\"");
+}
+
+// A sampled light is told by its "sampling" field; its hard pass (contact rays) is nested.
+OracleLightStats readLight(const Fields& f) {
+    OracleLightStats l;
+    l.name = f.str("name");
+    l.type = readLightType(f);
+    l.method = f.str("method");
+    if (f.has("sampling")) {
+        l.area = readArea(f);
+        if (f.has("contact_rays")) l.hard = readHard(f.object("contact_rays"));
+    } else {
+        l.hard = readHard(f);
+    }
+    return l;
+}
+
+VerifyDisagreement readDisagreement(const Fields& f) {
+    VerifyDisagreement d;
+    d.x = f.i32("x");
+    d.y = f.i32("y");
+    d.kind = f.str("kind");
+    d.nearHorizon = f.boolean("near_horizon");
+    d.cosine = f.number("cos");
+    d.oracleV = f.number("oracle_V");
+    d.referenceV = f.number("reference_V");
+    if (d.kind == "area") {
+        d.oracleHalfWidth = f.number("oracle_half_width");
+        d.referenceHalfWidth = f.number("reference_half_width");
+    } else {  // null: no occluder (or no margin), written for any non-finite value
+        constexpr double kInf = std::numeric_limits<double>::infinity();
+        d.wsMargin = f.optionalNumber("margin").value_or(kInf);
+        d.wsOccluderDist = f.optionalNumber("reference_occluder_distance").value_or(kInf);
+    }
+    return d;
+}
+
+LightVerification readLightVerification(const Fields& f) {
+    LightVerification l;
+    l.light = f.str("name");
+    const std::string test = f.str("test");
+    if (test != kAreaTest && test != kHardTest)
+        f.fail(f.name("test"), "unknown test \"" + printable(test, 60) + "\"");
+    l.sampled = test == kAreaTest;
+    l.checked = f.u64("pixels_checked");
+    l.random = f.u64("random");
+    l.nearHorizon = f.u64("near_horizon");
+    l.agree = f.u64("agree");
+    l.ambiguous = f.u64("ambiguous");
+    l.primaryDiffers = f.u64("primary_differs_within_tolerance");
+    l.disagree = f.u64("disagreements");
+    for (const Fields& p : f.objects("pixels")) l.disagreements.push_back(readDisagreement(p));
+    l.seconds = f.number("seconds");
+    if (l.sampled) l.zThreshold = f.number("z");
+    return l;
+}
+
+OracleVerifyStats readVerify(const Fields& f) {
+    OracleVerifyStats v;
+    v.options.pixels = f.i32("pixels_per_light");
+    v.options.horizonDeg = f.number("horizon_deg");
+    v.options.areaSamples = f.i32("area_samples");
+    v.options.familyAlpha = f.number("family_alpha");
+    const Fields tolerance = f.object("tolerance");
+    v.wsToleranceAbs = tolerance.number("abs");
+    v.tolerancePerUnitDistance = tolerance.number("per_unit_distance");
+    v.buildSeconds = f.number("build_bvh_seconds");
+    for (const Fields& l : f.objects("lights")) v.lights.push_back(readLightVerification(l));
+    return v;
+}
+
+}  // namespace
+
+OracleStats oracleStatsFromJson(const json& j, const std::string& file) {
+    const Fields f(j, file, "");
+    OracleStats s;
+    const Fields image = f.object("image");
+    s.width = image.i32("width");
+    s.height = image.i32("height");
+    s.threads = f.i32("threads");
+    const Fields phases = f.object("phases_seconds");
+    s.buildBvhSeconds = phases.number("build_bvh");
+    s.primarySeconds = phases.number("primary");
+    s.shadowSeconds = phases.number("shadow");
+    s.shadowRays = f.u64("shadow_rays");
+    s.closestHitQueries = f.u64("closest_hit_queries");
+    s.effects = f.strings("effects");
+    s.seed = f.u32("seed");
+    for (const Fields& l : f.objects("lights")) s.lights.push_back(readLight(l));
+    const Fields frame = f.object("frame");
+    s.frame.wsCenter = frame.vec3("ws_center");
+    s.frame.scaleExponent = frame.i32("scale_exponent");
+    const Fields offset = f.object("offset_policy");
+    s.offsetPolicy.method = offset.str("method");
+    s.offsetPolicy.skipsOriginTriangle = offset.boolean("skips_origin_triangle");
+    s.offsetPolicy.maxBlindDistance = offset.number("max_blind_distance");
+    s.offsetPolicy.maxBlindDistanceRelative = offset.number("max_blind_distance_relative");
+    const Fields embree = f.object("embree");
+    s.embree.version = embree.str("version");
+    s.embree.sceneFlags = embree.str("scene_flags");
+    s.embree.buildQuality = embree.str("build_quality");
+    // The trace command's oracle.json keeps the TBB version under libraries.
+    s.tbbVersion = f.has("tbb") || !f.has("libraries") ? f.object("tbb").str("version")
+                                                       : f.object("libraries").str("tbb");
+    if (f.has("verify")) s.verify = readVerify(f.object("verify"));
+    return s;
+}
+
+}  // namespace so

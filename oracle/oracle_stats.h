@@ -1,0 +1,121 @@
+// What a run of the oracle reports about itself (docs/oracle.md): typed, filled by runOracle, and
+// turned into JSON only where oracle.json is written (toJson) or read back (oracleStatsFromJson).
+// Values that follow from others (rays per second, spp mean, the verify totals) are methods, so
+// the JSON cannot disagree with itself.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/scene.h"
+#include "oracle/verify.h"
+
+namespace so {
+
+// The hard-shadow pass of one light: hard lights, area lights without "penumbra" (one ray to the
+// centre), and the contact rays of sampled area lights.
+struct OracleHardStats {
+    uint64_t raysTraced = 0, raysOccluded = 0;
+    uint64_t skippedBackground = 0, skippedAttached = 0;
+    std::optional<uint64_t> skippedOutsideCone;  // spot lights only
+    std::optional<uint64_t> skippedBehindLight;  // one-sided lights (rect, disk) only
+    uint64_t closestHitQueries = 0;              // only with the contact effect
+    double seconds = 0.0;
+    double raysPerSecond() const;
+};
+
+// The sampled pass of an area light with "penumbra".
+struct OracleAreaStats {
+    std::string sampling;  // how a sample picks its point on the light
+    uint64_t raysTraced = 0, raysOccluded = 0;
+    uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
+             skippedInsideLight = 0;
+    uint64_t samples = 0, pixelsSampled = 0, pixelsWithoutUsableSamples = 0, sppMax = 0;
+    std::optional<double> targetError;  // none with a fixed spp
+    int maxSpp = 0;                     // the fixed spp, or the adaptive cap
+    double shareReachedTarget = 1.0;
+    double worstHalfWidth = 0.0;
+    double uniformSpp = 0.0;  // a uniform run reaching worstHalfWidth everywhere
+    double samplingEfficiency = 1.0;
+    double seconds = 0.0;
+
+    uint64_t samplesWithoutRay() const { return samples - raysTraced; }
+    double sppMean() const;
+    double uniformSamples() const;  // uniformSpp over the pixels sampled
+    double uniformRays() const;     // uniformSamples at this run's rays per sample
+    double raysPerSecond() const;
+};
+
+struct OracleLightStats {
+    std::string name;
+    LightType type = LightType::Point;
+    std::string method;                   // how the light was traced, for people
+    std::optional<OracleAreaStats> area;  // sampled (penumbra) area lights
+    // Every other light; for a sampled area light, its contact rays (with "contact" only).
+    std::optional<OracleHardStats> hard;
+
+    bool sampled() const { return area.has_value(); }
+    // oracle.json's lights[i].seconds: the sampled pass for sampled lights, else the hard pass.
+    double seconds() const;
+};
+
+struct OracleFrameStats {
+    glm::dvec3 wsCenter{0.0};
+    int scaleExponent = 0;
+};
+
+struct OracleOffsetStats {
+    std::string method;
+    bool skipsOriginTriangle = true;
+    double maxBlindDistance = 0.0;  // world units
+    double maxBlindDistanceRelative = 0.0;
+};
+
+struct OracleEmbreeStats {
+    std::string version, sceneFlags, buildQuality;
+};
+
+// What --verify found (verify.h).
+struct OracleVerifyStats {
+    VerifyOptions options;
+    double wsToleranceAbs = 0.0;            // Verifier::kTolAbs in world units
+    double tolerancePerUnitDistance = 0.0;  // Verifier::kTolPerT
+    double buildSeconds = 0.0;              // the reference BVH
+    std::vector<LightVerification> lights;  // one per light, in scene order
+
+    uint64_t disagreements() const { return disagreementCount(lights); }
+    double seconds() const;  // buildSeconds plus every light's
+};
+
+struct OracleStats {
+    int width = 0, height = 0;
+    int threads = 0;
+    double buildBvhSeconds = 0.0, primarySeconds = 0.0, shadowSeconds = 0.0;
+    uint64_t shadowRays = 0, closestHitQueries = 0;
+    std::vector<std::string> effects;
+    uint32_t seed = 0;
+    std::vector<OracleLightStats> lights;  // in scene order
+    OracleFrameStats frame;
+    OracleOffsetStats offsetPolicy;
+    OracleEmbreeStats embree;
+    std::string tbbVersion;
+    std::optional<OracleVerifyStats> verify;  // with --verify only
+
+    double shadowRaysPerSecond() const;
+    bool verified() const { return verify.has_value(); }  // --verify ran (whatever it found)
+    uint64_t disagreements() const { return verify ? verify->disagreements() : 0; }
+};
+
+// Exactly the run-dependent part of oracle.json (docs/oracle.md).
+nlohmann::json toJson(const OracleStats& stats);
+// The inverse of toJson: toJson(oracleStatsFromJson(toJson(s), f)) == toJson(s). Throws InputError
+// naming `file` and the field on a missing or mistyped field. A null where a number is expected
+// reads as NaN (nlohmann writes non-finite numbers as null); derived values are not read.
+OracleStats oracleStatsFromJson(const nlohmann::json& json, const std::string& file);
+
+}  // namespace so

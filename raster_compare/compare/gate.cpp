@@ -1,0 +1,151 @@
+#include "raster_compare/compare/gate.h"
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+
+namespace so {
+
+using nlohmann::json;
+
+bool globMatch(const std::string& p, const std::string& t) {
+    size_t pi = 0, ti = 0, star = std::string::npos, mark = 0;
+    while (ti < t.size()) {
+        if (pi < p.size() && (p[pi] == '?' || p[pi] == t[ti])) {
+            ++pi, ++ti;
+        } else if (pi < p.size() && p[pi] == '*') {
+            star = pi++;
+            mark = ti;
+        } else if (star != std::string::npos) {
+            pi = star + 1;
+            ti = ++mark;
+        } else {
+            return false;
+        }
+    }
+    while (pi < p.size() && p[pi] == '*') ++pi;
+    return pi == p.size();
+}
+
+namespace {
+
+void flatten(const json& j, const std::string& prefix, std::map<std::string, json>& out) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const std::string name = prefix.empty() ? it.key() : prefix + "." + it.key();
+        if (it->is_object())
+            flatten(*it, name, out);
+        else
+            out[name] = *it;
+    }
+}
+
+struct Rule {
+    std::string scene = "*", light = "*", technique = "*";
+    std::map<std::string, double> max;
+};
+
+// Every metric name the metrics file can have, so a misspelled limit is an error, not a pass.
+std::set<std::string> knownMetrics(const json& metrics) {
+    std::set<std::string> known;
+    for (const auto& r : metrics["results"])
+        for (const auto& [light, m] : r["lights"].items()) {
+            std::map<std::string, json> flat;
+            flatten(m, "", flat);
+            for (const auto& [k, v] : flat) known.insert(k);
+        }
+    return known;
+}
+
+std::map<std::string, double> readMax(const json& j, const std::string& lf,
+                                      const std::string& field,
+                                      const std::set<std::string>& known) {
+    std::map<std::string, double> out;
+    if (!j.is_object()) throwInputError(lf, field, "expected an object of metric: maximum");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        if (!known.count(it.key()))
+            throwInputError(lf, field + "." + printable(it.key(), 60),
+                            "unknown metric (see docs/metrics.md)");
+        if (!it->is_number()) throwInputError(lf, field + "." + it.key(), "expected a number");
+        out[it.key()] = it->get<double>();
+    }
+    return out;
+}
+
+Rule readRule(const json& r, const std::string& lf, size_t i, const std::set<std::string>& known) {
+    const std::string f = "rules[" + std::to_string(i) + "]";
+    if (!r.is_object()) throwInputError(lf, f, "expected an object");
+    for (auto it = r.begin(); it != r.end(); ++it) {
+        if (it.key() == "max") continue;
+        if (it.key() != "scene" && it.key() != "light" && it.key() != "technique")
+            throwInputError(lf, f + "." + printable(it.key(), 40),
+                            "unknown key (valid: scene, light, technique, max)");
+        if (!it->is_string()) throwInputError(lf, f + "." + it.key(), "expected a pattern string");
+    }
+    Rule rule;
+    rule.scene = r.value("scene", "*");
+    rule.light = r.value("light", "*");
+    rule.technique = r.value("technique", "*");
+    if (!r.contains("max")) throwInputError(lf, f + ".max", "missing");
+    rule.max = readMax(r["max"], lf, f + ".max", known);
+    return rule;
+}
+
+std::vector<Rule> readRules(const json& limits, const std::string& lf,
+                            const std::set<std::string>& known) {
+    if (!limits.is_object()) throwInputError(lf, "", "expected an object");
+    for (auto it = limits.begin(); it != limits.end(); ++it)
+        if (it.key() != "limits_format" && it.key() != "default" && it.key() != "rules")
+            throwInputError(lf, printable(it.key(), 40),
+                            "unknown key (valid: limits_format, default, rules)");
+    if (limits.value("limits_format", 0) != 1)
+        throwInputError(lf, "limits_format", "missing or not 1");
+    std::vector<Rule> rules;
+    if (limits.contains("default"))
+        rules.push_back({"*", "*", "*", readMax(limits["default"], lf, "default", known)});
+    if (limits.contains("rules")) {
+        if (!limits["rules"].is_array()) throwInputError(lf, "rules", "expected an array");
+        for (size_t i = 0; i < limits["rules"].size(); ++i)
+            rules.push_back(readRule(limits["rules"][i], lf, i, known));
+    }
+    return rules;
+}
+
+}  // namespace
+
+std::vector<GateCheck> evaluateGate(const json& metrics, const std::string& metricsPath,
+                                    const json& limits, const std::string& limitsPath) {
+    if (!metrics.is_object() || metrics.value("schema_version", 0) != 1 ||
+        !metrics.contains("results"))
+        throwInputError(metricsPath, "schema_version", "not a metrics.json of schema_version 1");
+    const std::vector<Rule> rules = readRules(limits, limitsPath, knownMetrics(metrics));
+    const std::string scene = metrics["scene"].value("file", "");
+    const std::string sceneName = std::filesystem::path(scene).filename().string();
+    std::vector<GateCheck> checks;
+    for (const auto& r : metrics["results"]) {
+        const std::string technique = r.value("technique", ""), label = r.value("label", technique);
+        for (const auto& [light, m] : r["lights"].items()) {
+            std::map<std::string, json> flat;
+            flatten(m, "", flat);
+            // Later rules override earlier ones for the same metric.
+            std::map<std::string, double> applicable;
+            for (const Rule& rule : rules) {
+                const bool sceneOk =
+                    globMatch(rule.scene, scene) || globMatch(rule.scene, sceneName);
+                const bool techOk =
+                    globMatch(rule.technique, technique) || globMatch(rule.technique, label);
+                if (sceneOk && globMatch(rule.light, light) && techOk)
+                    for (const auto& [k, v] : rule.max) applicable[k] = v;
+            }
+            for (const auto& [metric, maximum] : applicable) {
+                const json& v = flat[metric];
+                checks.push_back({sceneName, light, label, metric, maximum,
+                                  v.is_number() ? std::optional(v.get<double>()) : std::nullopt});
+            }
+        }
+    }
+    return checks;
+}
+
+}  // namespace so

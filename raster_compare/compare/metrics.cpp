@@ -1,0 +1,349 @@
+#include "raster_compare/compare/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/channels.h"
+
+namespace so {
+
+namespace {
+
+namespace ch = channels;
+constexpr double kZ = 1.959963984540054;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Squared Euclidean distance transform of one row or column, the lower envelope of parabolas
+// (Felzenszwalb and Huttenlocher, "Distance Transforms of Sampled Functions", 2012). "No seed" is a
+// large finite value rather than infinity, so that differences stay defined.
+constexpr double kFar = 1e30;
+void edt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>& v,
+           std::vector<double>& z) {
+    const int n = int(f.size());
+    int k = 0;
+    v[0] = 0;
+    z[0] = -1e300;
+    z[1] = 1e300;
+    auto cross = [&](int q, int p) {
+        return ((f[size_t(q)] + double(q) * q) - (f[size_t(p)] + double(p) * p)) / (2.0 * (q - p));
+    };
+    for (int q = 1; q < n; ++q) {
+        double s = cross(q, v[size_t(k)]);
+        while (s <= z[size_t(k)]) {
+            --k;
+            s = cross(q, v[size_t(k)]);
+        }
+        ++k;
+        v[size_t(k)] = q;
+        z[size_t(k)] = s;
+        z[size_t(k) + 1] = 1e300;
+    }
+    k = 0;
+    for (int q = 0; q < n; ++q) {
+        while (z[size_t(k) + 1] < q) ++k;
+        const int p = v[size_t(k)];
+        d[size_t(q)] = double(q - p) * (q - p) + f[size_t(p)];
+    }
+}
+
+// Distance in pixels from every pixel to the nearest pixel of `seed` (+inf if there is none).
+std::vector<float> distanceTo(const std::vector<uint8_t>& seed, int w, int h) {
+    std::vector<double> g(seed.size());
+    for (size_t i = 0; i < seed.size(); ++i) g[i] = seed[i] ? 0.0 : kFar;
+    const size_t n = size_t(std::max(w, h));
+    std::vector<double> f, d;
+    std::vector<double> z(n + 1);
+    std::vector<int> v(n);
+    for (int x = 0; x < w; ++x) {
+        f.resize(size_t(h));
+        d.resize(size_t(h));
+        for (int y = 0; y < h; ++y) f[size_t(y)] = g[size_t(y) * size_t(w) + size_t(x)];
+        edt1d(f, d, v, z);
+        for (int y = 0; y < h; ++y) g[size_t(y) * size_t(w) + size_t(x)] = d[size_t(y)];
+    }
+    std::vector<float> out(seed.size());
+    for (int y = 0; y < h; ++y) {
+        f.assign(g.begin() + long(size_t(y) * size_t(w)),
+                 g.begin() + long(size_t(y + 1) * size_t(w)));
+        d.resize(size_t(w));
+        edt1d(f, d, v, z);
+        for (int x = 0; x < w; ++x)
+            out[size_t(y) * size_t(w) + size_t(x)] =
+                d[size_t(x)] >= 0.5 * kFar ? kInf : float(std::sqrt(d[size_t(x)]));
+    }
+    return out;
+}
+
+// Shadow boundary pixels: lit (V > 0.5) hit pixels with a shadowed hit 4-neighbour. Marking only
+// the lit side makes a shadow shifted by k pixels measure exactly k.
+std::vector<uint8_t> boundaries(const float* A, const float* V, int w, int h) {
+    std::vector<uint8_t> b(size_t(w) * size_t(h), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (A[i] == 0.0f || !(V[i] > 0.5f)) continue;
+            const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+            for (int k = 0; k < 4; ++k) {
+                if (nx[k] < 0 || ny[k] < 0 || nx[k] >= w || ny[k] >= h) continue;
+                const size_t j = size_t(ny[k]) * size_t(w) + size_t(nx[k]);
+                if (A[j] != 0.0f && !(V[j] > 0.5f)) b[i] = 1;
+            }
+        }
+    return b;
+}
+
+double percentile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t k =
+        std::min(v.size() - 1, size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0));
+    return v[k];
+}
+
+// The channels of one light in both images.
+struct Planes {
+    Planes(const ChannelImage& oracle, const ChannelImage& raster, const std::string& light)
+        : w(oracle.width()), h(oracle.height()), n(oracle.pixelCount()) {
+        Ao = oracle.channel(ch::kHit);
+        Ar = raster.channel(ch::kHit);
+        Vo = oracle.channel(ch::lightChannel(light, ch::kVisibility));
+        Vr = raster.channel(ch::lightChannel(light, ch::kVisibility));
+        Co = oracle.channel(ch::lightChannel(light, ch::kCosine));
+        mo = oracle.channel(ch::kMeshId), po = oracle.channel(ch::kPrimId);
+        mr = raster.channel(ch::kMeshId), pr = raster.channel(ch::kPrimId);
+        const std::string seName = ch::lightChannel(light, ch::kStdErr),
+                          occName = ch::lightChannel(light, ch::kOccluderDistance);
+        SE = oracle.has(seName) ? oracle.channel(seName) : nullptr;
+        D = oracle.has(occName) ? oracle.channel(occName) : nullptr;
+        area = SE != nullptr;
+    }
+    int w, h;
+    size_t n;
+    const float *Ao, *Ar, *Vo, *Vr, *Co, *mo, *po, *mr, *pr;
+    const float* SE;  // the oracle's standard error: sampled area lights only
+    const float* D;   // the oracle's occluder distance: the contact effect only
+    bool area;
+};
+
+// Which pixels count (docs/metrics.md): both see the same triangle, lit side of the light.
+std::vector<uint8_t> countedPixels(const Planes& p, LightMetrics& m) {
+    std::vector<uint8_t> counted(p.n, 0);
+    for (size_t i = 0; i < p.n; ++i) {
+        if (p.Ao[i] == 0.0f || p.Ar[i] == 0.0f) {
+            ++m.excludedBackground;
+        } else if (p.mo[i] != p.mr[i] || p.po[i] != p.pr[i]) {
+            ++m.excludedDifferentSurface;
+        } else if (!(p.Co[i] > 0.0f)) {
+            ++m.excludedFacingAway;
+        } else {
+            counted[i] = 1;
+            ++m.counted;
+        }
+    }
+    return counted;
+}
+
+// Sums and counts over the counted pixels, for the rates.
+struct Tally {
+    double sumAbs = 0, sumSq = 0;
+    size_t falseShadow = 0, falseLit = 0;
+    size_t acneEligible = 0, acne = 0, aliasEligible = 0, aliased = 0, ppEligible = 0, pp = 0,
+           umbra = 0, bleed = 0, pen = 0;
+    double leak = 0.0, penAbs = 0.0, penHard = 0.0;
+};
+
+void mark(ErrorMaps* maps, Artifact a, size_t i) {
+    if (maps) maps->of(a)[i] = 1.0f;
+}
+
+// One counted pixel into the tally and the error maps.
+void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOptions& options,
+              LightMetrics& m, Tally& t, ErrorMaps* maps) {
+    const double o = p.Vo[i], r = p.Vr[i];
+    // An area light's difference within the oracle's own 95% interval is not an error.
+    const double hw = p.area ? kZ * p.SE[i] : 0.0;
+    const double err = std::max(0.0, std::fabs(r - o) - hw);
+    t.sumAbs += err;
+    t.sumSq += err * err;
+    if (maps) maps->error[i] = float(err);
+    m.maxAbs = std::max(m.maxAbs, err);
+    const bool fs = p.area ? r < o - hw : r < o - 0.5;
+    const bool fl = p.area ? r > o + hw : r > o + 0.5;
+    t.falseShadow += fs;
+    t.falseLit += fl;
+    const bool fullyLit = o == 1.0;
+    const bool inUmbra = p.area ? o <= hw : o == 0.0;
+    if (fullyLit && toOracleBoundary > float(options.boundaryRadius)) {
+        ++t.acneEligible;
+        t.acne += fs;
+        if (fs) mark(maps, Artifact::Acne, i);
+    }
+    if (toOracleBoundary <= float(options.boundaryRadius)) {
+        ++t.aliasEligible;
+        t.aliased += fs || fl;
+        if (fs || fl) mark(maps, Artifact::Aliasing, i);
+    }
+    if (p.D && inUmbra && p.D[i] >= 0.0f && p.D[i] < options.contactThreshold) {
+        ++t.ppEligible;
+        if (fl) {
+            ++t.pp;
+            t.leak = std::max(t.leak, double(p.D[i]));
+            mark(maps, Artifact::PeterPanning, i);
+        }
+    }
+    if (inUmbra) {
+        ++t.umbra;
+        t.bleed += r > o + 0.1;
+        if (options.filteredTechnique && r > o + 0.1) mark(maps, Artifact::LightBleeding, i);
+    }
+    if (p.area && o > 0.0 && o < 1.0) {
+        ++t.pen;
+        t.penAbs += err;
+        if (err > 0.0) mark(maps, Artifact::Penumbra, i);
+        t.penHard +=
+            (r - o) * (o < 0.5 ? -1.0 : 1.0);  // > 0: more extreme than the truth (too hard)
+    }
+}
+
+void setRates(const Tally& t, const Planes& p, const MetricOptions& options, LightMetrics& m) {
+    const auto share = [](size_t a, size_t b) { return b ? double(a) / double(b) : 0.0; };
+    m.mae = m.counted ? t.sumAbs / double(m.counted) : 0.0;
+    m.rmse = m.counted ? std::sqrt(t.sumSq / double(m.counted)) : 0.0;
+    m.falseShadowRate = share(t.falseShadow, m.counted);
+    m.falseLitRate = share(t.falseLit, m.counted);
+    m.acneRate = share(t.acne, t.acneEligible);
+    m.aliasingRate = share(t.aliased, t.aliasEligible);
+    if (p.D) {
+        m.peterPanningRate = share(t.pp, t.ppEligible);
+        m.lightLeakDistance = t.leak;
+    }
+    if (options.filteredTechnique) m.lightBleedingRate = share(t.bleed, t.umbra);
+    if (p.area) {
+        m.penumbraMae = t.pen ? t.penAbs / double(t.pen) : 0.0;
+        m.penumbraBias = t.pen ? t.penHard / double(t.pen) : 0.0;
+    }
+}
+
+// Both ways: each raster boundary pixel to the nearest oracle one and each oracle boundary pixel
+// to the nearest raster one.
+BoundaryDisplacement boundaryDisplacement(const std::vector<uint8_t>& bo,
+                                          const std::vector<uint8_t>& br,
+                                          const std::vector<float>& toOracleBoundary,
+                                          const std::vector<float>& toRasterBoundary) {
+    std::vector<double> dist;
+    for (size_t i = 0; i < bo.size(); ++i) {
+        if (br[i] && std::isfinite(toOracleBoundary[i])) dist.push_back(toOracleBoundary[i]);
+        if (bo[i] && std::isfinite(toRasterBoundary[i])) dist.push_back(toRasterBoundary[i]);
+    }
+    BoundaryDisplacement b;
+    b.pixels = dist.size();
+    if (!dist.empty()) {
+        double s = 0.0;
+        for (double d : dist) s += d;
+        b.mean = s / double(dist.size());
+        b.p95 = percentile(dist, 0.95);
+        b.max = *std::max_element(dist.begin(), dist.end());
+    }
+    return b;
+}
+
+// With the raster's NAME.aliasing_pred: its mean over counted pixels, and where the prediction
+// says texels are large, whether raster shadow edges stray further (Pearson correlation).
+void predictedAliasing(const ChannelImage& raster, const std::string& light,
+                       const std::vector<uint8_t>& counted, const std::vector<uint8_t>& br,
+                       const std::vector<float>& toOracleBoundary, LightMetrics& m) {
+    const std::string apName = ch::lightChannel(light, ch::kPredictedAliasing);
+    if (!raster.has(apName)) return;
+    const float* AP = raster.channel(apName);
+    const size_t n = counted.size();
+    double sum = 0.0;
+    for (size_t i = 0; i < n; ++i)
+        if (counted[i]) sum += AP[i];
+    m.predictedAliasingMean = m.counted ? sum / double(m.counted) : 0.0;
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (!br[i] || !std::isfinite(toOracleBoundary[i]) || !(AP[i] > 0.0f)) continue;
+        const double x = std::log(double(AP[i])), y = toOracleBoundary[i];
+        sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+        ++k;
+    }
+    const double cov = sxy - sx * sy / double(std::max<size_t>(k, 1));
+    const double vx = sxx - sx * sx / double(std::max<size_t>(k, 1)),
+                 vy = syy - sy * sy / double(std::max<size_t>(k, 1));
+    if (k >= 10 && vx > 0.0 && vy > 0.0) m.aliasingCorrelation = cov / std::sqrt(vx * vy);
+}
+
+}  // namespace
+
+LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage& raster,
+                                 const std::string& light, const MetricOptions& options,
+                                 ErrorMaps* maps) {
+    const Planes p(oracle, raster, light);
+    if (maps) {
+        for (std::vector<float>& v : maps->classes) v.assign(p.n, 0.0f);
+        maps->error.assign(p.n, 0.0f);
+    }
+    LightMetrics m;
+    const std::vector<uint8_t> counted = countedPixels(p, m);
+    const std::vector<uint8_t> bo = boundaries(p.Ao, p.Vo, p.w, p.h),
+                               br = boundaries(p.Ar, p.Vr, p.w, p.h);
+    const std::vector<float> toOracleBoundary = distanceTo(bo, p.w, p.h),
+                             toRasterBoundary = distanceTo(br, p.w, p.h);
+    Tally t;
+    for (size_t i = 0; i < p.n; ++i)
+        if (counted[i]) classify(p, i, toOracleBoundary[i], options, m, t, maps);
+    setRates(t, p, options, m);
+    m.boundaryDisplacement = boundaryDisplacement(bo, br, toOracleBoundary, toRasterBoundary);
+    predictedAliasing(raster, light, counted, br, toOracleBoundary, m);
+    return m;
+}
+
+nlohmann::json TechniqueCost::toJson() const {
+    return {{"shadow_map_ms", shadowMapMs},
+            {"visibility_ms", visibilityMs},
+            {"frame_ms", frameMs},
+            {"oracle_seconds", oracleSeconds}};
+}
+
+nlohmann::json LightComparison::toJson() const {
+    nlohmann::json j = metrics.toJson();
+    j["cost"] = cost.toJson();
+    return j;
+}
+
+nlohmann::json LightMetrics::toJson() const {
+    auto opt = [](const std::optional<double>& v) {
+        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    const double total =
+        double(counted + excludedBackground + excludedDifferentSurface + excludedFacingAway);
+    return {{"counted_pixels", counted},
+            {"excluded_share",
+             {{"background", total > 0 ? excludedBackground / total : 0.0},
+              {"different_surface", total > 0 ? excludedDifferentSurface / total : 0.0},
+              {"facing_away", total > 0 ? excludedFacingAway / total : 0.0}}},
+            {"mae", mae},
+            {"rmse", rmse},
+            {"max_abs", maxAbs},
+            {"false_shadow_rate", falseShadowRate},
+            {"false_lit_rate", falseLitRate},
+            {artifactClass(Artifact::Acne).metric, acneRate},
+            {artifactClass(Artifact::PeterPanning).metric, opt(peterPanningRate)},
+            {"light_leak_distance", opt(lightLeakDistance)},
+            {"boundary_displacement_px",
+             {{"mean", boundaryDisplacement.mean},
+              {"p95", boundaryDisplacement.p95},
+              {"max", boundaryDisplacement.max}}},
+            {artifactClass(Artifact::Aliasing).metric, aliasingRate},
+            {artifactClass(Artifact::LightBleeding).metric, opt(lightBleedingRate)},
+            {artifactClass(Artifact::Penumbra).metric, opt(penumbraMae)},
+            {"penumbra_bias", opt(penumbraBias)},
+            {"predicted_aliasing",
+             {{"mean", opt(predictedAliasingMean)},
+              {"correlation_with_boundary_error", opt(aliasingCorrelation)}}}};
+}
+
+}  // namespace so

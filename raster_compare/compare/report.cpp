@@ -1,0 +1,280 @@
+#include "raster_compare/compare/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <sstream>
+
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/preview.h"
+
+namespace so {
+
+namespace {
+
+namespace ch = channels;
+
+std::string html(const std::string& s) {
+    std::string o;
+    for (char c : s)
+        o += c == '<'   ? "&lt;"
+             : c == '>' ? "&gt;"
+             : c == '&' ? "&amp;"
+             : c == '"' ? "&quot;"
+                        : std::string(1, c);
+    return o;
+}
+
+std::string imgTag(int w, int h, const std::vector<float>& rgb, const std::string& alt) {
+    return "<img alt=\"" + html(alt) + "\" src=\"data:image/png;base64," +
+           base64(encodePngRgb(w, h, rgb)) + "\">";
+}
+
+// The oracle's cosine times a visibility, so a person sees the shadows.
+std::vector<float> shaded(const ChannelImage& oracle, const float* V, const std::string& light) {
+    return shadowGrey(oracle, V, oracle.channel(ch::lightChannel(light, ch::kCosine)));
+}
+
+std::vector<float> errorMap(const ChannelImage& oracle, const ErrorMaps& m,
+                            const std::string& light) {
+    const float* V = oracle.channel(ch::lightChannel(light, ch::kVisibility));
+    const float* A = oracle.channel(ch::kHit);
+    std::vector<float> rgb(oracle.pixelCount() * 3);
+    for (size_t i = 0; i < oracle.pixelCount(); ++i) {
+        float r = A[i] == 0.0f ? 0.03f : 0.12f + 0.18f * V[i], g = r,
+              b = r;  // dim truth underneath
+        for (const ArtifactClass& c : kArtifactClasses)
+            if (m.of(c.id)[i] > 0.0f) {
+                // Penumbra errors are graded: brighter where the error is larger.
+                const float s =
+                    c.id == Artifact::Penumbra ? std::min(1.0f, 0.3f + 5.0f * m.error[i]) : 1.0f;
+                r = c.rgb[0] * s, g = c.rgb[1] * s, b = c.rgb[2] * s;
+            }
+        rgb[3 * i] = r, rgb[3 * i + 1] = g, rgb[3 * i + 2] = b;
+    }
+    return rgb;
+}
+
+// Predicted aliasing on a log ramp: blue where a texel is smaller than a pixel, white at 1, red
+// where it covers several pixels (saturating at 1/8 and 8).
+std::vector<float> aliasingMap(const ChannelImage& raster, const std::string& light) {
+    const float* AP = raster.channel(ch::lightChannel(light, ch::kPredictedAliasing));
+    std::vector<float> rgb(raster.pixelCount() * 3, 0.05f);
+    for (size_t i = 0; i < raster.pixelCount(); ++i) {
+        if (!(AP[i] > 0.0f)) continue;
+        const float t = std::clamp(std::log2(AP[i]) / 3.0f, -1.0f, 1.0f);
+        rgb[3 * i] = t > 0 ? 1.0f : 1.0f + t;
+        rgb[3 * i + 1] = 1.0f - std::fabs(t);
+        rgb[3 * i + 2] = t < 0 ? 1.0f : 1.0f - t;
+    }
+    return rgb;
+}
+
+std::string num(std::optional<double> v, int digits = 4) {
+    if (!v) return "–";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, *v);
+    return buf;
+}
+
+// Error (mae) against cost (frame ms): one point per technique, the Pareto front joined.
+std::string chart(const ReportInput& in, size_t light) {
+    struct P {
+        double t, e;
+        std::string label;
+    };
+    std::vector<P> pts;
+    for (const ReportTechnique& t : in.techniques)
+        pts.push_back({t.lights[light].cost.frameMs, t.lights[light].metrics.mae, t.label});
+    if (pts.empty()) return "";
+    // Time on a log scale: techniques differ in cost by orders of magnitude.
+    double tMin = 1e300, tMax = 0, eMax = 0;
+    for (const P& p : pts)
+        tMin = std::min(tMin, p.t), tMax = std::max(tMax, p.t), eMax = std::max(eMax, p.e);
+    tMin = std::max(tMin, 1e-3) / 1.3;
+    tMax = std::max(tMax * 1.3, tMin * 10);
+    double eMin = 1e300;
+    for (const P& p : pts)
+        if (p.e > 0) eMin = std::min(eMin, p.e);
+    eMin = eMin == 1e300 ? 1e-6 : eMin / 2;
+    eMax = std::max(eMax * 1.5, eMin * 10);
+    const double W = 580, H = 320, L = 80, B = 40, R = 20, T = 20;
+    auto X = [&](double t) {
+        return L + (W - L - R) * std::log(std::max(t, tMin) / tMin) / std::log(tMax / tMin);
+    };
+    // Errors too span orders of magnitude: log scale, zero drawn at the floor.
+    auto Y = [&](double e) {
+        return H - B - (H - B - T) * std::log(std::max(e, eMin) / eMin) / std::log(eMax / eMin);
+    };
+    std::vector<P> front = pts;  // no faster technique is also more accurate
+    std::sort(front.begin(), front.end(),
+              [](const P& a, const P& b) { return a.t < b.t || (a.t == b.t && a.e < b.e); });
+    std::vector<P> pareto;
+    for (const P& p : front)
+        if (pareto.empty() || p.e < pareto.back().e) pareto.push_back(p);
+    std::ostringstream s;
+    s << "<svg class=\"chart\" viewBox=\"0 0 " << W << " " << H << "\" width=\"" << W
+      << "\" height=\"" << H << "\" role=\"img\" aria-label=\"error against time\">";
+    s << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B
+      << "\" class=\"axis\"/>";
+    s << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << H - B
+      << "\" class=\"axis\"/>";
+    for (int k = 0; k <= 4; ++k) {
+        const double tk = tMin * std::pow(tMax / tMin, k / 4.0),
+                     ek = eMin * std::pow(eMax / eMin, k / 4.0);
+        s << "<text x=\"" << X(tk) << "\" y=\"" << H - B + 16
+          << "\" class=\"tick\" text-anchor=\"middle\">" << num(tk, 3) << "</text>";
+        s << "<text x=\"" << L - 6 << "\" y=\"" << Y(ek) + 4
+          << "\" class=\"tick\" text-anchor=\"end\">" << num(ek, 2) << "</text>";
+    }
+    s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 6
+      << "\" text-anchor=\"middle\">frame time (ms, log scale)</text>";
+    s << "<text x=\"14\" y=\"" << (T + H - B) / 2 << "\" transform=\"rotate(-90 14 "
+      << (T + H - B) / 2 << ")\" text-anchor=\"middle\">mean error of V (log scale)</text>";
+    s << "<polyline class=\"pareto\" points=\"";
+    for (const P& p : pareto) s << X(p.t) << "," << Y(p.e) << " ";
+    s << "\"/>";
+    for (const P& p : pts) {
+        const bool onFront = std::any_of(pareto.begin(), pareto.end(),
+                                         [&](const P& q) { return q.label == p.label; });
+        s << "<circle cx=\"" << X(p.t) << "\" cy=\"" << Y(p.e) << "\" r=\"5\" class=\""
+          << (onFront ? "front" : "point") << "\"><title>" << html(p.label) << ": " << num(p.e)
+          << " at " << num(p.t, 3) << " ms</title></circle>";
+        s << "<text x=\"" << X(p.t) + 7 << "\" y=\"" << Y(p.e) - 6 << "\" class=\"label\">"
+          << html(p.label) << "</text>";
+    }
+    s << "</svg>";
+    return s.str();
+}
+
+// The metrics table: a header and how to read the value from a row (none: the label columns).
+struct Column {
+    std::string header;
+    std::function<std::optional<double>(const LightComparison&)> value;
+};
+
+const std::vector<Column>& columns() {
+    using L = const LightComparison&;
+    auto artifact = [](Artifact a) { return std::string(artifactClass(a).legend); };
+    static const std::vector<Column> cols = {
+        {"technique", nullptr},
+        {"light", nullptr},
+        {"mae", [](L l) { return std::optional(l.metrics.mae); }},
+        {"rmse", [](L l) { return std::optional(l.metrics.rmse); }},
+        {"false shadow", [](L l) { return std::optional(l.metrics.falseShadowRate); }},
+        {"false lit", [](L l) { return std::optional(l.metrics.falseLitRate); }},
+        {artifact(Artifact::Acne), [](L l) { return std::optional(l.metrics.acneRate); }},
+        {artifact(Artifact::PeterPanning), [](L l) { return l.metrics.peterPanningRate; }},
+        {"leak dist.", [](L l) { return l.metrics.lightLeakDistance; }},
+        {"boundary p95 px", [](L l) { return std::optional(l.metrics.boundaryDisplacement.p95); }},
+        {artifact(Artifact::Aliasing), [](L l) { return std::optional(l.metrics.aliasingRate); }},
+        {artifact(Artifact::LightBleeding), [](L l) { return l.metrics.lightBleedingRate; }},
+        {artifact(Artifact::Penumbra) + " mae", [](L l) { return l.metrics.penumbraMae; }},
+        {artifact(Artifact::Penumbra) + " bias", [](L l) { return l.metrics.penumbraBias; }},
+        {"frame ms", [](L l) { return std::optional(l.cost.frameMs); }},
+    };
+    return cols;
+}
+
+// The page's head, title and the artifact legend.
+void writeHead(std::ostream& o, const ReportInput& in) {
+    o << R"(<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>shadow-oracle report: )"
+      << html(in.sceneFile) << R"(</title><style>
+body{font-family:system-ui,sans-serif;margin:24px;background:#f6f6f4;color:#222}
+h1{font-size:22px}h2{font-size:18px;margin-top:32px}
+.grid{display:flex;flex-wrap:wrap;gap:14px}.card{background:#fff;padding:8px;border-radius:6px;box-shadow:0 1px 3px #0002}
+.card img{display:block;max-width:320px;image-rendering:pixelated}.card p{margin:4px 0 0;font-size:13px}
+.legend span{display:inline-block;margin-right:14px;font-size:13px}.legend i{display:inline-block;width:12px;height:12px;margin-right:4px;vertical-align:-1px}
+table{border-collapse:collapse;background:#fff;font-size:13px}th,td{padding:4px 8px;border-bottom:1px solid #ddd;text-align:right}
+th{cursor:pointer;background:#eee;position:sticky;top:0}td:first-child,td:nth-child(2),th:first-child,th:nth-child(2){text-align:left}
+.chart{background:#fff;border-radius:6px}.axis{stroke:#444}.tick{font-size:11px;fill:#555}.label{font-size:11px;fill:#333}
+.point{fill:#888}.front{fill:#d33}.pareto{fill:none;stroke:#d33;stroke-width:1.5;stroke-dasharray:4 3}
+footer{margin-top:32px;font-size:12px;color:#666}
+</style></head><body>)";
+    o << "<h1>Shadow accuracy against the oracle: " << html(in.sceneFile) << "</h1>";
+    o << "<div class=\"legend\">Error map classes: ";
+    for (const ArtifactClass& c : kArtifactClasses)
+        o << "<span><i style=\"background:rgb(" << int(c.rgb[0] * 255) << "," << int(c.rgb[1] * 255)
+          << "," << int(c.rgb[2] * 255) << ")\"></i>" << c.legend << "</span>";
+    o << "<span>(grey: correct, dimmed truth)</span></div>";
+}
+
+// One light: the oracle, each technique, its error map and predicted aliasing, and the chart.
+void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
+    const int w = in.oracle.width(), h = in.oracle.height();
+    const std::string& light = in.lights[li];
+    o << "<h2>Light " << html(light) << "</h2><div class=\"grid\">";
+    o << "<div class=\"card\">"
+      << imgTag(
+             w, h,
+             shaded(in.oracle, in.oracle.channel(ch::lightChannel(light, ch::kVisibility)), light),
+             "oracle")
+      << "<p><b>oracle</b> (ground truth)</p></div>";
+    for (const ReportTechnique& t : in.techniques) {
+        o << "<div class=\"card\">"
+          << imgTag(w, h,
+                    shaded(in.oracle, t.image.channel(ch::lightChannel(light, ch::kVisibility)),
+                           light),
+                    t.label)
+          << "<p><b>" << html(t.label) << "</b></p></div>";
+        o << "<div class=\"card\">"
+          << imgTag(w, h, errorMap(in.oracle, t.lights[li].maps, light), t.label + " errors")
+          << "<p>errors of " << html(t.label) << ": mae " << num(t.lights[li].metrics.mae)
+          << "</p></div>";
+        if (t.image.has(ch::lightChannel(light, ch::kPredictedAliasing))) {
+            const LightMetrics& lm = t.lights[li].metrics;
+            o << "<div class=\"card\">"
+              << imgTag(w, h, aliasingMap(t.image, light), t.label + " predicted aliasing")
+              << "<p>predicted aliasing (texel / pixel footprint; blue &lt; 1 &lt; red): mean "
+              << num(lm.predictedAliasingMean, 3) << ", correlation with boundary error "
+              << num(lm.aliasingCorrelation, 2) << "</p></div>";
+        }
+    }
+    o << "</div><h3>Error against time</h3>" << chart(in, li);
+}
+
+// Every row of metrics, sortable.
+void writeTable(std::ostream& o, const ReportInput& in) {
+    o << "<h2>All metrics</h2><p>Click a column to sort.</p><table id=\"metrics\"><thead><tr>";
+    for (const Column& c : columns()) o << "<th>" << c.header << "</th>";
+    o << "</tr></thead><tbody>";
+    for (const ReportTechnique& t : in.techniques)
+        for (size_t li = 0; li < in.lights.size(); ++li) {
+            o << "<tr><td>" << html(t.label) << "</td><td>" << html(in.lights[li]) << "</td>";
+            for (const Column& c : columns()) {
+                if (!c.value) continue;
+                const std::optional<double> v = c.value(t.lights[li]);
+                o << "<td data-v=\"" << (v ? std::to_string(*v) : "") << "\">" << num(v) << "</td>";
+            }
+            o << "</tr>";
+        }
+    o << "</tbody></table>";
+}
+
+}  // namespace
+
+void writeReport(const std::string& path, const ReportInput& in) {
+    std::ostringstream o;
+    writeHead(o, in);
+    for (size_t li = 0; li < in.lights.size(); ++li) writeLight(o, in, li);
+    writeTable(o, in);
+    o << R"(<script>
+document.querySelectorAll('#metrics th').forEach((th, col) => th.addEventListener('click', () => {
+  const body = th.closest('table').tBodies[0], rows = [...body.rows];
+  const dir = th.dataset.dir = th.dataset.dir === 'asc' ? 'desc' : 'asc';
+  const key = r => { const c = r.cells[col]; return c.dataset.v !== undefined && c.dataset.v !== '' ? parseFloat(c.dataset.v) : c.textContent; };
+  rows.sort((a, b) => { const x = key(a), y = key(b); const s = x < y ? -1 : x > y ? 1 : 0; return dir === 'asc' ? s : -s; });
+  rows.forEach(r => body.appendChild(r));
+}));
+</script>)";
+    o << "<footer>" << html(in.provenance.dump()) << "</footer></body></html>\n";
+    std::ofstream f(path);
+    if (!f) throwInputError(path, "", "cannot be written");
+    f << o.str();
+}
+
+}  // namespace so

@@ -1,0 +1,32 @@
+// The self-contained HTML report of a comparison: per scene and light the oracle, each technique
+// and its error map coloured by class, a sortable table of the metrics, and an accuracy-vs-time
+// chart (inline SVG, Pareto front marked). No external file, script or font.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "raster_compare/compare/metrics.h"
+
+namespace so {
+
+struct ReportTechnique {
+    std::string label;
+    ChannelImage image;                   // raster.exr
+    std::vector<LightComparison> lights;  // per light, in scene order
+};
+
+struct ReportInput {
+    std::string sceneFile;
+    std::vector<std::string> lights;
+    ChannelImage oracle;
+    std::vector<ReportTechnique> techniques;
+    nlohmann::json provenance;  // tool, scene hash, GL renderer: shown in the footer
+};
+
+void writeReport(const std::string& path, const ReportInput& in);
+
+}  // namespace so

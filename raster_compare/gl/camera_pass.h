@@ -1,0 +1,63 @@
+// The camera pass: what each pixel sees (local position, camera-facing normal, mesh and triangle
+// ids), with the same camera as the oracle (core/camera.h), reversed float depth and an infinite
+// far plane. Its depth buffer is shared with every light's visibility pass (depth test EQUAL), so
+// a technique shades exactly the surfaces the camera pass found.
+#pragma once
+
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "raster_compare/gl/gl_object.h"
+#include "raster_compare/gl/gpu_scene.h"
+
+namespace so {
+
+class CameraPass {
+  public:
+    CameraPass(const GpuScene& scene, const CameraDesc& desc);
+
+    int width() const { return camera_.width(); }
+    int height() const { return camera_.height(); }
+    const Camera& camera() const { return camera_; }
+    const glm::dmat4& clipFromLocal() const { return clipFromLocal_; }
+    const glm::dvec3& lsEye() const { return lsEye_; }
+    // The camera pixel's size per unit of distance (2 tan(vfov / 2) / height).
+    double pixelScale() const { return pixelScale_; }
+    GLuint depthTexture() const { return depth_.get(); }
+
+    // Clears and draws; the caller has set the frame's state (depth test and writes on).
+    void render() const;
+    // Renders once and returns the local-frame bounds of the surfaces seen (empty if none).
+    Bounds3d receiverBounds() const;
+    // The geometry channels of docs/exr-channels.md from the last render.
+    void readGeometry(ChannelImage& image) const;
+
+  private:
+    const GpuScene& scene_;
+    Camera camera_;
+    glm::dmat4 clipFromLocal_{1.0};
+    glm::dvec3 lsEye_{0.0};
+    double pixelScale_ = 0.0;
+    GlProgram program_;
+    GlTexture position_, normal_, prim_, depth_;
+    GlFramebuffer fbo_;
+};
+
+// One light's visibility target: V and the predicted aliasing, sharing the camera pass's depth.
+class LightTarget {
+  public:
+    LightTarget(const CameraPass& camera);
+    void bindAndClear() const;
+    std::vector<float> readVisibility() const;  // top row first
+    std::vector<float> readAliasing() const;
+
+  private:
+    int width_, height_;
+    GlTexture visibility_, aliasing_;
+    GlFramebuffer fbo_;
+};
+
+}  // namespace so

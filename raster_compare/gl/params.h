@@ -1,0 +1,48 @@
+// A technique's parameters: one table per technique (name, default, range, meaning) that is the
+// single source of its validation, of `shadow-oracle techniques` and of docs/techniques.md.
+//
+// Lengths in parameters are in texels: multiples of the world-space size of one shadow-map texel
+// at the receiver, so the same setting means the same thing at any scene scale or resolution.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace so {
+
+struct ParamSpec {
+    std::string name;
+    double defaultValue;
+    double min, max;
+    bool integer;
+    std::string doc;
+    std::vector<double> allowed = {};  // when not empty: the only valid values
+};
+using ParamTable = std::vector<ParamSpec>;
+
+// Validated values: every parameter of the table, defaults filled in. Only `parseParams` makes
+// one, so a technique's constructor reads values that are known to be in range.
+class ParamValues {
+  public:
+    double real(const std::string& name) const;  // CHECKs that the table has it
+    int integer(const std::string& name) const;
+    const std::map<std::string, double>& all() const { return values_; }
+
+  private:
+    friend ParamValues parseParams(const std::string&, const ParamTable&,
+                                   const std::vector<std::string>&);
+    std::map<std::string, double> values_;
+};
+
+// Parses "key=value" settings against the table; unknown keys, non-numbers, non-integers and
+// values out of range are InputErrors naming the technique, the key and what is valid.
+ParamValues parseParams(const std::string& technique, const ParamTable& table,
+                        const std::vector<std::string>& settings);
+
+// A GLSL float literal that keeps the value: "1e-07" and "0.000000" are not the same number.
+std::string glslFloat(double v);
+// "#define NAME <glslFloat(v)>\n"
+std::string glslDefine(const std::string& name, double v);
+
+}  // namespace so

@@ -1,0 +1,33 @@
+// GL time per pass with GL_TIME_ELAPSED queries, read after the frame so the GPU never stalls
+// mid-frame; medians over the timed frames. (On llvmpipe the queries measure CPU work.)
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "raster_compare/gl/gl_object.h"
+
+namespace so {
+
+class PassTimer {
+  public:
+    void begin(const std::string& pass);
+    void end();
+    // Reads this frame's queries; kept only when `keep` (warm-up frames are dropped).
+    void endFrame(bool keep);
+    // Median over the kept frames (0 when the pass never ran).
+    double medianMs(const std::string& pass) const;
+
+  private:
+    struct Query {
+        std::string pass;
+        GlQuery query;
+    };
+    std::vector<Query> frame_;
+    std::map<std::string, std::vector<double>> msByPass_;
+};
+
+double median(std::vector<double> v);
+
+}  // namespace so

@@ -1,0 +1,207 @@
+// The shadow-map family's visibility frame: V of one light per pixel, in [0, 1]. The technique's
+// GLSL file (techniques/*.glsl) follows this one and defines techniqueVisibility. Defines:
+//   light: LIGHT_ORTHO (directional), LIGHT_SPOT, LIGHT_CUBE (point and area lights, at the centre);
+//   map: MAP_DEPTH (point-sampled depth), MAP_HW_COMPARE (the sampler's depth compare),
+//        MAP_MOMENTS (filtered moments); VISIBILITY_PASS.
+// Depths are compared as linear distances along the map's view axis, so biases are lengths:
+// in texels, the world size of one shadow-map texel at the receiver.
+in vec3 v_lsPosition;
+flat in vec3 v_lsFaceNormal;
+uniform vec3 u_lsEye;
+uniform vec3 u_lsLightPosition;
+uniform vec3 u_lsLightDirection;  // the way light travels
+uniform float u_cosOuter;
+uniform mat4 u_lightClipFromLocal;
+uniform mat4 u_lightViewFromLocal;
+uniform float u_near;
+uniform float u_far;
+uniform float u_texelScale;  // ortho: texel size; perspective: texel size per unit of depth
+#if defined(MAP_HW_COMPARE) && defined(LIGHT_CUBE)
+uniform samplerCubeShadow u_map;
+#elif defined(MAP_HW_COMPARE)
+uniform sampler2DShadow u_map;
+#elif defined(LIGHT_CUBE)
+uniform samplerCube u_map;
+#else
+uniform sampler2D u_map;
+#endif
+uniform float u_pixelScale;  // camera pixel size per unit of distance (2 tan(vfov / 2) / height)
+layout(location = 0) out float o_visibility;
+// Predicted aliasing (Lloyd et al.): the shadow-map texel's footprint on the receiver over the
+// camera pixel's footprint there; > 1 means a texel covers more than a pixel.
+layout(location = 1) out float o_aliasing;
+
+// What a technique gets: the receiver point, its camera-facing geometric normal, n.l (> 0) and
+// the world size of one map texel there.
+struct Receiver {
+    vec3 p;
+    vec3 n;
+    float ndotl;
+    float texel;
+};
+float techniqueVisibility(Receiver r);  // the technique's file
+
+float linearDepth(float z) {
+#ifdef LIGHT_ORTHO
+    return u_near + z * (u_far - u_near);
+#else
+    return u_near * u_far / (u_far - z * (u_far - u_near));
+#endif
+}
+
+float texelWorld(float depth) {
+#ifdef LIGHT_ORTHO
+    return u_texelScale;
+#else
+    return depth * u_texelScale;
+#endif
+}
+
+// The window depth the hardware compares against, for a linear depth d.
+float windowDepth(float d) {
+#ifdef LIGHT_ORTHO
+    return (d - u_near) / (u_far - u_near);
+#else
+    return u_far * (d - u_near) / (d * (u_far - u_near));
+#endif
+}
+
+// Linear depth in [0, 1] between the map's near and far planes, as the moment maps store it.
+float normalisedDepth(float d) { return clamp((d - u_near) / (u_far - u_near), 0.0, 1.0); }
+
+// Where a point falls in the map: its linear depth d along the view axis; cube maps: the
+// direction v from the light and the tangent axes of its face, `step` (one texel at depth d)
+// apart; 2D maps: uv. `outside`: beyond the map, where nothing was rendered that could shadow it.
+struct MapPoint {
+    bool outside;
+    float d;
+    vec3 v, t1, t2;
+    float step;
+    vec2 uv;
+};
+
+MapPoint mapPoint(vec3 q) {
+    MapPoint m;
+#ifdef LIGHT_CUBE
+    m.v = q - u_lsLightPosition;
+    vec3 a = abs(m.v);
+    m.d = max(a.x, max(a.y, a.z));
+    m.outside = m.d > u_far;
+    m.t1 = a.x >= a.y && a.x >= a.z ? vec3(0, 1, 0) : vec3(1, 0, 0);
+    m.t2 = a.z >= a.x && a.z >= a.y ? vec3(0, 1, 0) : vec3(0, 0, 1);
+    m.step = u_texelScale * m.d;
+#else
+    vec4 c = u_lightClipFromLocal * vec4(q, 1.0);
+    m.uv = c.xy / c.w * 0.5 + 0.5;
+    m.d = -(u_lightViewFromLocal * vec4(q, 1.0)).z;
+    m.outside = any(lessThan(m.uv, vec2(0.0))) || any(greaterThan(m.uv, vec2(1.0))) || m.d > u_far;
+#endif
+    return m;
+}
+
+float receiverDepth(vec3 q) {
+#ifdef LIGHT_CUBE
+    vec3 a = abs(q - u_lsLightPosition);
+    return max(a.x, max(a.y, a.z));
+#else
+    return -(u_lightViewFromLocal * vec4(q, 1.0)).z;
+#endif
+}
+
+#if defined(MAP_DEPTH)
+// 1 where a receiver at linear depth dRef is lit by the map's texel k texels (an integer offset)
+// from the point's own, 0 where that texel holds something nearer.
+float depthTap(MapPoint m, ivec2 k, float dRef) {
+#ifdef LIGHT_CUBE
+    float z = texture(u_map, m.v + m.step * (float(k.x) * m.t1 + float(k.y) * m.t2)).r;
+#else
+    ivec2 size = textureSize(u_map, 0);
+    ivec2 ij = clamp(ivec2(floor(m.uv * vec2(size))) + k, ivec2(0), size - 1);
+    float z = texelFetch(u_map, ij, 0).r;
+#endif
+    return dRef <= linearDepth(z) ? 1.0 : 0.0;
+}
+// The same at an offset o in texels that need not be whole.
+float depthTapAt(MapPoint m, vec2 o, float dRef) {
+#ifdef LIGHT_CUBE
+    float z = texture(u_map, m.v + m.step * (o.x * m.t1 + o.y * m.t2)).r;
+#else
+    ivec2 size = textureSize(u_map, 0);
+    ivec2 ij = clamp(ivec2(floor(m.uv * vec2(size) + o)), ivec2(0), size - 1);
+    float z = texelFetch(u_map, ij, 0).r;
+#endif
+    return dRef <= linearDepth(z) ? 1.0 : 0.0;
+}
+// The plain depth test with a bias (a length): lit where depth - bias <= the stored depth.
+float depthTest(vec3 q, float bias) {
+    MapPoint m = mapPoint(q);
+    if (m.outside) return 1.0;
+    return depthTap(m, ivec2(0), m.d - bias);
+}
+#elif defined(MAP_HW_COMPARE)
+// The sampler's own comparison (and its implementation-defined filter) at depth d - bias.
+float hardwareTest(vec3 q, float bias) {
+    MapPoint m = mapPoint(q);
+    if (m.outside) return 1.0;
+#ifdef LIGHT_CUBE
+    return texture(u_map, vec4(m.v, windowDepth(m.d - bias)));
+#else
+    return texture(u_map, vec3(m.uv, windowDepth(m.d - bias)));
+#endif
+}
+#elif defined(MAP_MOMENTS)
+// The moments at the point, bilinearly filtered (and blurred).
+vec4 momentsAt(MapPoint m) {
+#ifdef LIGHT_CUBE
+    return texture(u_map, m.v);
+#else
+    return texture(u_map, m.uv);
+#endif
+}
+// The one-sided Chebyshev bound, shared by the moment techniques.
+float chebyshev(vec2 m, float t, float minVariance) {
+    if (t <= m.x) return 1.0;
+    float variance = max(m.y - m.x * m.x, minVariance);
+    float d = t - m.x;
+    return variance / (variance + d * d);
+}
+// Light-bleeding reduction: p below `amount` counts as shadow, the rest rescaled to [0, 1].
+float reduceBleeding(float p, float amount) { return clamp((p - amount) / (1.0 - amount), 0.0, 1.0); }
+#endif
+
+// The slope-scaled bias (slope-bias, pcf, hw-pcf), as a length:
+// clamp(alpha tan(theta), min, max) texels, times `spread` (a filter's outer taps see the
+// receiver's plane that many texels deeper).
+float slopeBias(Receiver r, float alpha, float minTexels, float maxTexels, float spread) {
+    float tanTheta = sqrt(max(0.0, 1.0 - r.ndotl * r.ndotl)) / r.ndotl;
+    return clamp(alpha * tanTheta, minTexels, maxTexels) * r.texel * spread;
+}
+
+void main() {
+    vec3 p = v_lsPosition;
+    vec3 n = normalize(v_lsFaceNormal);
+    if (dot(n, p - u_lsEye) > 0.0) n = -n;
+#ifdef LIGHT_ORTHO
+    vec3 l = -u_lsLightDirection;
+#else
+    vec3 l = normalize(u_lsLightPosition - p);
+#endif
+    float ndotl = dot(n, l);
+    vec3 toEye = u_lsEye - p;
+    float pixel = length(toEye) * u_pixelScale / max(abs(dot(n, normalize(toEye))), 1e-3);
+    o_aliasing = 0.0;
+    // The oracle's conventions: facing away, or outside a spot's cone, is unlit.
+    if (ndotl <= 0.0) {
+        o_visibility = 0.0;
+        return;
+    }
+#ifdef LIGHT_SPOT
+    if (dot(-l, u_lsLightDirection) < u_cosOuter) {
+        o_visibility = 0.0;
+        return;
+    }
+#endif
+    float texel = texelWorld(receiverDepth(p));
+    o_aliasing = (texel / max(ndotl, 1e-3)) / pixel;
+    o_visibility = techniqueVisibility(Receiver(p, n, ndotl, texel));
+}

@@ -1,0 +1,267 @@
+#include "raster_compare/gl/shadow_map.h"
+
+#include <glm/matrix.hpp>
+
+#include "raster_compare/gl/camera_pass.h"
+#include "raster_compare/gl/gl_program.h"
+#include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/light_camera.h"
+#include "raster_compare/gl/shaders.h"
+
+namespace so {
+
+ParamTable shadowMapParams(ParamTable own) {
+    ParamTable p = {
+        {"resolution", 2048, 16, 16384, true, "shadow map side in texels (cube maps: per face)"},
+        {"depth_format",
+         24,
+         16,
+         32,
+         true,
+         "depth buffer bits: 16, 24 (fixed point) or 32 (float)",
+         {16, 24, 32}},
+        {"fit", 0, 0, 1, true,
+         "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"},
+    };
+    for (ParamSpec& s : own) p.push_back(std::move(s));
+    return p;
+}
+
+ShadowMapTechnique::ShadowMapTechnique(const ParamValues& v)
+    : Technique(v),
+      resolution_(v.integer("resolution")),
+      depthBits_(v.integer("depth_format")),
+      fitToReceivers_(v.integer("fit") == 1) {}
+
+ParamTable SlopeBias::params() {
+    return {{"alpha", 1.0, 0.0, 100.0, false, "slope factor"},
+            {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
+            {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
+}
+
+SlopeBias::SlopeBias(const ParamValues& v)
+    : alpha(v.real("alpha")), minTexels(v.real("min")), maxTexels(v.real("max")) {}
+
+std::string SlopeBias::defines() const {
+    return glslDefine("SLOPE_ALPHA", alpha) + glslDefine("SLOPE_MIN", minTexels) +
+           glslDefine("SLOPE_MAX", maxTexels);
+}
+
+namespace {
+
+GLenum depthFormat(int bits) {
+    return bits == 16   ? GL_DEPTH_COMPONENT16
+           : bits == 24 ? GL_DEPTH_COMPONENT24
+                        : GL_DEPTH_COMPONENT32F;
+}
+
+GlTexture makeSquare(GLenum format, int size, bool linear) {
+    GlTexture t = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(t.get(), 1, format, size, size);
+    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, linear ? GL_LINEAR : GL_NEAREST);
+    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
+    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+// One light's map and passes.
+class ShadowMapLight final : public LightTechnique {
+  public:
+    ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup);
+    std::string lightPassName() const override { return "shadow_map"; }
+    void renderLightPasses() override;
+    void renderVisibility() override;
+    RasterLightStats describe() const override;
+
+  private:
+    void createMap();
+    void createMomentTargets();
+    void createVisibilityProgram(const CameraPass& camera);
+    void renderMomentFace(int face);
+
+    const ShadowMapTechnique& technique_;
+    const Light& light_;
+    const GpuScene& scene_;
+    LightCamera cam_;
+    GlTexture map_;
+    std::vector<GlFramebuffer> mapFbos_;  // one per face
+    GlProgram depthProg_, visibilityProg_;
+    // Moment maps: each face rendered into faceTex_, blurred across into tempTex_, then down into
+    // the map's face.
+    GlProgram momentsProg_, blurProg_;
+    GlTexture faceTex_, tempTex_, faceDepth_;
+    GlFramebuffer faceFbo_, tempFbo_;
+};
+
+ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup)
+    : technique_(technique), light_(setup.light), scene_(setup.scene) {
+    cam_ = fitLightCamera(light_, scene_.frame(), scene_.lsBounds(), technique.resolution(),
+                          setup.lsReceivers ? &*setup.lsReceivers : nullptr);
+    depthProg_ = buildProgram("", shaders::scene_vert, {shaders::depth_frag});
+    createMap();
+    if (technique.storage() == MapStorage::Moments) createMomentTargets();
+    createVisibilityProgram(setup.camera);
+}
+
+void ShadowMapLight::createMap() {
+    const MapStorage storage = technique_.storage();
+    const bool cube = cam_.kind == LightCamera::Kind::Cube,
+               moments = storage == MapStorage::Moments;
+    const int res = technique_.resolution();
+    map_ = makeTexture(cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D);
+    glTextureStorage2D(map_.get(), 1, moments ? GL_RGBA32F : depthFormat(technique_.depthBits()),
+                       res, res);
+    // Point sampling: depth techniques do their own filtering and comparison in the shader;
+    // moment maps are filtered bilinearly, which is what they are for; the hardware compare
+    // filters with GL_LINEAR.
+    const GLint filter = storage == MapStorage::Depth ? GL_NEAREST : GL_LINEAR;
+    glTextureParameteri(map_.get(), GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(map_.get(), GL_TEXTURE_MAG_FILTER, filter);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(map_.get(), wrap, GL_CLAMP_TO_EDGE);
+    if (storage == MapStorage::DepthHardwareCompare) {
+        glTextureParameteri(map_.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(map_.get(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+    const GLenum attachment = moments ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT;
+    for (int f = 0; f < cam_.faces; ++f) {
+        GlFramebuffer fbo = makeFramebuffer();
+        if (cube)
+            glNamedFramebufferTextureLayer(fbo.get(), attachment, map_.get(), 0, f);
+        else
+            glNamedFramebufferTexture(fbo.get(), attachment, map_.get(), 0);
+        glNamedFramebufferDrawBuffer(fbo.get(), moments ? GL_COLOR_ATTACHMENT0 : GL_NONE);
+        mapFbos_.push_back(std::move(fbo));
+    }
+}
+
+void ShadowMapLight::createMomentTargets() {
+    const int res = technique_.resolution();
+    faceTex_ = makeSquare(GL_RGBA32F, res, false);
+    tempTex_ = makeSquare(GL_RGBA32F, res, false);
+    faceDepth_ = makeSquare(depthFormat(technique_.depthBits()), res, false);
+    faceFbo_ = makeFramebuffer();
+    glNamedFramebufferTexture(faceFbo_.get(), GL_COLOR_ATTACHMENT0, faceTex_.get(), 0);
+    glNamedFramebufferTexture(faceFbo_.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
+    tempFbo_ = makeFramebuffer();
+    glNamedFramebufferTexture(tempFbo_.get(), GL_COLOR_ATTACHMENT0, tempTex_.get(), 0);
+    momentsProg_ =
+        buildProgram("#define MOMENTS_PASS\n" + technique_.shaderDefines(), shaders::scene_vert,
+                     {shaders::shadow_moments_frag, technique_.glsl()});
+    setFloat(momentsProg_.get(), "u_near", cam_.near);
+    setFloat(momentsProg_.get(), "u_far", cam_.far);
+    blurProg_ = buildProgram("", shaders::fullscreen_vert, {shaders::blur_frag});
+    setInt(blurProg_.get(), "u_radius", technique_.blurRadius());
+    setInt(blurProg_.get(), "u_source", 0);
+}
+
+std::string lightDefine(LightCamera::Kind kind) {
+    return kind == LightCamera::Kind::Cube    ? "#define LIGHT_CUBE\n"
+           : kind == LightCamera::Kind::Ortho ? "#define LIGHT_ORTHO\n"
+                                              : "#define LIGHT_SPOT\n";
+}
+
+std::string mapDefine(MapStorage storage) {
+    return storage == MapStorage::Depth                  ? "#define MAP_DEPTH\n"
+           : storage == MapStorage::DepthHardwareCompare ? "#define MAP_HW_COMPARE\n"
+                                                         : "#define MAP_MOMENTS\n";
+}
+
+void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
+    const std::string defines = "#define VISIBILITY_PASS\n" + lightDefine(cam_.kind) +
+                                mapDefine(technique_.storage()) + technique_.shaderDefines();
+    visibilityProg_ =
+        buildProgram(defines, shaders::scene_vert, {shaders::shadow_map_frag, technique_.glsl()});
+    const GLuint vp = visibilityProg_.get();
+    setMat4(vp, "u_clipFromLocal", camera.clipFromLocal());
+    setVec3(vp, "u_lsEye", camera.lsEye());
+    setFloat(vp, "u_pixelScale", camera.pixelScale());
+    setVec3(vp, "u_lsLightPosition", cam_.lsPosition);
+    setVec3(vp, "u_lsLightDirection", cam_.lsDirection);
+    setFloat(vp, "u_cosOuter", cam_.cosOuter);
+    setMat4(vp, "u_lightClipFromLocal", cam_.clipFromLocal(0));
+    setMat4(vp, "u_lightViewFromLocal", cam_.viewFromLocal[0]);
+    setFloat(vp, "u_near", cam_.near);
+    setFloat(vp, "u_far", cam_.far);
+    setFloat(vp, "u_texelScale", cam_.texelScale);
+    setInt(vp, "u_map", 0);
+}
+
+void ShadowMapLight::renderLightPasses() {
+    const int res = technique_.resolution();
+    glViewport(0, 0, res, res);
+    glUseProgram(depthProg_.get());
+    glDepthFunc(GL_LESS);
+    technique_.beginMapPass();
+    for (int f = 0; f < cam_.faces; ++f) {
+        if (technique_.storage() == MapStorage::Moments) {
+            renderMomentFace(f);
+            continue;
+        }
+        const float one = 1.0f;
+        glBindFramebuffer(GL_FRAMEBUFFER, mapFbos_[size_t(f)].get());
+        glClearNamedFramebufferfv(mapFbos_[size_t(f)].get(), GL_DEPTH, 0, &one);
+        setMat4(depthProg_.get(), "u_clipFromLocal", cam_.clipFromLocal(f));
+        scene_.draw(depthProg_.get(), false);
+    }
+    technique_.endMapPass();
+}
+
+// The moments of one face, then the two blur directions into the map's face.
+void ShadowMapLight::renderMomentFace(int f) {
+    const float one = 1.0f;
+    const std::array<float, 4> farMoments = technique_.farMoments();
+    glBindFramebuffer(GL_FRAMEBUFFER, faceFbo_.get());
+    glClearNamedFramebufferfv(faceFbo_.get(), GL_COLOR, 0, farMoments.data());
+    glClearNamedFramebufferfv(faceFbo_.get(), GL_DEPTH, 0, &one);
+    glUseProgram(momentsProg_.get());
+    setMat4(momentsProg_.get(), "u_clipFromLocal", cam_.clipFromLocal(f));
+    setMat4(momentsProg_.get(), "u_lightViewFromLocal", cam_.viewFromLocal[size_t(f)]);
+    scene_.draw(momentsProg_.get(), false);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(blurProg_.get());
+    const float texel = 1.0f / float(technique_.resolution());
+    const GLint step = glGetUniformLocation(blurProg_.get(), "u_step");
+    glBindFramebuffer(GL_FRAMEBUFFER, tempFbo_.get());
+    glBindTextureUnit(0, faceTex_.get());
+    glProgramUniform2f(blurProg_.get(), step, texel, 0.0f);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindFramebuffer(GL_FRAMEBUFFER, mapFbos_[size_t(f)].get());
+    glBindTextureUnit(0, tempTex_.get());
+    glProgramUniform2f(blurProg_.get(), step, 0.0f, texel);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+}
+
+void ShadowMapLight::renderVisibility() {
+    glUseProgram(visibilityProg_.get());
+    glBindTextureUnit(0, map_.get());
+    scene_.draw(visibilityProg_.get(), false);
+}
+
+RasterLightStats ShadowMapLight::describe() const {
+    const LocalFrame& frame = scene_.frame();
+    RasterLightStats s;
+    s.name = light_.name;
+    s.type = lightTypeName(light_.type);
+    const bool ortho = cam_.kind == LightCamera::Kind::Ortho;
+    s.map = ortho ? "orthographic" : cam_.kind == LightCamera::Kind::Cube ? "cube" : "perspective";
+    const glm::dmat4 lsFromWs = glm::inverse(scene_.wsFromLs());
+    for (int f = 0; f < cam_.faces; ++f)
+        s.clipFromWorld.push_back(cam_.clipFromLocal(f) * lsFromWs);
+    s.wsNear = frame.wsLength(cam_.near);
+    s.wsFar = frame.wsLength(cam_.far);
+    s.fovYDeg = cam_.fovYDeg;
+    s.texelSizeIsAbsolute = ortho;
+    s.texelSize = ortho ? frame.wsLength(cam_.texelScale) : cam_.texelScale;
+    return s;
+}
+
+}  // namespace
+
+std::unique_ptr<LightTechnique> ShadowMapTechnique::setUp(const LightSetup& setup) const {
+    return std::make_unique<ShadowMapLight>(*this, setup);
+}
+
+}  // namespace so

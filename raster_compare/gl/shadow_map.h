@@ -1,0 +1,71 @@
+// The shadow-map family: per light a map rendered from the light (a depth map, or a moment map
+// blurred by a separable Gaussian), then a visibility pass that looks it up. A technique of the
+// family derives from ShadowMapTechnique, reads its own parameters into typed members in its
+// constructor and configures the family through the hooks below; its GLSL file (techniques/*.glsl)
+// defines `float techniqueVisibility(Receiver r)` for the visibility frame
+// (shaders/shadow_map.frag) and, for moment maps, `vec4 momentsOf(float t)` for the moment frame
+// (shaders/shadow_moments.frag).
+//
+// Every technique of the family has the common parameters resolution, depth_format and fit
+// (shadowMapParams); lengths are in texels at the receiver.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include "raster_compare/gl/technique.h"
+
+namespace so {
+
+// What the map holds and how the visibility pass samples it.
+enum class MapStorage {
+    Depth,                 // depth, point-sampled: the shader compares (and filters) itself
+    DepthHardwareCompare,  // depth with GL_COMPARE_REF_TO_TEXTURE and GL_LINEAR
+    Moments,               // RGBA32F moments, bilinear, blurred
+};
+
+// The common parameters first, then the technique's own.
+ParamTable shadowMapParams(ParamTable own);
+
+class ShadowMapTechnique : public Technique {
+  public:
+    static constexpr const char* kFamily = "shadow map";
+
+    explicit ShadowMapTechnique(const ParamValues& values);
+
+    bool filtered() const final { return storage() == MapStorage::Moments; }
+    bool needsReceiverBounds() const final { return fitToReceivers_; }
+    std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const final;
+
+    int resolution() const { return resolution_; }
+    int depthBits() const { return depthBits_; }
+
+    // The technique's choices.
+    virtual MapStorage storage() const { return MapStorage::Depth; }
+    // Its GLSL file (shaders.h) and the #defines that configure it (glslDefine keeps precision).
+    virtual const char* glsl() const = 0;
+    virtual std::string shaderDefines() const { return ""; }
+    // GL state for the map pass (polygon offset, culling), undone by endMapPass.
+    virtual void beginMapPass() const {}
+    virtual void endMapPass() const {}
+    // Moment maps: the blur radius in texels (0: none) and the moments of the far plane (t = 1),
+    // which the map is cleared to.
+    virtual int blurRadius() const { return 0; }
+    virtual std::array<float, 4> farMoments() const { return {1, 1, 0, 0}; }
+
+  private:
+    int resolution_, depthBits_;
+    bool fitToReceivers_;
+};
+
+// The slope-scaled bias shared by slope-bias, pcf and hw-pcf: its parameters (alpha, min, max, in
+// texels), read from the values, and their #defines.
+struct SlopeBias {
+    static ParamTable params();
+    explicit SlopeBias(const ParamValues& values);
+    std::string defines() const;
+    double alpha, minTexels, maxTexels;
+};
+
+}  // namespace so

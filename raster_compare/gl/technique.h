@@ -1,0 +1,105 @@
+// A shadow technique, of any family, as a typed plug-in (docs/techniques.md, CONTRIBUTING.md).
+//
+// Each technique lives in one file under techniques/ (plus its GLSL file there) and registers
+// itself in one line:
+//     SO_REGISTER_TECHNIQUE(Pcf, "pcf", "NxN grid percentage-closer filtering, compare per tap");
+// The class gives its parameter table (`static ParamTable params()`) and a constructor that takes
+// the validated values and keeps them as typed members: the registry's `create` parses the
+// settings against the table, then constructs. Validation lives in the constructor, not in the
+// shader setup, so a bad setting fails before any GL work.
+//
+// At render time a technique sets up, per light, an object that owns that light's passes
+// (LightTechnique): passes that see only the light (a shadow map) run before the camera pass, and
+// the visibility pass writes the light's V into the shared frame after it (renderer.h).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "raster_compare/gl/params.h"
+#include "raster_compare/gl/raster_result.h"
+
+namespace so {
+
+class GpuScene;
+class CameraPass;
+
+// What a technique gets to set up one light.
+struct LightSetup {
+    const Light& light;
+    const GpuScene& scene;
+    const CameraPass& camera;
+    // The local-frame bounds of the receivers the camera sees, when the technique asked for them
+    // (Technique::needsReceiverBounds).
+    const std::optional<Bounds3d>& lsReceivers;
+};
+
+// One light's GL objects and passes. Made by Technique::setUp with a current context.
+class LightTechnique {
+  public:
+    virtual ~LightTechnique() = default;
+    // The name of the passes that see only the light, timed as "<light>.<name>".
+    virtual std::string lightPassName() const = 0;
+    // Passes before the camera pass (shadow maps); GL state is the frame's (depth test on, depth
+    // writes on, clip control 0..1) and must be left so.
+    virtual void renderLightPasses() = 0;
+    // Draws the scene into the light's target, already bound and cleared, with the camera pass's
+    // depth and depth test EQUAL: location 0 gets V, location 1 the predicted aliasing.
+    virtual void renderVisibility() = 0;
+    // The light's camera and map, for raster.json (timings are filled in by the renderer).
+    virtual RasterLightStats describe() const = 0;
+};
+
+class Technique {
+  public:
+    explicit Technique(const ParamValues& values) : values_(values) {}
+    virtual ~Technique() = default;
+    Technique(const Technique&) = delete;
+    Technique& operator=(const Technique&) = delete;
+
+    const std::string& name() const { return name_; }
+    // Every parameter with its value, defaults included (for raster.json and metrics.json).
+    const ParamValues& values() const { return values_; }
+    // V is a filtered estimate (moments), so light bleeding is measured (docs/metrics.md).
+    virtual bool filtered() const { return false; }
+    // Asks the renderer for the receivers the camera sees before setUp.
+    virtual bool needsReceiverBounds() const { return false; }
+    virtual std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const = 0;
+
+  private:
+    friend std::unique_ptr<Technique> createTechnique(const std::string&,
+                                                      const std::vector<std::string>&);
+    std::string name_;
+    ParamValues values_;
+};
+
+struct TechniqueInfo {
+    std::string name, summary, family;
+    ParamTable params;
+    std::function<std::unique_ptr<Technique>(const ParamValues&)> create;
+};
+
+// Called by SO_REGISTER_TECHNIQUE during static initialisation; a duplicate name CHECK-fails.
+bool registerTechnique(TechniqueInfo info);
+// Every registered technique, by family and then name.
+std::vector<const TechniqueInfo*> allTechniques();
+// Throws InputError listing the valid names.
+const TechniqueInfo& findTechnique(const std::string& name);
+// Finds, parses the settings ("key=value") against the table and constructs: every user error is
+// an InputError naming the technique and the key.
+std::unique_ptr<Technique> createTechnique(const std::string& name,
+                                           const std::vector<std::string>& settings);
+
+// The family's name as listed: "shadow map", ...
+#define SO_REGISTER_TECHNIQUE(Class, name, summary)                           \
+    [[maybe_unused]] const bool kRegistered##Class = ::so::registerTechnique( \
+        {name, summary, Class::kFamily, Class::params(),                      \
+         [](const ::so::ParamValues& v) -> std::unique_ptr<::so::Technique> { \
+             return std::make_unique<Class>(v);                               \
+         }})
+
+}  // namespace so

@@ -1,0 +1,37 @@
+// esm: exponential shadow maps. The map stores exp(c t) of the normalised linear depth, blurred;
+// the lit fraction is clamp(exp(-c t_receiver) * E[exp(c t)], 0, 1). c up to 88: exp(88) is near
+// the largest float.
+#include <cmath>
+
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_map.h"
+
+namespace so {
+namespace {
+
+class Esm final : public ShadowMapTechnique {
+  public:
+    static ParamTable params() {
+        return shadowMapParams(
+            {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},
+             {"c", 80.0, 1.0, 88.0, false, "exponent"}});
+    }
+    explicit Esm(const ParamValues& v)
+        : ShadowMapTechnique(v), blur_(v.integer("blur")), c_(v.real("c")) {}
+    MapStorage storage() const override { return MapStorage::Moments; }
+    const char* glsl() const override { return shaders::esm_glsl; }
+    std::string shaderDefines() const override { return glslDefine("ESM_C", c_); }
+    int blurRadius() const override { return blur_; }
+    std::array<float, 4> farMoments() const override { return {float(std::exp(c_)), 0, 0, 0}; }
+
+  private:
+    int blur_;
+    double c_;
+};
+
+SO_REGISTER_TECHNIQUE(
+    Esm, "esm",
+    "exponential shadow maps: exp(c t) blurred, lit = clamp(exp(-c t) E[exp(c t)], 0, 1)");
+
+}  // namespace
+}  // namespace so
