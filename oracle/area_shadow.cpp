@@ -49,11 +49,12 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
     auto t0 = std::chrono::steady_clock::now();
     struct Partial {
         AreaShadowStats st;
-        double efficiencySum = 0.0;
     };
     tbb::combinable<Partial> partial;
-    // Per-pixel per-sample variance and half-width, for the uniform-run estimate (fixed order).
+    // Per-pixel per-sample variance and half-width, for the uniform-run estimate, and sampling
+    // efficiency: reduced in slot order afterwards, so the sums do not depend on the threads.
     std::vector<float> perSampleVar(sb.slotCount(), 0.0f), halfWidth(sb.slotCount(), 0.0f);
+    std::vector<double> efficiency(sb.slotCount(), 0.0);
     const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
 
     tbb::parallel_for(
@@ -152,7 +153,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                     st.reachedTarget += kZ * est.stderr_ <= sampling.targetError;
                     halfWidth[s] = float(kZ * est.stderr_);
                     perSampleVar[s] = float(est.stderr_ * est.stderr_ * double(n_));
-                    if (sw2 > 0.0) part.efficiencySum += sw * sw / (sw2 * double(nonZero));
+                    if (sw2 > 0.0) efficiency[s] = sw * sw / (sw2 * double(nonZero));
                 }
                 if (progress)
                     progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
@@ -160,7 +161,6 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         });
 
     AreaShadowStats total;
-    double efficiencySum = 0.0;
     partial.combine_each([&](const Partial& p) {
         const AreaShadowStats& s = p.st;
         total.samples += s.samples;
@@ -174,9 +174,10 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         total.skippedBelowHorizon += s.skippedBelowHorizon;
         total.skippedBehindLight += s.skippedBehindLight;
         total.skippedInsideLight += s.skippedInsideLight;
-        efficiencySum += p.efficiencySum;
     });
     // Reductions over the per-slot arrays run in slot order: independent of the thread count.
+    double efficiencySum = 0.0;
+    for (double e : efficiency) efficiencySum += e;
     for (float h : halfWidth) total.worstHalfWidth = std::max(total.worstHalfWidth, double(h));
     if (total.worstHalfWidth > 0.0)
         for (float v : perSampleVar)
