@@ -1,13 +1,15 @@
 // Per technique and shadow-map resolution, the raster path's timed passes on a shipped scene, each
 // as a ratio to `basic` at the same resolution (docs/benchmarks.md).
 //
-//   bench_raster [--scene scenes/spot_objects.scene.json] [--frames 5] [--width 640 --height 480]
+//   bench_raster [--scene scenes/spot_objects.scene.json] [--frames 9] [--width 640 --height 480]
 //
 // On llvmpipe the GL timer queries measure CPU work; absolute times mean something on a GPU only,
 // the ratios on both. Prints a note and exits 0 where no OpenGL context can be had.
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -25,7 +27,7 @@ int main(int argc, char** argv) {
     options.height = 480;
     CLI::App app{"raster-path timings per technique and resolution, as ratios to basic"};
     app.add_option("--scene", scenePath, "scene file");
-    app.add_option("--frames", options.frames, "timed frames (median reported)")
+    app.add_option("--frames", options.frames, "timed frames (median and quartiles reported)")
         ->check(CLI::Range(1, 1000));
     app.add_option("--width", options.width, "image width")->check(CLI::Range(16, 8192));
     app.add_option("--height", options.height, "image height")->check(CLI::Range(16, 8192));
@@ -38,30 +40,45 @@ int main(int argc, char** argv) {
         return 0;
     }
     const Scene scene = loadScene(scenePath);
-    std::printf("%s, %dx%d, %zu lights, %s | %s, median of %d frames\n", scenePath.c_str(),
-                options.width, options.height, scene.lights.size(), gl->renderer().c_str(),
-                gl->version().c_str(), options.frames);
-    std::printf("%-15s %5s %11s %11s %9s %9s   %s\n", "technique", "res", "shadow ms", "visib. ms",
-                "camera ms", "wall ms", "ratios to basic (shadow, visibility, wall)");
+    std::printf(
+        "%s, %dx%d, %zu lights, %s | %s, median of %d frames (p25-p75 of the shadow pass), "
+        "techniques interleaved frame by frame\n",
+        scenePath.c_str(), options.width, options.height, scene.lights.size(),
+        gl->renderer().c_str(), gl->version().c_str(), options.frames);
+    std::printf("%-15s %5s %19s %11s %9s %9s   %s\n", "technique", "res", "shadow ms (p25-p75)",
+                "visib. ms", "camera ms", "wall ms", "ratios to basic (shadow, visibility, wall)");
     for (int res : {1024, 2048, 4096}) {
-        std::map<std::string, double> basicMs;
         // basic first: it is the baseline of the ratios.
         std::vector<std::string> names = {"basic"};
         for (const TechniqueInfo* t : allTechniques())
             if (t->name != "basic") names.push_back(t->name);
+        std::vector<std::unique_ptr<Technique>> owned;
+        std::vector<const Technique*> techniques;
         for (const std::string& name : names) {
-            const std::unique_ptr<Technique> t =
-                createTechnique(name, {"resolution=" + std::to_string(res)});
-            const RasterResult r = renderRaster(scene, *t, options, *gl);
-            double shadow = 0, vis = 0;
-            for (const RasterLightStats& l : r.stats.lights)
-                for (const auto& [pass, ms] : l.passMs) (pass == "visibility" ? vis : shadow) += ms;
-            const double cam = r.stats.timings.cameraMs, wall = r.stats.timings.wallMs;
-            if (name == "basic") basicMs = {{"shadow", shadow}, {"vis", vis}, {"wall", wall}};
-            std::printf("%-15s %5d %11.2f %11.2f %9.2f %9.2f   %.2f %.2f %.2f\n", name.c_str(), res,
-                        shadow, vis, cam, wall, shadow / basicMs["shadow"], vis / basicMs["vis"],
-                        wall / basicMs["wall"]);
+            owned.push_back(createTechnique(name, {"resolution=" + std::to_string(res)}));
+            techniques.push_back(owned.back().get());
         }
+        std::map<std::string, double> basicMs;
+        renderInterleaved(
+            scene, techniques, options, *gl,
+            {nullptr, [&](size_t i, RasterResult&& r) {
+                 TimingStats shadow, vis;
+                 for (const RasterLightStats& l : r.stats.lights)
+                     for (const auto& [pass, t] : l.passMs) {
+                         TimingStats& sum = pass == "visibility" ? vis : shadow;
+                         sum = {sum.median + t.median, sum.p25 + t.p25, sum.p75 + t.p75};
+                     }
+                 const double cam = r.stats.timings.cameraMs.median,
+                              wall = r.stats.timings.wallMs.median;
+                 if (i == 0)
+                     basicMs = {{"shadow", shadow.median}, {"vis", vis.median}, {"wall", wall}};
+                 std::printf(
+                     "%-15s %5d %7.2f (%5.2f-%5.2f) %11.2f %9.2f %9.2f   %.2f %.2f "
+                     "%.2f\n",
+                     names[i].c_str(), res, shadow.median, shadow.p25, shadow.p75, vis.median, cam,
+                     wall, shadow.median / basicMs["shadow"], vis.median / basicMs["vis"],
+                     wall / basicMs["wall"]);
+             }});
     }
     return 0;
 }

@@ -3,6 +3,8 @@
 #include <cctype>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <set>
 
 #include "cli/output.h"
 #include "core/channels.h"
@@ -59,6 +61,41 @@ std::string csvField(const std::string& s) {
     return q + "\"";
 }
 
+// metrics_wide.csv: one row per light x technique, the technique's parameters ("param.NAME") and
+// every metric as columns (docs/cli.md). Columns are the union over rows, in first-seen order.
+class WideCsv {
+  public:
+    void add(const std::vector<std::pair<std::string, std::string>>& row) {
+        std::map<std::string, std::string> r;
+        for (const auto& [column, value] : row) {
+            if (!r.count(column) && !known_.count(column)) {
+                known_.insert(column);
+                columns_.push_back(column);
+            }
+            r[column] = value;
+        }
+        rows_.push_back(std::move(r));
+    }
+    void write(const fs::path& path) const {
+        std::ofstream out(path);
+        if (!out) throwInputError(path.string(), "", "cannot be written");
+        for (size_t c = 0; c < columns_.size(); ++c) out << (c ? "," : "") << csvField(columns_[c]);
+        out << "\n";
+        for (const auto& r : rows_) {
+            for (size_t c = 0; c < columns_.size(); ++c) {
+                const auto it = r.find(columns_[c]);
+                out << (c ? "," : "") << (it == r.end() ? "" : csvField(it->second));
+            }
+            out << "\n";
+        }
+    }
+
+  private:
+    std::vector<std::string> columns_;
+    std::set<std::string> known_;
+    std::vector<std::map<std::string, std::string>> rows_;
+};
+
 // A technique as the user asked for it, created (and so validated) before any work starts.
 struct TechniqueRun {
     TechniqueSpec spec;
@@ -74,25 +111,43 @@ struct CompareJob {
     MetricOptions metricOptions;
     fs::path out;
     std::ofstream csv;
+    WideCsv wide;
 };
 
 // What the light's own passes and the visibility pass cost (docs/metrics.md, cost).
+// Several light passes (none today) add up, quartiles included: an upper bound of their spread.
 TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSeconds) {
     TechniqueCost cost;
-    for (const auto& [pass, ms] : stats.lights[li].passMs)
-        (pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs) += ms;
+    for (const auto& [pass, t] : stats.lights[li].passMs) {
+        TimingStats& sum = pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs;
+        sum = {sum.median + t.median, sum.p25 + t.p25, sum.p75 + t.p75};
+    }
     cost.frameMs = stats.timings.wallMs;
+    cost.memoryBytes = stats.lights[li].memoryBytes;
     cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
     return cost;
 }
 
-void writeCsvRows(CompareJob& job, const TechniqueSpec& spec, const LightComparison& lc) {
+// The long form (a row per metric) and a row of the wide form.
+void writeCsvRows(CompareJob& job, const TechniqueRun& run, const LightComparison& lc) {
     std::vector<std::pair<std::string, nlohmann::json>> rows;
     flatten(lc.toJson(), "", rows);
-    for (const auto& [metric, value] : rows)
+    const TechniqueSpec& spec = run.spec;
+    std::vector<std::pair<std::string, std::string>> wide = {{"scene", job.options.scenePath},
+                                                             {"light", lc.light},
+                                                             {"technique", spec.name},
+                                                             {"label", spec.label}};
+    const nlohmann::json params = toJson(run.technique->values().settings());
+    for (const auto& [name, value] : params.items())
+        wide.emplace_back("param." + name, value.dump());
+    for (const auto& [metric, value] : rows) {
+        const std::string text = value.is_null() ? "" : value.dump();
         job.csv << csvField(job.options.scenePath) << ',' << csvField(lc.light) << ','
                 << csvField(spec.name) << ',' << csvField(spec.label) << ',' << metric << ','
-                << (value.is_null() ? "" : value.dump()) << "\n";
+                << text << "\n";
+        wide.emplace_back(metric, text);
+    }
+    job.wide.add(wide);
 }
 
 // The error EXR of one technique: per light, one channel per artifact class and the error.
@@ -109,11 +164,10 @@ void writeErrorExr(const fs::path& path, const std::vector<LightComparison>& lig
     writeExr(path.string(), errors);
 }
 
-// Renders one technique, measures it against the oracle per light, writes its files and CSV rows;
+// One technique's render measured against the oracle per light, its files and CSV rows written;
 // `row` gets its entry of metrics.json's results.
-ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, nlohmann::json& row) {
-    std::cerr << "rendering " << run.spec.label << "\n";
-    RasterResult r = renderRaster(job.scene, *run.technique, job.options.raster, job.gl);
+ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, RasterResult&& r,
+                                 nlohmann::json& row) {
     const fs::path dir = job.out / run.spec.fileLabel;
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -130,25 +184,43 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, nlohm
             computeLightMetrics(job.oracle.image, r.image, lc.light, job.metricOptions, &lc.maps);
         lc.cost = techniqueCost(r.stats, li, job.oracle.stats.lights[li].seconds());
         lights[lc.light] = lc.toJson();
-        writeCsvRows(job, run.spec, lc);
+        writeCsvRows(job, run, lc);
         rt.lights.push_back(std::move(lc));
     }
     writeErrorExr(job.out / ("error_" + run.spec.fileLabel + ".exr"), rt.lights, r.image.width(),
                   r.image.height());
     rt.image = std::move(r.image);
-    nlohmann::json params = nlohmann::json::object();
-    for (const auto& [k, v] : run.technique->values().all()) params[k] = v;
     row = {{"technique", run.spec.name},
            {"label", run.spec.label},
-           {"parameters", params},
+           {"parameters", toJson(run.technique->values().settings())},
            {"timings", toJson(r.stats.timings)},
            {"lights", lights}};
     return rt;
 }
 
+// Every technique rendered, its frames interleaved with the others' (renderer.h), and compared as
+// soon as its group is done.
+void renderAll(CompareJob& job, const std::vector<TechniqueRun>& runs, ReportInput& report,
+               nlohmann::json& results) {
+    std::vector<const Technique*> techniques;
+    for (const TechniqueRun& run : runs) techniques.push_back(run.technique.get());
+    report.techniques.resize(runs.size());
+    results = nlohmann::json::array();
+    for (size_t i = 0; i < runs.size(); ++i) results.push_back(nullptr);
+    const auto groupStarts = [&](const std::vector<size_t>& group) {
+        std::cerr << "rendering";
+        for (size_t i : group) std::cerr << (i == group.front() ? " " : ", ") << runs[i].spec.label;
+        std::cerr << (group.size() > 1 ? " (frames interleaved)" : "") << "\n";
+    };
+    const auto done = [&](size_t i, RasterResult&& r) {
+        report.techniques[i] = compareTechnique(job, runs[i], std::move(r), results[i]);
+    };
+    renderInterleaved(job.scene, techniques, job.options.raster, job.gl, {groupStarts, done});
+}
+
 nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results) {
     const Scene& scene = job.scene;
-    return {{"schema_version", 1},
+    return {{"schema_version", 2},
             {"tool", toolJson()},
             {"scene",
              {{"file", job.options.scenePath},
@@ -203,7 +275,7 @@ int runCompareCommand(const CompareOptions& options) {
              {{"shadowOracle/sceneHash", scene.contentHash}});
 
     GlContext gl;
-    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv")};
+    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv"), {}};
     job.metricOptions.boundaryRadius = options.boundaryRadius;
     job.metricOptions.contactThreshold = options.contactThresholdRelative * scene.wsBounds.extent();
     job.csv << "scene,light,technique,label,metric,value\n";
@@ -211,19 +283,20 @@ int runCompareCommand(const CompareOptions& options) {
     report.sceneFile = options.scenePath;
     for (const Light& l : scene.lights) report.lights.push_back(l.name);
     nlohmann::json results = nlohmann::json::array();
-    for (const TechniqueRun& run : runs)
-        report.techniques.push_back(compareTechnique(job, run, results.emplace_back()));
+    renderAll(job, runs, report, results);
 
     const nlohmann::json metrics = metricsJson(job, results);
     writeJsonFile(out / "metrics.json", metrics);
+    job.wide.write(out / "metrics_wide.csv");
     report.oracle = oracle.image;
+    report.timedOn = gl.renderer();
     report.provenance = {
         {"tool", metrics["tool"]}, {"scene_hash", scene.contentHash}, {"gl", metrics["gl"]}};
     writeReport((out / "report.html").string(), report);
     std::cout << "compared " << options.scenePath << ": " << runs.size() << " techniques, oracle "
               << (oracle.fromCache ? "from the cache" : "traced") << "\n  "
               << (out / "metrics.json").string() << "\n  " << (out / "metrics.csv").string()
-              << "\n";
+              << "\n  " << (out / "metrics_wide.csv").string() << "\n";
     return verifyExitCode(options, oracle.stats);
 }
 

@@ -64,7 +64,9 @@ void writeJunit(const std::string& path, const std::vector<GateCheck>& checks, s
     for (const GateCheck& c : checks) {
         x << "    <testcase classname=\"" << xmlEscape(c.scene + "." + c.light) << "\" name=\""
           << xmlEscape(c.technique + " " + c.metric) << "\"";
-        if (!c.failed())
+        if (!c.value)
+            x << ">\n      <skipped message=\"null: not applicable here\"/>\n    </testcase>\n";
+        else if (!c.failed())
             x << "/>\n";
         else
             x << ">\n      <failure message=\"" << xmlEscape(failureLine(c))
@@ -86,7 +88,12 @@ int runGateCommand(const GateOptions& options) {
             std::cout << failureLine(c) << "\n";
             ++failures;
         }
-    std::cout << checks.size() - failures << " passed, " << failures << " failed\n";
+    size_t notApplicable = 0;
+    for (const GateCheck& c : checks) notApplicable += !c.value;
+    std::cout << checks.size() - failures << " passed";
+    if (notApplicable)
+        std::cout << " (" << notApplicable << " of them not applicable: the metric is null there)";
+    std::cout << ", " << failures << " failed\n";
     if (!options.junitPath.empty()) writeJunit(options.junitPath, checks, failures);
     return failures ? 1 : 0;
 }

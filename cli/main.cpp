@@ -90,7 +90,10 @@ static Runner addRaster(CLI::App& app) {
         "--set", o->settings,
         "technique parameter key=value (repeatable; `shadow-oracle techniques` lists them)");
     addImageSize(rasterCmd, o->raster.width, o->raster.height);
-    rasterCmd->add_option("--frames", o->raster.frames, "timed frames, median reported (default 5)")
+    rasterCmd
+        ->add_option(
+            "--frames", o->raster.frames,
+            "timed frames after 2 warm-up frames, median and quartiles reported (default 9)")
         ->check(CLI::Range(1, 1000));
 
     return [o] { return so::runRasterCommand(*o); };
@@ -106,7 +109,10 @@ static Runner addCompare(CLI::App& app) {
     compareCmd->add_option("--technique", o->techniques, "NAME[:key=value,...] (repeatable)")
         ->required();
     addImageSize(compareCmd, o->raster.width, o->raster.height);
-    compareCmd->add_option("--frames", o->raster.frames, "timed frames per technique (default 5)")
+    compareCmd
+        ->add_option(
+            "--frames", o->raster.frames,
+            "timed frames per technique after 2 warm-up frames, techniques interleaved (default 9)")
         ->check(CLI::Range(1, 1000));
     compareCmd->add_option("--threads", o->oracle.threads, "oracle threads (default: all cores)")
         ->check(CLI::Range(1, 1024));

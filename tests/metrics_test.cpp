@@ -182,5 +182,95 @@ TEST(Metrics, ExclusionsAreCountedByReason) {
     EXPECT_TRUE(m.toJson().contains("boundary_displacement_px"));
 }
 
+// A technique that drops a shadow entirely (or invents one) scores the worst boundary
+// displacement there is, the image diagonal, never 0.
+TEST(Metrics, MissingShadowScoresTheWorstBoundaryDisplacement) {
+    const double diagonal = std::hypot(96.0, 64.0);
+    ChannelImage withShadow = flatImage(96, 64), without = flatImage(96, 64),
+                 shifted = flatImage(96, 64);
+    for (int y = 20; y < 40; ++y)
+        for (int x = 30; x < 60; ++x) {
+            at(withShadow, ch::kVisibility, x, y) = 0.0f;
+            at(shifted, ch::kVisibility, x + 3, y) = 0.0f;
+        }
+    const LightMetrics dropped = computeLightMetrics(withShadow, without, "L", {});
+    EXPECT_TRUE(dropped.boundaryDisplacement.missingBoundary);
+    EXPECT_DOUBLE_EQ(dropped.boundaryDisplacement.p95, diagonal);
+    EXPECT_NEAR(dropped.boundaryDisplacement.mean, diagonal, 1e-9);
+    const LightMetrics invented = computeLightMetrics(without, withShadow, "L", {});
+    EXPECT_TRUE(invented.boundaryDisplacement.missingBoundary);
+    EXPECT_DOUBLE_EQ(invented.boundaryDisplacement.max, diagonal);
+    const LightMetrics near = computeLightMetrics(withShadow, shifted, "L", {});
+    EXPECT_FALSE(near.boundaryDisplacement.missingBoundary);
+    EXPECT_DOUBLE_EQ(near.boundaryDisplacement.max, 3.0);
+    EXPECT_LT(near.boundaryDisplacement.p95, dropped.boundaryDisplacement.p95);
+    const LightMetrics none = computeLightMetrics(without, without, "L", {});
+    EXPECT_FALSE(none.boundaryDisplacement.missingBoundary) << "no shadow in either: agreement";
+    EXPECT_EQ(none.boundaryDisplacement.max, 0.0);
+}
+
+// Every wrong pixel is drawn as exactly one class: the drawn pixels add up to the false-shadow and
+// false-lit pixels, each drawn class marks that pixel, and "other" counts what no class explains.
+TEST(Metrics, EveryWrongPixelHasExactlyOneClass) {
+    for (bool area : {false, true}) {
+        ChannelImage o = flatImage(120, 90), r = flatImage(120, 90);
+        float* D = o.addChannel(ch::lightChannel("L", ch::kOccluderDistance), 0.2f);
+        std::fill(D + 120 * 45, D + 120 * 90, 0.9f);  // the lower half is not at contact
+        if (area) o.addChannel(ch::lightChannel("L", ch::kStdErr), 0.01f);
+        uint32_t state = 12345;
+        auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
+        for (int y = 0; y < 90; ++y)
+            for (int x = 0; x < 120; ++x) {
+                const float truth = x < 50 ? 1.0f : x < 60 && area ? 0.1f * float(x - 50) : 0.0f;
+                at(o, ch::kVisibility, x, y) = truth;
+                const uint32_t k = next() % 10;  // 30% of the pixels wrong in some way
+                at(r, ch::kVisibility, x, y) = k == 0   ? 1.0f - truth
+                                               : k == 1 ? 0.7f
+                                               : k == 2 ? 0.3f
+                                                        : truth;
+            }
+        MetricOptions opt;
+        opt.contactThreshold = 0.5;
+        opt.filteredTechnique = area;
+        ErrorMaps maps;
+        const LightMetrics m = computeLightMetrics(o, r, "L", opt, &maps);
+        size_t shown = 0, other[2] = {0, 0};
+        for (size_t i = 0; i < maps.shown.size(); ++i) {
+            if (!maps.shown[i]) continue;
+            ++shown;
+            const Artifact a = Artifact(maps.shown[i] - 1);
+            EXPECT_EQ(maps.of(a)[i], 1.0f) << "pixel " << i << " is drawn as a class it is not in";
+            other[0] += a == Artifact::OtherFalseShadow;
+            other[1] += a == Artifact::OtherFalseLit;
+        }
+        const double counted = double(m.counted);
+        EXPECT_NEAR(double(shown), (m.falseShadowRate + m.falseLitRate) * counted, 1e-6) << area;
+        EXPECT_NEAR(double(other[0]), m.otherFalseShadowRate * counted, 1e-6);
+        EXPECT_NEAR(double(other[1]), m.otherFalseLitRate * counted, 1e-6);
+        EXPECT_GT(shown, 2000u);
+        EXPECT_GT(other[0] + other[1], 0u) << "the test must exercise the other classes";
+        EXPECT_EQ(m.aliasingRate.has_value(), !area) << "no 0/1 aliasing on area lights";
+    }
+}
+
+// A soft edge (one pixel at 0.5, as a filter makes it) is no error for the 0/1 threshold metrics
+// but counts in the boundary band.
+TEST(Metrics, BoundaryBandMaeCreditsSoftEdges) {
+    ChannelImage o = flatImage(96, 64), r = flatImage(96, 64);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 96; ++x) {
+            at(o, ch::kVisibility, x, y) = x < 40 ? 1.0f : 0.0f;
+            at(r, ch::kVisibility, x, y) = x < 40 ? 1.0f : x == 40 ? 0.5f : 0.0f;
+        }
+    MetricOptions opt;
+    opt.boundaryRadius = 2;
+    const LightMetrics m = computeLightMetrics(o, r, "L", opt);
+    EXPECT_EQ(m.aliasingRate, 0.0);
+    EXPECT_EQ(m.falseLitRate, 0.0);
+    ASSERT_TRUE(m.boundaryBandMae);
+    // The band: columns 37..41 (within 2 of the boundary column 39); one of five is off by 0.5.
+    EXPECT_DOUBLE_EQ(*m.boundaryBandMae, 0.5 / 5.0);
+}
+
 }  // namespace
 }  // namespace so

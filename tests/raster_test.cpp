@@ -461,6 +461,55 @@ TEST(Compare, EndToEndOnTheContactScene) {
     EXPECT_EQ(count("<svg"), 1u);
     EXPECT_EQ(count("<circle"), 5u);
     EXPECT_NE(report.find("<table id=\"metrics\">"), std::string::npos);
+    EXPECT_NE(report.find("Times were measured on <b>" + j["gl"]["renderer"].get<std::string>()),
+              std::string::npos)
+        << "the report says which renderer measured the times";
+    // Parameters keep their types; timings carry their spread.
+    for (const auto& r : j["results"]) {
+        EXPECT_TRUE(r["parameters"]["resolution"].is_number_integer()) << r["label"];
+        EXPECT_EQ(r["timings"]["frames"], 1) << "as asked";
+        EXPECT_EQ(r["timings"]["interleaved_with"], 5);
+        for (const auto& [light, m] : r["lights"].items()) {
+            const auto& cost = m["cost"];
+            EXPECT_LE(cost["shadow_map_ms_p25"].get<double>(), cost["shadow_map_ms"].get<double>());
+            EXPECT_LE(cost["shadow_map_ms"].get<double>(), cost["shadow_map_ms_p75"].get<double>());
+            EXPECT_TRUE(cost["noisy"].is_boolean());
+            EXPECT_GT(cost["memory_bytes"].get<uint64_t>(), 1024u * 1024u * 4u);
+        }
+    }
+    // The wide CSV: a header and one row per light x technique, parameters as columns.
+    std::ifstream win(out + "/metrics_wide.csv");
+    std::string header, line;
+    std::getline(win, header);
+    size_t rows = 0;
+    while (std::getline(win, line)) ++rows;
+    EXPECT_EQ(header.rfind("scene,light,technique,label,", 0), 0u) << header;
+    for (const char* column : {"param.resolution", "param.kernel", "acne_rate", "cost.frame_ms"})
+        EXPECT_NE(header.find(column), std::string::npos) << column;
+    EXPECT_EQ(rows, 5u * j["results"][0]["lights"].size());
+    std::filesystem::remove_all(out);
+}
+
+// A technique that casts no shadow (back-faces on a single-sided occluder) must not look best:
+// its boundary displacement is the worst there is, and its wrong pixels are all coloured.
+TEST(Compare, MissingShadowIsTheWorstNotTheBest) {
+    REQUIRE_GL();
+    const std::string out = "/tmp/so_compare_missing_" + std::to_string(::getpid());
+    const std::string cmd = std::string(SO_CLI_PATH) + " compare " + SO_SCENES_DIR +
+                            "/penumbra_square.scene.json --width 160 --height 120 --frames 1 "
+                            "--no-cache --out " +
+                            out + " --technique back-faces --technique pcf > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream in(out + "/metrics.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const auto& backFaces = j["results"][0]["lights"].begin().value();
+    const auto& pcf = j["results"][1]["lights"].begin().value();
+    const double diagonal = std::hypot(160.0, 120.0);
+    EXPECT_TRUE(backFaces["boundary_displacement_px"]["missing_boundary"].get<bool>());
+    EXPECT_NEAR(backFaces["boundary_displacement_px"]["p95"].get<double>(), diagonal, 1e-9);
+    EXPECT_LT(pcf["boundary_displacement_px"]["p95"].get<double>(), diagonal / 4);
+    EXPECT_TRUE(backFaces["aliasing_rate"].is_null()) << "an area light has no 0/1 edge";
+    EXPECT_GT(backFaces["false_lit_rate"].get<double>(), 0.05);
     std::filesystem::remove_all(out);
 }
 
@@ -539,6 +588,20 @@ TEST(Gate, ShippedScenesPassTheExampleLimitsAndTheExitCodesHold) {
     std::ofstream(dir + "/loose.json") << R"({"limits_format": 1, "default": {"acne_rate": 1.0}})";
     EXPECT_EQ(runCli("gate " + dir + "/metrics.json --limits " + dir + "/loose.json", &out), 0)
         << out;
+    // A limit on a metric that is null here (bleeding of unfiltered techniques) is counted as not
+    // applicable, not silently as a pass.
+    std::ofstream(dir + "/na.json")
+        << R"({"limits_format": 1, "default": {"light_bleeding_rate": 0.0}})";
+    EXPECT_EQ(runCli("gate " + dir + "/metrics.json --limits " + dir + "/na.json --junit " + dir +
+                         "/na.xml",
+                     &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("(4 of them not applicable"), std::string::npos) << out;
+    std::ifstream nain(dir + "/na.xml");
+    const std::string naXml((std::istreambuf_iterator<char>(nain)), {});
+    EXPECT_TRUE(wellFormedXml(naXml)) << naXml;
+    EXPECT_NE(naXml.find("<skipped"), std::string::npos) << naXml;
     // Bad input: exit 2 with one line naming the file and field.
     std::ofstream(dir + "/typo.json") << R"({"limits_format": 1, "default": {"acne_rat": 0.1}})";
     EXPECT_EQ(runCli("gate " + dir + "/metrics.json --limits " + dir + "/typo.json", &out), 2)

@@ -7,32 +7,52 @@
 
 namespace so {
 
-enum class Artifact { Acne, PeterPanning, Aliasing, LightBleeding, Penumbra };
-inline constexpr size_t kArtifactCount = 5;
+// In the order of precedence: a wrong pixel that several classes explain is drawn (and counted by
+// the error map) as the first of them; a wrong pixel that none of the named classes explains is
+// "other" (docs/metrics.md).
+enum class Artifact {
+    PeterPanning,
+    LightBleeding,
+    Acne,
+    Aliasing,
+    Penumbra,
+    OtherFalseShadow,
+    OtherFalseLit
+};
+inline constexpr size_t kArtifactCount = 7;
 
 struct ArtifactClass {
     Artifact id;
     const char* layer;   // error EXR channel "<light>.<layer>" (docs/exr-channels.md)
     const char* metric;  // its metric in metrics.json (docs/metrics.md)
     const char* legend;  // the report's name for it
-    float rgb[3];        // its colour in the report's error maps
+    float rgb[3];        // its colour in the report's error maps (Okabe-Ito: colour-blind safe)
 };
 
-// In the order of the Artifact enum; a later class is drawn over an earlier one.
 inline constexpr std::array<ArtifactClass, kArtifactCount> kArtifactClasses = {{
-    {Artifact::Acne, "acne", "acne_rate", "acne", {0.9f, 0.1f, 0.1f}},
     {Artifact::PeterPanning,
      "peter_panning",
      "peter_panning_rate",
      "peter-panning",
-     {0.9f, 0.1f, 0.9f}},
-    {Artifact::Aliasing, "aliasing", "aliasing_rate", "aliasing", {0.95f, 0.85f, 0.1f}},
+     {0.80f, 0.47f, 0.65f}},
     {Artifact::LightBleeding,
      "bleeding",
      "light_bleeding_rate",
      "light bleeding",
-     {0.1f, 0.85f, 0.9f}},
-    {Artifact::Penumbra, "penumbra", "penumbra_mae", "penumbra", {0.2f, 0.35f, 1.0f}},
+     {0.34f, 0.71f, 0.91f}},
+    {Artifact::Acne, "acne", "acne_rate", "acne", {0.84f, 0.37f, 0.0f}},
+    {Artifact::Aliasing, "aliasing", "aliasing_rate", "aliasing", {0.94f, 0.89f, 0.26f}},
+    {Artifact::Penumbra, "penumbra", "penumbra_mae", "penumbra", {0.0f, 0.45f, 0.70f}},
+    {Artifact::OtherFalseShadow,
+     "other_false_shadow",
+     "other_false_shadow_rate",
+     "other false shadow",
+     {0.90f, 0.62f, 0.0f}},
+    {Artifact::OtherFalseLit,
+     "other_false_lit",
+     "other_false_lit_rate",
+     "other false lit",
+     {0.0f, 0.62f, 0.45f}},
 }};
 
 inline constexpr const ArtifactClass& artifactClass(Artifact a) {

@@ -116,9 +116,11 @@ std::vector<Rule> readRules(const json& limits, const std::string& lf,
 
 std::vector<GateCheck> evaluateGate(const json& metrics, const std::string& metricsPath,
                                     const json& limits, const std::string& limitsPath) {
-    if (!metrics.is_object() || metrics.value("schema_version", 0) != 1 ||
-        !metrics.contains("results"))
-        throwInputError(metricsPath, "schema_version", "not a metrics.json of schema_version 1");
+    // Version 2 only added metrics and made aliasing_rate null on area lights: the gate reads both.
+    const int version = metrics.is_object() ? metrics.value("schema_version", 0) : 0;
+    if ((version != 1 && version != 2) || !metrics.contains("results"))
+        throwInputError(metricsPath, "schema_version",
+                        "not a metrics.json of schema_version 1 or 2");
     const std::vector<Rule> rules = readRules(limits, limitsPath, knownMetrics(metrics));
     const std::string scene = metrics["scene"].value("file", "");
     const std::string sceneName = std::filesystem::path(scene).filename().string();

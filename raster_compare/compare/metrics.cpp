@@ -1,6 +1,7 @@
 #include "raster_compare/compare/metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -152,13 +153,14 @@ struct Tally {
     size_t acneEligible = 0, acne = 0, aliasEligible = 0, aliased = 0, ppEligible = 0, pp = 0,
            umbra = 0, bleed = 0, pen = 0;
     double leak = 0.0, penAbs = 0.0, penHard = 0.0;
+    size_t band = 0, otherShadow = 0, otherLit = 0;
+    double bandAbs = 0.0;
 };
 
-void mark(ErrorMaps* maps, Artifact a, size_t i) {
-    if (maps) maps->of(a)[i] = 1.0f;
-}
-
-// One counted pixel into the tally and the error maps.
+// One counted pixel into the tally and the error maps. Each class marks where the pixel counts
+// as that class's error (the classes may overlap); a wrong pixel (false shadow or false lit) is
+// also drawn as exactly one class: the first, in order of precedence, that explains it, or
+// "other" when none does.
 void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOptions& options,
               LightMetrics& m, Tally& t, ErrorMaps* maps) {
     const double o = p.Vo[i], r = p.Vr[i];
@@ -167,7 +169,6 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOpt
     const double err = std::max(0.0, std::fabs(r - o) - hw);
     t.sumAbs += err;
     t.sumSq += err * err;
-    if (maps) maps->error[i] = float(err);
     m.maxAbs = std::max(m.maxAbs, err);
     const bool fs = p.area ? r < o - hw : r < o - 0.5;
     const bool fl = p.area ? r > o + hw : r > o + 0.5;
@@ -175,36 +176,61 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOpt
     t.falseLit += fl;
     const bool fullyLit = o == 1.0;
     const bool inUmbra = p.area ? o <= hw : o == 0.0;
+    std::array<bool, kArtifactCount> is{};
+    auto set = [&](Artifact a, bool v) { is[size_t(a)] = v; };
     if (fullyLit && toOracleBoundary > float(options.boundaryRadius)) {
         ++t.acneEligible;
         t.acne += fs;
-        if (fs) mark(maps, Artifact::Acne, i);
+        set(Artifact::Acne, fs);
     }
     if (toOracleBoundary <= float(options.boundaryRadius)) {
-        ++t.aliasEligible;
-        t.aliased += fs || fl;
-        if (fs || fl) mark(maps, Artifact::Aliasing, i);
+        ++t.band;
+        t.bandAbs += err;
+        if (!p.area) {
+            ++t.aliasEligible;
+            t.aliased += fs || fl;
+            set(Artifact::Aliasing, fs || fl);
+        }
     }
     if (p.D && inUmbra && p.D[i] >= 0.0f && p.D[i] < options.contactThreshold) {
         ++t.ppEligible;
         if (fl) {
             ++t.pp;
             t.leak = std::max(t.leak, double(p.D[i]));
-            mark(maps, Artifact::PeterPanning, i);
+            set(Artifact::PeterPanning, true);
         }
     }
     if (inUmbra) {
         ++t.umbra;
         t.bleed += r > o + 0.1;
-        if (options.filteredTechnique && r > o + 0.1) mark(maps, Artifact::LightBleeding, i);
+        set(Artifact::LightBleeding, options.filteredTechnique && r > o + 0.1);
     }
     if (p.area && o > 0.0 && o < 1.0) {
         ++t.pen;
         t.penAbs += err;
-        if (err > 0.0) mark(maps, Artifact::Penumbra, i);
+        set(Artifact::Penumbra, err > 0.0);
         t.penHard +=
             (r - o) * (o < 0.5 ? -1.0 : 1.0);  // > 0: more extreme than the truth (too hard)
     }
+    size_t shown = 0;  // 1 + the class drawn; 0: not a wrong pixel
+    if (fs || fl) {
+        for (const ArtifactClass& c : kArtifactClasses)
+            if (is[size_t(c.id)]) {
+                shown = 1 + size_t(c.id);
+                break;
+            }
+        if (!shown) {
+            const Artifact other = fs ? Artifact::OtherFalseShadow : Artifact::OtherFalseLit;
+            ++(fs ? t.otherShadow : t.otherLit);
+            set(other, true);
+            shown = 1 + size_t(other);
+        }
+    }
+    if (!maps) return;
+    maps->error[i] = float(err);
+    for (size_t k = 0; k < kArtifactCount; ++k)
+        if (is[k]) maps->classes[k][i] = 1.0f;
+    maps->shown[i] = uint8_t(shown);
 }
 
 void setRates(const Tally& t, const Planes& p, const MetricOptions& options, LightMetrics& m) {
@@ -214,7 +240,10 @@ void setRates(const Tally& t, const Planes& p, const MetricOptions& options, Lig
     m.falseShadowRate = share(t.falseShadow, m.counted);
     m.falseLitRate = share(t.falseLit, m.counted);
     m.acneRate = share(t.acne, t.acneEligible);
-    m.aliasingRate = share(t.aliased, t.aliasEligible);
+    if (!p.area) m.aliasingRate = share(t.aliased, t.aliasEligible);
+    if (t.band) m.boundaryBandMae = t.bandAbs / double(t.band);
+    m.otherFalseShadowRate = share(t.otherShadow, m.counted);
+    m.otherFalseLitRate = share(t.otherLit, m.counted);
     if (p.D) {
         m.peterPanningRate = share(t.pp, t.ppEligible);
         m.lightLeakDistance = t.leak;
@@ -228,16 +257,24 @@ void setRates(const Tally& t, const Planes& p, const MetricOptions& options, Lig
 
 // Both ways: each raster boundary pixel to the nearest oracle one and each oracle boundary pixel
 // to the nearest raster one.
+// When one image has no boundary at all, the other's boundary pixels are the image diagonal away:
+// a shadow dropped (or invented) entirely is the worst result, never the best.
 BoundaryDisplacement boundaryDisplacement(const std::vector<uint8_t>& bo,
                                           const std::vector<uint8_t>& br,
                                           const std::vector<float>& toOracleBoundary,
-                                          const std::vector<float>& toRasterBoundary) {
+                                          const std::vector<float>& toRasterBoundary,
+                                          double diagonal) {
     std::vector<double> dist;
     for (size_t i = 0; i < bo.size(); ++i) {
-        if (br[i] && std::isfinite(toOracleBoundary[i])) dist.push_back(toOracleBoundary[i]);
-        if (bo[i] && std::isfinite(toRasterBoundary[i])) dist.push_back(toRasterBoundary[i]);
+        if (br[i])
+            dist.push_back(std::isfinite(toOracleBoundary[i]) ? toOracleBoundary[i] : diagonal);
+        if (bo[i])
+            dist.push_back(std::isfinite(toRasterBoundary[i]) ? toRasterBoundary[i] : diagonal);
     }
     BoundaryDisplacement b;
+    const bool oracleHas = std::find(bo.begin(), bo.end(), 1) != bo.end(),
+               rasterHas = std::find(br.begin(), br.end(), 1) != br.end();
+    b.missingBoundary = oracleHas != rasterHas;
     b.pixels = dist.size();
     if (!dist.empty()) {
         double s = 0.0;
@@ -285,6 +322,7 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
     if (maps) {
         for (std::vector<float>& v : maps->classes) v.assign(p.n, 0.0f);
         maps->error.assign(p.n, 0.0f);
+        maps->shown.assign(p.n, 0);
     }
     LightMetrics m;
     const std::vector<uint8_t> counted = countedPixels(p, m);
@@ -296,16 +334,23 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
     for (size_t i = 0; i < p.n; ++i)
         if (counted[i]) classify(p, i, toOracleBoundary[i], options, m, t, maps);
     setRates(t, p, options, m);
-    m.boundaryDisplacement = boundaryDisplacement(bo, br, toOracleBoundary, toRasterBoundary);
+    m.boundaryDisplacement = boundaryDisplacement(bo, br, toOracleBoundary, toRasterBoundary,
+                                                  std::hypot(double(p.w), double(p.h)));
     predictedAliasing(raster, light, counted, br, toOracleBoundary, m);
     return m;
 }
 
 nlohmann::json TechniqueCost::toJson() const {
-    return {{"shadow_map_ms", shadowMapMs},
-            {"visibility_ms", visibilityMs},
-            {"frame_ms", frameMs},
-            {"oracle_seconds", oracleSeconds}};
+    nlohmann::json j = {
+        {"memory_bytes", memoryBytes}, {"oracle_seconds", oracleSeconds}, {"noisy", noisy()}};
+    for (const auto& [key, t] :
+         {std::pair{"shadow_map", shadowMapMs}, std::pair{"visibility", visibilityMs},
+          std::pair{"frame", frameMs}}) {
+        j[std::string(key) + "_ms"] = t.median;
+        j[std::string(key) + "_ms_p25"] = t.p25;
+        j[std::string(key) + "_ms_p75"] = t.p75;
+    }
+    return j;
 }
 
 nlohmann::json LightComparison::toJson() const {
@@ -336,8 +381,12 @@ nlohmann::json LightMetrics::toJson() const {
             {"boundary_displacement_px",
              {{"mean", boundaryDisplacement.mean},
               {"p95", boundaryDisplacement.p95},
-              {"max", boundaryDisplacement.max}}},
-            {artifactClass(Artifact::Aliasing).metric, aliasingRate},
+              {"max", boundaryDisplacement.max},
+              {"missing_boundary", boundaryDisplacement.missingBoundary}}},
+            {"boundary_band_mae", opt(boundaryBandMae)},
+            {artifactClass(Artifact::Aliasing).metric, opt(aliasingRate)},
+            {artifactClass(Artifact::OtherFalseShadow).metric, otherFalseShadowRate},
+            {artifactClass(Artifact::OtherFalseLit).metric, otherFalseLitRate},
             {artifactClass(Artifact::LightBleeding).metric, opt(lightBleedingRate)},
             {artifactClass(Artifact::Penumbra).metric, opt(penumbraMae)},
             {"penumbra_bias", opt(penumbraBias)},

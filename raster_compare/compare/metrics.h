@@ -3,6 +3,7 @@
 // synthetic pairs with known answers (tests/metrics_test.cpp).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image.h"
+#include "core/timing.h"
 #include "raster_compare/compare/artifacts.h"
 
 namespace so {
@@ -21,9 +23,13 @@ struct MetricOptions {
     bool filteredTechnique = false;  // light bleeding is only measured for filtered techniques
 };
 
+// Distances in pixels between the two images' shadow boundaries (the V = 0.5 isoline), both ways.
 struct BoundaryDisplacement {
     double mean = 0.0, p95 = 0.0, max = 0.0;
     size_t pixels = 0;  // boundary pixels measured (both images)
+    // One image has a boundary and the other none (a shadow dropped or invented): each of its
+    // boundary pixels is the image diagonal away, the worst value there is.
+    bool missingBoundary = false;
 };
 
 struct LightMetrics {
@@ -34,8 +40,13 @@ struct LightMetrics {
     double acneRate = 0.0;
     std::optional<double> peterPanningRate, lightLeakDistance;  // need the oracle's occ_dist
     BoundaryDisplacement boundaryDisplacement;
-    double aliasingRate = 0.0;
-    std::optional<double> lightBleedingRate;          // filtered techniques only
+    // Mean error within r pixels of an oracle boundary: credits a soft edge that the 0/1
+    // threshold of the aliasing rate cannot see (none without an oracle boundary).
+    std::optional<double> boundaryBandMae;
+    // Wrong pixels (false shadow or false lit) that no named class explains, over counted pixels.
+    double otherFalseShadowRate = 0.0, otherFalseLitRate = 0.0;
+    std::optional<double> aliasingRate;       // hard lights only: a penumbra has no 0/1 edge
+    std::optional<double> lightBleedingRate;  // filtered techniques only
     std::optional<double> penumbraMae, penumbraBias;  // area lights only (oracle stderr present)
     // With the raster's NAME.aliasing_pred: its mean over counted pixels, and the Pearson
     // correlation of its log with the boundary displacement at the raster's boundary pixels.
@@ -48,14 +59,20 @@ struct LightMetrics {
 struct ErrorMaps {
     std::array<std::vector<float>, kArtifactCount> classes;  // by Artifact
     std::vector<float> error;
+    // The one class each wrong pixel is drawn as (1 + its Artifact; 0: not a wrong pixel): the
+    // classes in order of precedence, so these add up to the false-shadow and false-lit pixels.
+    std::vector<uint8_t> shown;
     std::vector<float>& of(Artifact a) { return classes[size_t(a)]; }
     const std::vector<float>& of(Artifact a) const { return classes[size_t(a)]; }
 };
 
 // What a technique's shadows cost, beside its metrics in every row of metrics.json.
 struct TechniqueCost {
-    double shadowMapMs = 0.0, visibilityMs = 0.0, frameMs = 0.0;  // medians over timed frames
-    double oracleSeconds = 0.0;  // what the ground truth of this light cost
+    TimingStats shadowMapMs, visibilityMs, frameMs;  // over the timed frames
+    uint64_t memoryBytes = 0;                        // GL memory the technique holds for this light
+    double oracleSeconds = 0.0;                      // what the ground truth of this light cost
+    // A spread above 20% of the median in any of the three times (TimingStats::noisy).
+    bool noisy() const { return shadowMapMs.noisy() || visibilityMs.noisy() || frameMs.noisy(); }
     nlohmann::json toJson() const;
 };
 

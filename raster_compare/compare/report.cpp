@@ -1,6 +1,7 @@
 #include "raster_compare/compare/report.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -39,24 +40,67 @@ std::vector<float> shaded(const ChannelImage& oracle, const float* V, const std:
     return shadowGrey(oracle, V, oracle.channel(ch::lightChannel(light, ch::kCosine)));
 }
 
+// Every wrong pixel in the colour of the one class it is shown as (ErrorMaps::shown), over the
+// dimmed truth: the coloured pixels are exactly the false-shadow and false-lit ones.
 std::vector<float> errorMap(const ChannelImage& oracle, const ErrorMaps& m,
                             const std::string& light) {
     const float* V = oracle.channel(ch::lightChannel(light, ch::kVisibility));
     const float* A = oracle.channel(ch::kHit);
     std::vector<float> rgb(oracle.pixelCount() * 3);
     for (size_t i = 0; i < oracle.pixelCount(); ++i) {
-        float r = A[i] == 0.0f ? 0.03f : 0.12f + 0.18f * V[i], g = r,
-              b = r;  // dim truth underneath
-        for (const ArtifactClass& c : kArtifactClasses)
-            if (m.of(c.id)[i] > 0.0f) {
-                // Penumbra errors are graded: brighter where the error is larger.
-                const float s =
-                    c.id == Artifact::Penumbra ? std::min(1.0f, 0.3f + 5.0f * m.error[i]) : 1.0f;
-                r = c.rgb[0] * s, g = c.rgb[1] * s, b = c.rgb[2] * s;
-            }
-        rgb[3 * i] = r, rgb[3 * i + 1] = g, rgb[3 * i + 2] = b;
+        const float grey = A[i] == 0.0f ? 0.03f : 0.12f + 0.18f * V[i];
+        const float* c = m.shown[i] ? kArtifactClasses[m.shown[i] - 1].rgb : nullptr;
+        for (int k = 0; k < 3; ++k) rgb[3 * i + size_t(k)] = c ? c[k] : grey;
     }
     return rgb;
+}
+
+// The magnitude scale of the area-light error maps: black (0) through blue and orange to pale
+// yellow at kMagnitudeMax and above (a sequential ramp readable with any colour vision).
+constexpr float kMagnitudeMax = 0.5f;
+std::array<float, 3> magnitudeColour(float e) {
+    constexpr float stops[5][3] = {{0.05f, 0.05f, 0.08f},
+                                   {0.0f, 0.45f, 0.70f},
+                                   {0.80f, 0.47f, 0.65f},
+                                   {0.90f, 0.62f, 0.0f},
+                                   {0.98f, 0.95f, 0.70f}};
+    const float t = std::clamp(e / kMagnitudeMax, 0.0f, 1.0f) * 4.0f;
+    const int k = std::min(3, int(t));
+    const float f = t - float(k);
+    return {stops[k][0] + f * (stops[k + 1][0] - stops[k][0]),
+            stops[k][1] + f * (stops[k + 1][1] - stops[k][1]),
+            stops[k][2] + f * (stops[k + 1][2] - stops[k][2])};
+}
+
+// Area lights: |V_raster - V_oracle| beyond the oracle's interval, per pixel, on that scale.
+std::vector<float> magnitudeMap(const ChannelImage& oracle, const ErrorMaps& m) {
+    const float* A = oracle.channel(ch::kHit);
+    std::vector<float> rgb(oracle.pixelCount() * 3, 0.03f);
+    for (size_t i = 0; i < oracle.pixelCount(); ++i) {
+        if (A[i] == 0.0f) continue;
+        const std::array<float, 3> c = magnitudeColour(m.error[i]);
+        std::copy(c.begin(), c.end(), rgb.begin() + long(3 * i));
+    }
+    return rgb;
+}
+
+// The numbered bar beside the magnitude maps.
+std::string magnitudeBar() {
+    std::ostringstream s;
+    s << "<svg class=\"bar\" viewBox=\"0 0 260 34\" width=\"260\" height=\"34\" role=\"img\" "
+         "aria-label=\"error magnitude scale\"><defs><linearGradient id=\"mag\">";
+    for (int k = 0; k <= 8; ++k) {
+        const std::array<float, 3> c = magnitudeColour(kMagnitudeMax * float(k) / 8.0f);
+        s << "<stop offset=\"" << k * 12.5 << "%\" stop-color=\"rgb(" << int(c[0] * 255) << ","
+          << int(c[1] * 255) << "," << int(c[2] * 255) << ")\"/>";
+    }
+    s << "</linearGradient></defs><rect x=\"10\" y=\"2\" width=\"240\" height=\"12\" "
+         "fill=\"url(#mag)\"/>";
+    for (int k = 0; k <= 4; ++k)
+        s << "<text x=\"" << 10 + 60 * k << "\" y=\"30\" class=\"tick\" text-anchor=\"middle\">"
+          << kMagnitudeMax * float(k) / 4.0f << (k == 4 ? "+" : "") << "</text>";
+    s << "</svg>";
+    return s.str();
 }
 
 // Predicted aliasing on a log ramp: blue where a texel is smaller than a pixel, white at 1, red
@@ -89,7 +133,7 @@ std::string chart(const ReportInput& in, size_t light) {
     };
     std::vector<P> pts;
     for (const ReportTechnique& t : in.techniques)
-        pts.push_back({t.lights[light].cost.frameMs, t.lights[light].metrics.mae, t.label});
+        pts.push_back({t.lights[light].cost.frameMs.median, t.lights[light].metrics.mae, t.label});
     if (pts.empty()) return "";
     // Time on a log scale: techniques differ in cost by orders of magnitude.
     double tMin = 1e300, tMax = 0, eMax = 0;
@@ -171,11 +215,17 @@ const std::vector<Column>& columns() {
         {artifact(Artifact::PeterPanning), [](L l) { return l.metrics.peterPanningRate; }},
         {"leak dist.", [](L l) { return l.metrics.lightLeakDistance; }},
         {"boundary p95 px", [](L l) { return std::optional(l.metrics.boundaryDisplacement.p95); }},
-        {artifact(Artifact::Aliasing), [](L l) { return std::optional(l.metrics.aliasingRate); }},
+        {artifact(Artifact::Aliasing), [](L l) { return l.metrics.aliasingRate; }},
+        {"band mae", [](L l) { return l.metrics.boundaryBandMae; }},
         {artifact(Artifact::LightBleeding), [](L l) { return l.metrics.lightBleedingRate; }},
         {artifact(Artifact::Penumbra) + " mae", [](L l) { return l.metrics.penumbraMae; }},
         {artifact(Artifact::Penumbra) + " bias", [](L l) { return l.metrics.penumbraBias; }},
-        {"frame ms", [](L l) { return std::optional(l.cost.frameMs); }},
+        {artifact(Artifact::OtherFalseShadow),
+         [](L l) { return std::optional(l.metrics.otherFalseShadowRate); }},
+        {artifact(Artifact::OtherFalseLit),
+         [](L l) { return std::optional(l.metrics.otherFalseLitRate); }},
+        {"frame ms", [](L l) { return std::optional(l.cost.frameMs.median); }},
+        {"shadow pass ms", [](L l) { return std::optional(l.cost.shadowMapMs.median); }},
     };
     return cols;
 }
@@ -200,7 +250,8 @@ footer{margin-top:32px;font-size:12px;color:#666}
     for (const ArtifactClass& c : kArtifactClasses)
         o << "<span><i style=\"background:rgb(" << int(c.rgb[0] * 255) << "," << int(c.rgb[1] * 255)
           << "," << int(c.rgb[2] * 255) << ")\"></i>" << c.legend << "</span>";
-    o << "<span>(grey: correct, dimmed truth)</span></div>";
+    o << "<span>(grey: correct, the truth dimmed; every false-shadow or false-lit pixel has one "
+         "colour)</span></div>";
 }
 
 // One light: the oracle, each technique, its error map and predicted aliasing, and the chart.
@@ -225,6 +276,12 @@ void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
           << imgTag(w, h, errorMap(in.oracle, t.lights[li].maps, light), t.label + " errors")
           << "<p>errors of " << html(t.label) << ": mae " << num(t.lights[li].metrics.mae)
           << "</p></div>";
+        if (t.lights[li].metrics.penumbraMae) {
+            o << "<div class=\"card\">"
+              << imgTag(w, h, magnitudeMap(in.oracle, t.lights[li].maps), t.label + " magnitude")
+              << "<p>|V - V<sub>oracle</sub>| beyond the oracle's 95% interval</p>"
+              << magnitudeBar() << "</div>";
+        }
         if (t.image.has(ch::lightChannel(light, ch::kPredictedAliasing))) {
             const LightMetrics& lm = t.lights[li].metrics;
             o << "<div class=\"card\">"
@@ -239,9 +296,16 @@ void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
 
 // Every row of metrics, sortable.
 void writeTable(std::ostream& o, const ReportInput& in) {
-    o << "<h2>All metrics</h2><p>Click a column to sort.</p><table id=\"metrics\"><thead><tr>";
+    o << "<h2>All metrics</h2><p>Click a column to sort. Times were measured on <b>"
+      << html(in.timedOn) << "</b>";
+    if (in.timedOn.find("llvmpipe") != std::string::npos)
+        o << " (Mesa's CPU rasterizer: its times rank the techniques on this machine, not on a "
+             "GPU)";
+    o << "; medians over the timed frames, the techniques taking turns frame by frame. "
+         "<i>noisy</i>: a spread (p25 to p75) above 20% of the median.</p>";
+    o << "<table id=\"metrics\"><thead><tr>";
     for (const Column& c : columns()) o << "<th>" << c.header << "</th>";
-    o << "</tr></thead><tbody>";
+    o << "<th>timing</th></tr></thead><tbody>";
     for (const ReportTechnique& t : in.techniques)
         for (size_t li = 0; li < in.lights.size(); ++li) {
             o << "<tr><td>" << html(t.label) << "</td><td>" << html(in.lights[li]) << "</td>";
@@ -250,7 +314,7 @@ void writeTable(std::ostream& o, const ReportInput& in) {
                 const std::optional<double> v = c.value(t.lights[li]);
                 o << "<td data-v=\"" << (v ? std::to_string(*v) : "") << "\">" << num(v) << "</td>";
             }
-            o << "</tr>";
+            o << "<td>" << (t.lights[li].cost.noisy() ? "<i>noisy</i>" : "") << "</td></tr>";
         }
     o << "</tbody></table>";
 }

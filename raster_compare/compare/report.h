@@ -25,6 +25,7 @@ struct ReportInput {
     ChannelImage oracle;
     std::vector<ReportTechnique> techniques;
     nlohmann::json provenance;  // tool, scene hash, GL renderer: shown in the footer
+    std::string timedOn;        // the GL renderer that measured the times
 };
 
 void writeReport(const std::string& path, const ReportInput& in);

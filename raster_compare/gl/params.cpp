@@ -19,6 +19,12 @@ int ParamValues::integer(const std::string& name) const {
     return int(real(name));
 }
 
+std::map<std::string, ParamSetting> ParamValues::settings() const {
+    std::map<std::string, ParamSetting> out;
+    for (const auto& [name, v] : values_) out[name] = {v, integer_.at(name)};
+    return out;
+}
+
 namespace {
 
 std::string listOf(const std::vector<double>& values) {
@@ -49,6 +55,7 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
     std::string valid;
     for (const ParamSpec& s : table) {
         values.values_[s.name] = s.defaultValue;
+        values.integer_[s.name] = s.integer;
         valid += (valid.empty() ? "" : ", ") + s.name;
     }
     const std::string file = "technique " + technique;

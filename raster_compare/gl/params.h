@@ -21,6 +21,13 @@ struct ParamSpec {
 };
 using ParamTable = std::vector<ParamSpec>;
 
+// One parameter's value, with whether the table declares it an integer (JSON writes 2048, not
+// 2048.0).
+struct ParamSetting {
+    double value = 0.0;
+    bool integer = false;
+};
+
 // Validated values: every parameter of the table, defaults filled in. Only `parseParams` makes
 // one, so a technique's constructor reads values that are known to be in range.
 class ParamValues {
@@ -28,11 +35,13 @@ class ParamValues {
     double real(const std::string& name) const;  // CHECKs that the table has it
     int integer(const std::string& name) const;
     const std::map<std::string, double>& all() const { return values_; }
+    std::map<std::string, ParamSetting> settings() const;
 
   private:
     friend ParamValues parseParams(const std::string&, const ParamTable&,
                                    const std::vector<std::string>&);
     std::map<std::string, double> values_;
+    std::map<std::string, bool> integer_;
 };
 
 // Parses "key=value" settings against the table; unknown keys, non-numbers, non-integers and

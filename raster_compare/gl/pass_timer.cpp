@@ -4,12 +4,6 @@
 
 namespace so {
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
 void PassTimer::begin(const std::string& pass) {
     frame_.push_back({pass, makeQuery(GL_TIME_ELAPSED)});
     glBeginQuery(GL_TIME_ELAPSED, frame_.back().query.get());
@@ -28,9 +22,9 @@ void PassTimer::endFrame(bool keep) {
     frame_.clear();
 }
 
-double PassTimer::medianMs(const std::string& pass) const {
+TimingStats PassTimer::stats(const std::string& pass) const {
     const auto it = msByPass_.find(pass);
-    return it == msByPass_.end() ? 0.0 : median(it->second);
+    return it == msByPass_.end() ? TimingStats{} : timingStats(it->second);
 }
 
 }  // namespace so

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/timing.h"
 #include "raster_compare/gl/gl_object.h"
 
 namespace so {
@@ -16,8 +17,8 @@ class PassTimer {
     void end();
     // Reads this frame's queries; kept only when `keep` (warm-up frames are dropped).
     void endFrame(bool keep);
-    // Median over the kept frames (0 when the pass never ran).
-    double medianMs(const std::string& pass) const;
+    // Median and quartiles over the kept frames (0 when the pass never ran).
+    TimingStats stats(const std::string& pass) const;
 
   private:
     struct Query {
@@ -27,7 +28,5 @@ class PassTimer {
     std::vector<Query> frame_;
     std::map<std::string, std::vector<double>> msByPass_;
 };
-
-double median(std::vector<double> v);
 
 }  // namespace so

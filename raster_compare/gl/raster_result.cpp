@@ -2,18 +2,37 @@
 
 namespace so {
 
+namespace {
+void addTiming(nlohmann::json& j, const std::string& key, const TimingStats& t) {
+    j[key + "_ms"] = t.median;
+    j[key + "_ms_p25"] = t.p25;
+    j[key + "_ms_p75"] = t.p75;
+}
+}  // namespace
+
 nlohmann::json toJson(const GlInfo& gl) {
     return {{"renderer", gl.renderer}, {"version", gl.version}, {"platform", gl.platform}};
 }
 
+nlohmann::json toJson(const std::map<std::string, ParamSetting>& parameters) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [name, p] : parameters)
+        j[name] = p.integer ? nlohmann::json(int64_t(p.value)) : nlohmann::json(p.value);
+    return j;
+}
+
 nlohmann::json toJson(const RasterTimings& t) {
-    return {{"frames", t.frames},
-            {"warmup_frames", t.warmupFrames},
-            {"camera_ms", t.cameraMs},
-            {"wall_ms", t.wallMs},
-            {"note",
-             "median over the timed frames; GL_TIME_ELAPSED queries (on llvmpipe they measure CPU "
-             "work)"}};
+    nlohmann::json j = {
+        {"frames", t.frames},
+        {"warmup_frames", t.warmupFrames},
+        {"interleaved_with", t.interleavedWith},
+        {"note",
+         "median and quartiles over the timed frames, the techniques of one run taking turns frame "
+         "by frame; GL_TIME_ELAPSED queries (on llvmpipe, a CPU rasterizer, they measure CPU "
+         "work)"}};
+    addTiming(j, "camera", t.cameraMs);
+    addTiming(j, "wall", t.wallMs);
+    return j;
 }
 
 namespace {
@@ -33,18 +52,17 @@ nlohmann::json toJson(const RasterLightStats& l) {
         {"far", l.wsFar},
         {"fov_y_deg", l.fovYDeg},
         {l.texelSizeIsAbsolute ? "texel_size" : "texel_size_per_unit_depth", l.texelSize}};
-    for (const auto& [pass, ms] : l.passMs) j[pass + "_ms"] = ms;
+    for (const auto& [pass, t] : l.passMs) addTiming(j, pass, t);
+    j["memory_bytes"] = l.memoryBytes;
     return j;
 }
 }  // namespace
 
 nlohmann::json toJson(const RasterStats& s) {
-    nlohmann::json params = nlohmann::json::object();
-    for (const auto& [k, v] : s.parameters) params[k] = v;
     nlohmann::json lights = nlohmann::json::array();
     for (const RasterLightStats& l : s.lights) lights.push_back(toJson(l));
     return {{"technique", s.technique},
-            {"parameters", params},
+            {"parameters", toJson(s.parameters)},
             {"image", {{"width", s.width}, {"height", s.height}}},
             {"gl", toJson(s.gl)},
             {"lights", lights},

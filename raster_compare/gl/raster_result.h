@@ -2,6 +2,7 @@
 // made only where raster.json and metrics.json are written (toJson).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -10,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image.h"
+#include "core/timing.h"
+#include "raster_compare/gl/params.h"
 
 namespace so {
 
@@ -27,18 +30,23 @@ struct RasterLightStats {
     // depth along the view axis.
     bool texelSizeIsAbsolute = false;
     double texelSize = 0.0;
-    // Median GL time per pass over the timed frames, by pass name ("shadow_map", "visibility").
-    std::map<std::string, double> passMs;
+    // GL time per pass over the timed frames, by pass name ("shadow_map", "visibility").
+    std::map<std::string, TimingStats> passMs;
+    // GL memory the technique holds for this light (maps, moment and blur targets, the light's
+    // visibility target), estimated from the formats and sizes it allocates.
+    uint64_t memoryBytes = 0;
 };
 
 struct RasterTimings {
     int frames = 0, warmupFrames = 0;
-    double cameraMs = 0.0, wallMs = 0.0;  // medians over the timed frames
+    TimingStats cameraMs, wallMs;  // over the timed frames
+    // How many techniques took turns frame by frame with this one (1: rendered alone).
+    int interleavedWith = 1;
 };
 
 struct RasterStats {
     std::string technique;
-    std::map<std::string, double> parameters;  // every parameter, defaults included
+    std::map<std::string, ParamSetting> parameters;  // every parameter, defaults included
     int width = 0, height = 0;
     GlInfo gl;
     std::vector<RasterLightStats> lights;
@@ -51,6 +59,8 @@ struct RasterResult {
 };
 
 nlohmann::json toJson(const GlInfo& gl);
+// Integers as integers: {"resolution": 2048, "alpha": 1.5}.
+nlohmann::json toJson(const std::map<std::string, ParamSetting>& parameters);
 nlohmann::json toJson(const RasterTimings& t);
 nlohmann::json toJson(const RasterStats& s);  // the body of raster.json (docs/cli.md)
 

@@ -69,51 +69,41 @@ std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camer
     return lights;
 }
 
-RasterStats collectStats(const Technique& technique, const CameraPass& camera,
-                         const std::vector<FrameLight>& lights, const PassTimer& timer,
-                         std::vector<double> wallMs, const RasterOptions& options,
-                         const GlContext& gl) {
+// One technique's lights, timers and wall times while its group renders.
+struct TechniqueFrames {
+    size_t index;
+    const Technique* technique;
+    std::vector<FrameLight> lights;
+    PassTimer timer;
+    std::vector<double> wallMs;
+    uint64_t memoryBytes = 0;
+};
+
+RasterStats collectStats(const TechniqueFrames& t, const CameraPass& camera,
+                         const RasterOptions& options, const GlContext& gl, int interleavedWith) {
     RasterStats s;
-    s.technique = technique.name();
-    s.parameters = technique.values().all();
+    s.technique = t.technique->name();
+    s.parameters = t.technique->values().settings();
     s.width = camera.width();
     s.height = camera.height();
     s.gl = {gl.renderer(), gl.version(), gl.platform()};
-    for (const FrameLight& l : lights) {
+    for (const FrameLight& l : t.lights) {
         RasterLightStats ls = l.passes->describe();
         for (const std::string& pass : {l.passes->lightPassName(), std::string("visibility")})
-            ls.passMs[pass] = timer.medianMs(l.light->name + "." + pass);
+            ls.passMs[pass] = t.timer.stats(l.light->name + "." + pass);
+        ls.memoryBytes = l.passes->memoryBytes() +
+                         uint64_t(camera.width()) * uint64_t(camera.height()) * 8;  // V, aliasing
         s.lights.push_back(std::move(ls));
     }
-    s.timings = {options.frames, options.warmup, timer.medianMs("camera"), median(wallMs)};
+    s.timings = {options.frames, options.warmup, t.timer.stats("camera"), timingStats(t.wallMs),
+                 interleavedWith};
     return s;
 }
 
-}  // namespace
-
-RasterResult renderRaster(const Scene& scene, const Technique& technique,
-                          const RasterOptions& options, const GlContext& gl) {
-    CameraDesc camDesc = scene.camera;
-    if (options.width > 0) camDesc.width = options.width;
-    if (options.height > 0) camDesc.height = options.height;
-    GpuScene gpu(scene);
-    gpu.bind();
-    CameraPass camera(gpu, camDesc);
-    std::vector<FrameLight> lights = setUpLights(gpu, camera, technique);
-
-    PassTimer timer;
-    std::vector<double> wallMs;
-    for (int frame = 0; frame < options.warmup + options.frames; ++frame) {
-        const double ms = renderFrame(camera, lights, timer);
-        timer.endFrame(frame >= options.warmup);
-        if (frame >= options.warmup) wallMs.push_back(ms);
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-
+RasterResult readResult(const TechniqueFrames& t, const ChannelImage& geometry) {
     RasterResult result;
-    result.image = ChannelImage(camera.width(), camera.height());
-    camera.readGeometry(result.image);
-    for (const FrameLight& l : lights) {
+    result.image = geometry;
+    for (const FrameLight& l : t.lights) {
         namespace ch = channels;
         const std::vector<float> vis = l.target.readVisibility(), alias = l.target.readAliasing();
         std::copy(vis.begin(), vis.end(),
@@ -121,7 +111,68 @@ RasterResult renderRaster(const Scene& scene, const Technique& technique,
         std::copy(alias.begin(), alias.end(),
                   result.image.addChannel(ch::lightChannel(l.light->name, ch::kPredictedAliasing)));
     }
-    result.stats = collectStats(technique, camera, lights, timer, wallMs, options, gl);
+    return result;
+}
+
+// Renders the group's frames, technique after technique within each frame, and hands each
+// result over.
+void renderGroup(const CameraPass& camera, std::vector<TechniqueFrames>& group,
+                 const RasterOptions& options, const GlContext& gl,
+                 const InterleavedCallbacks& callbacks) {
+    if (group.empty()) return;
+    std::vector<size_t> indices;
+    for (const TechniqueFrames& t : group) indices.push_back(t.index);
+    if (callbacks.groupStarts) callbacks.groupStarts(indices);
+    for (int frame = 0; frame < options.warmup + options.frames; ++frame)
+        for (TechniqueFrames& t : group) {
+            const double ms = renderFrame(camera, t.lights, t.timer);
+            t.timer.endFrame(frame >= options.warmup);
+            if (frame >= options.warmup) t.wallMs.push_back(ms);
+        }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    // Every technique's camera pass drew the same surfaces: one readback serves all.
+    ChannelImage geometry(camera.width(), camera.height());
+    camera.readGeometry(geometry);
+    for (TechniqueFrames& t : group) {
+        RasterResult r = readResult(t, geometry);
+        r.stats = collectStats(t, camera, options, gl, int(group.size()));
+        if (callbacks.done) callbacks.done(t.index, std::move(r));
+    }
+    group.clear();
+}
+
+}  // namespace
+
+void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& techniques,
+                       const RasterOptions& options, const GlContext& gl,
+                       const InterleavedCallbacks& callbacks) {
+    CameraDesc camDesc = scene.camera;
+    if (options.width > 0) camDesc.width = options.width;
+    if (options.height > 0) camDesc.height = options.height;
+    GpuScene gpu(scene);
+    gpu.bind();
+    CameraPass camera(gpu, camDesc);
+    std::vector<TechniqueFrames> group;
+    uint64_t groupBytes = 0;
+    for (size_t i = 0; i < techniques.size(); ++i) {
+        TechniqueFrames t{i, techniques[i], setUpLights(gpu, camera, *techniques[i]), {}, {}, 0};
+        for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();
+        // A full group renders first; this technique's objects exist already and start the next.
+        if (!group.empty() && groupBytes + t.memoryBytes > options.interleaveBudgetBytes) {
+            renderGroup(camera, group, options, gl, callbacks);
+            groupBytes = 0;
+        }
+        groupBytes += t.memoryBytes;
+        group.push_back(std::move(t));
+    }
+    renderGroup(camera, group, options, gl, callbacks);
+}
+
+RasterResult renderRaster(const Scene& scene, const Technique& technique,
+                          const RasterOptions& options, const GlContext& gl) {
+    RasterResult result;
+    renderInterleaved(scene, {&technique}, options, gl,
+                      {nullptr, [&](size_t, RasterResult&& r) { result = std::move(r); }});
     return result;
 }
 

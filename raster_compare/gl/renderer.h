@@ -4,6 +4,10 @@
 // here is the oracle's pixel (x, y).
 #pragma once
 
+#include <cstdint>
+#include <functional>
+#include <vector>
+
 #include "core/scene.h"
 #include "raster_compare/gl/raster_result.h"
 #include "raster_compare/gl/technique.h"
@@ -14,10 +18,26 @@ class GlContext;
 
 struct RasterOptions {
     int width = 0, height = 0;  // 0: the scene camera's
-    int frames = 5;             // timed frames (median reported)
-    int warmup = 1;             // untimed frames first
+    int frames = 9;             // timed frames (median and quartiles reported)
+    int warmup = 2;             // untimed frames first
+    // Techniques rendered together take turns frame by frame, so that background load falls on
+    // all alike; a group holds at most this much estimated GL memory (the next starts after).
+    uint64_t interleaveBudgetBytes = uint64_t(2) << 30;
 };
 
+struct InterleavedCallbacks {
+    // A group of techniques (indices into the list) is about to be rendered together.
+    std::function<void(const std::vector<size_t>&)> groupStarts;
+    // A technique's result, as soon as its group is done (its GL objects are freed after).
+    std::function<void(size_t, RasterResult&&)> done;
+};
+
+// Renders every technique of the list on the scene, in groups whose frames interleave.
+void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& techniques,
+                       const RasterOptions& options, const GlContext& gl,
+                       const InterleavedCallbacks& callbacks);
+
+// One technique alone.
 RasterResult renderRaster(const Scene& scene, const Technique& technique,
                           const RasterOptions& options, const GlContext& gl);
 

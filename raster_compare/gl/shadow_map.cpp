@@ -73,6 +73,7 @@ class ShadowMapLight final : public LightTechnique {
     void renderLightPasses() override;
     void renderVisibility() override;
     RasterLightStats describe() const override;
+    uint64_t memoryBytes() const override;
 
   private:
     void createMap();
@@ -256,6 +257,16 @@ RasterLightStats ShadowMapLight::describe() const {
     s.texelSizeIsAbsolute = ortho;
     s.texelSize = ortho ? frame.wsLength(cam_.texelScale) : cam_.texelScale;
     return s;
+}
+
+// Texel sizes as stored by a typical implementation (24-bit depth padded to 32).
+uint64_t ShadowMapLight::memoryBytes() const {
+    const uint64_t texels = uint64_t(technique_.resolution()) * uint64_t(technique_.resolution());
+    const uint64_t depthBytes = technique_.depthBits() == 16 ? 2 : 4;
+    if (technique_.storage() != MapStorage::Moments)
+        return texels * depthBytes * uint64_t(cam_.faces);
+    // The moment map (RGBA32F per face), and one face's moments, blur target and depth buffer.
+    return texels * 16 * uint64_t(cam_.faces) + texels * (16 + 16 + depthBytes);
 }
 
 }  // namespace

@@ -52,6 +52,8 @@ class LightTechnique {
     virtual void renderVisibility() = 0;
     // The light's camera and map, for raster.json (timings are filled in by the renderer).
     virtual RasterLightStats describe() const = 0;
+    // The GL memory it holds (maps and intermediate targets), from the formats and sizes.
+    virtual uint64_t memoryBytes() const = 0;
 };
 
 class Technique {
