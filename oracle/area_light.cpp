@@ -169,6 +169,11 @@ void sampleAreaBatch(const AreaLight& light, const AreaPixel& px, uint32_t seed,
                      int count, AreaBatch& b) {
     float su[16], sv[16];
     sobol2DBlock16(first, seed, su, sv);
+    mapAreaBatch(light, px, su, sv, count, b);
+}
+
+void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, const float* sv,
+                  int count, AreaBatch& b) {
     const float margin = 2.0f * light.lsEndMargin;
     if (light.type == LightType::Sphere) {
         for (int k = 0; k < 16; ++k) {

@@ -65,5 +65,8 @@ struct AreaBatch {
 };
 void sampleAreaBatch(const AreaLight& light, const AreaPixel& px, uint32_t seed, uint32_t first,
                      int count, AreaBatch& b);
+// The same from 16 given points of the unit square (lanes >= count get weight 0).
+void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, const float* sv,
+                  int count, AreaBatch& b);
 
 }  // namespace so

@@ -42,32 +42,151 @@ RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint
     return e;
 }
 
+RatioEstimate replicaEstimate(const ReplicaSums& s) {
+    double x = 0.0, y = 0.0;
+    for (int j = 0; j < kReplicas; ++j) x += s.x[size_t(j)], y += s.y[size_t(j)];
+    RatioEstimate e;
+    if (s.nonZero == 0 || !(y > 0.0)) {
+        e.stderr_ = 0.5;  // nothing measured: as uncertain as a [0, 1] quantity can be
+        return e;
+    }
+    e.V = x / y;
+    // Delta method over the replicas, which are independent: the ratio's variance from the
+    // spread of the residuals x_j - V y_j, K - 1 degrees of freedom.
+    double ss = 0.0;
+    for (int j = 0; j < kReplicas; ++j) {
+        const double r = s.x[size_t(j)] - e.V * s.y[size_t(j)];
+        ss += r * r;
+    }
+    const double yMean = y / kReplicas;
+    const double seReplicas = std::sqrt(ss / (kReplicas * (kReplicas - 1.0))) / yMean;
+    // The prior's share of the iid estimate: it keeps "all samples agree" from meaning "certain",
+    // and dominates only where the replicas barely differ.
+    const double wbar = y / double(s.nonZero);
+    const double W = y + 2.0 * kPrior * wbar;
+    const double Va = (x + kPrior * wbar) / W;
+    const double sePrior =
+        std::sqrt(kPrior * wbar * wbar * ((1.0 - Va) * (1.0 - Va) + Va * Va)) / W;
+    // Stated as a standard error for the t quantile: half-width max(t se, z sePrior).
+    e.stderr_ = std::max(seReplicas, kZ * sePrior / kIntervalQuantile95);
+    return e;
+}
+
+namespace {
+
+// One thread's packet and batch, reused pixel after pixel.
+struct PacketState {
+    RTCIntersectContext ctx;
+    alignas(64) RTCRay16 ray;
+    alignas(64) int valid[16];
+    AreaBatch batch;
+};
+
+struct PixelResult {
+    RatioEstimate est;
+    int samples = 0;
+    double efficiency = 0.0;  // Kish's n_eff / n of the weights
+};
+
+// One round: two points of each replica's own scrambled Sobol sequence (lanes 2j, 2j + 1 are
+// replica j's points first, first + 1), traced as one packet, added to the replicas' sums.
+void traceRound(const Accel& accel, const AreaLight& light, const AreaPixel& px,
+                const uint32_t* replicaSeeds, uint32_t first, PacketState& p, ReplicaSums& sums,
+                AreaShadowStats& st) {
+    float su[16], sv[16];
+    for (int j = 0; j < kReplicas; ++j)
+        sobol2DBlock(first, kPointsPerRound, replicaSeeds[j], su + kPointsPerRound * j,
+                     sv + kPointsPerRound * j);
+    mapAreaBatch(light, px, su, sv, 16, p.batch);
+    int active = 0;
+    for (int k = 0; k < 16; ++k) {
+        p.valid[k] = p.batch.weight[k] > 0.0f ? -1 : 0;
+        active += p.valid[k] != 0;
+        p.ray.dir_x[k] = p.batch.dirX[k];
+        p.ray.dir_y[k] = p.batch.dirY[k];
+        p.ray.dir_z[k] = p.batch.dirZ[k];
+        p.ray.tfar[k] = p.batch.tfar[k];
+    }
+    if (active) rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx, &p.ray);
+    for (int k = 0; k < 16; ++k) {
+        if (!p.valid[k]) continue;
+        const double w = p.batch.weight[k];
+        const double v = p.ray.tfar[k] >= 0.0f ? 1.0 : 0.0;  // -inf on a hit
+        sums.x[size_t(k / kPointsPerRound)] += w * v;
+        sums.y[size_t(k / kPointsPerRound)] += w;
+        sums.sw2 += w * w;
+        sums.sw2v += w * w * v;
+        st.raysOccluded += v == 0.0;
+    }
+    sums.nonZero += uint64_t(active);
+    st.raysTraced += uint64_t(active);
+}
+
+// Rounds of 16 samples until the pixel's 95% half-width is at most the target (checked from
+// kMinAdaptiveSpp on), or its budget is spent; with a fixed count, exactly that many (rounded up
+// to whole rounds).
+PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPixel& px,
+                        const AreaSampling& sampling, uint32_t pixelSeed, const glm::vec3& org,
+                        uint32_t originId, PacketState& p, AreaShadowStats& st) {
+    for (int k = 0; k < 16; ++k) {
+        p.ray.org_x[k] = org.x;
+        p.ray.org_y[k] = org.y;
+        p.ray.org_z[k] = org.z;
+        p.ray.tnear[k] = 0.0f;
+        p.ray.time[k] = 0.0f;
+        p.ray.mask[k] = 0xFFFFFFFFu;
+        p.ray.flags[k] = 0;
+        p.ray.id[k] = originId;  // the filter skips this triangle
+    }
+    uint32_t replicaSeeds[kReplicas];
+    for (int j = 0; j < kReplicas; ++j) replicaSeeds[j] = hashCombine(pixelSeed, uint32_t(j));
+    const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
+    ReplicaSums sums;
+    PixelResult r;
+    std::vector<double> history;  // the estimate's stderr after each round
+    for (uint32_t first = 0;; first += kPointsPerRound) {
+        traceRound(accel, light, px, replicaSeeds, first, p, sums, st);
+        r.samples += 16;
+        r.est = replicaEstimate(sums);
+        history.push_back(r.est.stderr_);
+        // Eight replicas estimate the spread roughly (27% relative error): an adaptive pixel must
+        // not stop on a lucky low estimate, so the one of half as many samples, scaled by
+        // RQMC's N^-0.75 for edges, bounds it from below (a fixed count has no stopping to bias).
+        const size_t half = history.size() / 2;
+        if (sampling.fixedSpp == 0 && half >= 1)
+            r.est.stderr_ =
+                std::max(r.est.stderr_,
+                         history[half - 1] * std::pow(double(half) / double(history.size()), 0.75));
+        if (r.samples >= maxSpp) break;
+        if (sampling.fixedSpp == 0 && r.samples >= kMinAdaptiveSpp &&
+            kIntervalQuantile95 * r.est.stderr_ <= sampling.targetError)
+            break;
+    }
+    double sw = 0.0;
+    for (double y : sums.y) sw += y;
+    if (sums.sw2 > 0.0) r.efficiency = sw * sw / (sums.sw2 * double(sums.nonZero));
+    return r;
+}
+
+}  // namespace
+
 AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                  const AreaLight& light, const AreaSampling& sampling,
                                  uint32_t stream, float* V, float* stderr_, float* spp,
                                  float* cosine, Progress* progress) {
     auto t0 = std::chrono::steady_clock::now();
-    struct Partial {
-        AreaShadowStats st;
-    };
-    tbb::combinable<Partial> partial;
+    tbb::combinable<AreaShadowStats> partial;
     // Per-pixel per-sample variance and half-width, for the uniform-run estimate, and sampling
     // efficiency: reduced in slot order afterwards, so the sums do not depend on the threads.
     std::vector<float> perSampleVar(sb.slotCount(), 0.0f), halfWidth(sb.slotCount(), 0.0f);
     std::vector<double> efficiency(sb.slotCount(), 0.0);
-    const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
-
     tbb::parallel_for(
         tbb::blocked_range<int>(0, sb.tilesY, 1), [&](const tbb::blocked_range<int>& range) {
             setEmbreeFloatMode();
-            Partial& part = partial.local();
-            AreaShadowStats& st = part.st;
-            RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-            alignas(64) RTCRay16 ray;
-            alignas(64) int valid[16];
-            AreaBatch batch;
+            AreaShadowStats& st = partial.local();
+            PacketState packet;
+            rtcInitIntersectContext(&packet.ctx);
+            packet.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
             for (int ty = range.begin(); ty != range.end(); ++ty) {
                 for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
                      s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s) {
@@ -81,7 +200,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                         ++st.skippedBackground;
                         continue;
                     }
-                    const glm::vec3 p = sb.lsPoint(s), n = sb.lsNormal(s), org = sb.lsRayOrigin(s);
+                    const glm::vec3 p = sb.lsPoint(s), n = sb.lsNormal(s);
                     cosine[pixel] = glm::dot(n, glm::normalize(light.lsCenter - p));
                     switch (classifyAreaPixel(light, glm::dvec3(p), glm::dvec3(n))) {
                         case AreaSkip::BelowHorizon:
@@ -97,63 +216,20 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                             break;
                     }
                     ++st.pixelsSampled;
-                    const AreaPixel px = prepareAreaPixel(light, p, n);
-                    const uint32_t pixelSeed =
-                        areaPixelSeed(sampling.seed, stream, uint32_t(pixel));
-                    for (int k = 0; k < 16; ++k) {
-                        ray.org_x[k] = org.x;
-                        ray.org_y[k] = org.y;
-                        ray.org_z[k] = org.z;
-                        ray.tnear[k] = 0.0f;
-                        ray.time[k] = 0.0f;
-                        ray.mask[k] = 0xFFFFFFFFu;
-                        ray.flags[k] = 0;
-                        ray.id[k] = sb.originId[s];  // the filter skips this triangle
-                    }
-                    double sw = 0, swv = 0, sw2 = 0, sw2v = 0;
-                    uint64_t nonZero = 0;
-                    int n_ = 0;
-                    RatioEstimate est;
-                    while (true) {
-                        const int count = std::min(16, maxSpp - n_);
-                        sampleAreaBatch(light, px, pixelSeed, uint32_t(n_), count, batch);
-                        int active = 0;
-                        for (int k = 0; k < 16; ++k) {
-                            valid[k] = batch.weight[k] > 0.0f ? -1 : 0;
-                            active += valid[k] != 0;
-                            ray.dir_x[k] = batch.dirX[k];
-                            ray.dir_y[k] = batch.dirY[k];
-                            ray.dir_z[k] = batch.dirZ[k];
-                            ray.tfar[k] = batch.tfar[k];
-                        }
-                        if (active) rtcOccluded16(valid, accel.rtcScene(), &ctx, &ray);
-                        for (int k = 0; k < 16; ++k) {
-                            if (!valid[k]) continue;
-                            const double w = batch.weight[k];
-                            const double v = ray.tfar[k] >= 0.0f ? 1.0 : 0.0;  // -inf on a hit
-                            sw += w;
-                            swv += w * v;
-                            sw2 += w * w;
-                            sw2v += w * w * v;
-                            st.raysOccluded += v == 0.0;
-                        }
-                        nonZero += uint64_t(active);
-                        st.raysTraced += uint64_t(active);
-                        n_ += count;
-                        est = ratioEstimate(sw, swv, sw2, sw2v, nonZero);
-                        if (n_ >= maxSpp) break;
-                        if (sampling.fixedSpp == 0 && kZ * est.stderr_ <= sampling.targetError)
-                            break;
-                    }
-                    V[pixel] = float(est.V);
-                    stderr_[pixel] = float(est.stderr_);
-                    spp[pixel] = float(n_);
-                    st.samples += uint64_t(n_);
-                    st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(n_));
-                    st.reachedTarget += kZ * est.stderr_ <= sampling.targetError;
-                    halfWidth[s] = float(kZ * est.stderr_);
-                    perSampleVar[s] = float(est.stderr_ * est.stderr_ * double(n_));
-                    if (sw2 > 0.0) efficiency[s] = sw * sw / (sw2 * double(nonZero));
+                    const PixelResult r =
+                        samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
+                                    areaPixelSeed(sampling.seed, stream, uint32_t(pixel)),
+                                    sb.lsRayOrigin(s), sb.originId[s], packet, st);
+                    V[pixel] = float(r.est.V);
+                    stderr_[pixel] = float(r.est.stderr_);
+                    spp[pixel] = float(r.samples);
+                    const double hw = kIntervalQuantile95 * r.est.stderr_;
+                    st.samples += uint64_t(r.samples);
+                    st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
+                    st.reachedTarget += hw <= sampling.targetError;
+                    halfWidth[s] = float(hw);
+                    perSampleVar[s] = float(r.est.stderr_ * r.est.stderr_ * double(r.samples));
+                    efficiency[s] = r.efficiency;
                 }
                 if (progress)
                     progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
@@ -161,8 +237,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         });
 
     AreaShadowStats total;
-    partial.combine_each([&](const Partial& p) {
-        const AreaShadowStats& s = p.st;
+    partial.combine_each([&](const AreaShadowStats& s) {
         total.samples += s.samples;
         total.raysTraced += s.raysTraced;
         total.raysOccluded += s.raysOccluded;
@@ -181,9 +256,10 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
     for (float h : halfWidth) total.worstHalfWidth = std::max(total.worstHalfWidth, double(h));
     if (total.worstHalfWidth > 0.0)
         for (float v : perSampleVar)
-            total.uniformSppForWorst = std::max(
-                total.uniformSppForWorst,
-                std::ceil(kZ * kZ * double(v) / (total.worstHalfWidth * total.worstHalfWidth)));
+            total.uniformSppForWorst =
+                std::max(total.uniformSppForWorst,
+                         std::ceil(kIntervalQuantile95 * kIntervalQuantile95 * double(v) /
+                                   (total.worstHalfWidth * total.worstHalfWidth)));
     total.samplingEfficiency =
         total.pixelsSampled ? efficiencySum / double(total.pixelsSampled) : 1.0;
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,18 +1,22 @@
-// Penumbrae by sampling: per pixel, batches of 16 shadow rays (one coherent packet) towards
-// Owen-scrambled Sobol points on the light, until the pixel's 95% interval is narrow enough.
+// Penumbrae by sampling: per pixel, packets of 16 shadow rays towards points on the light from 8
+// independently Owen-scrambled Sobol sequences (randomized QMC: two points of each replica per
+// packet), until the pixel's 95% interval is narrow enough (docs/oracle.md).
 //
-// The estimate is V = sum w v / sum w (area_light.h). Its interval is V +- 1.96 * stderr, with
-// stderr from the delta-method variance of the ratio estimator, computed as if the samples were
-// independent (they are stratified, so this overstates the error: the intervals are conservative)
-// and with an Agresti-Coull-style prior of 1.92 pseudo-samples lit and 1.92 shadowed at the mean
-// weight, so that a pixel whose samples all agree is not declared certain: 16 of 16 lit gives
-// stderr 0.066, and an always-lit pixel needs ~270 samples before its half-width is below 0.01.
+// The estimate is V = sum w v / sum w (area_light.h) over all samples. Its interval is
+// V +- kIntervalQuantile95 * stderr, stderr from the delta method over the replicas (independent,
+// so the spread is honest: 7 degrees of freedom, Student-t quantile), at least an
+// Agresti-Coull-style prior's share (1.92 pseudo-samples lit and 1.92 shadowed at the mean weight)
+// so that a pixel whose samples all agree is not declared certain.
 //
-// Stopping rule (adaptive): after each batch, stop when 1.96 * stderr <= target error or the
-// pixel has max_spp samples. With a fixed count (--spp N), exactly N samples.
+// Stopping rule (adaptive): after each packet, from kMinAdaptiveSpp samples on, stop when the
+// half-width <= target error or the pixel has max_spp samples. With a fixed count (--spp N),
+// exactly N samples, rounded up to whole packets.
 #pragma once
 
+#include <array>
 #include <cstdint>
+
+#include "core/channels.h"
 
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
@@ -22,8 +26,20 @@ namespace so {
 
 class Progress;
 
-// Two-sided 95% normal quantile: every interval the oracle states is V +- kZ95 * stderr.
+// Two-sided 95% normal quantile (the prior, and the verifier's independent reference samples).
 inline constexpr double kZ95 = 1.959963984540054;
+
+// Randomized QMC: every pixel's samples come from kReplicas independently Owen-scrambled Sobol
+// sequences, two points of each per 16-ray packet. The replicas' estimates are independent, so
+// their spread gives an honest standard error (the points within one are not independent).
+inline constexpr int kReplicas = 8;
+inline constexpr int kPointsPerRound = 16 / kReplicas;
+// Adaptive runs check the stopping rule from this many samples on (4 points per replica).
+inline constexpr int kMinAdaptiveSpp = 64;
+// Every interval the oracle states is V +- kIntervalQuantile95 * stderr: the two-sided 95%
+// Student-t quantile for kReplicas - 1 = 7 degrees of freedom.
+inline constexpr double kIntervalQuantile95 = channels::kStdErrQuantile95;
+static_assert(kReplicas == 8, "kIntervalQuantile95 is the t quantile for 7 degrees of freedom");
 
 struct AreaSampling {
     double targetError = 0.01;  // 95% half-width
@@ -40,7 +56,7 @@ struct AreaShadowStats {
     uint64_t pixelsWithoutUsableSamples = 0;
     uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
              skippedInsideLight = 0;
-    double worstHalfWidth = 0.0;  // the largest 1.96 * stderr over sampled pixels
+    double worstHalfWidth = 0.0;  // the largest half-width over sampled pixels
     double uniformSppForWorst =
         0.0;  // spp a uniform run needs for that worst half-width everywhere
     double samplingEfficiency = 1.0;  // mean over pixels of Kish's n_eff / n for the weights
@@ -52,6 +68,17 @@ struct RatioEstimate {
     double V = 0.0, stderr_ = 0.0;
 };
 RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint64_t nonZero);
+
+// Running sums of one pixel: per replica sum w v (x) and sum w (y), and over all samples the sums
+// the prior needs.
+struct ReplicaSums {
+    std::array<double, kReplicas> x{}, y{};
+    double sw2 = 0.0, sw2v = 0.0;
+    uint64_t nonZero = 0;  // samples with weight > 0
+};
+// V = sum x / sum y; stderr from the delta method over the replicas, at least the prior's share
+// (docs/oracle.md): V +- kIntervalQuantile95 * stderr is the pixel's 95% interval.
+RatioEstimate replicaEstimate(const ReplicaSums& sums);
 
 // The seed of one pixel's sample sequence: `stream` separates lights, `pixel` is the row-major
 // pixel index. The sequence depends on nothing else, so the image is the same at any thread count.

@@ -66,10 +66,11 @@ inline void sobol2D(uint32_t index, uint32_t seed, float& u, float& v) {
     v = float(b >> 8) * 0x1p-24f;
 }
 
-// The 16 points of the aligned block starting at `first` (a multiple of 16), unscrambled values
-// XOR-ed in: Sobol dimensions are linear over GF(2) in the index bits, and `first` shares no bit
-// with 0..15, so point first + k is base ^ table[k]. Same values as sobol2D, much cheaper.
-inline void sobol2DBlock16(uint32_t first, uint32_t seed, float* u, float* v) {
+// The `count` points (a power of two, at most 16) of the aligned block starting at `first` (a
+// multiple of `count`), unscrambled values XOR-ed in: Sobol dimensions are linear over GF(2) in the
+// index bits, and `first` shares no bit with 0..count-1, so point first + k is base ^ table[k].
+// Same values as sobol2D, much cheaper.
+inline void sobol2DBlock(uint32_t first, int count, uint32_t seed, float* u, float* v) {
     static constexpr uint32_t kD0[16] = {0x00000000u, 0x80000000u, 0x40000000u, 0xc0000000u,
                                          0x20000000u, 0xa0000000u, 0x60000000u, 0xe0000000u,
                                          0x10000000u, 0x90000000u, 0x50000000u, 0xd0000000u,
@@ -80,10 +81,14 @@ inline void sobol2DBlock16(uint32_t first, uint32_t seed, float* u, float* v) {
                                          0x50000000u, 0xd0000000u, 0x90000000u, 0x10000000u};
     const uint32_t b0 = sobol0(first), b1 = sobol1(first);
     const uint32_t s0 = hash32(seed), s1 = hash32(seed ^ 0x68bc21ebu);
-    for (int k = 0; k < 16; ++k) {
+    for (int k = 0; k < count; ++k) {
         u[k] = float(owenScramble(b0 ^ kD0[k], s0) >> 8) * 0x1p-24f;
         v[k] = float(owenScramble(b1 ^ kD1[k], s1) >> 8) * 0x1p-24f;
     }
+}
+
+inline void sobol2DBlock16(uint32_t first, uint32_t seed, float* u, float* v) {
+    sobol2DBlock(first, 16, seed, u, v);
 }
 
 }  // namespace so

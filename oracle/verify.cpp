@@ -258,7 +258,7 @@ Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, s
     }
     d.kind = "area";
     d.oracleV = oracleV;
-    d.oracleHalfWidth = kZ95 * double(oracleStderr);
+    d.oracleHalfWidth = kIntervalQuantile95 * double(oracleStderr);
     d.cosine = glm::dot(ref.n, glm::normalize(c - ref.p));
     if (oracleSpp == 0.0f || nonZero == 0) {
         // The oracle skipped the pixel (light below the horizon, behind it) or the reference

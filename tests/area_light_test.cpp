@@ -84,8 +84,19 @@ bool isPenumbra(double v) {
     return v > 1e-9 && v < 1.0 - 1e-9;
 }
 
-double normalTwoSidedP(double z) {
-    return std::erfc(std::fabs(z) / std::sqrt(2.0));
+// Two-sided p of a Student-t statistic with 7 degrees of freedom (the oracle's 8 replicas), in
+// closed form for odd degrees of freedom: P(|T| <= t) = 2/pi (a + sin a (cos a + 2/3 cos^3 a +
+// 8/15 cos^5 a)), a = atan(t / sqrt(7)).
+double studentT7TwoSidedP(double t) {
+    const double a = std::atan(std::fabs(t) / std::sqrt(7.0)), c = std::cos(a);
+    const double inside =
+        2.0 / M_PI * (a + std::sin(a) * (c + 2.0 / 3.0 * c * c * c + 8.0 / 15.0 * std::pow(c, 5)));
+    return std::max(0.0, 1.0 - inside);
+}
+
+TEST(Sampling, StudentTQuantileAndP) {
+    EXPECT_NEAR(studentT7TwoSidedP(kIntervalQuantile95), 0.05, 1e-9);
+    EXPECT_NEAR(studentT7TwoSidedP(0.0), 1.0, 1e-12);
 }
 
 TEST(AreaLight, ClosedFormPenumbraWithinStatedIntervals) {
@@ -94,7 +105,7 @@ TEST(AreaLight, ClosedFormPenumbraWithinStatedIntervals) {
     Exact exact = exactImage(s, r.img);
     const float* V = r.img.channel("panel.V");
     const float* SE = r.img.channel("panel.stderr");
-    double absSum = 0.0;
+    double absSum = 0.0, penAbs = 0.0;
     size_t hits = 0, penumbra = 0, covered = 0, umbra = 0, lit = 0;
     double minP = 1.0;
     for (size_t i = 0; i < r.img.pixelCount(); ++i) {
@@ -106,21 +117,30 @@ TEST(AreaLight, ClosedFormPenumbraWithinStatedIntervals) {
             continue;
         }
         ++penumbra;
-        covered += std::fabs(V[i] - exact.v[i]) <= 1.959963984540054 * SE[i];
-        if (SE[i] > 0) minP = std::min(minP, normalTwoSidedP((V[i] - exact.v[i]) / SE[i]));
+        penAbs += std::fabs(V[i] - exact.v[i]);
+        covered += std::fabs(V[i] - exact.v[i]) <= kIntervalQuantile95 * SE[i];
+        if (SE[i] > 0) minP = std::min(minP, studentT7TwoSidedP((V[i] - exact.v[i]) / SE[i]));
     }
     const double mae = absSum / double(hits);
+    ASSERT_TRUE(r.stats.lights[0].area);
     const double coverage = double(covered) / double(penumbra);
     // Sidak: the family of `penumbra` per-pixel tests at significance 0.01.
     const double sidak = 1.0 - std::pow(1.0 - 0.01, 1.0 / double(penumbra));
     std::printf(
-        "[ closed form ] %zu pixels (%zu penumbra, %zu umbra, %zu lit): mean |V - exact| = %.5f, "
-        "coverage of 95%% intervals = %.4f, smallest p = %.3g (Sidak threshold %.3g)\n",
-        hits, penumbra, umbra, lit, mae, coverage, minP, sidak);
+        "[ closed form ] %zu pixels (%zu penumbra, %zu umbra, %zu lit): mean |V - exact| = %.5f "
+        "(penumbra %.5f), coverage of 95%% intervals = %.4f, smallest p = %.3g (Sidak threshold "
+        "%.3g), mean spp %.1f\n",
+        hits, penumbra, umbra, lit, mae, penAbs / double(penumbra), coverage, minP, sidak,
+        r.stats.lights[0].area->sppMean());
     ASSERT_GT(penumbra, 1000u);
     ASSERT_GT(umbra, 200u);
-    EXPECT_LE(mae, 0.003);
-    EXPECT_GE(coverage, 0.93);
+    // The stated accuracy is the real one: nominal coverage (not 100%), and a mean error near
+    // the standard error the target implies (0.8 of it for normal errors), not far below.
+    EXPECT_GE(coverage, 0.92);
+    EXPECT_LE(coverage, 0.98);
+    const double seAtTarget = 0.01 / kIntervalQuantile95;
+    EXPECT_LE(penAbs / double(penumbra), seAtTarget);
+    EXPECT_GE(penAbs / double(penumbra), 0.2 * seAtTarget) << "intervals far too wide";
     EXPECT_GT(minP, sidak);
 }
 
@@ -165,7 +185,7 @@ TEST(AreaLight, TiltedReceiverCutByTheHorizon) {
             for (double z : {s.light.z0, s.light.z1})
                 above += glm::dot(n, glm::dvec3(x, s.light.y, z) - p) > 0.0;
         const bool horizonCuts = above > 0 && above < 4;
-        const bool ok = std::fabs(V[i] - exact.v[i]) <= 1.959963984540054 * SE[i] + 1e-6;
+        const bool ok = std::fabs(V[i] - exact.v[i]) <= kIntervalQuantile95 * SE[i] + 1e-6;
         if (horizonCuts) {
             ++cut;
             cutCovered += ok;
@@ -181,37 +201,46 @@ TEST(AreaLight, TiltedReceiverCutByTheHorizon) {
         "%zu penumbra (%zu within), mean |V - exact| = %.5f\n",
         hits, cut, cutCovered, penumbra, covered, absSum / double(hits));
     ASSERT_GT(cut, 300u) << "the view must show receivers whose horizon cuts the light";
-    EXPECT_GE(double(cutCovered) / double(cut), 0.95);
-    EXPECT_GE(double(covered) / double(std::max<size_t>(penumbra, 1)), 0.93);
-    EXPECT_LE(absSum / double(hits), 0.003);
+    EXPECT_GE(double(cutCovered) / double(cut), 0.92);
+    EXPECT_GE(double(covered) / double(std::max<size_t>(penumbra, 1)), 0.92);
+    EXPECT_LE(absSum / double(hits), a.targetError / kIntervalQuantile95);
 }
 
-// The stated intervals must not be too wide either: a uniform 64-spp run whose intervals were, say,
-// ten times too wide would cover 100% and pass the test above. At nominal 95% coverage with
-// conservative (independent-sample) variances, the realised errors of stratified samples are
-// smaller than stated, but not by orders of magnitude.
-TEST(AreaLight, IntervalsAreNotVacuous) {
-    PenumbraScene s = makePenumbraScene(64, 48);
-    AreaSampling fixed;
-    fixed.fixedSpp = 64;
-    OracleRun r = run(s.scene, fixed);
-    Exact exact = exactImage(s, r.img);
-    const float* V = r.img.channel("panel.V");
-    const float* SE = r.img.channel("panel.stderr");
-    double sumSq = 0.0, sumVar = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i < r.img.pixelCount(); ++i) {
-        if (std::isnan(exact.v[i]) || !isPenumbra(exact.v[i])) continue;
-        sumSq += (V[i] - exact.v[i]) * (V[i] - exact.v[i]);
-        sumVar += double(SE[i]) * SE[i];
-        ++n;
+// The stated standard error is the real one at any fixed sample count: over penumbra pixels the
+// realised RMS error over the stated standard error lies in [0.8, 1.25], and the 95% intervals
+// cover the exact V on 92% to 98% of them. (With the independent-sample variances of old, the
+// ratio was 0.07: intervals 14 times too wide.)
+TEST(AreaLight, IntervalsSayTheRealAccuracyAtFixedCounts) {
+    PenumbraScene s = makePenumbraScene(96, 72);
+    Exact exact;
+    for (int spp : {64, 256, 1024}) {
+        AreaSampling fixed;
+        fixed.fixedSpp = spp;
+        OracleRun r = run(s.scene, fixed);
+        if (exact.v.empty()) exact = exactImage(s, r.img);
+        const float* V = r.img.channel("panel.V");
+        const float* SE = r.img.channel("panel.stderr");
+        double sumSq = 0.0, sumVar = 0.0;
+        size_t n = 0, covered = 0;
+        for (size_t i = 0; i < r.img.pixelCount(); ++i) {
+            if (std::isnan(exact.v[i]) || !isPenumbra(exact.v[i])) continue;
+            const double e = V[i] - exact.v[i];
+            sumSq += e * e;
+            sumVar += double(SE[i]) * SE[i];
+            covered += std::fabs(e) <= kIntervalQuantile95 * SE[i];
+            ++n;
+        }
+        ASSERT_GT(n, 1000u);
+        const double ratio = std::sqrt(sumSq / sumVar), coverage = double(covered) / double(n);
+        std::printf(
+            "[ intervals ] %4d spp: RMS error / stated standard error = %.3f, coverage "
+            "%.4f over %zu penumbra pixels\n",
+            spp, ratio, coverage, n);
+        EXPECT_GE(ratio, 0.8) << spp;
+        EXPECT_LE(ratio, 1.25) << spp;
+        EXPECT_GE(coverage, 0.92) << spp;
+        EXPECT_LE(coverage, 0.98) << spp;
     }
-    ASSERT_GT(n, 200u);
-    const double ratio = std::sqrt(sumSq / sumVar);  // realised RMS error / stated stderr
-    std::printf("[ intervals ] at 64 spp: realised RMS error / stated standard error = %.3f\n",
-                ratio);
-    EXPECT_LT(ratio, 1.0);   // conservative
-    EXPECT_GT(ratio, 0.05);  // but not vacuous
 }
 
 TEST(AreaLight, UnoccludedLightsGiveExactlyOne) {
@@ -284,31 +313,32 @@ TEST(AreaLight, ConvergenceSlope) {
     EXPECT_LE(slope, -0.5);
 }
 
-TEST(AreaLight, AdaptiveNeedsFourTimesFewerRaysThanUniform) {
-    PenumbraScene s = makePenumbraScene(96, 72);
-    OracleRun adaptive = run(s.scene, AreaSampling{});
-    ASSERT_TRUE(adaptive.stats.lights[0].area);
-    const OracleAreaStats& la = *adaptive.stats.lights[0].area;
-    const double worstA = la.worstHalfWidth;
-    const uint64_t raysA = la.raysTraced;
-    // A uniform run with as many samples everywhere as the adaptive run's hardest pixel.
-    AreaSampling uniform;
-    uniform.fixedSpp = int(la.sppMax);
-    OracleRun u = run(s.scene, uniform);
-    ASSERT_TRUE(u.stats.lights[0].area);
-    const OracleAreaStats& lu = *u.stats.lights[0].area;
-    const double worstU = lu.worstHalfWidth;
-    const uint64_t raysU = lu.raysTraced;
-    const double ratio = double(raysU) / double(raysA);
+// The target costs what it says: at the default target on the closed-form scene at 200 x 200 the
+// estimator of old (independent-sample variances) spent 1,800 samples per pixel on average for a
+// realised penumbra error 25 times below the target's; the honest intervals stop far earlier. The
+// recorded baseline is the previous revision's (docs/oracle.md); a regression above a third of it
+// fails.
+TEST(AreaLight, AdaptiveSpendsWhatTheTargetNeeds) {
+    PenumbraScene s = makePenumbraScene(200, 200);
+    OracleRun r = run(s.scene, AreaSampling{});
+    ASSERT_TRUE(r.stats.lights[0].area);
+    const OracleAreaStats& la = *r.stats.lights[0].area;
+    Exact exact = exactImage(s, r.img);
+    const float* V = r.img.channel("panel.V");
+    double penAbs = 0.0;
+    size_t pen = 0;
+    for (size_t i = 0; i < r.img.pixelCount(); ++i)
+        if (!std::isnan(exact.v[i]) && isPenumbra(exact.v[i])) {
+            penAbs += std::fabs(V[i] - exact.v[i]);
+            ++pen;
+        }
     std::printf(
-        "[ adaptive ] adaptive: %llu rays, worst half-width %.5f; uniform at %d spp: %llu rays, "
-        "worst "
-        "half-width %.5f; ratio %.2f (the JSON's estimate: %.0f rays)\n",
-        (unsigned long long)raysA, worstA, uniform.fixedSpp, (unsigned long long)raysU, worstU,
-        ratio, la.uniformRays());
-    EXPECT_LE(worstU, worstA * 1.05)
-        << "the uniform run must reach the same worst-pixel half-width";
-    EXPECT_GE(ratio, 4.0);
+        "[ adaptive ] 200x200, target 0.01: mean %.1f spp (max %llu), %llu rays, penumbra "
+        "mean |V - exact| %.5f over %zu pixels, %.2f s\n",
+        la.sppMean(), (unsigned long long)la.sppMax, (unsigned long long)la.raysTraced,
+        penAbs / double(pen), pen, la.seconds);
+    EXPECT_LE(la.sppMean(), 1800.0 / 3.0);
+    EXPECT_EQ(la.shareReachedTarget, 1.0);
 }
 
 TEST(AreaLight, SameImageAtAnyThreadCount) {

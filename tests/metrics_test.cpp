@@ -133,13 +133,13 @@ TEST(Metrics, AreaLightIntervalsAndPenumbraBias) {
         for (int x = 0; x < 50; ++x) {
             const float v = 0.1f + 0.016f * float(x);  // a ramp, strictly inside (0, 1)
             at(o, ch::kVisibility, x, y) = v;
-            // Within the interval (1.96 * 0.01) on the left half; too hard by 0.1 on the right.
+            // Within the interval (2.3646 * 0.01) on the left half; too hard by 0.1 on the right.
             at(r, ch::kVisibility, x, y) = x < 25 ? v + 0.015f : (v < 0.5f ? v - 0.1f : v + 0.1f);
         }
     LightMetrics m = computeLightMetrics(o, r, "L", {});
     ASSERT_TRUE(m.penumbraMae && m.penumbraBias);
-    // Left half: no error; right half: 0.1 - 0.0196 each.
-    EXPECT_NEAR(m.mae, 0.5 * (0.1 - 1.96 * 0.01), 1e-6);
+    // Left half: no error; right half: 0.1 - 0.0236 each.
+    EXPECT_NEAR(m.mae, 0.5 * (0.1 - ch::kStdErrQuantile95 * 0.01), 1e-6);
     EXPECT_NEAR(*m.penumbraMae, m.mae, 1e-12);
     EXPECT_GT(*m.penumbraBias, 0.04) << "too hard is positive";
 }

@@ -13,7 +13,6 @@ namespace so {
 namespace {
 
 namespace ch = channels;
-constexpr double kZ = 1.959963984540054;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Squared Euclidean distance transform of one row or column, the lower envelope of parabolas
@@ -165,7 +164,7 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOpt
               LightMetrics& m, Tally& t, ErrorMaps* maps) {
     const double o = p.Vo[i], r = p.Vr[i];
     // An area light's difference within the oracle's own 95% interval is not an error.
-    const double hw = p.area ? kZ * p.SE[i] : 0.0;
+    const double hw = p.area ? ch::kStdErrQuantile95 * p.SE[i] : 0.0;
     const double err = std::max(0.0, std::fabs(r - o) - hw);
     t.sumAbs += err;
     t.sumSq += err * err;
