@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
         auto runOracle = [&] {
             arena.execute([&] {
                 st = traceAreaShadows(accel, sb, al, sampling, 0, V.data(), SE.data(), S.data(),
-                                      C.data(), nullptr);
+                                      C.data(), nullptr, nullptr);
             });
         };
         // The oracle's rays, prepared beforehand in its own order and packets.

@@ -25,7 +25,8 @@ inline constexpr const char* kStdErr = "stderr";  // sampled area lights
 // A sampled pixel's 95% interval is V +- kStdErrQuantile95 * stderr, clamped to [0, 1]: the
 // Student-t quantile for the 7 degrees of freedom of the oracle's 8 replicas (docs/oracle.md).
 inline constexpr double kStdErrQuantile95 = 2.3646242515927849;
-inline constexpr const char* kSpp = "spp";                          // sampled area lights
+inline constexpr const char* kSpp = "spp";                  // sampled area lights
+inline constexpr const char* kUnconverged = "unconverged";  // adaptive: budget spent, target missed
 inline constexpr const char* kOccluderDistance = "occ_dist";        // the contact effect
 inline constexpr const char* kPredictedAliasing = "aliasing_pred";  // raster.exr only
 

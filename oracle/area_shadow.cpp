@@ -173,7 +173,7 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
 AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                  const AreaLight& light, const AreaSampling& sampling,
                                  uint32_t stream, float* V, float* stderr_, float* spp,
-                                 float* cosine, Progress* progress) {
+                                 float* cosine, float* unconverged, Progress* progress) {
     auto t0 = std::chrono::steady_clock::now();
     tbb::combinable<AreaShadowStats> partial;
     // Per-pixel per-sample variance and half-width, for the uniform-run estimate, and sampling
@@ -227,6 +227,10 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                     st.samples += uint64_t(r.samples);
                     st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
                     st.reachedTarget += hw <= sampling.targetError;
+                    if (sampling.fixedSpp == 0 && hw > sampling.targetError) {
+                        ++st.pixelsUnconverged;
+                        if (unconverged) unconverged[pixel] = 1.0f;
+                    }
                     halfWidth[s] = float(hw);
                     perSampleVar[s] = float(r.est.stderr_ * r.est.stderr_ * double(r.samples));
                     efficiency[s] = r.efficiency;
@@ -243,6 +247,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         total.raysOccluded += s.raysOccluded;
         total.pixelsSampled += s.pixelsSampled;
         total.reachedTarget += s.reachedTarget;
+        total.pixelsUnconverged += s.pixelsUnconverged;
         total.pixelsWithoutUsableSamples += s.pixelsWithoutUsableSamples;
         total.maxSpp = std::max(total.maxSpp, s.maxSpp);
         total.skippedBackground += s.skippedBackground;

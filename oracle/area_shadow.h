@@ -51,6 +51,8 @@ struct AreaSampling {
 struct AreaShadowStats {
     uint64_t samples = 0, raysTraced = 0, raysOccluded = 0;
     uint64_t pixelsSampled = 0, reachedTarget = 0, maxSpp = 0;
+    // Adaptive runs: pixels that spent max_spp without reaching the target.
+    uint64_t pixelsUnconverged = 0;
     // Pixels where the light is above the horizon only by a sliver no sample found: reported as
     // V = 0 with the widest interval, and left out of worstHalfWidth (they carry no estimate).
     uint64_t pixelsWithoutUsableSamples = 0;
@@ -85,10 +87,12 @@ RatioEstimate replicaEstimate(const ReplicaSums& sums);
 uint32_t areaPixelSeed(uint32_t seed, uint32_t stream, uint32_t pixel);
 
 // `stream` separates the sample sequences of different lights. Writes V, stderr, spp and cos
-// (towards the centre) per pixel. Runs in parallel inside the caller's task arena.
+// (towards the centre) per pixel, and where given (adaptive runs), 1 in `unconverged` where a
+// pixel spent its budget without reaching the target. Runs in parallel inside the caller's task
+// arena.
 AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                  const AreaLight& light, const AreaSampling& sampling,
                                  uint32_t stream, float* V, float* stderr_, float* spp,
-                                 float* cosine, Progress* progress);
+                                 float* cosine, float* unconverged, Progress* progress);
 
 }  // namespace so

@@ -80,11 +80,16 @@ OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     const Light& light = p.scene.lights[li];
     float* stderr_ = p.image.addChannel(ch::lightChannel(light.name, ch::kStdErr));
     float* spp = p.image.addChannel(ch::lightChannel(light.name, ch::kSpp));
-    const AreaLight al = makeAreaLight(light, p.accel.frame());
     const AreaSampling& sampling = p.options.area;
+    // Only adaptive runs have a target to miss.
+    float* unconverged = sampling.fixedSpp > 0
+                             ? nullptr
+                             : p.image.addChannel(ch::lightChannel(light.name, ch::kUnconverged));
+    const AreaLight al = makeAreaLight(light, p.accel.frame());
     AreaShadowStats st;
     p.arena.execute([&] {
-        st = traceAreaShadows(p.accel, p.sb, al, sampling, li, V, stderr_, spp, cosine, &progress);
+        st = traceAreaShadows(p.accel, p.sb, al, sampling, li, V, stderr_, spp, cosine, unconverged,
+                              &progress);
     });
     OracleAreaStats s;
     s.sampling =
@@ -103,6 +108,7 @@ OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     s.maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
     s.shareReachedTarget =
         st.pixelsSampled ? double(st.reachedTarget) / double(st.pixelsSampled) : 1.0;
+    s.pixelsUnconverged = st.pixelsUnconverged;
     s.worstHalfWidth = st.worstHalfWidth;
     s.uniformSpp = st.uniformSppForWorst;
     s.samplingEfficiency = st.samplingEfficiency;

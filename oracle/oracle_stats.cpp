@@ -98,6 +98,7 @@ json areaJson(const OracleAreaStats& s) {
             {"target_error", s.targetError ? json(*s.targetError) : json(nullptr)},
             {"max_spp", s.maxSpp},
             {"share_reached_target", s.shareReachedTarget},
+            {"pixels_unconverged", s.pixelsUnconverged},
             {"worst_half_width", s.worstHalfWidth},
             {"uniform_equivalent",
              {{"spp", s.uniformSpp},
@@ -343,6 +344,7 @@ OracleAreaStats readArea(const Fields& f) {
     s.targetError = f.optionalNumber("target_error");
     s.maxSpp = f.i32("max_spp");
     s.shareReachedTarget = f.number("share_reached_target");
+    s.pixelsUnconverged = f.u64("pixels_unconverged");
     s.worstHalfWidth = f.number("worst_half_width");
     s.uniformSpp = f.object("uniform_equivalent").number("spp");
     s.samplingEfficiency = f.number("sampling_efficiency");

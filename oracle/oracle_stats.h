@@ -39,6 +39,7 @@ struct OracleAreaStats {
     std::optional<double> targetError;  // none with a fixed spp
     int maxSpp = 0;                     // the fixed spp, or the adaptive cap
     double shareReachedTarget = 1.0;
+    uint64_t pixelsUnconverged = 0;  // adaptive: budget spent, target missed (NAME.unconverged)
     double worstHalfWidth = 0.0;
     double uniformSpp = 0.0;  // a uniform run reaching worstHalfWidth everywhere
     double samplingEfficiency = 1.0;

@@ -341,6 +341,33 @@ TEST(AreaLight, AdaptiveSpendsWhatTheTargetNeeds) {
     EXPECT_EQ(la.shareReachedTarget, 1.0);
 }
 
+// A pixel that spends its budget short of the target is marked and counted, not passed off.
+TEST(AreaLight, PixelsShortOfTheTargetAreMarked) {
+    PenumbraScene s = makePenumbraScene(64, 48);
+    AreaSampling tight;
+    tight.targetError = 0.002;
+    tight.maxSpp = 128;
+    OracleRun r = run(s.scene, tight);
+    ASSERT_TRUE(r.stats.lights[0].area);
+    const OracleAreaStats& la = *r.stats.lights[0].area;
+    const float* U = r.img.channel("panel.unconverged");
+    const float* SE = r.img.channel("panel.stderr");
+    uint64_t marked = 0;
+    for (size_t i = 0; i < r.img.pixelCount(); ++i) {
+        marked += U[i] == 1.0f;
+        if (U[i] == 1.0f) {
+            EXPECT_GT(kIntervalQuantile95 * SE[i], tight.targetError) << i;
+        }
+    }
+    EXPECT_EQ(marked, la.pixelsUnconverged);
+    EXPECT_GT(marked, la.pixelsSampled / 2) << "128 samples cannot reach 0.002";
+    EXPECT_NEAR(la.shareReachedTarget, 1.0 - double(marked) / double(la.pixelsSampled), 1e-12);
+    // A fixed count has no target to miss: no channel.
+    AreaSampling fixed;
+    fixed.fixedSpp = 32;
+    EXPECT_FALSE(run(s.scene, fixed).img.has("panel.unconverged"));
+}
+
 TEST(AreaLight, SameImageAtAnyThreadCount) {
     PenumbraScene s = makePenumbraScene(48, 36);
     AreaSampling a;

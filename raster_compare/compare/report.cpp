@@ -254,6 +254,30 @@ footer{margin-top:32px;font-size:12px;color:#666}
          "colour)</span></div>";
 }
 
+// Pixels where the oracle spent its budget without reaching its target: their intervals are wider
+// than asked, and the report says where they are.
+void writeUnconverged(std::ostream& o, const ReportInput& in, const std::string& light) {
+    const std::string name = ch::lightChannel(light, ch::kUnconverged);
+    if (!in.oracle.has(name)) return;
+    const float* U = in.oracle.channel(name);
+    const float* A = in.oracle.channel(ch::kHit);
+    size_t count = 0;
+    std::vector<float> rgb(in.oracle.pixelCount() * 3);
+    for (size_t i = 0; i < in.oracle.pixelCount(); ++i) {
+        count += U[i] > 0.0f;
+        const float g = A[i] == 0.0f ? 0.03f : 0.2f;
+        rgb[3 * i] = U[i] > 0.0f ? 0.90f : g;
+        rgb[3 * i + 1] = U[i] > 0.0f ? 0.62f : g;
+        rgb[3 * i + 2] = U[i] > 0.0f ? 0.0f : g;
+    }
+    if (!count) return;
+    o << "<div class=\"card\">"
+      << imgTag(in.oracle.width(), in.oracle.height(), rgb, "oracle pixels short of the target")
+      << "<p>" << count
+      << " oracle pixels spent their sample budget before reaching the target error (orange): "
+         "their intervals are wider</p></div>";
+}
+
 // One light: the oracle, each technique, its error map and predicted aliasing, and the chart.
 void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
     const int w = in.oracle.width(), h = in.oracle.height();
@@ -265,6 +289,7 @@ void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
              shaded(in.oracle, in.oracle.channel(ch::lightChannel(light, ch::kVisibility)), light),
              "oracle")
       << "<p><b>oracle</b> (ground truth)</p></div>";
+    writeUnconverged(o, in, light);
     for (const ReportTechnique& t : in.techniques) {
         o << "<div class=\"card\">"
           << imgTag(w, h,
