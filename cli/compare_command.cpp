@@ -290,6 +290,15 @@ int runCompareCommand(const CompareOptions& options) {
     job.wide.write(out / "metrics_wide.csv");
     report.oracle = oracle.image;
     report.timedOn = gl.renderer();
+    for (const OracleLightStats& l : oracle.stats.lights) {
+        std::vector<std::pair<double, double>> curve;
+        if (l.area && l.area->samples)
+            for (const CostPoint& p : l.area->costCurve)
+                curve.emplace_back(
+                    1e3 * l.area->seconds * double(p.samples) / double(l.area->samples),
+                    p.meanHalfWidth);
+        report.oracleCurves.push_back(std::move(curve));
+    }
     report.provenance = {
         {"tool", metrics["tool"]}, {"scene_hash", scene.contentHash}, {"gl", metrics["gl"]}};
     writeReport((out / "report.html").string(), report);

@@ -53,6 +53,21 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
     return j;
 }
 
+// What the penumbrae cost, and what a tighter target would (docs/oracle.md, cost curve).
+void printOracleCost(const OracleStats& stats) {
+    for (const OracleLightStats& l : stats.lights) {
+        if (!l.area || !l.area->targetError) continue;
+        const OracleAreaStats& a = *l.area;
+        std::cout << "  " << l.name << ": target " << *a.targetError << " took " << a.seconds
+                  << " s (mean " << a.sppMean() << " spp)";
+        const double tighter = *a.targetError / 2.0;
+        if (const std::optional<double> t = a.predictedSeconds(tighter))
+            std::cout << "; --target-error " << tighter << " would take about " << *t
+                      << " s (half-width ~ samples^" << *a.costSlope() << " on this run)";
+        std::cout << "\n";
+    }
+}
+
 // With --verify: one line on what was checked; exit code 3 (and a line on stderr) on any
 // disagreement, else 0.
 int reportVerification(const OracleStats& stats, const std::string& scenePath,
@@ -113,6 +128,7 @@ int runTraceCommand(const TraceCommandOptions& options) {
               << cam.width << "x" << cam.height << ", " << scene.lights.size() << " lights)\n"
               << "  " << exrPath << "\n  " << jsonPath.string() << "\n";
     for (const std::string& p : previews) std::cout << "  " << p << "\n";
+    printOracleCost(result.stats);
     return reportVerification(result.stats, options.scenePath, jsonPath);
 }
 

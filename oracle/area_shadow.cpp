@@ -85,8 +85,36 @@ struct PacketState {
 struct PixelResult {
     RatioEstimate est;
     int samples = 0;
-    double efficiency = 0.0;  // Kish's n_eff / n of the weights
+    double efficiency = 0.0;        // Kish's n_eff / n of the weights
+    std::vector<float> halfWidths;  // the stated half-width after each packet
 };
+
+// The rounds the cost curve is read at: 1, 2, 3, 4, 6, 8, 12, ... up to `maxRounds`.
+std::vector<int> curveRounds(int maxRounds) {
+    std::vector<int> rounds;
+    for (int p = 1; p <= maxRounds; p *= 2) {
+        rounds.push_back(p);
+        if (p >= 2 && p + p / 2 <= maxRounds) rounds.push_back(p + p / 2);
+    }
+    std::sort(rounds.begin(), rounds.end());
+    if (rounds.empty() || rounds.back() != maxRounds) rounds.push_back(maxRounds);
+    return rounds;
+}
+
+// One tile row's share of the curve, summed in row order afterwards (deterministic).
+struct CurveRow {
+    std::vector<uint64_t> samples;
+    std::vector<double> halfWidthSum;
+};
+
+void addToCurve(const std::vector<int>& rounds, const PixelResult& r, CurveRow& row) {
+    if (r.halfWidths.empty()) return;
+    for (size_t c = 0; c < rounds.size(); ++c) {
+        const size_t k = std::min(size_t(rounds[c]), r.halfWidths.size());
+        row.samples[c] += 16 * uint64_t(k);
+        row.halfWidthSum[c] += r.halfWidths[k - 1];
+    }
+}
 
 // One round: two points of each replica's own scrambled Sobol sequence (lanes 2j, 2j + 1 are
 // replica j's points first, first + 1), traced as one packet, added to the replicas' sums.
@@ -157,6 +185,7 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
             r.est.stderr_ =
                 std::max(r.est.stderr_,
                          history[half - 1] * std::pow(double(half) / double(history.size()), 0.75));
+        r.halfWidths.push_back(float(kIntervalQuantile95 * r.est.stderr_));
         if (r.samples >= maxSpp) break;
         if (sampling.fixedSpp == 0 && r.samples >= kMinAdaptiveSpp &&
             kIntervalQuantile95 * r.est.stderr_ <= sampling.targetError)
@@ -180,6 +209,10 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
     // efficiency: reduced in slot order afterwards, so the sums do not depend on the threads.
     std::vector<float> perSampleVar(sb.slotCount(), 0.0f), halfWidth(sb.slotCount(), 0.0f);
     std::vector<double> efficiency(sb.slotCount(), 0.0);
+    const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
+    const std::vector<int> rounds = curveRounds((maxSpp + 15) / 16);
+    std::vector<CurveRow> curveRows(size_t(sb.tilesY), {std::vector<uint64_t>(rounds.size(), 0),
+                                                        std::vector<double>(rounds.size(), 0.0)});
     tbb::parallel_for(
         tbb::blocked_range<int>(0, sb.tilesY, 1), [&](const tbb::blocked_range<int>& range) {
             setEmbreeFloatMode();
@@ -223,6 +256,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                     V[pixel] = float(r.est.V);
                     stderr_[pixel] = float(r.est.stderr_);
                     spp[pixel] = float(r.samples);
+                    addToCurve(rounds, r, curveRows[size_t(ty)]);
                     const double hw = kIntervalQuantile95 * r.est.stderr_;
                     st.samples += uint64_t(r.samples);
                     st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
@@ -267,6 +301,22 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                    (total.worstHalfWidth * total.worstHalfWidth)));
     total.samplingEfficiency =
         total.pixelsSampled ? efficiencySum / double(total.pixelsSampled) : 1.0;
+    const int roundsUsed = int((total.maxSpp + 15) / 16);
+    for (size_t c = 0; c < rounds.size() && rounds[c] <= roundsUsed && total.pixelsSampled; ++c) {
+        CostPoint point{rounds[c], 0, 0.0};
+        for (const CurveRow& row : curveRows) {
+            point.samples += row.samples[c];
+            point.meanHalfWidth += row.halfWidthSum[c];
+        }
+        point.meanHalfWidth /= double(total.pixelsSampled);
+        total.costCurve.push_back(point);
+    }
+    if (total.pixelsSampled &&
+        (total.costCurve.empty() || total.costCurve.back().rounds < roundsUsed)) {
+        double sum = 0.0;  // the run as it ended
+        for (float h : halfWidth) sum += h;
+        total.costCurve.push_back({roundsUsed, total.samples, sum / double(total.pixelsSampled)});
+    }
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return total;
 }

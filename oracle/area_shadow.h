@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/channels.h"
 
@@ -48,6 +49,15 @@ struct AreaSampling {
     uint32_t seed = 0;
 };
 
+// One point of a light's cost curve: had every pixel stopped after at most `rounds` packets, the
+// samples spent over all pixels and the mean stated 95% half-width (pixels that stopped earlier
+// keep theirs).
+struct CostPoint {
+    int rounds = 0;
+    uint64_t samples = 0;
+    double meanHalfWidth = 0.0;
+};
+
 struct AreaShadowStats {
     uint64_t samples = 0, raysTraced = 0, raysOccluded = 0;
     uint64_t pixelsSampled = 0, reachedTarget = 0, maxSpp = 0;
@@ -63,6 +73,8 @@ struct AreaShadowStats {
         0.0;  // spp a uniform run needs for that worst half-width everywhere
     double samplingEfficiency = 1.0;  // mean over pixels of Kish's n_eff / n for the weights
     double seconds = 0.0;
+    // About two points per doubling of the packets, up to the most any pixel used.
+    std::vector<CostPoint> costCurve;
 };
 
 // Half-width and standard error of the estimate from the running sums (exposed for tests).

@@ -112,6 +112,7 @@ OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     s.worstHalfWidth = st.worstHalfWidth;
     s.uniformSpp = st.uniformSppForWorst;
     s.samplingEfficiency = st.samplingEfficiency;
+    s.costCurve = st.costCurve;
     s.seconds = st.seconds;
     return s;
 }

@@ -14,6 +14,27 @@ double OracleHardStats::raysPerSecond() const {
     return seconds > 0 ? double(raysTraced) / seconds : 0.0;
 }
 
+std::optional<double> OracleAreaStats::costSlope() const {
+    // The points where no pixel had stopped: samples = 16 x packets x pixels.
+    const CostPoint* first = nullptr;
+    const CostPoint* last = nullptr;
+    for (const CostPoint& p : costCurve) {
+        if (p.samples != 16 * uint64_t(p.rounds) * pixelsSampled) break;
+        if (p.rounds * 16 < kMinAdaptiveSpp || !(p.meanHalfWidth > 0.0)) continue;
+        if (!first) first = &p;
+        last = &p;
+    }
+    if (!first || last == first) return std::nullopt;
+    return std::log(last->meanHalfWidth / first->meanHalfWidth) /
+           std::log(double(last->samples) / double(first->samples));
+}
+
+std::optional<double> OracleAreaStats::predictedSeconds(double target) const {
+    const std::optional<double> slope = costSlope();
+    if (!targetError || !slope || !(*slope < 0.0) || !(target > 0.0)) return std::nullopt;
+    return seconds * std::pow(target / *targetError, 1.0 / *slope);
+}
+
 double OracleAreaStats::sppMean() const {
     return pixelsSampled ? double(samples) / double(pixelsSampled) : 0.0;
 }
@@ -80,6 +101,19 @@ json hardJson(const OracleHardStats& s) {
             {"seconds", s.seconds},        {"rays_per_second", s.raysPerSecond()}};
 }
 
+// The samples and mean stated half-width had every pixel stopped after at most `packets`; the
+// seconds pro rata of the samples.
+json costCurveJson(const OracleAreaStats& s) {
+    json curve = json::array();
+    for (const CostPoint& p : s.costCurve)
+        curve.push_back(
+            {{"packets", p.rounds},
+             {"samples", p.samples},
+             {"mean_half_width", p.meanHalfWidth},
+             {"seconds", s.samples ? s.seconds * double(p.samples) / double(s.samples) : 0.0}});
+    return curve;
+}
+
 json areaJson(const OracleAreaStats& s) {
     return {{"sampling", s.sampling},
             {"rays_traced", s.raysTraced},
@@ -106,6 +140,7 @@ json areaJson(const OracleAreaStats& s) {
               {"rays", s.uniformRays()},
               {"note", kUniformNote}}},
             {"sampling_efficiency", s.samplingEfficiency},
+            {"cost_curve", costCurveJson(s)},
             {"seconds", s.seconds},
             {"rays_per_second", s.raysPerSecond()}};
 }
@@ -348,6 +383,8 @@ OracleAreaStats readArea(const Fields& f) {
     s.worstHalfWidth = f.number("worst_half_width");
     s.uniformSpp = f.object("uniform_equivalent").number("spp");
     s.samplingEfficiency = f.number("sampling_efficiency");
+    for (const Fields& p : f.objects("cost_curve"))
+        s.costCurve.push_back({p.i32("packets"), p.u64("samples"), p.number("mean_half_width")});
     s.seconds = f.number("seconds");
     return s;
 }

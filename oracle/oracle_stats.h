@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene.h"
+#include "oracle/area_shadow.h"
 #include "oracle/verify.h"
 
 namespace so {
@@ -44,8 +45,15 @@ struct OracleAreaStats {
     double uniformSpp = 0.0;  // a uniform run reaching worstHalfWidth everywhere
     double samplingEfficiency = 1.0;
     double seconds = 0.0;
+    // What accuracy cost as the run went (area_shadow.h CostPoint); seconds are pro rata.
+    std::vector<CostPoint> costCurve;
 
     uint64_t samplesWithoutRay() const { return samples - raysTraced; }
+    // Adaptive runs: the seconds a run with `target` would take, from the slope of the cost curve
+    // while every pixel was still sampling (the mean half-width goes as samples^slope); none
+    // without enough of the curve.
+    std::optional<double> predictedSeconds(double target) const;
+    std::optional<double> costSlope() const;
     double sppMean() const;
     double uniformSamples() const;  // uniformSpp over the pixels sampled
     double uniformRays() const;     // uniformSamples at this run's rays per sample

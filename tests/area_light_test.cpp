@@ -341,6 +341,35 @@ TEST(AreaLight, AdaptiveSpendsWhatTheTargetNeeds) {
     EXPECT_EQ(la.shareReachedTarget, 1.0);
 }
 
+// The cost curve is what the run spent: samples grow and the mean stated half-width falls, it ends
+// at the run's totals, and the time it predicts for half the target is within 30% of a real run's.
+TEST(AreaLight, CostCurvePredictsATighterTarget) {
+    PenumbraScene s = makePenumbraScene(128, 96);
+    OracleRun r = run(s.scene, AreaSampling{});
+    ASSERT_TRUE(r.stats.lights[0].area);
+    const OracleAreaStats& a = *r.stats.lights[0].area;
+    ASSERT_GE(a.costCurve.size(), 5u);
+    for (size_t k = 1; k < a.costCurve.size(); ++k) {
+        EXPECT_GE(a.costCurve[k].samples, a.costCurve[k - 1].samples);
+        EXPECT_LE(a.costCurve[k].meanHalfWidth, a.costCurve[k - 1].meanHalfWidth);
+    }
+    EXPECT_EQ(a.costCurve.back().samples, a.samples);
+    AreaSampling half;
+    half.targetError = 0.005;
+    OracleRun tighter = run(s.scene, half);
+    const OracleAreaStats& b = *tighter.stats.lights[0].area;
+    // Samples rather than seconds: the same prediction, free of the machine's load.
+    const std::optional<double> predicted = a.predictedSeconds(0.005);
+    ASSERT_TRUE(predicted);
+    const double predictedSamples = double(a.samples) * *predicted / a.seconds;
+    std::printf(
+        "[ cost ] target 0.01: %llu samples; 0.005 predicted %.0f, measured %llu (slope "
+        "%.3f)\n",
+        (unsigned long long)a.samples, predictedSamples, (unsigned long long)b.samples,
+        *a.costSlope());
+    EXPECT_NEAR(predictedSamples / double(b.samples), 1.0, 0.3);
+}
+
 // A pixel that spends its budget short of the target is marked and counted, not passed off.
 TEST(AreaLight, PixelsShortOfTheTargetAreMarked) {
     PenumbraScene s = makePenumbraScene(64, 48);

@@ -135,15 +135,21 @@ std::string chart(const ReportInput& in, size_t light) {
     for (const ReportTechnique& t : in.techniques)
         pts.push_back({t.lights[light].cost.frameMs.median, t.lights[light].metrics.mae, t.label});
     if (pts.empty()) return "";
+    std::vector<P> oracle;  // the oracle's own accuracy against its time
+    if (light < in.oracleCurves.size())
+        for (const auto& [ms, e] : in.oracleCurves[light])
+            if (ms > 0.0 && e > 0.0) oracle.push_back({ms, e, "oracle"});
     // Time on a log scale: techniques differ in cost by orders of magnitude.
     double tMin = 1e300, tMax = 0, eMax = 0;
-    for (const P& p : pts)
-        tMin = std::min(tMin, p.t), tMax = std::max(tMax, p.t), eMax = std::max(eMax, p.e);
+    for (const std::vector<P>* set : {&pts, &oracle})
+        for (const P& p : *set)
+            tMin = std::min(tMin, p.t), tMax = std::max(tMax, p.t), eMax = std::max(eMax, p.e);
     tMin = std::max(tMin, 1e-3) / 1.3;
     tMax = std::max(tMax * 1.3, tMin * 10);
     double eMin = 1e300;
-    for (const P& p : pts)
-        if (p.e > 0) eMin = std::min(eMin, p.e);
+    for (const std::vector<P>* set : {&pts, &oracle})
+        for (const P& p : *set)
+            if (p.e > 0) eMin = std::min(eMin, p.e);
     eMin = eMin == 1e300 ? 1e-6 : eMin / 2;
     eMax = std::max(eMax * 1.5, eMin * 10);
     const double W = 580, H = 320, L = 80, B = 40, R = 20, T = 20;
@@ -179,6 +185,13 @@ std::string chart(const ReportInput& in, size_t light) {
       << "\" text-anchor=\"middle\">frame time (ms, log scale)</text>";
     s << "<text x=\"14\" y=\"" << (T + H - B) / 2 << "\" transform=\"rotate(-90 14 "
       << (T + H - B) / 2 << ")\" text-anchor=\"middle\">mean error of V (log scale)</text>";
+    if (!oracle.empty()) {
+        s << "<polyline class=\"oracle\" points=\"";
+        for (const P& p : oracle) s << X(p.t) << "," << Y(p.e) << " ";
+        s << "\"><title>the oracle: mean stated 95% half-width against its time</title></polyline>";
+        s << "<text x=\"" << X(oracle.back().t) - 4 << "\" y=\"" << Y(oracle.back().e) - 8
+          << "\" class=\"label\" text-anchor=\"end\">oracle (its own error)</text>";
+    }
     s << "<polyline class=\"pareto\" points=\"";
     for (const P& p : pareto) s << X(p.t) << "," << Y(p.e) << " ";
     s << "\"/>";
@@ -242,7 +255,7 @@ h1{font-size:22px}h2{font-size:18px;margin-top:32px}
 table{border-collapse:collapse;background:#fff;font-size:13px}th,td{padding:4px 8px;border-bottom:1px solid #ddd;text-align:right}
 th{cursor:pointer;background:#eee;position:sticky;top:0}td:first-child,td:nth-child(2),th:first-child,th:nth-child(2){text-align:left}
 .chart{background:#fff;border-radius:6px}.axis{stroke:#444}.tick{font-size:11px;fill:#555}.label{font-size:11px;fill:#333}
-.point{fill:#888}.front{fill:#d33}.pareto{fill:none;stroke:#d33;stroke-width:1.5;stroke-dasharray:4 3}
+.point{fill:#888}.front{fill:#d33}.oracle{fill:none;stroke:#0072b2;stroke-width:1.5}.pareto{fill:none;stroke:#d33;stroke-width:1.5;stroke-dasharray:4 3}
 footer{margin-top:32px;font-size:12px;color:#666}
 </style></head><body>)";
     o << "<h1>Shadow accuracy against the oracle: " << html(in.sceneFile) << "</h1>";

@@ -26,6 +26,9 @@ struct ReportInput {
     std::vector<ReportTechnique> techniques;
     nlohmann::json provenance;  // tool, scene hash, GL renderer: shown in the footer
     std::string timedOn;        // the GL renderer that measured the times
+    // Per light, sampled area lights only: the oracle's own cost curve, (ms, mean stated 95%
+    // half-width) as its adaptive run went (docs/oracle.md).
+    std::vector<std::vector<std::pair<double, double>>> oracleCurves;
 };
 
 void writeReport(const std::string& path, const ReportInput& in);
