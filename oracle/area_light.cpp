@@ -152,8 +152,14 @@ AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm
         const double sin2 =
             std::min(1.0, (double(light.lsRadius) * light.lsRadius) / (dist * dist));
         const double cosMax = std::sqrt(1.0 - sin2);
+        // t1 along the normal's part across the cone's axis: the horizon then cuts each ring of
+        // the cone in an arc symmetric about t1, which the sampler skips (mapAreaBatch).
+        const glm::dvec3 nd(n), nPerp = nd - glm::dot(nd, wc) * wc;
+        const double s = glm::length(nPerp);
         glm::dvec3 helper = std::fabs(wc.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-        glm::dvec3 t1 = glm::normalize(glm::cross(helper, wc));
+        const glm::dvec3 t1 = s > 1e-9 ? nPerp / s : glm::normalize(glm::cross(helper, wc));
+        px.horizonC = float(glm::dot(nd, wc));
+        px.horizonS = float(s > 1e-9 ? s : 0.0);
         px.wc = glm::vec3(wc);
         px.t1 = glm::vec3(t1);
         px.t2 = glm::vec3(glm::cross(wc, t1));
@@ -179,8 +185,21 @@ void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, 
         for (int k = 0; k < 16; ++k) {
             const float cosT = 1.0f - su[k] * px.oneMinusCosMax;
             const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
+            // The ring at this cosT is above the horizon for |phi| < phiMax (n.d > 0 with
+            // n.d = c cosT + s sinT cos phi): phi is sampled there only, and the weight carries
+            // the ring's visible share, so no sample is spent below the horizon.
+            const float lowest = px.horizonC * cosT - px.horizonS * sinT;  // n.d at phi = pi
+            float phiMax = std::numbers::pi_v<float>;
+            if (lowest < 0.0f) {
+                const float across = px.horizonS * sinT;
+                const float x = across > 0.0f ? -px.horizonC * cosT / across : 2.0f;
+                phiMax = std::acos(std::clamp(x, -1.0f, 1.0f));
+            }
+            float turn = (2.0f * sv[k] - 1.0f) * phiMax * (0.5f / std::numbers::pi_v<float>);
+            if (turn < 0.0f) turn += 1.0f;
+            if (turn >= 1.0f) turn = 0.0f;
             float sinPhi, cosPhi;
-            sincos2Pi(sv[k], sinPhi, cosPhi);
+            sincos2Pi(turn, sinPhi, cosPhi);
             const float cx = cosPhi * sinT, cy = sinPhi * sinT;
             const float dx = cx * px.t1.x + cy * px.t2.x + cosT * px.wc.x;
             const float dy = cx * px.t1.y + cy * px.t2.y + cosT * px.wc.y;
@@ -194,7 +213,9 @@ void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, 
             b.dirY[k] = dy;
             b.dirZ[k] = dz;
             b.tfar[k] = std::max(0.0f, t - margin);
-            b.weight[k] = ((k < count) & (cosP > 0.0f)) ? cosP : 0.0f;
+            b.weight[k] = ((k < count) & (cosP > 0.0f))
+                              ? cosP * (phiMax * (1.0f / std::numbers::pi_v<float>))
+                              : 0.0f;
         }
         return;
     }

@@ -38,9 +38,11 @@ enum class AreaSkip : uint8_t { None, BelowHorizon, BehindLight, InsideLight };
 // What one pixel needs to sample the light: computed once per pixel.
 struct AreaPixel {
     glm::vec3 p{0.0f}, n{0.0f};
-    // sphere: cone towards the centre
+    // sphere: cone towards the centre, t1 towards the receiver's normal (so the horizon cuts each
+    // ring of the cone symmetrically about t1); horizonC = n.wc, horizonS = n.t1 >= 0
     glm::vec3 wc{0.0f}, t1{0.0f}, t2{0.0f};
     float dist = 0.0f, oneMinusCosMax = 0.0f, radius2 = 0.0f;
+    float horizonC = 1.0f, horizonS = 0.0f;
     // rect partly below the horizon: the part above it, as a fan of up to 3 triangles sampled by
     // area, so that no sample is spent where G = 0 (grazing receivers would otherwise get none).
     int clippedTriangles = 0;
