@@ -145,6 +145,21 @@ AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm
     px.p = p;
     px.n = n;
     if (light.type == LightType::Rect) clipRectToHorizon(light, glm::dvec3(p), glm::dvec3(n), px);
+    if (light.type == LightType::Disk) {
+        // Where the horizon crosses the disk, the sampler skips the part below it.
+        const glm::dvec3 nd(n);
+        const double h = glm::dot(nd, light.dCenter - glm::dvec3(p));
+        const double a1 = glm::dot(nd, glm::dvec3(light.lsE1)),
+                     a2 = glm::dot(nd, glm::dvec3(light.lsE2));
+        const double s = std::sqrt(a1 * a1 + a2 * a2);
+        if (s > 1e-9 && h < light.dRadius * s) {
+            px.diskClipped = true;
+            px.diskH = float(h);
+            px.diskS = float(s);
+            px.diskA1 = float(a1 / s);
+            px.diskA2 = float(a2 / s);
+        }
+    }
     if (light.type == LightType::Sphere) {
         const glm::dvec3 d = glm::dvec3(light.lsCenter) - glm::dvec3(p);
         const double dist = glm::length(d);
@@ -221,6 +236,8 @@ void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, 
     }
     // Sample points first, one branch-free loop per shape, then one loop for all.
     float yx[16], yy[16], yz[16];
+    float share[16];  // a clipped disk's visible share of each sample's circle; else 1
+    std::fill(share, share + 16, 1.0f);
     if (light.type == LightType::Rect && px.clippedTriangles == 0) {
         for (int k = 0; k < 16; ++k) {
             const glm::vec3 y =
@@ -239,6 +256,26 @@ void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, 
             const glm::vec3 y = (1.0f - r) * px.tri[t][0] + (r * (1.0f - sv[k])) * px.tri[t][1] +
                                 (r * sv[k]) * px.tri[t][2];
             yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
+        }
+    } else if (light.type == LightType::Disk && px.diskClipped) {
+        for (int k = 0; k < 16; ++k) {
+            // Area-uniform radius; the angle over the arc of that circle above the horizon only,
+            // the weight carrying the arc's share.
+            const float r = light.lsRadius * std::sqrt(su[k]);
+            const float across = r * px.diskS;
+            const float x = across > 0.0f ? -px.diskH / across : (px.diskH > 0.0f ? -2.0f : 2.0f);
+            const float tMax = std::acos(std::clamp(x, -1.0f, 1.0f));
+            share[k] = tMax * (1.0f / std::numbers::pi_v<float>);
+            float turn = (2.0f * sv[k] - 1.0f) * tMax * (0.5f / std::numbers::pi_v<float>);
+            if (turn < 0.0f) turn += 1.0f;
+            if (turn >= 1.0f) turn = 0.0f;
+            float st, ct;
+            sincos2Pi(turn, st, ct);
+            const float e1 = r * (ct * px.diskA1 - st * px.diskA2),
+                        e2 = r * (ct * px.diskA2 + st * px.diskA1);
+            yx[k] = light.lsCenter.x + e1 * light.lsE1.x + e2 * light.lsE2.x;
+            yy[k] = light.lsCenter.y + e1 * light.lsE1.y + e2 * light.lsE2.y;
+            yz[k] = light.lsCenter.z + e1 * light.lsE1.z + e2 * light.lsE2.z;
         }
     } else {
         for (int k = 0; k < 16; ++k) {
@@ -272,7 +309,8 @@ void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, 
         b.dirY[k] = wy;
         b.dirZ[k] = wz;
         b.tfar[k] = std::max(0.0f, dist - margin);
-        b.weight[k] = ((k < count) & (cosP > 0.0f) & (cosY > 0.0f)) ? cosP * cosY / r2 : 0.0f;
+        b.weight[k] =
+            ((k < count) & (cosP > 0.0f) & (cosY > 0.0f)) ? share[k] * cosP * cosY / r2 : 0.0f;
     }
 }
 

@@ -43,6 +43,10 @@ struct AreaPixel {
     glm::vec3 wc{0.0f}, t1{0.0f}, t2{0.0f};
     float dist = 0.0f, oneMinusCosMax = 0.0f, radius2 = 0.0f;
     float horizonC = 1.0f, horizonS = 0.0f;
+    // disk partly below the horizon: points c + r (cos t a + sin t a_perp) are above it where
+    // diskH + r diskS cos t > 0 (a: the normal's direction within the disk's plane, in (e1, e2))
+    bool diskClipped = false;
+    float diskH = 0.0f, diskS = 0.0f, diskA1 = 1.0f, diskA2 = 0.0f;
     // rect partly below the horizon: the part above it, as a fan of up to 3 triangles sampled by
     // area, so that no sample is spent where G = 0 (grazing receivers would otherwise get none).
     int clippedTriangles = 0;

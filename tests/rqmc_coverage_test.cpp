@@ -1,4 +1,5 @@
-// The oracle's penumbra intervals for disk and sphere lights, which have no closed form here,
+// The oracle's penumbra intervals for disk and sphere lights, which have no closed form here (on a
+// floor, and on a plane whose horizon cuts the light: the clipped samplers),
 // against an independent reference: 10^6 independent uniform samples by area of the light per
 // pixel (its own sampler and random numbers, Embree rays from the receiver triangle), on 300
 // penumbra pixels chosen by the reference alone. The stated 95% intervals must cover the reference
@@ -7,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
@@ -23,11 +26,24 @@ namespace {
 
 namespace ch = channels;
 
-// A light 4 above the floor, a 2 x 2 square occluder at 1.5 between: wide penumbrae.
-Scene makeScene(LightType type) {
+// A light 4 above the floor, a 2 x 2 square occluder at 1.5 between: wide penumbrae. `tilted`: the
+// receiver is instead a plane through the light's centre, so its horizon cuts the light for every
+// pixel (the clipped samplers), with a strip occluder in front of it.
+Scene makeScene(LightType type, bool tilted) {
     Scene sc;
-    sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
-    sc.meshes.push_back(makeGrid({0, 1.5, 0}, {2, 0, 0}, {0, 0, -2}, 1, "occluder"));
+    if (!tilted) {
+        sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
+        sc.meshes.push_back(makeGrid({0, 1.5, 0}, {2, 0, 0}, {0, 0, -2}, 1, "occluder"));
+    } else {
+        const glm::dvec3 n = glm::normalize(glm::dvec3(0.15, 0.5, 1.0));
+        const glm::dvec3 centre(0.5, -1.0, 2.75);  // n . (centre - light centre) = 0
+        const glm::dvec3 t1 = glm::normalize(glm::cross(glm::dvec3(0, 1, 0), n)),
+                         t2 = glm::cross(n, t1);
+        sc.meshes.push_back(makeGrid(centre, 8.0 * t1, 6.0 * t2, 6, "tilted"));
+        sc.meshes.push_back(makeGrid({0.0, 1.5, 2.3}, {2, 0, 0}, {0, 0, -1}, 1, "strip"));
+        sc.camera.wsEye = centre + 7.0 * n + glm::dvec3(0, 1.0, 0);
+        sc.camera.wsTarget = centre;
+    }
     Light l;
     l.name = "L";
     l.type = type;
@@ -36,8 +52,10 @@ Scene makeScene(LightType type) {
     l.radius = 0.9;
     sc.lights = {l};
     sc.effects = {"penumbra"};
-    sc.camera.wsEye = {0.25, 6.0, 5.0};
-    sc.camera.wsTarget = {0.25, 0.0, 0.0};
+    if (!tilted) {
+        sc.camera.wsEye = {0.25, 6.0, 5.0};
+        sc.camera.wsTarget = {0.25, 0.0, 0.0};
+    }
     sc.camera.vfovDeg = 40;
     sc.camera.width = 96;
     sc.camera.height = 72;
@@ -153,15 +171,20 @@ Calibration calibrate(const std::vector<Pixel>& pixels, const ChannelImage& img)
 }
 
 TEST(Rqmc, DiskAndSphereIntervalsCoverAnIndependentReference) {
-    for (LightType type : {LightType::Disk, LightType::Sphere}) {
-        const Scene scene = makeScene(type);
+    for (const auto& [type, tilted] : {std::pair{LightType::Disk, false},
+                                       {LightType::Sphere, false},
+                                       {LightType::Disk, true},
+                                       {LightType::Sphere, true}}) {
+        const Scene scene = makeScene(type, tilted);
+        const std::string what =
+            std::string(lightTypeName(type)) + (tilted ? ", horizon across" : "");
         EmbreeDevice device;
         const Accel accel(scene, device);
         OracleOptions adaptive;
         adaptive.progress = false;
         const ChannelImage adaptiveImg = runOracle(scene, adaptive).image;
         std::vector<Pixel> pixels = penumbraPixels(accel, scene.lights[0], adaptiveImg);
-        ASSERT_GE(pixels.size(), 250u) << lightTypeName(type);
+        ASSERT_GE(pixels.size(), 250u) << what;
         tbb::parallel_for(size_t(0), pixels.size(), [&](size_t k) {
             Pixel& px = pixels[k];
             px.reference = referenceV(accel, scene.lights[0], px.p, px.n, px.originId,
@@ -172,16 +195,15 @@ TEST(Rqmc, DiskAndSphereIntervalsCoverAnIndependentReference) {
         const Calibration a = calibrate(pixels, adaptiveImg),
                           f = calibrate(pixels, runOracle(scene, fixed).image);
         std::printf(
-            "[ rqmc ] %s, %zu penumbra pixels against 10^6 independent samples each: "
+            "[ rqmc ] %s: %zu penumbra pixels against 10^6 independent samples each: "
             "adaptive (target 0.01) coverage %.4f, RMS / stated %.3f; 256 spp coverage "
             "%.4f, RMS / stated %.3f\n",
-            lightTypeName(type), pixels.size(), a.coverage, a.rmsOverStated, f.coverage,
-            f.rmsOverStated);
+            what.c_str(), pixels.size(), a.coverage, a.rmsOverStated, f.coverage, f.rmsOverStated);
         for (const Calibration& c : {a, f}) {
-            EXPECT_GE(c.coverage, 0.92) << lightTypeName(type);
-            EXPECT_LE(c.coverage, 0.98) << lightTypeName(type);
-            EXPECT_GE(c.rmsOverStated, 0.8) << lightTypeName(type);
-            EXPECT_LE(c.rmsOverStated, 1.25) << lightTypeName(type);
+            EXPECT_GE(c.coverage, 0.92) << what;
+            EXPECT_LE(c.coverage, 0.98) << what;
+            EXPECT_GE(c.rmsOverStated, 0.8) << what;
+            EXPECT_LE(c.rmsOverStated, 1.25) << what;
         }
     }
 }
