@@ -193,109 +193,139 @@ void sampleAreaBatch(const AreaLight& light, const AreaPixel& px, uint32_t seed,
     mapAreaBatch(light, px, su, sv, count, b);
 }
 
-void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, const float* sv,
-                  int count, AreaBatch& b) {
-    const float margin = 2.0f * light.lsEndMargin;
-    if (light.type == LightType::Sphere) {
-        for (int k = 0; k < 16; ++k) {
-            const float cosT = 1.0f - su[k] * px.oneMinusCosMax;
-            const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
-            // The ring at this cosT is above the horizon for |phi| < phiMax (n.d > 0 with
-            // n.d = c cosT + s sinT cos phi): phi is sampled there only, and the weight carries
-            // the ring's visible share, so no sample is spent below the horizon.
-            const float lowest = px.horizonC * cosT - px.horizonS * sinT;  // n.d at phi = pi
-            float phiMax = std::numbers::pi_v<float>;
-            if (lowest < 0.0f) {
-                const float across = px.horizonS * sinT;
-                const float x = across > 0.0f ? -px.horizonC * cosT / across : 2.0f;
-                phiMax = std::acos(std::clamp(x, -1.0f, 1.0f));
-            }
-            float turn = (2.0f * sv[k] - 1.0f) * phiMax * (0.5f / std::numbers::pi_v<float>);
-            if (turn < 0.0f) turn += 1.0f;
-            if (turn >= 1.0f) turn = 0.0f;
-            float sinPhi, cosPhi;
-            sincos2Pi(turn, sinPhi, cosPhi);
-            const float cx = cosPhi * sinT, cy = sinPhi * sinT;
-            const float dx = cx * px.t1.x + cy * px.t2.x + cosT * px.wc.x;
-            const float dy = cx * px.t1.y + cy * px.t2.y + cosT * px.wc.y;
-            const float dz = cx * px.t1.z + cy * px.t2.z + cosT * px.wc.z;
-            // Distance to the near side of the sphere along d.
-            const float b2 = px.dist * cosT;
-            const float disc = std::max(0.0f, px.radius2 - px.dist * px.dist * sinT * sinT);
-            const float t = b2 - std::sqrt(disc);
-            const float cosP = px.n.x * dx + px.n.y * dy + px.n.z * dz;
-            b.dirX[k] = dx;
-            b.dirY[k] = dy;
-            b.dirZ[k] = dz;
-            b.tfar[k] = std::max(0.0f, t - margin);
-            b.weight[k] = ((k < count) & (cosP > 0.0f))
-                              ? cosP * (phiMax * (1.0f / std::numbers::pi_v<float>))
-                              : 0.0f;
+// Sphere: directions in the cone of the visible cap, straight into the batch.
+static void sphereBatch(const AreaPixel& px, const float* su, const float* sv, int count,
+                        float margin, AreaBatch& b) {
+    for (int k = 0; k < 16; ++k) {
+        const float cosT = 1.0f - su[k] * px.oneMinusCosMax;
+        const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
+        // The ring at this cosT is above the horizon for |phi| < phiMax (n.d > 0 with
+        // n.d = c cosT + s sinT cos phi): phi is sampled there only, and the weight carries
+        // the ring's visible share, so no sample is spent below the horizon.
+        const float lowest = px.horizonC * cosT - px.horizonS * sinT;  // n.d at phi = pi
+        float phiMax = std::numbers::pi_v<float>;
+        if (lowest < 0.0f) {
+            const float across = px.horizonS * sinT;
+            const float x = across > 0.0f ? -px.horizonC * cosT / across : 2.0f;
+            phiMax = std::acos(std::clamp(x, -1.0f, 1.0f));
         }
-        return;
+        float turn = (2.0f * sv[k] - 1.0f) * phiMax * (0.5f / std::numbers::pi_v<float>);
+        if (turn < 0.0f) turn += 1.0f;
+        if (turn >= 1.0f) turn = 0.0f;
+        float sinPhi, cosPhi;
+        sincos2Pi(turn, sinPhi, cosPhi);
+        const float cx = cosPhi * sinT, cy = sinPhi * sinT;
+        const float dx = cx * px.t1.x + cy * px.t2.x + cosT * px.wc.x;
+        const float dy = cx * px.t1.y + cy * px.t2.y + cosT * px.wc.y;
+        const float dz = cx * px.t1.z + cy * px.t2.z + cosT * px.wc.z;
+        // Distance to the near side of the sphere along d.
+        const float b2 = px.dist * cosT;
+        const float disc = std::max(0.0f, px.radius2 - px.dist * px.dist * sinT * sinT);
+        const float t = b2 - std::sqrt(disc);
+        const float cosP = px.n.x * dx + px.n.y * dy + px.n.z * dz;
+        b.dirX[k] = dx;
+        b.dirY[k] = dy;
+        b.dirZ[k] = dz;
+        b.tfar[k] = std::max(0.0f, t - margin);
+        b.weight[k] = ((k < count) & (cosP > 0.0f))
+                          ? cosP * (phiMax * (1.0f / std::numbers::pi_v<float>))
+                          : 0.0f;
     }
-    // Sample points first, one branch-free loop per shape, then one loop for all.
-    float yx[16], yy[16], yz[16];
-    float share[16];  // a clipped disk's visible share of each sample's circle; else 1
-    std::fill(share, share + 16, 1.0f);
-    if (light.type == LightType::Rect && px.clippedTriangles == 0) {
-        for (int k = 0; k < 16; ++k) {
-            const glm::vec3 y =
-                light.lsCenter + (su[k] - 0.5f) * light.lsU + (sv[k] - 0.5f) * light.lsV;
-            yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
-        }
-    } else if (light.type == LightType::Rect) {
-        for (int k = 0; k < 16; ++k) {
-            // Pick a triangle by area with u, reuse the rest of u inside it (keeps strata).
-            int t = 0;
-            while (t + 1 < px.clippedTriangles && su[k] >= px.triCdf[t]) ++t;
-            const float lo = t ? px.triCdf[t - 1] : 0.0f;
-            const float uu =
-                std::min(0.99999994f, (su[k] - lo) / std::max(px.triCdf[t] - lo, 1e-30f));
-            const float r = std::sqrt(uu);
-            const glm::vec3 y = (1.0f - r) * px.tri[t][0] + (r * (1.0f - sv[k])) * px.tri[t][1] +
-                                (r * sv[k]) * px.tri[t][2];
-            yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
-        }
-    } else if (light.type == LightType::Disk && px.diskClipped) {
-        for (int k = 0; k < 16; ++k) {
-            // Area-uniform radius; the angle over the arc of that circle above the horizon only,
-            // the weight carrying the arc's share.
-            const float r = light.lsRadius * std::sqrt(su[k]);
-            const float across = r * px.diskS;
-            const float x = across > 0.0f ? -px.diskH / across : (px.diskH > 0.0f ? -2.0f : 2.0f);
-            const float tMax = std::acos(std::clamp(x, -1.0f, 1.0f));
-            share[k] = tMax * (1.0f / std::numbers::pi_v<float>);
-            float turn = (2.0f * sv[k] - 1.0f) * tMax * (0.5f / std::numbers::pi_v<float>);
-            if (turn < 0.0f) turn += 1.0f;
-            if (turn >= 1.0f) turn = 0.0f;
-            float st, ct;
-            sincos2Pi(turn, st, ct);
-            const float e1 = r * (ct * px.diskA1 - st * px.diskA2),
-                        e2 = r * (ct * px.diskA2 + st * px.diskA1);
-            yx[k] = light.lsCenter.x + e1 * light.lsE1.x + e2 * light.lsE2.x;
-            yy[k] = light.lsCenter.y + e1 * light.lsE1.y + e2 * light.lsE2.y;
-            yz[k] = light.lsCenter.z + e1 * light.lsE1.z + e2 * light.lsE2.z;
-        }
-    } else {
-        for (int k = 0; k < 16; ++k) {
-            // Shirley-Chiu concentric map: area-preserving and keeps the strata compact. Its angle
-            // is within pi/4 of an axis, where the polynomials are accurate.
-            const float a = 2.0f * su[k] - 1.0f, c = 2.0f * sv[k] - 1.0f;
-            const bool nearX = std::fabs(a) > std::fabs(c);
-            const float r = nearX ? a : c;
-            const float num = nearX ? c : a, den = nearX ? a : c;
-            const float ratio = num / (den == 0.0f ? 1.0f : den);
-            float sq, cq;
-            sincosQuarterPi((std::numbers::pi_v<float> / 4) * ratio, sq, cq);
-            // nearX: angle = pi/4 * ratio; otherwise pi/2 - pi/4 * ratio (cos and sin swap).
-            const float cosT = nearX ? cq : sq, sinT = nearX ? sq : cq;
-            const float e1 = light.lsRadius * r * cosT, e2 = light.lsRadius * r * sinT;
-            yx[k] = light.lsCenter.x + e1 * light.lsE1.x + e2 * light.lsE2.x;
-            yy[k] = light.lsCenter.y + e1 * light.lsE1.y + e2 * light.lsE2.y;
-            yz[k] = light.lsCenter.z + e1 * light.lsE1.z + e2 * light.lsE2.z;
-        }
+}
+
+// Points on the light, one branch-free loop per shape; `share` is the weight factor of a sample
+// whose circle the horizon cuts (1 elsewhere).
+struct LightPoints {
+    float x[16], y[16], z[16];
+    float share[16];
+};
+
+static void rectPoints(const AreaLight& light, const float* su, const float* sv, LightPoints& q) {
+    float* yx = q.x;
+    float* yy = q.y;
+    float* yz = q.z;
+    for (int k = 0; k < 16; ++k) {
+        const glm::vec3 y =
+            light.lsCenter + (su[k] - 0.5f) * light.lsU + (sv[k] - 0.5f) * light.lsV;
+        yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
     }
+}
+
+static void clippedRectPoints(const AreaPixel& px, const float* su, const float* sv,
+                              LightPoints& q) {
+    float* yx = q.x;
+    float* yy = q.y;
+    float* yz = q.z;
+    for (int k = 0; k < 16; ++k) {
+        // Pick a triangle by area with u, reuse the rest of u inside it (keeps strata).
+        int t = 0;
+        while (t + 1 < px.clippedTriangles && su[k] >= px.triCdf[t]) ++t;
+        const float lo = t ? px.triCdf[t - 1] : 0.0f;
+        const float uu = std::min(0.99999994f, (su[k] - lo) / std::max(px.triCdf[t] - lo, 1e-30f));
+        const float r = std::sqrt(uu);
+        const glm::vec3 y = (1.0f - r) * px.tri[t][0] + (r * (1.0f - sv[k])) * px.tri[t][1] +
+                            (r * sv[k]) * px.tri[t][2];
+        yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
+    }
+}
+
+static void clippedDiskPoints(const AreaLight& light, const AreaPixel& px, const float* su,
+                              const float* sv, LightPoints& q) {
+    float* yx = q.x;
+    float* yy = q.y;
+    float* yz = q.z;
+    float* share = q.share;
+    for (int k = 0; k < 16; ++k) {
+        // Area-uniform radius; the angle over the arc of that circle above the horizon only,
+        // the weight carrying the arc's share.
+        const float r = light.lsRadius * std::sqrt(su[k]);
+        const float across = r * px.diskS;
+        const float x = across > 0.0f ? -px.diskH / across : (px.diskH > 0.0f ? -2.0f : 2.0f);
+        const float tMax = std::acos(std::clamp(x, -1.0f, 1.0f));
+        share[k] = tMax * (1.0f / std::numbers::pi_v<float>);
+        float turn = (2.0f * sv[k] - 1.0f) * tMax * (0.5f / std::numbers::pi_v<float>);
+        if (turn < 0.0f) turn += 1.0f;
+        if (turn >= 1.0f) turn = 0.0f;
+        float st, ct;
+        sincos2Pi(turn, st, ct);
+        const float e1 = r * (ct * px.diskA1 - st * px.diskA2),
+                    e2 = r * (ct * px.diskA2 + st * px.diskA1);
+        yx[k] = light.lsCenter.x + e1 * light.lsE1.x + e2 * light.lsE2.x;
+        yy[k] = light.lsCenter.y + e1 * light.lsE1.y + e2 * light.lsE2.y;
+        yz[k] = light.lsCenter.z + e1 * light.lsE1.z + e2 * light.lsE2.z;
+    }
+}
+
+static void diskPoints(const AreaLight& light, const float* su, const float* sv, LightPoints& q) {
+    float* yx = q.x;
+    float* yy = q.y;
+    float* yz = q.z;
+    for (int k = 0; k < 16; ++k) {
+        // Shirley-Chiu concentric map: area-preserving and keeps the strata compact. Its angle
+        // is within pi/4 of an axis, where the polynomials are accurate.
+        const float a = 2.0f * su[k] - 1.0f, c = 2.0f * sv[k] - 1.0f;
+        const bool nearX = std::fabs(a) > std::fabs(c);
+        const float r = nearX ? a : c;
+        const float num = nearX ? c : a, den = nearX ? a : c;
+        const float ratio = num / (den == 0.0f ? 1.0f : den);
+        float sq, cq;
+        sincosQuarterPi((std::numbers::pi_v<float> / 4) * ratio, sq, cq);
+        // nearX: angle = pi/4 * ratio; otherwise pi/2 - pi/4 * ratio (cos and sin swap).
+        const float cosT = nearX ? cq : sq, sinT = nearX ? sq : cq;
+        const float e1 = light.lsRadius * r * cosT, e2 = light.lsRadius * r * sinT;
+        yx[k] = light.lsCenter.x + e1 * light.lsE1.x + e2 * light.lsE2.x;
+        yy[k] = light.lsCenter.y + e1 * light.lsE1.y + e2 * light.lsE2.y;
+        yz[k] = light.lsCenter.z + e1 * light.lsE1.z + e2 * light.lsE2.z;
+    }
+}
+
+// Directions, segment lengths and weights G / pdf from the points.
+static void finishBatch(const AreaLight& light, const AreaPixel& px, const LightPoints& q,
+                        int count, float margin, AreaBatch& b) {
+    const float* yx = q.x;
+    const float* yy = q.y;
+    const float* yz = q.z;
+    const float* share = q.share;
     for (int k = 0; k < 16; ++k) {
         const float dx = yx[k] - px.p.x, dy = yy[k] - px.p.y, dz = yz[k] - px.p.z;
         const float r2 = dx * dx + dy * dy + dz * dz;
@@ -312,6 +342,23 @@ void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, 
         b.weight[k] =
             ((k < count) & (cosP > 0.0f) & (cosY > 0.0f)) ? share[k] * cosP * cosY / r2 : 0.0f;
     }
+}
+
+void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, const float* sv,
+                  int count, AreaBatch& b) {
+    const float margin = 2.0f * light.lsEndMargin;
+    if (light.type == LightType::Sphere) return sphereBatch(px, su, sv, count, margin, b);
+    LightPoints q;
+    std::fill(q.share, q.share + 16, 1.0f);
+    if (light.type == LightType::Rect && px.clippedTriangles == 0)
+        rectPoints(light, su, sv, q);
+    else if (light.type == LightType::Rect)
+        clippedRectPoints(px, su, sv, q);
+    else if (px.diskClipped)
+        clippedDiskPoints(light, px, su, sv, q);
+    else
+        diskPoints(light, su, sv, q);
+    finishBatch(light, px, q, count, margin, b);
 }
 
 }  // namespace so

@@ -199,97 +199,74 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
 
 }  // namespace
 
-AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
-                                 const AreaLight& light, const AreaSampling& sampling,
-                                 uint32_t stream, float* V, float* stderr_, float* spp,
-                                 float* cosine, float* unconverged, Progress* progress) {
-    auto t0 = std::chrono::steady_clock::now();
-    tbb::combinable<AreaShadowStats> partial;
-    // Per-pixel per-sample variance and half-width, for the uniform-run estimate, and sampling
-    // efficiency: reduced in slot order afterwards, so the sums do not depend on the threads.
-    std::vector<float> perSampleVar(sb.slotCount(), 0.0f), halfWidth(sb.slotCount(), 0.0f);
-    std::vector<double> efficiency(sb.slotCount(), 0.0);
-    const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
-    const std::vector<int> rounds = curveRounds((maxSpp + 15) / 16);
-    std::vector<CurveRow> curveRows(size_t(sb.tilesY), {std::vector<uint64_t>(rounds.size(), 0),
-                                                        std::vector<double>(rounds.size(), 0.0)});
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, sb.tilesY, 1), [&](const tbb::blocked_range<int>& range) {
-            setEmbreeFloatMode();
-            AreaShadowStats& st = partial.local();
-            PacketState packet;
-            rtcInitIntersectContext(&packet.ctx);
-            packet.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-            for (int ty = range.begin(); ty != range.end(); ++ty) {
-                for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
-                     s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s) {
-                    const size_t pixel = sb.pixelOfSlot(s);
-                    if (pixel == SIZE_MAX) continue;
-                    V[pixel] = 0.0f;
-                    stderr_[pixel] = 0.0f;
-                    spp[pixel] = 0.0f;
-                    cosine[pixel] = 0.0f;
-                    if (!sb.hit[s]) {
-                        ++st.skippedBackground;
-                        continue;
-                    }
-                    const glm::vec3 p = sb.lsPoint(s), n = sb.lsNormal(s);
-                    cosine[pixel] = glm::dot(n, glm::normalize(light.lsCenter - p));
-                    switch (classifyAreaPixel(light, glm::dvec3(p), glm::dvec3(n))) {
-                        case AreaSkip::BelowHorizon:
-                            ++st.skippedBelowHorizon;
-                            continue;
-                        case AreaSkip::BehindLight:
-                            ++st.skippedBehindLight;
-                            continue;
-                        case AreaSkip::InsideLight:
-                            ++st.skippedInsideLight;
-                            continue;
-                        case AreaSkip::None:
-                            break;
-                    }
-                    ++st.pixelsSampled;
-                    const PixelResult r =
-                        samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
-                                    areaPixelSeed(sampling.seed, stream, uint32_t(pixel)),
-                                    sb.lsRayOrigin(s), sb.originId[s], packet, st);
-                    V[pixel] = float(r.est.V);
-                    stderr_[pixel] = float(r.est.stderr_);
-                    spp[pixel] = float(r.samples);
-                    addToCurve(rounds, r, curveRows[size_t(ty)]);
-                    const double hw = kIntervalQuantile95 * r.est.stderr_;
-                    st.samples += uint64_t(r.samples);
-                    st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
-                    st.reachedTarget += hw <= sampling.targetError;
-                    if (sampling.fixedSpp == 0 && hw > sampling.targetError) {
-                        ++st.pixelsUnconverged;
-                        if (unconverged) unconverged[pixel] = 1.0f;
-                    }
-                    halfWidth[s] = float(hw);
-                    perSampleVar[s] = float(r.est.stderr_ * r.est.stderr_ * double(r.samples));
-                    efficiency[s] = r.efficiency;
-                }
-                if (progress)
-                    progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
-            }
-        });
+namespace {
 
-    AreaShadowStats total;
-    partial.combine_each([&](const AreaShadowStats& s) {
-        total.samples += s.samples;
-        total.raysTraced += s.raysTraced;
-        total.raysOccluded += s.raysOccluded;
-        total.pixelsSampled += s.pixelsSampled;
-        total.reachedTarget += s.reachedTarget;
-        total.pixelsUnconverged += s.pixelsUnconverged;
-        total.pixelsWithoutUsableSamples += s.pixelsWithoutUsableSamples;
-        total.maxSpp = std::max(total.maxSpp, s.maxSpp);
-        total.skippedBackground += s.skippedBackground;
-        total.skippedBelowHorizon += s.skippedBelowHorizon;
-        total.skippedBehindLight += s.skippedBehindLight;
-        total.skippedInsideLight += s.skippedInsideLight;
-    });
-    // Reductions over the per-slot arrays run in slot order: independent of the thread count.
+// One light's sampling over the image: what every pixel reads and writes, and the per-slot and
+// per-row records that are reduced in a fixed order afterwards (so the statistics do not depend on
+// the thread count).
+struct AreaRun {
+    const Accel& accel;
+    const SurfaceBuffer& sb;
+    const AreaLight& light;
+    const AreaSampling& sampling;
+    uint32_t stream;
+    float *V, *stderr_, *spp, *cosine, *unconverged;
+    std::vector<int> rounds;
+    std::vector<float> perSampleVar, halfWidth;  // per slot
+    std::vector<double> efficiency;              // per slot
+    std::vector<CurveRow> curveRows;             // per tile row
+
+    void pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st);
+    void reduceSlots(AreaShadowStats& total) const;
+    void reduceCurve(AreaShadowStats& total) const;
+};
+
+void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) {
+    const size_t px = sb.pixelOfSlot(s);
+    if (px == SIZE_MAX) return;
+    V[px] = stderr_[px] = spp[px] = cosine[px] = 0.0f;
+    if (!sb.hit[s]) {
+        ++st.skippedBackground;
+        return;
+    }
+    const glm::vec3 p = sb.lsPoint(s), n = sb.lsNormal(s);
+    cosine[px] = glm::dot(n, glm::normalize(light.lsCenter - p));
+    switch (classifyAreaPixel(light, glm::dvec3(p), glm::dvec3(n))) {
+        case AreaSkip::BelowHorizon:
+            ++st.skippedBelowHorizon;
+            return;
+        case AreaSkip::BehindLight:
+            ++st.skippedBehindLight;
+            return;
+        case AreaSkip::InsideLight:
+            ++st.skippedInsideLight;
+            return;
+        case AreaSkip::None:
+            break;
+    }
+    ++st.pixelsSampled;
+    const PixelResult r = samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
+                                      areaPixelSeed(sampling.seed, stream, uint32_t(px)),
+                                      sb.lsRayOrigin(s), sb.originId[s], packet, st);
+    V[px] = float(r.est.V);
+    stderr_[px] = float(r.est.stderr_);
+    spp[px] = float(r.samples);
+    addToCurve(rounds, r, curveRows[size_t(ty)]);
+    const double hw = kIntervalQuantile95 * r.est.stderr_;
+    st.samples += uint64_t(r.samples);
+    st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
+    st.reachedTarget += hw <= sampling.targetError;
+    if (sampling.fixedSpp == 0 && hw > sampling.targetError) {
+        ++st.pixelsUnconverged;
+        if (unconverged) unconverged[px] = 1.0f;
+    }
+    halfWidth[s] = float(hw);
+    perSampleVar[s] = float(r.est.stderr_ * r.est.stderr_ * double(r.samples));
+    efficiency[s] = r.efficiency;
+}
+
+// Reductions over the per-slot arrays, in slot order.
+void AreaRun::reduceSlots(AreaShadowStats& total) const {
     double efficiencySum = 0.0;
     for (double e : efficiency) efficiencySum += e;
     for (float h : halfWidth) total.worstHalfWidth = std::max(total.worstHalfWidth, double(h));
@@ -301,6 +278,10 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                    (total.worstHalfWidth * total.worstHalfWidth)));
     total.samplingEfficiency =
         total.pixelsSampled ? efficiencySum / double(total.pixelsSampled) : 1.0;
+}
+
+// The cost curve from the rows, in row order, and the run as it ended.
+void AreaRun::reduceCurve(AreaShadowStats& total) const {
     const int roundsUsed = int((total.maxSpp + 15) / 16);
     for (size_t c = 0; c < rounds.size() && rounds[c] <= roundsUsed && total.pixelsSampled; ++c) {
         CostPoint point{rounds[c], 0, 0.0};
@@ -313,10 +294,73 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
     }
     if (total.pixelsSampled &&
         (total.costCurve.empty() || total.costCurve.back().rounds < roundsUsed)) {
-        double sum = 0.0;  // the run as it ended
+        double sum = 0.0;
         for (float h : halfWidth) sum += h;
         total.costCurve.push_back({roundsUsed, total.samples, sum / double(total.pixelsSampled)});
     }
+}
+
+void addCounts(AreaShadowStats& total, const AreaShadowStats& s) {
+    total.samples += s.samples;
+    total.raysTraced += s.raysTraced;
+    total.raysOccluded += s.raysOccluded;
+    total.pixelsSampled += s.pixelsSampled;
+    total.reachedTarget += s.reachedTarget;
+    total.pixelsUnconverged += s.pixelsUnconverged;
+    total.pixelsWithoutUsableSamples += s.pixelsWithoutUsableSamples;
+    total.maxSpp = std::max(total.maxSpp, s.maxSpp);
+    total.skippedBackground += s.skippedBackground;
+    total.skippedBelowHorizon += s.skippedBelowHorizon;
+    total.skippedBehindLight += s.skippedBehindLight;
+    total.skippedInsideLight += s.skippedInsideLight;
+}
+
+}  // namespace
+
+AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
+                                 const AreaLight& light, const AreaSampling& sampling,
+                                 uint32_t stream, float* V, float* stderr_, float* spp,
+                                 float* cosine, float* unconverged, Progress* progress) {
+    auto t0 = std::chrono::steady_clock::now();
+    const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
+    const std::vector<int> rounds = curveRounds((maxSpp + 15) / 16);
+    AreaRun run{
+        accel,
+        sb,
+        light,
+        sampling,
+        stream,
+        V,
+        stderr_,
+        spp,
+        cosine,
+        unconverged,
+        rounds,
+        std::vector<float>(sb.slotCount(), 0.0f),
+        std::vector<float>(sb.slotCount(), 0.0f),
+        std::vector<double>(sb.slotCount(), 0.0),
+        std::vector<CurveRow>(size_t(sb.tilesY), {std::vector<uint64_t>(rounds.size(), 0),
+                                                  std::vector<double>(rounds.size(), 0.0)})};
+    tbb::combinable<AreaShadowStats> partial;
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, sb.tilesY, 1), [&](const tbb::blocked_range<int>& range) {
+            setEmbreeFloatMode();
+            AreaShadowStats& st = partial.local();
+            PacketState packet;
+            rtcInitIntersectContext(&packet.ctx);
+            packet.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            for (int ty = range.begin(); ty != range.end(); ++ty) {
+                for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
+                     s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s)
+                    run.pixel(s, ty, packet, st);
+                if (progress)
+                    progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
+            }
+        });
+    AreaShadowStats total;
+    partial.combine_each([&](const AreaShadowStats& s) { addCounts(total, s); });
+    run.reduceSlots(total);
+    run.reduceCurve(total);
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return total;
 }
