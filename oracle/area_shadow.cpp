@@ -18,6 +18,18 @@ namespace so {
 namespace {
 constexpr double kZ = kZ95;
 constexpr double kPrior = 0.5 * kZ * kZ;  // Agresti-Coull: z^2/2 pseudo-samples each way
+
+// The prior: kPrior pseudo-samples lit and kPrior shadowed at the mean weight. W: the total weight
+// with them; Va: the estimate with them; share: their part of sum w^2 (v - Va)^2.
+struct Prior {
+    double W, Va, share;
+};
+Prior agrestiCoull(double sw, double swv, uint64_t nonZero) {
+    const double wbar = sw / double(nonZero);
+    const double W = sw + 2.0 * kPrior * wbar;
+    const double Va = (swv + kPrior * wbar) / W;
+    return {W, Va, kPrior * wbar * wbar * ((1.0 - Va) * (1.0 - Va) + Va * Va)};
+}
 }  // namespace
 
 uint32_t areaPixelSeed(uint32_t seed, uint32_t stream, uint32_t pixel) {
@@ -32,13 +44,10 @@ RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint
         return e;
     }
     e.V = swv / sw;
-    const double wbar = sw / double(nonZero);
-    const double W = sw + 2.0 * kPrior * wbar;
-    const double Va = (swv + kPrior * wbar) / W;
+    const Prior pr = agrestiCoull(sw, swv, nonZero);
     // sum w^2 (v - Va)^2 with v in {0, 1}: sw2v (1 - 2 Va) + Va^2 sw2, plus the prior's share.
-    const double ss = sw2v * (1.0 - 2.0 * Va) + Va * Va * sw2 +
-                      kPrior * wbar * wbar * ((1.0 - Va) * (1.0 - Va) + Va * Va);
-    e.stderr_ = std::sqrt(std::max(0.0, ss)) / W;
+    const double ss = sw2v * (1.0 - 2.0 * pr.Va) + pr.Va * pr.Va * sw2 + pr.share;
+    e.stderr_ = std::sqrt(std::max(0.0, ss)) / pr.W;
     return e;
 }
 
@@ -62,11 +71,8 @@ RatioEstimate replicaEstimate(const ReplicaSums& s) {
     const double seReplicas = std::sqrt(ss / (kReplicas * (kReplicas - 1.0))) / yMean;
     // The prior's share of the iid estimate: it keeps "all samples agree" from meaning "certain",
     // and dominates only where the replicas barely differ.
-    const double wbar = y / double(s.nonZero);
-    const double W = y + 2.0 * kPrior * wbar;
-    const double Va = (x + kPrior * wbar) / W;
-    const double sePrior =
-        std::sqrt(kPrior * wbar * wbar * ((1.0 - Va) * (1.0 - Va) + Va * Va)) / W;
+    const Prior pr = agrestiCoull(y, x, s.nonZero);
+    const double sePrior = std::sqrt(pr.share) / pr.W;
     // Stated as a standard error for the t quantile: half-width max(t se, z sePrior).
     e.stderr_ = std::max(seReplicas, kZ * sePrior / kIntervalQuantile95);
     return e;
@@ -80,13 +86,16 @@ struct PacketState {
     alignas(64) RTCRay16 ray;
     alignas(64) int valid[16];
     AreaBatch batch;
+    // The current pixel's estimate after each packet: the stderr before the stopping guard, and
+    // the stated half-width. Kept here so that no pixel allocates.
+    std::vector<double> history;
+    std::vector<float> halfWidths;
 };
 
 struct PixelResult {
     RatioEstimate est;
     int samples = 0;
-    double efficiency = 0.0;        // Kish's n_eff / n of the weights
-    std::vector<float> halfWidths;  // the stated half-width after each packet
+    double efficiency = 0.0;  // Kish's n_eff / n of the weights
 };
 
 // The rounds the cost curve is read at: 1, 2, 3, 4, 6, 8, 12, ... up to `maxRounds`.
@@ -107,12 +116,14 @@ struct CurveRow {
     std::vector<double> halfWidthSum;
 };
 
-void addToCurve(const std::vector<int>& rounds, const PixelResult& r, CurveRow& row) {
-    if (r.halfWidths.empty()) return;
+// `halfWidths`: one pixel's stated half-width after each packet.
+void addToCurve(const std::vector<int>& rounds, const std::vector<float>& halfWidths,
+                CurveRow& row) {
+    if (halfWidths.empty()) return;
     for (size_t c = 0; c < rounds.size(); ++c) {
-        const size_t k = std::min(size_t(rounds[c]), r.halfWidths.size());
+        const size_t k = std::min(size_t(rounds[c]), halfWidths.size());
         row.samples[c] += 16 * uint64_t(k);
-        row.halfWidthSum[c] += r.halfWidths[k - 1];
+        row.halfWidthSum[c] += halfWidths[k - 1];
     }
 }
 
@@ -171,7 +182,9 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
     const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
     ReplicaSums sums;
     PixelResult r;
-    std::vector<double> history;  // the estimate's stderr after each round
+    std::vector<double>& history = p.history;
+    p.history.clear();
+    p.halfWidths.clear();
     for (uint32_t first = 0;; first += kPointsPerRound) {
         traceRound(accel, light, px, replicaSeeds, first, p, sums, st);
         r.samples += 16;
@@ -185,7 +198,7 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
             r.est.stderr_ =
                 std::max(r.est.stderr_,
                          history[half - 1] * std::pow(double(half) / double(history.size()), 0.75));
-        r.halfWidths.push_back(float(kIntervalQuantile95 * r.est.stderr_));
+        p.halfWidths.push_back(float(kIntervalQuantile95 * r.est.stderr_));
         if (r.samples >= maxSpp) break;
         if (sampling.fixedSpp == 0 && r.samples >= kMinAdaptiveSpp &&
             kIntervalQuantile95 * r.est.stderr_ <= sampling.targetError)
@@ -196,10 +209,6 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
     if (sums.sw2 > 0.0) r.efficiency = sw * sw / (sums.sw2 * double(sums.nonZero));
     return r;
 }
-
-}  // namespace
-
-namespace {
 
 // One light's sampling over the image: what every pixel reads and writes, and the per-slot and
 // per-row records that are reduced in a fixed order afterwards (so the statistics do not depend on
@@ -251,7 +260,7 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
     V[px] = float(r.est.V);
     stderr_[px] = float(r.est.stderr_);
     spp[px] = float(r.samples);
-    addToCurve(rounds, r, curveRows[size_t(ty)]);
+    addToCurve(rounds, packet.halfWidths, curveRows[size_t(ty)]);
     const double hw = kIntervalQuantile95 * r.est.stderr_;
     st.samples += uint64_t(r.samples);
     st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
