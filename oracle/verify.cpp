@@ -11,6 +11,7 @@
 
 #include "oracle/area_shadow.h"
 #include "oracle/offset.h"
+#include "oracle/reference_light.h"
 
 namespace so {
 
@@ -21,18 +22,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Below this |cos| (or cone / emitter test value) the reference calls a facing test a tie: the
 // oracle decides it on float normals and points (error ~1e-7).
 constexpr double kCosTie = 1e-6;
-
-// SplitMix64: the reference's own random numbers, unrelated to the oracle's Sobol sequences.
-struct SplitMix {
-    uint64_t s;
-    uint64_t next() {
-        uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-};
 
 uint64_t mix(uint64_t a, uint64_t b) {
     SplitMix m{a * 0x100000001B3ull ^ b};
@@ -216,34 +205,15 @@ Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, f
 Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, size_t pixel,
                                       const PixelRef& ref, float oracleV, float oracleStderr,
                                       float oracleSpp, double z, VerifyDisagreement& d) const {
-    const double s = frame_.lsLength(1.0);
+    const ReferenceLight reference(light, frame_);
     const glm::dvec3 c = frame_.lsFromWs(light.wsPosition);
-    const glm::dvec3 U = light.wsU * s, Vv = light.wsV * s, m = light.wsEmitNormal();
-    const double R = light.radius * s;
-    // An orthonormal basis of the disk's plane.
-    const glm::dvec3 helper = std::fabs(m.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-    const glm::dvec3 e1 =
-        light.type == LightType::Disk ? glm::normalize(glm::cross(helper, m)) : glm::dvec3(0.0);
-    const glm::dvec3 e2 = glm::cross(m, e1);
     SplitMix rng{mix(mix(mix(seed_, lightIndex), pixel), 0x61726561ull)};
     double sw = 0, swv = 0, sw2 = 0, sw2v = 0;
     uint64_t nonZero = 0;
     for (int i = 0; i < options_.areaSamples; ++i) {
         const double u1 = rng.uniform(), u2 = rng.uniform();
         glm::dvec3 y, ny;
-        if (light.type == LightType::Rect) {
-            y = c + (u1 - 0.5) * U + (u2 - 0.5) * Vv;
-            ny = m;
-        } else if (light.type == LightType::Disk) {
-            const double r = R * std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
-            y = c + r * (std::cos(phi) * e1 + std::sin(phi) * e2);
-            ny = m;
-        } else {  // sphere: uniform by area over the whole sphere
-            const double zc = 1.0 - 2.0 * u1, rr = std::sqrt(std::max(0.0, 1.0 - zc * zc));
-            const double phi = 2.0 * std::numbers::pi * u2;
-            ny = glm::dvec3(rr * std::cos(phi), rr * std::sin(phi), zc);
-            y = c + R * ny;
-        }
+        reference.point(u1, u2, y, ny);
         const glm::dvec3 w = y - ref.p;
         const double dist = glm::length(w);
         const glm::dvec3 dir = w / dist;

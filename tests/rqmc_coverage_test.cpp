@@ -1,13 +1,12 @@
 // The oracle's penumbra intervals for disk and sphere lights, which have no closed form here (on a
-// floor, and on a plane whose horizon cuts the light: the clipped samplers),
-// against an independent reference: 10^6 independent uniform samples by area of the light per
-// pixel (its own sampler and random numbers, Embree rays from the receiver triangle), on 300
-// penumbra pixels chosen by the reference alone. The stated 95% intervals must cover the reference
-// on 92% to 98% of them, and the realised RMS error must be 0.8 to 1.25 of the stated standard
-// error, both at a fixed count and adaptively.
+// floor, and on a plane whose horizon cuts the light: the clipped samplers), against an
+// independent reference: 10^6 uniform samples by area of the light per pixel (the verifier's
+// sampler, oracle/reference_light.h, with Embree rays from the receiver triangle), on 300 penumbra
+// pixels chosen by the reference alone. The stated 95% intervals must cover the reference on 92%
+// to 98% of them, and the realised RMS error must be 0.8 to 1.25 of the stated standard error,
+// both at a fixed count and adaptively.
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <string>
 #include <utility>
 
@@ -19,6 +18,7 @@
 #include "oracle/accel.h"
 #include "oracle/area_shadow.h"
 #include "oracle/embree_handles.h"
+#include "oracle/reference_light.h"
 #include "test_scenes.h"
 
 namespace so::test {
@@ -63,52 +63,26 @@ Scene makeScene(LightType type, bool tilted) {
     return sc;
 }
 
-// SplitMix64: the reference's own random numbers.
-struct SplitMix {
-    uint64_t s;
-    double next() {
-        uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return double((z ^ (z >> 31)) >> 11) * 0x1p-53;
-    }
-};
-
-// A uniform point on the light by area, and the light's normal there.
-void samplePoint(const Light& l, SplitMix& rng, glm::dvec3& y, glm::dvec3& ny) {
-    if (l.type == LightType::Disk) {
-        const double r = l.radius * std::sqrt(rng.next()),
-                     phi = 2.0 * std::numbers::pi * rng.next();
-        y = l.wsPosition + glm::dvec3(r * std::cos(phi), 0.0, r * std::sin(phi));
-        ny = l.wsNormal;
-        return;
-    }
-    const double z = 2.0 * rng.next() - 1.0, phi = 2.0 * std::numbers::pi * rng.next();
-    const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-    ny = {s * std::cos(phi), z, s * std::sin(phi)};
-    y = l.wsPosition + l.radius * ny;
-}
-
 // V = sum G v / sum G over `n` independent samples, the ray from the receiver point (skipping its
 // own triangle) to the light point.
 double referenceV(const Accel& accel, const Light& l, const glm::dvec3& p, const glm::dvec3& n,
                   unsigned originId, uint64_t seed, int count) {
     SplitMix rng{seed};
-    const LocalFrame& f = accel.frame();
-    const glm::dvec3 lsP = f.lsFromWs(p);
+    const ReferenceLight light(l, accel.frame());
+    const glm::dvec3 lsP = accel.frame().lsFromWs(p);
     double sw = 0.0, swv = 0.0;
     for (int k = 0; k < count; ++k) {
-        glm::dvec3 y, ny;
-        samplePoint(l, rng, y, ny);
-        const glm::dvec3 d = y - p;
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        glm::dvec3 lsY, ny;
+        light.point(u1, u2, lsY, ny);
+        const glm::dvec3 d = lsY - lsP;
         const double dist2 = glm::dot(d, d), dist = std::sqrt(dist2);
         const glm::dvec3 w = d / dist;
         const double g = std::max(0.0, glm::dot(n, w)) * std::max(0.0, -glm::dot(ny, w)) / dist2;
         if (g <= 0.0) continue;
-        const glm::dvec3 lsD = f.lsFromWs(y) - lsP;
         RTCRay ray{};
         ray.org_x = float(lsP.x), ray.org_y = float(lsP.y), ray.org_z = float(lsP.z);
-        ray.dir_x = float(lsD.x), ray.dir_y = float(lsD.y), ray.dir_z = float(lsD.z);
+        ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
         ray.tnear = 0.0f;
         ray.tfar = 0.9999f;  // stop short of the light's surface
         ray.mask = 0xFFFFFFFFu;
