@@ -52,20 +52,30 @@ double renderFrame(const CameraPass& camera, std::vector<FrameLight>& lights, Pa
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The receivers the camera sees, rendered once for every technique that asks (fit=1).
+std::optional<Bounds3d> receiverBounds(const CameraPass& camera,
+                                       const std::vector<const Technique*>& techniques) {
+    for (const Technique* t : techniques)
+        if (t->needsReceiverBounds()) {
+            glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+            glEnable(GL_DEPTH_TEST);
+            glDepthMask(GL_TRUE);
+            return camera.receiverBounds();
+        }
+    return std::nullopt;
+}
+
 std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camera,
-                                    const Technique& technique) {
-    std::optional<Bounds3d> lsReceivers;
-    if (technique.needsReceiverBounds()) {
-        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_TRUE);
-        lsReceivers = camera.receiverBounds();
-    }
+                                    const Technique& technique,
+                                    const std::optional<Bounds3d>& lsReceivers) {
+    static const std::optional<Bounds3d> notAsked;
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     std::vector<FrameLight> lights;
     for (const Light& light : gpu.scene().lights)
         lights.push_back(
-            {&light, LightTarget(camera), technique.setUp({light, gpu, camera, lsReceivers})});
+            {&light, LightTarget(camera),
+             technique.setUp(
+                 {light, gpu, camera, technique.needsReceiverBounds() ? lsReceivers : notAsked})});
     return lights;
 }
 
@@ -152,10 +162,12 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
     GpuScene gpu(scene);
     gpu.bind();
     CameraPass camera(gpu, camDesc);
+    const std::optional<Bounds3d> lsReceivers = receiverBounds(camera, techniques);
     std::vector<TechniqueFrames> group;
     uint64_t groupBytes = 0;
     for (size_t i = 0; i < techniques.size(); ++i) {
-        TechniqueFrames t{i, techniques[i], setUpLights(gpu, camera, *techniques[i]), {}, {}, 0};
+        TechniqueFrames t{
+            i, techniques[i], setUpLights(gpu, camera, *techniques[i], lsReceivers), {}, {}, 0};
         for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();
         // A full group renders first; this technique's objects exist already and start the next.
         if (!group.empty() && groupBytes + t.memoryBytes > options.interleaveBudgetBytes) {
