@@ -64,10 +64,8 @@ int main(int argc, char** argv) {
             {nullptr, [&](size_t i, RasterResult&& r) {
                  TimingStats shadow, vis;
                  for (const RasterLightStats& l : r.stats.lights)
-                     for (const auto& [pass, t] : l.passMs) {
-                         TimingStats& sum = pass == "visibility" ? vis : shadow;
-                         sum = {sum.median + t.median, sum.p25 + t.p25, sum.p75 + t.p75};
-                     }
+                     for (const auto& [pass, t] : l.passMs)
+                         (pass == "visibility" ? vis : shadow) += t;
                  const double cam = r.stats.timings.cameraMs.median,
                               wall = r.stats.timings.wallMs.median;
                  if (i == 0)

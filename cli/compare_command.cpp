@@ -115,13 +115,11 @@ struct CompareJob {
 };
 
 // What the light's own passes and the visibility pass cost (docs/metrics.md, cost).
-// Several light passes (none today) add up, quartiles included: an upper bound of their spread.
+// Several light passes (none today) add up (core/timing.h).
 TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSeconds) {
     TechniqueCost cost;
-    for (const auto& [pass, t] : stats.lights[li].passMs) {
-        TimingStats& sum = pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs;
-        sum = {sum.median + t.median, sum.p25 + t.p25, sum.p75 + t.p75};
-    }
+    for (const auto& [pass, t] : stats.lights[li].passMs)
+        (pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs) += t;
     cost.frameMs = stats.timings.wallMs;
     cost.memoryBytes = stats.lights[li].memoryBytes;
     cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
