@@ -43,17 +43,6 @@ TechniqueSpec parseTechniqueSpec(const std::string& spec) {
 
 namespace {
 
-void flatten(const nlohmann::json& j, const std::string& prefix,
-             std::vector<std::pair<std::string, nlohmann::json>>& out) {
-    for (auto it = j.begin(); it != j.end(); ++it) {
-        const std::string name = prefix.empty() ? it.key() : prefix + "." + it.key();
-        if (it->is_object())
-            flatten(*it, name, out);
-        else
-            out.emplace_back(name, *it);
-    }
-}
-
 std::string csvField(const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
     std::string q = "\"";
@@ -128,8 +117,7 @@ TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSe
 
 // The long form (a row per metric) and a row of the wide form.
 void writeCsvRows(CompareJob& job, const TechniqueRun& run, const LightComparison& lc) {
-    std::vector<std::pair<std::string, nlohmann::json>> rows;
-    flatten(lc.toJson(), "", rows);
+    const std::vector<std::pair<std::string, nlohmann::json>> rows = flatMetrics(lc.toJson());
     const TechniqueSpec& spec = run.spec;
     std::vector<std::pair<std::string, std::string>> wide = {{"scene", job.options.scenePath},
                                                              {"light", lc.light},

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "raster_compare/compare/metrics.h"
 
 namespace so {
 
@@ -31,14 +32,10 @@ bool globMatch(const std::string& p, const std::string& t) {
 
 namespace {
 
-void flatten(const json& j, const std::string& prefix, std::map<std::string, json>& out) {
-    for (auto it = j.begin(); it != j.end(); ++it) {
-        const std::string name = prefix.empty() ? it.key() : prefix + "." + it.key();
-        if (it->is_object())
-            flatten(*it, name, out);
-        else
-            out[name] = *it;
-    }
+std::map<std::string, json> flatMap(const json& row) {
+    std::map<std::string, json> out;
+    for (auto& [name, value] : flatMetrics(row)) out[name] = std::move(value);
+    return out;
 }
 
 struct Rule {
@@ -51,9 +48,7 @@ std::set<std::string> knownMetrics(const json& metrics) {
     std::set<std::string> known;
     for (const auto& r : metrics["results"])
         for (const auto& [light, m] : r["lights"].items()) {
-            std::map<std::string, json> flat;
-            flatten(m, "", flat);
-            for (const auto& [k, v] : flat) known.insert(k);
+            for (const auto& [k, v] : flatMetrics(m)) known.insert(k);
         }
     return known;
 }
@@ -128,8 +123,7 @@ std::vector<GateCheck> evaluateGate(const json& metrics, const std::string& metr
     for (const auto& r : metrics["results"]) {
         const std::string technique = r.value("technique", ""), label = r.value("label", technique);
         for (const auto& [light, m] : r["lights"].items()) {
-            std::map<std::string, json> flat;
-            flatten(m, "", flat);
+            std::map<std::string, json> flat = flatMap(m);
             // Later rules override earlier ones for the same metric.
             std::map<std::string, double> applicable;
             for (const Rule& rule : rules) {

@@ -339,6 +339,25 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
     return m;
 }
 
+namespace {
+void flatten(const nlohmann::json& j, const std::string& prefix,
+             std::vector<std::pair<std::string, nlohmann::json>>& out) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const std::string name = prefix.empty() ? it.key() : prefix + "." + it.key();
+        if (it->is_object())
+            flatten(*it, name, out);
+        else
+            out.emplace_back(name, *it);
+    }
+}
+}  // namespace
+
+std::vector<std::pair<std::string, nlohmann::json>> flatMetrics(const nlohmann::json& row) {
+    std::vector<std::pair<std::string, nlohmann::json>> out;
+    flatten(row, "", out);
+    return out;
+}
+
 nlohmann::json TechniqueCost::toJson() const {
     nlohmann::json j = {
         {"memory_bytes", memoryBytes}, {"oracle_seconds", oracleSeconds}, {"noisy", noisy()}};

@@ -85,6 +85,11 @@ struct LightComparison {
     nlohmann::json toJson() const;  // metrics with "cost"
 };
 
+// The metrics of a row by their public names: nested ones joined by a dot
+// ("boundary_displacement_px.p95", "cost.frame_ms"), in the row's order. metrics.csv's columns and
+// the gate's limits both use these names.
+std::vector<std::pair<std::string, nlohmann::json>> flatMetrics(const nlohmann::json& row);
+
 // `oracle` and `raster` follow docs/exr-channels.md; `light` names the light. `maps`, if given,
 // receives the per-pixel classes.
 LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage& raster,
