@@ -96,6 +96,23 @@ inline void sincos2Pi(float v, float& s, float& c) {
     s = q == 0.0f ? s0 : q == 1.0f ? c0 : q == 2.0f ? -s0 : -c0;
 }
 
+// The horizon cuts a circle of directions or points, parametrised by an angle t about the
+// direction towards the receiver's normal, where toward + across cos t > 0 (across >= 0): the
+// half-angle of the arc above it, pi when all of the circle is, 0 when none is.
+inline float arcAboveHorizon(float toward, float across) {
+    if (toward - across >= 0.0f) return std::numbers::pi_v<float>;
+    const float x = across > 0.0f ? -toward / across : 2.0f;
+    return std::acos(std::clamp(x, -1.0f, 1.0f));
+}
+
+// sin and cos of t = (2 v - 1) halfAngle for v in [0, 1): uniform over the arc.
+inline void sincosOnArc(float v, float halfAngle, float& s, float& c) {
+    float turn = (2.0f * v - 1.0f) * halfAngle * (0.5f / std::numbers::pi_v<float>);
+    if (turn < 0.0f) turn += 1.0f;
+    if (turn >= 1.0f) turn = 0.0f;
+    sincos2Pi(turn, s, c);
+}
+
 }  // namespace
 
 // Sutherland-Hodgman against the plane through p with normal n: the part of the rect above p's
@@ -202,18 +219,9 @@ static void sphereBatch(const AreaPixel& px, const float* su, const float* sv, i
         // The ring at this cosT is above the horizon for |phi| < phiMax (n.d > 0 with
         // n.d = c cosT + s sinT cos phi): phi is sampled there only, and the weight carries
         // the ring's visible share, so no sample is spent below the horizon.
-        const float lowest = px.horizonC * cosT - px.horizonS * sinT;  // n.d at phi = pi
-        float phiMax = std::numbers::pi_v<float>;
-        if (lowest < 0.0f) {
-            const float across = px.horizonS * sinT;
-            const float x = across > 0.0f ? -px.horizonC * cosT / across : 2.0f;
-            phiMax = std::acos(std::clamp(x, -1.0f, 1.0f));
-        }
-        float turn = (2.0f * sv[k] - 1.0f) * phiMax * (0.5f / std::numbers::pi_v<float>);
-        if (turn < 0.0f) turn += 1.0f;
-        if (turn >= 1.0f) turn = 0.0f;
+        const float phiMax = arcAboveHorizon(px.horizonC * cosT, px.horizonS * sinT);
         float sinPhi, cosPhi;
-        sincos2Pi(turn, sinPhi, cosPhi);
+        sincosOnArc(sv[k], phiMax, sinPhi, cosPhi);
         const float cx = cosPhi * sinT, cy = sinPhi * sinT;
         const float dx = cx * px.t1.x + cy * px.t2.x + cosT * px.wc.x;
         const float dy = cx * px.t1.y + cy * px.t2.y + cosT * px.wc.y;
@@ -279,15 +287,10 @@ static void clippedDiskPoints(const AreaLight& light, const AreaPixel& px, const
         // Area-uniform radius; the angle over the arc of that circle above the horizon only,
         // the weight carrying the arc's share.
         const float r = light.lsRadius * std::sqrt(su[k]);
-        const float across = r * px.diskS;
-        const float x = across > 0.0f ? -px.diskH / across : (px.diskH > 0.0f ? -2.0f : 2.0f);
-        const float tMax = std::acos(std::clamp(x, -1.0f, 1.0f));
+        const float tMax = arcAboveHorizon(px.diskH, r * px.diskS);
         share[k] = tMax * (1.0f / std::numbers::pi_v<float>);
-        float turn = (2.0f * sv[k] - 1.0f) * tMax * (0.5f / std::numbers::pi_v<float>);
-        if (turn < 0.0f) turn += 1.0f;
-        if (turn >= 1.0f) turn = 0.0f;
         float st, ct;
-        sincos2Pi(turn, st, ct);
+        sincosOnArc(sv[k], tMax, st, ct);
         const float e1 = r * (ct * px.diskA1 - st * px.diskA2),
                     e2 = r * (ct * px.diskA2 + st * px.diskA1);
         yx[k] = light.lsCenter.x + e1 * light.lsE1.x + e2 * light.lsE2.x;
