@@ -116,11 +116,13 @@ TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSe
 }
 
 // The long form (a row per metric) and a row of the wide form.
-void writeCsvRows(CompareJob& job, const TechniqueRun& run, const LightComparison& lc) {
-    const std::vector<std::pair<std::string, nlohmann::json>> rows = flatMetrics(lc.toJson());
+// `row`: the light's row of metrics.json.
+void writeCsvRows(CompareJob& job, const TechniqueRun& run, const std::string& light,
+                  const nlohmann::json& row) {
+    const std::vector<std::pair<std::string, nlohmann::json>> rows = flatMetrics(row);
     const TechniqueSpec& spec = run.spec;
     std::vector<std::pair<std::string, std::string>> wide = {{"scene", job.options.scenePath},
-                                                             {"light", lc.light},
+                                                             {"light", light},
                                                              {"technique", spec.name},
                                                              {"label", spec.label}};
     const nlohmann::json params = toJson(run.technique->values().settings());
@@ -128,7 +130,7 @@ void writeCsvRows(CompareJob& job, const TechniqueRun& run, const LightCompariso
         wide.emplace_back("param." + name, value.dump());
     for (const auto& [metric, value] : rows) {
         const std::string text = value.is_null() ? "" : value.dump();
-        job.csv << csvField(job.options.scenePath) << ',' << csvField(lc.light) << ','
+        job.csv << csvField(job.options.scenePath) << ',' << csvField(light) << ','
                 << csvField(spec.name) << ',' << csvField(spec.label) << ',' << metric << ','
                 << text << "\n";
         wide.emplace_back(metric, text);
@@ -170,7 +172,7 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
             computeLightMetrics(job.oracle.image, r.image, lc.light, job.metricOptions, &lc.maps);
         lc.cost = techniqueCost(r.stats, li, job.oracle.stats.lights[li].seconds());
         lights[lc.light] = lc.toJson();
-        writeCsvRows(job, run, lc);
+        writeCsvRows(job, run, lc.light, lights[lc.light]);
         rt.lights.push_back(std::move(lc));
     }
     writeErrorExr(job.out / ("error_" + run.spec.fileLabel + ".exr"), rt.lights, r.image.width(),
