@@ -112,11 +112,12 @@ int main(int argc, char** argv) {
                 AreaSkip::None)
                 continue;
             const AreaPixel px = prepareAreaPixel(al, sb.lsPoint(s), sb.lsNormal(s));
-            const uint32_t seed = areaPixelSeed(sampling.seed, 0, uint32_t(pixel));
+            const ReplicaSeeds seeds =
+                replicaSeeds(areaPixelSeed(sampling.seed, 0, uint32_t(pixel)));
             const glm::vec3 org = sb.lsRayOrigin(s);
-            for (int first = 0; first < spp; first += 16) {
+            for (int round = 0; round < (spp + 15) / 16; ++round) {
                 AreaBatch b;
-                sampleAreaBatch(al, px, seed, uint32_t(first), std::min(16, spp - first), b);
+                sampleRound(al, px, seeds, uint32_t(round * kPointsPerRound), b);
                 Packet p;
                 std::memset(&p, 0, sizeof p);
                 p.pixel = uint32_t(pixel);
@@ -150,19 +151,16 @@ int main(int argc, char** argv) {
             tP.push_back(secondsSince(t0));
             ratio.push_back(tP.back() / tO.back());
         }
-        // The plain loop's hits, through the same ratio estimator, give the oracle's V.
+        // The plain loop's hits, through the same estimator, give the oracle's V.
         uint64_t rays = 0;
-        std::vector<double> sw(n, 0.0), swv(n, 0.0);
-        for (const Packet& p : work)
-            for (int k = 0; k < 16; ++k) {
-                if (!p.valid[k]) continue;
-                ++rays;
-                sw[p.pixel] += p.weight[k];
-                swv[p.pixel] += p.ray.tfar[k] >= 0.0f ? double(p.weight[k]) : 0.0;
-            }
+        std::vector<ReplicaSums> sums(n);
+        for (const Packet& p : work) {
+            addRound(sums[p.pixel], p.weight, p.valid, p.ray.tfar);
+            for (int k = 0; k < 16; ++k) rays += p.valid[k] != 0;
+        }
         size_t mismatches = 0;
         for (size_t i = 0; i < n; ++i)
-            if (S[i] > 0.0f && float(sw[i] > 0 ? swv[i] / sw[i] : 0.0) != V[i]) ++mismatches;
+            if (S[i] > 0.0f && float(replicaEstimate(sums[i]).V) != V[i]) ++mismatches;
         const double mO = double(st.raysTraced) / median(tO) / 1e6,
                      mP = double(rays) / median(tP) / 1e6;
         std::printf("light %-6s %llu rays (%.1f%% occluded)\n", light.name.c_str(),

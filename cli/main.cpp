@@ -48,6 +48,11 @@ static Runner addTrace(CLI::App& app) {
             "area lights: stop a pixel when its 95% half-width is below this (default 0.01)")
         ->check(CLI::Range(1e-4, 0.5));
     traceCmd
+        ->add_option("--agreement-target", o->oracle.area.agreementTarget,
+                     "area lights: a pixel whose samples all agree (lit, or umbra) stops at the "
+                     "larger of this and --target-error (default 0.01; docs/oracle.md)")
+        ->check(CLI::Range(1e-4, 0.5));
+    traceCmd
         ->add_option("--max-spp", o->oracle.area.maxSpp,
                      "area lights: most samples per pixel (default 16384)")
         ->check(CLI::Range(16, 1 << 20));
@@ -58,6 +63,7 @@ static Runner addTrace(CLI::App& app) {
             ->check(CLI::Range(1, 1 << 20));
     sppOpt->excludes("--target-error");
     sppOpt->excludes("--max-spp");
+    sppOpt->excludes("--agreement-target");
     traceCmd->add_flag("--quiet", *quiet, "no progress output");
     traceCmd
         ->add_option("--verify", o->oracle.verify.pixels,
@@ -120,6 +126,11 @@ static Runner addCompare(CLI::App& app) {
     compareCmd
         ->add_option("--target-error", o->oracle.area.targetError,
                      "oracle area-light target (default 0.01)")
+        ->check(CLI::Range(1e-4, 0.5));
+    compareCmd
+        ->add_option("--agreement-target", o->oracle.area.agreementTarget,
+                     "oracle: where an area light's samples all agree, the target "
+                     "(default 0.01)")
         ->check(CLI::Range(1e-4, 0.5));
     compareCmd
         ->add_option("--verify", o->oracle.verify.pixels,

@@ -59,9 +59,8 @@ struct AreaPixel {
 AreaSkip classifyAreaPixel(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n);
 AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm::vec3& n);
 
-// Up to 16 samples (indices first .. first + count - 1 of the pixel's sequence `seed`): unit
-// directions from p, segment lengths (tfar) and weights; weight 0 means "no ray" (below the
-// horizon or behind the emitter). Lanes >= count get weight 0.
+// Up to 16 samples: unit directions from p, segment lengths (tfar) and weights; weight 0 means
+// "no ray" (below the horizon or behind the emitter).
 struct AreaBatch {
     alignas(64) float dirX[16];
     alignas(64) float dirY[16];
@@ -69,9 +68,11 @@ struct AreaBatch {
     alignas(64) float tfar[16];
     alignas(64) float weight[16];
 };
-void sampleAreaBatch(const AreaLight& light, const AreaPixel& px, uint32_t seed, uint32_t first,
-                     int count, AreaBatch& b);
-// The same from 16 given points of the unit square (lanes >= count get weight 0).
+// acos(x) for x in [-1, 1], never below the true value and within 3e-6 of it (branch-free, so the
+// samplers' loops vectorise; exposed for tests).
+float acosUpperBound(float x);
+
+// From 16 given points of the unit square (lanes >= count get weight 0).
 void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, const float* sv,
                   int count, AreaBatch& b);
 

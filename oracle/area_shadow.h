@@ -9,8 +9,11 @@
 // so that a pixel whose samples all agree is not declared certain.
 //
 // Stopping rule (adaptive): after each packet, from kMinAdaptiveSpp samples on, stop when the
-// half-width <= target error or the pixel has max_spp samples. With a fixed count (--spp N),
-// exactly N samples, rounded up to whole packets.
+// half-width <= the pixel's threshold or the pixel has max_spp samples. The threshold is the target
+// error, or where every sample so far agrees (all lit, or all shadowed) max(target error, agreement
+// target): there only the prior sets the half-width, about 2.7 / N, and what it bounds is the share
+// of the light an occluder (or a gap) that no sample met may have, which more samples shrink only
+// as 1 / N. With a fixed count (--spp N), exactly N samples, rounded up to whole packets.
 #pragma once
 
 #include <array>
@@ -44,6 +47,8 @@ static_assert(kReplicas == 8, "kIntervalQuantile95 is the t quantile for 7 degre
 
 struct AreaSampling {
     double targetError = 0.01;  // 95% half-width
+    // Pixels whose samples all agree stop at max(targetError, agreementTarget) (above).
+    double agreementTarget = 0.01;
     int maxSpp = 16384;
     int fixedSpp = 0;  // > 0: exactly this many samples per pixel, no adaptivity
     uint32_t seed = 0;
@@ -61,6 +66,9 @@ struct CostPoint {
 struct AreaShadowStats {
     uint64_t samples = 0, raysTraced = 0, raysOccluded = 0;
     uint64_t pixelsSampled = 0, reachedTarget = 0, maxSpp = 0;
+    // Pixels whose samples all agreed (fully lit or in the umbra, as far as sampling saw), and the
+    // samples they took: the part of the cost the agreement target sets.
+    uint64_t pixelsAgreeing = 0, samplesAgreeing = 0;
     // Adaptive runs: pixels that spent max_spp without reaching the target.
     uint64_t pixelsUnconverged = 0;
     // Pixels where the light is above the horizon only by a sliver no sample found: reported as
@@ -80,6 +88,9 @@ struct AreaShadowStats {
 // Half-width and standard error of the estimate from the running sums (exposed for tests).
 struct RatioEstimate {
     double V = 0.0, stderr_ = 0.0;
+    // replicaEstimate only: the two parts stderr_ is the larger of, the replicas' spread and the
+    // prior's floor (as a standard error for the t quantile).
+    double stderrSpread = 0.0, stderrPrior = 0.0;
 };
 RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint64_t nonZero);
 
@@ -89,10 +100,28 @@ struct ReplicaSums {
     std::array<double, kReplicas> x{}, y{};
     double sw2 = 0.0, sw2v = 0.0;
     uint64_t nonZero = 0;  // samples with weight > 0
+    uint64_t lit = 0;      // of those, the ones that reached the light
+    bool agreeing() const { return lit == 0 || lit == nonZero; }
 };
 // V = sum x / sum y; stderr from the delta method over the replicas, at least the prior's share
 // (docs/oracle.md): V +- kIntervalQuantile95 * stderr is the pixel's 95% interval.
 RatioEstimate replicaEstimate(const ReplicaSums& sums);
+
+// The scrambling seeds of a pixel's replicas (from areaPixelSeed), one per lane of a round:
+// lane k belongs to replica k / kPointsPerRound. Made once per pixel.
+struct ReplicaSeeds {
+    alignas(64) uint32_t u[16];  // the first dimension's scramble
+    alignas(64) uint32_t v[16];  // the second's
+};
+ReplicaSeeds replicaSeeds(uint32_t pixelSeed);
+// One round's packet: lanes 2j and 2j + 1 are points `first` and `first` + 1 of replica j's
+// scrambled Sobol sequence, mapped onto the light (weight 0: no ray).
+void sampleRound(const AreaLight& light, const AreaPixel& px, const ReplicaSeeds& seeds,
+                 uint32_t first, AreaBatch& b);
+// Adds a traced round to the sums: lane k (replica k / kPointsPerRound) where valid[k] != 0,
+// with weight[k] > 0, lit where tfar[k] >= 0 (Embree sets it to -inf on a hit). Returns the lanes
+// that were lit.
+int addRound(ReplicaSums& s, const float* weight, const int* valid, const float* tfar);
 
 // The seed of one pixel's sample sequence: `stream` separates lights, `pixel` is the row-major
 // pixel index. The sequence depends on nothing else, so the image is the same at any thread count.

@@ -111,95 +111,139 @@ ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLi
     return s;
 }
 
+namespace {
+
+// One thread's packet, reused tile after tile. The lanes' constant fields are set once: Embree
+// writes only tfar (and the hit, for rtcIntersect16).
+struct HardPacket {
+    RTCIntersectContext ctx;
+    alignas(64) RTCRayHit16 rayHit;
+    alignas(64) int valid[16];
+    PacketSetup ps;
+    uint64_t counts[int(ShadowRayKind::Count)] = {};
+
+    HardPacket() {
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        RTCRay16& ray = rayHit.ray;
+        for (int k = 0; k < 16; ++k) {
+            ray.tnear[k] = 0.0f;
+            ray.time[k] = 0.0f;
+            ray.mask[k] = 0xFFFFFFFFu;
+            ray.flags[k] = 0;
+        }
+    }
+};
+
+// The tile's valid mask from the setup: lanes outside the image (the last tile row or column)
+// are padding, neither traced nor written. Returns the number of rays to trace.
+int classifyLanes(HardPacket& p, int cols, int rows) {
+    int active = 0;
+    for (int k = 0; k < 16; ++k) {
+        const bool inside = (k & 3) < cols && (k >> 2) < rows;
+        const ShadowRayKind kind = inside ? p.ps.kind[k] : ShadowRayKind::Padding;
+        ++p.counts[int(kind)];
+        p.valid[k] = kind == ShadowRayKind::Traced ? -1 : 0;
+        active += kind == ShadowRayKind::Traced;
+    }
+    return active;
+}
+
+void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
+    RTCRay16& ray = p.rayHit.ray;
+    for (int k = 0; k < 16; ++k) {
+        ray.org_x[k] = sb.lsOriginX[base + size_t(k)];
+        ray.org_y[k] = sb.lsOriginY[base + size_t(k)];
+        ray.org_z[k] = sb.lsOriginZ[base + size_t(k)];
+        ray.dir_x[k] = p.ps.dirX[k];
+        ray.dir_y[k] = p.ps.dirY[k];
+        ray.dir_z[k] = p.ps.dirZ[k];
+        ray.tfar[k] = p.ps.tfar[k];
+        ray.id[k] = sb.originId[base + size_t(k)];  // skipped by the filter
+    }
+}
+
+// V and cos of one tile, written row by row (each tile row is contiguous in the image); with
+// `occDist` (the contact effect) the closest occluder's distance too. Embree sets tfar to -inf on
+// a hit; lanes not traced get V = 0. Returns the occluded rays.
+uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, size_t width,
+                   int cols, int rows, float* V, float* cosine, float* occDist) {
+    const RTCRay16& ray = p.rayHit.ray;
+    alignas(64) float lit[16];
+    uint64_t occluded = 0;
+    if (occDist) {
+        for (int k = 0; k < 16; ++k)
+            lit[k] = p.valid[k] && p.rayHit.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? 1.0f : 0.0f;
+    } else {
+        for (int k = 0; k < 16; ++k) lit[k] = p.valid[k] && ray.tfar[k] >= 0.0f ? 1.0f : 0.0f;
+    }
+    for (int r = 0; r < rows; ++r) {
+        const size_t row = row0 + size_t(r) * width;
+        for (int c = 0; c < cols; ++c) {
+            const int k = r * 4 + c;
+            V[row + size_t(c)] = lit[k];
+            cosine[row + size_t(c)] = p.ps.cosine[k];
+            occluded += (p.valid[k] && lit[k] == 0.0f) ? 1 : 0;
+        }
+    }
+    if (occDist)
+        for (int r = 0; r < rows; ++r)
+            for (int c = 0; c < cols; ++c) {
+                const int k = r * 4 + c;
+                occDist[row0 + size_t(r) * width + size_t(c)] =
+                    !p.valid[k]     ? -1.0f
+                    : lit[k] != 0.f ? std::numeric_limits<float>::infinity()
+                                    : float(frame.wsLength(ray.tfar[k]));
+            }
+    return occluded;
+}
+
+// One tile: setup, trace (any hit, or the closest with the contact effect), write.
+void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light, int tx, int ty,
+               HardPacket& p, float* V, float* cosine, float* occDist, HardShadowStats& st) {
+    const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
+    const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
+    setupPacket(sb, base, light, p.ps);
+    const int cols = std::min(SurfaceBuffer::kTile, sb.width - x0);
+    const int rows = std::min(SurfaceBuffer::kTile, sb.height - y0);
+    const int active = classifyLanes(p, cols, rows);
+    if (active) {
+        fillRays(sb, base, p);
+        if (occDist) {
+            for (int k = 0; k < 16; ++k) p.rayHit.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect16(p.valid, accel.rtcScene(), &p.ctx, &p.rayHit);
+            st.closestHitQueries += uint64_t(active);
+        } else {
+            rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx, &p.rayHit.ray);
+        }
+    }
+    st.occluded += writeTile(p, accel.frame(), size_t(y0) * size_t(sb.width) + size_t(x0),
+                             size_t(sb.width), cols, rows, V, cosine, occDist);
+}
+
+}  // namespace
+
 HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
                                  const HardLight& light, float* V, float* cosine, float* occDist,
                                  Progress* progress) {
     auto t0 = std::chrono::steady_clock::now();
     tbb::combinable<HardShadowStats> partial;
-    const LocalFrame& frame = accel.frame();
-
     tbb::parallel_for(
         tbb::blocked_range<int>(0, sb.tilesY), [&](const tbb::blocked_range<int>& range) {
             setEmbreeFloatMode();
             HardShadowStats& st = partial.local();
-            RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-            alignas(64) RTCRayHit16 rayHit;
-            RTCRay16& ray = rayHit.ray;
-            alignas(64) int valid[16];
-            PacketSetup ps;
-            uint64_t counts[int(ShadowRayKind::Count)] = {};
+            HardPacket packet;
             for (int ty = range.begin(); ty != range.end(); ++ty) {
-                for (int tx = 0; tx < sb.tilesX; ++tx) {
-                    const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
-                    const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
-                    setupPacket(sb, base, light, ps);
-                    // Lanes outside the image (the last tile row or column) are not traced or
-                    // written.
-                    const int cols = std::min(SurfaceBuffer::kTile, sb.width - x0);
-                    const int rows = std::min(SurfaceBuffer::kTile, sb.height - y0);
-                    int active = 0;
-                    for (int k = 0; k < 16; ++k) {
-                        const bool inside = (k & 3) < cols && (k >> 2) < rows;
-                        const ShadowRayKind kind = inside ? ps.kind[k] : ShadowRayKind::Padding;
-                        ++counts[int(kind)];
-                        valid[k] = kind == ShadowRayKind::Traced ? -1 : 0;
-                        active += kind == ShadowRayKind::Traced;
-                    }
-                    if (active) {
-                        for (int k = 0; k < 16; ++k) {
-                            ray.org_x[k] = sb.lsOriginX[base + size_t(k)];
-                            ray.org_y[k] = sb.lsOriginY[base + size_t(k)];
-                            ray.org_z[k] = sb.lsOriginZ[base + size_t(k)];
-                            ray.dir_x[k] = ps.dirX[k];
-                            ray.dir_y[k] = ps.dirY[k];
-                            ray.dir_z[k] = ps.dirZ[k];
-                            ray.tnear[k] = 0.0f;
-                            ray.tfar[k] = ps.tfar[k];
-                            ray.time[k] = 0.0f;
-                            ray.mask[k] = 0xFFFFFFFFu;
-                            ray.flags[k] = 0;
-                            ray.id[k] = sb.originId[base + size_t(k)];  // skipped by the filter
-                        }
-                        if (occDist) {
-                            // The contact effect: the closest occluder, not just any.
-                            for (int k = 0; k < 16; ++k)
-                                rayHit.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                            rtcIntersect16(valid, accel.rtcScene(), &ctx, &rayHit);
-                            st.closestHitQueries += uint64_t(active);
-                        } else {
-                            rtcOccluded16(valid, accel.rtcScene(), &ctx, &ray);
-                        }
-                    }
-                    // Write back row by row: each tile row is contiguous in the image. Embree sets
-                    // tfar to -inf on a hit; lanes not traced keep V = 0.
-                    for (int r = 0; r < rows; ++r) {
-                        const size_t row = size_t(y0 + r) * size_t(sb.width) + size_t(x0);
-                        for (int c = 0; c < cols; ++c) {
-                            const int k = r * 4 + c;
-                            const bool lit = valid[k] && (occDist ? rayHit.hit.geomID[k] ==
-                                                                        RTC_INVALID_GEOMETRY_ID
-                                                                  : ray.tfar[k] >= 0.0f);
-                            V[row + size_t(c)] = lit ? 1.0f : 0.0f;
-                            cosine[row + size_t(c)] = ps.cosine[k];
-                            st.occluded += (valid[k] && !lit) ? 1 : 0;
-                            if (occDist)
-                                occDist[row + size_t(c)] =
-                                    !valid[k] ? -1.0f
-                                    : lit     ? std::numeric_limits<float>::infinity()
-                                              : float(frame.wsLength(ray.tfar[k]));
-                        }
-                    }
-                }
+                for (int tx = 0; tx < sb.tilesX; ++tx)
+                    traceTile(accel, sb, light, tx, ty, packet, V, cosine, occDist, st);
                 if (progress)
                     progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
             }
-            st.skippedBackground += counts[int(ShadowRayKind::Background)];
-            st.skippedAttached += counts[int(ShadowRayKind::Attached)];
-            st.skippedOutsideCone += counts[int(ShadowRayKind::OutsideCone)];
-            st.skippedBehindLight += counts[int(ShadowRayKind::BehindLight)];
-            st.traced += counts[int(ShadowRayKind::Traced)];
+            st.skippedBackground += packet.counts[int(ShadowRayKind::Background)];
+            st.skippedAttached += packet.counts[int(ShadowRayKind::Attached)];
+            st.skippedOutsideCone += packet.counts[int(ShadowRayKind::OutsideCone)];
+            st.skippedBehindLight += packet.counts[int(ShadowRayKind::BehindLight)];
+            st.traced += packet.counts[int(ShadowRayKind::Traced)];
         });
     HardShadowStats total;
     partial.combine_each([&](const HardShadowStats& s) {

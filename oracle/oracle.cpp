@@ -104,7 +104,12 @@ OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     s.pixelsSampled = st.pixelsSampled;
     s.pixelsWithoutUsableSamples = st.pixelsWithoutUsableSamples;
     s.sppMax = st.maxSpp;
-    if (sampling.fixedSpp <= 0) s.targetError = sampling.targetError;
+    if (sampling.fixedSpp <= 0) {
+        s.targetError = sampling.targetError;
+        s.agreementTarget = sampling.agreementTarget;
+    }
+    s.pixelsAgreeing = st.pixelsAgreeing;
+    s.samplesAgreeing = st.samplesAgreeing;
     s.maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
     s.shareReachedTarget =
         st.pixelsSampled ? double(st.reachedTarget) / double(st.pixelsSampled) : 1.0;

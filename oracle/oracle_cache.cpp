@@ -37,6 +37,7 @@ std::string oracleCacheKey(const Scene& scene, const OracleOptions& o) {
                               {"height", cam.height},
                               {"seed", o.area.seed},
                               {"target_error", o.area.targetError},
+                              {"agreement_target", o.area.agreementTarget},
                               {"max_spp", o.area.maxSpp},
                               {"spp", o.area.fixedSpp},
                               {"verify", o.verify.pixels},

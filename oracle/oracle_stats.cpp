@@ -1,5 +1,6 @@
 #include "oracle/oracle_stats.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -31,8 +32,13 @@ std::optional<double> OracleAreaStats::costSlope() const {
 
 std::optional<double> OracleAreaStats::predictedSeconds(double target) const {
     const std::optional<double> slope = costSlope();
-    if (!targetError || !slope || !(*slope < 0.0) || !(target > 0.0)) return std::nullopt;
-    return seconds * std::pow(target / *targetError, 1.0 / *slope);
+    if (!targetError || !slope || !(*slope < 0.0) || !(target > 0.0) || samples == 0)
+        return std::nullopt;
+    const double agree = agreementTarget.value_or(0.0);
+    const double agreeShare = double(samplesAgreeing) / double(samples);
+    const double agreeScale = std::max(*targetError, agree) / std::max(target, agree);
+    return seconds * (agreeShare * agreeScale +
+                      (1.0 - agreeShare) * std::pow(target / *targetError, 1.0 / *slope));
 }
 
 double OracleAreaStats::sppMean() const {
@@ -130,9 +136,12 @@ json areaJson(const OracleAreaStats& s) {
             {"spp_mean", s.sppMean()},
             {"spp_max", s.sppMax},
             {"target_error", s.targetError ? json(*s.targetError) : json(nullptr)},
+            {"agreement_target", s.agreementTarget ? json(*s.agreementTarget) : json(nullptr)},
             {"max_spp", s.maxSpp},
             {"share_reached_target", s.shareReachedTarget},
             {"pixels_unconverged", s.pixelsUnconverged},
+            {"pixels_agreeing", s.pixelsAgreeing},
+            {"samples_agreeing", s.samplesAgreeing},
             {"worst_half_width", s.worstHalfWidth},
             {"uniform_equivalent",
              {{"spp", s.uniformSpp},
@@ -377,9 +386,13 @@ OracleAreaStats readArea(const Fields& f) {
     s.pixelsWithoutUsableSamples = f.u64("pixels_without_usable_samples");
     s.sppMax = f.u64("spp_max");
     s.targetError = f.optionalNumber("target_error");
+    s.agreementTarget = f.optionalNumber("agreement_target");
     s.maxSpp = f.i32("max_spp");
     s.shareReachedTarget = f.number("share_reached_target");
     s.pixelsUnconverged = f.u64("pixels_unconverged");
+    s.pixelsAgreeing = f.u64("pixels_agreeing");
+    s.samplesAgreeing = f.u64("samples_agreeing");
+    if (s.samplesAgreeing > s.samples) f.fail(f.name("samples_agreeing"), "more than samples");
     s.worstHalfWidth = f.number("worst_half_width");
     s.uniformSpp = f.object("uniform_equivalent").number("spp");
     s.samplingEfficiency = f.number("sampling_efficiency");

@@ -38,9 +38,13 @@ struct OracleAreaStats {
              skippedInsideLight = 0;
     uint64_t samples = 0, pixelsSampled = 0, pixelsWithoutUsableSamples = 0, sppMax = 0;
     std::optional<double> targetError;  // none with a fixed spp
-    int maxSpp = 0;                     // the fixed spp, or the adaptive cap
+    // Adaptive: pixels whose samples all agree stop at max(targetError, this) (area_shadow.h).
+    std::optional<double> agreementTarget;
+    int maxSpp = 0;  // the fixed spp, or the adaptive cap
     double shareReachedTarget = 1.0;
     uint64_t pixelsUnconverged = 0;  // adaptive: budget spent, target missed (NAME.unconverged)
+    // Pixels whose samples all agreed (lit, or umbra) and the samples they took.
+    uint64_t pixelsAgreeing = 0, samplesAgreeing = 0;
     double worstHalfWidth = 0.0;
     double uniformSpp = 0.0;  // a uniform run reaching worstHalfWidth everywhere
     double samplingEfficiency = 1.0;
@@ -49,9 +53,10 @@ struct OracleAreaStats {
     std::vector<CostPoint> costCurve;
 
     uint64_t samplesWithoutRay() const { return samples - raysTraced; }
-    // Adaptive runs: the seconds a run with `target` would take, from the slope of the cost curve
-    // while every pixel was still sampling (the mean half-width goes as samples^slope); none
-    // without enough of the curve.
+    // Adaptive runs: the seconds a run with `target` would take. The agreeing pixels' share of the
+    // samples scales as their threshold's inverse (the prior's half-width goes as 1 / N); the
+    // rest by the slope of the cost curve while every pixel was still sampling (the mean
+    // half-width goes as samples^slope). None without enough of the curve.
     std::optional<double> predictedSeconds(double target) const;
     std::optional<double> costSlope() const;
     double sppMean() const;

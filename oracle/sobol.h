@@ -57,33 +57,44 @@ inline uint32_t sobol1(uint32_t i) {
     return r;
 }
 
-// Point `index` of the scrambled sequence for `seed`, in [0, 1)^2.
-inline void sobol2D(uint32_t index, uint32_t seed, float& u, float& v) {
-    const uint32_t a = owenScramble(sobol0(index), hash32(seed));
-    const uint32_t b = owenScramble(sobol1(index), hash32(seed ^ 0x68bc21ebu));
-    // 24 bits so the float is exact and strictly below 1.
-    u = float(a >> 8) * 0x1p-24f;
-    v = float(b >> 8) * 0x1p-24f;
+// The scramble seeds of a sequence's two dimensions.
+inline uint32_t sobolScrambleU(uint32_t seed) {
+    return hash32(seed);
+}
+inline uint32_t sobolScrambleV(uint32_t seed) {
+    return hash32(seed ^ 0x68bc21ebu);
+}
+// 24 bits so the float is exact and strictly below 1.
+inline float sobolFloat(uint32_t x) {
+    return float(x >> 8) * 0x1p-24f;
 }
 
+// Point `index` of the scrambled sequence for `seed`, in [0, 1)^2.
+inline void sobol2D(uint32_t index, uint32_t seed, float& u, float& v) {
+    u = sobolFloat(owenScramble(sobol0(index), sobolScrambleU(seed)));
+    v = sobolFloat(owenScramble(sobol1(index), sobolScrambleV(seed)));
+}
+
+// The unscrambled values of points 0..15 of each dimension: Sobol dimensions are linear over GF(2)
+// in the index bits, so in an aligned block starting at `first` (a multiple of the block's size)
+// point first + k is sobolN(first) ^ table[k].
+inline constexpr uint32_t kSobolBlock0[16] = {0x00000000u, 0x80000000u, 0x40000000u, 0xc0000000u,
+                                              0x20000000u, 0xa0000000u, 0x60000000u, 0xe0000000u,
+                                              0x10000000u, 0x90000000u, 0x50000000u, 0xd0000000u,
+                                              0x30000000u, 0xb0000000u, 0x70000000u, 0xf0000000u};
+inline constexpr uint32_t kSobolBlock1[16] = {0x00000000u, 0x80000000u, 0xc0000000u, 0x40000000u,
+                                              0xa0000000u, 0x20000000u, 0x60000000u, 0xe0000000u,
+                                              0xf0000000u, 0x70000000u, 0x30000000u, 0xb0000000u,
+                                              0x50000000u, 0xd0000000u, 0x90000000u, 0x10000000u};
+
 // The `count` points (a power of two, at most 16) of the aligned block starting at `first` (a
-// multiple of `count`), unscrambled values XOR-ed in: Sobol dimensions are linear over GF(2) in the
-// index bits, and `first` shares no bit with 0..count-1, so point first + k is base ^ table[k].
-// Same values as sobol2D, much cheaper.
+// multiple of `count`): the same values as sobol2D, much cheaper.
 inline void sobol2DBlock(uint32_t first, int count, uint32_t seed, float* u, float* v) {
-    static constexpr uint32_t kD0[16] = {0x00000000u, 0x80000000u, 0x40000000u, 0xc0000000u,
-                                         0x20000000u, 0xa0000000u, 0x60000000u, 0xe0000000u,
-                                         0x10000000u, 0x90000000u, 0x50000000u, 0xd0000000u,
-                                         0x30000000u, 0xb0000000u, 0x70000000u, 0xf0000000u};
-    static constexpr uint32_t kD1[16] = {0x00000000u, 0x80000000u, 0xc0000000u, 0x40000000u,
-                                         0xa0000000u, 0x20000000u, 0x60000000u, 0xe0000000u,
-                                         0xf0000000u, 0x70000000u, 0x30000000u, 0xb0000000u,
-                                         0x50000000u, 0xd0000000u, 0x90000000u, 0x10000000u};
     const uint32_t b0 = sobol0(first), b1 = sobol1(first);
-    const uint32_t s0 = hash32(seed), s1 = hash32(seed ^ 0x68bc21ebu);
+    const uint32_t s0 = sobolScrambleU(seed), s1 = sobolScrambleV(seed);
     for (int k = 0; k < count; ++k) {
-        u[k] = float(owenScramble(b0 ^ kD0[k], s0) >> 8) * 0x1p-24f;
-        v[k] = float(owenScramble(b1 ^ kD1[k], s1) >> 8) * 0x1p-24f;
+        u[k] = sobolFloat(owenScramble(b0 ^ kSobolBlock0[k], s0));
+        v[k] = sobolFloat(owenScramble(b1 ^ kSobolBlock1[k], s1));
     }
 }
 
