@@ -55,7 +55,12 @@ int main(int argc, char** argv) {
         std::vector<std::unique_ptr<Technique>> owned;
         std::vector<const Technique*> techniques;
         for (const std::string& name : names) {
-            owned.push_back(createTechnique(name, {"resolution=" + std::to_string(res)}));
+            // Families without a map (shadow volumes) render alike at every resolution: the
+            // same technique each time, beside the maps of that resolution.
+            std::vector<std::string> settings;
+            for (const ParamSpec& p : findTechnique(name).params)
+                if (p.name == "resolution") settings.push_back("resolution=" + std::to_string(res));
+            owned.push_back(createTechnique(name, settings));
             techniques.push_back(owned.back().get());
         }
         std::map<std::string, double> basicMs;

@@ -164,6 +164,7 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
     job.metricOptions.filteredTechnique = run.technique->filtered();
     ReportTechnique rt;
     rt.label = run.spec.label;
+    rt.family = findTechnique(run.spec.name).family;
     nlohmann::json lights = nlohmann::json::object();
     for (size_t li = 0; li < job.scene.lights.size(); ++li) {
         LightComparison lc;
@@ -179,6 +180,7 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
                   r.image.height());
     rt.image = std::move(r.image);
     row = {{"technique", run.spec.name},
+           {"family", rt.family},
            {"label", run.spec.label},
            {"parameters", toJson(run.technique->values().settings())},
            {"timings", toJson(r.stats.timings)},

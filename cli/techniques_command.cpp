@@ -35,6 +35,10 @@ std::string markdown() {
           << " |\n";
     for (const TechniqueInfo* t : allTechniques()) {
         o << "\n### " << t->name << "\n\n" << t->summary << " (" << t->family << ").\n\n";
+        if (t->params.empty()) {
+            o << "No parameters.\n";
+            continue;
+        }
         o << "| parameter | default | range | meaning |\n|---|---|---|---|\n";
         for (const ParamSpec& p : t->params)
             o << "| `" << p.name << "` | " << number(p.defaultValue) << " | " << range(p) << " | "

@@ -219,6 +219,7 @@ const std::vector<Column>& columns() {
     auto artifact = [](Artifact a) { return std::string(artifactClass(a).legend); };
     static const std::vector<Column> cols = {
         {"technique", nullptr},
+        {"family", nullptr},
         {"light", nullptr},
         {"mae", [](L l) { return std::optional(l.metrics.mae); }},
         {"rmse", [](L l) { return std::optional(l.metrics.rmse); }},
@@ -291,7 +292,22 @@ void writeUnconverged(std::ostream& o, const ReportInput& in, const std::string&
          "their intervals are wider</p></div>";
 }
 
-// One light: the oracle, each technique, its error map and predicted aliasing, and the chart.
+// The techniques grouped by family, families in the order they first appear, techniques in the
+// order given within each.
+std::vector<const ReportTechnique*> byFamily(const ReportInput& in) {
+    std::vector<const ReportTechnique*> ordered;
+    for (const ReportTechnique& first : in.techniques) {
+        bool seen = false;
+        for (const ReportTechnique* t : ordered) seen |= t->family == first.family;
+        if (seen) continue;
+        for (const ReportTechnique& t : in.techniques)
+            if (t.family == first.family) ordered.push_back(&t);
+    }
+    return ordered;
+}
+
+// One light: the oracle, each technique by family, its error map and predicted aliasing, and the
+// chart.
 void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
     const int w = in.oracle.width(), h = in.oracle.height();
     const std::string& light = in.lights[li];
@@ -303,7 +319,14 @@ void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
              "oracle")
       << "<p><b>oracle</b> (ground truth)</p></div>";
     writeUnconverged(o, in, light);
-    for (const ReportTechnique& t : in.techniques) {
+    o << "</div>";
+    const std::vector<const ReportTechnique*> ordered = byFamily(in);
+    if (ordered.empty()) o << "<div>";  // closed below, as a family's grid would be
+    for (size_t k = 0; k < ordered.size(); ++k) {
+        const ReportTechnique& t = *ordered[k];
+        if (k == 0 || t.family != ordered[k - 1]->family)
+            o << (k == 0 ? "" : "</div>") << "<h3>" << html(t.family.empty() ? "other" : t.family)
+              << "</h3><div class=\"grid\">";
         o << "<div class=\"card\">"
           << imgTag(w, h,
                     shaded(in.oracle, t.image.channel(ch::lightChannel(light, ch::kVisibility)),
@@ -344,9 +367,11 @@ void writeTable(std::ostream& o, const ReportInput& in) {
     o << "<table id=\"metrics\"><thead><tr>";
     for (const Column& c : columns()) o << "<th>" << c.header << "</th>";
     o << "<th>timing</th></tr></thead><tbody>";
-    for (const ReportTechnique& t : in.techniques)
+    for (const ReportTechnique* tp : byFamily(in))
         for (size_t li = 0; li < in.lights.size(); ++li) {
-            o << "<tr><td>" << html(t.label) << "</td><td>" << html(in.lights[li]) << "</td>";
+            const ReportTechnique& t = *tp;
+            o << "<tr><td>" << html(t.label) << "</td><td>" << html(t.family) << "</td><td>"
+              << html(in.lights[li]) << "</td>";
             for (const Column& c : columns()) {
                 if (!c.value) continue;
                 const std::optional<double> v = c.value(t.lights[li]);

@@ -15,6 +15,7 @@ namespace so {
 
 struct ReportTechnique {
     std::string label;
+    std::string family;                   // TechniqueInfo::family: the report groups by it
     ChannelImage image;                   // raster.exr
     std::vector<LightComparison> lights;  // per light, in scene order
 };

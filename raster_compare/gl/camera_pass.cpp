@@ -49,12 +49,14 @@ CameraPass::CameraPass(const GpuScene& scene, const CameraDesc& desc)
     position_ = makeTarget(GL_RGBA32F, W, H);
     normal_ = makeTarget(GL_RGBA32F, W, H);
     prim_ = makeTarget(GL_R32F, W, H);
-    depth_ = makeTarget(GL_DEPTH_COMPONENT32F, W, H);
+    // Depth and a stencil, which every light's visibility target shares (shadow volumes count
+    // in it); 32-bit float depth either way.
+    depth_ = makeTarget(GL_DEPTH32F_STENCIL8, W, H);
     fbo_ = makeFramebuffer();
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, position_.get(), 0);
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT1, normal_.get(), 0);
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT2, prim_.get(), 0);
-    glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.get(), 0);
     const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(fbo_.get(), 3, buffers);
 }
@@ -109,7 +111,7 @@ LightTarget::LightTarget(const CameraPass& camera)
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT1, aliasing_.get(), 0);
     const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(fbo_.get(), 2, buffers);
-    glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_ATTACHMENT, camera.depthTexture(), 0);
+    glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, camera.depthTexture(), 0);
 }
 
 void LightTarget::bindAndClear() const {

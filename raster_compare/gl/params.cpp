@@ -58,6 +58,7 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
         values.integer_[s.name] = s.integer;
         valid += (valid.empty() ? "" : ", ") + s.name;
     }
+    if (valid.empty()) valid = "none, the technique has no parameters";
     const std::string file = "technique " + technique;
     for (const std::string& setting : settings) {
         const auto eq = setting.find('=');

@@ -10,6 +10,11 @@ void PassTimer::begin(const std::string& pass) {
 }
 
 void PassTimer::end() {
+    // A deferring implementation (llvmpipe bins draws and rasterises them at the next flush)
+    // would otherwise charge a pass's work to whichever later query happens to contain the flush:
+    // measured, shadow volumes' stencil pass read 0.03 ms and their fill showed up nowhere. On a
+    // GPU a flush only submits what is queued.
+    glFlush();
     glEndQuery(GL_TIME_ELAPSED);
 }
 

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/timing.h"
@@ -27,6 +28,19 @@ class PassTimer {
     };
     std::vector<Query> frame_;
     std::map<std::string, std::vector<double>> msByPass_;
+};
+
+// What a technique times its passes with: begin("shadow_map") ... end(), one pass at a time (GL
+// timer queries do not nest), recorded as "<light>.<pass>".
+class PassClock {
+  public:
+    PassClock(PassTimer& timer, std::string light) : timer_(timer), light_(std::move(light)) {}
+    void begin(const std::string& pass) { timer_.begin(light_ + "." + pass); }
+    void end() { timer_.end(); }
+
+  private:
+    PassTimer& timer_;
+    std::string light_;
 };
 
 }  // namespace so

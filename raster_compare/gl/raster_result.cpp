@@ -44,16 +44,18 @@ nlohmann::json toJson(const RasterLightStats& l) {
         faces.push_back(rows);
     }
     nlohmann::json j = {
-        {"name", l.name},
-        {"type", l.type},
-        {"map", l.map},
-        {"clip_from_world", faces},
-        {"near", l.wsNear},
-        {"far", l.wsFar},
-        {"fov_y_deg", l.fovYDeg},
-        {l.texelSizeIsAbsolute ? "texel_size" : "texel_size_per_unit_depth", l.texelSize}};
+        {"name", l.name}, {"type", l.type}, {"family", l.family}, {"passes", l.passes}};
+    if (!l.map.empty()) {
+        j["map"] = l.map;
+        j["clip_from_world"] = faces;
+        j["near"] = l.wsNear;
+        j["far"] = l.wsFar;
+        j["fov_y_deg"] = l.fovYDeg;
+        j[l.texelSizeIsAbsolute ? "texel_size" : "texel_size_per_unit_depth"] = l.texelSize;
+    }
     for (const auto& [pass, t] : l.passMs) addTiming(j, pass, t);
     j["memory_bytes"] = l.memoryBytes;
+    if (!l.counts.empty()) j["counts"] = l.counts;
     return j;
 }
 }  // namespace

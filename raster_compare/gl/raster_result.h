@@ -20,10 +20,14 @@ struct GlInfo {
     std::string renderer, version, platform;
 };
 
-// One light's camera and map, and its passes' times.
+// One light's family, camera and map, its passes and their times.
 struct RasterLightStats {
-    std::string name, type;                 // the light's name and type
-    std::string map;                        // "orthographic", "perspective" or "cube"
+    std::string name, type;           // the light's name and type
+    std::string family;               // the technique's family (TechniqueInfo::family)
+    std::vector<std::string> passes;  // the passes that ran for the light, in order
+    // Shadow maps: "orthographic", "perspective" or "cube"; empty for families without a map (the
+    // map's fields below are then left out of raster.json).
+    std::string map;
     std::vector<glm::dmat4> clipFromWorld;  // per map face
     double wsNear = 0.0, wsFar = 0.0, fovYDeg = 0.0;
     // Orthographic maps: the world size of one texel; perspective and cube maps: per unit of
@@ -35,6 +39,8 @@ struct RasterLightStats {
     // GL memory the technique holds for this light (maps, moment and blur targets, the light's
     // visibility target), estimated from the formats and sizes it allocates.
     uint64_t memoryBytes = 0;
+    // The family's own counts (shadow volumes: volume triangles, stencil fill), by name.
+    std::map<std::string, int64_t> counts;
 };
 
 struct RasterTimings {

@@ -32,9 +32,8 @@ double renderFrame(const CameraPass& camera, std::vector<FrameLight>& lights, Pa
     glDepthMask(GL_TRUE);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     for (FrameLight& l : lights) {
-        timer.begin(l.light->name + "." + l.passes->lightPassName());
-        l.passes->renderLightPasses();
-        timer.end();
+        PassClock clock(timer, l.light->name);
+        l.passes->renderLightPasses(clock);
     }
     timer.begin("camera");
     camera.render();
@@ -43,10 +42,9 @@ double renderFrame(const CameraPass& camera, std::vector<FrameLight>& lights, Pa
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
     for (FrameLight& l : lights) {
-        timer.begin(l.light->name + ".visibility");
+        PassClock clock(timer, l.light->name);
         l.target.bindAndClear();
-        l.passes->renderVisibility();
-        timer.end();
+        l.passes->renderVisibility(clock);
     }
     glFinish();
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -99,7 +97,8 @@ RasterStats collectStats(const TechniqueFrames& t, const CameraPass& camera,
     s.gl = {gl.renderer(), gl.version(), gl.platform()};
     for (const FrameLight& l : t.lights) {
         RasterLightStats ls = l.passes->describe();
-        for (const std::string& pass : {l.passes->lightPassName(), std::string("visibility")})
+        ls.passes = l.passes->passNames();
+        for (const std::string& pass : ls.passes)
             ls.passMs[pass] = t.timer.stats(l.light->name + "." + pass);
         ls.memoryBytes = l.passes->memoryBytes() +
                          uint64_t(camera.width()) * uint64_t(camera.height()) * 8;  // V, aliasing

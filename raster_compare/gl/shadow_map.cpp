@@ -6,6 +6,7 @@
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
 #include "raster_compare/gl/light_camera.h"
+#include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 
 namespace so {
@@ -69,9 +70,9 @@ GlTexture makeSquare(GLenum format, int size, bool linear) {
 class ShadowMapLight final : public LightTechnique {
   public:
     ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup);
-    std::string lightPassName() const override { return "shadow_map"; }
-    void renderLightPasses() override;
-    void renderVisibility() override;
+    std::vector<std::string> passNames() const override { return {"shadow_map", "visibility"}; }
+    void renderLightPasses(PassClock& clock) override;
+    void renderVisibility(PassClock& clock) override;
     RasterLightStats describe() const override;
     uint64_t memoryBytes() const override;
 
@@ -189,7 +190,8 @@ void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
     setInt(vp, "u_map", 0);
 }
 
-void ShadowMapLight::renderLightPasses() {
+void ShadowMapLight::renderLightPasses(PassClock& clock) {
+    clock.begin("shadow_map");
     const int res = technique_.resolution();
     glViewport(0, 0, res, res);
     glUseProgram(depthProg_.get());
@@ -207,6 +209,7 @@ void ShadowMapLight::renderLightPasses() {
         scene_.draw(depthProg_.get(), false);
     }
     technique_.endMapPass();
+    clock.end();
 }
 
 // The moments of one face, then the two blur directions into the map's face.
@@ -235,10 +238,12 @@ void ShadowMapLight::renderMomentFace(int f) {
     glEnable(GL_DEPTH_TEST);
 }
 
-void ShadowMapLight::renderVisibility() {
+void ShadowMapLight::renderVisibility(PassClock& clock) {
+    clock.begin("visibility");
     glUseProgram(visibilityProg_.get());
     glBindTextureUnit(0, map_.get());
     scene_.draw(visibilityProg_.get(), false);
+    clock.end();
 }
 
 RasterLightStats ShadowMapLight::describe() const {
@@ -246,6 +251,7 @@ RasterLightStats ShadowMapLight::describe() const {
     RasterLightStats s;
     s.name = light_.name;
     s.type = lightTypeName(light_.type);
+    s.family = ShadowMapTechnique::kFamily;
     const bool ortho = cam_.kind == LightCamera::Kind::Ortho;
     s.map = ortho ? "orthographic" : cam_.kind == LightCamera::Kind::Cube ? "cube" : "perspective";
     const glm::dmat4 lsFromWs = glm::inverse(scene_.wsFromLs());

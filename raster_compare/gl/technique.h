@@ -27,6 +27,7 @@ namespace so {
 
 class GpuScene;
 class CameraPass;
+class PassClock;
 
 // What a technique gets to set up one light.
 struct LightSetup {
@@ -38,19 +39,23 @@ struct LightSetup {
     const std::optional<Bounds3d>& lsReceivers;
 };
 
-// One light's GL objects and passes. Made by Technique::setUp with a current context.
+// One light's GL objects and passes. Made by Technique::setUp with a current context. Each pass
+// it runs is timed with the clock under one of the names passNames() lists (raster.json).
 class LightTechnique {
   public:
     virtual ~LightTechnique() = default;
-    // The name of the passes that see only the light, timed as "<light>.<name>".
-    virtual std::string lightPassName() const = 0;
+    // The passes it runs for the light, in order: {"shadow_map", "visibility"}, ...
+    virtual std::vector<std::string> passNames() const = 0;
     // Passes before the camera pass (shadow maps); GL state is the frame's (depth test on, depth
     // writes on, clip control 0..1) and must be left so.
-    virtual void renderLightPasses() = 0;
-    // Draws the scene into the light's target, already bound and cleared, with the camera pass's
-    // depth and depth test EQUAL: location 0 gets V, location 1 the predicted aliasing.
-    virtual void renderVisibility() = 0;
-    // The light's camera and map, for raster.json (timings are filled in by the renderer).
+    virtual void renderLightPasses(PassClock& clock) = 0;
+    // After the camera pass: the light's target is bound, its colours cleared, the camera pass's
+    // depth and stencil attached (the stencil's content undefined), depth writes off and depth
+    // test EQUAL. Ends with the scene drawn so: location 0 gets V, location 1 the predicted
+    // aliasing; any other state it changes it restores.
+    virtual void renderVisibility(PassClock& clock) = 0;
+    // The light's family, camera and map, and the technique's own counts, for raster.json
+    // (timings and memory are filled in by the renderer).
     virtual RasterLightStats describe() const = 0;
     // The GL memory it holds (maps and intermediate targets), from the formats and sizes.
     virtual uint64_t memoryBytes() const = 0;

@@ -1,0 +1,26 @@
+// Shadow volumes' visibility: drawn where the stencil count is 0 (the stencil test discards the
+// rest, which keep V = 0). Facing away, or outside a spot's cone, is unlit as in the oracle.
+// Defines: LIGHT_ORTHO (directional), LIGHT_SPOT.
+in vec3 v_lsPosition;
+flat in vec3 v_lsFaceNormal;
+uniform vec3 u_lsEye;
+uniform vec3 u_lsLightPosition;
+uniform vec3 u_lsLightDirection;  // the way light travels
+uniform float u_cosOuter;
+layout(location = 0) out float o_visibility;
+layout(location = 1) out float o_aliasing;  // no map, no texels: 0
+void main() {
+    vec3 p = v_lsPosition;
+    vec3 n = normalize(v_lsFaceNormal);
+    if (dot(n, p - u_lsEye) > 0.0) n = -n;
+#ifdef LIGHT_ORTHO
+    vec3 l = -u_lsLightDirection;
+#else
+    vec3 l = normalize(u_lsLightPosition - p);
+#endif
+    o_aliasing = 0.0;
+    o_visibility = dot(n, l) > 0.0 ? 1.0 : 0.0;
+#ifdef LIGHT_SPOT
+    if (dot(-l, u_lsLightDirection) < u_cosOuter) o_visibility = 0.0;
+#endif
+}

@@ -1,0 +1,21 @@
+// volume-zfail: stencil shadow volumes counted behind the surface (Carmack's reverse; Everitt and
+// Kilgard 2002): back faces +1 and front faces -1 where they fail the depth test. The volumes are
+// closed by caps (the casting triangles, and the same at infinity), so the count is right with the
+// camera anywhere, inside a shadow included; the price is drawing the caps.
+#include "raster_compare/gl/shadow_volume.h"
+
+namespace so {
+namespace {
+
+class VolumeZFail final : public ShadowVolumeTechnique {
+  public:
+    static ParamTable params() { return {}; }
+    explicit VolumeZFail(const ParamValues& v) : ShadowVolumeTechnique(v) {}
+    bool zFail() const override { return true; }
+};
+
+SO_REGISTER_TECHNIQUE(VolumeZFail, "volume-zfail",
+                      "stencil shadow volumes, z-fail: capped volumes counted behind the surface");
+
+}  // namespace
+}  // namespace so

@@ -1,0 +1,30 @@
+// volume-zpass: stencil shadow volumes counted in front of the surface (Heidmann 1991): +1 where
+// the eye's ray enters a volume before reaching the surface, -1 where it leaves. Needs no caps,
+// but the count must start from the number of volumes the eye is in (init_count=1: counted on the
+// CPU, occluder triangles between the eye and the light); with init_count=0, the naive z-pass, a
+// camera inside a shadow inverts it. Volumes clipped by the near plane are not counted either way.
+#include "raster_compare/gl/shadow_volume.h"
+
+namespace so {
+namespace {
+
+class VolumeZPass final : public ShadowVolumeTechnique {
+  public:
+    static ParamTable params() {
+        return {{"init_count", 1, 0, 1, true,
+                 "1: start the count at the volumes containing the eye (CPU); 0: at 0 (naive)"}};
+    }
+    explicit VolumeZPass(const ParamValues& v)
+        : ShadowVolumeTechnique(v), initCount_(v.integer("init_count") == 1) {}
+    bool zFail() const override { return false; }
+    bool initialiseCount() const override { return initCount_; }
+
+  private:
+    bool initCount_;
+};
+
+SO_REGISTER_TECHNIQUE(VolumeZPass, "volume-zpass",
+                      "stencil shadow volumes, z-pass: faces in front of the surface counted");
+
+}  // namespace
+}  // namespace so
