@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "raster_compare/gl/gl_program.h"
+#include "raster_compare/gl/shadow_volume_geometry.h"
 
 namespace so {
 
@@ -43,6 +44,13 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene), frame_(LocalFrame::fit(s
     }
 }
 
+GpuScene::~GpuScene() = default;
+
+const WeldedScene& GpuScene::welded() const {
+    if (!welded_) welded_ = std::make_unique<WeldedScene>(WeldedScene::build(scene_, frame_));
+    return *welded_;
+}
+
 glm::dmat4 GpuScene::wsFromLs() const {
     return glm::scale(glm::translate(glm::dmat4(1.0), frame_.wsCenter),
                       glm::dvec3(std::ldexp(1.0, frame_.exponent)));
@@ -50,6 +58,10 @@ glm::dmat4 GpuScene::wsFromLs() const {
 
 void GpuScene::bind() const {
     glBindVertexArray(vao_.get());
+}
+
+void GpuScene::drawMesh(size_t mesh) const {
+    glDrawArrays(GL_TRIANGLES, draws_[mesh].first, draws_[mesh].count);
 }
 
 void GpuScene::draw(GLuint program, bool setMeshId) const {

@@ -3,6 +3,7 @@
 // its mesh. Every pass draws the scene through here.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -13,9 +14,12 @@
 
 namespace so {
 
+struct WeldedScene;
+
 class GpuScene {
   public:
     explicit GpuScene(const Scene& scene);  // uploads; needs a current context
+    ~GpuScene();
 
     const Scene& scene() const { return scene_; }
     const LocalFrame& frame() const { return frame_; }
@@ -26,6 +30,12 @@ class GpuScene {
     void bind() const;
     // Draws every mesh with `program`, setting its u_meshId uniform per mesh when asked.
     void draw(GLuint program, bool setMeshId) const;
+    // Draws one mesh (the program bound by the caller).
+    void drawMesh(size_t mesh) const;
+    size_t meshCount() const { return draws_.size(); }
+    // The triangles with welded vertices (shadow_volume_geometry.h), made on first use and shared
+    // by every light.
+    const WeldedScene& welded() const;
 
   private:
     struct MeshDraw {
@@ -38,6 +48,7 @@ class GpuScene {
     std::vector<MeshDraw> draws_;
     GlBuffer vbo_;
     GlVertexArray vao_;
+    mutable std::unique_ptr<WeldedScene> welded_;
 };
 
 }  // namespace so

@@ -94,12 +94,17 @@ class ShadowMapLight final : public LightTechnique {
     GlProgram momentsProg_, blurProg_;
     GlTexture faceTex_, tempTex_, faceDepth_;
     GlFramebuffer faceFbo_, tempFbo_;
+    // Without a blur (radius 0) the moments go straight into the map's faces, over faceDepth_:
+    // the same values as the blur's one-tap copy, without the two copies.
+    std::vector<GlFramebuffer> directFbos_;
+    int receiver_ = -1;  // technique_.receiverMesh
 };
 
 ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup)
     : technique_(technique), light_(setup.light), scene_(setup.scene) {
     cam_ = fitLightCamera(light_, scene_.frame(), scene_.lsBounds(), technique.resolution(),
                           setup.lsReceivers ? &*setup.lsReceivers : nullptr);
+    receiver_ = technique.receiverMesh(scene_);
     depthProg_ = buildProgram("", shaders::scene_vert, {shaders::depth_frag});
     createMap();
     if (technique.storage() == MapStorage::Moments) createMomentTargets();
@@ -117,7 +122,9 @@ void ShadowMapLight::createMap() {
     // Point sampling: depth techniques do their own filtering and comparison in the shader;
     // moment maps are filtered bilinearly, which is what they are for; the hardware compare
     // filters with GL_LINEAR.
-    const GLint filter = storage == MapStorage::Depth ? GL_NEAREST : GL_LINEAR;
+    const GLint filter = storage == MapStorage::Depth || (moments && !technique_.bilinearMap())
+                             ? GL_NEAREST
+                             : GL_LINEAR;
     glTextureParameteri(map_.get(), GL_TEXTURE_MIN_FILTER, filter);
     glTextureParameteri(map_.get(), GL_TEXTURE_MAG_FILTER, filter);
     for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
@@ -140,19 +147,31 @@ void ShadowMapLight::createMap() {
 
 void ShadowMapLight::createMomentTargets() {
     const int res = technique_.resolution();
-    faceTex_ = makeSquare(GL_RGBA32F, res, false);
-    tempTex_ = makeSquare(GL_RGBA32F, res, false);
     faceDepth_ = makeSquare(depthFormat(technique_.depthBits()), res, false);
-    faceFbo_ = makeFramebuffer();
-    glNamedFramebufferTexture(faceFbo_.get(), GL_COLOR_ATTACHMENT0, faceTex_.get(), 0);
-    glNamedFramebufferTexture(faceFbo_.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
-    tempFbo_ = makeFramebuffer();
-    glNamedFramebufferTexture(tempFbo_.get(), GL_COLOR_ATTACHMENT0, tempTex_.get(), 0);
     momentsProg_ =
         buildProgram("#define MOMENTS_PASS\n" + technique_.shaderDefines(), shaders::scene_vert,
                      {shaders::shadow_moments_frag, technique_.glsl()});
     setFloat(momentsProg_.get(), "u_near", cam_.near);
     setFloat(momentsProg_.get(), "u_far", cam_.far);
+    if (technique_.blurRadius() == 0) {
+        for (int f = 0; f < cam_.faces; ++f) {
+            GlFramebuffer fbo = makeFramebuffer();
+            if (cam_.kind == LightCamera::Kind::Cube)
+                glNamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, map_.get(), 0, f);
+            else
+                glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, map_.get(), 0);
+            glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
+            directFbos_.push_back(std::move(fbo));
+        }
+        return;
+    }
+    faceTex_ = makeSquare(GL_RGBA32F, res, false);
+    tempTex_ = makeSquare(GL_RGBA32F, res, false);
+    faceFbo_ = makeFramebuffer();
+    glNamedFramebufferTexture(faceFbo_.get(), GL_COLOR_ATTACHMENT0, faceTex_.get(), 0);
+    glNamedFramebufferTexture(faceFbo_.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
+    tempFbo_ = makeFramebuffer();
+    glNamedFramebufferTexture(tempFbo_.get(), GL_COLOR_ATTACHMENT0, tempTex_.get(), 0);
     blurProg_ = buildProgram("", shaders::fullscreen_vert, {shaders::blur_frag});
     setInt(blurProg_.get(), "u_radius", technique_.blurRadius());
     setInt(blurProg_.get(), "u_source", 0);
@@ -188,6 +207,7 @@ void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
     setFloat(vp, "u_far", cam_.far);
     setFloat(vp, "u_texelScale", cam_.texelScale);
     setInt(vp, "u_map", 0);
+    setFloat(vp, "u_receiverMesh", receiver_);
 }
 
 void ShadowMapLight::renderLightPasses(PassClock& clock) {
@@ -216,13 +236,17 @@ void ShadowMapLight::renderLightPasses(PassClock& clock) {
 void ShadowMapLight::renderMomentFace(int f) {
     const float one = 1.0f;
     const std::array<float, 4> farMoments = technique_.farMoments();
-    glBindFramebuffer(GL_FRAMEBUFFER, faceFbo_.get());
-    glClearNamedFramebufferfv(faceFbo_.get(), GL_COLOR, 0, farMoments.data());
-    glClearNamedFramebufferfv(faceFbo_.get(), GL_DEPTH, 0, &one);
+    const bool direct = !directFbos_.empty();
+    const GLuint target = direct ? directFbos_[size_t(f)].get() : faceFbo_.get();
+    glBindFramebuffer(GL_FRAMEBUFFER, target);
+    glClearNamedFramebufferfv(target, GL_COLOR, 0, farMoments.data());
+    glClearNamedFramebufferfv(target, GL_DEPTH, 0, &one);
     glUseProgram(momentsProg_.get());
     setMat4(momentsProg_.get(), "u_clipFromLocal", cam_.clipFromLocal(f));
     setMat4(momentsProg_.get(), "u_lightViewFromLocal", cam_.viewFromLocal[size_t(f)]);
-    scene_.draw(momentsProg_.get(), false);
+    for (size_t m = 0; m < scene_.meshCount(); ++m)
+        if (int(m) != receiver_) scene_.drawMesh(m);
+    if (direct) return;
     glDisable(GL_DEPTH_TEST);
     glUseProgram(blurProg_.get());
     const float texel = 1.0f / float(technique_.resolution());
@@ -242,7 +266,7 @@ void ShadowMapLight::renderVisibility(PassClock& clock) {
     clock.begin("visibility");
     glUseProgram(visibilityProg_.get());
     glBindTextureUnit(0, map_.get());
-    scene_.draw(visibilityProg_.get(), false);
+    scene_.draw(visibilityProg_.get(), receiver_ >= 0);
     clock.end();
 }
 
@@ -251,7 +275,8 @@ RasterLightStats ShadowMapLight::describe() const {
     RasterLightStats s;
     s.name = light_.name;
     s.type = lightTypeName(light_.type);
-    s.family = ShadowMapTechnique::kFamily;
+    s.family = technique_.family();
+    if (receiver_ >= 0) s.counts = {{"receiver_mesh", receiver_}};
     const bool ortho = cam_.kind == LightCamera::Kind::Ortho;
     s.map = ortho ? "orthographic" : cam_.kind == LightCamera::Kind::Cube ? "cube" : "perspective";
     const glm::dmat4 lsFromWs = glm::inverse(scene_.wsFromLs());
@@ -271,8 +296,10 @@ uint64_t ShadowMapLight::memoryBytes() const {
     const uint64_t depthBytes = technique_.depthBits() == 16 ? 2 : 4;
     if (technique_.storage() != MapStorage::Moments)
         return texels * depthBytes * uint64_t(cam_.faces);
-    // The moment map (RGBA32F per face), and one face's moments, blur target and depth buffer.
-    return texels * 16 * uint64_t(cam_.faces) + texels * (16 + 16 + depthBytes);
+    // The moment map (RGBA32F per face), and one face's depth buffer and, with a blur, its
+    // moments and blur target.
+    const uint64_t blurBytes = technique_.blurRadius() > 0 ? 16 + 16 : 0;
+    return texels * 16 * uint64_t(cam_.faces) + texels * (blurBytes + depthBytes);
 }
 
 }  // namespace

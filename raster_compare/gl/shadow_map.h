@@ -18,6 +18,8 @@
 
 namespace so {
 
+class GpuScene;
+
 // What the map holds and how the visibility pass samples it.
 enum class MapStorage {
     Depth,                 // depth, point-sampled: the shader compares (and filters) itself
@@ -53,6 +55,13 @@ class ShadowMapTechnique : public Technique {
     // which the map is cleared to.
     virtual int blurRadius() const { return 0; }
     virtual std::array<float, 4> farMoments() const { return {1, 1, 0, 0}; }
+    // Moment maps: bilinear filtering of the map (else point sampling).
+    virtual bool bilinearMap() const { return true; }
+    // A mesh that is left out of the map and that the visibility GLSL can tell (u_meshId against
+    // u_receiverMesh): the shadow texture's receiver; -1 for none. Called once per light.
+    virtual int receiverMesh(const GpuScene&) const { return -1; }
+    // The family it is listed under (a technique built on this one may be another's).
+    virtual const char* family() const { return kFamily; }
 
   private:
     int resolution_, depthBits_;

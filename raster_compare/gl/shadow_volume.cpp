@@ -106,10 +106,9 @@ class ShadowVolumeLight final : public LightTechnique {
 ShadowVolumeLight::ShadowVolumeLight(const ShadowVolumeTechnique& technique,
                                      const LightSetup& setup)
     : technique_(technique), light_(setup.light), scene_(setup.scene), camera_(setup.camera) {
-    const Scene& scene = scene_.scene();
     const glm::dvec4 lsLight = lsLightOf(light_, scene_.frame());
-    geometry_ = buildShadowVolumes(scene, scene_.frame(), lsLight);
-    eyeInside_ = volumesContaining(scene, scene_.frame(), lsLight, camera_.lsEye());
+    geometry_ = buildShadowVolumes(scene_.welded(), lsLight);
+    eyeInside_ = volumesContaining(scene_.welded(), lsLight, camera_.lsEye());
     initialCount_ = !technique.zFail() && technique.initialiseCount() ? eyeInside_ : 0;
     sides_ = makeStream(geometry_.sides, 4);
     farCaps_ = makeStream(geometry_.farCaps, 4);

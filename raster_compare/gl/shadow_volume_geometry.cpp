@@ -13,30 +13,35 @@ namespace so {
 
 namespace {
 
-// A casting triangle: its corners in double, wound to face the light (`flipped`: the mesh's
-// winding is the other way).
+// A casting triangle: its corners' ids and positions, wound to face the light (`flipped`: the
+// mesh's winding is the other way).
 struct Caster {
+    uint32_t id[3];
     glm::dvec3 p[3];
     bool flipped = false;
 };
 
 // Calls f(Caster) for every triangle that casts: not degenerate, not edge-on to the light.
 template <typename F>
-void forEachCaster(const Scene& scene, const LocalFrame& frame, const glm::dvec4& lsLight, F&& f) {
-    for (const MeshPrimitive& m : scene.meshes)
-        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-            Caster c;
-            for (int k = 0; k < 3; ++k)
-                c.p[k] = frame.lsFromWs(m.wsPositions[m.indices[t + size_t(k)]]);
-            const glm::dvec3 n = glm::cross(c.p[1] - c.p[0], c.p[2] - c.p[0]);
-            const glm::dvec3 toLight =
-                lsLight.w != 0.0 ? glm::dvec3(lsLight) - c.p[0] : -glm::dvec3(lsLight);
-            const double s = glm::dot(n, toLight);
-            if (s == 0.0 || !(glm::dot(n, n) > 0.0)) continue;
-            c.flipped = s < 0.0;
-            if (c.flipped) std::swap(c.p[1], c.p[2]);
-            f(c);
+void forEachCaster(const WeldedScene& scene, const glm::dvec4& lsLight, F&& f) {
+    for (const std::array<uint32_t, 3>& t : scene.triangles) {
+        Caster c;
+        for (int k = 0; k < 3; ++k) {
+            c.id[k] = t[size_t(k)];
+            c.p[k] = scene.lsPositions[t[size_t(k)]];
         }
+        const glm::dvec3 n = glm::cross(c.p[1] - c.p[0], c.p[2] - c.p[0]);
+        const glm::dvec3 toLight =
+            lsLight.w != 0.0 ? glm::dvec3(lsLight) - c.p[0] : -glm::dvec3(lsLight);
+        const double s = glm::dot(n, toLight);
+        if (s == 0.0 || !(glm::dot(n, n) > 0.0)) continue;
+        c.flipped = s < 0.0;
+        if (c.flipped) {
+            std::swap(c.p[1], c.p[2]);
+            std::swap(c.id[1], c.id[2]);
+        }
+        f(c);
+    }
 }
 
 struct PositionKey {
@@ -51,22 +56,11 @@ struct PositionHash {
     }
 };
 
-// The welded vertex ids and, per undirected edge (lo id, hi id), the signed count of the casters
-// that run along it from lo to hi (+1) or back (-1).
+// Per undirected edge (lo id, hi id), the signed count of the casters that run along it from lo
+// to hi (+1) or back (-1).
 struct EdgeCounts {
-    std::unordered_map<PositionKey, uint32_t, PositionHash> ids;
-    std::vector<glm::dvec3> positions;
     std::unordered_map<uint64_t, int> count;
-
-    uint32_t id(const glm::dvec3& p) {
-        const PositionKey k{{std::bit_cast<uint64_t>(p.x), std::bit_cast<uint64_t>(p.y),
-                             std::bit_cast<uint64_t>(p.z)}};
-        const auto [it, added] = ids.try_emplace(k, uint32_t(positions.size()));
-        if (added) positions.push_back(p);
-        return it->second;
-    }
-    void add(const glm::dvec3& a, const glm::dvec3& b) {
-        const uint32_t ia = id(a), ib = id(b);
+    void add(uint32_t ia, uint32_t ib) {
         if (ia == ib) return;
         const bool forward = ia < ib;
         const uint64_t key = forward ? (uint64_t(ia) << 32 | ib) : (uint64_t(ib) << 32 | ia);
@@ -86,12 +80,31 @@ void pushInfinite(std::vector<float>& v, const glm::dvec3& p, const glm::dvec4& 
 
 }  // namespace
 
-ShadowVolumeGeometry buildShadowVolumes(const Scene& scene, const LocalFrame& frame,
-                                        const glm::dvec4& lsLight) {
+WeldedScene WeldedScene::build(const Scene& scene, const LocalFrame& frame) {
+    WeldedScene w;
+    std::unordered_map<PositionKey, uint32_t, PositionHash> ids;
+    for (const MeshPrimitive& m : scene.meshes) {
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            std::array<uint32_t, 3> tri;
+            for (int k = 0; k < 3; ++k) {
+                const glm::dvec3 p = frame.lsFromWs(m.wsPositions[m.indices[t + size_t(k)]]);
+                const PositionKey key{{std::bit_cast<uint64_t>(p.x), std::bit_cast<uint64_t>(p.y),
+                                       std::bit_cast<uint64_t>(p.z)}};
+                const auto [it, added] = ids.try_emplace(key, uint32_t(w.lsPositions.size()));
+                if (added) w.lsPositions.push_back(p);
+                tri[size_t(k)] = it->second;
+            }
+            w.triangles.push_back(tri);
+        }
+    }
+    return w;
+}
+
+ShadowVolumeGeometry buildShadowVolumes(const WeldedScene& scene, const glm::dvec4& lsLight) {
     ShadowVolumeGeometry g;
     EdgeCounts edges;
     std::vector<float> flippedCaps;
-    forEachCaster(scene, frame, lsLight, [&](const Caster& c) {
+    forEachCaster(scene, lsLight, [&](const Caster& c) {
         ++g.casters;
         // In the mesh's own vertex order (undoing the flip).
         std::vector<float>& caps = c.flipped ? flippedCaps : g.nearCaps;
@@ -99,7 +112,7 @@ ShadowVolumeGeometry buildShadowVolumes(const Scene& scene, const LocalFrame& fr
             caps.insert(caps.end(), {float(c.p[k].x), float(c.p[k].y), float(c.p[k].z)});
         g.nearCapsFlipped += c.flipped ? 1 : 0;
         for (int k : {0, 2, 1}) pushInfinite(g.farCaps, c.p[k], lsLight);
-        for (int k = 0; k < 3; ++k) edges.add(c.p[k], c.p[(k + 1) % 3]);
+        for (int k = 0; k < 3; ++k) edges.add(c.id[k], c.id[(k + 1) % 3]);
     });
     g.nearCaps.insert(g.nearCaps.end(), flippedCaps.begin(), flippedCaps.end());
     // Edges in id order, so the geometry does not depend on the hash map's iteration order.
@@ -108,7 +121,7 @@ ShadowVolumeGeometry buildShadowVolumes(const Scene& scene, const LocalFrame& fr
         if (n != 0) kept.emplace_back(key, n);
     std::sort(kept.begin(), kept.end());
     for (const auto& [key, n] : kept) {
-        glm::dvec3 a = edges.positions[key >> 32], b = edges.positions[key & 0xffffffffu];
+        glm::dvec3 a = scene.lsPositions[key >> 32], b = scene.lsPositions[key & 0xffffffffu];
         if (n < 0) std::swap(a, b);
         // The quad on edge a -> b of a light-facing triangle, wound to face out of the volume:
         // (a, a at infinity, b at infinity) and (a, b at infinity, b).
@@ -125,14 +138,14 @@ ShadowVolumeGeometry buildShadowVolumes(const Scene& scene, const LocalFrame& fr
     return g;
 }
 
-int volumesContaining(const Scene& scene, const LocalFrame& frame, const glm::dvec4& lsLight,
+int volumesContaining(const WeldedScene& scene, const glm::dvec4& lsLight,
                       const glm::dvec3& lsEye) {
     // Moller-Trumbore in double; the segment's open interior for a point light, the whole ray for
     // a directional one.
     const bool point = lsLight.w != 0.0;
     const glm::dvec3 d = point ? glm::dvec3(lsLight) - lsEye : -glm::dvec3(lsLight);
     int n = 0;
-    forEachCaster(scene, frame, lsLight, [&](const Caster& c) {
+    forEachCaster(scene, lsLight, [&](const Caster& c) {
         const glm::dvec3 e1 = c.p[1] - c.p[0], e2 = c.p[2] - c.p[0];
         const glm::dvec3 pv = glm::cross(d, e2);
         const double det = glm::dot(e1, pv);

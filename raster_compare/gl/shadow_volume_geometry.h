@@ -13,7 +13,9 @@
 // mesh: closed, open (a single quad), non-manifold, or wound either way.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -23,6 +25,15 @@
 #include "core/scene.h"
 
 namespace so {
+
+// The scene's triangles in the local frame with their corners' vertex ids, vertices welded by
+// exact position (glTF splits them at seams): the adjacency every light's volumes are built from,
+// made once per scene.
+struct WeldedScene {
+    std::vector<glm::dvec3> lsPositions;             // per welded vertex
+    std::vector<std::array<uint32_t, 3>> triangles;  // in the meshes' order and winding
+    static WeldedScene build(const Scene& scene, const LocalFrame& frame);
+};
 
 struct ShadowVolumeGeometry {
     // Near caps: 3 vertices (x, y, z) per casting triangle at the float positions and in the
@@ -44,12 +55,10 @@ struct ShadowVolumeGeometry {
 
 // lsLight: (position, 1) for point and spot lights (and area lights at their centre), (the
 // direction light travels, 0) for directional lights; in the local frame.
-ShadowVolumeGeometry buildShadowVolumes(const Scene& scene, const LocalFrame& frame,
-                                        const glm::dvec4& lsLight);
+ShadowVolumeGeometry buildShadowVolumes(const WeldedScene& scene, const glm::dvec4& lsLight);
 
 // The number of volumes that contain lsEye: casting triangles crossed by the segment from it to
 // the light (for a directional light, the ray towards it). What a z-pass count must start from.
-int volumesContaining(const Scene& scene, const LocalFrame& frame, const glm::dvec4& lsLight,
-                      const glm::dvec3& lsEye);
+int volumesContaining(const WeldedScene& scene, const glm::dvec4& lsLight, const glm::dvec3& lsEye);
 
 }  // namespace so

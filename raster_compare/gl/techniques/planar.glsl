@@ -1,0 +1,14 @@
+// planar (planar.cpp): the vertex shader that flattens the casters onto the receiver's plane.
+// u_projection is Blinn's (P.L) I - L P^T for the lifted plane P and the light L (homogeneous);
+// clip distance 0 drops what projects with w <= 0 (casters beyond a point light), clip distance 1
+// what lies below the receiver's plane (it would cast upwards through it).
+layout(location = 0) in vec3 a_lsPosition;
+uniform mat4 u_clipFromLocal;
+uniform mat4 u_projection;
+uniform vec4 u_lsPlane;  // the receiver's plane, n towards the light
+void main() {
+    vec4 q = u_projection * vec4(a_lsPosition, 1.0);
+    gl_ClipDistance[0] = q.w;
+    gl_ClipDistance[1] = dot(u_lsPlane, vec4(a_lsPosition, 1.0));
+    gl_Position = u_clipFromLocal * q;
+}

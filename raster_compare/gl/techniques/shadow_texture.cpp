@@ -1,0 +1,49 @@
+// shadow-texture: shadow textures (projective texturing of an occluder image). The casters (every
+// mesh but the receiver) are rendered from the light into a texture as opacity (1 where one
+// covers the texel), which is projected onto the receiver: V = 1 - opacity there, filtered
+// bilinearly (soft, blocky edges) or point-sampled (`filter`). Only the receiver gets a shadow:
+// no self-shadowing and no shadow on other casters, by design (false lit, which the metrics
+// count). Receivers behind a spot light would take a back-projected shadow; they are masked (lit).
+// The receiver is a mesh index (`receiver`, as id.mesh) or the largest planar mesh. The texture is
+// stored as the shadow-map family's moment map (RGBA32F, opacity in the first channel).
+#include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/receiver_plane.h"
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_map.h"
+
+namespace so {
+namespace {
+
+class ShadowTexture final : public ShadowMapTechnique {
+  public:
+    static constexpr const char* kFamily = "shadow texture";
+    static ParamTable params() {
+        return shadowMapParams(
+            {{"filter", 1, 0, 1, true, "1: bilinear lookup of the texture; 0: point sampling"},
+             {"receiver", -1, -1, 1e6, true,
+              "mesh index (as id.mesh) of the receiver; -1: the largest planar mesh"}});
+    }
+    explicit ShadowTexture(const ParamValues& v)
+        : ShadowMapTechnique(v),
+          bilinear_(v.integer("filter") == 1),
+          receiver_(v.integer("receiver")) {}
+    MapStorage storage() const override { return MapStorage::Moments; }
+    const char* glsl() const override { return shaders::shadow_texture_glsl; }
+    std::array<float, 4> farMoments() const override { return {0, 0, 0, 0}; }  // no caster
+    bool bilinearMap() const override { return bilinear_; }
+    int receiverMesh(const GpuScene& scene) const override {
+        return findReceiver(scene.scene(), scene.frame(), receiver_, "shadow-texture").mesh;
+    }
+    const char* family() const override { return kFamily; }
+
+  private:
+    bool bilinear_;
+    int receiver_;
+};
+
+SO_REGISTER_TECHNIQUE(ShadowTexture, "shadow-texture",
+                      "shadow texture: the casters' opacity from the light, projected onto the "
+                      "receiver");
+
+}  // namespace
+}  // namespace so
