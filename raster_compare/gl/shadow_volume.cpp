@@ -10,6 +10,7 @@
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/light_facing.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_volume_geometry.h"
@@ -87,7 +88,7 @@ class ShadowVolumeLight final : public LightTechnique {
     // test), so that it cancels the face where the eye's ray leaves the volume again; z-pass
     // draws no caps and takes the faces through the surface as in front.
     GLenum volumeDepthTest() const { return technique_.zFail() ? GL_GREATER : GL_GEQUAL; }
-    void drawVolumes() const;
+    void drawVolumes(GLuint program, GLuint capProgram) const;
     void drawNearCaps() const;
     void measureOnce();
 
@@ -121,27 +122,19 @@ ShadowVolumeLight::ShadowVolumeLight(const ShadowVolumeTechnique& technique,
     setMat4(capProg_.get(), "u_clipFromLocal", camera_.clipFromLocal());
     countProg_ = buildProgram("", shaders::volume_vert, {shaders::volume_count_frag});
     setMat4(countProg_.get(), "u_clipFromLocal", camera_.clipFromLocal());
-    const std::string defines = light_.type == LightType::Directional ? "#define LIGHT_ORTHO\n"
-                                : light_.type == LightType::Spot      ? "#define LIGHT_SPOT\n"
-                                                                      : "";
-    visibilityProg_ = buildProgram(defines, shaders::scene_vert, {shaders::volume_visibility_frag});
-    const GLuint vp = visibilityProg_.get();
-    setMat4(vp, "u_clipFromLocal", camera_.clipFromLocal());
-    setVec3(vp, "u_lsEye", camera_.lsEye());
-    setVec3(vp, "u_lsLightPosition", scene_.frame().lsFromWs(light_.wsPosition));
-    setVec3(vp, "u_lsLightDirection", glm::normalize(light_.wsDirection));
-    setFloat(vp, "u_cosOuter", std::cos(light_.outerConeDeg * 3.14159265358979323846 / 180.0));
+    visibilityProg_ = buildLightFacingProgram(light_, scene_, camera_);
 }
 
-// The volume faces z-pass counts (the sides), or z-fail's (sides and both caps).
-void ShadowVolumeLight::drawVolumes() const {
-    glUseProgram(volumeProg_.get());
+// The volume faces z-pass counts (the sides), or z-fail's (sides and both caps): the sides and
+// far caps with `program`, the near caps with `capProgram`.
+void ShadowVolumeLight::drawVolumes(GLuint program, GLuint capProgram) const {
+    glUseProgram(program);
     glBindVertexArray(sides_.vao.get());
     glDrawArrays(GL_TRIANGLES, 0, sides_.vertices);
     if (technique_.zFail()) {
         glBindVertexArray(farCaps_.vao.get());
         glDrawArrays(GL_TRIANGLES, 0, farCaps_.vertices);
-        glUseProgram(capProg_.get());
+        glUseProgram(capProgram);
         drawNearCaps();
     }
 }
@@ -174,7 +167,7 @@ void ShadowVolumeLight::renderVisibility(PassClock& clock) {
         glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
         glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
     }
-    drawVolumes();
+    drawVolumes(volumeProg_.get(), capProg_.get());
     clock.end();
     clock.begin("visibility");
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -200,11 +193,11 @@ void ShadowVolumeLight::measureOnce() {
     GlQuery passed = makeQuery(GL_SAMPLES_PASSED), total = makeQuery(GL_SAMPLES_PASSED);
     glDepthFunc(volumeDepthTest());
     glBeginQuery(GL_SAMPLES_PASSED, passed.get());
-    drawVolumes();
+    drawVolumes(volumeProg_.get(), capProg_.get());
     glEndQuery(GL_SAMPLES_PASSED);
     glDepthFunc(GL_ALWAYS);
     glBeginQuery(GL_SAMPLES_PASSED, total.get());
-    drawVolumes();
+    drawVolumes(volumeProg_.get(), capProg_.get());
     glEndQuery(GL_SAMPLES_PASSED);
     GLint64 p = 0, t = 0;
     glGetQueryObjecti64v(passed.get(), GL_QUERY_RESULT, &p);
@@ -214,16 +207,9 @@ void ShadowVolumeLight::measureOnce() {
     glStencilMask(0xff);
     glDisable(GL_STENCIL_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    maxFaces_ = maxCoverage(camera_.width(), camera_.height(), [&] {
-        glUseProgram(countProg_.get());
-        glBindVertexArray(sides_.vao.get());
-        glDrawArrays(GL_TRIANGLES, 0, sides_.vertices);
-        if (technique_.zFail()) {
-            glBindVertexArray(farCaps_.vao.get());
-            glDrawArrays(GL_TRIANGLES, 0, farCaps_.vertices);
-            drawNearCaps();
-        }
-    });
+    // The near caps' vec3 positions read as w = 1 in volume.vert.
+    maxFaces_ = maxCoverage(camera_.width(), camera_.height(),
+                            [&] { drawVolumes(countProg_.get(), countProg_.get()); });
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
     glDepthFunc(GL_EQUAL);
     scene_.bind();

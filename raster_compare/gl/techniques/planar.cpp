@@ -14,6 +14,7 @@
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/light_facing.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/receiver_plane.h"
 #include "raster_compare/gl/shaders.h"
@@ -95,16 +96,7 @@ PlanarLight::PlanarLight(const Planar& technique, const LightSetup& setup)
     const Bounds3d& b = scene_.lsBounds();
     const glm::dvec4 lifted = P - glm::dvec4(0, 0, 0, technique.lift * glm::length(b.hi - b.lo));
     const CameraPass& camera = setup.camera;
-    const std::string defines = light_.type == LightType::Directional ? "#define LIGHT_ORTHO\n"
-                                : light_.type == LightType::Spot      ? "#define LIGHT_SPOT\n"
-                                                                      : "";
-    litProg_ = buildProgram(defines, shaders::scene_vert, {shaders::volume_visibility_frag});
-    const GLuint lp = litProg_.get();
-    setMat4(lp, "u_clipFromLocal", camera.clipFromLocal());
-    setVec3(lp, "u_lsEye", camera.lsEye());
-    setVec3(lp, "u_lsLightPosition", frame.lsFromWs(light_.wsPosition));
-    setVec3(lp, "u_lsLightDirection", glm::normalize(light_.wsDirection));
-    setFloat(lp, "u_cosOuter", std::cos(light_.outerConeDeg * 3.14159265358979323846 / 180.0));
+    litProg_ = buildLightFacingProgram(light_, scene_, camera);
     markProg_ = buildProgram("", shaders::scene_vert, {shaders::depth_frag});
     setMat4(markProg_.get(), "u_clipFromLocal", camera.clipFromLocal());
     shadowProg_ = buildProgram("", shaders::planar_glsl, {shaders::blend_alpha_frag});

@@ -1,5 +1,5 @@
-// Shadow volumes' visibility: drawn where the stencil count is 0 (the stencil test discards the
-// rest, which keep V = 0). Facing away, or outside a spot's cone, is unlit as in the oracle.
+// Families without a map (light_facing.h): V = 1 where the light faces the surface and a spot's
+// cone holds it, 0 elsewhere, as in the oracle; no texels, so no predicted aliasing (0).
 // Defines: LIGHT_ORTHO (directional), LIGHT_SPOT.
 in vec3 v_lsPosition;
 flat in vec3 v_lsFaceNormal;

@@ -1,0 +1,30 @@
+#include "raster_compare/gl/light_facing.h"
+
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "raster_compare/gl/camera_pass.h"
+#include "raster_compare/gl/gl_program.h"
+#include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/shaders.h"
+
+namespace so {
+
+GlProgram buildLightFacingProgram(const Light& light, const GpuScene& scene,
+                                  const CameraPass& camera) {
+    const std::string defines = light.type == LightType::Directional ? "#define LIGHT_ORTHO\n"
+                                : light.type == LightType::Spot      ? "#define LIGHT_SPOT\n"
+                                                                     : "";
+    GlProgram p = buildProgram(defines, shaders::scene_vert, {shaders::light_facing_frag});
+    const GLuint id = p.get();
+    setMat4(id, "u_clipFromLocal", camera.clipFromLocal());
+    setVec3(id, "u_lsEye", camera.lsEye());
+    setVec3(id, "u_lsLightPosition", scene.frame().lsFromWs(light.wsPosition));
+    setVec3(id, "u_lsLightDirection", glm::normalize(light.wsDirection));
+    setFloat(id, "u_cosOuter", std::cos(light.outerConeDeg * 3.14159265358979323846 / 180.0));
+    return p;
+}
+
+}  // namespace so
