@@ -208,6 +208,7 @@ void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
     setFloat(vp, "u_texelScale", cam_.texelScale);
     setInt(vp, "u_map", 0);
     setFloat(vp, "u_receiverMesh", receiver_);
+    technique_.setLightUniforms(vp, light_, scene_.frame());
 }
 
 void ShadowMapLight::renderLightPasses(PassClock& clock) {

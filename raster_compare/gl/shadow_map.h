@@ -14,6 +14,10 @@
 #include <memory>
 #include <string>
 
+#include <epoxy/gl.h>
+
+#include "core/local_frame.h"
+
 #include "raster_compare/gl/technique.h"
 
 namespace so {
@@ -62,6 +66,9 @@ class ShadowMapTechnique : public Technique {
     virtual int receiverMesh(const GpuScene&) const { return -1; }
     // The family it is listed under (a technique built on this one may be another's).
     virtual const char* family() const { return kFamily; }
+    // Uniforms of the visibility program that depend on the light (pcss: its size).
+    virtual void setLightUniforms(GLuint /*program*/, const Light& /*light*/,
+                                  const LocalFrame& /*frame*/) const {}
 
   private:
     int resolution_, depthBits_;

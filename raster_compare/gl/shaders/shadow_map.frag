@@ -121,8 +121,8 @@ float depthTap(MapPoint m, ivec2 k, float dRef) {
 #endif
     return dRef <= linearDepth(z) ? 1.0 : 0.0;
 }
-// The same at an offset o in texels that need not be whole.
-float depthTapAt(MapPoint m, vec2 o, float dRef) {
+// The linear depth stored at an offset o in texels (need not be whole) from the point's texel.
+float storedDepthAt(MapPoint m, vec2 o) {
 #ifdef LIGHT_CUBE
     float z = texture(u_map, m.v + m.step * (o.x * m.t1 + o.y * m.t2)).r;
 #else
@@ -130,8 +130,10 @@ float depthTapAt(MapPoint m, vec2 o, float dRef) {
     ivec2 ij = clamp(ivec2(floor(m.uv * vec2(size) + o)), ivec2(0), size - 1);
     float z = texelFetch(u_map, ij, 0).r;
 #endif
-    return dRef <= linearDepth(z) ? 1.0 : 0.0;
+    return linearDepth(z);
 }
+// The depth test there.
+float depthTapAt(MapPoint m, vec2 o, float dRef) { return dRef <= storedDepthAt(m, o) ? 1.0 : 0.0; }
 // The plain depth test with a bias (a length): lit where depth - bias <= the stored depth.
 float depthTest(vec3 q, float bias) {
     MapPoint m = mapPoint(q);

@@ -1,0 +1,81 @@
+// pcss: percentage-closer soft shadows (Fernando, "Percentage-Closer Soft Shadows", 2005). Three
+// steps per pixel on a plain depth map rendered from the light's centre: a blocker search over the
+// region of the map the light's cone through the receiver can cover (capped at `search_max`
+// texels), the penumbra's width from the average blocker depth by similar triangles,
+// w = light size (d_receiver - d_blocker) / d_blocker, then PCF over that width (capped at
+// `filter_max` texels). Taps on a golden-angle spiral (`blocker_samples`, `filter_samples`), the
+// same for every pixel (no noise); the slope bias spread over the filter. The light's size is the
+// side of a square of its area (rect: sqrt(|u x v|), disk and sphere: r sqrt(pi)), or
+// `light_size` world units when >= 0 (for directional lights: the tangent of its angular
+// diameter); point, spot and directional lights have none, which makes pcss a hard test.
+// Assumes what Fernando's derivation does: blockers, receiver and light in parallel planes.
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "raster_compare/gl/gl_program.h"
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_map.h"
+
+namespace so {
+namespace {
+
+class Pcss final : public ShadowMapTechnique {
+  public:
+    static ParamTable params() {
+        ParamTable own = {
+            {"light_size", -1, -1, 1e6, false,
+             "light width in world units (directional: tan of its angular size); -1: the scene "
+             "light's (side of a square of its area)"},
+            {"blocker_samples", 16, 1, 256, true, "taps of the blocker search"},
+            {"filter_samples", 32, 1, 256, true, "taps of the variable PCF"},
+            {"search_max", 128, 1, 1024, false, "largest blocker-search radius, texels"},
+            {"filter_max", 128, 0, 1024, false, "largest filter radius, texels"}};
+        for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
+        return shadowMapParams(own);
+    }
+    explicit Pcss(const ParamValues& v)
+        : ShadowMapTechnique(v),
+          lightSize_(v.real("light_size")),
+          blockerSamples_(v.integer("blocker_samples")),
+          filterSamples_(v.integer("filter_samples")),
+          searchMax_(v.real("search_max")),
+          filterMax_(v.real("filter_max")),
+          bias_(v) {}
+    const char* glsl() const override { return shaders::pcss_glsl; }
+    std::string shaderDefines() const override {
+        return "#define BLOCKER_SAMPLES " + std::to_string(blockerSamples_) +
+               "\n#define FILTER_SAMPLES " + std::to_string(filterSamples_) + "\n" +
+               glslDefine("SEARCH_MAX", searchMax_) + glslDefine("FILTER_MAX", filterMax_) +
+               bias_.defines();
+    }
+    void setLightUniforms(GLuint program, const Light& light,
+                          const LocalFrame& frame) const override {
+        double size = lightSize_;
+        if (size < 0.0) {
+            const double sqrtPi = std::sqrt(std::numbers::pi);
+            size = light.type == LightType::Rect
+                       ? std::sqrt(glm::length(glm::cross(light.wsU, light.wsV)))
+                   : light.type == LightType::Disk || light.type == LightType::Sphere
+                       ? light.radius * sqrtPi
+                       : 0.0;
+        }
+        // Directional: a tangent, no length.
+        setFloat(program, "u_lightSize",
+                 light.type == LightType::Directional ? size : frame.lsLength(size));
+    }
+
+  private:
+    double lightSize_;
+    int blockerSamples_, filterSamples_;
+    double searchMax_, filterMax_;
+    SlopeBias bias_;
+};
+
+SO_REGISTER_TECHNIQUE(Pcss, "pcss",
+                      "percentage-closer soft shadows: blocker search, penumbra width from the "
+                      "light's size, variable PCF");
+
+}  // namespace
+}  // namespace so

@@ -1,0 +1,48 @@
+// pcss (pcss.cpp): blocker search, penumbra width by similar triangles, variable PCF. Offsets are
+// in texels at the receiver (angles, for perspective and cube maps).
+uniform float u_lightSize;  // local units; directional: tan of the angular size
+
+// Point k of n on a golden-angle spiral filling the unit disk.
+vec2 spiral(int k, int n) {
+    float r = sqrt((float(k) + 0.5) / float(n));
+    float a = float(k) * 2.39996323;
+    return r * vec2(cos(a), sin(a));
+}
+
+float techniqueVisibility(Receiver r) {
+    MapPoint m = mapPoint(r.p);
+    if (m.outside) return 1.0;
+    float dR = m.d;
+    // The texels one light-size-wide cone through the receiver spans at depth d: the search
+    // covers blockers down to the near plane, the penumbra those at the blockers' depth.
+#ifdef LIGHT_ORTHO
+    float searchTexels = 0.5 * u_lightSize * (dR - u_near) / r.texel;
+#else
+    float searchTexels = 0.5 * u_lightSize * (dR - u_near) / (u_near * dR * u_texelScale);
+#endif
+    searchTexels = min(searchTexels, SEARCH_MAX);
+    float dRefSearch = dR - slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0 + searchTexels);
+    float blockerSum = 0.0;
+    int blockers = 0;
+    for (int k = 0; k < BLOCKER_SAMPLES; ++k) {
+        float d = storedDepthAt(m, spiral(k, BLOCKER_SAMPLES) * searchTexels);
+        if (d < dRefSearch) {
+            blockerSum += d;
+            ++blockers;
+        }
+    }
+    if (blockers == 0) return 1.0;
+    float dB = blockerSum / float(blockers);
+#ifdef LIGHT_ORTHO
+    float filterTexels = 0.5 * u_lightSize * (dR - dB) / r.texel;
+#else
+    float filterTexels = 0.5 * u_lightSize * (dR - dB) / (dB * dR * u_texelScale);
+#endif
+    filterTexels = min(filterTexels, FILTER_MAX);
+    float dRef = dR - slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0 + filterTexels);
+    if (filterTexels < 0.5) return depthTapAt(m, vec2(0.0), dRef);
+    float lit = 0.0;
+    for (int k = 0; k < FILTER_SAMPLES; ++k)
+        lit += depthTapAt(m, spiral(k, FILTER_SAMPLES) * filterTexels, dRef);
+    return lit / float(FILTER_SAMPLES);
+}
