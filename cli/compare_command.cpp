@@ -210,7 +210,7 @@ void renderAll(CompareJob& job, const std::vector<TechniqueRun>& runs, ReportInp
 
 nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results) {
     const Scene& scene = job.scene;
-    return {{"schema_version", 2},
+    return {{"schema_version", 3},
             {"tool", toolJson()},
             {"scene",
              {{"file", job.options.scenePath},

@@ -141,7 +141,7 @@ TEST(Metrics, AreaLightIntervalsAndPenumbraBias) {
     // Left half: no error; right half: 0.1 - 0.0236 each.
     EXPECT_NEAR(m.mae, 0.5 * (0.1 - ch::kStdErrQuantile95 * 0.01), 1e-6);
     EXPECT_NEAR(*m.penumbraMae, m.mae, 1e-12);
-    EXPECT_GT(*m.penumbraBias, 0.04) << "too hard is positive";
+    EXPECT_LT(*m.penumbraBias, -0.04) << "too hard is negative";
 }
 
 // Where the prediction says texels are larger, the shadow edge strays further: positive
@@ -270,6 +270,60 @@ TEST(Metrics, BoundaryBandMaeCreditsSoftEdges) {
     ASSERT_TRUE(m.boundaryBandMae);
     // The band: columns 37..41 (within 2 of the boundary column 39); one of five is off by 0.5.
     EXPECT_DOUBLE_EQ(*m.boundaryBandMae, 0.5 / 5.0);
+}
+
+// Soft edges of known widths: the oracle ramps from 0 to 1 over 40 pixels (a 10%-90% width of 32
+// along its gradient, which runs along x), the technique over 20 (16) and as a hard step (0): the
+// width errors are 16 and 32 on every profile; the split of the error into umbra, penumbra and lit
+// pixels, and the sign of the bias (too hard < 0 < too soft).
+TEST(Metrics, PenumbraWidthUmbraAndLit) {
+    const int W = 160, H = 12;
+    auto ramp = [](int x, double centre, double width) {
+        return float(std::clamp((double(x) + 0.5 - centre) / width + 0.5, 0.0, 1.0));
+    };
+    for (const auto& [width, expected] : {std::pair{20.0, 16.0}, std::pair{0.0, 32.0}}) {
+        ChannelImage o = flatImage(W, H), r = flatImage(W, H);
+        o.addChannel(ch::lightChannel("L", ch::kStdErr), 1e-4f);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                at(o, ch::kVisibility, x, y) = ramp(x, 80.0, 40.0);
+                at(r, ch::kVisibility, x, y) =
+                    width > 0.0 ? ramp(x, 80.0, width) : (x < 80 ? 0.0f : 1.0f);
+            }
+        const LightMetrics m = computeLightMetrics(o, r, "L", {});
+        ASSERT_TRUE(m.penumbraWidth) << width;
+        EXPECT_EQ(m.penumbraWidth->profiles, size_t(H)) << width;
+        EXPECT_NEAR(m.penumbraWidth->oracleMeanWidth, 32.0, 0.5) << width;
+        EXPECT_NEAR(m.penumbraWidth->mean, expected, 0.5) << width;
+        EXPECT_NEAR(m.penumbraWidth->p95, expected, 0.5) << width;
+        ASSERT_TRUE(m.umbraMae && m.litMae && m.penumbraBias);
+        EXPECT_EQ(*m.umbraMae, 0.0);
+        EXPECT_EQ(*m.litMae, 0.0);
+        EXPECT_LT(*m.penumbraBias, 0.0) << "narrower than the truth is too hard";
+    }
+    // Too soft is positive, and a wrong umbra or lit pixel counts there.
+    ChannelImage o = flatImage(W, H), r = flatImage(W, H);
+    o.addChannel(ch::lightChannel("L", ch::kStdErr), 1e-4f);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            at(o, ch::kVisibility, x, y) = ramp(x, 80.0, 20.0);
+            at(r, ch::kVisibility, x, y) = ramp(x, 80.0, 40.0);
+        }
+    const LightMetrics m = computeLightMetrics(o, r, "L", {});
+    ASSERT_TRUE(m.penumbraBias && m.umbraMae && m.litMae && m.penumbraWidth);
+    EXPECT_GT(*m.penumbraBias, 0.0) << "wider than the truth is too soft";
+    EXPECT_GT(*m.umbraMae, 0.0);
+    EXPECT_GT(*m.litMae, 0.0);
+    EXPECT_NEAR(m.penumbraWidth->mean, 16.0, 0.5);
+}
+
+// No oracle interval (a hard light): none of the area-light metrics.
+TEST(Metrics, PenumbraMetricsOnlyForAreaLights) {
+    ChannelImage o = flatImage(40, 8), r = flatImage(40, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 40; ++x) at(o, ch::kVisibility, x, y) = x < 20 ? 0.0f : 1.0f;
+    const LightMetrics m = computeLightMetrics(o, r, "L", {});
+    EXPECT_FALSE(m.penumbraWidth || m.umbraMae || m.litMae || m.penumbraMae);
 }
 
 }  // namespace

@@ -151,7 +151,9 @@ struct Tally {
     size_t falseShadow = 0, falseLit = 0;
     size_t acneEligible = 0, acne = 0, aliasEligible = 0, aliased = 0, ppEligible = 0, pp = 0,
            umbra = 0, bleed = 0, pen = 0;
-    double leak = 0.0, penAbs = 0.0, penHard = 0.0;
+    double leak = 0.0, penAbs = 0.0, penSoft = 0.0;
+    size_t umbraExact = 0, litExact = 0;
+    double umbraAbs = 0.0, litAbs = 0.0;
     size_t band = 0, otherShadow = 0, otherLit = 0;
     double bandAbs = 0.0;
 };
@@ -208,8 +210,15 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOpt
         ++t.pen;
         t.penAbs += err;
         set(Artifact::Penumbra, err > 0.0);
-        t.penHard +=
-            (r - o) * (o < 0.5 ? -1.0 : 1.0);  // > 0: more extreme than the truth (too hard)
+        t.penSoft += (r - o) * (o < 0.5 ? 1.0 : -1.0);  // > 0: nearer 0.5 than the truth
+    }
+    if (p.area && o == 0.0) {
+        ++t.umbraExact;
+        t.umbraAbs += err;
+    }
+    if (p.area && o == 1.0) {
+        ++t.litExact;
+        t.litAbs += err;
     }
     size_t shown = 0;  // 1 + the class drawn; 0: not a wrong pixel
     if (fs || fl) {
@@ -250,7 +259,9 @@ void setRates(const Tally& t, const Planes& p, const MetricOptions& options, Lig
     if (options.filteredTechnique) m.lightBleedingRate = share(t.bleed, t.umbra);
     if (p.area) {
         m.penumbraMae = t.pen ? t.penAbs / double(t.pen) : 0.0;
-        m.penumbraBias = t.pen ? t.penHard / double(t.pen) : 0.0;
+        m.penumbraBias = t.pen ? t.penSoft / double(t.pen) : 0.0;
+        m.umbraMae = t.umbraExact ? t.umbraAbs / double(t.umbraExact) : 0.0;
+        m.litMae = t.litExact ? t.litAbs / double(t.litExact) : 0.0;
     }
 }
 
@@ -336,6 +347,7 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
     m.boundaryDisplacement = boundaryDisplacement(bo, br, toOracleBoundary, toRasterBoundary,
                                                   std::hypot(double(p.w), double(p.h)));
     predictedAliasing(raster, light, counted, br, toOracleBoundary, m);
+    if (p.area) m.penumbraWidth = penumbraWidthError(p.w, p.h, p.Vo, p.Vr, counted);
     return m;
 }
 
@@ -408,6 +420,14 @@ nlohmann::json LightMetrics::toJson() const {
             {artifactClass(Artifact::LightBleeding).metric, opt(lightBleedingRate)},
             {artifactClass(Artifact::Penumbra).metric, opt(penumbraMae)},
             {"penumbra_bias", opt(penumbraBias)},
+            {"umbra_mae", opt(umbraMae)},
+            {"lit_mae", opt(litMae)},
+            {"penumbra_width_error_px",
+             penumbraWidth ? nlohmann::json{{"mean", penumbraWidth->mean},
+                                            {"p95", penumbraWidth->p95},
+                                            {"oracle_mean_width", penumbraWidth->oracleMeanWidth},
+                                            {"profiles", penumbraWidth->profiles}}
+                           : nlohmann::json(nullptr)},
             {"predicted_aliasing",
              {{"mean", opt(predictedAliasingMean)},
               {"correlation_with_boundary_error", opt(aliasingCorrelation)}}}};

@@ -13,6 +13,7 @@
 #include "core/image.h"
 #include "core/timing.h"
 #include "raster_compare/compare/artifacts.h"
+#include "raster_compare/compare/penumbra_width.h"
 
 namespace so {
 
@@ -47,7 +48,10 @@ struct LightMetrics {
     double otherFalseShadowRate = 0.0, otherFalseLitRate = 0.0;
     std::optional<double> aliasingRate;       // hard lights only: a penumbra has no 0/1 edge
     std::optional<double> lightBleedingRate;  // filtered techniques only
-    std::optional<double> penumbraMae, penumbraBias;  // area lights only (oracle stderr present)
+    // Area lights only (oracle stderr present): the mean error where the oracle's V is strictly
+    // between 0 and 1, and its signed mean (too hard < 0 < too soft); where it is exactly 0 and 1.
+    std::optional<double> penumbraMae, penumbraBias, umbraMae, litMae;
+    std::optional<PenumbraWidthError> penumbraWidth;  // area lights with a measurable penumbra
     // With the raster's NAME.aliasing_pred: its mean over counted pixels, and the Pearson
     // correlation of its log with the boundary displacement at the raster's boundary pixels.
     std::optional<double> predictedAliasingMean, aliasingCorrelation;

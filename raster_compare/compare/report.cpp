@@ -234,6 +234,13 @@ const std::vector<Column>& columns() {
         {artifact(Artifact::LightBleeding), [](L l) { return l.metrics.lightBleedingRate; }},
         {artifact(Artifact::Penumbra) + " mae", [](L l) { return l.metrics.penumbraMae; }},
         {artifact(Artifact::Penumbra) + " bias", [](L l) { return l.metrics.penumbraBias; }},
+        {"penumbra width err px",
+         [](L l) {
+             return l.metrics.penumbraWidth ? std::optional(l.metrics.penumbraWidth->mean)
+                                            : std::nullopt;
+         }},
+        {"umbra mae", [](L l) { return l.metrics.umbraMae; }},
+        {"lit mae", [](L l) { return l.metrics.litMae; }},
         {artifact(Artifact::OtherFalseShadow),
          [](L l) { return std::optional(l.metrics.otherFalseShadowRate); }},
         {artifact(Artifact::OtherFalseLit),
