@@ -7,8 +7,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "core/sobol.h"
 #include "oracle/offset.h"
-#include "oracle/sobol.h"
 
 namespace so {
 

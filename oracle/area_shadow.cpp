@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/progress.h"
-#include "oracle/sobol.h"
+#include "core/sobol.h"
 
 namespace so {
 

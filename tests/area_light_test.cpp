@@ -10,9 +10,9 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "core/sobol.h"
 #include "lambert.h"
 #include "oracle/area_shadow.h"
-#include "oracle/sobol.h"
 #include "test_scenes.h"
 
 namespace so::test {

@@ -1031,5 +1031,45 @@ TEST(Raster, PcssWidensThePenumbraAndHardensForAPointLikeLight) {
     EXPECT_GE(soft.agreement(), 0.99);
 }
 
+// The calibration of the soft-shadow comparison: accumulated hard shadows (exact per sample, with
+// volumes) weighted as the oracle weights its samples converge to the oracle's V on the
+// closed-form scene (a rect light over a parallel occluder): the mean penumbra error falls as the
+// samples grow, and at 256 samples it lies within the oracle's 95% interval on >= 95% of the
+// penumbra pixels.
+TEST(Raster, AccumulationConvergesToTheOracle) {
+    REQUIRE_GL();
+    Scene s = loadShipped("penumbra_square", 200, 150);
+    ChannelImage o = runQuiet(s);
+    const float* Vo = o.channel("panel.V");
+    const float* SE = o.channel("panel.stderr");
+    double previous = 1.0;
+    for (int n : {1, 4, 16, 64, 256}) {
+        ChannelImage r = raster(s, "accumulate", {"samples=" + std::to_string(n)});
+        const float* Vr = r.channel("panel.V");
+        size_t pen = 0, inside = 0;
+        double sum = 0.0;
+        for (size_t i = 0; i < o.pixelCount(); ++i) {
+            if (!(Vo[i] > 0.0f && Vo[i] < 1.0f) ||
+                o.channel(ch::kMeshId)[i] != r.channel(ch::kMeshId)[i])
+                continue;
+            ++pen;
+            const double e = std::fabs(double(Vr[i]) - double(Vo[i]));
+            sum += e;
+            inside += e <= ch::kStdErrQuantile95 * double(SE[i]);
+        }
+        ASSERT_GT(pen, 1000u);
+        const double mean = sum / double(pen), coverage = double(inside) / double(pen);
+        std::printf(
+            "[ accumulate ] %3d samples: penumbra mean |V - oracle| %.5f, within the "
+            "oracle's interval %.4f of %zu\n",
+            n, mean, coverage, pen);
+        EXPECT_LT(mean, previous) << n;
+        previous = mean;
+        if (n == 256) {
+            EXPECT_GE(coverage, 0.95);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace so::test

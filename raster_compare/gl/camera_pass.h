@@ -27,6 +27,9 @@ class CameraPass {
     // The camera pixel's size per unit of distance (2 tan(vfov / 2) / height).
     double pixelScale() const { return pixelScale_; }
     GLuint depthTexture() const { return depth_.get(); }
+    // The last render's local position (w: 1 where a surface was hit) and camera-facing normal.
+    GLuint positionTexture() const { return position_.get(); }
+    GLuint normalTexture() const { return normal_.get(); }
 
     // Clears and draws; the caller has set the frame's state (depth test and writes on).
     void render() const;

@@ -19,11 +19,15 @@ void PassTimer::end() {
 }
 
 void PassTimer::endFrame(bool keep) {
+    // A pass that ran several times in the frame (accumulate's per-sample passes) is their sum.
+    std::map<std::string, double> frameMs;
     for (Query& q : frame_) {
         GLuint64 ns = 0;
         glGetQueryObjectui64v(q.query.get(), GL_QUERY_RESULT, &ns);
-        if (keep) msByPass_[q.pass].push_back(double(ns) * 1e-6);
+        frameMs[q.pass] += double(ns) * 1e-6;
     }
+    if (keep)
+        for (const auto& [pass, ms] : frameMs) msByPass_[pass].push_back(ms);
     frame_.clear();
 }
 

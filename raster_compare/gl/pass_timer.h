@@ -16,7 +16,8 @@ class PassTimer {
   public:
     void begin(const std::string& pass);
     void end();
-    // Reads this frame's queries; kept only when `keep` (warm-up frames are dropped).
+    // Reads this frame's queries, summing a pass that ran several times; kept only when `keep`
+    // (warm-up frames are dropped).
     void endFrame(bool keep);
     // Median and quartiles over the kept frames (0 when the pass never ran).
     TimingStats stats(const std::string& pass) const;

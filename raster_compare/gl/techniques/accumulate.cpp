@@ -1,0 +1,215 @@
+// accumulate: soft shadows as the average of many hard ones (the course's "many point lights,
+// additive blending"): `samples` points on the area light, from an Owen-scrambled Sobol sequence
+// as the oracle's are (uniform by area on rect and disk lights, uniform over a sphere light's
+// surface), each a point light whose hard shadow a technique renders: `method=1` stencil shadow
+// volumes (volume-zfail, exact per sample), `method=0` a slope-biased shadow map of `resolution`.
+// Each sample's V is weighted per pixel as the oracle weights its samples, by
+// G = cos(receiver) cos(emitter) / r^2 (one-sided for rect and disk lights), and the result is
+// sum(G v) / sum(G): the limit as the samples grow is the oracle's V, not an unweighted average.
+// Lights that are not area lights are their own single sample. Every sample's passes run every
+// frame: the cost grows with `samples`.
+#include <cmath>
+#include <deque>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "core/sobol.h"
+#include "raster_compare/gl/camera_pass.h"
+#include "raster_compare/gl/gl_program.h"
+#include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/pass_timer.h"
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/technique.h"
+
+namespace so {
+namespace {
+
+class Accumulate;
+
+// The points on the light, world space: uniform by area (rect, disk) or over the sphere.
+std::vector<glm::dvec3> lightSamples(const Light& light, int n) {
+    if (!isAreaLight(light.type)) return {light.wsPosition};
+    std::vector<glm::dvec3> points;
+    for (int i = 0; i < n; ++i) {
+        float u = 0.0f, v = 0.0f;
+        sobol2D(uint32_t(i), 0x5eedu, u, v);
+        const double phi = 2.0 * std::numbers::pi * double(v);
+        if (light.type == LightType::Rect) {
+            points.push_back(light.wsPosition + (double(u) - 0.5) * light.wsU +
+                             (double(v) - 0.5) * light.wsV);
+        } else if (light.type == LightType::Disk) {
+            const glm::dvec3 axis = glm::normalize(light.wsNormal);
+            const glm::dvec3 a = glm::normalize(glm::cross(
+                axis, std::fabs(axis.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+            const glm::dvec3 b = glm::cross(axis, a);
+            const double r = light.radius * std::sqrt(double(u));
+            points.push_back(light.wsPosition + r * (std::cos(phi) * a + std::sin(phi) * b));
+        } else {
+            const double z = 1.0 - 2.0 * double(u), s = std::sqrt(std::max(0.0, 1.0 - z * z));
+            points.push_back(light.wsPosition +
+                             light.radius * glm::dvec3(s * std::cos(phi), s * std::sin(phi), z));
+        }
+    }
+    return points;
+}
+
+class AccumulateLight final : public LightTechnique {
+  public:
+    AccumulateLight(const Accumulate& technique, const LightSetup& setup);
+    std::vector<std::string> passNames() const override;
+    void renderLightPasses(PassClock& clock) override {
+        for (auto& s : samples_) s->renderLightPasses(clock);
+    }
+    void renderVisibility(PassClock& clock) override;
+    RasterLightStats describe() const override;
+    uint64_t memoryBytes() const override;
+
+  private:
+    const Light& light_;
+    const CameraPass& camera_;
+    std::deque<Light> points_;  // the samples' point lights (the inner objects refer to them)
+    std::vector<glm::vec3> lsSamples_;
+    std::vector<std::unique_ptr<LightTechnique>> samples_;
+    GlTexture sampleV_, sampleAliasing_, sums_;
+    GlFramebuffer sampleFbo_, sumsFbo_;
+    GlProgram weightProg_, resolveProg_;
+};
+
+class Accumulate final : public Technique {
+  public:
+    static constexpr const char* kFamily = "accumulation";
+    static ParamTable params() {
+        return {{"samples", 64, 1, 1024, true, "points on the light, each a hard shadow"},
+                {"method", 1, 0, 1, true,
+                 "1: stencil shadow volumes (volume-zfail); 0: slope-biased shadow maps"},
+                {"resolution", 512, 16, 16384, true, "method=0: each map's side in texels"}};
+    }
+    explicit Accumulate(const ParamValues& v)
+        : Technique(v),
+          samples(v.integer("samples")),
+          inner(v.integer("method") == 1
+                    ? createTechnique("volume-zfail", {})
+                    : createTechnique("slope-bias",
+                                      {"resolution=" + std::to_string(v.integer("resolution"))})) {}
+    std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override {
+        return std::make_unique<AccumulateLight>(*this, setup);
+    }
+    int samples;
+    std::unique_ptr<Technique> inner;
+};
+
+GlTexture makeTarget(GLenum format, int w, int h) {
+    GlTexture t = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(t.get(), 1, format, w, h);
+    return t;
+}
+
+AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& setup)
+    : light_(setup.light), camera_(setup.camera) {
+    for (const glm::dvec3& p : lightSamples(light_, technique.samples)) {
+        Light point = light_;
+        if (isAreaLight(light_.type)) {
+            point.type = LightType::Point;
+            point.wsPosition = p;
+        }
+        points_.push_back(point);
+        lsSamples_.push_back(glm::vec3(setup.scene.frame().lsFromWs(p)));
+        samples_.push_back(
+            technique.inner->setUp({points_.back(), setup.scene, setup.camera, setup.lsReceivers}));
+    }
+    const int w = camera_.width(), h = camera_.height();
+    sampleV_ = makeTarget(GL_R32F, w, h);
+    sampleAliasing_ = makeTarget(GL_R32F, w, h);
+    sampleFbo_ = makeFramebuffer();
+    glNamedFramebufferTexture(sampleFbo_.get(), GL_COLOR_ATTACHMENT0, sampleV_.get(), 0);
+    glNamedFramebufferTexture(sampleFbo_.get(), GL_COLOR_ATTACHMENT1, sampleAliasing_.get(), 0);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(sampleFbo_.get(), 2, buffers);
+    glNamedFramebufferTexture(sampleFbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, camera_.depthTexture(),
+                              0);
+    sums_ = makeTarget(GL_RG32F, w, h);
+    sumsFbo_ = makeFramebuffer();
+    glNamedFramebufferTexture(sumsFbo_.get(), GL_COLOR_ATTACHMENT0, sums_.get(), 0);
+    const LocalFrame& frame = setup.scene.frame();
+    const std::string kind = light_.type == LightType::Sphere ? "#define EMITTER_SPHERE\n"
+                             : isAreaLight(light_.type)       ? "#define EMITTER_ONE_SIDED\n"
+                                                              : "#define EMITTER_POINT\n";
+    weightProg_ = buildProgram("#define WEIGHT_PASS\n" + kind, shaders::fullscreen_vert,
+                               {shaders::accumulate_glsl});
+    const GLuint wp = weightProg_.get();
+    setVec3(wp, "u_lsLightCenter", frame.lsFromWs(light_.wsPosition));
+    if (isAreaLight(light_.type) && light_.type != LightType::Sphere)
+        setVec3(wp, "u_lsEmitNormal", light_.wsEmitNormal());
+    for (const char* name : {"u_visibility", "u_position", "u_normal"})
+        setInt(wp, name, name[2] == 'v' ? 0 : name[2] == 'p' ? 1 : 2);
+    resolveProg_ = buildProgram("", shaders::fullscreen_vert, {shaders::accumulate_glsl});
+    setInt(resolveProg_.get(), "u_sums", 0);
+}
+
+std::vector<std::string> AccumulateLight::passNames() const {
+    std::vector<std::string> names = samples_.front()->passNames();
+    names.push_back("accumulate");
+    return names;
+}
+
+// Per sample: its hard shadow into the sample target, then its weighted V added to the sums;
+// finally V = sum(G v) / sum(G) into the light's target.
+void AccumulateLight::renderVisibility(PassClock& clock) {
+    GLint target = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(sumsFbo_.get(), GL_COLOR, 0, zero);
+    for (size_t i = 0; i < samples_.size(); ++i) {
+        glBindFramebuffer(GL_FRAMEBUFFER, sampleFbo_.get());
+        glClearNamedFramebufferfv(sampleFbo_.get(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(sampleFbo_.get(), GL_COLOR, 1, zero);
+        samples_[i]->renderVisibility(clock);
+        clock.begin("accumulate");
+        glBindFramebuffer(GL_FRAMEBUFFER, sumsFbo_.get());
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(weightProg_.get());
+        glProgramUniform3f(weightProg_.get(), glGetUniformLocation(weightProg_.get(), "u_lsSample"),
+                           lsSamples_[i].x, lsSamples_[i].y, lsSamples_[i].z);
+        glBindTextureUnit(0, sampleV_.get());
+        glBindTextureUnit(1, camera_.positionTexture());
+        glBindTextureUnit(2, camera_.normalTexture());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_BLEND);
+        glEnable(GL_DEPTH_TEST);
+        clock.end();
+    }
+    clock.begin("accumulate");
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(resolveProg_.get());
+    glBindTextureUnit(0, sums_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_EQUAL);
+    clock.end();
+}
+
+RasterLightStats AccumulateLight::describe() const {
+    RasterLightStats s;
+    s.name = light_.name;
+    s.type = lightTypeName(light_.type);
+    s.family = Accumulate::kFamily;
+    s.counts = {{"samples", int64_t(samples_.size())}};
+    return s;
+}
+
+uint64_t AccumulateLight::memoryBytes() const {
+    uint64_t bytes = uint64_t(camera_.width()) * uint64_t(camera_.height()) * (4 + 4 + 8);
+    for (const auto& s : samples_) bytes += s->memoryBytes();
+    return bytes;
+}
+
+SO_REGISTER_TECHNIQUE(Accumulate, "accumulate",
+                      "many hard shadows from points on the light, G-weighted like the oracle's "
+                      "samples");
+
+}  // namespace
+}  // namespace so
