@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -1069,6 +1070,28 @@ TEST(Raster, AccumulationConvergesToTheOracle) {
             EXPECT_GE(coverage, 0.95);
         }
     }
+}
+
+// The screen-space blur: radius 0 is its input, the hard shadow map, to the bit; a radius widens
+// the hard edge towards the oracle's penumbra on penumbra_square.
+TEST(Raster, BlurRadiusZeroIsItsInputAndARadiusSoftens) {
+    REQUIRE_GL();
+    Scene s = loadShipped("penumbra_square", 200, 150);
+    const ChannelImage hard = raster(s, "slope-bias", {"resolution=1024"});
+    const ChannelImage none = raster(s, "blur", {"radius=0", "resolution=1024"});
+    EXPECT_EQ(0, std::memcmp(hard.channel("panel.V"), none.channel("panel.V"),
+                             hard.pixelCount() * sizeof(float)));
+    ChannelImage o = runQuiet(s);
+    const LightMetrics h = computeLightMetrics(o, hard, "panel", {});
+    const LightMetrics b =
+        computeLightMetrics(o, raster(s, "blur", {"radius=12", "resolution=1024"}), "panel", {});
+    ASSERT_TRUE(h.penumbraWidth && b.penumbraWidth && h.penumbraBias && b.penumbraBias);
+    std::printf(
+        "[ blur ] penumbra width error %.2f px hard, %.2f px blurred (radius 12); bias "
+        "%.3f, %.3f\n",
+        h.penumbraWidth->mean, b.penumbraWidth->mean, *h.penumbraBias, *b.penumbraBias);
+    EXPECT_LT(b.penumbraWidth->mean, 0.8 * h.penumbraWidth->mean);
+    EXPECT_GT(*b.penumbraBias, *h.penumbraBias) << "softer";
 }
 
 }  // namespace

@@ -1,0 +1,37 @@
+// blur (blur.cpp): one direction of the separable screen-space Gaussian (sigma = radius / 2) over
+// the hit pixels; with BILATERAL, only taps whose camera-facing normal is within about 25 degrees
+// and whose distance to the eye within 5% of the centre pixel's.
+uniform sampler2D u_source;
+uniform sampler2D u_position;
+uniform sampler2D u_normal;
+uniform ivec2 u_step;
+uniform int u_radius;
+uniform vec3 u_lsEye;
+layout(location = 0) out float o_value;
+void main() {
+    ivec2 ij = ivec2(gl_FragCoord.xy);
+    vec4 p0 = texelFetch(u_position, ij, 0);
+    if (p0.w == 0.0) {
+        o_value = texelFetch(u_source, ij, 0).r;
+        return;
+    }
+    vec3 n0 = texelFetch(u_normal, ij, 0).xyz;
+    float d0 = length(p0.xyz - u_lsEye);
+    float sigma = max(0.5 * float(u_radius), 0.5);
+    ivec2 size = textureSize(u_source, 0);
+    float sum = 0.0, wsum = 0.0;
+    for (int i = -u_radius; i <= u_radius; ++i) {
+        ivec2 q = ij + i * u_step;
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+        vec4 p = texelFetch(u_position, q, 0);
+        if (p.w == 0.0) continue;  // background carries no shadow
+#ifdef BILATERAL
+        if (dot(texelFetch(u_normal, q, 0).xyz, n0) < 0.9) continue;
+        if (abs(length(p.xyz - u_lsEye) - d0) > 0.05 * d0) continue;
+#endif
+        float w = exp(-0.5 * float(i * i) / (sigma * sigma));
+        sum += w * texelFetch(u_source, q, 0).r;
+        wsum += w;
+    }
+    o_value = wsum > 0.0 ? sum / wsum : texelFetch(u_source, ij, 0).r;
+}
