@@ -234,6 +234,24 @@ def main():
           [{"name": "globe", "type": "sphere", "center": [0.8, 4.5, 1.5], "radius": 0.6}],
           effects=("penumbra", "contact"))
 
+    # Soft shadows (issue 14): a chair (seat, four legs, a back: boxes) and a box beside it on the
+    # floor under a window-sized rect light and a bulb-sized sphere light. Occluders at several
+    # heights above the receiver, so penumbrae of many widths, and contact at the legs.
+    chair = [([0.0, 1.0, 0.0], [2.0, 0.15, 2.0]),
+             ([0.0, 1.15, 0.93], [2.0, 1.3, 0.14])]
+    for x in (-0.93, 0.93):
+        for z in (-0.93, 0.93):
+            chair.append(([x, 0.0, z], [0.14, 1.0, 0.14]))
+    boxes = [{"file": "meshes/unit_box.gltf", "translate": t, "scale": sc} for t, sc in chair]
+    boxes.append({"file": "meshes/unit_box.gltf", "translate": [2.4, 0.0, -0.6], "scale": [0.9, 0.6, 0.9]})
+    scene("soft_chair.scene.json",
+          [{"file": "meshes/floor.gltf"}] + boxes,
+          {"eye": [-4.5, 5.0, -6.5], "target": [0.4, 0.6, 0.2], "up": [0, 1, 0], "vfov_deg": 42,
+           "width": 320, "height": 240},
+          [{"name": "window", "type": "rect", "center": [1.2, 4.2, 0.8], "u": [2.0, 0, 0], "v": [0, 0, 1.2]},
+           {"name": "bulb", "type": "sphere", "center": [-2.2, 3.2, -1.4], "radius": 0.35}],
+          effects=("penumbra",))
+
     # The sun 8 degrees above the horizon: long shadows, many points near grazing.
     el = math.radians(8.0)
     az = math.radians(35.0)
