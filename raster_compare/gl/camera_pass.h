@@ -55,6 +55,7 @@ class LightTarget {
     LightTarget(const CameraPass& camera);
     void bindAndClear() const;
     std::vector<float> readVisibility() const;  // top row first
+    GLuint visibilityTexture() const { return visibility_.get(); }
     std::vector<float> readAliasing() const;
 
   private:

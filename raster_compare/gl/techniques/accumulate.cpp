@@ -71,8 +71,9 @@ class AccumulateLight final : public LightTechnique {
     std::deque<Light> points_;  // the samples' point lights (the inner objects refer to them)
     std::vector<glm::vec3> lsSamples_;
     std::vector<std::unique_ptr<LightTechnique>> samples_;
-    GlTexture sampleV_, sampleAliasing_, sums_;
-    GlFramebuffer sampleFbo_, sumsFbo_;
+    LightTarget sampleTarget_;  // one sample's hard V, with the camera pass's depth and stencil
+    GlTexture sums_;
+    GlFramebuffer sumsFbo_;
     GlProgram weightProg_, resolveProg_;
 };
 
@@ -99,14 +100,8 @@ class Accumulate final : public Technique {
     std::unique_ptr<Technique> inner;
 };
 
-GlTexture makeTarget(GLenum format, int w, int h) {
-    GlTexture t = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(t.get(), 1, format, w, h);
-    return t;
-}
-
 AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& setup)
-    : light_(setup.light), camera_(setup.camera) {
+    : light_(setup.light), camera_(setup.camera), sampleTarget_(setup.camera) {
     for (const glm::dvec3& p : lightSamples(light_, technique.samples)) {
         Light point = light_;
         if (isAreaLight(light_.type)) {
@@ -118,17 +113,8 @@ AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& 
         samples_.push_back(
             technique.inner->setUp({points_.back(), setup.scene, setup.camera, setup.lsReceivers}));
     }
-    const int w = camera_.width(), h = camera_.height();
-    sampleV_ = makeTarget(GL_R32F, w, h);
-    sampleAliasing_ = makeTarget(GL_R32F, w, h);
-    sampleFbo_ = makeFramebuffer();
-    glNamedFramebufferTexture(sampleFbo_.get(), GL_COLOR_ATTACHMENT0, sampleV_.get(), 0);
-    glNamedFramebufferTexture(sampleFbo_.get(), GL_COLOR_ATTACHMENT1, sampleAliasing_.get(), 0);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(sampleFbo_.get(), 2, buffers);
-    glNamedFramebufferTexture(sampleFbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, camera_.depthTexture(),
-                              0);
-    sums_ = makeTarget(GL_RG32F, w, h);
+    sums_ = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(sums_.get(), 1, GL_RG32F, camera_.width(), camera_.height());
     sumsFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(sumsFbo_.get(), GL_COLOR_ATTACHMENT0, sums_.get(), 0);
     const LocalFrame& frame = setup.scene.frame();
@@ -161,9 +147,7 @@ void AccumulateLight::renderVisibility(PassClock& clock) {
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(sumsFbo_.get(), GL_COLOR, 0, zero);
     for (size_t i = 0; i < samples_.size(); ++i) {
-        glBindFramebuffer(GL_FRAMEBUFFER, sampleFbo_.get());
-        glClearNamedFramebufferfv(sampleFbo_.get(), GL_COLOR, 0, zero);
-        glClearNamedFramebufferfv(sampleFbo_.get(), GL_COLOR, 1, zero);
+        sampleTarget_.bindAndClear();
         samples_[i]->renderVisibility(clock);
         clock.begin("accumulate");
         glBindFramebuffer(GL_FRAMEBUFFER, sumsFbo_.get());
@@ -173,7 +157,7 @@ void AccumulateLight::renderVisibility(PassClock& clock) {
         glUseProgram(weightProg_.get());
         glProgramUniform3f(weightProg_.get(), glGetUniformLocation(weightProg_.get(), "u_lsSample"),
                            lsSamples_[i].x, lsSamples_[i].y, lsSamples_[i].z);
-        glBindTextureUnit(0, sampleV_.get());
+        glBindTextureUnit(0, sampleTarget_.visibilityTexture());
         glBindTextureUnit(1, camera_.positionTexture());
         glBindTextureUnit(2, camera_.normalTexture());
         glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -36,11 +36,11 @@ class BlurLight final : public LightTechnique {
     }
 
   private:
-    const Blur& technique_;
     const CameraPass& camera_;
     std::unique_ptr<LightTechnique> hard_;
-    GlTexture hardV_, hardAliasing_, across_;
-    GlFramebuffer hardFbo_, acrossFbo_;
+    LightTarget hardTarget_;  // the hard V, with the camera pass's depth and stencil
+    GlTexture across_;        // blurred along x
+    GlFramebuffer acrossFbo_;
     GlProgram blurProg_;
 };
 
@@ -67,24 +67,10 @@ class Blur final : public Technique {
     std::unique_ptr<Technique> hard;
 };
 
-GlTexture makeScreenTarget(const CameraPass& camera) {
-    GlTexture t = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(t.get(), 1, GL_R32F, camera.width(), camera.height());
-    return t;
-}
-
 BlurLight::BlurLight(const Blur& technique, const LightSetup& setup)
-    : technique_(technique), camera_(setup.camera), hard_(technique.hard->setUp(setup)) {
-    hardV_ = makeScreenTarget(camera_);
-    hardAliasing_ = makeScreenTarget(camera_);
-    across_ = makeScreenTarget(camera_);
-    hardFbo_ = makeFramebuffer();
-    glNamedFramebufferTexture(hardFbo_.get(), GL_COLOR_ATTACHMENT0, hardV_.get(), 0);
-    glNamedFramebufferTexture(hardFbo_.get(), GL_COLOR_ATTACHMENT1, hardAliasing_.get(), 0);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(hardFbo_.get(), 2, buffers);
-    glNamedFramebufferTexture(hardFbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, camera_.depthTexture(),
-                              0);
+    : camera_(setup.camera), hard_(technique.hard->setUp(setup)), hardTarget_(setup.camera) {
+    across_ = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(across_.get(), 1, GL_R32F, camera_.width(), camera_.height());
     acrossFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(acrossFbo_.get(), GL_COLOR_ATTACHMENT0, across_.get(), 0);
     blurProg_ = buildProgram(technique.bilateral ? "#define BILATERAL\n" : "",
@@ -101,10 +87,7 @@ BlurLight::BlurLight(const Blur& technique, const LightSetup& setup)
 void BlurLight::renderVisibility(PassClock& clock) {
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-    const float zero[4] = {0, 0, 0, 0};
-    glBindFramebuffer(GL_FRAMEBUFFER, hardFbo_.get());
-    glClearNamedFramebufferfv(hardFbo_.get(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(hardFbo_.get(), GL_COLOR, 1, zero);
+    hardTarget_.bindAndClear();
     hard_->renderVisibility(clock);
     clock.begin("blur");
     glDisable(GL_DEPTH_TEST);
@@ -113,7 +96,7 @@ void BlurLight::renderVisibility(PassClock& clock) {
     glBindTextureUnit(1, camera_.positionTexture());
     glBindTextureUnit(2, camera_.normalTexture());
     glBindFramebuffer(GL_FRAMEBUFFER, acrossFbo_.get());
-    glBindTextureUnit(0, hardV_.get());
+    glBindTextureUnit(0, hardTarget_.visibilityTexture());
     glProgramUniform2i(blurProg_.get(), step, 1, 0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
