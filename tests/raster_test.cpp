@@ -1094,5 +1094,26 @@ TEST(Raster, BlurRadiusZeroIsItsInputAndARadiusSoftens) {
     EXPECT_GT(*b.penumbraBias, *h.penumbraBias) << "softer";
 }
 
+// Plane shifting softens the planar shadow's edge towards the oracle's penumbra on
+// penumbra_square (a square 1.5 above the floor): narrower width error and a less hard bias than
+// one projection, with the umbra still dark.
+TEST(Raster, PlaneShiftSoftensThePlanarShadow) {
+    REQUIRE_GL();
+    Scene s = loadShipped("penumbra_square", 200, 150);
+    ChannelImage o = runQuiet(s);
+    const LightMetrics one = computeLightMetrics(o, raster(s, "planar", {}), "panel", {});
+    const LightMetrics shifted = computeLightMetrics(o, raster(s, "plane-shift", {}), "panel", {});
+    ASSERT_TRUE(one.penumbraWidth && shifted.penumbraWidth && one.penumbraBias &&
+                shifted.penumbraBias && shifted.umbraMae);
+    std::printf(
+        "[ plane-shift ] width error %.2f px planar, %.2f shifted; bias %.3f, %.3f; "
+        "umbra mae %.4f\n",
+        one.penumbraWidth->mean, shifted.penumbraWidth->mean, *one.penumbraBias,
+        *shifted.penumbraBias, *shifted.umbraMae);
+    EXPECT_LT(shifted.penumbraWidth->mean, 0.75 * one.penumbraWidth->mean);
+    EXPECT_GT(*shifted.penumbraBias, *one.penumbraBias);
+    EXPECT_LT(*shifted.umbraMae, 0.02);
+}
+
 }  // namespace
 }  // namespace so::test

@@ -10,6 +10,21 @@
 
 namespace so {
 
+glm::dmat4 planarProjection(const glm::dvec4& P, const glm::dvec4& L) {
+    glm::dmat4 M(glm::dot(P, L));
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) M[col][row] -= L[row] * P[col];
+    return M;
+}
+
+glm::dmat4 flattenOnto(const glm::dvec4& P) {
+    const glm::dvec4 n(P.x, P.y, P.z, 0.0);
+    glm::dmat4 M(1.0);
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) M[col][row] -= n[row] * P[col];
+    return M;
+}
+
 std::optional<ReceiverPlane> planeOfMesh(const MeshPrimitive& mesh, const LocalFrame& frame) {
     if (mesh.indices.size() < 3) return std::nullopt;
     glm::dvec3 lsNormal(0.0), lsOnPlane(0.0);

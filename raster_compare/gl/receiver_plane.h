@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
 #include "core/local_frame.h"
@@ -19,6 +20,12 @@ struct ReceiverPlane {
     glm::dvec4 lsPlane{0.0};
     double area = 0.0;  // the mesh's area (world units)
 };
+
+// Blinn's projection onto the plane P (points x with P . (x, 1) = 0) from the homogeneous light
+// L (position, 1) or (direction towards the light, 0): (P . L) I - L P^T.
+glm::dmat4 planarProjection(const glm::dvec4& P, const glm::dvec4& L);
+// The orthographic projection along the plane's (unit) normal onto it: I - (n, 0) P^T.
+glm::dmat4 flattenOnto(const glm::dvec4& P);
 
 // Whether every vertex of `mesh` lies within 1e-6 of its extent of the plane through its largest
 // triangle; the plane if so.

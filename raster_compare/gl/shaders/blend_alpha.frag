@@ -1,5 +1,6 @@
-// Planar projected shadows: the shadow's opacity, which blending (GL_ZERO, GL_ONE_MINUS_SRC_ALPHA)
-// multiplies V by 1 - alpha with.
+// Planar projected shadows: the shadow's opacity, in red and alpha. One projection blends with
+// (GL_ZERO, GL_ONE_MINUS_SRC_ALPHA): V (1 - alpha); several subtract it (GL_FUNC_REVERSE_SUBTRACT,
+// GL_ONE, GL_ONE): V - alpha.
 uniform float u_alpha;
 layout(location = 0) out vec4 o_shade;
-void main() { o_shade = vec4(0.0, 0.0, 0.0, u_alpha); }
+void main() { o_shade = vec4(u_alpha, 0.0, 0.0, u_alpha); }

@@ -5,7 +5,7 @@
 layout(location = 0) in vec3 a_lsPosition;
 uniform mat4 u_clipFromLocal;
 uniform mat4 u_projection;
-uniform vec4 u_lsPlane;  // the receiver's plane, n towards the light
+uniform vec4 u_lsPlane;  // the plane projected onto, n towards the light
 void main() {
     vec4 q = u_projection * vec4(a_lsPosition, 1.0);
     gl_ClipDistance[0] = q.w;
