@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/channels.h"
+#include "core/percentile.h"
 
 namespace so {
 
@@ -92,14 +93,6 @@ std::vector<uint8_t> boundaries(const float* A, const float* V, int w, int h) {
             }
         }
     return b;
-}
-
-double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t k =
-        std::min(v.size() - 1, size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0));
-    return v[k];
 }
 
 // The channels of one light in both images.
@@ -290,7 +283,7 @@ BoundaryDisplacement boundaryDisplacement(const std::vector<uint8_t>& bo,
         double s = 0.0;
         for (double d : dist) s += d;
         b.mean = s / double(dist.size());
-        b.p95 = percentile(dist, 0.95);
+        b.p95 = nearestRankPercentile(dist, 0.95);
         b.max = *std::max_element(dist.begin(), dist.end());
     }
     return b;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "core/percentile.h"
 
 namespace so {
 
@@ -84,9 +87,7 @@ std::optional<PenumbraWidthError> penumbraWidthError(int w, int h, const float* 
     for (double v : errors) sum += v;
     e.mean = sum / double(errors.size());
     e.oracleMeanWidth = oracleSum / double(errors.size());
-    std::sort(errors.begin(), errors.end());
-    e.p95 =
-        errors[std::min(errors.size() - 1, size_t(std::ceil(0.95 * double(errors.size()))) - 1)];
+    e.p95 = nearestRankPercentile(std::move(errors), 0.95);
     return e;
 }
 
