@@ -139,9 +139,6 @@ void PlanarLight::renderVisibility(PassClock& clock) {
 
 RasterLightStats PlanarLight::describe() const {
     RasterLightStats s;
-    s.name = light_.name;
-    s.type = lightTypeName(light_.type);
-    s.family = "planar projection";
     s.counts = {{"receiver_mesh", receiver_.mesh}, {"planes", int64_t(projections_.size())}};
     return s;
 }

@@ -97,6 +97,9 @@ RasterStats collectStats(const TechniqueFrames& t, const CameraPass& camera,
     s.gl = {gl.renderer(), gl.version(), gl.platform()};
     for (const FrameLight& l : t.lights) {
         RasterLightStats ls = l.passes->describe();
+        ls.name = l.light->name;
+        ls.type = lightTypeName(l.light->type);
+        ls.family = findTechnique(t.technique->name()).family;
         ls.passes = l.passes->passNames();
         for (const std::string& pass : ls.passes)
             ls.passMs[pass] = t.timer.stats(l.light->name + "." + pass);

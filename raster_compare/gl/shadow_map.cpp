@@ -274,9 +274,6 @@ void ShadowMapLight::renderVisibility(PassClock& clock) {
 RasterLightStats ShadowMapLight::describe() const {
     const LocalFrame& frame = scene_.frame();
     RasterLightStats s;
-    s.name = light_.name;
-    s.type = lightTypeName(light_.type);
-    s.family = technique_.family();
     if (receiver_ >= 0) s.counts = {{"receiver_mesh", receiver_}};
     const bool ortho = cam_.kind == LightCamera::Kind::Ortho;
     s.map = ortho ? "orthographic" : cam_.kind == LightCamera::Kind::Cube ? "cube" : "perspective";

@@ -64,8 +64,6 @@ class ShadowMapTechnique : public Technique {
     // A mesh that is left out of the map and that the visibility GLSL can tell (u_meshId against
     // u_receiverMesh): the shadow texture's receiver; -1 for none. Called once per light.
     virtual int receiverMesh(const GpuScene&) const { return -1; }
-    // The family it is listed under (a technique built on this one may be another's).
-    virtual const char* family() const { return kFamily; }
     // Uniforms of the visibility program that depend on the light (pcss: its size).
     virtual void setLightUniforms(GLuint /*program*/, const Light& /*light*/,
                                   const LocalFrame& /*frame*/) const {}

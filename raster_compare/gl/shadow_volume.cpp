@@ -217,9 +217,6 @@ void ShadowVolumeLight::measureOnce() {
 
 RasterLightStats ShadowVolumeLight::describe() const {
     RasterLightStats s;
-    s.name = light_.name;
-    s.type = lightTypeName(light_.type);
-    s.family = ShadowVolumeTechnique::kFamily;
     const bool zFail = technique_.zFail();
     s.counts = {
         {"casters", int64_t(geometry_.casters)},

@@ -54,8 +54,8 @@ class LightTechnique {
     // test EQUAL. Ends with the scene drawn so: location 0 gets V, location 1 the predicted
     // aliasing; any other state it changes it restores.
     virtual void renderVisibility(PassClock& clock) = 0;
-    // The light's family, camera and map, and the technique's own counts, for raster.json
-    // (timings and memory are filled in by the renderer).
+    // The light's camera and map, and the technique's own counts, for raster.json (the light's
+    // name and type, the family, the passes, timings and memory are filled in by the renderer).
     virtual RasterLightStats describe() const = 0;
     // The GL memory it holds (maps and intermediate targets), from the formats and sizes.
     virtual uint64_t memoryBytes() const = 0;

@@ -178,9 +178,6 @@ void AccumulateLight::renderVisibility(PassClock& clock) {
 
 RasterLightStats AccumulateLight::describe() const {
     RasterLightStats s;
-    s.name = light_.name;
-    s.type = lightTypeName(light_.type);
-    s.family = Accumulate::kFamily;
     s.counts = {{"samples", int64_t(samples_.size())}};
     return s;
 }

@@ -26,11 +26,7 @@ class BlurLight final : public LightTechnique {
     }
     void renderLightPasses(PassClock& clock) override { hard_->renderLightPasses(clock); }
     void renderVisibility(PassClock& clock) override;
-    RasterLightStats describe() const override {
-        RasterLightStats s = hard_->describe();
-        s.family = "screen-space blur";
-        return s;
-    }
+    RasterLightStats describe() const override { return hard_->describe(); }
     uint64_t memoryBytes() const override {
         return hard_->memoryBytes() + uint64_t(camera_.width()) * uint64_t(camera_.height()) * 12;
     }

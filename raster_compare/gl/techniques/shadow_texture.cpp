@@ -34,7 +34,6 @@ class ShadowTexture final : public ShadowMapTechnique {
     int receiverMesh(const GpuScene& scene) const override {
         return findReceiver(scene.scene(), scene.frame(), receiver_, "shadow-texture").mesh;
     }
-    const char* family() const override { return kFamily; }
 
   private:
     bool bilinear_;
