@@ -1,6 +1,7 @@
 #include "cli/compare_command.h"
 
 #include <cctype>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -10,6 +11,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "raster_compare/compare/report.h"
+#include "raster_compare/compare/tradeoff.h"
 #include "raster_compare/gl/gl_context.h"
 
 namespace so {
@@ -152,6 +154,35 @@ void writeErrorExr(const fs::path& path, const std::vector<LightComparison>& lig
     writeExr(path.string(), errors);
 }
 
+// The oracle's cost curve for one light as the report and tradeoff.h take it: (ms, mean stated 95%
+// half-width over the penumbra's pixels), the time pro rata of the samples; empty for hard lights.
+std::vector<std::pair<double, double>> oraclePenumbraCurve(const OracleLightStats& l) {
+    std::vector<std::pair<double, double>> curve;
+    if (l.area && l.area->samples)
+        for (const CostPoint& p : l.area->costCurve)
+            if (p.penumbraMeanHalfWidth)
+                curve.emplace_back(
+                    1e3 * l.area->seconds * double(p.samples) / double(l.area->samples),
+                    *p.penumbraMeanHalfWidth);
+    return curve;
+}
+
+// The curve key and quality value of a setting (TradeoffPoint): the name and every parameter but
+// the quality one.
+void setCurve(ReportTechnique& rt, const TechniqueRun& run) {
+    const ParamSpec* q = qualityParam(findTechnique(run.spec.name).params);
+    rt.curve = run.spec.name;
+    for (const auto& [key, value] : run.technique->values().all()) {
+        if (q && key == q->name) {
+            rt.quality = value;
+            continue;
+        }
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", value);
+        rt.curve += " " + key + "=" + text;
+    }
+}
+
 // One technique's render measured against the oracle per light, its files and CSV rows written;
 // `row` gets its entry of metrics.json's results.
 ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, RasterResult&& r,
@@ -165,6 +196,7 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
     ReportTechnique rt;
     rt.label = run.spec.label;
     rt.family = findTechnique(run.spec.name).family;
+    setCurve(rt, run);
     nlohmann::json lights = nlohmann::json::object();
     for (size_t li = 0; li < job.scene.lights.size(); ++li) {
         LightComparison lc;
@@ -172,6 +204,9 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
         lc.metrics =
             computeLightMetrics(job.oracle.image, r.image, lc.light, job.metricOptions, &lc.maps);
         lc.cost = techniqueCost(r.stats, li, job.oracle.stats.lights[li].seconds());
+        if (lc.metrics.penumbraMae)
+            lc.cost.oracleMsAtEqualError = oracleMsAtError(
+                oraclePenumbraCurve(job.oracle.stats.lights[li]), *lc.metrics.penumbraMae);
         lights[lc.light] = lc.toJson();
         writeCsvRows(job, run, lc.light, lights[lc.light]);
         rt.lights.push_back(std::move(lc));
@@ -210,7 +245,7 @@ void renderAll(CompareJob& job, const std::vector<TechniqueRun>& runs, ReportInp
 
 nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results) {
     const Scene& scene = job.scene;
-    return {{"schema_version", 3},
+    return {{"schema_version", 4},
             {"tool", toolJson()},
             {"scene",
              {{"file", job.options.scenePath},
@@ -280,15 +315,8 @@ int runCompareCommand(const CompareOptions& options) {
     job.wide.write(out / "metrics_wide.csv");
     report.oracle = oracle.image;
     report.timedOn = gl.renderer();
-    for (const OracleLightStats& l : oracle.stats.lights) {
-        std::vector<std::pair<double, double>> curve;
-        if (l.area && l.area->samples)
-            for (const CostPoint& p : l.area->costCurve)
-                curve.emplace_back(
-                    1e3 * l.area->seconds * double(p.samples) / double(l.area->samples),
-                    p.meanHalfWidth);
-        report.oracleCurves.push_back(std::move(curve));
-    }
+    for (const OracleLightStats& l : oracle.stats.lights)
+        report.oracleCurves.push_back(oraclePenumbraCurve(l));
     report.provenance = {
         {"tool", metrics["tool"]}, {"scene_hash", scene.contentHash}, {"gl", metrics["gl"]}};
     writeReport((out / "report.html").string(), report);

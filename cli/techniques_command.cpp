@@ -41,8 +41,8 @@ std::string markdown() {
         }
         o << "| parameter | default | range | meaning |\n|---|---|---|---|\n";
         for (const ParamSpec& p : t->params)
-            o << "| `" << p.name << "` | " << number(p.defaultValue) << " | " << range(p) << " | "
-              << p.doc << " |\n";
+            o << "| `" << p.name << "`" << (p.quality ? " (quality)" : "") << " | "
+              << number(p.defaultValue) << " | " << range(p) << " | " << p.doc << " |\n";
     }
     return o.str();
 }
@@ -66,6 +66,7 @@ std::string json() {
             nlohmann::json j = {{"name", p.name}, {"default", p.defaultValue}, {"min", p.min},
                                 {"max", p.max},   {"integer", p.integer},      {"doc", p.doc}};
             if (!p.allowed.empty()) j["allowed"] = p.allowed;
+            if (p.quality) j["quality"] = true;
             params.push_back(j);
         }
         all.push_back({{"name", t->name},
@@ -73,7 +74,7 @@ std::string json() {
                        {"summary", t->summary},
                        {"parameters", params}});
     }
-    return nlohmann::json({{"format_version", 1}, {"techniques", all}}).dump(2) + "\n";
+    return nlohmann::json({{"format_version", 2}, {"techniques", all}}).dump(2) + "\n";
 }
 
 }  // namespace

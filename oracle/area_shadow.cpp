@@ -205,16 +205,21 @@ std::vector<int> curveRounds(int maxRounds) {
 struct CurveRow {
     std::vector<uint64_t> samples;
     std::vector<double> halfWidthSum;
+    std::vector<double> penumbraHalfWidthSum;  // over the penumbra's pixels (CostPoint)
+    uint64_t penumbraPixels = 0;
 };
 
-// `halfWidths`: one pixel's stated half-width after each packet.
-void addToCurve(const std::vector<int>& rounds, const std::vector<float>& halfWidths,
+// `halfWidths`: one pixel's stated half-width after each packet; `penumbra`: its V ended strictly
+// between 0 and 1.
+void addToCurve(const std::vector<int>& rounds, const std::vector<float>& halfWidths, bool penumbra,
                 CurveRow& row) {
     if (halfWidths.empty()) return;
+    row.penumbraPixels += penumbra ? 1 : 0;
     for (size_t c = 0; c < rounds.size(); ++c) {
         const size_t k = std::min(size_t(rounds[c]), halfWidths.size());
         row.samples[c] += 16 * uint64_t(k);
         row.halfWidthSum[c] += halfWidths[k - 1];
+        if (penumbra) row.penumbraHalfWidthSum[c] += halfWidths[k - 1];
     }
 }
 
@@ -353,7 +358,7 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
     V[px] = float(r.est.V);
     stderr_[px] = float(r.est.stderr_);
     spp[px] = float(r.samples);
-    addToCurve(rounds, packet.halfWidths, curveRows[size_t(ty)]);
+    addToCurve(rounds, packet.halfWidths, V[px] > 0.0f && V[px] < 1.0f, curveRows[size_t(ty)]);
     const double hw = kIntervalQuantile95 * r.est.stderr_;
     st.samples += uint64_t(r.samples);
     st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
@@ -389,20 +394,31 @@ void AreaRun::reduceSlots(AreaShadowStats& total) const {
 // The cost curve from the rows, in row order, and the run as it ended.
 void AreaRun::reduceCurve(AreaShadowStats& total) const {
     const int roundsUsed = int((total.maxSpp + 15) / 16);
+    uint64_t penumbraPixels = 0;
+    for (const CurveRow& row : curveRows) penumbraPixels += row.penumbraPixels;
     for (size_t c = 0; c < rounds.size() && rounds[c] <= roundsUsed && total.pixelsSampled; ++c) {
-        CostPoint point{rounds[c], 0, 0.0};
+        CostPoint point{rounds[c], 0, 0.0, std::nullopt};
+        double penumbraSum = 0.0;
         for (const CurveRow& row : curveRows) {
             point.samples += row.samples[c];
             point.meanHalfWidth += row.halfWidthSum[c];
+            penumbraSum += row.penumbraHalfWidthSum[c];
         }
         point.meanHalfWidth /= double(total.pixelsSampled);
+        if (penumbraPixels) point.penumbraMeanHalfWidth = penumbraSum / double(penumbraPixels);
         total.costCurve.push_back(point);
     }
     if (total.pixelsSampled &&
         (total.costCurve.empty() || total.costCurve.back().rounds < roundsUsed)) {
-        double sum = 0.0;
-        for (float h : halfWidth) sum += h;
-        total.costCurve.push_back({roundsUsed, total.samples, sum / double(total.pixelsSampled)});
+        double sum = 0.0, penumbraSum = 0.0;
+        for (size_t s = 0; s < halfWidth.size(); ++s) {
+            sum += halfWidth[s];
+            const size_t px = sb.pixelOfSlot(s);
+            if (px != SIZE_MAX && V[px] > 0.0f && V[px] < 1.0f) penumbraSum += halfWidth[s];
+        }
+        total.costCurve.push_back(
+            {roundsUsed, total.samples, sum / double(total.pixelsSampled),
+             penumbraPixels ? std::optional(penumbraSum / double(penumbraPixels)) : std::nullopt});
     }
 }
 
@@ -448,7 +464,8 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         std::vector<float>(sb.slotCount(), 0.0f),
         std::vector<double>(sb.slotCount(), 0.0),
         std::vector<CurveRow>(size_t(sb.tilesY), {std::vector<uint64_t>(rounds.size(), 0),
-                                                  std::vector<double>(rounds.size(), 0.0)})};
+                                                  std::vector<double>(rounds.size(), 0.0),
+                                                  std::vector<double>(rounds.size(), 0.0), 0})};
     tbb::combinable<AreaShadowStats> partial;
     tbb::parallel_for(
         tbb::blocked_range<int>(0, sb.tilesY, 1), [&](const tbb::blocked_range<int>& range) {

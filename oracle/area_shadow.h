@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/channels.h"
@@ -61,6 +62,9 @@ struct CostPoint {
     int rounds = 0;
     uint64_t samples = 0;
     double meanHalfWidth = 0.0;
+    // The same mean over the penumbra's pixels only (those ending with 0 < V < 1: their samples
+    // disagreed), what a soft-shadow technique's penumbra error compares with; none without any.
+    std::optional<double> penumbraMeanHalfWidth;
 };
 
 struct AreaShadowStats {

@@ -116,6 +116,8 @@ json costCurveJson(const OracleAreaStats& s) {
             {{"packets", p.rounds},
              {"samples", p.samples},
              {"mean_half_width", p.meanHalfWidth},
+             {"penumbra_mean_half_width",
+              p.penumbraMeanHalfWidth ? json(*p.penumbraMeanHalfWidth) : json(nullptr)},
              {"seconds", s.samples ? s.seconds * double(p.samples) / double(s.samples) : 0.0}});
     return curve;
 }
@@ -397,7 +399,8 @@ OracleAreaStats readArea(const Fields& f) {
     s.uniformSpp = f.object("uniform_equivalent").number("spp");
     s.samplingEfficiency = f.number("sampling_efficiency");
     for (const Fields& p : f.objects("cost_curve"))
-        s.costCurve.push_back({p.i32("packets"), p.u64("samples"), p.number("mean_half_width")});
+        s.costCurve.push_back({p.i32("packets"), p.u64("samples"), p.number("mean_half_width"),
+                               p.optionalNumber("penumbra_mean_half_width")});
     s.seconds = f.number("seconds");
     return s;
 }

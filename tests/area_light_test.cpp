@@ -399,8 +399,22 @@ TEST(AreaLight, CostCurvePredictsATighterTarget) {
     for (size_t k = 1; k < a.costCurve.size(); ++k) {
         EXPECT_GE(a.costCurve[k].samples, a.costCurve[k - 1].samples);
         EXPECT_LE(a.costCurve[k].meanHalfWidth, a.costCurve[k - 1].meanHalfWidth);
+        ASSERT_TRUE(a.costCurve[k].penumbraMeanHalfWidth &&
+                    a.costCurve[k - 1].penumbraMeanHalfWidth);
+        EXPECT_LE(*a.costCurve[k].penumbraMeanHalfWidth, *a.costCurve[k - 1].penumbraMeanHalfWidth);
     }
     EXPECT_EQ(a.costCurve.back().samples, a.samples);
+    // The penumbra's mean half-width, as the run ended, is the mean stated half-width of the
+    // pixels with 0 < V < 1 in the image, read back from its channels.
+    const float* V = r.img.channel("panel.V");
+    const float* SE = r.img.channel("panel.stderr");
+    double sum = 0.0;
+    size_t penumbra = 0;
+    for (size_t i = 0; i < r.img.pixelCount(); ++i)
+        if (V[i] > 0.0f && V[i] < 1.0f) sum += ch::kStdErrQuantile95 * SE[i], ++penumbra;
+    ASSERT_GT(penumbra, 100u);
+    EXPECT_NEAR(*a.costCurve.back().penumbraMeanHalfWidth, sum / double(penumbra),
+                1e-3 * sum / double(penumbra));
     AreaSampling half;
     half.targetError = 0.005;
     OracleRun tighter = run(s.scene, half);

@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "raster_compare/compare/gate.h"
 #include "raster_compare/compare/metrics.h"
+#include "raster_compare/compare/penumbra_width.h"
 #include "raster_compare/gl/gl_context.h"
 #include "raster_compare/gl/renderer.h"
 #include "raster_compare/gl/shadow_map.h"
@@ -435,7 +436,8 @@ TEST(Compare, EndToEndOnTheContactScene) {
         "/contact_box.scene.json --width 320 --height 240 --frames 1 --no-cache --out " + out +
         " --technique basic:resolution=1024 --technique slope-bias:resolution=1024 --technique "
         "bias:bias=1"
-        " --technique bias:bias=300 --technique pcf:resolution=1024,kernel=5 > /dev/null 2>&1";
+        " --technique bias:bias=300 --technique pcf:resolution=1024,kernel=5"
+        " --technique slope-bias:resolution=512 > /dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     std::ifstream in(out + "/metrics.json");
     const nlohmann::json j = nlohmann::json::parse(in);
@@ -473,12 +475,16 @@ TEST(Compare, EndToEndOnTheContactScene) {
         return n;
     };
     EXPECT_EQ(count("<img "),
-              1u + 3u * 5u);  // the oracle; per technique its image, errors, predicted aliasing
+              1u + 3u * 6u);  // the oracle; per technique its image, errors, predicted aliasing
     EXPECT_EQ(count("src=\"data:image/png;base64,"), count("<img "));
     EXPECT_EQ(count("http://") + count("https://") + count("<link") + count("src=\"/"), 0u)
         << "self-contained";
     EXPECT_EQ(count("<svg"), 1u);
-    EXPECT_EQ(count("<circle"), 5u);
+    EXPECT_EQ(count("<circle"), 6u);
+    // The two slope-bias settings differ only in the shadow maps' quality parameter, resolution:
+    // one curve; the chart read off at error budgets below it.
+    EXPECT_EQ(count("<polyline class=\"curve\""), 1u);
+    EXPECT_EQ(count("<table class=\"budget\">"), 1u);
     EXPECT_NE(report.find("<table id=\"metrics\">"), std::string::npos);
     EXPECT_NE(report.find("Times were measured on <b>" + j["gl"]["renderer"].get<std::string>()),
               std::string::npos)
@@ -487,7 +493,7 @@ TEST(Compare, EndToEndOnTheContactScene) {
     for (const auto& r : j["results"]) {
         EXPECT_TRUE(r["parameters"]["resolution"].is_number_integer()) << r["label"];
         EXPECT_EQ(r["timings"]["frames"], 1) << "as asked";
-        EXPECT_EQ(r["timings"]["interleaved_with"], 5);
+        EXPECT_EQ(r["timings"]["interleaved_with"], 6);
         for (const auto& [light, m] : r["lights"].items()) {
             const auto& cost = m["cost"];
             EXPECT_LE(cost["shadow_map_ms_p25"].get<double>(), cost["shadow_map_ms"].get<double>());
@@ -505,7 +511,7 @@ TEST(Compare, EndToEndOnTheContactScene) {
     EXPECT_EQ(header.rfind("scene,light,technique,label,", 0), 0u) << header;
     for (const char* column : {"param.resolution", "param.kernel", "acne_rate", "cost.frame_ms"})
         EXPECT_NE(header.find(column), std::string::npos) << column;
-    EXPECT_EQ(rows, 5u * j["results"][0]["lights"].size());
+    EXPECT_EQ(rows, 6u * j["results"][0]["lights"].size());
     std::filesystem::remove_all(out);
 }
 
@@ -1025,11 +1031,13 @@ TEST(Raster, PcssWidensThePenumbraAndHardensForAPointLikeLight) {
     ChannelImage ot = runQuiet(tiny);
     Comparison soft = compare(ot, raster(tiny, "pcss", {}), "panel", 2);
     Comparison hard = compare(ot, raster(tiny, "slope-bias", {}), "panel", 2);
+    Comparison rotated = compare(ot, raster(tiny, "pcss", {"pattern=1"}), "panel", 2);
     std::printf("[ pcss ] 2 mm light: agreement pcss %.5f, slope-bias %.5f of %zu\n",
                 soft.agreement(), hard.agreement(), soft.counted);
     ASSERT_GT(soft.oracleShadow, 1000u);
     EXPECT_GE(soft.agreement(), hard.agreement() - 0.001);
     EXPECT_GE(soft.agreement(), 0.99);
+    EXPECT_GE(rotated.agreement(), 0.99) << "the per-pixel turned pattern hardens too";
 }
 
 // The calibration of the soft-shadow comparison: accumulated hard shadows (exact per sample, with
@@ -1113,6 +1121,40 @@ TEST(Raster, PlaneShiftSoftensThePlanarShadow) {
     EXPECT_LT(shifted.penumbraWidth->mean, 0.75 * one.penumbraWidth->mean);
     EXPECT_GT(*shifted.penumbraBias, *one.penumbraBias);
     EXPECT_LT(*shifted.umbraMae, 0.02);
+}
+
+// The mean 10%-90% width, in pixels, of an image's own transitions on the floor (mesh 0) where
+// the light faces it: penumbraWidthError's measure of the oracle, applied to one image.
+double ownPenumbraWidth(const ChannelImage& img, const std::string& light) {
+    const float* mesh = img.channel(ch::kMeshId);
+    std::vector<uint8_t> floor(img.pixelCount());
+    for (size_t i = 0; i < img.pixelCount(); ++i) floor[i] = mesh[i] == 0.0f;
+    const float* V = img.channel(ch::lightChannel(light, ch::kVisibility));
+    const auto w = penumbraWidthError(img.width(), img.height(), V, V, floor);
+    return w ? w->oracleMeanWidth : 0.0;
+}
+
+// Plateaus widen the projected hard edge by the similar-triangles penumbra of each silhouette
+// point's height: raising the square on penumbra_square from 0.75 to 2 (light at 4) widens its
+// soft edge as the oracle's widens, within a factor 1.5 of the oracle's growth.
+TEST(Raster, PlateausWidenWithTheOccludersHeight) {
+    REQUIRE_GL();
+    double oracle[2], plateaus[2];
+    for (int k = 0; k < 2; ++k) {
+        Scene s = loadShipped("penumbra_square", 240, 180);
+        for (glm::dvec3& p : s.meshes[1].wsPositions) p.y = k == 0 ? 0.75 : 2.0;
+        finalizeScene(s);
+        const ChannelImage o = runQuiet(s), r = raster(s, "plateaus", {});
+        oracle[k] = ownPenumbraWidth(o, "panel");
+        plateaus[k] = ownPenumbraWidth(r, "panel");
+        std::printf("[ plateaus ] square at %.2f: 10%%-90%% width %.2f px, oracle %.2f px\n",
+                    k == 0 ? 0.75 : 2.0, plateaus[k], oracle[k]);
+        ASSERT_GT(plateaus[k], 0.5) << "no soft edge at all";
+    }
+    const double growth = plateaus[1] / plateaus[0], oracleGrowth = oracle[1] / oracle[0];
+    EXPECT_GT(growth, 1.5);
+    EXPECT_LT(std::fabs(std::log(growth / oracleGrowth)), std::log(1.5))
+        << growth << " against the oracle's " << oracleGrowth;
 }
 
 }  // namespace

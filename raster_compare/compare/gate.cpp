@@ -112,11 +112,12 @@ std::vector<Rule> readRules(const json& limits, const std::string& lf,
 std::vector<GateCheck> evaluateGate(const json& metrics, const std::string& metricsPath,
                                     const json& limits, const std::string& limitsPath) {
     // Version 2 added metrics and made aliasing_rate null on area lights; version 3 added metrics
-    // and turned penumbra_bias's sign (docs/metrics.md): the gate reads all three.
+    // and turned penumbra_bias's sign, version 4 added cost.oracle_ms_at_equal_error
+    // (docs/metrics.md): the gate reads all four.
     const int version = metrics.is_object() ? metrics.value("schema_version", 0) : 0;
-    if (version < 1 || version > 3 || !metrics.contains("results"))
+    if (version < 1 || version > 4 || !metrics.contains("results"))
         throwInputError(metricsPath, "schema_version",
-                        "not a metrics.json of schema_version 1, 2 or 3");
+                        "not a metrics.json of schema_version 1 to 4");
     const std::vector<Rule> rules = readRules(limits, limitsPath, knownMetrics(metrics));
     const std::string scene = metrics["scene"].value("file", "");
     const std::string sceneName = std::filesystem::path(scene).filename().string();

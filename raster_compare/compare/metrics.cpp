@@ -365,7 +365,11 @@ std::vector<std::pair<std::string, nlohmann::json>> flatMetrics(const nlohmann::
 
 nlohmann::json TechniqueCost::toJson() const {
     nlohmann::json j = {
-        {"memory_bytes", memoryBytes}, {"oracle_seconds", oracleSeconds}, {"noisy", noisy()}};
+        {"memory_bytes", memoryBytes},
+        {"oracle_seconds", oracleSeconds},
+        {"oracle_ms_at_equal_error",
+         oracleMsAtEqualError ? nlohmann::json(*oracleMsAtEqualError) : nlohmann::json(nullptr)},
+        {"noisy", noisy()}};
     for (const auto& [key, t] :
          {std::pair{"shadow_map", shadowMapMs}, std::pair{"visibility", visibilityMs},
           std::pair{"frame", frameMs}}) {

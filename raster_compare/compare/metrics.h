@@ -75,6 +75,10 @@ struct TechniqueCost {
     TimingStats shadowMapMs, visibilityMs, frameMs;  // over the timed frames
     uint64_t memoryBytes = 0;                        // GL memory the technique holds for this light
     double oracleSeconds = 0.0;                      // what the ground truth of this light cost
+    // Sampled area lights: the oracle's time until its penumbra's mean stated 95% half-width came
+    // down to this technique's penumbra_mae (tradeoff.h); none for hard lights, or when its run
+    // ended above it.
+    std::optional<double> oracleMsAtEqualError;
     // A spread above 20% of the median in any of the three times (TimingStats::noisy).
     bool noisy() const { return shadowMapMs.noisy() || visibilityMs.noisy() || frameMs.noisy(); }
     nlohmann::json toJson() const;

@@ -12,6 +12,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/preview.h"
+#include "raster_compare/compare/tradeoff.h"
 
 namespace so {
 
@@ -125,86 +126,157 @@ std::string num(std::optional<double> v, int digits = 4) {
     return buf;
 }
 
-// Error (mae) against cost (frame ms): one point per technique, the Pareto front joined.
-std::string chart(const ReportInput& in, size_t light) {
-    struct P {
-        double t, e;
-        std::string label;
-    };
-    std::vector<P> pts;
-    for (const ReportTechnique& t : in.techniques)
-        pts.push_back({t.lights[light].cost.frameMs.median, t.lights[light].metrics.mae, t.label});
-    if (pts.empty()) return "";
-    std::vector<P> oracle;  // the oracle's own accuracy against its time
-    if (light < in.oracleCurves.size())
+// One light's techniques as points of error against cost (docs/metrics.md, "Error against
+// cost"): penumbra_mae on area lights (the oracle's curve beside them), mae on hard ones.
+struct ChartData {
+    std::vector<TradeoffPoint> points;
+    std::vector<std::pair<double, double>> oracle;  // (ms, penumbra mean stated half-width)
+    std::string error;                              // the error's name, for the axis
+};
+
+ChartData chartData(const ReportInput& in, size_t light) {
+    ChartData d;
+    const bool area = std::any_of(
+        in.techniques.begin(), in.techniques.end(),
+        [&](const ReportTechnique& t) { return t.lights[light].metrics.penumbraMae.has_value(); });
+    d.error = area ? "penumbra_mae" : "mae";
+    for (const ReportTechnique& t : in.techniques) {
+        const LightMetrics& m = t.lights[light].metrics;
+        if (area && !m.penumbraMae) continue;
+        d.points.push_back({t.label, t.curve, t.quality, t.lights[light].cost.frameMs.median,
+                            area ? *m.penumbraMae : m.mae});
+    }
+    if (area && light < in.oracleCurves.size())
         for (const auto& [ms, e] : in.oracleCurves[light])
-            if (ms > 0.0 && e > 0.0) oracle.push_back({ms, e, "oracle"});
-    // Time on a log scale: techniques differ in cost by orders of magnitude.
-    double tMin = 1e300, tMax = 0, eMax = 0;
-    for (const std::vector<P>* set : {&pts, &oracle})
-        for (const P& p : *set)
-            tMin = std::min(tMin, p.t), tMax = std::max(tMax, p.t), eMax = std::max(eMax, p.e);
-    tMin = std::max(tMin, 1e-3) / 1.3;
-    tMax = std::max(tMax * 1.3, tMin * 10);
-    double eMin = 1e300;
-    for (const std::vector<P>* set : {&pts, &oracle})
-        for (const P& p : *set)
-            if (p.e > 0) eMin = std::min(eMin, p.e);
-    eMin = eMin == 1e300 ? 1e-6 : eMin / 2;
-    eMax = std::max(eMax * 1.5, eMin * 10);
-    const double W = 580, H = 320, L = 80, B = 40, R = 20, T = 20;
-    auto X = [&](double t) {
+            if (ms > 0.0 && e > 0.0) d.oracle.emplace_back(ms, e);
+    return d;
+}
+
+// Log-log axes over every point and the oracle's curve, ticks and names drawn.
+struct ChartAxes {
+    double tMin = 1e300, tMax = 0.0, eMin = 1e300, eMax = 0.0;
+    static constexpr double W = 600, H = 340, L = 80, B = 40, R = 20, T = 20;
+    explicit ChartAxes(const ChartData& d) {
+        auto extend = [&](double t, double e) {
+            tMin = std::min(tMin, t), tMax = std::max(tMax, t), eMax = std::max(eMax, e);
+            if (e > 0.0) eMin = std::min(eMin, e);
+        };
+        for (const TradeoffPoint& p : d.points) extend(p.ms, p.error);
+        for (const auto& [t, e] : d.oracle) extend(t, e);
+        tMin = std::max(tMin, 1e-3) / 1.3;
+        tMax = std::max(tMax * 1.3, tMin * 10);
+        eMin = eMin == 1e300 ? 1e-6 : eMin / 2;  // zero errors drawn at the floor
+        eMax = std::max(eMax * 1.5, eMin * 10);
+    }
+    double x(double t) const {
         return L + (W - L - R) * std::log(std::max(t, tMin) / tMin) / std::log(tMax / tMin);
-    };
-    // Errors too span orders of magnitude: log scale, zero drawn at the floor.
-    auto Y = [&](double e) {
+    }
+    double y(double e) const {
         return H - B - (H - B - T) * std::log(std::max(e, eMin) / eMin) / std::log(eMax / eMin);
-    };
-    std::vector<P> front = pts;  // no faster technique is also more accurate
-    std::sort(front.begin(), front.end(),
-              [](const P& a, const P& b) { return a.t < b.t || (a.t == b.t && a.e < b.e); });
-    std::vector<P> pareto;
-    for (const P& p : front)
-        if (pareto.empty() || p.e < pareto.back().e) pareto.push_back(p);
+    }
+    // A point's label above it, to its right, or to its left near the right edge.
+    void label(std::ostream& s, double t, double e, const std::string& text) const {
+        const bool left = x(t) > W - R - 7.0 * double(text.size());
+        s << "<text x=\"" << x(t) + (left ? -7 : 7) << "\" y=\"" << y(e) - 6 << "\" class=\"label\""
+          << (left ? " text-anchor=\"end\"" : "") << ">" << html(text) << "</text>";
+    }
+    void draw(std::ostream& s, const std::string& error) const {
+        s << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B
+          << "\" class=\"axis\"/><line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L
+          << "\" y2=\"" << H - B << "\" class=\"axis\"/>";
+        for (int k = 0; k <= 4; ++k) {
+            const double tk = tMin * std::pow(tMax / tMin, k / 4.0),
+                         ek = eMin * std::pow(eMax / eMin, k / 4.0);
+            s << "<text x=\"" << x(tk) << "\" y=\"" << H - B + 16
+              << "\" class=\"tick\" text-anchor=\"middle\">" << num(tk, 3) << "</text>";
+            s << "<text x=\"" << L - 6 << "\" y=\"" << y(ek) + 4
+              << "\" class=\"tick\" text-anchor=\"end\">" << num(ek, 2) << "</text>";
+        }
+        s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 6
+          << "\" text-anchor=\"middle\">frame time (ms, log scale)</text><text x=\"14\" y=\""
+          << (T + H - B) / 2 << "\" transform=\"rotate(-90 14 " << (T + H - B) / 2
+          << ")\" text-anchor=\"middle\">" << html(error) << " (log scale)</text>";
+    }
+};
+
+// The curves over each technique's quality parameter: a line through its settings, each point
+// labelled with the parameter's value, the curve with the technique's name at its last point.
+void drawCurves(std::ostream& s, const ChartData& d, const ChartAxes& ax) {
+    for (const TradeoffCurve& c : qualityCurves(d.points)) {
+        s << "<polyline class=\"curve\" points=\"";
+        for (size_t i : c.points)
+            s << ax.x(d.points[i].ms) << "," << ax.y(d.points[i].error) << " ";
+        s << "\"><title>" << html(c.key) << "</title></polyline>";
+        for (size_t i : c.points)
+            s << "<text x=\"" << ax.x(d.points[i].ms) + 6 << "\" y=\""
+              << ax.y(d.points[i].error) + 14 << "\" class=\"tick\">" << num(d.points[i].quality, 4)
+              << "</text>";
+        const TradeoffPoint& last = d.points[c.points.back()];
+        ax.label(s, last.ms, last.error, c.key.substr(0, c.key.find(' ')));
+    }
+}
+
+// Error against cost: every setting a point, the curves over quality parameters, the Pareto
+// front, and on area lights the oracle's own curve.
+std::string chart(const ChartData& d) {
+    if (d.points.empty()) return "";
+    const ChartAxes ax(d);
     std::ostringstream s;
-    s << "<svg class=\"chart\" viewBox=\"0 0 " << W << " " << H << "\" width=\"" << W
-      << "\" height=\"" << H << "\" role=\"img\" aria-label=\"error against time\">";
-    s << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B
-      << "\" class=\"axis\"/>";
-    s << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << H - B
-      << "\" class=\"axis\"/>";
-    for (int k = 0; k <= 4; ++k) {
-        const double tk = tMin * std::pow(tMax / tMin, k / 4.0),
-                     ek = eMin * std::pow(eMax / eMin, k / 4.0);
-        s << "<text x=\"" << X(tk) << "\" y=\"" << H - B + 16
-          << "\" class=\"tick\" text-anchor=\"middle\">" << num(tk, 3) << "</text>";
-        s << "<text x=\"" << L - 6 << "\" y=\"" << Y(ek) + 4
-          << "\" class=\"tick\" text-anchor=\"end\">" << num(ek, 2) << "</text>";
-    }
-    s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 6
-      << "\" text-anchor=\"middle\">frame time (ms, log scale)</text>";
-    s << "<text x=\"14\" y=\"" << (T + H - B) / 2 << "\" transform=\"rotate(-90 14 "
-      << (T + H - B) / 2 << ")\" text-anchor=\"middle\">mean error of V (log scale)</text>";
-    if (!oracle.empty()) {
+    s << "<svg class=\"chart\" viewBox=\"0 0 " << ax.W << " " << ax.H << "\" width=\"" << ax.W
+      << "\" height=\"" << ax.H << "\" role=\"img\" aria-label=\"error against time\">";
+    ax.draw(s, d.error);
+    if (!d.oracle.empty()) {
         s << "<polyline class=\"oracle\" points=\"";
-        for (const P& p : oracle) s << X(p.t) << "," << Y(p.e) << " ";
-        s << "\"><title>the oracle: mean stated 95% half-width against its time</title></polyline>";
-        s << "<text x=\"" << X(oracle.back().t) - 4 << "\" y=\"" << Y(oracle.back().e) - 8
-          << "\" class=\"label\" text-anchor=\"end\">oracle (its own error)</text>";
+        for (const auto& [t, e] : d.oracle) s << ax.x(t) << "," << ax.y(e) << " ";
+        s << "\"><title>the oracle: mean stated 95% half-width over the penumbra against its "
+             "time</title></polyline><text x=\""
+          << ax.x(d.oracle.back().first) - 4 << "\" y=\"" << ax.y(d.oracle.back().second) - 8
+          << "\" class=\"label\" text-anchor=\"end\">oracle (its 95% half-width)</text>";
     }
+    const std::vector<size_t> front = paretoFront(d.points);
     s << "<polyline class=\"pareto\" points=\"";
-    for (const P& p : pareto) s << X(p.t) << "," << Y(p.e) << " ";
+    for (size_t i : front) s << ax.x(d.points[i].ms) << "," << ax.y(d.points[i].error) << " ";
     s << "\"/>";
-    for (const P& p : pts) {
-        const bool onFront = std::any_of(pareto.begin(), pareto.end(),
-                                         [&](const P& q) { return q.label == p.label; });
-        s << "<circle cx=\"" << X(p.t) << "\" cy=\"" << Y(p.e) << "\" r=\"5\" class=\""
-          << (onFront ? "front" : "point") << "\"><title>" << html(p.label) << ": " << num(p.e)
-          << " at " << num(p.t, 3) << " ms</title></circle>";
-        s << "<text x=\"" << X(p.t) + 7 << "\" y=\"" << Y(p.e) - 6 << "\" class=\"label\">"
-          << html(p.label) << "</text>";
+    drawCurves(s, d, ax);
+    std::vector<uint8_t> onCurve(d.points.size(), 0);
+    for (const TradeoffCurve& c : qualityCurves(d.points))
+        for (size_t i : c.points) onCurve[i] = 1;
+    for (size_t i = 0; i < d.points.size(); ++i) {
+        const TradeoffPoint& p = d.points[i];
+        const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
+        s << "<circle cx=\"" << ax.x(p.ms) << "\" cy=\"" << ax.y(p.error) << "\" r=\"5\" class=\""
+          << (onFront ? "front" : "point") << "\"><title>" << html(p.label) << ": " << num(p.error)
+          << " at " << num(p.ms, 3) << " ms</title></circle>";
+        if (!onCurve[i]) ax.label(s, p.ms, p.error, p.label);
     }
     s << "</svg>";
+    return s.str();
+}
+
+// The chart read off at error budgets: the cheapest setting within each, and (area lights) the
+// oracle's time to state intervals that small.
+std::string budgetTable(const ChartData& d) {
+    if (d.points.empty()) return "";
+    std::ostringstream s;
+    s << "<p>The red dashed line is the Pareto front: the settings no other setting beats in both "
+         "time and "
+      << html(d.error) << ". Lines join the settings of one technique that differ only in its "
+      << "quality parameter (numbers: its value).</p><table class=\"budget\"><tr><th>"
+      << html(d.error) << " at most</th><th>cheapest setting</th><th>its frame ms</th>"
+      << (d.oracle.empty() ? "" : "<th>oracle ms to state 95% intervals that small</th>")
+      << "</tr>";
+    for (double budget : {0.2, 0.1, 0.05, 0.02, 0.01, 0.005}) {
+        const std::optional<size_t> best = cheapestWithin(d.points, budget);
+        s << "<tr><td>" << num(budget, 3) << "</td><td>"
+          << (best ? html(d.points[*best].label) : "none") << "</td><td>"
+          << (best ? num(d.points[*best].ms, 3) : "–") << "</td>";
+        if (!d.oracle.empty()) {
+            const std::optional<double> ms = oracleMsAtError(d.oracle, budget);
+            s << "<td>" << (ms ? num(*ms, 3) : "not within its run") << "</td>";
+        }
+        s << "</tr>";
+    }
+    s << "</table>";
     return s.str();
 }
 
@@ -263,7 +335,7 @@ h1{font-size:22px}h2{font-size:18px;margin-top:32px}
 table{border-collapse:collapse;background:#fff;font-size:13px}th,td{padding:4px 8px;border-bottom:1px solid #ddd;text-align:right}
 th{cursor:pointer;background:#eee;position:sticky;top:0}td:first-child,td:nth-child(2),th:first-child,th:nth-child(2){text-align:left}
 .chart{background:#fff;border-radius:6px}.axis{stroke:#444}.tick{font-size:11px;fill:#555}.label{font-size:11px;fill:#333}
-.point{fill:#888}.front{fill:#d33}.oracle{fill:none;stroke:#0072b2;stroke-width:1.5}.pareto{fill:none;stroke:#d33;stroke-width:1.5;stroke-dasharray:4 3}
+.point{fill:#888}.front{fill:#d33}.curve{fill:none;stroke:#999;stroke-width:1.2}.oracle{fill:none;stroke:#0072b2;stroke-width:1.5}.pareto{fill:none;stroke:#d33;stroke-width:1.5;stroke-dasharray:4 3}
 footer{margin-top:32px;font-size:12px;color:#666}
 </style></head><body>)";
     o << "<h1>Shadow accuracy against the oracle: " << html(in.sceneFile) << "</h1>";
@@ -359,7 +431,8 @@ void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
               << num(lm.aliasingCorrelation, 2) << "</p></div>";
         }
     }
-    o << "</div><h3>Error against time</h3>" << chart(in, li);
+    const ChartData data = chartData(in, li);
+    o << "</div><h3>Error against time</h3>" << chart(data) << budgetTable(data);
 }
 
 // Every row of metrics, sortable.

@@ -3,6 +3,7 @@
 // chart (inline SVG, Pareto front marked). No external file, script or font.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,11 @@ namespace so {
 
 struct ReportTechnique {
     std::string label;
-    std::string family;                   // TechniqueInfo::family: the report groups by it
+    std::string family;  // TechniqueInfo::family: the report groups by it
+    // Settings that differ only in the technique's quality parameter share `curve` (TradeoffPoint);
+    // `quality` is its value, none for a technique without one.
+    std::string curve;
+    std::optional<double> quality;
     ChannelImage image;                   // raster.exr
     std::vector<LightComparison> lights;  // per light, in scene order
 };
@@ -28,7 +33,7 @@ struct ReportInput {
     nlohmann::json provenance;  // tool, scene hash, GL renderer: shown in the footer
     std::string timedOn;        // the GL renderer that measured the times
     // Per light, sampled area lights only: the oracle's own cost curve, (ms, mean stated 95%
-    // half-width) as its adaptive run went (docs/oracle.md).
+    // half-width over the penumbra's pixels) as its adaptive run went (docs/oracle.md).
     std::vector<std::vector<std::pair<double, double>>> oracleCurves;
 };
 

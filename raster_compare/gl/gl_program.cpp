@@ -29,9 +29,11 @@ GlShader compileShader(GLenum stage, const std::vector<std::string>& sources) {
 
 GlProgram buildProgram(const std::string& defines, const char* vertexSource,
                        const std::vector<const char*>& fragmentSources) {
-    const std::string header = "#version 450 core\n" + defines + "#line 1\n";
-    GlShader vs = compileShader(GL_VERTEX_SHADER, {header, vertexSource});
-    std::vector<std::string> fragment = {header};
+    // SO_VERTEX_SHADER or SO_FRAGMENT_SHADER tells a file that holds both stages which it is.
+    const std::string header = "#version 450 core\n" + defines;
+    GlShader vs = compileShader(GL_VERTEX_SHADER,
+                                {header + "#define SO_VERTEX_SHADER\n#line 1\n", vertexSource});
+    std::vector<std::string> fragment = {header + "#define SO_FRAGMENT_SHADER\n#line 1\n"};
     for (const char* src : fragmentSources) fragment.emplace_back(src);
     GlShader fs = compileShader(GL_FRAGMENT_SHADER, fragment);
     GlProgram p(glCreateProgram());

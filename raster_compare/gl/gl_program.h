@@ -12,7 +12,8 @@
 
 namespace so {
 
-// "#version 450 core", the defines, then each source in order (a frame and the technique's file).
+// "#version 450 core", the defines, SO_VERTEX_SHADER or SO_FRAGMENT_SHADER defined, then each
+// source in order (a frame and the technique's file).
 // Compile and link errors throw std::runtime_error with the driver's log.
 GlProgram buildProgram(const std::string& defines, const char* vertexSource,
                        const std::vector<const char*>& fragmentSources);

@@ -98,4 +98,16 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
     return lc;
 }
 
+double lightWidth(const Light& light) {
+    switch (light.type) {
+        case LightType::Rect:
+            return std::sqrt(glm::length(glm::cross(light.wsU, light.wsV)));
+        case LightType::Disk:
+        case LightType::Sphere:
+            return light.radius * std::sqrt(std::numbers::pi);
+        default:
+            return 0.0;
+    }
+}
+
 }  // namespace so

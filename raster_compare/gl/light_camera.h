@@ -39,4 +39,9 @@ struct LightCamera {
 LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bounds3d& lsBounds,
                            int resolution, const Bounds3d* lsReceivers = nullptr);
 
+// The width of an area light as the soft-shadow approximations take it (pcss, plateaus): the side
+// of a square of its area (rect: sqrt(|u x v|); disk and sphere: r sqrt(pi)), world units; 0 for
+// point, spot and directional lights.
+double lightWidth(const Light& light);
+
 }  // namespace so

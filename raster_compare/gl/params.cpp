@@ -94,4 +94,10 @@ std::string glslDefine(const std::string& name, double v) {
     return "#define " + name + " " + glslFloat(v) + "\n";
 }
 
+const ParamSpec* qualityParam(const ParamTable& table) {
+    for (const ParamSpec& p : table)
+        if (p.quality) return &p;
+    return nullptr;
+}
+
 }  // namespace so

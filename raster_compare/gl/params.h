@@ -18,8 +18,14 @@ struct ParamSpec {
     bool integer;
     std::string doc;
     std::vector<double> allowed = {};  // when not empty: the only valid values
+    // The technique's main quality parameter (at most one per table): the report draws the
+    // settings that differ only in it as one curve of error against cost.
+    bool quality = false;
 };
 using ParamTable = std::vector<ParamSpec>;
+
+// The table's quality parameter, or null.
+const ParamSpec* qualityParam(const ParamTable& table);
 
 // One parameter's value, with whether the table declares it an integer (JSON writes 2048, not
 // 2048.0).

@@ -24,6 +24,8 @@ ParamTable shadowMapParams(ParamTable own) {
         {"fit", 0, 0, 1, true,
          "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"},
     };
+    // The resolution is the family's quality parameter unless the technique names its own.
+    p[0].quality = qualityParam(own) == nullptr;
     for (ParamSpec& s : own) p.push_back(std::move(s));
     return p;
 }

@@ -19,13 +19,16 @@ struct Caster {
     uint32_t id[3];
     glm::dvec3 p[3];
     bool flipped = false;
+    size_t triangle = 0;  // its index in WeldedScene::triangles
 };
 
 // Calls f(Caster) for every triangle that casts: not degenerate, not edge-on to the light.
 template <typename F>
 void forEachCaster(const WeldedScene& scene, const glm::dvec4& lsLight, F&& f) {
-    for (const std::array<uint32_t, 3>& t : scene.triangles) {
+    for (size_t i = 0; i < scene.triangles.size(); ++i) {
+        const std::array<uint32_t, 3>& t = scene.triangles[i];
         Caster c;
+        c.triangle = i;
         for (int k = 0; k < 3; ++k) {
             c.id[k] = t[size_t(k)];
             c.p[k] = scene.lsPositions[t[size_t(k)]];
@@ -84,6 +87,7 @@ WeldedScene WeldedScene::build(const Scene& scene, const LocalFrame& frame) {
     WeldedScene w;
     std::unordered_map<PositionKey, uint32_t, PositionHash> ids;
     for (const MeshPrimitive& m : scene.meshes) {
+        w.meshFirstTriangle.push_back(w.triangles.size());
         for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
             std::array<uint32_t, 3> tri;
             for (int k = 0; k < 3; ++k) {
@@ -136,6 +140,30 @@ ShadowVolumeGeometry buildShadowVolumes(const WeldedScene& scene, const glm::dve
         }
     }
     return g;
+}
+
+std::vector<std::array<uint32_t, 2>> silhouetteEdges(const WeldedScene& scene,
+                                                     const glm::dvec4& lsLight, int skipMesh) {
+    size_t skipBegin = 0, skipEnd = 0;
+    if (skipMesh >= 0 && size_t(skipMesh) < scene.meshFirstTriangle.size()) {
+        skipBegin = scene.meshFirstTriangle[size_t(skipMesh)];
+        skipEnd = size_t(skipMesh) + 1 < scene.meshFirstTriangle.size()
+                      ? scene.meshFirstTriangle[size_t(skipMesh) + 1]
+                      : scene.triangles.size();
+    }
+    EdgeCounts edges;
+    forEachCaster(scene, lsLight, [&](const Caster& c) {
+        if (c.triangle >= skipBegin && c.triangle < skipEnd) return;
+        for (int k = 0; k < 3; ++k) edges.add(c.id[k], c.id[(k + 1) % 3]);
+    });
+    std::vector<std::array<uint32_t, 2>> kept;
+    for (const auto& [key, n] : edges.count) {
+        if (n == 0) continue;
+        const uint32_t lo = uint32_t(key >> 32), hi = uint32_t(key & 0xffffffffu);
+        kept.push_back(n > 0 ? std::array<uint32_t, 2>{lo, hi} : std::array<uint32_t, 2>{hi, lo});
+    }
+    std::sort(kept.begin(), kept.end());
+    return kept;
 }
 
 int volumesContaining(const WeldedScene& scene, const glm::dvec4& lsLight,

@@ -32,6 +32,7 @@ namespace so {
 struct WeldedScene {
     std::vector<glm::dvec3> lsPositions;             // per welded vertex
     std::vector<std::array<uint32_t, 3>> triangles;  // in the meshes' order and winding
+    std::vector<size_t> meshFirstTriangle;           // per mesh, its first triangle's index
     static WeldedScene build(const Scene& scene, const LocalFrame& frame);
 };
 
@@ -56,6 +57,13 @@ struct ShadowVolumeGeometry {
 // lsLight: (position, 1) for point and spot lights (and area lights at their centre), (the
 // direction light travels, 0) for directional lights; in the local frame.
 ShadowVolumeGeometry buildShadowVolumes(const WeldedScene& scene, const glm::dvec4& lsLight);
+
+// The casters' silhouette from lsLight: the welded edges whose signed count is non-zero (the
+// edges that keep side quads above), each as (a, b) with the casters that face the light running
+// from a to b (or, for a count of -1, the other way round: swapped so). The triangles of mesh
+// `skipMesh` (-1: none) do not cast. In id order, so deterministic.
+std::vector<std::array<uint32_t, 2>> silhouetteEdges(const WeldedScene& scene,
+                                                     const glm::dvec4& lsLight, int skipMesh);
 
 // The number of volumes that contain lsEye: casting triangles crossed by the segment from it to
 // the light (for a directional light, the ray towards it). What a z-pass count must start from.

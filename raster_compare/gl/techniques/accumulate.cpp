@@ -81,7 +81,7 @@ class Accumulate final : public Technique {
   public:
     static constexpr const char* kFamily = "accumulation";
     static ParamTable params() {
-        return {{"samples", 64, 1, 1024, true, "points on the light, each a hard shadow"},
+        return {{"samples", 64, 1, 1024, true, "points on the light, each a hard shadow", {}, true},
                 {"method", 1, 0, 1, true,
                  "1: stencil shadow volumes (volume-zfail); 0: slope-biased shadow maps"},
                 {"resolution", 512, 16, 16384, true, "method=0: each map's side in texels"}};

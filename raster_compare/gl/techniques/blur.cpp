@@ -44,10 +44,11 @@ class Blur final : public Technique {
   public:
     static constexpr const char* kFamily = "screen-space blur";
     static ParamTable params() {
-        return {{"radius", 4, 0, 64, true, "Gaussian radius in pixels (sigma = radius / 2)"},
-                {"bilateral", 0, 0, 1, true,
-                 "1: only taps on a similar surface (normal and distance) count"},
-                {"resolution", 2048, 16, 16384, true, "the hard shadow map's side in texels"}};
+        return {
+            {"radius", 4, 0, 64, true, "Gaussian radius in pixels (sigma = radius / 2)", {}, true},
+            {"bilateral", 0, 0, 1, true,
+             "1: only taps on a similar surface (normal and distance) count"},
+            {"resolution", 2048, 16, 16384, true, "the hard shadow map's side in texels"}};
     }
     explicit Blur(const ParamValues& v)
         : Technique(v),

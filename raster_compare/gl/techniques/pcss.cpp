@@ -4,17 +4,18 @@
 // texels), the penumbra's width from the average blocker depth by similar triangles,
 // w = light size (d_receiver - d_blocker) / d_blocker, then PCF over that width (capped at
 // `filter_max` texels). Taps on a golden-angle spiral (`blocker_samples`, `filter_samples`), the
-// same for every pixel (no noise); the slope bias spread over the filter. The light's size is the
-// side of a square of its area (rect: sqrt(|u x v|), disk and sphere: r sqrt(pi)), or
-// `light_size` world units when >= 0 (for directional lights: the tangent of its angular
-// diameter); point, spot and directional lights have none, which makes pcss a hard test.
-// Assumes what Fernando's derivation does: blockers, receiver and light in parallel planes.
+// same for every pixel (no noise) or turned per pixel (`pattern`); the slope bias spread over the
+// filter. The light's size is the side of a square of its area (rect: sqrt(|u x v|), disk and
+// sphere: r sqrt(pi)), or `light_size` world units when >= 0 (for directional lights: the tangent
+// of its angular diameter); point, spot and directional lights have none, which makes pcss a hard
+// test. Assumes what Fernando's derivation does: blockers, receiver and light in parallel planes.
 #include <cmath>
 #include <numbers>
 
 #include <glm/geometric.hpp>
 
 #include "raster_compare/gl/gl_program.h"
+#include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
 
@@ -29,7 +30,11 @@ class Pcss final : public ShadowMapTechnique {
              "light width in world units (directional: tan of its angular size); -1: the scene "
              "light's (side of a square of its area)"},
             {"blocker_samples", 16, 1, 256, true, "taps of the blocker search"},
-            {"filter_samples", 32, 1, 256, true, "taps of the variable PCF"},
+            {"filter_samples", 32, 1, 256, true, "taps of the variable PCF", {}, true},
+            {"pattern", 0, 0, 1, true,
+             "taps: 0 one golden-angle spiral for every pixel (smooth; may band at few taps), 1 "
+             "the spiral turned per pixel by interleaved gradient noise (banding traded for "
+             "noise)"},
             {"search_max", 128, 1, 1024, false, "largest blocker-search radius, texels"},
             {"filter_max", 128, 0, 1024, false, "largest filter radius, texels"}};
         for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
@@ -40,6 +45,7 @@ class Pcss final : public ShadowMapTechnique {
           lightSize_(v.real("light_size")),
           blockerSamples_(v.integer("blocker_samples")),
           filterSamples_(v.integer("filter_samples")),
+          rotated_(v.integer("pattern") == 1),
           searchMax_(v.real("search_max")),
           filterMax_(v.real("filter_max")),
           bias_(v) {}
@@ -48,19 +54,11 @@ class Pcss final : public ShadowMapTechnique {
         return "#define BLOCKER_SAMPLES " + std::to_string(blockerSamples_) +
                "\n#define FILTER_SAMPLES " + std::to_string(filterSamples_) + "\n" +
                glslDefine("SEARCH_MAX", searchMax_) + glslDefine("FILTER_MAX", filterMax_) +
-               bias_.defines();
+               (rotated_ ? "#define PATTERN_ROTATED\n" : "") + bias_.defines();
     }
     void setLightUniforms(GLuint program, const Light& light,
                           const LocalFrame& frame) const override {
-        double size = lightSize_;
-        if (size < 0.0) {
-            const double sqrtPi = std::sqrt(std::numbers::pi);
-            size = light.type == LightType::Rect
-                       ? std::sqrt(glm::length(glm::cross(light.wsU, light.wsV)))
-                   : light.type == LightType::Disk || light.type == LightType::Sphere
-                       ? light.radius * sqrtPi
-                       : 0.0;
-        }
+        const double size = lightSize_ >= 0.0 ? lightSize_ : lightWidth(light);
         // Directional: a tangent, no length.
         setFloat(program, "u_lightSize",
                  light.type == LightType::Directional ? size : frame.lsLength(size));
@@ -69,6 +67,7 @@ class Pcss final : public ShadowMapTechnique {
   private:
     double lightSize_;
     int blockerSamples_, filterSamples_;
+    bool rotated_;
     double searchMax_, filterMax_;
     SlopeBias bias_;
 };
