@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -197,6 +198,13 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
     rt.label = run.spec.label;
     rt.family = findTechnique(run.spec.name).family;
     setCurve(rt, run);
+    rt.fileLabel = run.spec.fileLabel;
+    for (const auto& [key, value] : run.technique->values().all()) {
+        char text[48];
+        std::snprintf(text, sizeof text, "%s%s=%.10g", rt.parameters.empty() ? "" : " ",
+                      key.c_str(), value);
+        rt.parameters += text;
+    }
     nlohmann::json lights = nlohmann::json::object();
     for (size_t li = 0; li < job.scene.lights.size(); ++li) {
         LightComparison lc;
@@ -265,6 +273,34 @@ nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results)
 
 // --verify: the oracle re-traced independently (docs/oracle.md#verification); a ground truth that
 // disagrees with it must not pass silently, cached or not.
+// The report's provenance table: what made it, as a person reads it.
+std::vector<std::pair<std::string, std::string>> provenance(const nlohmann::json& metrics,
+                                                            const CachedOracle& oracle,
+                                                            const OracleOptions& o) {
+    const std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
+    const auto& tool = metrics["tool"];
+    const auto& gl = metrics["gl"];
+    char sampling[160];
+    std::snprintf(sampling, sizeof sampling,
+                  "target error %g, agreement target %g, max spp %d, fixed spp %d, seed %u",
+                  o.area.targetError, o.area.agreementTarget, o.area.maxSpp, o.area.fixedSpp,
+                  o.area.seed);
+    return {{"tool", tool.value("name", "") + " " + tool.value("version", "")},
+            {"git revision", tool.value("git_revision", "")},
+            {"GL renderer", gl.value("renderer", "") + " (" + gl.value("version", "") + ", " +
+                                gl.value("platform", "") + ")"},
+            {"scene", metrics["scene"].value("file", "")},
+            {"scene hash", metrics["scene"].value("hash", "")},
+            {"image",
+             std::to_string(oracle.image.width()) + " x " + std::to_string(oracle.image.height())},
+            {"oracle", std::string(oracle.fromCache ? "from the cache" : "traced") + ", key " +
+                           metrics["oracle"].value("key", "")},
+            {"oracle area sampling", sampling},
+            {"date", date}};
+}
+
 int verifyExitCode(const CompareOptions& options, const OracleStats& stats) {
     if (!stats.verified()) return 0;
     const uint64_t bad = stats.disagreements();
@@ -317,8 +353,8 @@ int runCompareCommand(const CompareOptions& options) {
     report.timedOn = gl.renderer();
     for (const OracleLightStats& l : oracle.stats.lights)
         report.oracleCurves.push_back(oraclePenumbraCurve(l));
-    report.provenance = {
-        {"tool", metrics["tool"]}, {"scene_hash", scene.contentHash}, {"gl", metrics["gl"]}};
+    report.embedImages = options.embedImages;
+    report.provenance = provenance(metrics, oracle, oracleOptions);
     writeReport((out / "report.html").string(), report);
     std::cout << "compared " << options.scenePath << ": " << runs.size() << " techniques, oracle "
               << (oracle.fromCache ? "from the cache" : "traced") << "\n  "

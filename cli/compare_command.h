@@ -29,6 +29,7 @@ struct CompareOptions {
     RasterOptions raster;
     std::filesystem::path cacheDir;  // empty: defaultOracleCacheDir()
     bool useCache = true;
+    bool embedImages = false;  // report.html's images inside it, not in report_images/
     int boundaryRadius = 2;
     double contactThresholdRelative = 0.01;  // of the scene's bounding-box diagonal
 };

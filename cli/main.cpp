@@ -10,6 +10,7 @@
 
 #include "cli/compare_command.h"
 #include "cli/gate_command.h"
+#include "cli/index_command.h"
 #include "cli/raster_command.h"
 #include "cli/techniques_command.h"
 #include "cli/trace_command.h"
@@ -140,6 +141,9 @@ static Runner addCompare(CLI::App& app) {
     compareCmd->add_option("--cache", o->cacheDir,
                            "oracle cache folder (default: $XDG_CACHE_HOME/shadow-oracle)");
     compareCmd->add_flag("--no-cache", *noCache, "always trace the oracle, and do not store it");
+    compareCmd->add_flag("--embed-images", o->embedImages,
+                         "report.html with its images inside (one file); default: PNGs in "
+                         "report_images/ beside it");
     compareCmd
         ->add_option("--boundary-radius", o->boundaryRadius, "r of docs/metrics.md (default 2)")
         ->check(CLI::Range(0, 64));
@@ -160,6 +164,18 @@ static Runner addGate(CLI::App& app) {
     gateCmd->add_option("--junit", o->junitPath, "also write JUnit XML here");
 
     return [o] { return so::runGateCommand(*o); };
+}
+
+static Runner addIndex(CLI::App& app) {
+    auto o = std::make_shared<so::IndexOptions>();
+    CLI::App* indexCmd = app.add_subcommand(
+        "index", "one HTML page over compare outputs: per metric, techniques x scene x light");
+    indexCmd->add_option("dirs", o->dirs, "output folders of compare (each with metrics.json)")
+        ->required();
+    indexCmd->add_option("--out", o->outPath,
+                         "the page (default: index.html in the folder holding every DIR)");
+
+    return [o] { return so::runIndexCommand(*o); };
 }
 
 static Runner addTechniques(CLI::App& app) {
@@ -183,11 +199,8 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version",
                          std::string(so::kToolVersion) + " (" + so::kGitRevision + ")");
     const std::vector<std::pair<std::string, Runner>> commands = {
-        {"trace", addTrace(app)},
-        {"raster", addRaster(app)},
-        {"compare", addCompare(app)},
-        {"gate", addGate(app)},
-        {"techniques", addTechniques(app)}};
+        {"trace", addTrace(app)}, {"raster", addRaster(app)}, {"compare", addCompare(app)},
+        {"gate", addGate(app)},   {"index", addIndex(app)},   {"techniques", addTechniques(app)}};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

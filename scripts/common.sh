@@ -16,14 +16,22 @@ SO_PACKAGES=(
 )
 
 # Only the tests need these: libcgal-demo ships the Stanford bunny (in its data.tar.gz) that the
-# oracle is re-traced on.
-SO_TEST_PACKAGES=(libcgal-demo)
+# oracle is re-traced on; chromium, nodejs and npm run the browser test of the HTML reports
+# (tests/browser, ctest label "browser").
+SO_TEST_PACKAGES=(libcgal-demo chromium nodejs npm)
+
+# Packages that also count as present when their command is on PATH: NodeSource's nodejs ships npm
+# and conflicts with Debian's npm package, so installing that would fail.
+declare -gA SO_PACKAGE_COMMANDS=([nodejs]=node [npm]=npm [chromium]=chromium)
 
 # so_install_packages [extra packages...]
 so_install_packages() {
   local missing=()
   for p in "${SO_PACKAGES[@]}" "$@"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" && continue
+    local cmd="${SO_PACKAGE_COMMANDS[$p]:-}"
+    [ -n "$cmd" ] && command -v "$cmd" >/dev/null && continue
+    missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
   echo "Installing missing Debian packages: ${missing[*]}"

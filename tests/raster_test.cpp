@@ -433,7 +433,9 @@ TEST(Compare, EndToEndOnTheContactScene) {
     const std::string out = "/tmp/so_compare_e2e_" + std::to_string(::getpid());
     const std::string cmd =
         std::string(SO_CLI_PATH) + " compare " + SO_SCENES_DIR +
-        "/contact_box.scene.json --width 320 --height 240 --frames 1 --no-cache --out " + out +
+        "/contact_box.scene.json --width 320 --height 240 --frames 1 --no-cache --embed-images "
+        "--out " +
+        out +
         " --technique basic:resolution=1024 --technique slope-bias:resolution=1024 --technique "
         "bias:bias=1"
         " --technique bias:bias=300 --technique pcf:resolution=1024,kernel=5"
@@ -474,18 +476,22 @@ TEST(Compare, EndToEndOnTheContactScene) {
             ++n;
         return n;
     };
-    EXPECT_EQ(count("<img "),
-              1u + 3u * 6u);  // the oracle; per technique its image, errors, predicted aliasing
+    // The oracle and the predicted aliasing once; per technique its render, its error map and the
+    // worst region (technique and oracle).
+    EXPECT_EQ(count("<img "), 2u + 4u * 6u);
     EXPECT_EQ(count("src=\"data:image/png;base64,"), count("<img "));
-    EXPECT_EQ(count("http://") + count("https://") + count("<link") + count("src=\"/"), 0u)
+    EXPECT_EQ(count("http://") - count("http://www.w3.org/2000/svg") + count("https://") +
+                  count("<link") + count("src=\"/"),
+              0u)
         << "self-contained";
-    EXPECT_EQ(count("<svg"), 1u);
-    EXPECT_EQ(count("<circle"), 6u);
+    EXPECT_EQ(count("<svg class=\"chart\""), 1u) << "one light, one chart (drawn by the script)";
+    EXPECT_EQ(count("<table class=\"sortable summary\">"), 1u);
     // The two slope-bias settings differ only in the shadow maps' quality parameter, resolution:
-    // one curve; the chart read off at error budgets below it.
-    EXPECT_EQ(count("<polyline class=\"curve\""), 1u);
+    // one curve key, two quality values, in the data the chart is drawn from.
+    EXPECT_EQ(count("\"curve\":\"slope-bias alpha=1 depth_format=24 fit=0 max=10 min=0.1"), 2u);
+    EXPECT_EQ(count("\"quality\":512"), 1u);
     EXPECT_EQ(count("<table class=\"budget\">"), 1u);
-    EXPECT_NE(report.find("<table id=\"metrics\">"), std::string::npos);
+    EXPECT_NE(report.find("id=\"metrics\">"), std::string::npos);
     EXPECT_NE(report.find("Times were measured on <b>" + j["gl"]["renderer"].get<std::string>()),
               std::string::npos)
         << "the report says which renderer measured the times";

@@ -1,9 +1,9 @@
 #include "raster_compare/compare/report.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <optional>
@@ -11,7 +11,9 @@
 
 #include "core/channels.h"
 #include "core/error.h"
-#include "core/preview.h"
+#include "raster_compare/compare/artifacts.h"
+#include "raster_compare/compare/report_assets.h"
+#include "raster_compare/compare/report_images.h"
 #include "raster_compare/compare/tradeoff.h"
 
 namespace so {
@@ -31,94 +33,6 @@ std::string html(const std::string& s) {
     return o;
 }
 
-std::string imgTag(int w, int h, const std::vector<float>& rgb, const std::string& alt) {
-    return "<img alt=\"" + html(alt) + "\" src=\"data:image/png;base64," +
-           base64(encodePngRgb(w, h, rgb)) + "\">";
-}
-
-// The oracle's cosine times a visibility, so a person sees the shadows.
-std::vector<float> shaded(const ChannelImage& oracle, const float* V, const std::string& light) {
-    return shadowGrey(oracle, V, oracle.channel(ch::lightChannel(light, ch::kCosine)));
-}
-
-// Every wrong pixel in the colour of the one class it is shown as (ErrorMaps::shown), over the
-// dimmed truth: the coloured pixels are exactly the false-shadow and false-lit ones.
-std::vector<float> errorMap(const ChannelImage& oracle, const ErrorMaps& m,
-                            const std::string& light) {
-    const float* V = oracle.channel(ch::lightChannel(light, ch::kVisibility));
-    const float* A = oracle.channel(ch::kHit);
-    std::vector<float> rgb(oracle.pixelCount() * 3);
-    for (size_t i = 0; i < oracle.pixelCount(); ++i) {
-        const float grey = A[i] == 0.0f ? 0.03f : 0.12f + 0.18f * V[i];
-        const float* c = m.shown[i] ? kArtifactClasses[m.shown[i] - 1].rgb : nullptr;
-        for (int k = 0; k < 3; ++k) rgb[3 * i + size_t(k)] = c ? c[k] : grey;
-    }
-    return rgb;
-}
-
-// The magnitude scale of the area-light error maps: black (0) through blue and orange to pale
-// yellow at kMagnitudeMax and above (a sequential ramp readable with any colour vision).
-constexpr float kMagnitudeMax = 0.5f;
-std::array<float, 3> magnitudeColour(float e) {
-    constexpr float stops[5][3] = {{0.05f, 0.05f, 0.08f},
-                                   {0.0f, 0.45f, 0.70f},
-                                   {0.80f, 0.47f, 0.65f},
-                                   {0.90f, 0.62f, 0.0f},
-                                   {0.98f, 0.95f, 0.70f}};
-    const float t = std::clamp(e / kMagnitudeMax, 0.0f, 1.0f) * 4.0f;
-    const int k = std::min(3, int(t));
-    const float f = t - float(k);
-    return {stops[k][0] + f * (stops[k + 1][0] - stops[k][0]),
-            stops[k][1] + f * (stops[k + 1][1] - stops[k][1]),
-            stops[k][2] + f * (stops[k + 1][2] - stops[k][2])};
-}
-
-// Area lights: |V_raster - V_oracle| beyond the oracle's interval, per pixel, on that scale.
-std::vector<float> magnitudeMap(const ChannelImage& oracle, const ErrorMaps& m) {
-    const float* A = oracle.channel(ch::kHit);
-    std::vector<float> rgb(oracle.pixelCount() * 3, 0.03f);
-    for (size_t i = 0; i < oracle.pixelCount(); ++i) {
-        if (A[i] == 0.0f) continue;
-        const std::array<float, 3> c = magnitudeColour(m.error[i]);
-        std::copy(c.begin(), c.end(), rgb.begin() + long(3 * i));
-    }
-    return rgb;
-}
-
-// The numbered bar beside the magnitude maps.
-std::string magnitudeBar() {
-    std::ostringstream s;
-    s << "<svg class=\"bar\" viewBox=\"0 0 260 34\" width=\"260\" height=\"34\" role=\"img\" "
-         "aria-label=\"error magnitude scale\"><defs><linearGradient id=\"mag\">";
-    for (int k = 0; k <= 8; ++k) {
-        const std::array<float, 3> c = magnitudeColour(kMagnitudeMax * float(k) / 8.0f);
-        s << "<stop offset=\"" << k * 12.5 << "%\" stop-color=\"rgb(" << int(c[0] * 255) << ","
-          << int(c[1] * 255) << "," << int(c[2] * 255) << ")\"/>";
-    }
-    s << "</linearGradient></defs><rect x=\"10\" y=\"2\" width=\"240\" height=\"12\" "
-         "fill=\"url(#mag)\"/>";
-    for (int k = 0; k <= 4; ++k)
-        s << "<text x=\"" << 10 + 60 * k << "\" y=\"30\" class=\"tick\" text-anchor=\"middle\">"
-          << kMagnitudeMax * float(k) / 4.0f << (k == 4 ? "+" : "") << "</text>";
-    s << "</svg>";
-    return s.str();
-}
-
-// Predicted aliasing on a log ramp: blue where a texel is smaller than a pixel, white at 1, red
-// where it covers several pixels (saturating at 1/8 and 8).
-std::vector<float> aliasingMap(const ChannelImage& raster, const std::string& light) {
-    const float* AP = raster.channel(ch::lightChannel(light, ch::kPredictedAliasing));
-    std::vector<float> rgb(raster.pixelCount() * 3, 0.05f);
-    for (size_t i = 0; i < raster.pixelCount(); ++i) {
-        if (!(AP[i] > 0.0f)) continue;
-        const float t = std::clamp(std::log2(AP[i]) / 3.0f, -1.0f, 1.0f);
-        rgb[3 * i] = t > 0 ? 1.0f : 1.0f + t;
-        rgb[3 * i + 1] = 1.0f - std::fabs(t);
-        rgb[3 * i + 2] = t < 0 ? 1.0f : 1.0f - t;
-    }
-    return rgb;
-}
-
 std::string num(std::optional<double> v, int digits = 4) {
     if (!v) return "–";
     char buf[32];
@@ -126,6 +40,118 @@ std::string num(std::optional<double> v, int digits = 4) {
     return buf;
 }
 
+// One number format per column: how a value reads in the tables.
+enum class Format { Error, Percent, Pixels, Signed, Ms, MiB };
+
+std::string formatted(double v, Format f) {
+    char buf[32];
+    switch (f) {
+        case Format::Error:
+            std::snprintf(buf, sizeof buf, "%.4f", v);
+            break;
+        case Format::Percent:
+            std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * v);
+            break;
+        case Format::Pixels:
+            std::snprintf(buf, sizeof buf, "%.2f", v);
+            break;
+        case Format::Signed:
+            std::snprintf(buf, sizeof buf, "%+.3f", v);
+            break;
+        case Format::Ms:
+            std::snprintf(buf, sizeof buf, v < 10.0 ? "%.2f" : "%.1f", v);
+            break;
+        case Format::MiB:
+            std::snprintf(buf, sizeof buf, "%.2f", v / 1048576.0);
+            break;
+    }
+    return buf;
+}
+
+// A numeric column of the tables: its metric key (docs/metrics.md), header, tooltip, format and
+// how to read it from a row. Lower is better in every column; for a signed one, nearer zero.
+struct Column {
+    std::string key, header, tip;
+    Format format;
+    std::function<std::optional<double>(const LightComparison&)> value;
+    bool inSummary = true;
+};
+
+const std::vector<Column>& columns() {
+    using L = const LightComparison&;
+    static const std::vector<Column> cols = {
+        {"mae", "mae", "mean error of V beyond the oracle's interval, over counted pixels",
+         Format::Error, [](L l) { return std::optional(l.metrics.mae); }},
+        {"acne_rate", "acne",
+         "share of fully lit pixels away from a boundary that are false shadow", Format::Percent,
+         [](L l) { return std::optional(l.metrics.acneRate); }},
+        {"peter_panning_rate", "peter-panning",
+         "share of shadowed pixels near their occluder (contact) that are false lit",
+         Format::Percent, [](L l) { return l.metrics.peterPanningRate; }},
+        {"boundary_displacement_px.p95", "boundary p95 (px)",
+         "95th percentile of the distance from each oracle boundary pixel to the technique's",
+         Format::Pixels, [](L l) { return std::optional(l.metrics.boundaryDisplacement.p95); }},
+        {"aliasing_rate", "aliasing",
+         "share of pixels near a boundary that are wrong (hard lights)", Format::Percent,
+         [](L l) { return l.metrics.aliasingRate; }, false},
+        {"light_bleeding_rate", "bleeding", "share of umbra pixels with V above the oracle's + 0.1",
+         Format::Percent, [](L l) { return l.metrics.lightBleedingRate; }},
+        {"penumbra_mae", "penumbra mae", "mean error over pixels with 0 < V_oracle < 1",
+         Format::Error, [](L l) { return l.metrics.penumbraMae; }},
+        {"penumbra_bias", "penumbra bias", "too hard < 0 < too soft; best nearest 0",
+         Format::Signed, [](L l) { return l.metrics.penumbraBias; }},
+        {"penumbra_width_error_px.mean", "width error (px)",
+         "mean |10%-90% width - the oracle's| along the oracle's gradient", Format::Pixels,
+         [](L l) {
+             return l.metrics.penumbraWidth ? std::optional(l.metrics.penumbraWidth->mean)
+                                            : std::nullopt;
+         }},
+        {"false_shadow_rate", "false shadow", "share of counted pixels that are false shadow",
+         Format::Percent, [](L l) { return std::optional(l.metrics.falseShadowRate); }, false},
+        {"false_lit_rate", "false lit", "share of counted pixels that are false lit",
+         Format::Percent, [](L l) { return std::optional(l.metrics.falseLitRate); }, false},
+        {"cost.frame_ms", "frame ms", "median frame time: the light's passes and the camera pass",
+         Format::Ms, [](L l) { return std::optional(l.cost.frameMs.median); }},
+        {"cost.shadow_map_ms", "shadow pass ms",
+         "median of the light's passes before the visibility pass (the map, the volumes)",
+         Format::Ms, [](L l) { return std::optional(l.cost.shadowMapMs.median); }},
+        {"cost.visibility_ms", "visibility ms", "median of the visibility pass", Format::Ms,
+         [](L l) { return std::optional(l.cost.visibilityMs.median); }},
+        {"cost.memory_bytes", "memory MiB", "GL memory the technique holds for the light",
+         Format::MiB, [](L l) { return std::optional(double(l.cost.memoryBytes)); }},
+        {"cost.oracle_ms_at_equal_error", "oracle ms at same error",
+         "the oracle's time until its penumbra's 95% half-width came down to this penumbra mae",
+         Format::Ms, [](L l) { return l.cost.oracleMsAtEqualError; }, false},
+    };
+    return cols;
+}
+
+// The header cell of a numeric column: sortable, with its direction and meaning as a tooltip.
+std::string headerCell(const Column& c) {
+    return "<th data-col=\"" + html(c.key) + "\" title=\"" + html(c.key) + ": " + html(c.tip) +
+           (c.format == Format::Signed ? "" : "; lower is better") + " (docs/metrics.md)\">" +
+           html(c.header) + "</th>";
+}
+
+// The cells of one column over rows, the best (least, or nearest zero) marked.
+std::vector<std::string> columnCells(const Column& c,
+                                     const std::vector<const LightComparison*>& rows) {
+    std::optional<double> best;
+    auto score = [&](double v) { return c.format == Format::Signed ? std::fabs(v) : v; };
+    for (const LightComparison* l : rows)
+        if (const auto v = c.value(*l); v && (!best || score(*v) < *best)) best = score(*v);
+    std::vector<std::string> cells;
+    for (const LightComparison* l : rows) {
+        const std::optional<double> v = c.value(*l);
+        char data[40] = "";
+        if (v) std::snprintf(data, sizeof data, "%.9g", *v);
+        const bool isBest = v && rows.size() > 1 && score(*v) == *best;
+        cells.push_back(std::string("<td data-v=\"") + data + "\"" +
+                        (isBest ? " class=\"best\"" : "") + ">" +
+                        (v ? formatted(*v, c.format) : "–") + "</td>");
+    }
+    return cells;
+}
 // One light's techniques as points of error against cost (docs/metrics.md, "Error against
 // cost"): penumbra_mae on area lights (the oracle's curve beside them), mae on hard ones.
 struct ChartData {
@@ -152,117 +178,14 @@ ChartData chartData(const ReportInput& in, size_t light) {
     return d;
 }
 
-// Log-log axes over every point and the oracle's curve, ticks and names drawn.
-struct ChartAxes {
-    double tMin = 1e300, tMax = 0.0, eMin = 1e300, eMax = 0.0;
-    static constexpr double W = 600, H = 340, L = 80, B = 40, R = 20, T = 20;
-    explicit ChartAxes(const ChartData& d) {
-        auto extend = [&](double t, double e) {
-            tMin = std::min(tMin, t), tMax = std::max(tMax, t), eMax = std::max(eMax, e);
-            if (e > 0.0) eMin = std::min(eMin, e);
-        };
-        for (const TradeoffPoint& p : d.points) extend(p.ms, p.error);
-        for (const auto& [t, e] : d.oracle) extend(t, e);
-        tMin = std::max(tMin, 1e-3) / 1.3;
-        tMax = std::max(tMax * 1.3, tMin * 10);
-        eMin = eMin == 1e300 ? 1e-6 : eMin / 2;  // zero errors drawn at the floor
-        eMax = std::max(eMax * 1.5, eMin * 10);
-    }
-    double x(double t) const {
-        return L + (W - L - R) * std::log(std::max(t, tMin) / tMin) / std::log(tMax / tMin);
-    }
-    double y(double e) const {
-        return H - B - (H - B - T) * std::log(std::max(e, eMin) / eMin) / std::log(eMax / eMin);
-    }
-    // A point's label above it, to its right, or to its left near the right edge.
-    void label(std::ostream& s, double t, double e, const std::string& text) const {
-        const bool left = x(t) > W - R - 7.0 * double(text.size());
-        s << "<text x=\"" << x(t) + (left ? -7 : 7) << "\" y=\"" << y(e) - 6 << "\" class=\"label\""
-          << (left ? " text-anchor=\"end\"" : "") << ">" << html(text) << "</text>";
-    }
-    void draw(std::ostream& s, const std::string& error) const {
-        s << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B
-          << "\" class=\"axis\"/><line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L
-          << "\" y2=\"" << H - B << "\" class=\"axis\"/>";
-        for (int k = 0; k <= 4; ++k) {
-            const double tk = tMin * std::pow(tMax / tMin, k / 4.0),
-                         ek = eMin * std::pow(eMax / eMin, k / 4.0);
-            s << "<text x=\"" << x(tk) << "\" y=\"" << H - B + 16
-              << "\" class=\"tick\" text-anchor=\"middle\">" << num(tk, 3) << "</text>";
-            s << "<text x=\"" << L - 6 << "\" y=\"" << y(ek) + 4
-              << "\" class=\"tick\" text-anchor=\"end\">" << num(ek, 2) << "</text>";
-        }
-        s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 6
-          << "\" text-anchor=\"middle\">frame time (ms, log scale)</text><text x=\"14\" y=\""
-          << (T + H - B) / 2 << "\" transform=\"rotate(-90 14 " << (T + H - B) / 2
-          << ")\" text-anchor=\"middle\">" << html(error) << " (log scale)</text>";
-    }
-};
-
-// The curves over each technique's quality parameter: a line through its settings, each point
-// labelled with the parameter's value, the curve with the technique's name at its last point.
-void drawCurves(std::ostream& s, const ChartData& d, const ChartAxes& ax) {
-    for (const TradeoffCurve& c : qualityCurves(d.points)) {
-        s << "<polyline class=\"curve\" points=\"";
-        for (size_t i : c.points)
-            s << ax.x(d.points[i].ms) << "," << ax.y(d.points[i].error) << " ";
-        s << "\"><title>" << html(c.key) << "</title></polyline>";
-        for (size_t i : c.points)
-            s << "<text x=\"" << ax.x(d.points[i].ms) + 6 << "\" y=\""
-              << ax.y(d.points[i].error) + 14 << "\" class=\"tick\">" << num(d.points[i].quality, 4)
-              << "</text>";
-        const TradeoffPoint& last = d.points[c.points.back()];
-        ax.label(s, last.ms, last.error, c.key.substr(0, c.key.find(' ')));
-    }
-}
-
-// Error against cost: every setting a point, the curves over quality parameters, the Pareto
-// front, and on area lights the oracle's own curve.
-std::string chart(const ChartData& d) {
-    if (d.points.empty()) return "";
-    const ChartAxes ax(d);
-    std::ostringstream s;
-    s << "<svg class=\"chart\" viewBox=\"0 0 " << ax.W << " " << ax.H << "\" width=\"" << ax.W
-      << "\" height=\"" << ax.H << "\" role=\"img\" aria-label=\"error against time\">";
-    ax.draw(s, d.error);
-    if (!d.oracle.empty()) {
-        s << "<polyline class=\"oracle\" points=\"";
-        for (const auto& [t, e] : d.oracle) s << ax.x(t) << "," << ax.y(e) << " ";
-        s << "\"><title>the oracle: mean stated 95% half-width over the penumbra against its "
-             "time</title></polyline><text x=\""
-          << ax.x(d.oracle.back().first) - 4 << "\" y=\"" << ax.y(d.oracle.back().second) - 8
-          << "\" class=\"label\" text-anchor=\"end\">oracle (its 95% half-width)</text>";
-    }
-    const std::vector<size_t> front = paretoFront(d.points);
-    s << "<polyline class=\"pareto\" points=\"";
-    for (size_t i : front) s << ax.x(d.points[i].ms) << "," << ax.y(d.points[i].error) << " ";
-    s << "\"/>";
-    drawCurves(s, d, ax);
-    std::vector<uint8_t> onCurve(d.points.size(), 0);
-    for (const TradeoffCurve& c : qualityCurves(d.points))
-        for (size_t i : c.points) onCurve[i] = 1;
-    for (size_t i = 0; i < d.points.size(); ++i) {
-        const TradeoffPoint& p = d.points[i];
-        const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
-        s << "<circle cx=\"" << ax.x(p.ms) << "\" cy=\"" << ax.y(p.error) << "\" r=\"5\" class=\""
-          << (onFront ? "front" : "point") << "\"><title>" << html(p.label) << ": " << num(p.error)
-          << " at " << num(p.ms, 3) << " ms</title></circle>";
-        if (!onCurve[i]) ax.label(s, p.ms, p.error, p.label);
-    }
-    s << "</svg>";
-    return s.str();
-}
-
 // The chart read off at error budgets: the cheapest setting within each, and (area lights) the
 // oracle's time to state intervals that small.
 std::string budgetTable(const ChartData& d) {
     if (d.points.empty()) return "";
     std::ostringstream s;
-    s << "<p>The red dashed line is the Pareto front: the settings no other setting beats in both "
-         "time and "
-      << html(d.error) << ". Lines join the settings of one technique that differ only in its "
-      << "quality parameter (numbers: its value).</p><table class=\"budget\"><tr><th>"
-      << html(d.error) << " at most</th><th>cheapest setting</th><th>its frame ms</th>"
+    s << "<p class=\"caption\">Read off at error budgets (" << html(d.error)
+      << " against frame time):</p><table class=\"budget\"><tr><th>" << html(d.error)
+      << " at most</th><th>cheapest setting</th><th>its frame ms</th>"
       << (d.oracle.empty() ? "" : "<th>oracle ms to state 95% intervals that small</th>")
       << "</tr>";
     for (double budget : {0.2, 0.1, 0.05, 0.02, 0.01, 0.005}) {
@@ -280,97 +203,6 @@ std::string budgetTable(const ChartData& d) {
     return s.str();
 }
 
-// The metrics table: a header and how to read the value from a row (none: the label columns).
-struct Column {
-    std::string header;
-    std::function<std::optional<double>(const LightComparison&)> value;
-};
-
-const std::vector<Column>& columns() {
-    using L = const LightComparison&;
-    auto artifact = [](Artifact a) { return std::string(artifactClass(a).legend); };
-    static const std::vector<Column> cols = {
-        {"technique", nullptr},
-        {"family", nullptr},
-        {"light", nullptr},
-        {"mae", [](L l) { return std::optional(l.metrics.mae); }},
-        {"rmse", [](L l) { return std::optional(l.metrics.rmse); }},
-        {"false shadow", [](L l) { return std::optional(l.metrics.falseShadowRate); }},
-        {"false lit", [](L l) { return std::optional(l.metrics.falseLitRate); }},
-        {artifact(Artifact::Acne), [](L l) { return std::optional(l.metrics.acneRate); }},
-        {artifact(Artifact::PeterPanning), [](L l) { return l.metrics.peterPanningRate; }},
-        {"leak dist.", [](L l) { return l.metrics.lightLeakDistance; }},
-        {"boundary p95 px", [](L l) { return std::optional(l.metrics.boundaryDisplacement.p95); }},
-        {artifact(Artifact::Aliasing), [](L l) { return l.metrics.aliasingRate; }},
-        {"band mae", [](L l) { return l.metrics.boundaryBandMae; }},
-        {artifact(Artifact::LightBleeding), [](L l) { return l.metrics.lightBleedingRate; }},
-        {artifact(Artifact::Penumbra) + " mae", [](L l) { return l.metrics.penumbraMae; }},
-        {artifact(Artifact::Penumbra) + " bias", [](L l) { return l.metrics.penumbraBias; }},
-        {"penumbra width err px",
-         [](L l) {
-             return l.metrics.penumbraWidth ? std::optional(l.metrics.penumbraWidth->mean)
-                                            : std::nullopt;
-         }},
-        {"umbra mae", [](L l) { return l.metrics.umbraMae; }},
-        {"lit mae", [](L l) { return l.metrics.litMae; }},
-        {artifact(Artifact::OtherFalseShadow),
-         [](L l) { return std::optional(l.metrics.otherFalseShadowRate); }},
-        {artifact(Artifact::OtherFalseLit),
-         [](L l) { return std::optional(l.metrics.otherFalseLitRate); }},
-        {"frame ms", [](L l) { return std::optional(l.cost.frameMs.median); }},
-        {"shadow pass ms", [](L l) { return std::optional(l.cost.shadowMapMs.median); }},
-    };
-    return cols;
-}
-
-// The page's head, title and the artifact legend.
-void writeHead(std::ostream& o, const ReportInput& in) {
-    o << R"(<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>shadow-oracle report: )"
-      << html(in.sceneFile) << R"(</title><style>
-body{font-family:system-ui,sans-serif;margin:24px;background:#f6f6f4;color:#222}
-h1{font-size:22px}h2{font-size:18px;margin-top:32px}
-.grid{display:flex;flex-wrap:wrap;gap:14px}.card{background:#fff;padding:8px;border-radius:6px;box-shadow:0 1px 3px #0002}
-.card img{display:block;max-width:320px;image-rendering:pixelated}.card p{margin:4px 0 0;font-size:13px}
-.legend span{display:inline-block;margin-right:14px;font-size:13px}.legend i{display:inline-block;width:12px;height:12px;margin-right:4px;vertical-align:-1px}
-table{border-collapse:collapse;background:#fff;font-size:13px}th,td{padding:4px 8px;border-bottom:1px solid #ddd;text-align:right}
-th{cursor:pointer;background:#eee;position:sticky;top:0}td:first-child,td:nth-child(2),th:first-child,th:nth-child(2){text-align:left}
-.chart{background:#fff;border-radius:6px}.axis{stroke:#444}.tick{font-size:11px;fill:#555}.label{font-size:11px;fill:#333}
-.point{fill:#888}.front{fill:#d33}.curve{fill:none;stroke:#999;stroke-width:1.2}.oracle{fill:none;stroke:#0072b2;stroke-width:1.5}.pareto{fill:none;stroke:#d33;stroke-width:1.5;stroke-dasharray:4 3}
-footer{margin-top:32px;font-size:12px;color:#666}
-</style></head><body>)";
-    o << "<h1>Shadow accuracy against the oracle: " << html(in.sceneFile) << "</h1>";
-    o << "<div class=\"legend\">Error map classes: ";
-    for (const ArtifactClass& c : kArtifactClasses)
-        o << "<span><i style=\"background:rgb(" << int(c.rgb[0] * 255) << "," << int(c.rgb[1] * 255)
-          << "," << int(c.rgb[2] * 255) << ")\"></i>" << c.legend << "</span>";
-    o << "<span>(grey: correct, the truth dimmed; every false-shadow or false-lit pixel has one "
-         "colour)</span></div>";
-}
-
-// Pixels where the oracle spent its budget without reaching its target: their intervals are wider
-// than asked, and the report says where they are.
-void writeUnconverged(std::ostream& o, const ReportInput& in, const std::string& light) {
-    const std::string name = ch::lightChannel(light, ch::kUnconverged);
-    if (!in.oracle.has(name)) return;
-    const float* U = in.oracle.channel(name);
-    const float* A = in.oracle.channel(ch::kHit);
-    size_t count = 0;
-    std::vector<float> rgb(in.oracle.pixelCount() * 3);
-    for (size_t i = 0; i < in.oracle.pixelCount(); ++i) {
-        count += U[i] > 0.0f;
-        const float g = A[i] == 0.0f ? 0.03f : 0.2f;
-        rgb[3 * i] = U[i] > 0.0f ? 0.90f : g;
-        rgb[3 * i + 1] = U[i] > 0.0f ? 0.62f : g;
-        rgb[3 * i + 2] = U[i] > 0.0f ? 0.0f : g;
-    }
-    if (!count) return;
-    o << "<div class=\"card\">"
-      << imgTag(in.oracle.width(), in.oracle.height(), rgb, "oracle pixels short of the target")
-      << "<p>" << count
-      << " oracle pixels spent their sample budget before reaching the target error (orange): "
-         "their intervals are wider</p></div>";
-}
-
 // The techniques grouped by family, families in the order they first appear, techniques in the
 // order given within each.
 std::vector<const ReportTechnique*> byFamily(const ReportInput& in) {
@@ -385,100 +217,322 @@ std::vector<const ReportTechnique*> byFamily(const ReportInput& in) {
     return ordered;
 }
 
-// One light: the oracle, each technique by family, its error map and predicted aliasing, and the
-// chart.
-void writeLight(std::ostream& o, const ReportInput& in, size_t li) {
-    const int w = in.oracle.width(), h = in.oracle.height();
-    const std::string& light = in.lights[li];
-    o << "<h2>Light " << html(light) << "</h2><div class=\"grid\">";
-    o << "<div class=\"card\">"
-      << imgTag(
-             w, h,
-             shaded(in.oracle, in.oracle.channel(ch::lightChannel(light, ch::kVisibility)), light),
-             "oracle")
-      << "<p><b>oracle</b> (ground truth)</p></div>";
-    writeUnconverged(o, in, light);
-    o << "</div>";
-    const std::vector<const ReportTechnique*> ordered = byFamily(in);
-    if (ordered.empty()) o << "<div>";  // closed below, as a family's grid would be
-    for (size_t k = 0; k < ordered.size(); ++k) {
-        const ReportTechnique& t = *ordered[k];
-        if (k == 0 || t.family != ordered[k - 1]->family)
-            o << (k == 0 ? "" : "</div>") << "<h3>" << html(t.family.empty() ? "other" : t.family)
-              << "</h3><div class=\"grid\">";
-        o << "<div class=\"card\">"
-          << imgTag(w, h,
-                    shaded(in.oracle, t.image.channel(ch::lightChannel(light, ch::kVisibility)),
-                           light),
-                    t.label)
-          << "<p><b>" << html(t.label) << "</b></p></div>";
-        o << "<div class=\"card\">"
-          << imgTag(w, h, errorMap(in.oracle, t.lights[li].maps, light), t.label + " errors")
-          << "<p>errors of " << html(t.label) << ": mae " << num(t.lights[li].metrics.mae)
-          << "</p></div>";
-        if (t.lights[li].metrics.penumbraMae) {
-            o << "<div class=\"card\">"
-              << imgTag(w, h, magnitudeMap(in.oracle, t.lights[li].maps), t.label + " magnitude")
-              << "<p>|V - V<sub>oracle</sub>| beyond the oracle's 95% interval</p>"
-              << magnitudeBar() << "</div>";
-        }
-        if (t.image.has(ch::lightChannel(light, ch::kPredictedAliasing))) {
-            const LightMetrics& lm = t.lights[li].metrics;
-            o << "<div class=\"card\">"
-              << imgTag(w, h, aliasingMap(t.image, light), t.label + " predicted aliasing")
-              << "<p>predicted aliasing (texel / pixel footprint; blue &lt; 1 &lt; red): mean "
-              << num(lm.predictedAliasingMean, 3) << ", correlation with boundary error "
-              << num(lm.aliasingCorrelation, 2) << "</p></div>";
-        }
-    }
-    const ChartData data = chartData(in, li);
-    o << "</div><h3>Error against time</h3>" << chart(data) << budgetTable(data);
+std::string lightId(const ReportInput& in, size_t li) {
+    return "light-" + in.lights[li];
+}
+std::string rowId(size_t li, size_t k) {
+    return "row-" + std::to_string(li) + "-" + std::to_string(k);
 }
 
-// Every row of metrics, sortable.
-void writeTable(std::ostream& o, const ReportInput& in) {
-    o << "<h2>All metrics</h2><p>Click a column to sort. Times were measured on <b>"
+// A table of rows (technique x light) over the given numeric columns, sortable, best marked.
+void writeMetricTable(std::ostream& o, const std::string& attrs,
+                      const std::vector<const ReportTechnique*>& techniques,
+                      const std::vector<size_t>& lights, const std::vector<const Column*>& cols,
+                      const ReportInput& in) {
+    std::vector<const LightComparison*> rows;
+    for (const ReportTechnique* t : techniques)
+        for (size_t li : lights) rows.push_back(&t->lights[li]);
+    std::vector<std::vector<std::string>> cells;
+    for (const Column* c : cols) cells.push_back(columnCells(*c, rows));
+    o << "<table " << attrs
+      << "><thead><tr><th data-col=\"label\" class=\"text\" title=\"the setting as given; "
+         "hover for all its parameters\">technique</th><th data-col=\"family\" "
+         "class=\"text\">family</th>"
+      << (lights.size() > 1 ? "<th data-col=\"light\" class=\"text\">light</th>" : "");
+    for (const Column* c : cols) o << headerCell(*c);
+    o << "<th class=\"text\">timing</th></tr></thead><tbody>";
+    size_t r = 0;
+    for (const ReportTechnique* t : techniques)
+        for (size_t li : lights) {
+            o << "<tr><td class=\"text\" title=\"" << html(t->parameters) << "\"><a href=\"#"
+              << rowId(li, size_t(t - in.techniques.data())) << "\">" << html(t->label)
+              << "</a></td><td class=\"text\">" << html(t->family) << "</td>";
+            if (lights.size() > 1) o << "<td class=\"text\">" << html(in.lights[li]) << "</td>";
+            for (size_t c = 0; c < cols.size(); ++c) o << cells[c][r];
+            o << "<td class=\"text\">" << (t->lights[li].cost.noisy() ? "<i>noisy</i>" : "")
+              << "</td></tr>";
+            ++r;
+        }
+    o << "</tbody></table>";
+}
+
+// Per light: the summary columns that have a value for some technique.
+void writeSummary(std::ostream& o, const ReportInput& in, size_t li) {
+    std::vector<const Column*> cols;
+    for (const Column& c : columns()) {
+        if (!c.inSummary) continue;
+        const bool any = std::any_of(
+            in.techniques.begin(), in.techniques.end(),
+            [&](const ReportTechnique& t) { return c.value(t.lights[li]).has_value(); });
+        if (any) cols.push_back(&c);
+    }
+    o << "<div class=\"summary-col\"><h3>Summary</h3><p class=\"muted\">Click a column to sort; "
+         "&#9733; marks the best "
+         "per column (lower is better; for the bias, nearer zero). Hover a header for its "
+         "definition, a technique for its parameters.</p>";
+    o << "<div class=\"summary-wrap\">";
+    writeMetricTable(o, "class=\"sortable summary\"", byFamily(in), {li}, cols, in);
+    o << "</div></div>";
+}
+
+// The error and cost a chart can plot: those with a value for some technique of the light.
+nlohmann::json chartChoices(const ReportInput& in, size_t li, bool costs) {
+    static const std::vector<std::pair<std::string, std::string>> errors = {
+        {"penumbra_mae", "penumbra mae"},
+        {"mae", "mae"},
+        {"acne_rate", "acne rate"},
+        {"peter_panning_rate", "peter-panning rate"},
+        {"boundary_displacement_px.p95", "boundary displacement p95 (px)"},
+        {"light_bleeding_rate", "light bleeding rate"}};
+    static const std::vector<std::pair<std::string, std::string>> cost = {
+        {"frame_ms", "frame time (ms)"},
+        {"shadow_map_ms", "shadow pass time (ms)"},
+        {"visibility_ms", "visibility pass time (ms)"},
+        {"memory_bytes", "memory (bytes)"}};
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& [key, name] : costs ? cost : errors) {
+        const std::string full = costs ? "cost." + key : key;
+        const Column* c = nullptr;
+        for (const Column& col : columns()) c = col.key == full ? &col : c;
+        const bool any = c && std::any_of(in.techniques.begin(), in.techniques.end(),
+                                          [&](const ReportTechnique& t) {
+                                              return c->value(t.lights[li]).has_value();
+                                          });
+        if (any) out.push_back({key, name});
+    }
+    return out;
+}
+
+// The data the script draws one light's chart from (report_assets.h).
+nlohmann::json lightData(const ReportInput& in, size_t li) {
+    nlohmann::json points = nlohmann::json::array();
+    for (size_t k = 0; k < in.techniques.size(); ++k) {
+        const ReportTechnique& t = in.techniques[k];
+        nlohmann::json e = nlohmann::json::object(), c = nlohmann::json::object();
+        for (const auto& choice : chartChoices(in, li, false)) {
+            const std::string key = choice[0];
+            for (const Column& col : columns())
+                if (col.key == key)
+                    if (const auto v = col.value(t.lights[li])) e[key] = *v;
+        }
+        for (const auto& choice : chartChoices(in, li, true)) {
+            const std::string key = choice[0];
+            for (const Column& col : columns())
+                if (col.key == "cost." + key)
+                    if (const auto v = col.value(t.lights[li])) c[key] = *v;
+        }
+        points.push_back({{"label", t.label},
+                          {"curve", t.curve},
+                          {"quality", t.quality ? nlohmann::json(*t.quality) : nlohmann::json()},
+                          {"row", rowId(li, k)},
+                          {"e", e},
+                          {"c", c}});
+    }
+    nlohmann::json oracle = nlohmann::json::array();
+    if (li < in.oracleCurves.size())
+        for (const auto& [ms, hw] : in.oracleCurves[li])
+            if (ms > 0.0 && hw > 0.0) oracle.push_back({ms, hw});
+    return {{"name", in.lights[li]},
+            {"errors", chartChoices(in, li, false)},
+            {"costs", chartChoices(in, li, true)},
+            {"points", points},
+            {"oracle", oracle},
+            {"oracle_error", "penumbra_mae"}};
+}
+
+void writeChartBox(std::ostream& o, const ReportInput& in, size_t li) {
+    const nlohmann::json d = lightData(in, li);
+    o << "<div class=\"chart-box\" data-light=\"" << li << "\"><h3>Error against cost</h3>"
+      << "<label>error <select class=\"error-select\">";
+    for (const auto& e : d["errors"])
+        o << "<option value=\"" << html(e[0]) << "\">" << html(e[1]) << "</option>";
+    o << "</select></label><label>cost <select class=\"cost-select\">";
+    for (const auto& c : d["costs"])
+        o << "<option value=\"" << html(c[0]) << "\">" << html(c[1]) << "</option>";
+    o << "</select></label><br><svg class=\"chart\" viewBox=\"0 0 640 360\" width=\"640\" "
+         "height=\"360\" role=\"img\" aria-label=\"error against cost\"></svg>"
+      << "<p class=\"caption\"></p>";
+    const ChartData data = chartData(in, li);
+    o << budgetTable(data) << "</div>";
+}
+
+// The classes' colours, beside the error maps.
+std::string classLegend() {
+    std::ostringstream o;
+    o << "<div class=\"legend\">";
+    for (const ArtifactClass& c : kArtifactClasses)
+        o << "<span><i style=\"background:rgb(" << int(c.rgb[0] * 255) << "," << int(c.rgb[1] * 255)
+          << "," << int(c.rgb[2] * 255) << ")\"></i>" << c.legend << "</span>";
+    o << "<span>grey: right (the truth, dimmed)</span></div>";
+    return o.str();
+}
+
+std::string zoomable(const std::string& src, const std::string& alt, const std::string& id,
+                     const std::string& oracleId) {
+    return "<img class=\"zoomable\" src=\"" + src + "\" alt=\"" + html(alt) + "\"" +
+           (id.empty() ? "" : " id=\"" + id + "\"") + " data-oracle=\"" + oracleId +
+           "\" loading=\"lazy\">";
+}
+
+// The oracle's row: its render, the predicted aliasing (once: the first technique's that has
+// it) and the pixels it left short of its target.
+void writeOracleRow(std::ostream& o, const ReportInput& in, size_t li, ImageSink& sink,
+                    const std::string& oracleId) {
+    const int w = in.oracle.width(), h = in.oracle.height();
+    const std::string& light = in.lights[li];
+    const std::string l = std::to_string(li);
+    o << "<tr><td><b>oracle</b><br><span class=\"muted\">the ground truth (<a "
+         "href=\"oracle.exr\">oracle.exr</a>)</span></td><td>"
+      << zoomable(sink.src("l" + l + "_oracle", w, h,
+                           shadedImage(in.oracle,
+                                       in.oracle.channel(ch::lightChannel(light, ch::kVisibility)),
+                                       light)),
+                  "oracle", oracleId, oracleId)
+      << "</td><td>";
+    for (const ReportTechnique& t : in.techniques) {
+        if (!t.image.has(ch::lightChannel(light, ch::kPredictedAliasing))) continue;
+        o << zoomable(sink.src("l" + l + "_aliasing", w, h, aliasingMap(t.image, light)),
+                      "predicted aliasing of " + t.label, "", oracleId)
+          << "<span class=\"muted\">predicted aliasing of " << html(t.label)
+          << ": texel over pixel footprint, blue &lt; 1 (white) &lt; red</span>";
+        break;
+    }
+    o << "</td><td colspan=\"2\">";
+    size_t count = 0;
+    const Rgb unconverged = unconvergedMap(in.oracle, light, count);
+    if (count)
+        o << zoomable(sink.src("l" + l + "_unconverged", w, h, unconverged),
+                      "oracle pixels short of the target", "", oracleId)
+          << "<span class=\"muted\">" << count
+          << " oracle pixels spent their sample budget before reaching the target (orange): "
+             "their intervals are wider</span>";
+    o << "</td></tr>";
+}
+
+// One technique's row: its render, its error map by class (and on area lights by magnitude), the
+// worst square of its error map next to the oracle's, and its files.
+void writeTechniqueRow(std::ostream& o, const ReportInput& in, size_t li, size_t k, ImageSink& sink,
+                       const std::string& oracleId) {
+    const ReportTechnique& t = in.techniques[k];
+    const LightComparison& lc = t.lights[li];
+    const int w = in.oracle.width(), h = in.oracle.height();
+    const std::string& light = in.lights[li];
+    const std::string key = "l" + std::to_string(li) + "_" + t.fileLabel;
+    const Rgb render =
+        shadedImage(in.oracle, t.image.channel(ch::lightChannel(light, ch::kVisibility)), light);
+    o << "<tr id=\"" << rowId(li, k) << "\"><td><b>" << html(t.label)
+      << "</b><br><span class=\"muted\">" << html(t.family) << "<br>" << html(t.parameters)
+      << "<br>mae " << num(lc.metrics.mae) << ", frame "
+      << formatted(lc.cost.frameMs.median, Format::Ms) << " ms<br><a href=\"" << html(t.fileLabel)
+      << "/raster.exr\">raster.exr</a> · <a href=\"" << html(t.fileLabel)
+      << "/raster.json\">raster.json</a> · <a href=\"error_" << html(t.fileLabel)
+      << ".exr\">errors</a></span></td><td>"
+      << zoomable(sink.src(key + "_render", w, h, render), t.label, "", oracleId) << "</td><td>"
+      << zoomable(sink.src(key + "_classes", w, h, classMap(in.oracle, lc.maps, light)),
+                  t.label + " errors by class", "", oracleId)
+      << "</td><td>";
+    if (lc.metrics.penumbraMae)
+        o << zoomable(sink.src(key + "_magnitude", w, h, magnitudeMap(in.oracle, lc.maps)),
+                      t.label + " error magnitude", "", oracleId);
+    const Crop crop = worstRegion(lc.maps.error, w, h, std::max(16, std::min(w, h) / 6));
+    const Rgb oracleRender =
+        shadedImage(in.oracle, in.oracle.channel(ch::lightChannel(light, ch::kVisibility)), light);
+    o << "</td><td>"
+      << "<img class=\"crop\" src=\""
+      << sink.src(key + "_worst", crop.size, crop.size, cropOf(render, w, crop)) << "\" alt=\""
+      << html(t.label) << " worst region\"><img class=\"crop\" src=\""
+      << sink.src(key + "_worst_oracle", crop.size, crop.size, cropOf(oracleRender, w, crop))
+      << "\" alt=\"oracle, same region\"><br><span class=\"muted\">at (" << crop.x << ", " << crop.y
+      << "): technique, oracle</span></td></tr>";
+}
+
+void writeImages(std::ostream& o, const ReportInput& in, size_t li, ImageSink& sink) {
+    const bool area = std::any_of(
+        in.techniques.begin(), in.techniques.end(),
+        [&](const ReportTechnique& t) { return t.lights[li].metrics.penumbraMae.has_value(); });
+    o << "<h3>Images</h3><p class=\"muted\">Click an image for a 1:1, 2x or 4x view; F flips it "
+         "with the oracle's at the same place.</p>";
+    if (area)
+        o << "<p class=\"note\">An area light: the oracle's V is an estimate with a 95% interval "
+             "per pixel (V &plusmn; 2.36 &middot; stderr, docs/oracle.md). A technique's "
+             "difference within that interval is not counted as error; the magnitude map "
+             "shows the error beyond it.</p>";
+    const std::string oracleId = "oracle-" + std::to_string(li);
+    o << "<table class=\"images\"><thead><tr><th class=\"text\">technique</th><th "
+         "class=\"text\">render</th><th class=\"text\">errors by class"
+      << classLegend() << "</th><th class=\"text\">"
+      << (area ? "error beyond the oracle's interval" + magnitudeBar() : std::string())
+      << "</th><th class=\"text\">worst region</th></tr></thead><tbody>";
+    writeOracleRow(o, in, li, sink, oracleId);
+    for (const ReportTechnique* t : byFamily(in))
+        writeTechniqueRow(o, in, li, size_t(t - in.techniques.data()), sink, oracleId);
+    o << "</tbody></table>";
+}
+
+void writeHead(std::ostream& o, const ReportInput& in) {
+    o << "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadow-oracle "
+         "report: "
+      << html(in.sceneFile) << "</title><style>" << report_assets::kStyle
+      << "</style></head><body><h1>Shadow accuracy against the oracle: " << html(in.sceneFile)
+      << "</h1><p>" << in.techniques.size() << " technique settings, " << in.lights.size()
+      << " light" << (in.lights.size() == 1 ? "" : "s") << ". Times were measured on <b>"
       << html(in.timedOn) << "</b>";
     if (in.timedOn.find("llvmpipe") != std::string::npos)
         o << " (Mesa's CPU rasterizer: its times rank the techniques on this machine, not on a "
              "GPU)";
-    o << "; medians over the timed frames, the techniques taking turns frame by frame. "
-         "<i>noisy</i>: a spread (p25 to p75) above 20% of the median.</p>";
-    o << "<table id=\"metrics\"><thead><tr>";
-    for (const Column& c : columns()) o << "<th>" << c.header << "</th>";
-    o << "<th>timing</th></tr></thead><tbody>";
-    for (const ReportTechnique* tp : byFamily(in))
-        for (size_t li = 0; li < in.lights.size(); ++li) {
-            const ReportTechnique& t = *tp;
-            o << "<tr><td>" << html(t.label) << "</td><td>" << html(t.family) << "</td><td>"
-              << html(in.lights[li]) << "</td>";
-            for (const Column& c : columns()) {
-                if (!c.value) continue;
-                const std::optional<double> v = c.value(t.lights[li]);
-                o << "<td data-v=\"" << (v ? std::to_string(*v) : "") << "\">" << num(v) << "</td>";
-            }
-            o << "<td>" << (t.lights[li].cost.noisy() ? "<i>noisy</i>" : "") << "</td></tr>";
-        }
-    o << "</tbody></table>";
+    o << "; medians over the timed frames, the techniques taking turns frame by frame. Files: "
+         "<a href=\"metrics.json\">metrics.json</a> · <a href=\"metrics.csv\">metrics.csv</a> · "
+         "<a href=\"metrics_wide.csv\">metrics_wide.csv</a> · <a "
+         "href=\"oracle.exr\">oracle.exr</a>.</p><nav>Lights:";
+    for (size_t li = 0; li < in.lights.size(); ++li)
+        o << " <a href=\"#" << html(lightId(in, li)) << "\">" << html(in.lights[li]) << "</a>";
+    o << " <a href=\"#all-metrics\">all metrics</a> <a href=\"#provenance\">provenance</a></nav>";
+}
+
+void writeTail(std::ostream& o, const ReportInput& in) {
+    o << "<h2 id=\"all-metrics\">All metrics</h2>";
+    std::vector<size_t> lights;
+    for (size_t li = 0; li < in.lights.size(); ++li) lights.push_back(li);
+    std::vector<const Column*> cols;
+    for (const Column& c : columns()) cols.push_back(&c);
+    writeMetricTable(o, "class=\"sortable\" id=\"metrics\"", byFamily(in), lights, cols, in);
+    o << "<h2 id=\"provenance\">Provenance</h2><table class=\"provenance\">";
+    for (const auto& [key, value] : in.provenance)
+        o << "<tr><th class=\"text\">" << html(key) << "</th><td class=\"text\">" << html(value)
+          << "</td></tr>";
+    o << "</table><div id=\"zoom\"><div class=\"bar\"><span id=\"zoom-title\"></span><button "
+         "id=\"zoom-flip\">flip with the oracle (F)</button><label>scale <select "
+         "id=\"zoom-scale\"><option>1</option><option selected>2</option><option>4</option>"
+         "</select></label><button id=\"zoom-close\">close (Esc)</button></div><div "
+         "class=\"view\"><canvas id=\"zoom-canvas\"></canvas></div></div>";
+    nlohmann::json data = {{"lights", nlohmann::json::array()}};
+    for (size_t li = 0; li < in.lights.size(); ++li) data["lights"].push_back(lightData(in, li));
+    std::string json = data.dump();
+    for (size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 2))
+        json.replace(at, 2, "<\\/");
+    o << "<script type=\"application/json\" id=\"so-data\">" << json << "</script><script>"
+      << report_assets::kScript << "</script></body></html>\n";
 }
 
 }  // namespace
 
 void writeReport(const std::string& path, const ReportInput& in) {
+    const std::filesystem::path page(path);
+    const std::string folderName = page.stem().string() + "_images";
+    ImageSink sink(in.embedImages ? std::filesystem::path() : page.parent_path() / folderName,
+                   folderName);
     std::ostringstream o;
     writeHead(o, in);
-    for (size_t li = 0; li < in.lights.size(); ++li) writeLight(o, in, li);
-    writeTable(o, in);
-    o << R"(<script>
-document.querySelectorAll('#metrics th').forEach((th, col) => th.addEventListener('click', () => {
-  const body = th.closest('table').tBodies[0], rows = [...body.rows];
-  const dir = th.dataset.dir = th.dataset.dir === 'asc' ? 'desc' : 'asc';
-  const key = r => { const c = r.cells[col]; return c.dataset.v !== undefined && c.dataset.v !== '' ? parseFloat(c.dataset.v) : c.textContent; };
-  rows.sort((a, b) => { const x = key(a), y = key(b); const s = x < y ? -1 : x > y ? 1 : 0; return dir === 'asc' ? s : -s; });
-  rows.forEach(r => body.appendChild(r));
-}));
-</script>)";
-    o << "<footer>" << html(in.provenance.dump()) << "</footer></body></html>\n";
+    for (size_t li = 0; li < in.lights.size(); ++li) {
+        o << "<section class=\"light\" id=\"" << html(lightId(in, li)) << "\"><h2>Light "
+          << html(in.lights[li]) << "</h2><div class=\"top\">";
+        writeSummary(o, in, li);
+        writeChartBox(o, in, li);
+        o << "</div>";
+        writeImages(o, in, li, sink);
+        o << "</section>";
+    }
+    writeTail(o, in);
     std::ofstream f(path);
     if (!f) throwInputError(path, "", "cannot be written");
     f << o.str();

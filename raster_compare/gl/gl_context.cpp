@@ -47,6 +47,12 @@ EGLContext makeContext(EGLDisplay d) {
 }  // namespace
 
 GlContext::GlContext() : egl_(std::make_unique<Egl>()) {
+    // Where no EGL driver is found (glvnd without a vendor) eglGetPlatformDisplayEXT has no
+    // provider and libepoxy aborts on the first call: ask for its extension first.
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base"))
+        throw GlUnavailable(
+            "EGL has no EGL_EXT_platform_base: no EGL driver found (is Mesa's libegl-mesa0 "
+            "installed?)");
     // A GPU first (the EGL device platform), then Mesa's surfaceless platform.
     if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration")) {
         EGLint n = 0;

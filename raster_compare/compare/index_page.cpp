@@ -1,0 +1,491 @@
+#include "raster_compare/compare/index_page.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace so {
+
+using nlohmann::json;
+
+namespace {
+
+// ---- metrics.json -> structs ----
+
+// The index shows what compare measured; a metric that is null or absent simply has no cell, but
+// a value of another type is a broken file, and a silently empty cell would hide it.
+std::optional<double> optionalNumber(const json& object, const std::string& key,
+                                     const std::string& path, const std::string& field) {
+    const auto it = object.find(key);
+    if (it == object.end() || it->is_null()) return std::nullopt;
+    if (!it->is_number()) throwInputError(path, field + "." + key, "expected a number or null");
+    return it->get<double>();
+}
+
+// An object that may be null or absent (boundary_displacement_px, cost): an empty one then, so
+// its members read as null.
+const json& optionalObject(const json& object, const std::string& key, const std::string& path,
+                           const std::string& field) {
+    static const json empty = json::object();
+    const auto it = object.find(key);
+    if (it == object.end() || it->is_null()) return empty;
+    if (!it->is_object()) throwInputError(path, field + "." + key, "expected an object or null");
+    return *it;
+}
+
+std::string optionalString(const json& object, const std::string& key, const std::string& path,
+                           const std::string& field) {
+    const auto it = object.find(key);
+    if (it == object.end() || it->is_null()) return "";
+    if (!it->is_string()) throwInputError(path, field + "." + key, "expected a string");
+    return it->get<std::string>();
+}
+
+IndexLightMetrics parseLight(const json& m, const std::string& light, const std::string& path,
+                             const std::string& field) {
+    if (!m.is_object()) throwInputError(path, field, "expected an object of metrics");
+    IndexLightMetrics out;
+    out.light = light;
+    out.mae = optionalNumber(m, "mae", path, field);
+    out.acneRate = optionalNumber(m, "acne_rate", path, field);
+    out.peterPanningRate = optionalNumber(m, "peter_panning_rate", path, field);
+    const std::string bdField = field + ".boundary_displacement_px";
+    out.boundaryDisplacementP95Px = optionalNumber(
+        optionalObject(m, "boundary_displacement_px", path, field), "p95", path, bdField);
+    out.lightBleedingRate = optionalNumber(m, "light_bleeding_rate", path, field);
+    out.penumbraMae = optionalNumber(m, "penumbra_mae", path, field);
+    out.frameMs =
+        optionalNumber(optionalObject(m, "cost", path, field), "frame_ms", path, field + ".cost");
+    return out;
+}
+
+IndexResult parseResult(const json& r, const std::string& path, size_t i) {
+    const std::string field = "results[" + std::to_string(i) + "]";
+    if (!r.is_object()) throwInputError(path, field, "expected an object");
+    IndexResult out;
+    out.technique = optionalString(r, "technique", path, field);
+    out.family = optionalString(r, "family", path, field);
+    // The label is the row of every matrix; schema_version 1 files may name only the technique.
+    out.label = optionalString(r, "label", path, field);
+    if (out.label.empty()) out.label = out.technique;
+    if (out.label.empty()) throwInputError(path, field + ".label", "missing");
+    const auto lights = r.find("lights");
+    if (lights == r.end()) throwInputError(path, field + ".lights", "missing");
+    if (!lights->is_object())
+        throwInputError(path, field + ".lights", "expected an object of light: metrics");
+    for (const auto& [light, m] : lights->items())
+        out.lights.push_back(parseLight(m, light, path, field + ".lights." + printable(light, 60)));
+    return out;
+}
+
+// ---- the page ----
+
+struct MetricSpec {
+    const char* name;  // as in metrics.json and metrics.csv (nested names joined by dots)
+    const char* title;
+    const char* meaning;  // one line; docs/metrics.md has the definitions
+    std::optional<double> IndexLightMetrics::*value;
+};
+
+const std::vector<MetricSpec>& metricSpecs() {
+    static const std::vector<MetricSpec> specs = {
+        {"mae", "Mean absolute error",
+         "mean |V &minus; V<sub>oracle</sub>| over the counted pixels (beyond the oracle's 95% "
+         "interval on area lights)",
+         &IndexLightMetrics::mae},
+        {"acne_rate", "Shadow acne",
+         "share of the lit pixels away from any shadow boundary that the technique shadows",
+         &IndexLightMetrics::acneRate},
+        {"peter_panning_rate", "Peter-panning",
+         "share of the shadowed pixels near their occluder's contact that the technique lights",
+         &IndexLightMetrics::peterPanningRate},
+        {"boundary_displacement_px.p95", "Shadow boundary displacement (p95, pixels)",
+         "95th percentile of the distance from a shadow boundary pixel to the nearest one of the "
+         "other image",
+         &IndexLightMetrics::boundaryDisplacementP95Px},
+        {"light_bleeding_rate", "Light bleeding",
+         "filtered shadow maps only: share of the umbra's pixels lit by more than 0.1",
+         &IndexLightMetrics::lightBleedingRate},
+        {"penumbra_mae", "Penumbra error",
+         "area lights only: mean error over the pixels the oracle puts in the penumbra",
+         &IndexLightMetrics::penumbraMae},
+    };
+    return specs;
+}
+
+std::string html(const std::string& s) {
+    std::string o;
+    for (char c : s)
+        o += c == '<'   ? "&lt;"
+             : c == '>' ? "&gt;"
+             : c == '&' ? "&amp;"
+             : c == '"' ? "&quot;"
+                        : std::string(1, c);
+    return o;
+}
+
+// Scene folders and light names are the user's: percent-encoded, a space or '#' in one cannot
+// break the link. `keep` is what may stay as is ("/" in a path, nothing more in a fragment).
+std::string urlEncode(const std::string& s, const std::string& keep) {
+    std::string o;
+    for (unsigned char c : s) {
+        const bool unreserved = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                                (c >= '0' && c <= '9') || c == '-' || c == '.' || c == '_' ||
+                                c == '~';
+        if (unreserved || keep.find(char(c)) != std::string::npos) {
+            o += char(c);
+        } else {
+            char buf[4];
+            std::snprintf(buf, sizeof buf, "%%%02X", c);
+            o += buf;
+        }
+    }
+    return o;
+}
+
+std::string lightHref(const std::string& report, const std::string& light) {
+    return urlEncode(report, "/") + "#light-" + urlEncode(light, "");
+}
+
+// Three significant digits, but whole numbers from 1000 up: "1.42e+03 ms" reads badly in a cell.
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, std::fabs(v) >= 1000.0 ? "%.0f" : "%.3g", v);
+    return buf;
+}
+
+// How a matrix maps values to colours. Errors often span decades (acne from 0.3 on the plain
+// shadow map down to 1e-4 with a bias): a linear scale would paint everything but the worst cell
+// the same colour, so such a matrix is drawn on a log scale.
+struct ColourScale {
+    double lo = 0.0, hi = 0.0;
+    bool log = false;
+};
+
+constexpr double kLogWhenRatioAbove = 10.0;
+
+ColourScale scaleOf(const std::vector<double>& values) {
+    ColourScale s;
+    if (values.empty()) return s;
+    s.lo = *std::min_element(values.begin(), values.end());
+    s.hi = *std::max_element(values.begin(), values.end());
+    double minPositive = 0.0;
+    for (double v : values)
+        if (v > 0.0 && (minPositive == 0.0 || v < minPositive)) minPositive = v;
+    if (minPositive > 0.0 && s.hi / minPositive > kLogWhenRatioAbove) {
+        s.log = true;
+        s.lo = minPositive;  // zeros take the lowest colour
+    }
+    return s;
+}
+
+// 0 at the lowest value of the matrix, 1 at the highest.
+double position(const ColourScale& s, double v) {
+    if (s.hi <= s.lo || v <= s.lo) return 0.0;
+    if (v >= s.hi) return 1.0;
+    return s.log ? std::log(v / s.lo) / std::log(s.hi / s.lo) : (v - s.lo) / (s.hi - s.lo);
+}
+
+// Viridis (matplotlib's, sampled at nine points): sequential, perceptually uniform and readable
+// with any colour vision; dark purple is the lowest error, yellow the highest.
+constexpr std::array<std::array<int, 3>, 9> kRamp = {{{68, 1, 84},
+                                                      {72, 40, 120},
+                                                      {62, 73, 137},
+                                                      {49, 104, 142},
+                                                      {38, 130, 142},
+                                                      {31, 158, 137},
+                                                      {53, 183, 121},
+                                                      {110, 206, 88},
+                                                      {253, 231, 37}}};
+
+std::array<int, 3> rampColour(double t) {
+    const double x = std::clamp(t, 0.0, 1.0) * double(kRamp.size() - 1);
+    const size_t k = std::min(kRamp.size() - 2, size_t(x));
+    const double f = x - double(k);
+    std::array<int, 3> c{};
+    for (size_t i = 0; i < 3; ++i)
+        c[i] = int(std::lround(kRamp[k][i] + f * (kRamp[k + 1][i] - kRamp[k][i])));
+    return c;
+}
+
+std::string hex(const std::array<int, 3>& c) {
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "#%02x%02x%02x", c[0], c[1], c[2]);
+    return buf;
+}
+
+// The text colour, black or white, with the higher WCAG contrast on this background, so a value
+// stays legible on every step of the ramp.
+std::string textColour(const std::array<int, 3>& c) {
+    double luminance = 0.0;
+    const double weights[3] = {0.2126, 0.7152, 0.0722};
+    for (size_t i = 0; i < 3; ++i) {
+        const double s = c[i] / 255.0;
+        luminance += weights[i] * (s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4));
+    }
+    return 1.05 / (luminance + 0.05) > (luminance + 0.05) / 0.05 ? "#fff" : "#000";
+}
+
+// The grid shared by every matrix: rows are the technique labels of all runs in first-seen
+// order, columns every (run, light).
+struct Column {
+    size_t entry;
+    std::string light;
+    bool firstOfScene;  // drawn with a rule on its left, so the scenes stand apart
+};
+
+struct Grid {
+    std::vector<std::string> rows;
+    std::vector<Column> columns;
+    // [entry][label]: that run's result of the label (a run may lack a label: no cell).
+    std::vector<std::map<std::string, const IndexResult*>> byLabel;
+};
+
+Grid gridOf(const std::vector<IndexEntry>& entries) {
+    Grid g;
+    for (size_t e = 0; e < entries.size(); ++e) {
+        g.byLabel.emplace_back();
+        for (const IndexResult& r : entries[e].metrics.results) {
+            if (!g.byLabel[e].emplace(r.label, &r).second) continue;  // the first one counts
+            if (std::find(g.rows.begin(), g.rows.end(), r.label) == g.rows.end())
+                g.rows.push_back(r.label);
+        }
+        for (const std::string& light : entries[e].metrics.lights)
+            g.columns.push_back({e, light, light == entries[e].metrics.lights.front()});
+    }
+    return g;
+}
+
+const IndexLightMetrics* cellOf(const Grid& g, const std::string& row, const Column& c) {
+    const auto it = g.byLabel[c.entry].find(row);
+    if (it == g.byLabel[c.entry].end()) return nullptr;
+    for (const IndexLightMetrics& m : it->second->lights)
+        if (m.light == c.light) return &m;
+    return nullptr;
+}
+
+std::vector<double> valuesOf(const Grid& g, const MetricSpec& spec) {
+    std::vector<double> values;
+    for (const std::string& row : g.rows)
+        for (const Column& c : g.columns)
+            if (const IndexLightMetrics* m = cellOf(g, row, c); m && m->*spec.value)
+                values.push_back(*(m->*spec.value));
+    return values;
+}
+
+std::string legend(const ColourScale& s) {
+    std::ostringstream o;
+    o << "<div class=\"legend\"><span>" << num(s.lo)
+      << "</span><span class=\"ramp\" style=\"background:linear-gradient(to right";
+    for (size_t k = 0; k < kRamp.size(); ++k) o << "," << hex(kRamp[k]);
+    o << ")\"></span><span>" << num(s.hi) << "</span><span class=\"note\">"
+      << (s.log ? "log scale (a 0 takes the lowest colour)" : "linear scale")
+      << "; lower is better</span></div>";
+    return o.str();
+}
+
+void writeHeader(std::ostream& o, const std::vector<IndexEntry>& entries, const Grid& g) {
+    o << "<thead><tr><th rowspan=\"2\" class=\"corner\">technique</th>";
+    for (size_t e = 0; e < entries.size(); ++e) {
+        size_t lights = 0;
+        for (const Column& c : g.columns) lights += c.entry == e;
+        if (lights == 0) continue;
+        o << "<th colspan=\"" << lights << "\" class=\"scene\" title=\""
+          << html(entries[e].metrics.sceneFile) << "\"><a href=\""
+          << html(urlEncode(entries[e].reportHref, "/")) << "\">"
+          << html(sceneStem(entries[e].metrics.sceneFile)) << "</a></th>";
+    }
+    o << "</tr><tr>";
+    for (const Column& c : g.columns)
+        o << "<th class=\"light" << (c.firstOfScene ? " s" : "") << "\"><a href=\""
+          << html(lightHref(entries[c.entry].reportHref, c.light)) << "\">" << html(c.light)
+          << "</a></th>";
+    o << "</tr></thead>";
+}
+
+void writeCell(std::ostream& o, const IndexLightMetrics* m, const MetricSpec& spec,
+               const ColourScale& scale, const Column& c, const std::string& href) {
+    const char* rule = c.firstOfScene ? " s" : "";
+    if (!m || !(m->*spec.value)) {
+        o << "<td class=\"na" << rule << "\"></td>";
+        return;
+    }
+    const double v = *(m->*spec.value);
+    const std::array<int, 3> bg = rampColour(position(scale, v));
+    const std::string cost = m->frameMs ? " · " + num(*m->frameMs) + " ms" : "";
+    o << "<td class=\"v" << rule << "\" style=\"background:" << hex(bg)
+      << ";color:" << textColour(bg) << "\" title=\"" << spec.name << " " << v
+      << (m->frameMs ? ", frame " + num(*m->frameMs) + " ms" : "") << "\"><a href=\"" << html(href)
+      << "\">" << num(v) << cost << "</a></td>";
+}
+
+// One metric's matrix, or nothing when no cell has a value.
+void writeMatrix(std::ostream& o, const std::vector<IndexEntry>& entries, const Grid& g,
+                 const MetricSpec& spec) {
+    const std::vector<double> values = valuesOf(g, spec);
+    if (values.empty()) return;
+    const ColourScale scale = scaleOf(values);
+    o << "<section id=\"" << spec.name << "\"><h2>" << spec.title << " <code>" << spec.name
+      << "</code></h2><p>" << spec.meaning << ".</p>" << legend(scale);
+    o << "<div class=\"scroll\"><table class=\"matrix\" data-metric=\"" << spec.name << "\">";
+    writeHeader(o, entries, g);
+    o << "<tbody>";
+    for (const std::string& row : g.rows) {
+        o << "<tr><th scope=\"row\">" << html(row) << "</th>";
+        for (const Column& c : g.columns)
+            writeCell(o, cellOf(g, row, c), spec, scale, c,
+                      lightHref(entries[c.entry].reportHref, c.light));
+        o << "</tr>";
+    }
+    o << "</tbody></table></div></section>\n";
+}
+
+constexpr const char* kStyle = R"(<style>
+body{font-family:system-ui,sans-serif;margin:1.5em;color:#222;max-width:100%}
+h1{font-size:1.4em}h2{font-size:1.15em;margin-top:1.8em}
+.scroll{overflow-x:auto}
+table.matrix{border-collapse:collapse;font-size:12px}
+.matrix th,.matrix td{border:1px solid #fff;padding:3px 6px;white-space:nowrap}
+.matrix td{text-align:right;font-variant-numeric:tabular-nums}
+.matrix td a{color:inherit;text-decoration:none;display:block}
+.matrix td a:hover{text-decoration:underline}
+.matrix tbody th{text-align:left;font-weight:normal;background:#f3f3f3;position:sticky;left:0}
+.matrix thead th{background:#e8e8e8}
+.matrix td.na{background:repeating-linear-gradient(45deg,#eee,#eee 4px,#f8f8f8 4px,#f8f8f8 8px)}
+.legend{display:flex;align-items:center;gap:.5em;font-size:12px;margin:.4em 0}
+.legend .ramp{display:inline-block;width:220px;height:12px;border:1px solid #999}
+.legend .note{color:#555}
+.matrix .s{border-left:2px solid #777}
+.matrix thead th.scene{border-left:2px solid #777}
+nav a{margin-right:1em}
+</style>)";
+
+void writeIntro(std::ostream& o, const std::vector<IndexEntry>& entries) {
+    o << "<h1>Shadow techniques against the ray-traced oracle: " << entries.size()
+      << (entries.size() == 1 ? " scene" : " scenes") << "</h1>";
+    o << "<p><b>How to read:</b> each table is one artifact metric; a row is a technique setting, "
+         "a column one light of one scene. A cell shows the metric's value, then the setting's "
+         "median frame time for that light. <b>Lower is better for every metric here.</b> The "
+         "colour places the value within the range of its own table, from dark purple (the lowest "
+         "error there) through blue and green to yellow (the highest); a table whose values span "
+         "more than a decade is coloured on a log scale, zeros taking the lowest colour. A blank "
+         "hatched cell: the metric does not apply there (null in metrics.json, e.g. "
+         "<code>penumbra_mae</code> of a hard light) or the setting was not run on that scene. A "
+         "cell opens that light in the scene's report, a scene's name its whole report.</p>";
+    std::vector<std::string> renderers;
+    for (const IndexEntry& e : entries)
+        if (!e.metrics.timedOn.empty() &&
+            std::find(renderers.begin(), renderers.end(), e.metrics.timedOn) == renderers.end())
+            renderers.push_back(e.metrics.timedOn);
+    if (!renderers.empty()) {
+        o << "<p>Times were measured on ";
+        for (size_t i = 0; i < renderers.size(); ++i)
+            o << (i ? ", " : "") << "<b>" << html(renderers[i]) << "</b>";
+        o << (renderers.size() > 1 ? " (compare times only between runs on the same renderer)" : "")
+          << ".</p>";
+    }
+}
+
+}  // namespace
+
+SceneMetrics parseSceneMetrics(const json& metrics, const std::string& path) {
+    if (!metrics.is_object()) throwInputError(path, "", "expected a JSON object (metrics.json)");
+    const auto version = metrics.find("schema_version");
+    // 1 to 4 keep the names read here (docs/metrics.md, Versions); a later one may not.
+    if (version == metrics.end() || !version->is_number_integer() || *version < 1 || *version > 4)
+        throwInputError(path, "schema_version", "not a metrics.json of schema_version 1 to 4");
+    SceneMetrics out;
+    out.path = path;
+    out.schemaVersion = version->get<int>();
+    const auto scene = metrics.find("scene");
+    if (scene == metrics.end() || !scene->is_object())
+        throwInputError(path, "scene", "missing or not an object");
+    out.sceneFile = optionalString(*scene, "file", path, "scene");
+    if (out.sceneFile.empty()) throwInputError(path, "scene.file", "missing");
+    if (metrics.contains("gl") && metrics["gl"].is_object())
+        out.timedOn = optionalString(metrics["gl"], "renderer", path, "gl");
+    const auto results = metrics.find("results");
+    if (results == metrics.end()) throwInputError(path, "results", "missing");
+    if (!results->is_array()) throwInputError(path, "results", "expected an array");
+    for (size_t i = 0; i < results->size(); ++i) {
+        out.results.push_back(parseResult((*results)[i], path, i));
+        for (const IndexLightMetrics& m : out.results.back().lights)
+            if (std::find(out.lights.begin(), out.lights.end(), m.light) == out.lights.end())
+                out.lights.push_back(m.light);
+    }
+    return out;
+}
+
+SceneMetrics readSceneMetrics(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throwInputError(path, "", "cannot be read");
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::exception& e) {
+        throwInputError(path, "", "invalid JSON: " + printable(e.what(), 160));
+    }
+    return parseSceneMetrics(j, path);
+}
+
+std::string sceneStem(const std::string& sceneFile) {
+    std::string stem = std::filesystem::path(sceneFile).filename().string();
+    for (const char* ext : {".json", ".gltf", ".glb"})
+        if (stem.size() > std::string(ext).size() &&
+            stem.compare(stem.size() - std::string(ext).size(), std::string::npos, ext) == 0) {
+            stem.resize(stem.size() - std::string(ext).size());
+            break;
+        }
+    // Scene files are named NAME.scene.json (scenes/): the ".scene" says nothing in a header.
+    const std::string scene = ".scene";
+    if (stem.size() > scene.size() &&
+        stem.compare(stem.size() - scene.size(), std::string::npos, scene) == 0)
+        stem.resize(stem.size() - scene.size());
+    return stem;
+}
+
+const std::vector<std::string>& indexMetricNames() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n;
+        for (const MetricSpec& s : metricSpecs()) n.push_back(s.name);
+        return n;
+    }();
+    return names;
+}
+
+std::string indexPageHtml(const std::vector<IndexEntry>& entries) {
+    std::ostringstream o;
+    o << "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadow-oracle "
+         "index: "
+      << entries.size() << (entries.size() == 1 ? " scene" : " scenes") << "</title>" << kStyle
+      << "</head><body>\n";
+    writeIntro(o, entries);
+    const Grid grid = gridOf(entries);
+    std::ostringstream matrices;
+    o << "<nav>";
+    for (const MetricSpec& spec : metricSpecs()) {
+        const std::streampos before = matrices.tellp();
+        writeMatrix(matrices, entries, grid, spec);
+        if (matrices.tellp() != before)
+            o << "<a href=\"#" << spec.name << "\">" << spec.title << "</a>";
+    }
+    o << "</nav>\n" << matrices.str() << "</body></html>\n";
+    return o.str();
+}
+
+void writeIndexPage(const std::string& path, const std::vector<IndexEntry>& entries) {
+    const std::string page = indexPageHtml(entries);
+    std::ofstream f(path);
+    if (!f) throwInputError(path, "--out", "cannot be written");
+    f << page;
+    if (!f) throwInputError(path, "--out", "cannot be written");
+}
+
+}  // namespace so

@@ -1,0 +1,62 @@
+#!/usr/bin/env python3
+"""Writes the README's figures table from scripts/demo's metrics.json files (see readme-figures)."""
+import json
+import pathlib
+import re
+import sys
+
+# (scene, light, metric, column header): what each column shows.
+COLUMNS = [
+    ("terrain_sun", "sun", "acne_rate", "acne, terrain_sun"),
+    ("spot_objects", "cone", "mae", "mae, spot_objects cone"),
+    ("soft_chair", "window", "penumbra_mae", "penumbra mae, soft_chair window"),
+    ("soft_chair", "window", "cost.frame_ms", "frame ms, soft_chair"),
+]
+ROWS = ["basic", "slope-bias", "pcf:kernel=5", "vsm", "volume-zfail", "pcss",
+        "accumulate:samples=64"]
+
+
+def value(row, name):
+    v = row
+    for part in name.split("."):
+        v = v.get(part) if isinstance(v, dict) else None
+    return v
+
+
+def cell(v, name):
+    if v is None:
+        return "–"
+    if name.endswith("_rate"):
+        return "%.2f%%" % (100 * v)
+    if name.endswith("_ms") or name.endswith("p95"):
+        return "%.1f" % v
+    return "%.4f" % v
+
+
+def main(demo, readme):
+    runs = {p.parent.name: json.loads(p.read_text())
+            for p in sorted(pathlib.Path(demo).glob("*/metrics.json"))}
+    renderer = next(iter(runs.values()))["gl"]["renderer"]
+    lines = ["| technique | " + " | ".join(c[3] for c in COLUMNS) + " |",
+             "|---" * (len(COLUMNS) + 1) + "|"]
+    for label in ROWS:
+        cells = []
+        for scene, light, metric, _ in COLUMNS:
+            rows = [r for r in runs.get(scene, {}).get("results", []) if r["label"] == label]
+            cells.append(cell(value(rows[0]["lights"].get(light, {}), metric), metric)
+                         if rows else "–")
+        lines.append("| `%s` | %s |" % (label, " | ".join(cells)))
+    table = "\n".join(lines)
+    note = ("Made by `scripts/readme-figures` from `scripts/demo`'s output (480 x 360, times on %s; "
+            "lower is better everywhere).") % renderer
+    text = pathlib.Path(readme).read_text()
+    new = re.sub(r"(<!-- BEGIN figures[^>]*-->\n).*?(<!-- END figures -->)",
+                 lambda m: m.group(1) + "\n" + table + "\n\n" + note + "\n\n" + m.group(2),
+                 text, flags=re.S)
+    if new == text and "<!-- BEGIN figures" not in text:
+        sys.exit("error: %s has no <!-- BEGIN figures --> marker" % readme)
+    pathlib.Path(readme).write_text(new)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])
