@@ -113,6 +113,7 @@ TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSe
     for (const auto& [pass, t] : stats.lights[li].passMs)
         (pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs) += t;
     cost.frameMs = stats.timings.wallMs;
+    cost.cameraMs = stats.timings.cameraMs;
     cost.memoryBytes = stats.lights[li].memoryBytes;
     cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
     return cost;

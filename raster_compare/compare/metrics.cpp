@@ -372,7 +372,7 @@ nlohmann::json TechniqueCost::toJson() const {
         {"noisy", noisy()}};
     for (const auto& [key, t] :
          {std::pair{"shadow_map", shadowMapMs}, std::pair{"visibility", visibilityMs},
-          std::pair{"frame", frameMs}}) {
+          std::pair{"camera", cameraMs}, std::pair{"frame", frameMs}}) {
         j[std::string(key) + "_ms"] = t.median;
         j[std::string(key) + "_ms_p25"] = t.p25;
         j[std::string(key) + "_ms_p75"] = t.p75;

@@ -73,8 +73,9 @@ struct ErrorMaps {
 // What a technique's shadows cost, beside its metrics in every row of metrics.json.
 struct TechniqueCost {
     TimingStats shadowMapMs, visibilityMs, frameMs;  // over the timed frames
-    uint64_t memoryBytes = 0;                        // GL memory the technique holds for this light
-    double oracleSeconds = 0.0;                      // what the ground truth of this light cost
+    TimingStats cameraMs;        // the camera pass (shared by the lights: the same in each row)
+    uint64_t memoryBytes = 0;    // GL memory the technique holds for this light
+    double oracleSeconds = 0.0;  // what the ground truth of this light cost
     // Sampled area lights: the oracle's time until its penumbra's mean stated 95% half-width came
     // down to this technique's penumbra_mae (tradeoff.h); none for hard lights, or when its run
     // ended above it.

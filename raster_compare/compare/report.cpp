@@ -117,6 +117,8 @@ const std::vector<Column>& columns() {
          Format::Ms, [](L l) { return std::optional(l.cost.shadowMapMs.median); }},
         {"cost.visibility_ms", "visibility ms", "median of the visibility pass", Format::Ms,
          [](L l) { return std::optional(l.cost.visibilityMs.median); }},
+        {"cost.camera_ms", "camera ms", "median of the camera pass, shared by the lights",
+         Format::Ms, [](L l) { return std::optional(l.cost.cameraMs.median); }},
         {"cost.memory_bytes", "memory MiB", "GL memory the technique holds for the light",
          Format::MiB, [](L l) { return std::optional(double(l.cost.memoryBytes)); }},
         {"cost.oracle_ms_at_equal_error", "oracle ms at same error",

@@ -55,7 +55,10 @@ Rgb magnitudeMap(const ChannelImage& oracle, const ErrorMaps& maps) {
     Rgb rgb(oracle.pixelCount() * 3, 0.03f);
     for (size_t i = 0; i < oracle.pixelCount(); ++i) {
         if (A[i] == 0.0f) continue;
-        const std::array<float, 3> c = magnitudeColour(maps.error[i]);
+        // 128 steps over the ramp: a palette PNG, a tenth of the bytes; the error EXR has the
+        // exact values.
+        const float step = kMagnitudeMax / 128.0f;
+        const std::array<float, 3> c = magnitudeColour(std::round(maps.error[i] / step) * step);
         std::copy(c.begin(), c.end(), rgb.begin() + long(3 * i));
     }
     return rgb;
