@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "raster_compare/compare/html.h"
 
 namespace so {
 
@@ -121,14 +122,7 @@ const std::vector<MetricSpec>& metricSpecs() {
 }
 
 std::string html(const std::string& s) {
-    std::string o;
-    for (char c : s)
-        o += c == '<'   ? "&lt;"
-             : c == '>' ? "&gt;"
-             : c == '&' ? "&amp;"
-             : c == '"' ? "&quot;"
-                        : std::string(1, c);
-    return o;
+    return htmlEscape(s);
 }
 
 // Scene folders and light names are the user's: percent-encoded, a space or '#' in one cannot

@@ -12,6 +12,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "raster_compare/compare/artifacts.h"
+#include "raster_compare/compare/html.h"
 #include "raster_compare/compare/report_assets.h"
 #include "raster_compare/compare/report_images.h"
 #include "raster_compare/compare/tradeoff.h"
@@ -23,14 +24,7 @@ namespace {
 namespace ch = channels;
 
 std::string html(const std::string& s) {
-    std::string o;
-    for (char c : s)
-        o += c == '<'   ? "&lt;"
-             : c == '>' ? "&gt;"
-             : c == '&' ? "&amp;"
-             : c == '"' ? "&quot;"
-                        : std::string(1, c);
-    return o;
+    return htmlEscape(s);
 }
 
 std::string num(std::optional<double> v, int digits = 4) {

@@ -81,17 +81,7 @@ void PlanarLight::drawProjected() const {
 // Where the stencil is on, the receiver's visible pixels get 1 and a projection drawn where it
 // is 1 sets 0: each projection darkens a pixel once.
 void PlanarLight::markReceiver() const {
-    const GLint zero = 0;
-    glClearBufferiv(GL_STENCIL, 0, &zero);
-    glStencilFunc(GL_ALWAYS, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glDepthFunc(GL_EQUAL);
-    glUseProgram(markProg_.get());
-    scene_.drawMesh(size_t(receiver_.mesh));
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glStencilFunc(GL_EQUAL, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
+    markReceiverStencil(markProg_.get(), scene_, receiver_.mesh, GL_ZERO);
 }
 
 void PlanarLight::renderVisibility(PassClock& clock) {
@@ -144,6 +134,28 @@ RasterLightStats PlanarLight::describe() const {
 }
 
 }  // namespace
+
+ParamSpec receiverParam() {
+    return {
+        "receiver", -1,
+        -1,         1e6,
+        true,       "mesh index (as id.mesh) of the planar receiver; -1: the largest planar mesh"};
+}
+
+void markReceiverStencil(GLuint markProgram, const GpuScene& scene, int receiverMesh,
+                         GLenum onPass) {
+    const GLint zero = 0;
+    glClearBufferiv(GL_STENCIL, 0, &zero);
+    glStencilFunc(GL_ALWAYS, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthFunc(GL_EQUAL);
+    glUseProgram(markProgram);
+    scene.drawMesh(size_t(receiverMesh));
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glStencilFunc(GL_EQUAL, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, onPass);
+}
 
 std::unique_ptr<LightTechnique> setUpPlanarShadow(const PlanarSettings& settings,
                                                   const LightSetup& setup) {

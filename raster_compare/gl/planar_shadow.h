@@ -8,6 +8,8 @@
 #include <memory>
 #include <string>
 
+#include <epoxy/gl.h>
+
 #include "raster_compare/gl/technique.h"
 
 namespace so {
@@ -24,5 +26,15 @@ struct PlanarSettings {
 
 std::unique_ptr<LightTechnique> setUpPlanarShadow(const PlanarSettings& settings,
                                                   const LightSetup& setup);
+
+// The family's parameter naming the receiver, as every planar technique's table has it.
+ParamSpec receiverParam();
+
+// Stencil 1 on the receiver's visible pixels (drawn with `markProgram`, depth EQUAL to the camera
+// pass's, colours masked), then the stencil test passing only there, a passing fragment doing
+// `onPass` to the stencil (GL_ZERO: each pixel darkened once; GL_KEEP). The caller enables the
+// stencil test.
+void markReceiverStencil(GLuint markProgram, const GpuScene& scene, int receiverMesh,
+                         GLenum onPass);
 
 }  // namespace so

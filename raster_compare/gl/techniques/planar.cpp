@@ -16,8 +16,7 @@ class Planar final : public Technique {
   public:
     static constexpr const char* kFamily = "planar projection";
     static ParamTable params() {
-        return {{"receiver", -1, -1, 1e6, true,
-                 "mesh index (as id.mesh) of the planar receiver; -1: the largest planar mesh"},
+        return {receiverParam(),
                 {"lift", 1e-4, 0.0, 0.1, false,
                  "the plane raised towards the light, in units of the scene's diagonal"},
                 {"stencil", 1, 0, 1, true,

@@ -15,8 +15,7 @@ class PlaneShift final : public Technique {
   public:
     static constexpr const char* kFamily = "planar projection";
     static ParamTable params() {
-        return {{"receiver", -1, -1, 1e6, true,
-                 "mesh index (as id.mesh) of the planar receiver; -1: the largest planar mesh"},
+        return {receiverParam(),
                 {"planes", 8, 1, 64, true, "projection planes averaged", {}, true},
                 {"spacing", 0.005, 0.0, 0.5, false,
                  "between the planes, towards the light, in units of the scene's diagonal"},

@@ -25,6 +25,7 @@
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/light_facing.h"
 #include "raster_compare/gl/pass_timer.h"
+#include "raster_compare/gl/planar_shadow.h"
 #include "raster_compare/gl/receiver_plane.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_volume_geometry.h"
@@ -214,20 +215,12 @@ void PlateauLight::uploadPlateaus(const PlateauGeometry& g) {
     glVertexArrayAttribBinding(vao, 0, 0);
 }
 
-// The receiver's visible pixels get stencil 1; the shadow is drawn only there.
+// The receiver's visible pixels get stencil 1; the shadow is drawn only there (MIN blending
+// needs no once-per-pixel rule).
 void PlateauLight::markReceiver() const {
-    const GLint zero = 0;
-    glClearBufferiv(GL_STENCIL, 0, &zero);
     glEnable(GL_STENCIL_TEST);
     glStencilMask(0xff);
-    glStencilFunc(GL_ALWAYS, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glUseProgram(markProg_.get());
-    scene_.drawMesh(size_t(receiver_.mesh));
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glStencilFunc(GL_EQUAL, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    markReceiverStencil(markProg_.get(), scene_, receiver_.mesh, GL_KEEP);
 }
 
 void PlateauLight::renderVisibility(PassClock& clock) {
@@ -272,8 +265,7 @@ class Plateaus final : public Technique {
   public:
     static constexpr const char* kFamily = "planar projection";
     static ParamTable params() {
-        return {{"receiver", -1, -1, 1e6, true,
-                 "mesh index (as id.mesh) of the planar receiver; -1: the largest planar mesh"},
+        return {receiverParam(),
                 {"light_size", -1, -1, 1e6, false,
                  "light width in world units; -1: the scene light's (side of a square of its "
                  "area)"},
