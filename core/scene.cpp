@@ -1,8 +1,13 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include "core/error.h"
 
 namespace so {
 
@@ -72,6 +77,16 @@ void finalizeScene(Scene& scene) {
         }
         scene.stats.triangles += mesh.triangleCount();
         scene.stats.degenerateTriangles += mesh.degenerateTriangles;
+    }
+    if (scene.wsBounds.empty()) return;
+    const glm::dvec3 m = glm::max(glm::abs(scene.wsBounds.lo), glm::abs(scene.wsBounds.hi));
+    if (std::max({m.x, m.y, m.z}) > kMaxCoordinate) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "a vertex coordinate of magnitude %.3g is beyond the limit of 2^62 (%.3g)",
+                      std::max({m.x, m.y, m.z}), kMaxCoordinate);
+        throwInputError(scene.path.empty() ? "(scene built in code)" : scene.path.string(),
+                        "geometry", text);
     }
 }
 

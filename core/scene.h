@@ -105,8 +105,14 @@ struct LoadLimits {
 // with a one-line message naming the file and the field.
 Scene loadScene(const std::filesystem::path& path, const LoadLimits& limits = {});
 
+// The largest vertex coordinate accepted, in absolute value: 2^62 (about 4.6e18), so that a sum of
+// three squared coordinates stays finite in float (docs/scene-format.md, limits). With a vertex at
+// 1e30 the oracle's float frame rounded a floor of size 16 to a point (docs/hard-cases.md).
+inline constexpr double kMaxCoordinate = 0x1.0p62;
+
 // Counts degenerate triangles, fills bounds and stats. Used by the loaders and by tests that
-// build scenes in code.
+// build scenes in code. Throws InputError (file: scene.path, field "geometry") for a vertex beyond
+// kMaxCoordinate.
 void finalizeScene(Scene& scene);
 
 }  // namespace so

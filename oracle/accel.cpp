@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <glm/geometric.hpp>
+
 #include "core/error.h"
 
 namespace so {
@@ -17,6 +19,21 @@ void skipOriginTriangle(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] == 0) continue;
         const unsigned origin = RTCRayN_id(args->ray, args->N, i);
         if (origin == base + RTCHitN_primID(args->hit, args->N, i)) args->valid[i] = 0;
+    }
+}
+
+// The index buffer Embree gets. A triangle of zero area in double (local frame) becomes (i, i, i),
+// zero area in float too, so Embree never hits it: the three roundings to float are independent,
+// and a triangle degenerate in double (say, one vertex the exact midpoint of the others) can be a
+// sliver in float that Embree hits, where the primary pass's double normal would be 0 / 0 = NaN
+// (docs/hard-cases.md: 4 pixels of 65,536 over 20,000 such triangles). The triangle keeps its
+// index, so id.prim stays that of the index buffer.
+void copyIndicesWithoutDegenerates(const std::vector<glm::dvec3>& ls,
+                                   const std::vector<uint32_t>& indices, uint32_t* ib) {
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const glm::dvec3 &a = ls[indices[t]], &b = ls[indices[t + 1]], &c = ls[indices[t + 2]];
+        const bool degenerate = glm::cross(b - a, c - a) == glm::dvec3(0.0);
+        for (size_t k = 0; k < 3; ++k) ib[t + k] = degenerate ? indices[t] : indices[t + k];
     }
 }
 
@@ -57,7 +74,7 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
         auto* ib = static_cast<uint32_t*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                     3 * sizeof(uint32_t), mesh.triangleCount()));
-        std::copy(mesh.indices.begin(), mesh.indices.end(), ib);
+        copyIndicesWithoutDegenerates(data.lsPositions, mesh.indices, ib);
         rtcSetGeometryMask(g, 0xFFFFFFFFu);
         if (originFilter) {
             rtcSetGeometryUserData(g, reinterpret_cast<void*>(uintptr_t(base)));

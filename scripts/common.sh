@@ -19,6 +19,10 @@ SO_PACKAGES=(
 # oracle is re-traced on; chromium, nodejs and npm run the browser test of the HTML reports
 # (tests/browser, ctest label "browser").
 SO_TEST_PACKAGES=(libcgal-demo chromium nodejs npm)
+# clang with libFuzzer builds the fuzz harnesses (scripts/fuzz, docs/fuzzing.md). Installed apart
+# from SO_TEST_PACKAGES so that scripts/test skips fuzzing, rather than failing, where they cannot
+# be installed.
+SO_FUZZ_PACKAGES=(clang libfuzzer-14-dev)
 
 # Packages that also count as present when their command is on PATH: NodeSource's nodejs ships npm
 # and conflicts with Debian's npm package, so installing that would fail.

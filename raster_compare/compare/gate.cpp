@@ -1,5 +1,6 @@
 #include "raster_compare/compare/gate.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -42,6 +43,49 @@ struct Rule {
     std::string scene = "*", light = "*", technique = "*";
     std::map<std::string, double> max;
 };
+
+// metrics.json is user input too (CI gates a file from an earlier job), so its shape is checked
+// before it is read: a broken file is an InputError naming the field, never a json::type_error or
+// a read of a missing key through const operator[] (undefined behaviour).
+bool nestedDeeperThan(const json& j, int depth) {
+    if (!j.is_structured()) return false;
+    if (depth == 0) return true;
+    for (const json& v : j)
+        if (nestedDeeperThan(v, depth - 1)) return true;
+    return false;
+}
+
+void checkMetricsShape(const json& metrics, const std::string& mp) {
+    const auto version = metrics.is_object() ? metrics.find("schema_version") : metrics.end();
+    if (version == metrics.end() || !version->is_number_integer() || version->get<int64_t>() < 1 ||
+        version->get<int64_t>() > 4 || !metrics.contains("results"))
+        throwInputError(mp, "schema_version", "not a metrics.json of schema_version 1 to 4");
+    const auto scene = metrics.find("scene");
+    if (scene != metrics.end()) {
+        if (!scene->is_object()) throwInputError(mp, "scene", "expected an object");
+        if (scene->contains("file") && !(*scene)["file"].is_string())
+            throwInputError(mp, "scene.file", "expected a string");
+    }
+    const json& results = metrics["results"];
+    if (!results.is_array()) throwInputError(mp, "results", "expected an array");
+    for (size_t i = 0; i < results.size(); ++i) {
+        const std::string f = "results[" + std::to_string(i) + "]";
+        const json& r = results[i];
+        if (!r.is_object()) throwInputError(mp, f, "expected an object");
+        for (const char* key : {"technique", "label"})
+            if (r.contains(key) && !r[key].is_string())
+                throwInputError(mp, f + "." + key, "expected a string");
+        if (!r.contains("lights") || !r["lights"].is_object())
+            throwInputError(mp, f + ".lights", "missing or not an object");
+        for (const auto& [light, m] : r["lights"].items()) {
+            const std::string lf = f + ".lights." + printable(light, 40);
+            if (!m.is_object()) throwInputError(mp, lf, "expected an object of metrics");
+            // Metrics nest two levels (docs/metrics.md); the bound keeps flatMetrics' recursion
+            // shallow.
+            if (nestedDeeperThan(m, 8)) throwInputError(mp, lf, "nested too deeply");
+        }
+    }
+}
 
 // Every metric name the metrics file can have, so a misspelled limit is an error, not a pass.
 std::set<std::string> knownMetrics(const json& metrics) {
@@ -94,7 +138,8 @@ std::vector<Rule> readRules(const json& limits, const std::string& lf,
         if (it.key() != "limits_format" && it.key() != "default" && it.key() != "rules")
             throwInputError(lf, printable(it.key(), 40),
                             "unknown key (valid: limits_format, default, rules)");
-    if (limits.value("limits_format", 0) != 1)
+    const auto format = limits.find("limits_format");
+    if (format == limits.end() || !format->is_number() || format->get<double>() != 1.0)
         throwInputError(lf, "limits_format", "missing or not 1");
     std::vector<Rule> rules;
     if (limits.contains("default"))
@@ -114,12 +159,11 @@ std::vector<GateCheck> evaluateGate(const json& metrics, const std::string& metr
     // Version 2 added metrics and made aliasing_rate null on area lights; version 3 added metrics
     // and turned penumbra_bias's sign, version 4 added cost.oracle_ms_at_equal_error
     // (docs/metrics.md): the gate reads all four.
-    const int version = metrics.is_object() ? metrics.value("schema_version", 0) : 0;
-    if (version < 1 || version > 4 || !metrics.contains("results"))
-        throwInputError(metricsPath, "schema_version",
-                        "not a metrics.json of schema_version 1 to 4");
+    checkMetricsShape(metrics, metricsPath);
     const std::vector<Rule> rules = readRules(limits, limitsPath, knownMetrics(metrics));
-    const std::string scene = metrics["scene"].value("file", "");
+    const auto sceneObject = metrics.find("scene");
+    const std::string scene =
+        sceneObject == metrics.end() ? std::string() : sceneObject->value("file", "");
     const std::string sceneName = std::filesystem::path(scene).filename().string();
     std::vector<GateCheck> checks;
     for (const auto& r : metrics["results"]) {

@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""Rebuilds the seed corpus of tests/fuzz/corpus/ (docs/fuzzing.md) from the project's own files
+and, where installed, Debian's assimp-testmodels. Run from anywhere; rewrites only the seed files
+it names (seed-*), so inputs added by `scripts/fuzz --merge` stay.
+
+The gltf harness reads one byte of mode first (fuzz_gltf.cpp): 0 = .glb, 1 = .gltf followed by NUL
+and the buffer file b.bin; +2 = load through loadScene. The gate harness reads the limits file,
+NUL, metrics.json.
+"""
+import json
+import pathlib
+import re
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+CORPUS = ROOT / "tests/fuzz/corpus"
+ASSIMP = pathlib.Path("/usr/share/assimp/models/glTF2")
+MAX_GLTF_BYTES = 24 * 1024
+
+
+def write(harness, name, data):
+    d = CORPUS / harness
+    d.mkdir(parents=True, exist_ok=True)
+    (d / ("seed-" + name)).write_bytes(data)
+
+
+def gltf_input(path, mode):
+    """The gltf harness's input for a .gltf/.glb file: a single external buffer becomes b.bin."""
+    raw = path.read_bytes()
+    if path.suffix == ".glb":
+        return bytes([mode]) + raw
+    text = raw.decode("utf-8")
+    j = json.loads(text)
+    buffers = [b.get("uri", "") for b in j.get("buffers", [])]
+    external = [u for u in buffers if u and not u.startswith("data:")]
+    if len(external) == 1 and (path.parent / external[0]).is_file():
+        bin_bytes = (path.parent / external[0]).read_bytes()
+        text = text.replace('"' + external[0] + '"', '"b.bin"')
+        return bytes([mode | 1]) + text.encode() + b"\0" + bin_bytes
+    return bytes([mode | 1]) + text.encode()
+
+
+def main():
+    # scene: the shipped scenes and every scene of the loader tests.
+    for f in sorted((ROOT / "scenes").glob("*.scene.json")):
+        write("scene", f.name, f.read_bytes())
+    for f in sorted((ROOT / "tests/data/broken_scene").glob("*.json")):
+        write("scene", "broken-" + f.name, f.read_bytes())
+    write("scene", "valid-scene.json", (ROOT / "tests/data/valid/scene.json").read_bytes())
+
+    # gltf: the loader tests' files, the small shipped meshes, small assimp test models.
+    sources = sorted((ROOT / "tests/data/broken_gltf").glob("*.gl*"))
+    sources += sorted((ROOT / "tests/data/gltf").glob("*.gl*"))
+    sources += [ROOT / "tests/data/valid/tri.gltf"]
+    sources += [f for f in sorted((ROOT / "scenes/meshes").glob("*.gltf"))
+                if f.stat().st_size <= MAX_GLTF_BYTES]
+    if ASSIMP.is_dir():
+        sources += [f for f in sorted(ASSIMP.rglob("*.gl*"))
+                    if f.suffix in (".gltf", ".glb") and f.stat().st_size <= MAX_GLTF_BYTES]
+    for f in sources:
+        try:
+            data = gltf_input(f, 0)
+        except (UnicodeDecodeError, json.JSONDecodeError, RecursionError, AttributeError):
+            data = bytes([1]) + f.read_bytes()  # broken on purpose: fed as is
+        if len(data) > MAX_GLTF_BYTES + 4096:
+            continue
+        rel = f.relative_to(ASSIMP if ASSIMP in f.parents else ROOT)
+        name = re.sub(r"[^A-Za-z0-9_.-]", "_", str(rel))
+        write("gltf", name, data)
+    # The same through loadScene, for a few.
+    for f in [ROOT / "tests/data/gltf/lights_camera.gltf", ROOT / "tests/data/gltf/triangle.glb",
+              ROOT / "tests/data/gltf/two_nodes.gltf", ROOT / "tests/data/gltf/strip_fan.gltf"]:
+        write("gltf", "scene-" + f.name, gltf_input(f, 2))
+
+    # gate: the shipped limits with the small built-in metrics (no NUL), and with a real one.
+    limits = (ROOT / "scenes/limits.json").read_bytes()
+    write("gate", "limits.json", limits)
+    write("gate", "limits-empty-rules.json", b'{"limits_format": 1, "default": {"mae": 0.1}}')
+    write("gate", "limits-globs.json",
+          b'{"limits_format": 1, "rules": [{"scene": "contact*", "light": "k?y", "technique": '
+          b'"*", "max": {"boundary_displacement_px.max": 2, "mae": 0.5}}]}')
+    metrics = small_metrics()
+    if metrics:
+        write("gate", "limits-and-metrics.json", limits + b"\0" + metrics)
+        write("index", "metrics.json", metrics)
+    write("index", "metrics-v1.json",
+          b'{"schema_version": 1, "scene": {"file": "a.scene.json"}, "results": [{"technique": '
+          b'"basic", "lights": {"key": {"mae": 0.1, "acne_rate": null}}}]}')
+
+
+def json_strings(j, out):
+    """The keys, and the short string values, of a parsed JSON value."""
+    if isinstance(j, dict):
+        for k, v in j.items():
+            out.add(k)
+            if isinstance(v, str) and len(v) < 24 and not v.startswith("data:"):
+                out.add(v)
+            json_strings(v, out)
+    elif isinstance(j, list):
+        for v in j:
+            json_strings(v, out)
+
+
+def write_dicts():
+    """tests/fuzz/<harness>.dict: libFuzzer dictionaries of the JSON keys of each corpus."""
+    for h in ["scene", "gltf", "gate", "index"]:
+        found = set()
+        for f in (CORPUS / h).iterdir():
+            data = f.read_bytes()[1:] if h == "gltf" else f.read_bytes()
+            for part in data.split(b"\0"):
+                try:
+                    json_strings(json.loads(part), found)
+                except (ValueError, RecursionError):
+                    pass
+        words = sorted(k for k in found
+                       if 0 < len(k) <= 40 and re.fullmatch(r"[A-Za-z0-9_.:/*?# -]+", k))
+        with open(CORPUS.parent / (h + ".dict"), "w") as out:
+            out.write("# libFuzzer dictionary for fuzz_%s: the keys and short string values of its"
+                      " seed corpus\n# (written by tests/fuzz/make_corpus.py).\n" % h)
+            for w in words:
+                out.write('"\\"%s\\""\n' % w)
+
+
+def small_metrics():
+    """The first two rows of a demo metrics.json (out/demo/), if the demo was run."""
+    for f in sorted((ROOT / "out/demo").glob("*/metrics.json")):
+        j = json.loads(f.read_text())
+        j["results"] = j["results"][:2]
+        return json.dumps(j, separators=(",", ":")).encode()
+    return None
+
+
+if __name__ == "__main__":
+    main()
+    write_dicts()
