@@ -104,6 +104,9 @@ struct CompareJob {
     fs::path out;
     std::ofstream csv;
     WideCsv wide;
+    // Per light, the oracle's penumbra cost curve (oraclePenumbraCurve): for every technique's
+    // oracle_ms_at_equal_error and for the report.
+    std::vector<std::vector<std::pair<double, double>>> oracleCurves;
 };
 
 // What the light's own passes and the visibility pass cost (docs/metrics.md, cost).
@@ -214,8 +217,8 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
             computeLightMetrics(job.oracle.image, r.image, lc.light, job.metricOptions, &lc.maps);
         lc.cost = techniqueCost(r.stats, li, job.oracle.stats.lights[li].seconds());
         if (lc.metrics.penumbraMae)
-            lc.cost.oracleMsAtEqualError = oracleMsAtError(
-                oraclePenumbraCurve(job.oracle.stats.lights[li]), *lc.metrics.penumbraMae);
+            lc.cost.oracleMsAtEqualError =
+                oracleMsAtError(job.oracleCurves[li], *lc.metrics.penumbraMae);
         lights[lc.light] = lc.toJson();
         writeCsvRows(job, run, lc.light, lights[lc.light]);
         rt.lights.push_back(std::move(lc));
@@ -337,7 +340,9 @@ int runCompareCommand(const CompareOptions& options) {
              {{"shadowOracle/sceneHash", scene.contentHash}});
 
     GlContext gl;
-    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv"), {}};
+    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv"), {}, {}};
+    for (const OracleLightStats& l : oracle.stats.lights)
+        job.oracleCurves.push_back(oraclePenumbraCurve(l));
     job.metricOptions.boundaryRadius = options.boundaryRadius;
     job.metricOptions.contactThreshold = options.contactThresholdRelative * scene.wsBounds.extent();
     job.csv << "scene,light,technique,label,metric,value\n";
@@ -352,8 +357,7 @@ int runCompareCommand(const CompareOptions& options) {
     job.wide.write(out / "metrics_wide.csv");
     report.oracle = oracle.image;
     report.timedOn = gl.renderer();
-    for (const OracleLightStats& l : oracle.stats.lights)
-        report.oracleCurves.push_back(oraclePenumbraCurve(l));
+    report.oracleCurves = job.oracleCurves;
     report.embedImages = options.embedImages;
     report.provenance = provenance(metrics, oracle, oracleOptions);
     writeReport((out / "report.html").string(), report);

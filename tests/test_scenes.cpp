@@ -68,7 +68,12 @@ Scene transformScene(const Scene& scene, double scale, const glm::dvec3& t) {
         for (glm::dvec3& p : m.wsPositions) p = p * scale + t;
     out.camera.wsEye = scene.camera.wsEye * scale + t;
     out.camera.wsTarget = scene.camera.wsTarget * scale + t;
-    for (Light& l : out.lights) l.wsPosition = l.wsPosition * scale + t;
+    for (Light& l : out.lights) {
+        l.wsPosition = l.wsPosition * scale + t;
+        l.wsU *= scale;  // area lights' extents (zero for the others)
+        l.wsV *= scale;
+        l.radius *= scale;
+    }
     finalizeScene(out);
     return out;
 }

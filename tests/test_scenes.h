@@ -27,7 +27,8 @@ struct SquareOccluderScene {
 };
 SquareOccluderScene makeSquareOccluderScene(int width, int height);
 
-// Applies p -> p * scale + translate to every position in the scene (meshes, camera, lights).
+// Applies p -> p * scale + translate to every position in the scene (meshes, camera, lights), and
+// scales the area lights' extents.
 Scene transformScene(const Scene& scene, double scale, const glm::dvec3& translate);
 
 // Runs the oracle quietly.

@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/channels.h"
 #include "core/error.h"
@@ -122,6 +123,23 @@ const std::vector<Column>& columns() {
     return cols;
 }
 
+const Column& findColumn(const std::string& key) {
+    for (const Column& c : columns())
+        if (c.key == key) return c;
+    throw std::logic_error("report: no column " + key);
+}
+
+// Whether some technique has a value in the column for the light.
+bool anyValue(const ReportInput& in, size_t li, const Column& c) {
+    return std::any_of(in.techniques.begin(), in.techniques.end(),
+                       [&](const ReportTechnique& t) { return c.value(t.lights[li]).has_value(); });
+}
+
+// An area light's page: its techniques have a penumbra error.
+bool hasPenumbra(const ReportInput& in, size_t li) {
+    return anyValue(in, li, findColumn("penumbra_mae"));
+}
+
 // The header cell of a numeric column: sortable, with its direction and meaning as a tooltip.
 std::string headerCell(const Column& c) {
     return "<th data-col=\"" + html(c.key) + "\" title=\"" + html(c.key) + ": " + html(c.tip) +
@@ -158,9 +176,7 @@ struct ChartData {
 
 ChartData chartData(const ReportInput& in, size_t light) {
     ChartData d;
-    const bool area = std::any_of(
-        in.techniques.begin(), in.techniques.end(),
-        [&](const ReportTechnique& t) { return t.lights[light].metrics.penumbraMae.has_value(); });
+    const bool area = hasPenumbra(in, light);
     d.error = area ? "penumbra_mae" : "mae";
     for (const ReportTechnique& t : in.techniques) {
         const LightMetrics& m = t.lights[light].metrics;
@@ -256,11 +272,7 @@ void writeMetricTable(std::ostream& o, const std::string& attrs,
 void writeSummary(std::ostream& o, const ReportInput& in, size_t li) {
     std::vector<const Column*> cols;
     for (const Column& c : columns()) {
-        if (!c.inSummary) continue;
-        const bool any = std::any_of(
-            in.techniques.begin(), in.techniques.end(),
-            [&](const ReportTechnique& t) { return c.value(t.lights[li]).has_value(); });
-        if (any) cols.push_back(&c);
+        if (c.inSummary && anyValue(in, li, c)) cols.push_back(&c);
     }
     o << "<div class=\"summary-col\"><h3>Summary</h3><p class=\"muted\">Click a column to sort; "
          "&#9733; marks the best "
@@ -271,8 +283,14 @@ void writeSummary(std::ostream& o, const ReportInput& in, size_t li) {
     o << "</div></div>";
 }
 
-// The error and cost a chart can plot: those with a value for some technique of the light.
-nlohmann::json chartChoices(const ReportInput& in, size_t li, bool costs) {
+// The error and cost a chart can plot: those with a value for some technique of the light, as
+// (key, name, column).
+struct ChartChoice {
+    std::string key, name;
+    const Column* column;
+};
+
+std::vector<ChartChoice> chartChoices(const ReportInput& in, size_t li, bool costs) {
     static const std::vector<std::pair<std::string, std::string>> errors = {
         {"penumbra_mae", "penumbra mae"},
         {"mae", "mae"},
@@ -285,38 +303,33 @@ nlohmann::json chartChoices(const ReportInput& in, size_t li, bool costs) {
         {"shadow_map_ms", "shadow pass time (ms)"},
         {"visibility_ms", "visibility pass time (ms)"},
         {"memory_bytes", "memory (bytes)"}};
-    nlohmann::json out = nlohmann::json::array();
+    std::vector<ChartChoice> out;
     for (const auto& [key, name] : costs ? cost : errors) {
-        const std::string full = costs ? "cost." + key : key;
-        const Column* c = nullptr;
-        for (const Column& col : columns()) c = col.key == full ? &col : c;
-        const bool any = c && std::any_of(in.techniques.begin(), in.techniques.end(),
-                                          [&](const ReportTechnique& t) {
-                                              return c->value(t.lights[li]).has_value();
-                                          });
-        if (any) out.push_back({key, name});
+        const Column& c = findColumn(costs ? "cost." + key : key);
+        if (anyValue(in, li, c)) out.push_back({key, name, &c});
     }
     return out;
 }
 
 // The data the script draws one light's chart from (report_assets.h).
 nlohmann::json lightData(const ReportInput& in, size_t li) {
+    const std::vector<ChartChoice> errors = chartChoices(in, li, false),
+                                   costs = chartChoices(in, li, true);
+    auto values = [&](const std::vector<ChartChoice>& choices, const LightComparison& l) {
+        nlohmann::json v = nlohmann::json::object();
+        for (const ChartChoice& c : choices)
+            if (const auto x = c.column->value(l)) v[c.key] = *x;
+        return v;
+    };
+    auto names = [](const std::vector<ChartChoice>& choices) {
+        nlohmann::json n = nlohmann::json::array();
+        for (const ChartChoice& c : choices) n.push_back({c.key, c.name});
+        return n;
+    };
     nlohmann::json points = nlohmann::json::array();
     for (size_t k = 0; k < in.techniques.size(); ++k) {
         const ReportTechnique& t = in.techniques[k];
-        nlohmann::json e = nlohmann::json::object(), c = nlohmann::json::object();
-        for (const auto& choice : chartChoices(in, li, false)) {
-            const std::string key = choice[0];
-            for (const Column& col : columns())
-                if (col.key == key)
-                    if (const auto v = col.value(t.lights[li])) e[key] = *v;
-        }
-        for (const auto& choice : chartChoices(in, li, true)) {
-            const std::string key = choice[0];
-            for (const Column& col : columns())
-                if (col.key == "cost." + key)
-                    if (const auto v = col.value(t.lights[li])) c[key] = *v;
-        }
+        const nlohmann::json e = values(errors, t.lights[li]), c = values(costs, t.lights[li]);
         points.push_back({{"label", t.label},
                           {"curve", t.curve},
                           {"quality", t.quality ? nlohmann::json(*t.quality) : nlohmann::json()},
@@ -328,16 +341,12 @@ nlohmann::json lightData(const ReportInput& in, size_t li) {
     if (li < in.oracleCurves.size())
         for (const auto& [ms, hw] : in.oracleCurves[li])
             if (ms > 0.0 && hw > 0.0) oracle.push_back({ms, hw});
-    return {{"name", in.lights[li]},
-            {"errors", chartChoices(in, li, false)},
-            {"costs", chartChoices(in, li, true)},
-            {"points", points},
-            {"oracle", oracle},
-            {"oracle_error", "penumbra_mae"}};
+    return {{"name", in.lights[li]}, {"errors", names(errors)}, {"costs", names(costs)},
+            {"points", points},      {"oracle", oracle},        {"oracle_error", "penumbra_mae"}};
 }
 
-void writeChartBox(std::ostream& o, const ReportInput& in, size_t li) {
-    const nlohmann::json d = lightData(in, li);
+// `d`: the light's lightData, the same the page's script draws from.
+void writeChartBox(std::ostream& o, const ReportInput& in, size_t li, const nlohmann::json& d) {
     o << "<div class=\"chart-box\" data-light=\"" << li << "\"><h3>Error against cost</h3>"
       << "<label>error <select class=\"error-select\">";
     for (const auto& e : d["errors"])
@@ -373,17 +382,13 @@ std::string zoomable(const std::string& src, const std::string& alt, const std::
 // The oracle's row: its render, the predicted aliasing (once: the first technique's that has
 // it) and the pixels it left short of its target.
 void writeOracleRow(std::ostream& o, const ReportInput& in, size_t li, ImageSink& sink,
-                    const std::string& oracleId) {
+                    const std::string& oracleId, const Rgb& oracleRender) {
     const int w = in.oracle.width(), h = in.oracle.height();
     const std::string& light = in.lights[li];
     const std::string l = std::to_string(li);
     o << "<tr><td><b>oracle</b><br><span class=\"muted\">the ground truth (<a "
          "href=\"oracle.exr\">oracle.exr</a>)</span></td><td>"
-      << zoomable(sink.src("l" + l + "_oracle", w, h,
-                           shadedImage(in.oracle,
-                                       in.oracle.channel(ch::lightChannel(light, ch::kVisibility)),
-                                       light)),
-                  "oracle", oracleId, oracleId)
+      << zoomable(sink.src("l" + l + "_oracle", w, h, oracleRender), "oracle", oracleId, oracleId)
       << "</td><td>";
     for (const ReportTechnique& t : in.techniques) {
         if (!t.image.has(ch::lightChannel(light, ch::kPredictedAliasing))) continue;
@@ -408,7 +413,7 @@ void writeOracleRow(std::ostream& o, const ReportInput& in, size_t li, ImageSink
 // One technique's row: its render, its error map by class (and on area lights by magnitude), the
 // worst square of its error map next to the oracle's, and its files.
 void writeTechniqueRow(std::ostream& o, const ReportInput& in, size_t li, size_t k, ImageSink& sink,
-                       const std::string& oracleId) {
+                       const std::string& oracleId, const Rgb& oracleRender) {
     const ReportTechnique& t = in.techniques[k];
     const LightComparison& lc = t.lights[li];
     const int w = in.oracle.width(), h = in.oracle.height();
@@ -431,8 +436,6 @@ void writeTechniqueRow(std::ostream& o, const ReportInput& in, size_t li, size_t
         o << zoomable(sink.src(key + "_magnitude", w, h, magnitudeMap(in.oracle, lc.maps)),
                       t.label + " error magnitude", "", oracleId);
     const Crop crop = worstRegion(lc.maps.error, w, h, std::max(16, std::min(w, h) / 6));
-    const Rgb oracleRender =
-        shadedImage(in.oracle, in.oracle.channel(ch::lightChannel(light, ch::kVisibility)), light);
     o << "</td><td>"
       << "<img class=\"crop\" src=\""
       << sink.src(key + "_worst", crop.size, crop.size, cropOf(render, w, crop)) << "\" alt=\""
@@ -443,9 +446,7 @@ void writeTechniqueRow(std::ostream& o, const ReportInput& in, size_t li, size_t
 }
 
 void writeImages(std::ostream& o, const ReportInput& in, size_t li, ImageSink& sink) {
-    const bool area = std::any_of(
-        in.techniques.begin(), in.techniques.end(),
-        [&](const ReportTechnique& t) { return t.lights[li].metrics.penumbraMae.has_value(); });
+    const bool area = hasPenumbra(in, li);
     o << "<h3>Images</h3><p class=\"muted\">Click an image for a 1:1, 2x or 4x view; F flips it "
          "with the oracle's at the same place.</p>";
     if (area)
@@ -459,9 +460,13 @@ void writeImages(std::ostream& o, const ReportInput& in, size_t li, ImageSink& s
       << classLegend() << "</th><th class=\"text\">"
       << (area ? "error beyond the oracle's interval" + magnitudeBar() : std::string())
       << "</th><th class=\"text\">worst region</th></tr></thead><tbody>";
-    writeOracleRow(o, in, li, sink, oracleId);
+    const std::string& light = in.lights[li];
+    const Rgb oracleRender =
+        shadedImage(in.oracle, in.oracle.channel(ch::lightChannel(light, ch::kVisibility)), light);
+    writeOracleRow(o, in, li, sink, oracleId, oracleRender);
     for (const ReportTechnique* t : byFamily(in))
-        writeTechniqueRow(o, in, li, size_t(t - in.techniques.data()), sink, oracleId);
+        writeTechniqueRow(o, in, li, size_t(t - in.techniques.data()), sink, oracleId,
+                          oracleRender);
     o << "</tbody></table>";
 }
 
@@ -485,7 +490,8 @@ void writeHead(std::ostream& o, const ReportInput& in) {
     o << " <a href=\"#all-metrics\">all metrics</a> <a href=\"#provenance\">provenance</a></nav>";
 }
 
-void writeTail(std::ostream& o, const ReportInput& in) {
+// `lightsData`: every light's lightData, in order.
+void writeTail(std::ostream& o, const ReportInput& in, const nlohmann::json& lightsData) {
     o << "<h2 id=\"all-metrics\">All metrics</h2>";
     std::vector<size_t> lights;
     for (size_t li = 0; li < in.lights.size(); ++li) lights.push_back(li);
@@ -501,9 +507,7 @@ void writeTail(std::ostream& o, const ReportInput& in) {
          "id=\"zoom-scale\"><option>1</option><option selected>2</option><option>4</option>"
          "</select></label><button id=\"zoom-close\">close (Esc)</button></div><div "
          "class=\"view\"><canvas id=\"zoom-canvas\"></canvas></div></div>";
-    nlohmann::json data = {{"lights", nlohmann::json::array()}};
-    for (size_t li = 0; li < in.lights.size(); ++li) data["lights"].push_back(lightData(in, li));
-    std::string json = data.dump();
+    std::string json = nlohmann::json({{"lights", lightsData}}).dump();
     for (size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 2))
         json.replace(at, 2, "<\\/");
     o << "<script type=\"application/json\" id=\"so-data\">" << json << "</script><script>"
@@ -519,16 +523,18 @@ void writeReport(const std::string& path, const ReportInput& in) {
                    folderName);
     std::ostringstream o;
     writeHead(o, in);
+    nlohmann::json lights = nlohmann::json::array();
     for (size_t li = 0; li < in.lights.size(); ++li) {
+        lights.push_back(lightData(in, li));
         o << "<section class=\"light\" id=\"" << html(lightId(in, li)) << "\"><h2>Light "
           << html(in.lights[li]) << "</h2><div class=\"top\">";
         writeSummary(o, in, li);
-        writeChartBox(o, in, li);
+        writeChartBox(o, in, li, lights.back());
         o << "</div>";
         writeImages(o, in, li, sink);
         o << "</section>";
     }
-    writeTail(o, in);
+    writeTail(o, in, lights);
     std::ofstream f(path);
     if (!f) throwInputError(path, "", "cannot be written");
     f << o.str();

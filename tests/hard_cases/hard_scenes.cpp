@@ -41,22 +41,6 @@ void snapScene(Scene& scene, int bits) {
     finalizeScene(scene);
 }
 
-Scene transformAll(const Scene& scene, double scale, const glm::dvec3& t) {
-    Scene out = scene;
-    for (MeshPrimitive& m : out.meshes)
-        for (glm::dvec3& p : m.wsPositions) p = p * scale + t;
-    out.camera.wsEye = scene.camera.wsEye * scale + t;
-    out.camera.wsTarget = scene.camera.wsTarget * scale + t;
-    for (Light& l : out.lights) {
-        l.wsPosition = l.wsPosition * scale + t;
-        l.wsU *= scale;
-        l.wsV *= scale;
-        l.radius *= scale;
-    }
-    finalizeScene(out);
-    return out;
-}
-
 namespace {
 
 struct IcoBuilder {

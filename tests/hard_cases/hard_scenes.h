@@ -14,6 +14,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "oracle/oracle.h"
+#include "test_scenes.h"  // transformScene
 
 namespace so::test::hard {
 
@@ -22,9 +23,6 @@ double snap(double v, int bits);
 glm::dvec3 snap(const glm::dvec3& v, int bits);
 // Snaps every mesh vertex, light position, area-light edge and the camera to 2^-bits.
 void snapScene(Scene& scene, int bits);
-
-// p -> p * scale + t for meshes, camera and light positions; area lights' edges and radii scale.
-Scene transformAll(const Scene& scene, double scale, const glm::dvec3& t);
 
 // A closed icosphere (subdivided icosahedron projected on the sphere), outward triangles.
 MeshPrimitive makeIcosphere(const glm::dvec3& c, double r, int subdivisions,

@@ -34,7 +34,7 @@ int checkScene(const Scene& scene, const char* what) {
     const std::vector<std::string> names = invariantChannels(scene);
     int differing = 0;
     for (const Transform& tr : kTransforms) {
-        const ChannelImage img = runHard(transformAll(scene, tr.scale, tr.t)).image;
+        const ChannelImage img = runHard(transformScene(scene, tr.scale, tr.t)).image;
         std::string first;
         const int n = differingChannels(ref, img, names, &first);
         EXPECT_EQ(n, 0) << what << ", " << tr.name << ": " << first << " differs first";
@@ -74,7 +74,7 @@ TEST(HardFarFromOrigin, UnderTheBoxPointsAreBitIdentical) {
             std::vector<glm::dvec3> moved;
             for (const glm::dvec3& p : points) moved.push_back(p * tr.scale + tr.t);
             const PointVisibility pv =
-                oracleVisibilityAt(transformAll(c.scene, tr.scale, tr.t), 0, moved, {0, 1, 0});
+                oracleVisibilityAt(transformScene(c.scene, tr.scale, tr.t), 0, moved, {0, 1, 0});
             const bool same =
                 std::memcmp(ref.V.data(), pv.V.data(), ref.V.size() * sizeof(float)) == 0;
             EXPECT_TRUE(same) << "gap " << g << ", " << tr.name;

@@ -13,18 +13,23 @@ vec2 spiral(int k, int n) {
     return r * vec2(cos(a), sin(a));
 }
 
+// The texels the light's width spans at the receiver's depth dR, seen through a point at depth d
+// (similar triangles: width * (dR - d) / d in world units at d, then into texels there).
+float texelsThrough(Receiver r, float dR, float d) {
+#ifdef LIGHT_ORTHO
+    return 0.5 * u_lightSize * (dR - d) / r.texel;
+#else
+    return 0.5 * u_lightSize * (dR - d) / (d * dR * u_texelScale);
+#endif
+}
+
 float techniqueVisibility(Receiver r) {
     MapPoint m = mapPoint(r.p);
     if (m.outside) return 1.0;
     float dR = m.d;
     // The texels one light-size-wide cone through the receiver spans at depth d: the search
     // covers blockers down to the near plane, the penumbra those at the blockers' depth.
-#ifdef LIGHT_ORTHO
-    float searchTexels = 0.5 * u_lightSize * (dR - u_near) / r.texel;
-#else
-    float searchTexels = 0.5 * u_lightSize * (dR - u_near) / (u_near * dR * u_texelScale);
-#endif
-    searchTexels = min(searchTexels, SEARCH_MAX);
+    float searchTexels = min(texelsThrough(r, dR, u_near), SEARCH_MAX);
     float dRefSearch = dR - slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0 + searchTexels);
     float blockerSum = 0.0;
     int blockers = 0;
@@ -37,12 +42,7 @@ float techniqueVisibility(Receiver r) {
     }
     if (blockers == 0) return 1.0;
     float dB = blockerSum / float(blockers);
-#ifdef LIGHT_ORTHO
-    float filterTexels = 0.5 * u_lightSize * (dR - dB) / r.texel;
-#else
-    float filterTexels = 0.5 * u_lightSize * (dR - dB) / (dB * dR * u_texelScale);
-#endif
-    filterTexels = min(filterTexels, FILTER_MAX);
+    float filterTexels = min(texelsThrough(r, dR, dB), FILTER_MAX);
     float dRef = dR - slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0 + filterTexels);
     if (filterTexels < 0.5) return depthTapAt(m, vec2(0.0), dRef);
     float lit = 0.0;
