@@ -105,11 +105,14 @@ int main(int argc, char** argv) {
             uint32_t pixel;
         };
         std::vector<Packet> packets;
+        FacingCache facingCache;
+        uint64_t exactDecisions = 0;
         for (size_t s = 0; s < sb.slotCount(); ++s) {
             const size_t pixel = sb.pixelOfSlot(s);
             if (pixel == SIZE_MAX || !sb.hit[s]) continue;
-            if (classifyAreaPixel(al, glm::dvec3(sb.lsPoint(s)), glm::dvec3(sb.lsNormal(s))) !=
-                AreaSkip::None)
+            const PixelTies ties{accel, sb, s, facingCache, exactDecisions};
+            if (classifyAreaPixel(al, glm::dvec3(sb.lsPoint(s)), glm::dvec3(sb.lsNormal(s)),
+                                  &ties) != AreaSkip::None)
                 continue;
             const AreaPixel px = prepareAreaPixel(al, sb.lsPoint(s), sb.lsNormal(s));
             const ReplicaSeeds seeds =

@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
                     int x = tx * 4 + (k & 3), y = ty * 4 + (k >> 2);
                     if (x >= sb.width || y >= sb.height) continue;
                     size_t i = size_t(y) * size_t(sb.width) + size_t(x);
-                    ShadowRaySetup s = setupShadowRay(sb, sb.slot(x, y), hl);
+                    ShadowRaySetup s = setupShadowRay(accel, sb, sb.slot(x, y), hl);
                     if (s.kind != ShadowRayKind::Traced) continue;
                     valid[p][k] = -1;
                     r.org_x[k] = s.org.x, r.org_y[k] = s.org.y, r.org_z[k] = s.org.z;
@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
                                       [&](const tbb::blocked_range<size_t>& r) {
                                           PacketSetup ps;
                                           for (size_t t = r.begin(); t != r.end(); ++t) {
-                                              setupPacket(sb, t * 16, hl, ps);
+                                              setupPacket(accel, sb, t * 16, hl, ps);
                                               sink[t] = ps.tfar[0] + ps.cosine[15];
                                           }
                                       });

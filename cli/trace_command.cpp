@@ -21,7 +21,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
                           const CameraDesc& cam, const OracleStats& stats, double loadSeconds,
                           double writeSeconds) {
     nlohmann::json j = {
-        {"format_version", 5},
+        {"format_version", 6},
         {"tool", toolJson()},
         {"scene",
          {{"file", options.scenePath},

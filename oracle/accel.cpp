@@ -53,7 +53,7 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
         // The loader caps the total at 2^28 triangles: the global index fits a ray id.
         SO_CHECK(base + mesh.triangleCount() < uint64_t(kNoOriginTriangle));
         meshBase_.push_back(unsigned(base));
-        MeshData data{{}, mesh.indices};
+        MeshData data{{}, mesh.wsPositions, mesh.indices};
         data.lsPositions.reserve(mesh.wsPositions.size());
         for (const glm::dvec3& ws : mesh.wsPositions)
             data.lsPositions.push_back(frame_.lsFromWs(ws));

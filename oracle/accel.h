@@ -40,6 +40,15 @@ class Accel {
         b = m.lsPositions[m.indices[3 * prim + 1]];
         c = m.lsPositions[m.indices[3 * prim + 2]];
     }
+    // The same triangle as the scene gives it: world space, double (the geometry the oracle's
+    // exact decisions answer for, exact_facing.h).
+    void wsTriangle(unsigned mesh, unsigned prim, glm::dvec3& a, glm::dvec3& b,
+                    glm::dvec3& c) const {
+        const MeshData& m = meshes_[mesh];
+        a = m.wsPositions[m.indices[3 * prim]];
+        b = m.wsPositions[m.indices[3 * prim + 1]];
+        c = m.wsPositions[m.indices[3 * prim + 2]];
+    }
     // The ray id that makes a shadow ray skip triangle `prim` of mesh `mesh` (< 2^28 by the
     // loader's limits, so it never equals kNoOriginTriangle).
     unsigned originId(unsigned mesh, unsigned prim) const { return meshBase_[mesh] + prim; }
@@ -47,6 +56,7 @@ class Accel {
   private:
     struct MeshData {
         std::vector<glm::dvec3> lsPositions;
+        const std::vector<glm::dvec3>& wsPositions;  // the scene's (it outlives the Accel)
         const std::vector<uint32_t>& indices;
     };
     LocalFrame frame_;

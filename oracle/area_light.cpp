@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -15,6 +16,7 @@ namespace so {
 AreaLight makeAreaLight(const Light& light, const LocalFrame& frame) {
     AreaLight a;
     a.type = light.type;
+    a.ws = light;
     a.dCenter = frame.lsFromWs(light.wsPosition);
     const double s = frame.lsLength(1.0);  // the frame scales lengths by a power of two
     a.dU = light.wsU * s;
@@ -41,29 +43,83 @@ AreaLight makeAreaLight(const Light& light, const LocalFrame& frame) {
     return a;
 }
 
-AreaSkip classifyAreaPixel(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n) {
+namespace {
+
+// A margin this close to 0 may have either sign by rounding: the float p and n carry ~2^-24 each,
+// which moves a margin by up to ~2^-23 (1 + distance); 2^-18 leaves a margin of 32.
+constexpr double kTie = 1.0 / 262144.0;
+
+bool isTie(double margin, double distance) {
+    return std::fabs(margin) < kTie * (1.0 + distance);
+}
+
+// The float decision for rect and disk lights: in front of the emitter, light above the horizon,
+// and whether either margin is a tie.
+struct OneSidedClass {
+    bool front = false, above = false;
+    bool frontTie = false, aboveTie = false;
+};
+
+OneSidedClass classifyOneSided(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n) {
     const glm::dvec3 c = light.dCenter;
-    switch (light.type) {
-        case LightType::Rect: {
-            if (!(glm::dot(light.dEmitNormal, p - c) > 0.0)) return AreaSkip::BehindLight;
-            bool above = false;
-            for (int k = 0; k < 4; ++k) {
-                glm::dvec3 corner =
-                    c + ((k & 1) ? 0.5 : -0.5) * light.dU + ((k & 2) ? 0.5 : -0.5) * light.dV;
-                above |= glm::dot(n, corner - p) > 0.0;
-            }
-            return above ? AreaSkip::None : AreaSkip::BelowHorizon;
+    OneSidedClass r;
+    const double front = glm::dot(light.dEmitNormal, p - c);
+    r.front = front > 0.0;
+    r.frontTie = isTie(front, glm::length(p - c));
+    if (light.type == LightType::Rect) {
+        double top = -std::numeric_limits<double>::infinity(), reach = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            glm::dvec3 corner =
+                c + ((k & 1) ? 0.5 : -0.5) * light.dU + ((k & 2) ? 0.5 : -0.5) * light.dV;
+            top = std::max(top, glm::dot(n, corner - p));
+            reach = std::max(reach, glm::length(corner - p));
         }
+        r.above = top > 0.0;
+        r.aboveTie = isTie(top, reach);
+    } else {
+        // The disk's highest point above p's tangent plane.
+        const double nm = glm::dot(n, light.dEmitNormal);
+        const double top =
+            glm::dot(n, c - p) + light.dRadius * std::sqrt(std::max(0.0, 1.0 - nm * nm));
+        r.above = top > 0.0;
+        r.aboveTie = isTie(top, glm::length(c - p) + light.dRadius);
+    }
+    return r;
+}
+
+// Ties decided exactly on the pixel's triangle (exact_facing.h); the cache holds the last
+// triangle's answers.
+void resolveOneSidedTies(const AreaLight& light, const Accel& accel, const SurfaceBuffer& sb,
+                         size_t slot, FacingCache& cache, OneSidedClass& r) {
+    if (cache.triangle != sb.originId[slot]) {
+        const PixelTriangle t = pixelTriangle(accel, sb, slot);
+        cache.triangle = sb.originId[slot];
+        cache.emitter = int8_t(emitterSide(t, light.ws));
+        cache.above = areaLightAbovePlane(t, light.ws);
+    }
+    if (r.frontTie && cache.emitter != 0) r.front = cache.emitter > 0;
+    if (r.aboveTie) r.above = cache.above;
+}
+
+}  // namespace
+
+AreaSkip classifyAreaPixel(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n,
+                           const PixelTies* ties) {
+    switch (light.type) {
+        case LightType::Rect:
         case LightType::Disk: {
-            if (!(glm::dot(light.dEmitNormal, p - c) > 0.0)) return AreaSkip::BehindLight;
-            // The disk's highest point above p's tangent plane.
-            const double nm = glm::dot(n, light.dEmitNormal);
-            const double top =
-                glm::dot(n, c - p) + light.dRadius * std::sqrt(std::max(0.0, 1.0 - nm * nm));
-            return top > 0.0 ? AreaSkip::None : AreaSkip::BelowHorizon;
+            OneSidedClass r = classifyOneSided(light, p, n);
+            if (ties && (r.frontTie || r.aboveTie)) {
+                resolveOneSidedTies(light, ties->accel, ties->sb, ties->slot, ties->cache, r);
+                ++ties->exactDecisions;
+            }
+            if (!r.front) return AreaSkip::BehindLight;
+            return r.above ? AreaSkip::None : AreaSkip::BelowHorizon;
         }
         case LightType::Sphere: {
-            const glm::dvec3 d = c - p;
+            // A sphere has no plane to lie in: its centre in the receiver's plane is above it by
+            // the radius.
+            const glm::dvec3 d = light.dCenter - p;
             if (glm::dot(d, d) <= light.dRadius * light.dRadius) return AreaSkip::InsideLight;
             return glm::dot(n, d) + light.dRadius > 0.0 ? AreaSkip::None : AreaSkip::BelowHorizon;
         }

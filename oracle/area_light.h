@@ -16,6 +16,9 @@
 
 #include "core/local_frame.h"
 #include "core/scene.h"
+#include "oracle/accel.h"
+#include "oracle/exact_facing.h"
+#include "oracle/surface_buffer.h"
 
 namespace so {
 
@@ -30,6 +33,7 @@ struct AreaLight {
     // Rect corners / disk extents, for the horizon test, in double.
     glm::dvec3 dCenter{0.0}, dU{0.0}, dV{0.0}, dEmitNormal{0.0};
     double dRadius = 0.0;
+    Light ws;  // the scene's light, for the exact decisions
 };
 AreaLight makeAreaLight(const Light& light, const LocalFrame& frame);
 
@@ -54,9 +58,21 @@ struct AreaPixel {
     float triCdf[3] = {0, 0, 0};
 };
 
+// What the exact decisions need to know about the pixel, and a per-thread cache (exact_facing.h).
+struct PixelTies {
+    const Accel& accel;
+    const SurfaceBuffer& sb;
+    size_t slot;
+    FacingCache& cache;
+    uint64_t& exactDecisions;  // incremented where a tie was decided exactly
+};
+
 // Whether the pixel at p (unit normal n) can receive light at all: the light entirely below the
-// horizon, p behind a one-sided emitter, or p inside a sphere light get V = 0 without rays.
-AreaSkip classifyAreaPixel(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n);
+// horizon, p behind a one-sided emitter, or p inside a sphere light get V = 0 without rays. With
+// `ties`, a decision whose float margin is within its rounding error of 0 is made exactly on the
+// pixel's triangle (the light in the receiver's plane, the receiver in the emitter's plane).
+AreaSkip classifyAreaPixel(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n,
+                           const PixelTies* ties);
 AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm::vec3& n);
 
 // Up to 16 samples: unit directions from p, segment lengths (tfar) and weights; weight 0 means

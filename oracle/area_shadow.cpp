@@ -162,6 +162,7 @@ struct PacketState {
     // the stated half-width. Kept here so that no pixel allocates.
     std::vector<double> history;
     std::vector<float> halfWidths;
+    FacingCache facingCache;  // the last exact decision (classifyAreaPixel)
 };
 
 struct PixelResult {
@@ -338,7 +339,8 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
     }
     const glm::vec3 p = sb.lsPoint(s), n = sb.lsNormal(s);
     cosine[px] = glm::dot(n, glm::normalize(light.lsCenter - p));
-    switch (classifyAreaPixel(light, glm::dvec3(p), glm::dvec3(n))) {
+    const PixelTies ties{accel, sb, s, packet.facingCache, st.exactDecisions};
+    switch (classifyAreaPixel(light, glm::dvec3(p), glm::dvec3(n), &ties)) {
         case AreaSkip::BelowHorizon:
             ++st.skippedBelowHorizon;
             return;
@@ -436,6 +438,7 @@ void addCounts(AreaShadowStats& total, const AreaShadowStats& s) {
     total.skippedBackground += s.skippedBackground;
     total.skippedBelowHorizon += s.skippedBelowHorizon;
     total.skippedBehindLight += s.skippedBehindLight;
+    total.exactDecisions += s.exactDecisions;
     total.skippedInsideLight += s.skippedInsideLight;
 }
 

@@ -1,5 +1,6 @@
 #include "oracle/hard_shadow.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -11,12 +12,26 @@
 #include <glm/geometric.hpp>
 
 #include "core/progress.h"
+#include "oracle/exact_facing.h"
 #include "oracle/offset.h"
 
 namespace so {
 
+namespace {
+// A float value this close to a boundary may lie on either side of it by rounding: the lane is
+// decided exactly (resolveTies). The bounds are upper bounds of the float error, with margin (8x
+// and 4x). The cosine n.w of a positional light: the normal and the unit direction carry ~2^-24
+// each and the arithmetic a few ulp (under 2^-21 together); the surface point and the light's
+// position are rounded to float, |dp| < 2^-24 (|p| < 1 in the local frame) and |dl| < 2^-24 |l|,
+// which moves the cosine by up to (|dp| + |dl|) / dist.
+constexpr float kTieCos = 1.0f / 262144.0f;        // 2^-18
+constexpr float kTiePosition = 1.0f / 1048576.0f;  // 2^-20, times (1 + |l|)
+
+}  // namespace
+
 HardLight makeHardLight(const Light& light, const LocalFrame& frame) {
     HardLight h;
+    h.ws = light;
     // Without the penumbra effect an area light is traced as a point light at its centre; rect
     // and disk lights still emit on one side only.
     h.type = isAreaLight(light.type) ? LightType::Point : light.type;
@@ -30,77 +45,145 @@ HardLight makeHardLight(const Light& light, const LocalFrame& frame) {
     h.lsPositionF = glm::vec3(h.lsPosition);
     h.lsDirectionF = glm::vec3(h.lsDirection);
     h.cosOuterF = float(h.cosOuter);
+    const glm::dvec3 a = glm::abs(h.lsPosition);
+    h.lsTieScale = float(kTiePosition * (1.0 + std::max({a.x, a.y, a.z})));
     return h;
 }
 
-void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, PacketSetup& ps) {
-    // Branch-free loops over the 16 lanes, so the compiler vectorises them: this setup runs once
-    // per shadow ray and is what separates the oracle from a bare Embree loop (bench/).
+namespace {
+
+// Per-lane values the classification needs beyond PacketSetup.
+struct LaneScratch {
+    alignas(64) float spotCos[16];
+    alignas(64) float behindDot[16];  // one-sided emitters: > 0 where p is on the emitting side
+    alignas(64) float tieCos[16];     // |cosine| below this: decide exactly
+    alignas(64) float tieBehind[16];  // |behindDot| below this: decide exactly
+};
+
+void setupDirectional(const HardLight& light, PacketSetup& ps, LaneScratch& ls, const float* nx,
+                      const float* ny, const float* nz) {
+    const glm::vec3 d = light.lsDirectionF;
+    for (int k = 0; k < 16; ++k) {
+        ps.cosine[k] = -(nx[k] * d.x + ny[k] * d.y + nz[k] * d.z);
+        ps.dirX[k] = -d.x;
+        ps.dirY[k] = -d.y;
+        ps.dirZ[k] = -d.z;
+        ps.tfar[k] = std::numeric_limits<float>::infinity();
+        ls.spotCos[k] = 1.0f;
+        ls.behindDot[k] = 1.0f;
+        ls.tieCos[k] = kTieCos;
+        ls.tieBehind[k] = 0.0f;
+    }
+}
+
+// From the surface point, not the offset origin: the origin sits above the surface along the
+// normal, which at grazing incidence would lower the cosine by as much as the cosine itself. The
+// ray, aimed along this direction from the offset origin, ends within the offset of the light,
+// which the doubled margin allows.
+void setupPositional(const HardLight& light, const SurfaceBuffer& sb, size_t base, PacketSetup& ps,
+                     LaneScratch& ls) {
     const float* px = &sb.lsPointX[base];
     const float* py = &sb.lsPointY[base];
     const float* pz = &sb.lsPointZ[base];
     const float* nx = &sb.lsNormalX[base];
     const float* ny = &sb.lsNormalY[base];
     const float* nz = &sb.lsNormalZ[base];
-    const glm::vec3 d = light.lsDirectionF;
-    float spotCos[16];
-    float behindDot[16];  // one-sided emitters: > 0 where p is on the emitting side
-    if (light.type == LightType::Directional) {
-        for (int k = 0; k < 16; ++k) {
-            ps.cosine[k] = -(nx[k] * d.x + ny[k] * d.y + nz[k] * d.z);
-            ps.dirX[k] = -d.x;
-            ps.dirY[k] = -d.y;
-            ps.dirZ[k] = -d.z;
-            ps.tfar[k] = std::numeric_limits<float>::infinity();
-            spotCos[k] = 1.0f;
-            behindDot[k] = 1.0f;
-        }
-    } else {
-        // From the surface point, not the offset origin: the origin sits up to 256 ulp above the
-        // surface along the normal, which at grazing incidence would lower the cosine by as much
-        // as the cosine itself. Float is enough (the cosine's error is ~1e-7, a hundred times
-        // below the grazing angles the tests check). The ray, aimed along this direction from the
-        // offset origin, ends within the offset of the light, which the doubled margin allows.
-        const glm::vec3 l = light.lsPositionF;
-        const float endMargin = 2.0f * light.lsEndMargin;
-        for (int k = 0; k < 16; ++k) {
-            const float tx = l.x - px[k], ty = l.y - py[k], tz = l.z - pz[k];
-            const float dist = std::sqrt(tx * tx + ty * ty + tz * tz);
-            const float inv = 1.0f / dist;
-            const float wx = tx * inv, wy = ty * inv, wz = tz * inv;
-            ps.cosine[k] = nx[k] * wx + ny[k] * wy + nz[k] * wz;
-            spotCos[k] = -(wx * d.x + wy * d.y + wz * d.z);
-            ps.dirX[k] = wx;
-            ps.dirY[k] = wy;
-            ps.dirZ[k] = wz;
-            ps.tfar[k] = std::max(0.0f, dist - endMargin);
-            behindDot[k] = -(light.lsEmitNormalF.x * tx + light.lsEmitNormalF.y * ty +
-                             light.lsEmitNormalF.z * tz);
-        }
-    }
-    const bool spot = light.type == LightType::Spot;
+    const glm::vec3 l = light.lsPositionF, d = light.lsDirectionF, e = light.lsEmitNormalF;
+    const float endMargin = 2.0f * light.lsEndMargin;
+    const float tiePosition = light.lsTieScale;
     for (int k = 0; k < 16; ++k) {
-        if (!sb.hit[base + size_t(k)]) {
-            ps.kind[k] = ShadowRayKind::Background;
-            ps.cosine[k] = 0.0f;
-        } else if (!(ps.cosine[k] >
-                     0.0f)) {  // NaN (a point at the light itself) counts as facing away
-            ps.kind[k] = ShadowRayKind::Attached;
-        } else if (spot && spotCos[k] < light.cosOuterF) {
-            ps.kind[k] = ShadowRayKind::OutsideCone;
-        } else if (light.oneSided && !(behindDot[k] > 0.0f)) {
-            ps.kind[k] = ShadowRayKind::BehindLight;
-        } else {
-            ps.kind[k] = ShadowRayKind::Traced;
-        }
+        const float tx = l.x - px[k], ty = l.y - py[k], tz = l.z - pz[k];
+        const float dist = std::sqrt(tx * tx + ty * ty + tz * tz);
+        const float inv = 1.0f / dist;
+        const float wx = tx * inv, wy = ty * inv, wz = tz * inv;
+        ps.cosine[k] = nx[k] * wx + ny[k] * wy + nz[k] * wz;
+        ls.spotCos[k] = -(wx * d.x + wy * d.y + wz * d.z);
+        ps.dirX[k] = wx;
+        ps.dirY[k] = wy;
+        ps.dirZ[k] = wz;
+        ps.tfar[k] = std::max(0.0f, dist - endMargin);
+        ls.behindDot[k] = -(e.x * tx + e.y * ty + e.z * tz);
+        // inv is +inf at the light itself: the lane is then a tie, decided exactly.
+        ls.tieCos[k] = kTieCos + tiePosition * inv;
+        ls.tieBehind[k] = kTieCos * dist + tiePosition;
     }
 }
 
-ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLight& light) {
+ShadowRayKind laneKind(bool facing, bool outsideCone, bool behind) {
+    return !facing       ? ShadowRayKind::Attached
+           : outsideCone ? ShadowRayKind::OutsideCone
+           : behind      ? ShadowRayKind::BehindLight
+                         : ShadowRayKind::Traced;
+}
+
+// The lanes in `ties`, decided on the scene's doubles (exact_facing.h). The cosine keeps its
+// magnitude and takes the exact sign (0 where the light is exactly in the plane), so that the
+// cos channel's sign always agrees with the decision.
+void resolveTies(const Accel& accel, const SurfaceBuffer& sb, size_t base, const HardLight& light,
+                 uint32_t ties, const LaneScratch& ls, PacketSetup& ps) {
+    const bool spot = light.type == LightType::Spot;
+    for (int k = 0; k < 16; ++k) {
+        if (!(ties >> k & 1u)) continue;
+        const size_t slot = base + size_t(k);
+        FacingCache& cache = ps.facingCache;
+        if (cache.triangle != sb.originId[slot]) {
+            const PixelTriangle t = pixelTriangle(accel, sb, slot);
+            cache.triangle = sb.originId[slot];
+            cache.facing = int8_t(light.type == LightType::Directional
+                                      ? facingDirection(t, -light.ws.wsDirection)
+                                      : facingPoint(t, light.ws.wsPosition));
+            cache.emitter = int8_t(light.oneSided ? emitterSide(t, light.ws) : 1);
+        }
+        ++ps.exactDecisions;
+        // A float cosine of 0 with a non-zero exact sign becomes the smallest normal float.
+        const float magnitude =
+            std::max(std::fabs(ps.cosine[k]), std::numeric_limits<float>::min());
+        ps.cosine[k] = float(cache.facing) * magnitude;
+        const bool behind = cache.emitter == 0 ? !(ls.behindDot[k] > 0.0f) : cache.emitter < 0;
+        ps.kind[k] = laneKind(cache.facing > 0, spot && ls.spotCos[k] < light.cosOuterF,
+                              light.oneSided && behind);
+    }
+}
+
+}  // namespace
+
+void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const HardLight& light,
+                 PacketSetup& ps) {
+    // Branch-free loops over the 16 lanes, so the compiler vectorises them: this setup runs once
+    // per shadow ray and is what separates the oracle from a bare Embree loop (bench/).
+    LaneScratch ls;
+    if (light.type == LightType::Directional)
+        setupDirectional(light, ps, ls, &sb.lsNormalX[base], &sb.lsNormalY[base],
+                         &sb.lsNormalZ[base]);
+    else
+        setupPositional(light, sb, base, ps, ls);
+    const bool spot = light.type == LightType::Spot;
+    for (int k = 0; k < 16; ++k) {
+        const bool hit = sb.hit[base + size_t(k)] != 0;
+        // NaN (a point at the light itself) counts as facing away, unless decided exactly.
+        ps.kind[k] = hit ? laneKind(ps.cosine[k] > 0.0f, spot && ls.spotCos[k] < light.cosOuterF,
+                                    light.oneSided && !(ls.behindDot[k] > 0.0f))
+                         : ShadowRayKind::Background;
+        if (!hit) ps.cosine[k] = 0.0f;
+    }
+    // Ties, in a loop of its own so that it vectorises (NaN compares false: a tie).
+    alignas(64) int32_t tie[16];
+    const int32_t oneSided = light.oneSided;
+    for (int k = 0; k < 16; ++k)
+        tie[k] = int32_t(sb.hit[base + size_t(k)] != 0) &
+                 (int32_t(!(std::fabs(ps.cosine[k]) >= ls.tieCos[k])) |
+                  (oneSided & int32_t(!(std::fabs(ls.behindDot[k]) >= ls.tieBehind[k]))));
+    uint32_t ties = 0;
+    for (int k = 0; k < 16; ++k) ties |= uint32_t(tie[k]) << k;
+    if (ties) resolveTies(accel, sb, base, light, ties, ls, ps);
+}
+
+ShadowRaySetup setupShadowRay(const Accel& accel, const SurfaceBuffer& sb, size_t slot,
+                              const HardLight& light) {
     // Through the packet code, so the benchmark's plain loops trace exactly the oracle's rays.
     PacketSetup ps;
     const size_t base = slot - slot % 16;
-    setupPacket(sb, base, light, ps);
+    setupPacket(accel, sb, base, light, ps);
     const int k = int(slot % 16);
     ShadowRaySetup s;
     s.kind = ps.kind[k];
@@ -203,7 +286,7 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
                HardPacket& p, float* V, float* cosine, float* occDist, HardShadowStats& st) {
     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
     const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
-    setupPacket(sb, base, light, p.ps);
+    setupPacket(accel, sb, base, light, p.ps);
     const int cols = std::min(SurfaceBuffer::kTile, sb.width - x0);
     const int rows = std::min(SurfaceBuffer::kTile, sb.height - y0);
     const int active = classifyLanes(p, cols, rows);
@@ -244,6 +327,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
             st.skippedOutsideCone += packet.counts[int(ShadowRayKind::OutsideCone)];
             st.skippedBehindLight += packet.counts[int(ShadowRayKind::BehindLight)];
             st.traced += packet.counts[int(ShadowRayKind::Traced)];
+            st.exactDecisions += packet.ps.exactDecisions;
         });
     HardShadowStats total;
     partial.combine_each([&](const HardShadowStats& s) {
@@ -254,6 +338,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         total.skippedOutsideCone += s.skippedOutsideCone;
         total.skippedBehindLight += s.skippedBehindLight;
         total.closestHitQueries += s.closestHitQueries;
+        total.exactDecisions += s.exactDecisions;
     });
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return total;

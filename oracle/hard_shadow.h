@@ -4,6 +4,8 @@
 // Per pixel (docs/oracle.md):
 //   background (no primary hit)        V = 0, cos = 0, no ray
 //   cos <= 0 (light behind the normal) V = 0, no ray   ("attached" shadow)
+//     (decided exactly on the scene's doubles where the float cosine is within its rounding
+//     error of 0, and so is the side of a one-sided emitter: exact_facing.h)
 //   spot, outside the outer cone       V = 0, no ray   ("outside_cone")
 //   rect/disk at its centre, behind it V = 0, no ray   ("behind_light")
 //   otherwise                          V = 1 if the segment from the offset origin to the light
@@ -17,6 +19,7 @@
 
 #include "core/scene.h"
 #include "oracle/accel.h"
+#include "oracle/exact_facing.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {
@@ -34,6 +37,8 @@ struct HardLight {
     float cosOuterF = -1.0f;
     bool oneSided = false;          // a rect or disk light traced at its centre
     glm::vec3 lsEmitNormalF{0.0f};  // its emitting side
+    float lsTieScale = 0.0f;        // the light position's part of the tie bound (hard_shadow.cpp)
+    Light ws;                       // the scene's light, for the exact decisions
 };
 HardLight makeHardLight(const Light& light, const LocalFrame& frame);
 
@@ -65,17 +70,24 @@ struct PacketSetup {
     alignas(64) float dirZ[16];
     alignas(64) float tfar[16];
     ShadowRayKind kind[16];
+    // Kept from packet to packet of one thread and light: the last exact decision, and how many
+    // lanes were decided exactly.
+    FacingCache facingCache;
+    uint64_t exactDecisions = 0;
 };
-void setupPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light, PacketSetup& ps);
+void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const HardLight& light,
+                 PacketSetup& ps);
 
 // `slot` indexes the tile-major surface buffer (SurfaceBuffer::slot).
-ShadowRaySetup setupShadowRay(const SurfaceBuffer& sb, size_t slot, const HardLight& light);
+ShadowRaySetup setupShadowRay(const Accel& accel, const SurfaceBuffer& sb, size_t slot,
+                              const HardLight& light);
 
 struct HardShadowStats {
     uint64_t traced = 0, occluded = 0;
     uint64_t skippedBackground = 0, skippedAttached = 0, skippedOutsideCone = 0,
              skippedBehindLight = 0;
     uint64_t closestHitQueries = 0;  // only with occDist (the contact effect)
+    uint64_t exactDecisions = 0;     // pixels whose facing a float tie left to exact arithmetic
     double seconds = 0.0;
 };
 

@@ -100,6 +100,7 @@ OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     s.skippedBelowHorizon = st.skippedBelowHorizon;
     s.skippedBehindLight = st.skippedBehindLight;
     s.skippedInsideLight = st.skippedInsideLight;
+    s.exactDecisions = st.exactDecisions;
     s.samples = st.samples;
     s.pixelsSampled = st.pixelsSampled;
     s.pixelsWithoutUsableSamples = st.pixelsWithoutUsableSamples;
@@ -146,6 +147,7 @@ OracleHardStats traceHardLight(const LightPass& p, uint32_t li, bool sampled, fl
     if (light.type == LightType::Spot) s.skippedOutsideCone = st.skippedOutsideCone;
     if (hl.oneSided) s.skippedBehindLight = st.skippedBehindLight;
     s.closestHitQueries = st.closestHitQueries;
+    s.exactDecisions = st.exactDecisions;
     s.seconds = st.seconds;
     return s;
 }

@@ -102,9 +102,13 @@ json hardJson(const OracleHardStats& s) {
     json skipped = {{"background", s.skippedBackground}, {"attached", s.skippedAttached}};
     if (s.skippedOutsideCone) skipped["outside_cone"] = *s.skippedOutsideCone;
     if (s.skippedBehindLight) skipped["behind_light"] = *s.skippedBehindLight;
-    return {{"rays_traced", s.raysTraced}, {"rays_occluded", s.raysOccluded},
-            {"rays_skipped", skipped},     {"closest_hit_queries", s.closestHitQueries},
-            {"seconds", s.seconds},        {"rays_per_second", s.raysPerSecond()}};
+    return {{"rays_traced", s.raysTraced},
+            {"rays_occluded", s.raysOccluded},
+            {"rays_skipped", skipped},
+            {"closest_hit_queries", s.closestHitQueries},
+            {"exact_decisions", s.exactDecisions},
+            {"seconds", s.seconds},
+            {"rays_per_second", s.raysPerSecond()}};
 }
 
 // The samples and mean stated half-width had every pixel stopped after at most `packets`; the
@@ -131,6 +135,7 @@ json areaJson(const OracleAreaStats& s) {
               {"below_horizon", s.skippedBelowHorizon},
               {"behind_light", s.skippedBehindLight},
               {"inside_light", s.skippedInsideLight}}},
+            {"exact_decisions", s.exactDecisions},
             {"samples", s.samples},
             {"samples_without_ray", s.samplesWithoutRay()},
             {"pixels_sampled", s.pixelsSampled},
@@ -368,6 +373,7 @@ OracleHardStats readHard(const Fields& f) {
     if (skipped.has("outside_cone")) s.skippedOutsideCone = skipped.u64("outside_cone");
     if (skipped.has("behind_light")) s.skippedBehindLight = skipped.u64("behind_light");
     s.closestHitQueries = f.u64("closest_hit_queries");
+    s.exactDecisions = f.u64("exact_decisions");
     s.seconds = f.number("seconds");
     return s;
 }
@@ -382,6 +388,7 @@ OracleAreaStats readArea(const Fields& f) {
     s.skippedBelowHorizon = skipped.u64("below_horizon");
     s.skippedBehindLight = skipped.u64("behind_light");
     s.skippedInsideLight = skipped.u64("inside_light");
+    s.exactDecisions = f.u64("exact_decisions");
     s.samples = f.u64("samples");
     if (s.samples < s.raysTraced) f.fail(f.name("samples"), "fewer than rays_traced");
     s.pixelsSampled = f.u64("pixels_sampled");

@@ -26,6 +26,7 @@ struct OracleHardStats {
     std::optional<uint64_t> skippedOutsideCone;  // spot lights only
     std::optional<uint64_t> skippedBehindLight;  // one-sided lights (rect, disk) only
     uint64_t closestHitQueries = 0;              // only with the contact effect
+    uint64_t exactDecisions = 0;  // pixels a float tie left to exact arithmetic (exact_facing.h)
     double seconds = 0.0;
     double raysPerSecond() const;
 };
@@ -36,6 +37,7 @@ struct OracleAreaStats {
     uint64_t raysTraced = 0, raysOccluded = 0;
     uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
              skippedInsideLight = 0;
+    uint64_t exactDecisions = 0;  // pixels a float tie left to exact arithmetic (exact_facing.h)
     uint64_t samples = 0, pixelsSampled = 0, pixelsWithoutUsableSamples = 0, sppMax = 0;
     std::optional<double> targetError;  // none with a fixed spp
     // Adaptive: pixels whose samples all agree stop at max(targetError, this) (area_shadow.h).

@@ -21,7 +21,11 @@ void addGrazingLights(GrazingScene& g, int index, double c, const glm::dvec3& u,
     const double s = std::sqrt(1.0 - c * c);
     for (int az = 0; az < 2; ++az) {
         const glm::dvec3 t = az == 0 ? t1 : t2;
-        const glm::dvec3 toLight = c * n + s * t;
+        // For c = 0 the direction must lie in the plane in double too: normalize(u) and
+        // normalize(-v) do (their components are one rounded factor times small integers, and
+        // scaling by a power of two is exact), t2 = n x t1 does not.
+        const glm::dvec3 toLight =
+            c == 0.0 ? (az == 0 ? glm::normalize(u) : glm::normalize(-v)) : c * n + s * t;
         const std::string tag = std::to_string(index) + "_" + std::to_string(az);
         g.scene.lights.push_back({"dir_" + tag, LightType::Directional, {0, 0, 0}, -toLight, 0, 0});
         g.lights.push_back({"dir_" + tag, LightType::Directional, c});
