@@ -5,6 +5,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/image_codec.h"
 #include "core/preview.h"
 #include "core/version.h"
 

@@ -5,10 +5,10 @@
 #include <iostream>
 
 #include <OpenEXR/OpenEXRConfig.h>
-#include <png.h>
 
 #include "cli/output.h"
 #include "core/error.h"
+#include "core/image_codec.h"
 #include "core/progress.h"
 #include "oracle/embree_handles.h"
 
@@ -21,7 +21,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
                           const CameraDesc& cam, const OracleStats& stats, double loadSeconds,
                           double writeSeconds) {
     nlohmann::json j = {
-        {"format_version", 6},
+        {"format_version", 7},
         {"tool", toolJson()},
         {"scene",
          {{"file", options.scenePath},
@@ -43,7 +43,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
         {"libraries",
          {{"embree", EmbreeDevice::version()},
           {"openexr", OPENEXR_VERSION_STRING},
-          {"libpng", PNG_LIBPNG_VER_STRING}}},
+          {"openimageio", imageLibraryVersion()}}},
     };
     j.update(toJson(stats));
     j["phases_seconds"]["load"] = loadSeconds;

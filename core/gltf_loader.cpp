@@ -35,46 +35,19 @@
 #include <glm/mat4x4.hpp>
 #include <nlohmann/json.hpp>
 
-// Must match tinygltf_impl.cpp so that the declarations (Model, TinyGLTF) are the same.
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/gltf_alpha.h"
+#include "core/gltf_detail.h"
 
 namespace so {
 namespace {
 
-namespace fs = std::filesystem;
-using Json = nlohmann::json;
+using namespace gltf_detail;
 
 // tinygltf converts extras and extensions recursively (ParseJsonAsValue), so a deeply nested file
 // would overflow the stack. Real files nest fewer than 10 levels.
 constexpr int kMaxJsonDepth = 64;
-
-struct Context {
-    std::string displayName;
-    LoadLimits limits;
-    GltfContent* out = nullptr;
-    std::string folderPrefix;  // absolute folder of the glTF file, ending in '/'
-    fs::path canonicalFolder;
-    // Set by the filesystem callbacks, which cannot throw through tinygltf's C-style interface.
-    std::string fsField, fsError;
-};
-
-[[noreturn]] void fail(const Context& ctx, const std::string& field, const std::string& message) {
-    throwInputError(ctx.displayName, field, message);
-}
-
-std::string idx(const char* array, size_t i) {
-    return std::string(array) + "[" + std::to_string(i) + "]";
-}
-
-std::string quoted(const std::string& s) {
-    return "'" + printable(s) + "'";
-}
 
 // tinygltf's messages end in newlines and may hold several lines.
 std::string oneLine(const std::string& s) {
@@ -106,94 +79,6 @@ std::vector<std::string> lines(const std::string& s) {
 
 // ---- Files --------------------------------------------------------------------------------------
 
-// Exactly what tinygltf's dlib::urldecode does, so that the path checked is the path opened.
-std::string urlDecode(const std::string& s) {
-    auto hex = [](unsigned char c) -> unsigned char {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-        return 0;
-    };
-    std::string out;
-    for (size_t i = 0; i < s.size(); ++i) {
-        if (s[i] == '+') {
-            out += ' ';
-        } else if (s[i] == '%' && s.size() > i + 2) {
-            out += static_cast<char>((hex(static_cast<unsigned char>(s[i + 1])) << 4) |
-                                     hex(static_cast<unsigned char>(s[i + 2])));
-            i += 2;
-        } else {
-            out += s[i];
-        }
-    }
-    return out;
-}
-
-// Why a URI may not be opened, or "" if it is a plain relative path inside the folder.
-std::string unsafeUriReason(const std::string& uri) {
-    if (uri.empty()) return "empty URI";
-    for (unsigned char c : uri)
-        if (c < 0x20 || c == 0x7f) return "control characters in URI";
-    if (uri[0] == '/' || uri[0] == '\\') return "absolute paths are not allowed";
-    // A scheme ("http:", "file:", also a drive letter "C:") comes before the first '/'.
-    size_t colon = uri.find(':');
-    if (colon != std::string::npos && colon < uri.find_first_of("/\\"))
-        return "URI scheme '" + printable(uri.substr(0, colon + 1), 20) +
-               "' is not allowed (only relative paths inside the model's folder, or base64 data: "
-               "URIs)";
-    size_t start = 0;
-    while (start <= uri.size()) {
-        size_t end = uri.find_first_of("/\\", start);
-        if (end == std::string::npos) end = uri.size();
-        if (uri.compare(start, end - start, "..") == 0 && end - start == 2)
-            return "'..' is not allowed (files must be inside the model's folder)";
-        start = end + 1;
-    }
-    return "";
-}
-
-bool insideFolder(const fs::path& canonicalFolder, const fs::path& p) {
-    std::error_code ec;
-    fs::path c = fs::weakly_canonical(p, ec);
-    if (ec) return false;
-    fs::path rel = c.lexically_relative(canonicalFolder);
-    return !rel.empty() && *rel.begin() != ".." && !rel.is_absolute();
-}
-
-// Reads a whole regular file, refusing it before reading if it is over the limits. Returns an
-// error text, or "" on success.
-std::string readCapped(Context& ctx, const fs::path& p, std::vector<unsigned char>& data) {
-    std::error_code ec;
-    // A FIFO or device could block or never end: only regular files are opened.
-    if (!fs::is_regular_file(p, ec)) return "not found or not a regular file";
-    uint64_t size = fs::file_size(p, ec);
-    if (ec) return "cannot get the file size";
-    if (size > ctx.limits.maxFileBytes)
-        return "file is " + std::to_string(size) + " bytes, over the limit of " +
-               std::to_string(ctx.limits.maxFileBytes);
-    if (ctx.out->bytesRead + size > ctx.limits.maxTotalBytes)
-        return "files read total " + std::to_string(ctx.out->bytesRead + size) +
-               " bytes, over the limit of " + std::to_string(ctx.limits.maxTotalBytes);
-    std::ifstream in(p, std::ios::binary);
-    if (!in) return "cannot open";
-    data.resize(static_cast<size_t>(size));
-    if (size > 0) in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(size));
-    if (!in || static_cast<uint64_t>(in.gcount()) != size) return "read error (file changed?)";
-    ctx.out->filesRead.push_back(p);
-    ctx.out->bytesRead += size;
-    return "";
-}
-
-// tinygltf asks for files as base_dir + "/" + decoded URI (and, failing that, relative to the
-// working directory): only the first form, with a safe relative part, is ever answered.
-bool allowedPath(const Context& ctx, const std::string& p) {
-    if (p.size() <= ctx.folderPrefix.size() ||
-        p.compare(0, ctx.folderPrefix.size(), ctx.folderPrefix) != 0)
-        return false;
-    if (!unsafeUriReason(p.substr(ctx.folderPrefix.size())).empty()) return false;
-    return insideFolder(ctx.canonicalFolder, p);
-}
-
 bool fsFileExists(const std::string& p, void* user) {
     const auto* ctx = static_cast<const Context*>(user);
     std::error_code ec;
@@ -223,9 +108,12 @@ bool fsWriteWholeFile(std::string* err, const std::string&, const std::vector<un
     return false;
 }
 
-// Images are never decoded (only geometry matters here), so their data is accepted unread.
-bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                 const unsigned char*, int, void*) {
+// Images are not decoded here: the bytes of those stored in the file (bufferView, data: URI) are
+// kept, and gltf_alpha.cpp decodes the ones an alpha-tested material uses, through OpenImageIO.
+bool keepImageBytes(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* user) {
+    auto* ctx = static_cast<Context*>(user);
+    if (bytes && size > 0) ctx->embeddedImages[index].assign(bytes, bytes + size);
     return true;
 }
 
@@ -300,12 +188,6 @@ void checkNumbers(const Context& ctx, const Json& j, const std::string& path,
                         : j.get<int64_t>() >= std::numeric_limits<int32_t>::min();
         if (!fits) fail(ctx, printable(path, 120), "integer out of range");
     }
-}
-
-const Json* member(const Json& j, const char* key) {
-    if (!j.is_object()) return nullptr;
-    auto it = j.find(key);
-    return it == j.end() ? nullptr : &*it;
 }
 
 // Buffer URIs: checked, located and size-checked here so that errors name the field (tinygltf's
@@ -515,53 +397,6 @@ GlbChunks glbChunks(const Context& ctx, const std::vector<unsigned char>& d) {
 
 // ---- Validated access to the loaded model ----------------------------------------------------
 
-struct AccessorData {
-    const unsigned char* base = nullptr;
-    uint64_t stride = 0;
-    uint64_t count = 0;
-    int componentType = 0;
-};
-
-uint64_t componentSize(int componentType) {
-    switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return 1;
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return 2;
-        case TINYGLTF_COMPONENT_TYPE_INT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT:
-            return 4;
-        case TINYGLTF_COMPONENT_TYPE_DOUBLE:
-            return 8;
-        default:
-            return 0;
-    }
-}
-
-uint64_t componentCount(int type) {
-    switch (type) {
-        case TINYGLTF_TYPE_SCALAR:
-            return 1;
-        case TINYGLTF_TYPE_VEC2:
-            return 2;
-        case TINYGLTF_TYPE_VEC3:
-            return 3;
-        case TINYGLTF_TYPE_VEC4:
-            return 4;
-        case TINYGLTF_TYPE_MAT2:
-            return 4;
-        case TINYGLTF_TYPE_MAT3:
-            return 9;
-        case TINYGLTF_TYPE_MAT4:
-            return 16;
-        default:
-            return 0;
-    }
-}
-
 void checkBufferViews(const Context& ctx, const tinygltf::Model& model) {
     for (size_t i = 0; i < model.bufferViews.size(); ++i) {
         const tinygltf::BufferView& bv = model.bufferViews[i];
@@ -580,59 +415,6 @@ void checkBufferViews(const Context& ctx, const tinygltf::Model& model) {
                      ".byteLength (" + (overflow ? std::string("overflow") : std::to_string(end)) +
                      " > " + std::to_string(size) + ")");
     }
-}
-
-// `usedAs` names the reference (e.g. "meshes[0].primitives[1].indices") for range errors.
-// `checkType` runs before the byte range is checked, so a wrong type is reported as such rather
-// than as a range error computed with the wrong element size.
-template <typename CheckType>
-AccessorData checkedAccessor(const Context& ctx, const tinygltf::Model& model, const Json& doc,
-                             int index, const std::string& usedAs, CheckType&& checkType) {
-    if (index < 0 || size_t(index) >= model.accessors.size())
-        fail(ctx, usedAs,
-             "accessor " + std::to_string(index) + " out of range (" +
-                 std::to_string(model.accessors.size()) + " accessors)");
-    const tinygltf::Accessor& a = model.accessors[size_t(index)];
-    std::string field = idx("accessors", size_t(index));
-    const Json* accessors = member(doc, "accessors");
-    if (a.sparse.isSparse ||
-        (accessors && accessors->is_array() && size_t(index) < accessors->size() &&
-         member((*accessors)[size_t(index)], "sparse")))
-        fail(ctx, field + ".sparse", "sparse accessors are not supported");
-    checkType(a);
-    if (a.bufferView < 0)
-        fail(ctx, field, "accessors without a bufferView (all zeros) are not supported");
-    if (size_t(a.bufferView) >= model.bufferViews.size())
-        fail(ctx, field + ".bufferView",
-             std::to_string(a.bufferView) + " out of range (" +
-                 std::to_string(model.bufferViews.size()) + " bufferViews)");
-    if (a.count == 0) fail(ctx, field + ".count", "must be at least 1");
-    const tinygltf::BufferView& bv = model.bufferViews[size_t(a.bufferView)];
-    std::string bvField = idx("bufferViews", size_t(a.bufferView));
-    uint64_t elementSize = componentSize(a.componentType) * componentCount(a.type);
-    if (elementSize == 0) fail(ctx, field, "invalid componentType or type");
-    uint64_t stride = bv.byteStride == 0 ? elementSize : uint64_t(bv.byteStride);
-    // tinygltf has already required byteStride % 4 == 0 and <= 252.
-    if (bv.byteStride != 0 && (stride < elementSize || stride > 252 || stride % 4 != 0))
-        fail(ctx, bvField + ".byteStride",
-             std::to_string(bv.byteStride) + " must be a multiple of 4 in [" +
-                 std::to_string(elementSize) + ", 252] for " + field);
-    uint64_t span = 0, end = 0;
-    bool overflow = __builtin_mul_overflow(stride, uint64_t(a.count - 1), &span) ||
-                    __builtin_add_overflow(span, uint64_t(a.byteOffset), &end) ||
-                    __builtin_add_overflow(end, elementSize, &end);
-    if (overflow || end > bv.byteLength)
-        fail(ctx, field,
-             "byteOffset + stride*(count-1) + elementSize exceeds " + bvField + ".byteLength (" +
-                 (overflow ? std::string("overflows 64 bits") : std::to_string(end)) + " > " +
-                 std::to_string(bv.byteLength) + ")");
-    // checkBufferViews has put the whole bufferView inside its buffer.
-    AccessorData d;
-    d.base = model.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset + a.byteOffset;
-    d.stride = stride;
-    d.count = a.count;
-    d.componentType = a.componentType;
-    return d;
 }
 
 bool allFinite(const std::vector<double>& v) {
@@ -928,7 +710,8 @@ uint32_t readIndex(const AccessorData& a, uint64_t i) {
     }
 }
 
-MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const PlannedPrimitive& pp) {
+MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const PlannedPrimitive& pp,
+                    GltfAlpha& alpha) {
     const Instance& inst = pp.instance;
     const tinygltf::Node& node = model.nodes[inst.node];
     const tinygltf::Mesh& mesh = model.meshes[pp.mesh];
@@ -979,6 +762,7 @@ MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Plan
                                    {elements[i + 1], elements[i], elements[i + 2]});
         }
     }
+    alpha.apply(prim, pp.positions.count, field, out);
     return out;
 }
 
@@ -1096,8 +880,13 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
     out.skippedPrimitives = nonTriangle + empty;
 
     // Pass 2: build.
+    GltfAlpha alpha(ctx, model, doc);
     out.meshes.reserve(plan.size());
-    for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, pp));
+    for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, pp, alpha));
+    out.alphaTextures = alpha.takeTextures();
+    if (alpha.fromBlend() > 0)
+        out.warnings.push_back(std::to_string(alpha.fromBlend()) +
+                               " primitive(s) with alphaMode BLEND read as MASK at cutoff 0.5");
 }
 
 }  // namespace
@@ -1151,7 +940,7 @@ GltfContent loadGltf(const std::filesystem::path& path, const std::string& displ
     checkPrimitivesParse(ctx, doc);
 
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(ignoreImage, nullptr);
+    loader.SetImageLoader(keepImageBytes, &ctx);
     loader.SetFsCallbacks(
         {fsFileExists, fsExpandFilePath, fsReadWholeFile, fsWriteWholeFile, &ctx});
     tinygltf::Model model;

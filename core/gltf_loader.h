@@ -1,6 +1,7 @@
-// Safe loading of glTF 2.0 (.gltf / .glb) through tinygltf 2.7: images are never decoded, no URI
-// may leave the folder of the file, every accessor is checked against its buffer, and sizes are
-// capped: tinygltf leaves each of these unchecked (the cases are in tests/data/broken_gltf/).
+// Safe loading of glTF 2.0 (.gltf / .glb) through tinygltf 2.7: no URI may leave the folder of
+// the file, every accessor is checked against its buffer, and sizes are capped: tinygltf leaves
+// each of these unchecked (the cases are in tests/data/broken_gltf/). Images are decoded only for
+// alpha-tested materials, through OpenImageIO, within the limits (gltf_alpha.h).
 #pragma once
 
 #include <filesystem>
@@ -18,6 +19,7 @@ struct GltfContent {
     std::vector<MeshPrimitive> meshes;  // in drawn order (docs/scene-format.md, "Mesh numbering")
     std::optional<CameraDesc> camera;   // first camera node in traversal order, if any
     std::vector<Light> lights;          // KHR_lights_punctual, named and made unique
+    std::vector<AlphaTexture> alphaTextures;  // AlphaMask::texture indexes this list
     size_t skippedPrimitives = 0;
     std::vector<std::string> warnings;
     std::vector<std::filesystem::path> filesRead;  // for the content hash

@@ -41,12 +41,6 @@ void writeExr(const std::string& path, const ChannelImage& image,
 // Reads every channel as float. Throws InputError on a bad file.
 ChannelImage readExr(const std::string& path);
 
-// 8-bit sRGB PNG from linear RGB floats in [0,1] (interleaved, row 0 at the top).
-void writePngRgb(const std::string& path, int width, int height,
-                 const std::vector<float>& linearRgb);
-// The same image as a PNG in memory (the report's): grey, palette or RGB, whichever holds it
-// without loss in the fewest bytes.
-std::vector<unsigned char> encodePngRgb(int width, int height, const std::vector<float>& linearRgb);
-std::string base64(const std::vector<unsigned char>& bytes);
+// PNGs and textures: core/image_codec.h.
 
 }  // namespace so

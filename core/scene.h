@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace so {
@@ -57,6 +59,31 @@ struct Light {
     glm::dvec3 wsEmitNormal() const;
 };
 
+// How a texture repeats outside [0, 1] (glTF sampler wrapS / wrapT), and how it is read.
+enum class TextureWrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+enum class TextureFilter : uint8_t { Nearest, Bilinear };
+
+// The alpha channel of a base colour texture, decoded through OpenImageIO (core/image_codec.h):
+// what an alpha test reads. Texel (0, 0) is the image's top-left, at uv (0, 0) (glTF's
+// convention: no flip).
+struct AlphaTexture {
+    std::string name;  // "FILE#images[i]", for people
+    int width = 0, height = 0;
+    std::vector<float> alpha;  // width * height, row by row from the top, each in [0, 1]
+};
+
+// An alpha-tested material: glTF alphaMode MASK, or BLEND read as MASK at cutoff 0.5
+// (docs/scene-format.md). Where factor * texture alpha at a point is below `cutoff`, the surface
+// is not there, for every ray of the oracle and every raster pass (core/alpha_mask.h).
+struct AlphaMask {
+    float cutoff = 0.5f;
+    float factor = 1.0f;  // baseColorFactor's alpha
+    int texture = -1;     // index into Scene::alphaTextures; -1: the alpha is `factor` alone
+    TextureWrap wrapS = TextureWrap::Repeat, wrapT = TextureWrap::Repeat;
+    TextureFilter filter = TextureFilter::Nearest;
+    bool fromBlend = false;  // the file said BLEND
+};
+
 // One drawn mesh primitive (a glTF primitive instanced by one node). Its index in Scene::meshes
 // is its `id.mesh`; the triangle index within `indices` / 3 is its `id.prim`.
 struct MeshPrimitive {
@@ -64,6 +91,10 @@ struct MeshPrimitive {
     std::vector<glm::dvec3> wsPositions;  // node transforms and scene-file placement applied
     std::vector<uint32_t> indices;        // 3 per triangle, all < wsPositions.size()
     size_t degenerateTriangles = 0;       // zero-area in double; kept (ids stay stable), counted
+    // Alpha-tested primitives only: the material, and the base colour texture's coordinates per
+    // vertex (KHR_texture_transform applied; a constant-alpha mask has none).
+    std::optional<AlphaMask> alpha;
+    std::vector<glm::vec2> uvs;
     size_t triangleCount() const { return indices.size() / 3; }
 };
 
@@ -83,6 +114,10 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<std::string> effects;  // as given, validated; default {"hard"}
     bool hasEffect(const std::string& e) const;
+    std::vector<AlphaTexture> alphaTextures;  // of the alpha-tested materials
+    // Whether mesh `m` is alpha-tested: it has a mask and the effects include "alpha" (without
+    // it, masks are drawn opaque, with a warning).
+    bool alphaTested(size_t m) const { return meshes[m].alpha && hasEffect("alpha"); }
     Bounds3d wsBounds;  // of all mesh vertices
     SceneStats stats;
 };
@@ -95,8 +130,9 @@ struct LoadLimits {
     uint64_t maxTrianglesPerMesh = uint64_t(1) << 24;  // id.prim is stored exactly in float32
     uint64_t maxMeshes = uint64_t(1) << 24;            // id.mesh likewise
     uint64_t maxTotalTriangles = uint64_t(1) << 28;
-    int maxImageSide = 16384;
-    uint64_t maxImagePixels = uint64_t(1) << 26;
+    int maxImageSide = 16384;                          // alpha textures: either side
+    uint64_t maxImagePixels = uint64_t(1) << 26;       // one alpha texture
+    uint64_t maxTotalImagePixels = uint64_t(1) << 28;  // all alpha textures of a scene
     int maxNodeDepth = 256;
     size_t maxLights = 64;
 };

@@ -337,7 +337,23 @@ void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const Loa
         throwInputError(
             display, "",
             "the scene's files total more than " + std::to_string(limits.maxTotalBytes) + " bytes");
-    for (const MeshPrimitive& m : g.meshes) scene.meshes.push_back(m);
+    // Each file numbers its textures from 0; the scene's list holds every file's in turn.
+    const int textureBase = int(scene.alphaTextures.size());
+    for (const MeshPrimitive& m : g.meshes) {
+        scene.meshes.push_back(m);
+        if (m.alpha && m.alpha->texture >= 0) scene.meshes.back().alpha->texture += textureBase;
+    }
+    uint64_t texturePixels = 0;
+    for (const AlphaTexture& t : scene.alphaTextures) texturePixels += t.alpha.size();
+    for (const AlphaTexture& t : g.alphaTextures) {
+        texturePixels += t.alpha.size();
+        scene.alphaTextures.push_back(t);
+    }
+    if (texturePixels > limits.maxTotalImagePixels)
+        throwInputError(display, "geometry",
+                        "the alpha textures hold " + std::to_string(texturePixels) +
+                            " pixels in all, over the limit of " +
+                            std::to_string(limits.maxTotalImagePixels));
     if (scene.meshes.size() > limits.maxMeshes)
         throwInputError(display, "",
                         "more than " + std::to_string(limits.maxMeshes) + " drawn meshes");
@@ -350,6 +366,16 @@ void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const Loa
 void warnAboutEffects(Scene& scene) {
     bool anyArea = false;
     for (const Light& l : scene.lights) anyArea |= isAreaLight(l.type);
+    size_t masked = 0;
+    for (const MeshPrimitive& m : scene.meshes) masked += m.alpha.has_value();
+    if (scene.hasEffect("alpha") && masked == 0)
+        scene.stats.warnings.push_back(
+            "effects: \"alpha\" is listed but no material is alpha-tested (MASK or BLEND): "
+            "nothing to test");
+    if (!scene.hasEffect("alpha") && masked > 0)
+        scene.stats.warnings.push_back(
+            std::to_string(masked) +
+            " alpha-tested primitive(s) drawn opaque: effects lacks \"alpha\"");
     if (scene.hasEffect("penumbra") && !anyArea)
         scene.stats.warnings.push_back(
             "effects: \"penumbra\" is listed but the scene has no area light (rect, disk, sphere): "
@@ -439,9 +465,9 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         for (size_t i = 0; i < je.size(); ++i) {
             std::string f = Reader::index("effects", i);
             std::string e = r.string(je[i], f);
-            if (e != "hard" && e != "penumbra" && e != "contact")
+            if (e != "hard" && e != "penumbra" && e != "contact" && e != "alpha")
                 r.fail(f, "unknown effect \"" + printable(e, 40) +
-                              "\" (valid: hard, penumbra, contact)");
+                              "\" (valid: hard, penumbra, contact, alpha)");
             if (!seen.insert(e).second) r.fail(f, "\"" + e + "\" listed twice");
             scene.effects.push_back(e);
         }
@@ -484,7 +510,13 @@ Scene loadSceneGltf(const std::filesystem::path& path, const std::string& displa
             "the glTF file has no KHR_lights_punctual lights: added the default directional light "
             "\"sun\" travelling along (-0.3, -1, -0.5)");
     }
+    // A bare glTF file has no effects list: its alpha-tested materials are tested.
     scene.effects = {"hard"};
+    for (const MeshPrimitive& m : scene.meshes)
+        if (m.alpha) {
+            scene.effects.push_back("alpha");
+            break;
+        }
     finalizeScene(scene);
     if (scene.stats.totalTrianglesExceeded(limits))
         throwInputError(

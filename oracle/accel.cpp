@@ -2,14 +2,20 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 
 #include <glm/geometric.hpp>
 
+#include "core/alpha_mask.h"
 #include "core/error.h"
 
 namespace so {
 
 namespace {
+
+using AlphaGeometry = Accel::AlphaGeometry;
+
+thread_local uint64_t tAlphaTests = 0;
 
 // Rejects a candidate hit on the triangle the ray leaves from. The mesh's first global index is
 // the geometry's user data; the ray's id holds the origin triangle's global index.
@@ -19,6 +25,30 @@ void skipOriginTriangle(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] == 0) continue;
         const unsigned origin = RTCRayN_id(args->ray, args->N, i);
         if (origin == base + RTCHitN_primID(args->hit, args->N, i)) args->valid[i] = 0;
+    }
+}
+
+// Alpha-tested geometry: the origin triangle is skipped as above (where asked), and a candidate
+// hit where the material's alpha is below its cutoff is no hit (core/alpha_mask.h), for every ray:
+// primary, shadow, closest or any hit. The texture coordinate is interpolated with Embree's
+// barycentrics, as the raster path interpolates it across the triangle.
+void alphaTestHit(const RTCFilterFunctionNArguments* args) {
+    const auto* a = static_cast<const AlphaGeometry*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        if (a->skipOrigin && RTCRayN_id(args->ray, args->N, i) == a->base + prim) {
+            args->valid[i] = 0;
+            continue;
+        }
+        ++tAlphaTests;
+        glm::vec2 uv(0.0f);
+        if (a->texture) {
+            const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+            const uint32_t* t = &a->indices[3 * size_t(prim)];
+            uv = (1.0f - u - v) * a->uvs[t[0]] + u * a->uvs[t[1]] + v * a->uvs[t[2]];
+        }
+        if (!alphaKeeps(*a->mask, a->texture, uv)) args->valid[i] = 0;
     }
 }
 
@@ -76,7 +106,22 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
                                     3 * sizeof(uint32_t), mesh.triangleCount()));
         copyIndicesWithoutDegenerates(data.lsPositions, mesh.indices, ib);
         rtcSetGeometryMask(g, 0xFFFFFFFFu);
-        if (originFilter) {
+        if (scene.alphaTested(id)) {
+            auto a = std::make_unique<AlphaGeometry>();
+            a->base = unsigned(base);
+            a->skipOrigin = originFilter;
+            a->mask = &*mesh.alpha;
+            if (mesh.alpha->texture >= 0) {
+                a->texture = &scene.alphaTextures[size_t(mesh.alpha->texture)];
+                a->uvs = mesh.uvs.data();
+                a->indices = mesh.indices.data();
+                SO_CHECK_EQ(mesh.uvs.size(), mesh.wsPositions.size());
+            }
+            rtcSetGeometryUserData(g, a.get());
+            rtcSetGeometryOccludedFilterFunction(g, alphaTestHit);
+            rtcSetGeometryIntersectFilterFunction(g, alphaTestHit);
+            alphaGeometries_.push_back(std::move(a));
+        } else if (originFilter) {
             rtcSetGeometryUserData(g, reinterpret_cast<void*>(uintptr_t(base)));
             rtcSetGeometryOccludedFilterFunction(g, skipOriginTriangle);
             rtcSetGeometryIntersectFilterFunction(g, skipOriginTriangle);
@@ -88,6 +133,10 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
         base += mesh.triangleCount();
     }
     rtcCommitScene(s);
+}
+
+uint64_t Accel::alphaTestsOnThisThread() {
+    return tAlphaTests;
 }
 
 }  // namespace so

@@ -10,8 +10,10 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/local_frame.h"
@@ -53,6 +55,20 @@ class Accel {
     // loader's limits, so it never equals kNoOriginTriangle).
     unsigned originId(unsigned mesh, unsigned prim) const { return meshBase_[mesh] + prim; }
 
+    // Alpha tests (core/alpha_mask.h) run by this thread's filter calls so far, over all Accels:
+    // a pass reads it before and after its work on each thread (alpha_tests in oracle.json).
+    static uint64_t alphaTestsOnThisThread();
+
+    // What the filter of an alpha-tested geometry reads (its Embree user data).
+    struct AlphaGeometry {
+        unsigned base = 0;  // global index of the mesh's first triangle
+        bool skipOrigin = false;
+        const AlphaMask* mask = nullptr;
+        const AlphaTexture* texture = nullptr;  // null: constant alpha
+        const glm::vec2* uvs = nullptr;         // per vertex
+        const uint32_t* indices = nullptr;      // 3 per triangle
+    };
+
   private:
     struct MeshData {
         std::vector<glm::dvec3> lsPositions;
@@ -63,6 +79,7 @@ class Accel {
     EmbreeScene rtcScene_;
     std::vector<MeshData> meshes_;
     std::vector<unsigned> meshBase_;  // global index of each mesh's first triangle
+    std::vector<std::unique_ptr<AlphaGeometry>> alphaGeometries_;
 };
 
 }  // namespace so

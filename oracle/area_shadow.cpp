@@ -439,6 +439,7 @@ void addCounts(AreaShadowStats& total, const AreaShadowStats& s) {
     total.skippedBelowHorizon += s.skippedBelowHorizon;
     total.skippedBehindLight += s.skippedBehindLight;
     total.exactDecisions += s.exactDecisions;
+    total.alphaTests += s.alphaTests;
     total.skippedInsideLight += s.skippedInsideLight;
 }
 
@@ -477,6 +478,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
             PacketState packet;
             rtcInitIntersectContext(&packet.ctx);
             packet.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            const uint64_t alphaTests0 = Accel::alphaTestsOnThisThread();
             for (int ty = range.begin(); ty != range.end(); ++ty) {
                 for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
                      s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s)
@@ -484,6 +486,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                 if (progress)
                     progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
             }
+            st.alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;
         });
     AreaShadowStats total;
     partial.combine_each([&](const AreaShadowStats& s) { addCounts(total, s); });

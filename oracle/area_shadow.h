@@ -81,6 +81,7 @@ struct AreaShadowStats {
     uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
              skippedInsideLight = 0;
     uint64_t exactDecisions = 0;  // pixels whose horizon or emitter side was decided exactly
+    uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
     double worstHalfWidth = 0.0;  // the largest half-width over sampled pixels
     double uniformSppForWorst =
         0.0;  // spp a uniform run needs for that worst half-width everywhere

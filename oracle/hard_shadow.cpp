@@ -80,6 +80,8 @@ void setupDirectional(const HardLight& light, PacketSetup& ps, LaneScratch& ls, 
 // normal, which at grazing incidence would lower the cosine by as much as the cosine itself. The
 // ray, aimed along this direction from the offset origin, ends within the offset of the light,
 // which the doubled margin allows.
+// kOneSided: the emitter-side values, which point and spot lights do not need.
+template <bool kOneSided>
 void setupPositional(const HardLight& light, const SurfaceBuffer& sb, size_t base, PacketSetup& ps,
                      LaneScratch& ls) {
     const float* px = &sb.lsPointX[base];
@@ -102,11 +104,31 @@ void setupPositional(const HardLight& light, const SurfaceBuffer& sb, size_t bas
         ps.dirY[k] = wy;
         ps.dirZ[k] = wz;
         ps.tfar[k] = std::max(0.0f, dist - endMargin);
-        ls.behindDot[k] = -(e.x * tx + e.y * ty + e.z * tz);
         // inv is +inf at the light itself: the lane is then a tie, decided exactly.
         ls.tieCos[k] = kTieCos + tiePosition * inv;
-        ls.tieBehind[k] = kTieCos * dist + tiePosition;
+        if constexpr (kOneSided) {
+            ls.behindDot[k] = -(e.x * tx + e.y * ty + e.z * tz);
+            ls.tieBehind[k] = kTieCos * dist + tiePosition;
+        } else {
+            ls.behindDot[k] = 1.0f;
+            ls.tieBehind[k] = 0.0f;
+        }
     }
+}
+
+// The lanes whose float test is a tie, as a bit mask (NaN compares false: a tie).
+template <bool kOneSided>
+uint32_t tieMask(const SurfaceBuffer& sb, size_t base, const PacketSetup& ps,
+                 const LaneScratch& ls) {
+    alignas(64) int32_t tie[16];
+    for (int k = 0; k < 16; ++k) {
+        int32_t t = int32_t(!(std::fabs(ps.cosine[k]) >= ls.tieCos[k]));
+        if constexpr (kOneSided) t |= int32_t(!(std::fabs(ls.behindDot[k]) >= ls.tieBehind[k]));
+        tie[k] = int32_t(sb.hit[base + size_t(k)] != 0) & t;
+    }
+    uint32_t ties = 0;
+    for (int k = 0; k < 16; ++k) ties |= uint32_t(tie[k]) << k;
+    return ties;
 }
 
 ShadowRayKind laneKind(bool facing, bool outsideCone, bool behind) {
@@ -156,7 +178,8 @@ void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const
         setupDirectional(light, ps, ls, &sb.lsNormalX[base], &sb.lsNormalY[base],
                          &sb.lsNormalZ[base]);
     else
-        setupPositional(light, sb, base, ps, ls);
+        light.oneSided ? setupPositional<true>(light, sb, base, ps, ls)
+                       : setupPositional<false>(light, sb, base, ps, ls);
     const bool spot = light.type == LightType::Spot;
     for (int k = 0; k < 16; ++k) {
         const bool hit = sb.hit[base + size_t(k)] != 0;
@@ -166,15 +189,9 @@ void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const
                          : ShadowRayKind::Background;
         if (!hit) ps.cosine[k] = 0.0f;
     }
-    // Ties, in a loop of its own so that it vectorises (NaN compares false: a tie).
-    alignas(64) int32_t tie[16];
-    const int32_t oneSided = light.oneSided;
-    for (int k = 0; k < 16; ++k)
-        tie[k] = int32_t(sb.hit[base + size_t(k)] != 0) &
-                 (int32_t(!(std::fabs(ps.cosine[k]) >= ls.tieCos[k])) |
-                  (oneSided & int32_t(!(std::fabs(ls.behindDot[k]) >= ls.tieBehind[k]))));
-    uint32_t ties = 0;
-    for (int k = 0; k < 16; ++k) ties |= uint32_t(tie[k]) << k;
+    // Ties, in a loop of their own so that it vectorises.
+    const uint32_t ties =
+        light.oneSided ? tieMask<true>(sb, base, ps, ls) : tieMask<false>(sb, base, ps, ls);
     if (ties) resolveTies(accel, sb, base, light, ties, ls, ps);
 }
 
@@ -316,6 +333,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
             setEmbreeFloatMode();
             HardShadowStats& st = partial.local();
             HardPacket packet;
+            const uint64_t alphaTests0 = Accel::alphaTestsOnThisThread();
             for (int ty = range.begin(); ty != range.end(); ++ty) {
                 for (int tx = 0; tx < sb.tilesX; ++tx)
                     traceTile(accel, sb, light, tx, ty, packet, V, cosine, occDist, st);
@@ -328,6 +346,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
             st.skippedBehindLight += packet.counts[int(ShadowRayKind::BehindLight)];
             st.traced += packet.counts[int(ShadowRayKind::Traced)];
             st.exactDecisions += packet.ps.exactDecisions;
+            st.alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;
         });
     HardShadowStats total;
     partial.combine_each([&](const HardShadowStats& s) {
@@ -339,6 +358,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         total.skippedBehindLight += s.skippedBehindLight;
         total.closestHitQueries += s.closestHitQueries;
         total.exactDecisions += s.exactDecisions;
+        total.alphaTests += s.alphaTests;
     });
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return total;

@@ -88,6 +88,7 @@ struct HardShadowStats {
              skippedBehindLight = 0;
     uint64_t closestHitQueries = 0;  // only with occDist (the contact effect)
     uint64_t exactDecisions = 0;     // pixels whose facing a float tie left to exact arithmetic
+    uint64_t alphaTests = 0;         // candidate hits on alpha-tested geometry, tested
     double seconds = 0.0;
 };
 

@@ -101,6 +101,7 @@ OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     s.skippedBehindLight = st.skippedBehindLight;
     s.skippedInsideLight = st.skippedInsideLight;
     s.exactDecisions = st.exactDecisions;
+    s.alphaTests = st.alphaTests;
     s.samples = st.samples;
     s.pixelsSampled = st.pixelsSampled;
     s.pixelsWithoutUsableSamples = st.pixelsWithoutUsableSamples;
@@ -148,6 +149,7 @@ OracleHardStats traceHardLight(const LightPass& p, uint32_t li, bool sampled, fl
     if (hl.oneSided) s.skippedBehindLight = st.skippedBehindLight;
     s.closestHitQueries = st.closestHitQueries;
     s.exactDecisions = st.exactDecisions;
+    s.alphaTests = st.alphaTests;
     s.seconds = st.seconds;
     return s;
 }
@@ -202,6 +204,11 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
                                        const LocalFrame& frame, const Camera& camera,
                                        OracleStats& stats) {
     if (options.verify.pixels <= 0) return nullptr;
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+        if (scene.alphaTested(m))
+            throwInputError(scene.path.string(), "--verify",
+                            "the exact re-trace does not test alpha masks (mesh " +
+                                scene.meshes[m].name + " is alpha-tested); run without --verify");
     // The reference keeps about 200 bytes per triangle (triangles, nodes, the double vertices):
     // refuse rather than exhaust memory on a huge scene.
     if (scene.stats.triangles > kVerifyMaxTriangles)
@@ -227,11 +234,13 @@ void traceLights(const LightPass& p, const Verifier* verifier, OracleStats& stat
         if (l.area) {
             stats.shadowSeconds += l.area->seconds;
             stats.shadowRays += l.area->raysTraced;
+            stats.shadowAlphaTests += l.area->alphaTests;
         }
         if (l.hard) {
             stats.shadowSeconds += l.hard->seconds;
             stats.shadowRays += l.hard->raysTraced;
             stats.closestHitQueries += l.hard->closestHitQueries;
+            stats.shadowAlphaTests += l.hard->alphaTests;
         }
         if (verifier)
             stats.verify->lights.push_back(verifyLight(p, *verifier, uint32_t(li), l.sampled()));
@@ -294,6 +303,7 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
         arena.execute([&] { sb = tracePrimary(accel, camera, &progress, options.offsetPolicy); });
     }
     stats.primarySeconds = secondsSince(t0);
+    stats.primaryAlphaTests = sb.alphaTests;
     fillGeometryChannels(sb, accel, result.image);
 
     const std::unique_ptr<Verifier> verifier =

@@ -107,6 +107,7 @@ json hardJson(const OracleHardStats& s) {
             {"rays_skipped", skipped},
             {"closest_hit_queries", s.closestHitQueries},
             {"exact_decisions", s.exactDecisions},
+            {"alpha_tests", s.alphaTests},
             {"seconds", s.seconds},
             {"rays_per_second", s.raysPerSecond()}};
 }
@@ -136,6 +137,7 @@ json areaJson(const OracleAreaStats& s) {
               {"behind_light", s.skippedBehindLight},
               {"inside_light", s.skippedInsideLight}}},
             {"exact_decisions", s.exactDecisions},
+            {"alpha_tests", s.alphaTests},
             {"samples", s.samples},
             {"samples_without_ray", s.samplesWithoutRay()},
             {"pixels_sampled", s.pixelsSampled},
@@ -242,6 +244,7 @@ json toJson(const OracleStats& s) {
         {"phases_seconds", phases},
         {"shadow_rays", s.shadowRays},
         {"closest_hit_queries", s.closestHitQueries},
+        {"alpha_tests", {{"primary", s.primaryAlphaTests}, {"shadow", s.shadowAlphaTests}}},
         {"effects", s.effects},
         {"seed", s.seed},
         {"shadow_rays_per_second", s.shadowRaysPerSecond()},
@@ -374,6 +377,7 @@ OracleHardStats readHard(const Fields& f) {
     if (skipped.has("behind_light")) s.skippedBehindLight = skipped.u64("behind_light");
     s.closestHitQueries = f.u64("closest_hit_queries");
     s.exactDecisions = f.u64("exact_decisions");
+    s.alphaTests = f.u64("alpha_tests");
     s.seconds = f.number("seconds");
     return s;
 }
@@ -389,6 +393,7 @@ OracleAreaStats readArea(const Fields& f) {
     s.skippedBehindLight = skipped.u64("behind_light");
     s.skippedInsideLight = skipped.u64("inside_light");
     s.exactDecisions = f.u64("exact_decisions");
+    s.alphaTests = f.u64("alpha_tests");
     s.samples = f.u64("samples");
     if (s.samples < s.raysTraced) f.fail(f.name("samples"), "fewer than rays_traced");
     s.pixelsSampled = f.u64("pixels_sampled");
@@ -504,6 +509,9 @@ OracleStats oracleStatsFromJson(const json& j, const std::string& file) {
     s.shadowSeconds = phases.number("shadow");
     s.shadowRays = f.u64("shadow_rays");
     s.closestHitQueries = f.u64("closest_hit_queries");
+    const Fields alpha = f.object("alpha_tests");
+    s.primaryAlphaTests = alpha.u64("primary");
+    s.shadowAlphaTests = alpha.u64("shadow");
     s.effects = f.strings("effects");
     s.seed = f.u32("seed");
     for (const Fields& l : f.objects("lights")) s.lights.push_back(readLight(l));

@@ -27,6 +27,7 @@ struct OracleHardStats {
     std::optional<uint64_t> skippedBehindLight;  // one-sided lights (rect, disk) only
     uint64_t closestHitQueries = 0;              // only with the contact effect
     uint64_t exactDecisions = 0;  // pixels a float tie left to exact arithmetic (exact_facing.h)
+    uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
     double seconds = 0.0;
     double raysPerSecond() const;
 };
@@ -38,6 +39,7 @@ struct OracleAreaStats {
     uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
              skippedInsideLight = 0;
     uint64_t exactDecisions = 0;  // pixels a float tie left to exact arithmetic (exact_facing.h)
+    uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
     uint64_t samples = 0, pixelsSampled = 0, pixelsWithoutUsableSamples = 0, sppMax = 0;
     std::optional<double> targetError;  // none with a fixed spp
     // Adaptive: pixels whose samples all agree stop at max(targetError, this) (area_shadow.h).
@@ -113,6 +115,7 @@ struct OracleStats {
     int threads = 0;
     double buildBvhSeconds = 0.0, primarySeconds = 0.0, shadowSeconds = 0.0;
     uint64_t shadowRays = 0, closestHitQueries = 0;
+    uint64_t primaryAlphaTests = 0, shadowAlphaTests = 0;  // alpha tests (core/alpha_mask.h)
     std::vector<std::string> effects;
     uint32_t seed = 0;
     std::vector<OracleLightStats> lights;  // in scene order

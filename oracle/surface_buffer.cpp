@@ -1,5 +1,6 @@
 #include "oracle/surface_buffer.h"
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -34,11 +35,13 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
     // Per-tile-row maxima, reduced in a fixed order afterwards so the result is thread-count
     // independent.
     std::vector<double> rowMaxOffset(size_t(sb.tilesY), 0.0);
+    std::atomic<uint64_t> alphaTests{0};  // added once per range
     tbb::parallel_for(
         tbb::blocked_range<int>(0, sb.tilesY), [&](const tbb::blocked_range<int>& rows) {
             setEmbreeFloatMode();
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
+            const uint64_t alphaTests0 = Accel::alphaTestsOnThisThread();
             for (int ty = rows.begin(); ty != rows.end(); ++ty) {
                 double rowMax = 0.0;
                 for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
@@ -96,8 +99,10 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                 if (progress)
                     progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
             }
+            alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;
         });
     for (double m : rowMaxOffset) sb.lsMaxOffset = std::max(sb.lsMaxOffset, m);
+    sb.alphaTests = alphaTests.load();
     return sb;
 }
 

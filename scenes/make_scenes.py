@@ -4,7 +4,7 @@
 All meshes are plain glTF 2.0 with an embedded base64 buffer: float32 positions, uint32 indices,
 counter-clockwise outward winding. Output is deterministic (fixed formulas, no randomness).
 """
-import base64, json, math, os, struct
+import base64, json, math, os, struct, zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MESHES = os.path.join(HERE, "meshes")
@@ -33,6 +33,63 @@ def write_gltf(name, positions, indices):
     with open(os.path.join(MESHES, name + ".gltf"), "w") as f:
         json.dump(g, f, separators=(",", ":"))
         f.write("\n")
+
+
+def write_png_rgba(path, w, h, rgba):
+    """An 8-bit RGBA PNG (no filter), from rows of (r, g, b, a) tuples, top row first."""
+    raw = b"".join(b"\x00" + bytes(c for px in row for c in px) for row in rgba)
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+           + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+    with open(path, "wb") as f:
+        f.write(png)
+
+
+def write_masked_gltf(name, positions, uvs, indices, image, cutoff=0.5, uv_scale=(1.0, 1.0)):
+    """A glTF mesh with an alpha-tested material (alphaMode MASK): its base colour texture is the
+    PNG `image` (beside it), read with nearest filtering and repeat wrapping, its coordinates scaled
+    by KHR_texture_transform."""
+    pos = b"".join(struct.pack("<3f", *p) for p in positions)
+    tex = b"".join(struct.pack("<2f", *t) for t in uvs)
+    idx = b"".join(struct.pack("<I", i) for i in indices)
+    buf = pos + tex + idx
+    lo = [min(p[k] for p in positions) for k in range(3)]
+    hi = [max(p[k] for p in positions) for k in range(3)]
+    g = {
+        "asset": {"version": "2.0", "generator": "shadow-oracle scenes/make_scenes.py"},
+        "extensionsUsed": ["KHR_texture_transform"],
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "name": name}],
+        "meshes": [{"name": name, "primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
+                                                  "mode": 4, "material": 0}]}],
+        "materials": [{"name": name, "alphaMode": "MASK", "alphaCutoff": cutoff, "doubleSided": True,
+                       "pbrMetallicRoughness": {"baseColorTexture": {
+                           "index": 0, "extensions": {"KHR_texture_transform": {"scale": list(uv_scale)}}}}}],
+        "textures": [{"sampler": 0, "source": 0}],
+        "samplers": [{"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497}],
+        "images": [{"uri": image}],
+        "buffers": [{"byteLength": len(buf),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(buf).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos), "target": 34962},
+                        {"buffer": 0, "byteOffset": len(pos), "byteLength": len(tex), "target": 34962},
+                        {"buffer": 0, "byteOffset": len(pos) + len(tex), "byteLength": len(idx), "target": 34963}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                       "min": lo, "max": hi},
+                      {"bufferView": 1, "componentType": 5126, "count": len(uvs), "type": "VEC2"},
+                      {"bufferView": 2, "componentType": 5125, "count": len(indices), "type": "SCALAR"}],
+    }
+    with open(os.path.join(MESHES, name + ".gltf"), "w") as f:
+        json.dump(g, f, separators=(",", ":"))
+        f.write("\n")
+
+
+def grate_texture(n=64, period=16, bar=4):
+    """Square holes in a lattice of bars: texel (i, j) is a bar where i or j mod period < bar, so a
+    share (1 - bar / period)^2 is open (56.25% here)."""
+    metal, hole = (92, 96, 104, 255), (0, 0, 0, 0)
+    return [[metal if (i % period < bar or j % period < bar) else hole for i in range(n)] for j in range(n)]
 
 
 def grid(n, m, f):
@@ -251,6 +308,24 @@ def main():
           [{"name": "window", "type": "rect", "center": [1.2, 4.2, 0.8], "u": [2.0, 0, 0], "v": [0, 0, 1.2]},
            {"name": "bulb", "type": "sphere", "center": [-2.2, 3.2, -1.4], "radius": 0.35}],
           effects=("penumbra",))
+
+    # Alpha-tested occluders (issue 17): a grate of square holes (a 64 x 64 RGBA texture, alphaMode
+    # MASK, repeated 3 x 2 times by KHR_texture_transform) tilted 20 degrees, 1.6 above the floor,
+    # under the sun and a rect light: every hole is a small hard shadow or a penumbra blur.
+    write_png_rgba(os.path.join(MESHES, "grate.png"), 64, 64, grate_texture())
+    tilt = math.radians(20.0)
+    corner = lambda u, v: (-1.5 + 3.0 * u, 1.6 + (v - 0.5) * 2.0 * math.sin(tilt),
+                           (0.5 - v) * 2.0 * math.cos(tilt))
+    quad = [corner(u, v) for v in (0.0, 1.0) for u in (0.0, 1.0)]
+    write_masked_gltf("grate", quad, [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)],
+                      [0, 2, 3, 0, 3, 1], "grate.png", uv_scale=(3.0, 2.0))
+    scene("alpha_grate.scene.json",
+          [{"file": "meshes/floor.gltf"}, {"file": "meshes/grate.gltf"}],
+          {"eye": [-3.5, 4.5, 5.5], "target": [0.3, 0.4, -0.4], "up": [0, 1, 0], "vfov_deg": 40,
+           "width": 320, "height": 240},
+          [{"name": "sun", "type": "directional", "direction": [0.35, -1.0, -0.45]},
+           {"name": "panel", "type": "rect", "center": [-0.5, 4.5, 0.8], "u": [1.2, 0, 0], "v": [0, 0, 0.8]}],
+          effects=("hard", "penumbra", "alpha"))
 
     # The sun 8 degrees above the horizon: long shadows, many points near grazing.
     el = math.radians(8.0)

@@ -20,6 +20,7 @@
 #include "bunny_scene.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "gl_test_context.h"
 #include "raster_compare/compare/gate.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/compare/penumbra_width.h"
@@ -34,29 +35,6 @@ namespace so::test {
 namespace {
 
 namespace ch = channels;
-
-// One context for the whole binary: creating one per test costs more than the tests.
-GlContext* glContext(std::string& why) {
-    static std::unique_ptr<GlContext> gl;
-    static std::string reason;
-    static bool tried = false;
-    if (!tried) {
-        tried = true;
-        try {
-            gl = std::make_unique<GlContext>();
-        } catch (const GlUnavailable& e) {
-            reason = e.what();
-        }
-    }
-    why = reason;
-    return gl.get();
-}
-
-#define REQUIRE_GL()                                                   \
-    std::string whyNoGl;                                               \
-    GlContext* gl = glContext(whyNoGl);                                \
-    if (!gl) GTEST_SKIP() << "no OpenGL 4.5 through EGL: " << whyNoGl; \
-    (void)gl
 
 ChannelImage raster(const Scene& scene, const std::string& technique,
                     const std::vector<std::string>& settings) {

@@ -9,6 +9,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/image_codec.h"
 #include "core/preview.h"
 #include "raster_compare/compare/artifacts.h"
 
@@ -55,8 +56,8 @@ Rgb magnitudeMap(const ChannelImage& oracle, const ErrorMaps& maps) {
     Rgb rgb(oracle.pixelCount() * 3, 0.03f);
     for (size_t i = 0; i < oracle.pixelCount(); ++i) {
         if (A[i] == 0.0f) continue;
-        // 128 steps over the ramp: a palette PNG, a tenth of the bytes; the error EXR has the
-        // exact values.
+        // 128 steps over the ramp: flat runs of few colours, which PNG compresses to a fraction
+        // of the smooth ramp's bytes; the error EXR has the exact values.
         const float step = kMagnitudeMax / 128.0f;
         const std::array<float, 3> c = magnitudeColour(std::round(maps.error[i] / step) * step);
         std::copy(c.begin(), c.end(), rgb.begin() + long(3 * i));

@@ -12,7 +12,7 @@
 
 namespace so {
 
-// Linear RGB, interleaved, as core/image.h's PNG encoder takes it.
+// Linear RGB, interleaved, as core/image_codec.h's PNG encoder takes it.
 using Rgb = std::vector<float>;
 
 // The oracle's cosine times a visibility V of `light`, so a person sees the shadows.

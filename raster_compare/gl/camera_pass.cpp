@@ -42,7 +42,8 @@ CameraPass::CameraPass(const GpuScene& scene, const CameraDesc& desc)
     clipFromLocal_ = cameraClipFromLocal(scene, camera_, lsEye_);
     pixelScale_ =
         2.0 * std::tan(0.5 * desc.vfovDeg * 3.14159265358979323846 / 180.0) / double(height());
-    program_ = buildProgram("", shaders::scene_vert, {shaders::geometry_frag});
+    program_ = buildProgram(scene.alphaDefines(), shaders::scene_vert,
+                            {shaders::alpha_test_glsl, shaders::geometry_frag});
     setMat4(program_.get(), "u_clipFromLocal", clipFromLocal_);
     setVec3(program_.get(), "u_lsEye", lsEye_);
     const int W = width(), H = height();

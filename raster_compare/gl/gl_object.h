@@ -53,6 +53,9 @@ inline void deleteProgram(GLuint n) {
 inline void deleteShader(GLuint n) {
     glDeleteShader(n);
 }
+inline void deleteSampler(GLuint n) {
+    glDeleteSamplers(1, &n);
+}
 }  // namespace gl_detail
 
 using GlBuffer = GlName<gl_detail::deleteBuffer>;
@@ -62,6 +65,7 @@ using GlVertexArray = GlName<gl_detail::deleteVertexArray>;
 using GlQuery = GlName<gl_detail::deleteQuery>;
 using GlProgram = GlName<gl_detail::deleteProgram>;
 using GlShader = GlName<gl_detail::deleteShader>;
+using GlSampler = GlName<gl_detail::deleteSampler>;
 
 inline GlBuffer makeBuffer() {
     GLuint n = 0;
@@ -87,6 +91,11 @@ inline GlQuery makeQuery(GLenum target) {
     GLuint n = 0;
     glCreateQueries(target, 1, &n);
     return GlQuery(n);
+}
+inline GlSampler makeSampler() {
+    GLuint n = 0;
+    glCreateSamplers(1, &n);
+    return GlSampler(n);
 }
 
 }  // namespace so

@@ -17,7 +17,8 @@ GlProgram buildLightFacingProgram(const Light& light, const GpuScene& scene,
     const std::string defines = light.type == LightType::Directional ? "#define LIGHT_ORTHO\n"
                                 : light.type == LightType::Spot      ? "#define LIGHT_SPOT\n"
                                                                      : "";
-    GlProgram p = buildProgram(defines, shaders::scene_vert, {shaders::light_facing_frag});
+    GlProgram p = buildProgram(scene.alphaDefines() + defines, shaders::scene_vert,
+                               {shaders::alpha_test_glsl, shaders::light_facing_frag});
     const GLuint id = p.get();
     setMat4(id, "u_clipFromLocal", camera.clipFromLocal());
     setVec3(id, "u_lsEye", camera.lsEye());

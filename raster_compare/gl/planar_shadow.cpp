@@ -62,9 +62,11 @@ PlanarLight::PlanarLight(const PlanarSettings& settings, const LightSetup& setup
     }
     const CameraPass& camera = setup.camera;
     litProg_ = buildLightFacingProgram(light_, scene_, camera);
-    markProg_ = buildProgram("", shaders::scene_vert, {shaders::depth_frag});
+    markProg_ = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
+                             {shaders::alpha_test_glsl, shaders::depth_frag});
     setMat4(markProg_.get(), "u_clipFromLocal", camera.clipFromLocal());
-    shadowProg_ = buildProgram("", shaders::planar_glsl, {shaders::blend_alpha_frag});
+    shadowProg_ = buildProgram(scene_.alphaDefines(), shaders::planar_glsl,
+                               {shaders::alpha_test_glsl, shaders::blend_alpha_frag});
     const GLuint sp = shadowProg_.get();
     setMat4(sp, "u_clipFromLocal", camera.clipFromLocal());
     // One projection darkens by alpha (V times 1 - alpha); several are averaged, each taking off
@@ -75,7 +77,7 @@ PlanarLight::PlanarLight(const PlanarSettings& settings, const LightSetup& setup
 
 void PlanarLight::drawProjected() const {
     for (size_t m = 0; m < scene_.meshCount(); ++m)
-        if (int(m) != receiver_.mesh) scene_.drawMesh(m);
+        if (int(m) != receiver_.mesh) scene_.drawMesh(shadowProg_.get(), m);
 }
 
 // Where the stencil is on, the receiver's visible pixels get 1 and a projection drawn where it
@@ -151,7 +153,7 @@ void markReceiverStencil(GLuint markProgram, const GpuScene& scene, int receiver
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthFunc(GL_EQUAL);
     glUseProgram(markProgram);
-    scene.drawMesh(size_t(receiverMesh));
+    scene.drawMesh(markProgram, size_t(receiverMesh));
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glStencilFunc(GL_EQUAL, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, onPass);

@@ -107,7 +107,8 @@ ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightS
     cam_ = fitLightCamera(light_, scene_.frame(), scene_.lsBounds(), technique.resolution(),
                           setup.lsReceivers ? &*setup.lsReceivers : nullptr);
     receiver_ = technique.receiverMesh(scene_);
-    depthProg_ = buildProgram("", shaders::scene_vert, {shaders::depth_frag});
+    depthProg_ = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
+                              {shaders::alpha_test_glsl, shaders::depth_frag});
     createMap();
     if (technique.storage() == MapStorage::Moments) createMomentTargets();
     createVisibilityProgram(setup.camera);
@@ -150,9 +151,10 @@ void ShadowMapLight::createMap() {
 void ShadowMapLight::createMomentTargets() {
     const int res = technique_.resolution();
     faceDepth_ = makeSquare(depthFormat(technique_.depthBits()), res, false);
-    momentsProg_ =
-        buildProgram("#define MOMENTS_PASS\n" + technique_.shaderDefines(), shaders::scene_vert,
-                     {shaders::shadow_moments_frag, technique_.glsl()});
+    momentsProg_ = buildProgram(
+        scene_.alphaDefines() + ("#define MOMENTS_PASS\n" + technique_.shaderDefines()),
+        shaders::scene_vert,
+        {shaders::alpha_test_glsl, shaders::shadow_moments_frag, technique_.glsl()});
     setFloat(momentsProg_.get(), "u_near", cam_.near);
     setFloat(momentsProg_.get(), "u_far", cam_.far);
     if (technique_.blurRadius() == 0) {
@@ -192,10 +194,12 @@ std::string mapDefine(MapStorage storage) {
 }
 
 void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
-    const std::string defines = "#define VISIBILITY_PASS\n" + lightDefine(cam_.kind) +
-                                mapDefine(technique_.storage()) + technique_.shaderDefines();
+    const std::string defines =
+        scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightDefine(cam_.kind) +
+                                 mapDefine(technique_.storage()) + technique_.shaderDefines());
     visibilityProg_ =
-        buildProgram(defines, shaders::scene_vert, {shaders::shadow_map_frag, technique_.glsl()});
+        buildProgram(defines, shaders::scene_vert,
+                     {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});
     const GLuint vp = visibilityProg_.get();
     setMat4(vp, "u_clipFromLocal", camera.clipFromLocal());
     setVec3(vp, "u_lsEye", camera.lsEye());
@@ -248,7 +252,7 @@ void ShadowMapLight::renderMomentFace(int f) {
     setMat4(momentsProg_.get(), "u_clipFromLocal", cam_.clipFromLocal(f));
     setMat4(momentsProg_.get(), "u_lightViewFromLocal", cam_.viewFromLocal[size_t(f)]);
     for (size_t m = 0; m < scene_.meshCount(); ++m)
-        if (int(m) != receiver_) scene_.drawMesh(m);
+        if (int(m) != receiver_) scene_.drawMesh(momentsProg_.get(), m);
     if (direct) return;
     glDisable(GL_DEPTH_TEST);
     glUseProgram(blurProg_.get());

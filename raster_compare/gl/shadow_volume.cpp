@@ -114,11 +114,16 @@ ShadowVolumeLight::ShadowVolumeLight(const ShadowVolumeTechnique& technique,
     sides_ = makeStream(geometry_.sides, 4);
     farCaps_ = makeStream(geometry_.farCaps, 4);
     nearCaps_ = makeStream(geometry_.nearCaps, 3);
-    volumeProg_ = buildProgram("", shaders::volume_vert, {shaders::depth_frag});
+    // Volumes and caps are built from whole triangles: an alpha-tested caster is opaque here
+    // (docs/techniques.md, "Alpha-tested occluders"), and the caps must match the sides.
+    const std::string opaque = "#define ALPHA_TEST_OFF\n";
+    volumeProg_ =
+        buildProgram(opaque, shaders::volume_vert, {shaders::alpha_test_glsl, shaders::depth_frag});
     setMat4(volumeProg_.get(), "u_clipFromLocal", camera_.clipFromLocal());
     // The near caps through the camera pass's own vertex shader: the same depths to the bit
     // (invariant gl_Position), so a lit surface is never inside its own cap.
-    capProg_ = buildProgram("", shaders::scene_vert, {shaders::depth_frag});
+    capProg_ =
+        buildProgram(opaque, shaders::scene_vert, {shaders::alpha_test_glsl, shaders::depth_frag});
     setMat4(capProg_.get(), "u_clipFromLocal", camera_.clipFromLocal());
     countProg_ = buildProgram("", shaders::volume_vert, {shaders::volume_count_frag});
     setMat4(countProg_.get(), "u_clipFromLocal", camera_.clipFromLocal());

@@ -4,6 +4,10 @@
 // Exact per pixel up to rasterisation for point, spot (and area lights at their centre) and
 // directional lights: the raster path's own exactness baseline.
 //
+// Alpha-tested casters: a volume is extruded from whole triangles, so the mask cannot cut it; the
+// volumes and caps are drawn without the alpha test (docs/techniques.md, "Alpha-tested
+// occluders"), while the camera and visibility passes apply it.
+//
 // The count wraps in 8 bits (GL_INCR_WRAP / GL_DECR_WRAP): correct as long as fewer than 256
 // volume faces cover a pixel, which the first frame measures (counts in raster.json).
 #pragma once

@@ -74,6 +74,7 @@ inline LoadLimits fuzzLimits() {
     l.maxTotalTriangles = 1 << 18;
     l.maxImageSide = 1024;
     l.maxImagePixels = 1 << 20;
+    l.maxTotalImagePixels = 1 << 21;
     l.maxNodeDepth = 32;
     l.maxLights = 16;
     return l;

@@ -3,4 +3,7 @@
 // GL_ONE, GL_ONE): V - alpha.
 uniform float u_alpha;
 layout(location = 0) out vec4 o_shade;
-void main() { o_shade = vec4(u_alpha, 0.0, 0.0, u_alpha); }
+void main() {
+    alphaTest();  // the projected caster's own mask: its holes cast no shadow
+    o_shade = vec4(u_alpha, 0.0, 0.0, u_alpha);
+}

@@ -1,2 +1,2 @@
-// Shadow-map pass: depth only.
-void main() {}
+// Shadow-map pass: depth only, where the alpha test keeps the surface.
+void main() { alphaTest(); }

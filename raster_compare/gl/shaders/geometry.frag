@@ -7,6 +7,7 @@ layout(location = 0) out vec4 o_position;  // xyz local position, w = 1 (hit)
 layout(location = 1) out vec4 o_normal;    // xyz camera-facing geometric normal, w = id.mesh
 layout(location = 2) out float o_prim;     // id.prim
 void main() {
+    alphaTest();
     vec3 n = normalize(v_lsFaceNormal);
     if (dot(n, v_lsPosition - u_lsEye) > 0.0) n = -n;
     o_position = vec4(v_lsPosition, 1.0);

@@ -10,6 +10,7 @@ uniform float u_cosOuter;
 layout(location = 0) out float o_visibility;
 layout(location = 1) out float o_aliasing;  // no map, no texels: 0
 void main() {
+    alphaTest();
     vec3 p = v_lsPosition;
     vec3 n = normalize(v_lsFaceNormal);
     if (dot(n, p - u_lsEye) > 0.0) n = -n;

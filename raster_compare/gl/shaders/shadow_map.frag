@@ -180,6 +180,7 @@ float slopeBias(Receiver r, float alpha, float minTexels, float maxTexels, float
 }
 
 void main() {
+    alphaTest();
     vec3 p = v_lsPosition;
     vec3 n = normalize(v_lsFaceNormal);
     if (dot(n, p - u_lsEye) > 0.0) n = -n;

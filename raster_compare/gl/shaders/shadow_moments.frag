@@ -12,6 +12,7 @@ layout(location = 0) out vec4 o_moments;
 vec4 momentsOf(float t);  // the technique's file
 
 void main() {
+    alphaTest();
     float t = clamp((-(u_lightViewFromLocal * vec4(v_lsPosition, 1.0)).z - u_near) / (u_far - u_near), 0.0, 1.0);
     o_moments = momentsOf(t);
 }

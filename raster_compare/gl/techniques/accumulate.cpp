@@ -7,7 +7,9 @@
 // G = cos(receiver) cos(emitter) / r^2 (one-sided for rect and disk lights), and the result is
 // sum(G v) / sum(G): the limit as the samples grow is the oracle's V, not an unweighted average.
 // Lights that are not area lights are their own single sample. Every sample's passes run every
-// frame: the cost grows with `samples`.
+// frame: the cost grows with `samples`. Alpha-tested casters are what the inner technique makes
+// of them: opaque with method=1 (the volumes are built from whole triangles), cut by their masks
+// with method=0.
 #include <cmath>
 #include <deque>
 #include <numbers>
@@ -83,7 +85,8 @@ class Accumulate final : public Technique {
     static ParamTable params() {
         return {{"samples", 64, 1, 1024, true, "points on the light, each a hard shadow", {}, true},
                 {"method", 1, 0, 1, true,
-                 "1: stencil shadow volumes (volume-zfail); 0: slope-biased shadow maps"},
+                 "1: stencil shadow volumes (volume-zfail: alpha-tested casters opaque); 0: "
+                 "slope-biased shadow maps (alpha-tested)"},
                 {"resolution", 512, 16, 16384, true, "method=0: each map's side in texels"}};
     }
     explicit Accumulate(const ParamValues& v)

@@ -11,6 +11,9 @@
 // which penumbra_bias measures. A quad whose ends have different widths is interpolated linearly
 // across, as Haines's are. The light's width is pcss's (the side of a square of its area, or
 // `light_size`); point, spot and directional lights have none, and plateaus is then `planar`.
+// Alpha-tested casters: the projected hard shadow takes their masks (its holes are lit); the
+// plateaus are built from the silhouette edges of whole triangles and ignore them, so they darken
+// holes within a penumbra's width inside a silhouette edge, and a hole has no penumbra of its own.
 // Only the receiver gets a shadow; casters below it or above the light are left out.
 #include <algorithm>
 #include <cmath>
@@ -190,9 +193,13 @@ PlateauLight::PlateauLight(const PlateauSettings& settings, const LightSetup& se
     uploadPlateaus(g);
     const CameraPass& camera = setup.camera;
     litProg_ = buildLightFacingProgram(light, scene_, camera);
-    markProg_ = buildProgram("", shaders::scene_vert, {shaders::depth_frag});
+    markProg_ = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
+                             {shaders::alpha_test_glsl, shaders::depth_frag});
     setMat4(markProg_.get(), "u_clipFromLocal", camera.clipFromLocal());
-    hardProg_ = buildProgram("", shaders::planar_glsl, {shaders::blend_alpha_frag});
+    // The hard shadow takes the casters' alpha masks; the plateaus, built from the silhouette
+    // edges of whole triangles, cannot (docs/techniques.md, "Alpha-tested occluders").
+    hardProg_ = buildProgram(scene_.alphaDefines(), shaders::planar_glsl,
+                             {shaders::alpha_test_glsl, shaders::blend_alpha_frag});
     setMat4(hardProg_.get(), "u_clipFromLocal", camera.clipFromLocal());
     setMat4(hardProg_.get(), "u_projection", flattenOnto(lsPlane_) * planarProjection(lsPlane_, L));
     glProgramUniform4f(hardProg_.get(), glGetUniformLocation(hardProg_.get(), "u_lsPlane"),
@@ -238,7 +245,7 @@ void PlateauLight::renderVisibility(PassClock& clock) {
     glEnable(GL_CLIP_DISTANCE1);
     glUseProgram(hardProg_.get());
     for (size_t m = 0; m < scene_.meshCount(); ++m)
-        if (int(m) != receiver_.mesh) scene_.drawMesh(m);
+        if (int(m) != receiver_.mesh) scene_.drawMesh(hardProg_.get(), m);
     glDisable(GL_CLIP_DISTANCE0);
     glDisable(GL_CLIP_DISTANCE1);
     glUseProgram(plateauProg_.get());
@@ -292,7 +299,9 @@ class Plateaus final : public Technique {
 
 SO_REGISTER_TECHNIQUE(Plateaus, "plateaus",
                       "soft planar shadows: the projected hard shadow's silhouette widened by "
-                      "cones and quads as wide as the penumbra (Haines 2001)");
+                      "cones and quads as wide as the penumbra (Haines 2001); the hard shadow "
+                      "takes alpha masks, the plateaus (from whole triangles' silhouette edges) "
+                      "do not");
 
 }  // namespace
 }  // namespace so

@@ -1,0 +1,36 @@
+// The GL tests' context: one for the whole test binary (creating one per test costs more than the
+// tests), and REQUIRE_GL(), which skips a test with the reason where no EGL display can be opened.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "raster_compare/gl/gl_context.h"
+
+namespace so::test {
+
+inline GlContext* glContext(std::string& why) {
+    static std::unique_ptr<GlContext> gl;
+    static std::string reason;
+    static bool tried = false;
+    if (!tried) {
+        tried = true;
+        try {
+            gl = std::make_unique<GlContext>();
+        } catch (const GlUnavailable& e) {
+            reason = e.what();
+        }
+    }
+    why = reason;
+    return gl.get();
+}
+
+}  // namespace so::test
+
+#define REQUIRE_GL()                                                   \
+    std::string whyNoGl;                                               \
+    GlContext* gl = glContext(whyNoGl);                                \
+    if (!gl) GTEST_SKIP() << "no OpenGL 4.5 through EGL: " << whyNoGl; \
+    (void)gl
