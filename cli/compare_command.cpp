@@ -2,13 +2,16 @@
 
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
 
+#include "cli/compare_path.h"
 #include "cli/output.h"
+#include "core/camera_path.h"
 #include "core/channels.h"
 #include "core/error.h"
 #include "raster_compare/compare/report.h"
@@ -107,6 +110,7 @@ struct CompareJob {
     // Per light, the oracle's penumbra cost curve (oraclePenumbraCurve): for every technique's
     // oracle_ms_at_equal_error and for the report.
     std::vector<std::vector<std::pair<double, double>>> oracleCurves;
+    std::optional<PathFlicker> path;  // --frames-path
 };
 
 // What the light's own passes and the visibility pass cost (docs/metrics.md, cost).
@@ -182,16 +186,20 @@ void setCurve(ReportTechnique& rt, const TechniqueRun& run) {
             rt.quality = value;
             continue;
         }
+        // The shortest form that reads back as the same double: 0.1, not 0.10000000000000001.
         char text[32];
-        std::snprintf(text, sizeof text, "%.17g", value);
+        for (int digits = 15; digits <= 17; ++digits) {
+            std::snprintf(text, sizeof text, "%.*g", digits, value);
+            if (std::strtod(text, nullptr) == value) break;
+        }
         rt.curve += " " + key + "=" + text;
     }
 }
 
 // One technique's render measured against the oracle per light, its files and CSV rows written;
 // `row` gets its entry of metrics.json's results.
-ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, RasterResult&& r,
-                                 nlohmann::json& row) {
+ReportTechnique compareTechnique(CompareJob& job, size_t index, const TechniqueRun& run,
+                                 RasterResult&& r, nlohmann::json& row) {
     const fs::path dir = job.out / run.spec.fileLabel;
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -216,6 +224,7 @@ ReportTechnique compareTechnique(CompareJob& job, const TechniqueRun& run, Raste
         lc.metrics =
             computeLightMetrics(job.oracle.image, r.image, lc.light, job.metricOptions, &lc.maps);
         lc.cost = techniqueCost(r.stats, li, job.oracle.stats.lights[li].seconds());
+        if (job.path) lc.temporal = job.path->flicker[index][li];
         if (lc.metrics.penumbraMae)
             lc.cost.oracleMsAtEqualError =
                 oracleMsAtError(job.oracleCurves[li], *lc.metrics.penumbraMae);
@@ -250,13 +259,16 @@ void renderAll(CompareJob& job, const std::vector<TechniqueRun>& runs, ReportInp
         std::cerr << (group.size() > 1 ? " (frames interleaved)" : "") << "\n";
     };
     const auto done = [&](size_t i, RasterResult&& r) {
-        report.techniques[i] = compareTechnique(job, runs[i], std::move(r), results[i]);
+        report.techniques[i] = compareTechnique(job, i, runs[i], std::move(r), results[i]);
     };
     renderInterleaved(job.scene, techniques, job.options.raster, job.gl, {groupStarts, done});
 }
 
 nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results) {
     const Scene& scene = job.scene;
+    nlohmann::json options = {{"boundary_radius_px", job.options.boundaryRadius},
+                              {"contact_threshold", job.metricOptions.contactThreshold}};
+    if (job.path) options["frames_path"] = job.path->frames;
     return {{"schema_version", 4},
             {"tool", toolJson()},
             {"scene",
@@ -264,9 +276,7 @@ nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results)
               {"hash", scene.contentHash},
               {"extent", scene.wsBounds.extent()},
               {"effects", scene.effects}}},
-            {"options",
-             {{"boundary_radius_px", job.options.boundaryRadius},
-              {"contact_threshold", job.metricOptions.contactThreshold}}},
+            {"options", options},
             {"oracle",
              {{"cached", job.oracle.fromCache},
               {"key", job.oracle.key},
@@ -328,6 +338,13 @@ int runCompareCommand(const CompareOptions& options) {
     }
     const Scene scene = loadScene(options.scenePath);
     printSceneWarnings(options.scenePath, scene);
+    if (options.pathFrames > 0 && !scene.cameraPath)
+        throwInputError(options.scenePath, "camera_path",
+                        "missing: --frames-path needs the scene's camera path (scene_format 2, "
+                        "docs/scene-format.md)");
+    // Degenerate interpolated poses are input errors too: found before any work.
+    if (options.pathFrames > 0)
+        sampleCameraPath(*scene.cameraPath, scene.camera, options.pathFrames);
     const fs::path out = makeOutputDir(options.outDir);
 
     // The oracle, from the cache when the same scene content and options were traced before.
@@ -340,7 +357,8 @@ int runCompareCommand(const CompareOptions& options) {
              {{"shadowOracle/sceneHash", scene.contentHash}});
 
     GlContext gl;
-    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv"), {}, {}};
+    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv"),
+                   {},      {},    {}};
     for (const OracleLightStats& l : oracle.stats.lights)
         job.oracleCurves.push_back(oraclePenumbraCurve(l));
     job.metricOptions.boundaryRadius = options.boundaryRadius;
@@ -349,6 +367,19 @@ int runCompareCommand(const CompareOptions& options) {
     ReportInput report;
     report.sceneFile = options.scenePath;
     for (const Light& l : scene.lights) report.lights.push_back(l.name);
+    if (options.pathFrames > 0) {
+        std::vector<const Technique*> techniques;
+        std::vector<std::string> labels;
+        for (const TechniqueRun& run : runs) {
+            techniques.push_back(run.technique.get());
+            labels.push_back(run.spec.label);
+        }
+        job.path = measurePathFlicker(scene, techniques, labels, oracleOptions,
+                                      {options.cacheDir, options.useCache}, options.raster, gl,
+                                      options.pathFrames);
+        report.pathFrames = options.pathFrames;
+        report.flickerStrips = std::move(job.path->strips);
+    }
     nlohmann::json results = nlohmann::json::array();
     renderAll(job, runs, report, results);
 

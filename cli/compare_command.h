@@ -32,6 +32,9 @@ struct CompareOptions {
     bool embedImages = false;  // report.html's images inside it, not in report_images/
     int boundaryRadius = 2;
     double contactThresholdRelative = 0.01;  // of the scene's bounding-box diagonal
+    // --frames-path N (>= 2): the scene's camera path in N frames, for temporal_flicker_rate;
+    // 0: none.
+    int pathFrames = 0;
 };
 
 int runCompareCommand(const CompareOptions& options);

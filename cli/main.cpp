@@ -147,6 +147,11 @@ static Runner addCompare(CLI::App& app) {
     compareCmd
         ->add_option("--boundary-radius", o->boundaryRadius, "r of docs/metrics.md (default 2)")
         ->check(CLI::Range(0, 64));
+    compareCmd
+        ->add_option("--frames-path", o->pathFrames,
+                     "also render N frames along the scene's camera_path (oracle and every "
+                     "technique) for temporal_flicker_rate (docs/metrics.md)")
+        ->check(CLI::Range(2, 10000));
 
     return [o, noCache] {
         o->useCache = !*noCache;

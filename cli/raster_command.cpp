@@ -22,7 +22,7 @@ int runRasterCommand(const RasterCommandOptions& options) {
              {{"shadowOracle/sceneHash", scene.contentHash},
               {"shadowOracle/toolVersion", toolVersionString()},
               {"shadowOracle/technique", technique->name()}});
-    nlohmann::json j = {{"format_version", 3},
+    nlohmann::json j = {{"format_version", 4},
                         {"tool", toolJson()},
                         {"scene", {{"file", options.scenePath}, {"hash", scene.contentHash}}}};
     j.update(toJson(r.stats));

@@ -30,6 +30,16 @@ Ray3d Camera::generateRay(double imageX, double imageY) const {
     return {wsEye_, glm::normalize(d)};
 }
 
+std::optional<glm::dvec2> Camera::project(const glm::dvec3& wsPoint) const {
+    const glm::dvec3 vsPoint = wsPoint - wsEye_;
+    const double depth = glm::dot(vsPoint, wsForward_);
+    if (!(depth > 0.0)) return std::nullopt;
+    // generateRay's d = forward + ndcX tan aspect right + ndcY tan up, scaled to depth 1.
+    const double ndcX = glm::dot(vsPoint, wsRight_) / (depth * tanHalfVfov_ * aspect_);
+    const double ndcY = glm::dot(vsPoint, wsUp_) / (depth * tanHalfVfov_);
+    return glm::dvec2(0.5 * (ndcX + 1.0) * width_, 0.5 * (1.0 - ndcY) * height_);
+}
+
 glm::dmat4 Camera::viewFromWorld() const {
     glm::dmat4 m(1.0);
     // Rows are the camera axes; the view looks down -Z as OpenGL expects.

@@ -3,7 +3,10 @@
 // pixel (x, y) is sampled at its centre (x + 0.5, y + 0.5), and row 0 is the top of the image.
 #pragma once
 
+#include <optional>
+
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/scene.h"
@@ -28,6 +31,11 @@ class Camera {
     Ray3d generateRay(int x, int y) const;
     // The same ray at a continuous image position (pixel units, (0,0) = top-left corner).
     Ray3d generateRay(double imageX, double imageY) const;
+
+    // The inverse of generateRay(double, double): the continuous image position (pixel units,
+    // (0,0) = top-left corner) where the ray to wsPoint crosses the image plane; none for a point
+    // not in front of the eye. The point may project outside [0, width) x [0, height).
+    std::optional<glm::dvec2> project(const glm::dvec3& wsPoint) const;
 
     // For the raster path: OpenGL view and projection matrices that put the centre of pixel (x, y)
     // exactly where generateRay(x, y) points (window y flipped because GL's row 0 is the bottom).

@@ -38,6 +38,26 @@ struct CameraDesc {
     int height = 512;
 };
 
+// A camera moving through the scene (scene_format 2, `camera_path`; docs/scene-format.md): poses
+// at parameter values t, strictly increasing. camera_path.h samples it into per-frame cameras; the
+// image size and, where a key leaves them out, up and vfov_deg come from the scene's camera.
+struct CameraKeyframe {
+    double t = 0.0;
+    glm::dvec3 wsEye{0.0};
+    glm::dvec3 wsTarget{0.0, 0.0, -1.0};
+    std::optional<glm::dvec3> wsUp;  // absent: the scene camera's
+    std::optional<double> vfovDeg;   // absent: the scene camera's
+};
+
+enum class PathInterpolation { Linear, CatmullRom };
+
+struct CameraPath {
+    std::string file;  // the scene file as named, for errors found while sampling
+    // At least 2, t strictly increasing. A `poses` list is keyframes at t = 0, 1, 2, ... (linear).
+    std::vector<CameraKeyframe> keyframes;
+    PathInterpolation interpolation = PathInterpolation::Linear;
+};
+
 enum class LightType { Point, Directional, Spot, Rect, Disk, Sphere };
 const char* lightTypeName(LightType t);
 inline bool isAreaLight(LightType t) {
@@ -110,6 +130,7 @@ struct Scene {
     std::filesystem::path path;  // the file the user named
     std::string contentHash;     // hash of the scene file and every file it references
     CameraDesc camera;
+    std::optional<CameraPath> cameraPath;  // scene_format 2 only; for compare --frames-path
     std::vector<MeshPrimitive> meshes;
     std::vector<Light> lights;
     std::vector<std::string> effects;  // as given, validated; default {"hard"}
@@ -135,6 +156,7 @@ struct LoadLimits {
     uint64_t maxTotalImagePixels = uint64_t(1) << 28;  // all alpha textures of a scene
     int maxNodeDepth = 256;
     size_t maxLights = 64;
+    size_t maxPathKeyframes = 10000;  // camera_path keyframes or poses
 };
 
 // Loads a scene file (.json, see docs/scene-format.md) or a bare .gltf/.glb. Throws InputError

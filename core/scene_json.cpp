@@ -1,4 +1,4 @@
-// The scene file parser (docs/scene-format.md, scene_format 1) and loadScene's dispatch.
+// The scene file parser (docs/scene-format.md, scene_format 1 and 2) and loadScene's dispatch.
 // Strict on purpose: an unknown key is almost always a typo that would otherwise silently change
 // what is measured, so every object lists the keys it accepts.
 #include <algorithm>
@@ -25,7 +25,8 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kSceneFormat = 1;
+// The newest version read; every older one still loads. 2 added camera_path.
+constexpr int kSceneFormat = 2;
 
 std::string readFileCapped(const std::filesystem::path& path, const std::string& display,
                            uint64_t maxBytes) {
@@ -330,6 +331,83 @@ CameraDesc parseCamera(const json& j, const Reader& r, const LoadLimits& limits,
     return c;
 }
 
+// The same rules as the scene camera: eye and target differ, up is not parallel to the view.
+void checkPose(const glm::dvec3& wsEye, const glm::dvec3& wsTarget, const glm::dvec3& wsUp,
+               const Reader& r, const std::string& f) {
+    glm::dvec3 forward = wsTarget - wsEye;
+    if (!(glm::length(forward) > 0.0)) r.fail(f + ".target", "equals eye");
+    if (!(glm::length(wsUp) > 0.0)) r.fail(f + ".up", "zero length");
+    double s = glm::length(glm::cross(glm::normalize(forward), glm::normalize(wsUp)));
+    if (!(s > 1e-9)) r.fail(f + ".up", "parallel to the viewing direction");
+}
+
+// One keyframe or pose; `hasT`: keyframes carry their t, poses are numbered.
+CameraKeyframe parsePathPose(const json& j, const Reader& r, const std::string& f, bool hasT,
+                             const CameraDesc& base) {
+    r.requireObject(j, f);
+    if (hasT)
+        r.checkKeys(j, f, {"t", "eye", "target", "up", "vfov_deg"});
+    else
+        r.checkKeys(j, f, {"eye", "target", "up", "vfov_deg"});
+    CameraKeyframe k;
+    if (hasT) {
+        if (!j.contains("t")) r.fail(f + ".t", "missing");
+        k.t = r.number(j["t"], f + ".t");
+    }
+    if (!j.contains("eye")) r.fail(f + ".eye", "missing");
+    if (!j.contains("target")) r.fail(f + ".target", "missing");
+    k.wsEye = r.vec3(j["eye"], f + ".eye");
+    k.wsTarget = r.vec3(j["target"], f + ".target");
+    if (j.contains("up")) k.wsUp = r.vec3(j["up"], f + ".up");
+    if (j.contains("vfov_deg")) {
+        k.vfovDeg = r.number(j["vfov_deg"], f + ".vfov_deg");
+        if (!(*k.vfovDeg > 0.0 && *k.vfovDeg < 180.0))
+            r.fail(f + ".vfov_deg", "must be in (0, 180)");
+    }
+    checkPose(k.wsEye, k.wsTarget, k.wsUp.value_or(base.wsUp), r, f);
+    return k;
+}
+
+// camera_path (scene_format 2): {"keyframes": [...], "interpolation": ...} or {"poses": [...]}.
+CameraPath parseCameraPath(const json& j, const Reader& r, const LoadLimits& limits,
+                           const CameraDesc& base) {
+    r.requireObject(j, "camera_path");
+    r.checkKeys(j, "camera_path", {"keyframes", "interpolation", "poses"});
+    const bool keyed = j.contains("keyframes");
+    if (keyed == j.contains("poses"))
+        r.fail("camera_path", "needs exactly one of keyframes or poses");
+    if (!keyed && j.contains("interpolation"))
+        r.fail("camera_path.interpolation", "only with keyframes (poses are used in order)");
+    CameraPath path;
+    path.file = r.file();
+    const std::string list = keyed ? "camera_path.keyframes" : "camera_path.poses";
+    const json& jk = keyed ? j["keyframes"] : j["poses"];
+    if (!jk.is_array()) r.fail(list, "expected an array, got " + Reader::typeName(jk));
+    if (jk.size() < 2) r.fail(list, "needs at least 2 entries");
+    if (jk.size() > limits.maxPathKeyframes)
+        r.fail(list, std::to_string(jk.size()) + " entries, limit is " +
+                         std::to_string(limits.maxPathKeyframes));
+    for (size_t i = 0; i < jk.size(); ++i) {
+        const std::string f = Reader::index(list, i);
+        CameraKeyframe k = parsePathPose(jk[i], r, f, keyed, base);
+        if (!keyed) k.t = double(i);
+        if (i > 0 && !(k.t > path.keyframes.back().t))
+            r.fail(f + ".t", "not greater than the previous keyframe's t");
+        path.keyframes.push_back(k);
+    }
+    if (j.contains("interpolation")) {
+        const std::string how = r.string(j["interpolation"], "camera_path.interpolation");
+        if (how == "linear")
+            path.interpolation = PathInterpolation::Linear;
+        else if (how == "catmull-rom")
+            path.interpolation = PathInterpolation::CatmullRom;
+        else
+            r.fail("camera_path.interpolation", "unknown interpolation \"" + printable(how, 40) +
+                                                    "\" (valid: linear, catmull-rom)");
+    }
+    return path;
+}
+
 void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const LoadLimits& limits,
              const std::string& display) {
     totalBytes += g.bytesRead;
@@ -396,12 +474,16 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         readFileCapped(path, display, std::min<uint64_t>(limits.maxFileBytes, 64u << 20));
     json root = parseStrict(text, r);
     r.requireObject(root, "");
-    r.checkKeys(root, "", {"scene_format", "geometry", "camera", "lights", "effects"});
-    if (!root.contains("scene_format")) r.fail("scene_format", "missing (this tool reads 1)");
+    r.checkKeys(root, "",
+                {"scene_format", "geometry", "camera", "camera_path", "lights", "effects"});
+    if (!root.contains("scene_format")) r.fail("scene_format", "missing (this tool reads 1 and 2)");
     int format = r.integer(root["scene_format"], "scene_format", 0, 1 << 30);
-    if (format != kSceneFormat)
+    if (format < 1 || format > kSceneFormat)
         r.fail("scene_format", "unsupported version " + std::to_string(format) +
-                                   " (this tool reads " + std::to_string(kSceneFormat) + ")");
+                                   " (this tool reads 1 to " + std::to_string(kSceneFormat) + ")");
+    if (root.contains("camera_path") && format < 2)
+        r.fail("camera_path",
+               "needs scene_format 2 (the file says " + std::to_string(format) + ")");
 
     Scene scene;
     scene.path = path;
@@ -484,6 +566,10 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         scene.camera = defaultFraming(scene.wsBounds);
         scene.stats.warnings.push_back("no camera given: using the default framing of the bounds");
     }
+    // After the camera: a key without up takes the camera's, which must then suit its direction.
+    // The path is part of the file's text, so the content hash already covers it.
+    if (root.contains("camera_path"))
+        scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
     scene.contentHash = hasher.hex();
     return scene;
 }

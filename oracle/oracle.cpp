@@ -265,7 +265,7 @@ void describeSetup(const Scene& scene, const OracleOptions& options, const Accel
 }  // namespace
 
 CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
-    CameraDesc desc = scene.camera;
+    CameraDesc desc = options.camera.value_or(scene.camera);
     if (options.width > 0) desc.width = options.width;
     if (options.height > 0) desc.height = options.height;
     return desc;

@@ -3,6 +3,8 @@
 // command.
 #pragma once
 
+#include <optional>
+
 #include "core/image.h"
 #include "core/scene.h"
 #include "oracle/area_shadow.h"
@@ -14,7 +16,10 @@ namespace so {
 
 struct OracleOptions {
     int width = 0, height = 0;  // 0: the scene camera's size
-    int threads = 0;            // 0: all hardware threads
+    // Another camera than the scene's (a frame of compare --frames-path); width and height above
+    // still override its size. Part of the oracle cache's key.
+    std::optional<CameraDesc> camera;
+    int threads = 0;  // 0: all hardware threads
     bool progress = true;
     AreaSampling area;  // area lights, when the scene asks for "penumbra"
     // Not on the command line: Legacy256Ulp exists only for the tests that show the verifier
@@ -29,7 +34,8 @@ struct OracleResult {
                          // --verify, stats.verify has one LightVerification per light
 };
 
-// The camera description actually used (scene camera with the option's width and height).
+// The camera description actually used (options.camera, else the scene camera, with the
+// option's width and height).
 CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options);
 
 OracleResult runOracle(const Scene& scene, const OracleOptions& options);

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
@@ -32,17 +33,28 @@ fs::path defaultOracleCacheDir() {
 // without a reason to invalidate them.
 std::string oracleCacheKey(const Scene& scene, const OracleOptions& o) {
     const CameraDesc cam = effectiveCamera(scene, o);
-    const nlohmann::json k = {{"scene", scene.contentHash},
-                              {"width", cam.width},
-                              {"height", cam.height},
-                              {"seed", o.area.seed},
-                              {"target_error", o.area.targetError},
-                              {"agreement_target", o.area.agreementTarget},
-                              {"max_spp", o.area.maxSpp},
-                              {"spp", o.area.fixedSpp},
-                              {"verify", o.verify.pixels},
-                              {"verify_samples", o.verify.areaSamples},
-                              {"tool", std::string(kToolVersion) + " " + kGitRevision}};
+    nlohmann::json k = {{"scene", scene.contentHash},
+                        {"width", cam.width},
+                        {"height", cam.height},
+                        {"seed", o.area.seed},
+                        {"target_error", o.area.targetError},
+                        {"agreement_target", o.area.agreementTarget},
+                        {"max_spp", o.area.maxSpp},
+                        {"spp", o.area.fixedSpp},
+                        {"verify", o.verify.pixels},
+                        {"verify_samples", o.verify.areaSamples},
+                        {"tool", std::string(kToolVersion) + " " + kGitRevision}};
+    // A camera override (a path frame) sees other pixels. Only then is the pose in the key, so
+    // the scene camera's entries keep the keys they had. Doubles as %.17g: exact round trip.
+    if (o.camera) {
+        char pose[400];
+        const CameraDesc& c = *o.camera;
+        std::snprintf(pose, sizeof pose,
+                      "%.17g %.17g %.17g|%.17g %.17g %.17g|%.17g %.17g %.17g|%.17g", c.wsEye.x,
+                      c.wsEye.y, c.wsEye.z, c.wsTarget.x, c.wsTarget.y, c.wsTarget.z, c.wsUp.x,
+                      c.wsUp.y, c.wsUp.z, c.vfovDeg);
+        k["camera"] = pose;
+    }
     return hashBytes(k.dump());
 }
 

@@ -226,6 +226,91 @@ def torus_knot(p=2, q=3, n=360, m=20, R=1.0, r=0.22):
     return pos, idx
 
 
+def write_multi_gltf(name, meshes):
+    """One glTF with a mesh and node per (mesh name, positions, indices), uint16 indices, the
+    buffer in NAME.bin beside it (a large scene: base64 would add a third)."""
+    blob, views, accessors, gmeshes, nodes = b"", [], [], [], []
+    for k, (mname, positions, indices) in enumerate(meshes):
+        assert len(positions) < 65536
+        pos = b"".join(struct.pack("<3f", *p) for p in positions)
+        idx = b"".join(struct.pack("<H", i) for i in indices)
+        idx += b"\0" * (-len(idx) % 4)
+        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(pos), "target": 34962})
+        blob += pos
+        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": 2 * len(indices), "target": 34963})
+        blob += idx
+        lo = [min(p[c] for p in positions) for c in range(3)]
+        hi = [max(p[c] for p in positions) for c in range(3)]
+        accessors.append({"bufferView": 2 * k, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                          "min": lo, "max": hi})
+        accessors.append({"bufferView": 2 * k + 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
+        gmeshes.append({"name": mname, "primitives": [{"attributes": {"POSITION": 2 * k}, "indices": 2 * k + 1, "mode": 4}]})
+        nodes.append({"mesh": k, "name": mname})
+    g = {
+        "asset": {"version": "2.0", "generator": "shadow-oracle scenes/make_scenes.py"},
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+        "nodes": nodes, "meshes": gmeshes,
+        "buffers": [{"byteLength": len(blob), "uri": name + ".bin"}],
+        "bufferViews": views, "accessors": accessors,
+    }
+    with open(os.path.join(MESHES, name + ".bin"), "wb") as f:
+        f.write(blob)
+    with open(os.path.join(MESHES, name + ".gltf"), "w") as f:
+        json.dump(g, f, separators=(",", ":"))
+        f.write("\n")
+
+
+def big_terrain_height(x, z):
+    # Long rolling hills (tens of units) with smaller bumps: a landscape seen to the horizon.
+    return (6.0 * math.sin(0.021 * x + 0.4) * math.cos(0.017 * z) + 2.5 * math.sin(0.05 * x - 0.03 * z)
+            + 0.8 * math.sin(0.13 * x + 0.11 * z) * math.cos(0.09 * z))
+
+
+def big_terrain_meshes(half=256.0, chunks=8, cells=24, seed=12345):
+    """The terrain in chunks x chunks meshes, each carrying the objects standing on it (posts,
+    blocks and slabs at deterministic pseudo-random places: a linear congruential generator with a
+    fixed seed), so that a renderer can cull per chunk. Objects: a few per chunk everywhere, and a
+    denser field of smaller ones in the 76 units ahead of the camera (z from 160 to 232, denser
+    nearer), as a player sees rocks and posts around them."""
+    state = [seed]
+
+    def rand():
+        state[0] = (1103515245 * state[0] + 12345) % (1 << 31)
+        return state[0] / float(1 << 31)
+
+    side = 2 * half / chunks
+    objects = []  # (x, z, kind, size, angle)
+    for cj in range(chunks):
+        for ci in range(chunks):
+            x0, z0 = -half + ci * side, -half + cj * side
+            for _ in range(6):
+                objects.append((x0 + side * (0.1 + 0.8 * rand()), z0 + side * (0.1 + 0.8 * rand()),
+                                rand(), 0.5 + 3.0 * rand(), 2 * math.pi * rand()))
+    for _ in range(220):
+        z = 160.0 + 72.0 * rand() ** 1.5
+        x = (rand() - 0.5) * (8.0 + 1.0 * (236.0 - z))
+        objects.append((x, z, rand(), 0.3 + 1.2 * rand(), 2 * math.pi * rand()))
+    meshes = []
+    for cj in range(chunks):
+        for ci in range(chunks):
+            x0, z0 = -half + ci * side, -half + cj * side
+            pos, idx = grid(cells, cells, lambda u, v: (x0 + side * u, big_terrain_height(x0 + side * u, z0 + side * (1 - v)), z0 + side * (1 - v)))
+            for x, z, kind, size, angle in objects:
+                if not (x0 <= x < x0 + side and z0 <= z < z0 + side):
+                    continue
+                w, h, d = ((0.3 * size, 2.5 * size, 0.3 * size) if kind < 0.4 else
+                           (size, size, size) if kind < 0.8 else (2.5 * size, 0.4 * size, 1.2 * size))
+                y = big_terrain_height(x, z) - 0.3
+                bp, bi = box((-w / 2, 0.0, -d / 2), (w / 2, h + 0.3, d / 2))
+                c, s_ = math.cos(angle), math.sin(angle)
+                base = len(pos)
+                pos += [(x + c * p[0] + s_ * p[2], y + p[1], z - s_ * p[0] + c * p[2]) for p in bp]
+                idx += [base + i for i in bi]
+            meshes.append(("chunk_%d_%d" % (ci, cj), pos, idx))
+    return meshes
+
+
 def terrain_height(x, z):
     # Sums of sines: smooth hills with ridges; deterministic.
     return (0.9 * math.sin(0.45 * x) * math.cos(0.38 * z) + 0.35 * math.sin(1.3 * x + 0.7 * z)
@@ -336,6 +421,27 @@ def main():
           {"eye": [-14.0, 9.0, 18.0], "target": [1.0, -1.0, -2.0], "up": [0, 1, 0], "vfov_deg": 45,
            "width": 640, "height": 480},
           [{"name": "sun", "type": "directional", "direction": [round(c, 6) for c in sun]}])
+
+    # A landscape 512 units wide, the camera two metres up at its edge looking to the horizon: one
+    # shadow map cannot give both the near ground and the far hills the texels they need
+    # (cascades, adaptive; docs/benchmarks.md). The camera path walks slowly forward and turns a
+    # little, for shimmer (temporal_flicker_rate).
+    write_multi_gltf("large_terrain", big_terrain_meshes())
+    eye_y = round(big_terrain_height(0.0, 236.0) + 2.0, 3)
+    sun = [-0.75, -0.35, 0.45]  # low, from ahead and to the right: shadows fall towards the camera
+    keys = []
+    for k in range(5):
+        z = 236.0 - 1.0 * k
+        keys.append({"t": k, "eye": [round(0.4 * k, 3), round(big_terrain_height(0.4 * k, z) + 2.0, 3), z],
+                     "target": [round(6.0 * k, 3), round(eye_y - 6.0, 3), -120.0]})
+    s = {"scene_format": 2, "geometry": [{"file": "meshes/large_terrain.gltf"}],
+         "camera": {"eye": [0.0, eye_y, 236.0], "target": [0.0, round(eye_y - 6.0, 3), -120.0], "up": [0, 1, 0],
+                    "vfov_deg": 55, "width": 800, "height": 450},
+         "camera_path": {"keyframes": keys, "interpolation": "catmull-rom"},
+         "lights": [{"name": "sun", "type": "directional", "direction": sun}], "effects": ["hard"]}
+    with open(os.path.join(HERE, "large_terrain.scene.json"), "w") as f:
+        json.dump(s, f, indent=2)
+        f.write("\n")
 
 
 if __name__ == "__main__":

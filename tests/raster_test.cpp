@@ -466,7 +466,10 @@ TEST(Compare, EndToEndOnTheContactScene) {
     EXPECT_EQ(count("<table class=\"sortable summary\">"), 1u);
     // The two slope-bias settings differ only in the shadow maps' quality parameter, resolution:
     // one curve key, two quality values, in the data the chart is drawn from.
-    EXPECT_EQ(count("\"curve\":\"slope-bias alpha=1 depth_format=24 fit=0 max=10 min=0.1"), 2u);
+    EXPECT_EQ(
+        count("\"curve\":\"slope-bias alpha=1 blend=0.1 cascades=1 depth_format=24 fit=0 max=10 "
+              "min=0.1 snap=1 split_lambda=0.5"),
+        2u);
     EXPECT_EQ(count("\"quality\":512"), 1u);
     EXPECT_EQ(count("<table class=\"budget\">"), 1u);
     EXPECT_NE(report.find("id=\"metrics\">"), std::string::npos);

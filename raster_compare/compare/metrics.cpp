@@ -382,6 +382,7 @@ nlohmann::json TechniqueCost::toJson() const {
 
 nlohmann::json LightComparison::toJson() const {
     nlohmann::json j = metrics.toJson();
+    if (temporal) temporal->addToJson(j);
     j["cost"] = cost.toJson();
     return j;
 }

@@ -14,6 +14,7 @@
 #include "core/timing.h"
 #include "raster_compare/compare/artifacts.h"
 #include "raster_compare/compare/penumbra_width.h"
+#include "raster_compare/compare/temporal.h"
 
 namespace so {
 
@@ -91,7 +92,9 @@ struct LightComparison {
     LightMetrics metrics;
     TechniqueCost cost;
     ErrorMaps maps;
-    nlohmann::json toJson() const;  // metrics with "cost"
+    // compare --frames-path only: along the scene's camera path (temporal.h).
+    std::optional<TemporalFlicker> temporal;
+    nlohmann::json toJson() const;  // metrics with "cost" (and the temporal ones)
 };
 
 // The metrics of a row by their public names: nested ones joined by a dot

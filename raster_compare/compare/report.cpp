@@ -101,6 +101,10 @@ const std::vector<Column>& columns() {
              return l.metrics.penumbraWidth ? std::optional(l.metrics.penumbraWidth->mean)
                                             : std::nullopt;
          }},
+        {"temporal_flicker_rate", "temporal flicker",
+         "compare --frames-path: share of tracked pixels whose V flips (> 0.5) between "
+         "consecutive frames where the oracle's does not",
+         Format::Percent, [](L l) { return l.temporal ? l.temporal->rate() : std::nullopt; }},
         {"false_shadow_rate", "false shadow", "share of counted pixels that are false shadow",
          Format::Percent, [](L l) { return std::optional(l.metrics.falseShadowRate); }, false},
         {"false_lit_rate", "false lit", "share of counted pixels that are false lit",
@@ -297,7 +301,8 @@ std::vector<ChartChoice> chartChoices(const ReportInput& in, size_t li, bool cos
         {"acne_rate", "acne rate"},
         {"peter_panning_rate", "peter-panning rate"},
         {"boundary_displacement_px.p95", "boundary displacement p95 (px)"},
-        {"light_bleeding_rate", "light bleeding rate"}};
+        {"light_bleeding_rate", "light bleeding rate"},
+        {"temporal_flicker_rate", "temporal flicker rate"}};
     static const std::vector<std::pair<std::string, std::string>> cost = {
         {"frame_ms", "frame time (ms)"},
         {"shadow_map_ms", "shadow pass time (ms)"},
@@ -470,6 +475,38 @@ void writeImages(std::ostream& o, const ReportInput& in, size_t li, ImageSink& s
     o << "</tbody></table>";
 }
 
+// compare --frames-path: the worst technique's worst pair of frames, the flickering pixels red.
+void writeFlickerStrip(std::ostream& o, const ReportInput& in, size_t li, ImageSink& sink) {
+    if (in.pathFrames == 0 || li >= in.flickerStrips.size()) return;
+    o << "<h3>Temporal flicker</h3>";
+    const std::optional<FlickerStrip>& s = in.flickerStrips[li];
+    if (!s || s->flickering == 0) {
+        o << "<p class=\"muted\">No technique flickers along the camera path (" << in.pathFrames
+          << " frames).</p>";
+        return;
+    }
+    const std::string key = "flicker_" + std::to_string(li);
+    const auto img = [&](const std::string& k, const Rgb& rgb, const std::string& caption) {
+        o << "<figure><img src=\"" << sink.src(key + k, s->width, s->height, rgb) << "\" alt=\""
+          << html(caption) << "\"><figcaption class=\"muted\">" << html(caption)
+          << "</figcaption></figure>";
+    };
+    o << "<p>The highest temporal_flicker_rate along the camera path (" << in.pathFrames
+      << " frames): <b>" << html(s->technique) << "</b>, " << formatted(s->rate, Format::Percent)
+      << ". Its worst pair, "
+      << "frames " << s->pair << " and " << s->pair + 1 << ", has " << s->flickering
+      << " flickering pixels (red; dimmed: not tracked).</p><div class=\"flicker-strip\" "
+         "id=\"flicker-strip-"
+      << li << "\">";
+    img("_prev", visibilityGrey(s->vPrev), "frame " + std::to_string(s->pair) + ": V");
+    img("_next", visibilityGrey(s->vNext), "frame " + std::to_string(s->pair + 1) + ": V");
+    img("_marked", flickerMap(s->vNext, s->mask),
+        "frame " + std::to_string(s->pair + 1) + ": flickering pixels");
+    img("_oracle", visibilityGrey(s->vOracleNext),
+        "frame " + std::to_string(s->pair + 1) + ": the oracle's V");
+    o << "</div>";
+}
+
 void writeHead(std::ostream& o, const ReportInput& in) {
     o << "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadow-oracle "
          "report: "
@@ -496,7 +533,9 @@ void writeTail(std::ostream& o, const ReportInput& in, const nlohmann::json& lig
     std::vector<size_t> lights;
     for (size_t li = 0; li < in.lights.size(); ++li) lights.push_back(li);
     std::vector<const Column*> cols;
-    for (const Column& c : columns()) cols.push_back(&c);
+    // A run without a camera path has no temporal metric at all: no empty column for it.
+    for (const Column& c : columns())
+        if (in.pathFrames > 0 || c.key.rfind("temporal_", 0) != 0) cols.push_back(&c);
     writeMetricTable(o, "class=\"sortable\" id=\"metrics\"", byFamily(in), lights, cols, in);
     o << "<h2 id=\"provenance\">Provenance</h2><table class=\"provenance\">";
     for (const auto& [key, value] : in.provenance)
@@ -532,6 +571,7 @@ void writeReport(const std::string& path, const ReportInput& in) {
         writeChartBox(o, in, li, lights.back());
         o << "</div>";
         writeImages(o, in, li, sink);
+        writeFlickerStrip(o, in, li, sink);
         o << "</section>";
     }
     writeTail(o, in, lights);

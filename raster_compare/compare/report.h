@@ -30,6 +30,19 @@ struct ReportTechnique {
     std::vector<LightComparison> lights;  // per light, in scene order
 };
 
+// compare --frames-path: for one light, the technique with the highest temporal_flicker_rate at
+// its worst pair of consecutive frames (the most flickering pixels): both frames' V and the
+// oracle's V of the second, and which of its pixels were tracked and which flickered.
+struct FlickerStrip {
+    std::string technique;  // its label
+    int pair = 0;           // frames pair and pair + 1 (from 0)
+    double rate = 0.0;      // the technique's temporal_flicker_rate over the whole path
+    size_t flickering = 0;  // in this pair
+    int width = 0, height = 0;
+    std::vector<float> vPrev, vNext, vOracleNext;
+    std::vector<uint8_t> mask;  // of frame pair + 1: 1 tracked, 2 flickering (temporal.h)
+};
+
 struct ReportInput {
     std::string sceneFile;
     std::vector<std::string> lights;
@@ -45,6 +58,8 @@ struct ReportInput {
     // Per light, sampled area lights only: the oracle's own cost curve, (ms, mean stated 95%
     // half-width over the penumbra's pixels) as its adaptive run went (docs/oracle.md).
     std::vector<std::vector<std::pair<double, double>>> oracleCurves;
+    int pathFrames = 0;  // compare --frames-path N: N, else 0 (no temporal metrics)
+    std::vector<std::optional<FlickerStrip>> flickerStrips;  // per light when pathFrames > 0
 };
 
 void writeReport(const std::string& path, const ReportInput& in);

@@ -33,6 +33,25 @@ Rgb classMap(const ChannelImage& oracle, const ErrorMaps& maps, const std::strin
     return rgb;
 }
 
+Rgb visibilityGrey(const std::vector<float>& V) {
+    Rgb rgb(V.size() * 3);
+    for (size_t i = 0; i < V.size(); ++i)
+        for (size_t k = 0; k < 3; ++k) rgb[3 * i + k] = 0.06f + 0.8f * std::clamp(V[i], 0.0f, 1.0f);
+    return rgb;
+}
+
+Rgb flickerMap(const std::vector<float>& V, const std::vector<uint8_t>& mask) {
+    SO_CHECK(V.size() == mask.size());
+    constexpr float kFlicker[3] = {0.95f, 0.05f, 0.05f};
+    Rgb rgb = visibilityGrey(V);
+    for (size_t i = 0; i < V.size(); ++i)
+        for (size_t k = 0; k < 3; ++k) {
+            if (mask[i] == 2) rgb[3 * i + k] = kFlicker[k];
+            if (mask[i] == 0) rgb[3 * i + k] *= 0.3f;  // not tracked: not measured
+        }
+    return rgb;
+}
+
 namespace {
 
 std::array<float, 3> magnitudeColour(float e) {

@@ -33,6 +33,11 @@ Rgb aliasingMap(const ChannelImage& raster, const std::string& light);
 // there are none (or the light is not sampled).
 Rgb unconvergedMap(const ChannelImage& oracle, const std::string& light, size_t& count);
 
+// The flicker strip (compare --frames-path): a frame's V as grey, and the same with the pixels
+// of a temporal.h mask that flicker in red and those not tracked dimmed.
+Rgb visibilityGrey(const std::vector<float>& V);
+Rgb flickerMap(const std::vector<float>& V, const std::vector<uint8_t>& mask);
+
 // A square of the image: the one with the largest summed error.
 struct Crop {
     int x = 0, y = 0, size = 0;

@@ -16,18 +16,49 @@ glm::dvec3 anyUp(const glm::dvec3& forward) {
     return std::fabs(forward.y) < 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
 }
 
+// The corners of a box.
+std::array<glm::dvec3, 8> corners(const Bounds3d& b) {
+    std::array<glm::dvec3, 8> c;
+    for (int k = 0; k < 8; ++k)
+        c[size_t(k)] = glm::dvec3((k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y,
+                                  (k & 4) ? b.hi.z : b.lo.z);
+    return c;
+}
+
 // Near and far planes around a point that enclose the bounds: far reaches the farthest corner;
 // near is the distance to the box (a little less), but at least far / 1e4 for depth precision.
 void enclose(const glm::dvec3& eye, const Bounds3d& b, double& near, double& far) {
     far = 0.0;
-    for (int k = 0; k < 8; ++k) {
-        glm::dvec3 c((k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y,
-                     (k & 4) ? b.hi.z : b.lo.z);
-        far = std::max(far, glm::length(c - eye));
-    }
+    for (const glm::dvec3& c : corners(b)) far = std::max(far, glm::length(c - eye));
     far = far * 1.01 + 1e-6;
     const glm::dvec3 nearest = glm::clamp(eye, b.lo, b.hi);
     near = std::max(0.99 * glm::length(nearest - eye), far * 1e-4);
+}
+
+// Points in a view's frame: their bounds.
+template <size_t N>
+void viewBounds(const glm::dmat4& viewFromLocal, const std::array<glm::dvec3, N>& points,
+                glm::dvec3& lo, glm::dvec3& hi) {
+    lo = glm::dvec3(1e300);
+    hi = glm::dvec3(-1e300);
+    for (const glm::dvec3& p : points) {
+        const glm::dvec3 v = glm::dvec3(viewFromLocal * glm::dvec4(p, 1.0));
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+    }
+}
+
+// A directional light's view (looking along its direction at the bounds' centre) and the near
+// and far planes that enclose the bounds (sceneLo, sceneHi: the bounds in that view).
+void directionalView(LightCamera& lc, const Bounds3d& b, glm::dvec3& sceneLo, glm::dvec3& sceneHi) {
+    lc.kind = LightCamera::Kind::Ortho;
+    const glm::dvec3 centre = b.center();
+    const double radius = 0.5 * b.extent() + 1e-6;
+    const glm::dvec3 eye = centre - lc.lsDirection * (2.0 * radius);
+    lc.viewFromLocal[0] = glm::lookAtRH(eye, centre, anyUp(lc.lsDirection));
+    viewBounds(lc.viewFromLocal[0], corners(b), sceneLo, sceneHi);
+    lc.near = std::max(0.0, -sceneHi.z - 0.01 * radius);
+    lc.far = -sceneLo.z + 0.01 * radius;
 }
 
 }  // namespace
@@ -38,35 +69,17 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
     lc.lsPosition = frame.lsFromWs(light.wsPosition);
     lc.lsDirection = glm::normalize(light.wsDirection);
     if (light.type == LightType::Directional) {
-        lc.kind = LightCamera::Kind::Ortho;
-        const glm::dvec3 centre = b.center();
-        const double radius = 0.5 * b.extent() + 1e-6;
-        const glm::dvec3 eye = centre - lc.lsDirection * (2.0 * radius);
-        lc.viewFromLocal[0] = glm::lookAtRH(eye, centre, anyUp(lc.lsDirection));
-        // Fit the box's corners in the light frame; square texels.
-        auto fit = [&](const Bounds3d& box, glm::dvec3& lo, glm::dvec3& hi) {
-            lo = glm::dvec3(1e300);
-            hi = glm::dvec3(-1e300);
-            for (int k = 0; k < 8; ++k) {
-                glm::dvec3 c((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y,
-                             (k & 4) ? box.hi.z : box.lo.z);
-                glm::dvec3 v = glm::dvec3(lc.viewFromLocal[0] * glm::dvec4(c, 1.0));
-                lo = glm::min(lo, v);
-                hi = glm::max(hi, v);
-            }
-        };
         glm::dvec3 lo, hi;
-        fit(b, lo, hi);
+        directionalView(lc, b, lo, hi);
         if (lsReceivers && !lsReceivers->empty()) {
             glm::dvec3 rlo, rhi;
-            fit(*lsReceivers, rlo, rhi);
+            viewBounds(lc.viewFromLocal[0], corners(*lsReceivers), rlo, rhi);
             lo.x = rlo.x, lo.y = rlo.y, hi.x = rhi.x, hi.y = rhi.y;
         }
+        // Square texels.
         const double half = 0.5 * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01;
         const double cx = 0.5 * (lo.x + hi.x), cy = 0.5 * (lo.y + hi.y);
-        lc.near = std::max(0.0, -hi.z - 0.01 * radius);
-        lc.far = -lo.z + 0.01 * radius;
-        lc.clipFromView =
+        lc.clipFromView[0] =
             glm::orthoRH_ZO(cx - half, cx + half, cy - half, cy + half, lc.near, lc.far);
         lc.texelScale = 2.0 * half / resolution;
         return lc;
@@ -79,7 +92,7 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
         lc.viewFromLocal[0] =
             glm::lookAtRH(lc.lsPosition, lc.lsPosition + lc.lsDirection, anyUp(lc.lsDirection));
         const double fov = lc.fovYDeg * std::numbers::pi / 180.0;
-        lc.clipFromView = glm::perspectiveRH_ZO(fov, 1.0, lc.near, lc.far);
+        lc.clipFromView[0] = glm::perspectiveRH_ZO(fov, 1.0, lc.near, lc.far);
         lc.texelScale = 2.0 * std::tan(0.5 * fov) / resolution;
         return lc;
     }
@@ -91,10 +104,93 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
                                 {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
     const glm::dvec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
                                {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-    for (int f = 0; f < 6; ++f)
+    for (int f = 0; f < 6; ++f) {
         lc.viewFromLocal[size_t(f)] = glm::lookAtRH(lc.lsPosition, lc.lsPosition + dirs[f], ups[f]);
-    lc.clipFromView = glm::perspectiveRH_ZO(std::numbers::pi / 2, 1.0, lc.near, lc.far);
+        lc.clipFromView[size_t(f)] =
+            glm::perspectiveRH_ZO(std::numbers::pi / 2, 1.0, lc.near, lc.far);
+    }
     lc.texelScale = 2.0 / resolution;
+    return lc;
+}
+
+double practicalSplit(double near, double far, int i, int n, double lambda) {
+    const double f = double(i) / double(n);
+    return lambda * near * std::pow(far / near, f) + (1.0 - lambda) * (near + (far - near) * f);
+}
+
+void cascadeRange(const CascadeView& view, double& lsNear, double& lsFar) {
+    const double far = std::max(view.lsFarthest, 1e-30);
+    lsFar = std::exp2(std::ceil(std::log2(far)));
+    lsNear = std::exp2(std::floor(std::log2(std::max(view.lsNearest, far * 0x1p-12))));
+}
+
+namespace {
+
+// The corners of the camera frustum's slice between view depths d0 and d1.
+std::array<glm::dvec3, 8> sliceCorners(const CascadeView& v, double d0, double d1) {
+    std::array<glm::dvec3, 8> c;
+    for (int k = 0; k < 8; ++k) {
+        const double d = (k & 4) ? d1 : d0;
+        const double sx = (k & 1) ? 1.0 : -1.0, sy = (k & 2) ? 1.0 : -1.0;
+        c[size_t(k)] = v.lsEye + d * (v.forward + sx * v.tanHalfVfov * v.aspect * v.right +
+                                      sy * v.tanHalfVfov * v.up);
+    }
+    return c;
+}
+
+// One cascade's square window in the light's view (slice: its frustum corners between view
+// depths d0 and d1): its centre and half side.
+void fitSlice(const LightCamera& lc, const CascadeView& v, double d0, double d1, bool snap,
+              int resolution, double& cx, double& cy, double& half) {
+    if (!snap) {
+        glm::dvec3 lo, hi;
+        viewBounds(lc.viewFromLocal[0], sliceCorners(v, d0, d1), lo, hi);
+        half = 0.5 * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01;
+        cx = 0.5 * (lo.x + hi.x), cy = 0.5 * (lo.y + hi.y);
+        return;
+    }
+    // The sphere about the slice's centroid (on the view axis, at the mean depth): its radius is
+    // computed from the split depths and the field of view alone, never from the camera's pose,
+    // so the texel size is the same bit for bit in every frame; its centre moves in whole texels,
+    // so every texel edge stays where it was.
+    const double zc = 0.5 * (d0 + d1), t = v.tanHalfVfov;
+    auto cornerDistance = [&](double d) {
+        const glm::dvec3 c(d * t * v.aspect, d * t, d - zc);
+        return glm::length(c);
+    };
+    // Margin: the snapped centre is up to a texel off the sphere's (texel = 2 half / resolution).
+    half = std::max(cornerDistance(d0), cornerDistance(d1)) * 1.01 * resolution / (resolution - 2);
+    const double texel = 2.0 * half / resolution;
+    const glm::dvec3 centre = v.lsEye + zc * v.forward;
+    const glm::dvec3 c = glm::dvec3(lc.viewFromLocal[0] * glm::dvec4(centre, 1.0));
+    cx = std::floor(c.x / texel) * texel;
+    cy = std::floor(c.y / texel) * texel;
+}
+
+}  // namespace
+
+LightCamera fitCascades(const Light& light, const Bounds3d& lsBounds, int resolution,
+                        const CascadeView& view, const CascadeSettings& settings) {
+    LightCamera lc;
+    lc.lsDirection = glm::normalize(light.wsDirection);
+    glm::dvec3 sceneLo, sceneHi;
+    directionalView(lc, lsBounds, sceneLo, sceneHi);
+    lc.kind = LightCamera::Kind::Cascades;
+    lc.faces = settings.count;
+    double lsNear = 0.0, lsFar = 0.0;
+    cascadeRange(view, lsNear, lsFar);
+    for (int i = 0; i <= settings.count; ++i)
+        lc.lsSplits[size_t(i)] = practicalSplit(lsNear, lsFar, i, settings.count, settings.lambda);
+    for (int i = 0; i < settings.count; ++i) {
+        double cx = 0.0, cy = 0.0, half = 0.0;
+        fitSlice(lc, view, lc.lsSplits[size_t(i)], lc.lsSplits[size_t(i) + 1], settings.snap,
+                 resolution, cx, cy, half);
+        lc.viewFromLocal[size_t(i)] = lc.viewFromLocal[0];
+        lc.clipFromView[size_t(i)] =
+            glm::orthoRH_ZO(cx - half, cx + half, cy - half, cy + half, lc.near, lc.far);
+        lc.cascadeTexel[size_t(i)] = 2.0 * half / resolution;
+    }
+    lc.texelScale = lc.cascadeTexel[0];
     return lc;
 }
 

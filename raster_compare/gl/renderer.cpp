@@ -158,7 +158,7 @@ void renderGroup(const CameraPass& camera, std::vector<TechniqueFrames>& group,
 void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& techniques,
                        const RasterOptions& options, const GlContext& gl,
                        const InterleavedCallbacks& callbacks) {
-    CameraDesc camDesc = scene.camera;
+    CameraDesc camDesc = options.camera.value_or(scene.camera);
     if (options.width > 0) camDesc.width = options.width;
     if (options.height > 0) camDesc.height = options.height;
     GpuScene gpu(scene);

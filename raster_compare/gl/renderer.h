@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/scene.h"
@@ -18,8 +19,11 @@ class GlContext;
 
 struct RasterOptions {
     int width = 0, height = 0;  // 0: the scene camera's
-    int frames = 9;             // timed frames (median and quartiles reported)
-    int warmup = 2;             // untimed frames first
+    // Another camera than the scene's (a frame of compare --frames-path); width and height above
+    // still override its size.
+    std::optional<CameraDesc> camera;
+    int frames = 9;  // timed frames (median and quartiles reported)
+    int warmup = 2;  // untimed frames first
     // Techniques rendered together take turns frame by frame, so that background load falls on
     // all alike; a group holds at most this much estimated GL memory (the next starts after).
     uint64_t interleaveBudgetBytes = uint64_t(2) << 30;

@@ -13,7 +13,8 @@ namespace so {
 
 ParamTable shadowMapParams(ParamTable own) {
     ParamTable p = {
-        {"resolution", 2048, 16, 16384, true, "shadow map side in texels (cube maps: per face)"},
+        {"resolution", 2048, 16, 16384, true,
+         "shadow map side in texels (cube maps: per face; cascades: each)"},
         {"depth_format",
          24,
          16,
@@ -23,6 +24,15 @@ ParamTable shadowMapParams(ParamTable own) {
          {16, 24, 32}},
         {"fit", 0, 0, 1, true,
          "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"},
+        {"cascades", 1, 1, 8, true,
+         "directional lights: maps over slices of the view's depth range (1: one map); others "
+         "ignore it"},
+        {"split_lambda", 0.5, 0.0, 1.0, false,
+         "cascades' practical split: 0 uniform, 1 logarithmic"},
+        {"snap", 1, 0, 1, true,
+         "cascades: 1 bounding-sphere fit with texel snapping, 0 each slice's tight box"},
+        {"blend", 0.1, 0.0, 0.5, false,
+         "cascades: fraction of each one's depth range over which it fades into the next"},
     };
     // The resolution is the family's quality parameter unless the technique names its own.
     p[0].quality = qualityParam(own) == nullptr;
@@ -34,7 +44,9 @@ ShadowMapTechnique::ShadowMapTechnique(const ParamValues& v)
     : Technique(v),
       resolution_(v.integer("resolution")),
       depthBits_(v.integer("depth_format")),
-      fitToReceivers_(v.integer("fit") == 1) {}
+      fitToReceivers_(v.integer("fit") == 1),
+      cascades_{v.integer("cascades"), v.real("split_lambda"), v.integer("snap") == 1},
+      blend_(v.real("blend")) {}
 
 ParamTable SlopeBias::params() {
     return {{"alpha", 1.0, 0.0, 100.0, false, "slope factor"},
@@ -48,6 +60,20 @@ SlopeBias::SlopeBias(const ParamValues& v)
 std::string SlopeBias::defines() const {
     return glslDefine("SLOPE_ALPHA", alpha) + glslDefine("SLOPE_MIN", minTexels) +
            glslDefine("SLOPE_MAX", maxTexels);
+}
+
+void setLightCameraUniforms(GLuint program, const CameraPass& camera, const LightCamera& lc) {
+    setMat4(program, "u_clipFromLocal", camera.clipFromLocal());
+    setVec3(program, "u_lsEye", camera.lsEye());
+    setFloat(program, "u_pixelScale", camera.pixelScale());
+    setVec3(program, "u_lsLightPosition", lc.lsPosition);
+    setVec3(program, "u_lsLightDirection", lc.lsDirection);
+    setFloat(program, "u_cosOuter", lc.cosOuter);
+    setMat4(program, "u_lightClipFromLocal", lc.clipFromLocal(0));
+    setMat4(program, "u_lightViewFromLocal", lc.viewFromLocal[0]);
+    setFloat(program, "u_near", lc.near);
+    setFloat(program, "u_far", lc.far);
+    setFloat(program, "u_texelScale", lc.texelScale);
 }
 
 namespace {
@@ -68,6 +94,30 @@ GlTexture makeSquare(GLenum format, int size, bool linear) {
     return t;
 }
 
+// The camera's frame and the depth range of what it sees, from its last render (the renderer
+// rendered it for the receivers' bounds, needsReceiverBounds).
+CascadeView cascadeView(const CameraPass& camera) {
+    const Camera& c = camera.camera();
+    CascadeView v;
+    v.lsEye = camera.lsEye();
+    v.forward = c.wsForward(), v.right = c.wsRight(), v.up = c.wsUp();
+    v.tanHalfVfov = 0.5 * camera.pixelScale() * double(camera.height());
+    v.aspect = double(camera.width()) / double(camera.height());
+    const std::vector<float> pos =
+        readTextureTopFirst(camera.positionTexture(), GL_RGBA, 4, camera.width(), camera.height());
+    double nearest = 1e300, farthest = 0.0;
+    for (size_t i = 0; i + 3 < pos.size(); i += 4) {
+        if (pos[i + 3] == 0.0f) continue;
+        const double d = glm::dot(glm::dvec3(pos[i], pos[i + 1], pos[i + 2]) - v.lsEye, v.forward);
+        nearest = std::min(nearest, d);
+        farthest = std::max(farthest, d);
+    }
+    // Nothing in view: any range will do.
+    v.lsNearest = farthest > 0.0 ? std::max(nearest, 0.0) : 1e-3;
+    v.lsFarthest = farthest > 0.0 ? farthest : 1.0;
+    return v;
+}
+
 // One light's map and passes.
 class ShadowMapLight final : public LightTechnique {
   public:
@@ -82,6 +132,7 @@ class ShadowMapLight final : public LightTechnique {
     void createMap();
     void createMomentTargets();
     void createVisibilityProgram(const CameraPass& camera);
+    void setCascadeUniforms(GLuint program, const CameraPass& camera) const;
     void renderMomentFace(int face);
 
     const ShadowMapTechnique& technique_;
@@ -104,8 +155,12 @@ class ShadowMapLight final : public LightTechnique {
 
 ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup)
     : technique_(technique), light_(setup.light), scene_(setup.scene) {
-    cam_ = fitLightCamera(light_, scene_.frame(), scene_.lsBounds(), technique.resolution(),
-                          setup.lsReceivers ? &*setup.lsReceivers : nullptr);
+    if (light_.type == LightType::Directional && technique.cascades().count > 1)
+        cam_ = fitCascades(light_, scene_.lsBounds(), technique.resolution(),
+                           cascadeView(setup.camera), technique.cascades());
+    else
+        cam_ = fitLightCamera(light_, scene_.frame(), scene_.lsBounds(), technique.resolution(),
+                              setup.lsReceivers ? &*setup.lsReceivers : nullptr);
     receiver_ = technique.receiverMesh(scene_);
     depthProg_ = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
                               {shaders::alpha_test_glsl, shaders::depth_frag});
@@ -117,11 +172,15 @@ ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightS
 void ShadowMapLight::createMap() {
     const MapStorage storage = technique_.storage();
     const bool cube = cam_.kind == LightCamera::Kind::Cube,
+               cascades = cam_.kind == LightCamera::Kind::Cascades,
                moments = storage == MapStorage::Moments;
     const int res = technique_.resolution();
-    map_ = makeTexture(cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D);
-    glTextureStorage2D(map_.get(), 1, moments ? GL_RGBA32F : depthFormat(technique_.depthBits()),
-                       res, res);
+    const GLenum format = moments ? GL_RGBA32F : depthFormat(technique_.depthBits());
+    map_ = makeTexture(cube ? GL_TEXTURE_CUBE_MAP : cascades ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D);
+    if (cascades)
+        glTextureStorage3D(map_.get(), 1, format, res, res, cam_.faces);
+    else
+        glTextureStorage2D(map_.get(), 1, format, res, res);
     // Point sampling: depth techniques do their own filtering and comparison in the shader;
     // moment maps are filtered bilinearly, which is what they are for; the hardware compare
     // filters with GL_LINEAR.
@@ -139,7 +198,7 @@ void ShadowMapLight::createMap() {
     const GLenum attachment = moments ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT;
     for (int f = 0; f < cam_.faces; ++f) {
         GlFramebuffer fbo = makeFramebuffer();
-        if (cube)
+        if (cube || cascades)
             glNamedFramebufferTextureLayer(fbo.get(), attachment, map_.get(), 0, f);
         else
             glNamedFramebufferTexture(fbo.get(), attachment, map_.get(), 0);
@@ -160,7 +219,8 @@ void ShadowMapLight::createMomentTargets() {
     if (technique_.blurRadius() == 0) {
         for (int f = 0; f < cam_.faces; ++f) {
             GlFramebuffer fbo = makeFramebuffer();
-            if (cam_.kind == LightCamera::Kind::Cube)
+            if (cam_.kind != LightCamera::Kind::Ortho &&
+                cam_.kind != LightCamera::Kind::Perspective)
                 glNamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, map_.get(), 0, f);
             else
                 glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, map_.get(), 0);
@@ -181,10 +241,18 @@ void ShadowMapLight::createMomentTargets() {
     setInt(blurProg_.get(), "u_source", 0);
 }
 
-std::string lightDefine(LightCamera::Kind kind) {
-    return kind == LightCamera::Kind::Cube    ? "#define LIGHT_CUBE\n"
-           : kind == LightCamera::Kind::Ortho ? "#define LIGHT_ORTHO\n"
-                                              : "#define LIGHT_SPOT\n";
+// Cascades are orthographic maps to the techniques' lookups.
+std::string lightDefine(const LightCamera& cam) {
+    switch (cam.kind) {
+        case LightCamera::Kind::Cube:
+            return "#define LIGHT_CUBE\n";
+        case LightCamera::Kind::Ortho:
+            return "#define LIGHT_ORTHO\n";
+        case LightCamera::Kind::Cascades:
+            return "#define LIGHT_ORTHO\n#define CASCADES " + std::to_string(cam.faces) + "\n";
+        default:
+            return "#define LIGHT_SPOT\n";
+    }
 }
 
 std::string mapDefine(MapStorage storage) {
@@ -195,26 +263,29 @@ std::string mapDefine(MapStorage storage) {
 
 void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
     const std::string defines =
-        scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightDefine(cam_.kind) +
+        scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightDefine(cam_) +
                                  mapDefine(technique_.storage()) + technique_.shaderDefines());
     visibilityProg_ =
         buildProgram(defines, shaders::scene_vert,
                      {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});
     const GLuint vp = visibilityProg_.get();
-    setMat4(vp, "u_clipFromLocal", camera.clipFromLocal());
-    setVec3(vp, "u_lsEye", camera.lsEye());
-    setFloat(vp, "u_pixelScale", camera.pixelScale());
-    setVec3(vp, "u_lsLightPosition", cam_.lsPosition);
-    setVec3(vp, "u_lsLightDirection", cam_.lsDirection);
-    setFloat(vp, "u_cosOuter", cam_.cosOuter);
-    setMat4(vp, "u_lightClipFromLocal", cam_.clipFromLocal(0));
-    setMat4(vp, "u_lightViewFromLocal", cam_.viewFromLocal[0]);
-    setFloat(vp, "u_near", cam_.near);
-    setFloat(vp, "u_far", cam_.far);
-    setFloat(vp, "u_texelScale", cam_.texelScale);
+    setLightCameraUniforms(vp, camera, cam_);
     setInt(vp, "u_map", 0);
     setFloat(vp, "u_receiverMesh", receiver_);
+    if (cam_.kind == LightCamera::Kind::Cascades) setCascadeUniforms(vp, camera);
     technique_.setLightUniforms(vp, light_, scene_.frame());
+}
+
+void ShadowMapLight::setCascadeUniforms(GLuint vp, const CameraPass& camera) const {
+    setVec3(vp, "u_lsCameraForward", camera.camera().wsForward());
+    setFloat(vp, "u_cascadeBlend", technique_.cascadeBlend());
+    for (int i = 0; i <= cam_.faces; ++i) {
+        const std::string k = "[" + std::to_string(i) + "]";
+        setFloat(vp, ("u_cascadeSplit" + k).c_str(), cam_.lsSplits[size_t(i)]);
+        if (i == cam_.faces) break;
+        setMat4(vp, ("u_cascadeClipFromLocal" + k).c_str(), cam_.clipFromLocal(i));
+        setFloat(vp, ("u_cascadeTexel" + k).c_str(), cam_.cascadeTexel[size_t(i)]);
+    }
 }
 
 void ShadowMapLight::renderLightPasses(PassClock& clock) {
@@ -282,15 +353,21 @@ RasterLightStats ShadowMapLight::describe() const {
     RasterLightStats s;
     if (receiver_ >= 0) s.counts = {{"receiver_mesh", receiver_}};
     const bool ortho = cam_.kind == LightCamera::Kind::Ortho;
-    s.map = ortho ? "orthographic" : cam_.kind == LightCamera::Kind::Cube ? "cube" : "perspective";
+    // Cascades: the first (finest) cascade's texel.
+    const bool cascades = cam_.kind == LightCamera::Kind::Cascades;
+    s.map = ortho                                  ? "orthographic"
+            : cascades                             ? "cascades"
+            : cam_.kind == LightCamera::Kind::Cube ? "cube"
+                                                   : "perspective";
+    if (cascades) s.counts["cascades"] = cam_.faces;
     const glm::dmat4 lsFromWs = glm::inverse(scene_.wsFromLs());
     for (int f = 0; f < cam_.faces; ++f)
         s.clipFromWorld.push_back(cam_.clipFromLocal(f) * lsFromWs);
     s.wsNear = frame.wsLength(cam_.near);
     s.wsFar = frame.wsLength(cam_.far);
     s.fovYDeg = cam_.fovYDeg;
-    s.texelSizeIsAbsolute = ortho;
-    s.texelSize = ortho ? frame.wsLength(cam_.texelScale) : cam_.texelScale;
+    s.texelSizeIsAbsolute = ortho || cascades;
+    s.texelSize = ortho || cascades ? frame.wsLength(cam_.texelScale) : cam_.texelScale;
     return s;
 }
 

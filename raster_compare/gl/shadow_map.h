@@ -6,8 +6,10 @@
 // (shaders/shadow_map.frag) and, for moment maps, `vec4 momentsOf(float t)` for the moment frame
 // (shaders/shadow_moments.frag).
 //
-// Every technique of the family has the common parameters resolution, depth_format and fit
-// (shadowMapParams); lengths are in texels at the receiver.
+// Every technique of the family has the common parameters resolution, depth_format and fit, and
+// the cascades' cascades, split_lambda, snap and blend (shadowMapParams): any technique's lookup
+// runs inside cascades, which are a layout of the family's map, like a cube map's faces. Lengths
+// are in texels at the receiver (of the cascade looked up).
 #pragma once
 
 #include <array>
@@ -18,10 +20,12 @@
 
 #include "core/local_frame.h"
 
+#include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/technique.h"
 
 namespace so {
 
+class CameraPass;
 class GpuScene;
 
 // What the map holds and how the visibility pass samples it.
@@ -41,11 +45,16 @@ class ShadowMapTechnique : public Technique {
     explicit ShadowMapTechnique(const ParamValues& values);
 
     bool filtered() const final { return storage() == MapStorage::Moments; }
-    bool needsReceiverBounds() const final { return fitToReceivers_; }
+    // Cascades fit their slices to the depth range the camera sees, read from the same render.
+    bool needsReceiverBounds() const final { return fitToReceivers_ || cascades_.count > 1; }
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const final;
 
     int resolution() const { return resolution_; }
     int depthBits() const { return depthBits_; }
+    // Directional lights' cascades (count 1: one map); blend: the fraction of each cascade's depth
+    // range over which it fades into the next.
+    const CascadeSettings& cascades() const { return cascades_; }
+    double cascadeBlend() const { return blend_; }
 
     // The technique's choices.
     virtual MapStorage storage() const { return MapStorage::Depth; }
@@ -71,6 +80,8 @@ class ShadowMapTechnique : public Technique {
   private:
     int resolution_, depthBits_;
     bool fitToReceivers_;
+    CascadeSettings cascades_;
+    double blend_;
 };
 
 // The slope-scaled bias shared by slope-bias, pcf and hw-pcf: its parameters (alpha, min, max, in
@@ -81,5 +92,11 @@ struct SlopeBias {
     std::string defines() const;
     double alpha, minTexels, maxTexels;
 };
+
+// The uniforms of a visibility frame that come from the camera pass and the light's camera
+// (shaders/shadow_map.frag's, which the adaptive map's frame shares): u_clipFromLocal, u_lsEye,
+// u_pixelScale, u_lsLight*, u_cosOuter, u_lightClipFromLocal, u_lightViewFromLocal, u_near, u_far,
+// u_texelScale.
+void setLightCameraUniforms(GLuint program, const CameraPass& camera, const LightCamera& lc);
 
 }  // namespace so

@@ -1,6 +1,8 @@
 // The shadow-map family's visibility frame: V of one light per pixel, in [0, 1]. The technique's
 // GLSL file (techniques/*.glsl) follows this one and defines techniqueVisibility. Defines:
 //   light: LIGHT_ORTHO (directional), LIGHT_SPOT, LIGHT_CUBE (point and area lights, at the centre);
+//   CASCADES n with LIGHT_ORTHO: n orthographic maps, the layers of a 2D array, each covering a
+//   slice of the camera's view depth; the lookups below read the cascade g_cascade;
 //   map: MAP_DEPTH (point-sampled depth), MAP_HW_COMPARE (the sampler's depth compare),
 //        MAP_MOMENTS (filtered moments); VISIBILITY_PASS.
 // Depths are compared as linear distances along the map's view axis, so biases are lengths:
@@ -18,12 +20,30 @@ uniform float u_far;
 uniform float u_texelScale;  // ortho: texel size; perspective: texel size per unit of depth
 #if defined(MAP_HW_COMPARE) && defined(LIGHT_CUBE)
 uniform samplerCubeShadow u_map;
+#elif defined(MAP_HW_COMPARE) && defined(CASCADES)
+uniform sampler2DArrayShadow u_map;
 #elif defined(MAP_HW_COMPARE)
 uniform sampler2DShadow u_map;
 #elif defined(LIGHT_CUBE)
 uniform samplerCube u_map;
+#elif defined(CASCADES)
+uniform sampler2DArray u_map;
 #else
 uniform sampler2D u_map;
+#endif
+#ifdef CASCADES
+uniform mat4 u_cascadeClipFromLocal[CASCADES];
+uniform float u_cascadeTexel[CASCADES];      // local units
+uniform float u_cascadeSplit[CASCADES + 1];  // view depths (local units) bounding each cascade
+uniform float u_cascadeBlend;                // fraction of a cascade's range fading into the next
+uniform vec3 u_lsCameraForward;
+int g_cascade = 0;  // the cascade the lookups read (main sets it)
+// A texel of the current cascade, and the map's side.
+#define MAP_TEXEL(ij) texelFetch(u_map, ivec3(ij, g_cascade), 0)
+#define MAP_SIZE textureSize(u_map, 0).xy
+#else
+#define MAP_TEXEL(ij) texelFetch(u_map, ij, 0)
+#define MAP_SIZE textureSize(u_map, 0)
 #endif
 uniform float u_pixelScale;  // camera pixel size per unit of distance (2 tan(vfov / 2) / height)
 layout(location = 0) out float o_visibility;
@@ -50,7 +70,9 @@ float linearDepth(float z) {
 }
 
 float texelWorld(float depth) {
-#ifdef LIGHT_ORTHO
+#ifdef CASCADES
+    return u_cascadeTexel[g_cascade];
+#elif defined(LIGHT_ORTHO)
     return u_texelScale;
 #else
     return depth * u_texelScale;
@@ -91,7 +113,11 @@ MapPoint mapPoint(vec3 q) {
     m.t2 = a.z >= a.x && a.z >= a.y ? vec3(0, 1, 0) : vec3(0, 0, 1);
     m.step = u_texelScale * m.d;
 #else
+#ifdef CASCADES
+    vec4 c = u_cascadeClipFromLocal[g_cascade] * vec4(q, 1.0);
+#else
     vec4 c = u_lightClipFromLocal * vec4(q, 1.0);
+#endif
     m.uv = c.xy / c.w * 0.5 + 0.5;
     m.d = -(u_lightViewFromLocal * vec4(q, 1.0)).z;
     m.outside = any(lessThan(m.uv, vec2(0.0))) || any(greaterThan(m.uv, vec2(1.0))) || m.d > u_far;
@@ -115,9 +141,9 @@ float depthTap(MapPoint m, ivec2 k, float dRef) {
 #ifdef LIGHT_CUBE
     float z = texture(u_map, m.v + m.step * (float(k.x) * m.t1 + float(k.y) * m.t2)).r;
 #else
-    ivec2 size = textureSize(u_map, 0);
+    ivec2 size = MAP_SIZE;
     ivec2 ij = clamp(ivec2(floor(m.uv * vec2(size))) + k, ivec2(0), size - 1);
-    float z = texelFetch(u_map, ij, 0).r;
+    float z = MAP_TEXEL(ij).r;
 #endif
     return dRef <= linearDepth(z) ? 1.0 : 0.0;
 }
@@ -126,9 +152,9 @@ float storedDepthAt(MapPoint m, vec2 o) {
 #ifdef LIGHT_CUBE
     float z = texture(u_map, m.v + m.step * (o.x * m.t1 + o.y * m.t2)).r;
 #else
-    ivec2 size = textureSize(u_map, 0);
+    ivec2 size = MAP_SIZE;
     ivec2 ij = clamp(ivec2(floor(m.uv * vec2(size) + o)), ivec2(0), size - 1);
-    float z = texelFetch(u_map, ij, 0).r;
+    float z = MAP_TEXEL(ij).r;
 #endif
     return linearDepth(z);
 }
@@ -147,6 +173,8 @@ float hardwareTest(vec3 q, float bias) {
     if (m.outside) return 1.0;
 #ifdef LIGHT_CUBE
     return texture(u_map, vec4(m.v, windowDepth(m.d - bias)));
+#elif defined(CASCADES)
+    return texture(u_map, vec4(m.uv, float(g_cascade), windowDepth(m.d - bias)));
 #else
     return texture(u_map, vec3(m.uv, windowDepth(m.d - bias)));
 #endif
@@ -156,6 +184,8 @@ float hardwareTest(vec3 q, float bias) {
 vec4 momentsAt(MapPoint m) {
 #ifdef LIGHT_CUBE
     return texture(u_map, m.v);
+#elif defined(CASCADES)
+    return texture(u_map, vec3(m.uv, float(g_cascade)));
 #else
     return texture(u_map, m.uv);
 #endif
@@ -178,6 +208,25 @@ float slopeBias(Receiver r, float alpha, float minTexels, float maxTexels, float
     float tanTheta = sqrt(max(0.0, 1.0 - r.ndotl * r.ndotl)) / r.ndotl;
     return clamp(alpha * tanTheta, minTexels, maxTexels) * r.texel * spread;
 }
+
+#ifdef CASCADES
+// The cascade whose slice holds the point's view depth (the last beyond it); in the last `blend`
+// of a slice, faded linearly into the next cascade's lookup so the seam does not show as a line.
+float cascadedVisibility(vec3 p, vec3 n, float ndotl, float pixel) {
+    float depth = dot(p - u_lsEye, u_lsCameraForward);
+    int i = 0;
+    while (i < CASCADES - 1 && depth > u_cascadeSplit[i + 1]) ++i;
+    g_cascade = i;
+    float texel = u_cascadeTexel[i];
+    o_aliasing = (texel / max(ndotl, 1e-3)) / pixel;
+    float v = techniqueVisibility(Receiver(p, n, ndotl, texel));
+    float end = u_cascadeSplit[i + 1], band = u_cascadeBlend * (end - u_cascadeSplit[i]);
+    if (i == CASCADES - 1 || band <= 0.0 || depth <= end - band) return v;
+    g_cascade = i + 1;
+    float next = techniqueVisibility(Receiver(p, n, ndotl, u_cascadeTexel[i + 1]));
+    return mix(v, next, clamp((depth - (end - band)) / band, 0.0, 1.0));
+}
+#endif
 
 void main() {
     alphaTest();
@@ -204,7 +253,11 @@ void main() {
         return;
     }
 #endif
+#ifdef CASCADES
+    o_visibility = cascadedVisibility(p, n, ndotl, pixel);
+#else
     float texel = texelWorld(receiverDepth(p));
     o_aliasing = (texel / max(ndotl, 1e-3)) / pixel;
     o_visibility = techniqueVisibility(Receiver(p, n, ndotl, texel));
+#endif
 }

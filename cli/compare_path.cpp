@@ -1,0 +1,120 @@
+#include "cli/compare_path.h"
+
+#include <iostream>
+
+#include "core/camera_path.h"
+#include "core/channels.h"
+#include "core/error.h"
+
+namespace so {
+
+namespace ch = channels;
+
+namespace {
+
+// One frame's images, kept until the next frame is measured against it.
+struct PathFrame {
+    CameraDesc camera;
+    ChannelImage oracle;
+    std::vector<ChannelImage> rasters;  // per technique
+};
+
+std::vector<float> plane(const ChannelImage& image, const std::string& light) {
+    const float* v = image.channel(ch::lightChannel(light, ch::kVisibility));
+    return std::vector<float>(v, v + image.pixelCount());
+}
+
+// The worst pair so far of one technique and light, with what its strip needs.
+struct WorstPair {
+    size_t flickering = 0;
+    std::optional<FlickerStrip> strip;
+};
+
+PathFrame renderFrame(const Scene& scene, const std::vector<const Technique*>& techniques,
+                      const OracleOptions& oracle, const OracleCacheOptions& cache,
+                      const RasterOptions& raster, const GlContext& gl, const CameraDesc& pose) {
+    PathFrame frame;
+    OracleOptions o = oracle;
+    o.camera = pose;
+    frame.camera = effectiveCamera(scene, o);
+    frame.oracle = traceOrLoad(scene, o, cache).image;
+    // One untimed frame per technique: only the images matter here.
+    RasterOptions r = raster;
+    r.camera = pose;
+    r.frames = 1;
+    r.warmup = 0;
+    frame.rasters.resize(techniques.size());
+    renderInterleaved(scene, techniques, r, gl, {nullptr, [&](size_t i, RasterResult&& result) {
+                                                     frame.rasters[i] = std::move(result.image);
+                                                 }});
+    return frame;
+}
+
+void measurePair(const PathFrame& prev, const PathFrame& next, const Scene& scene,
+                 const std::vector<std::string>& labels, int pairIndex, PathFlicker& out,
+                 std::vector<std::vector<WorstPair>>& worst) {
+    for (size_t t = 0; t < labels.size(); ++t)
+        for (size_t li = 0; li < scene.lights.size(); ++li) {
+            const std::string& light = scene.lights[li].name;
+            std::vector<uint8_t> mask;
+            const FramePairFlicker p =
+                compareFramePair({prev.camera, &prev.oracle, &prev.rasters[t]},
+                                 {next.camera, &next.oracle, &next.rasters[t]}, light, {}, &mask);
+            out.flicker[t][li].add(p);
+            WorstPair& w = worst[t][li];
+            if (w.strip && p.flickering <= w.flickering) continue;
+            w.flickering = p.flickering;
+            w.strip = FlickerStrip{labels[t],
+                                   pairIndex,
+                                   0.0,
+                                   p.flickering,
+                                   next.oracle.width(),
+                                   next.oracle.height(),
+                                   plane(prev.rasters[t], light),
+                                   plane(next.rasters[t], light),
+                                   plane(next.oracle, light),
+                                   std::move(mask)};
+        }
+}
+
+}  // namespace
+
+PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Technique*>& techniques,
+                               const std::vector<std::string>& labels, const OracleOptions& oracle,
+                               const OracleCacheOptions& cache, const RasterOptions& raster,
+                               const GlContext& gl, int frames) {
+    if (!scene.cameraPath)
+        throwInputError(scene.path.string(), "camera_path",
+                        "missing: --frames-path needs a camera path (scene_format 2, "
+                        "docs/scene-format.md)");
+    const std::vector<CameraDesc> poses = sampleCameraPath(*scene.cameraPath, scene.camera, frames);
+    PathFlicker out;
+    out.frames = frames;
+    out.flicker.assign(techniques.size(), std::vector<TemporalFlicker>(scene.lights.size()));
+    std::vector<std::vector<WorstPair>> worst(techniques.size(),
+                                              std::vector<WorstPair>(scene.lights.size()));
+    PathFrame prev;
+    for (int f = 0; f < frames; ++f) {
+        std::cerr << "camera path: frame " << f + 1 << " of " << frames << "\n";
+        PathFrame next =
+            renderFrame(scene, techniques, oracle, cache, raster, gl, poses[size_t(f)]);
+        if (f > 0) measurePair(prev, next, scene, labels, f - 1, out, worst);
+        prev = std::move(next);
+    }
+    // Per light, the strip of the technique with the highest rate.
+    out.strips.resize(scene.lights.size());
+    for (size_t li = 0; li < scene.lights.size(); ++li) {
+        size_t best = 0;
+        double bestRate = -1.0;
+        for (size_t t = 0; t < techniques.size(); ++t) {
+            const double r = out.flicker[t][li].rate().value_or(0.0);
+            if (r > bestRate) best = t, bestRate = r;
+        }
+        if (techniques.empty() || !worst[best][li].strip) continue;
+        out.strips[li] = std::move(worst[best][li].strip);
+        out.strips[li]->rate = bestRate;
+    }
+    return out;
+}
+
+}  // namespace so

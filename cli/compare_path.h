@@ -1,0 +1,32 @@
+// compare --frames-path N: the scene's camera path (scene_format 2) rendered in N frames, the
+// oracle and every technique once per frame, measured for temporal flicker (temporal.h,
+// docs/metrics.md#temporal-flicker). The compare command's own metrics stay on the scene camera.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oracle/oracle_cache.h"
+#include "raster_compare/compare/report.h"
+#include "raster_compare/compare/temporal.h"
+#include "raster_compare/gl/renderer.h"
+
+namespace so {
+
+class GlContext;
+
+struct PathFlicker {
+    int frames = 0;
+    std::vector<std::vector<TemporalFlicker>> flicker;  // [technique][light]
+    std::vector<std::optional<FlickerStrip>> strips;    // [light]: the worst technique's worst pair
+};
+
+// Throws InputError (the scene file, camera_path) when the scene has no camera path.
+// `labels`: the techniques' labels, for progress and the strips.
+PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Technique*>& techniques,
+                               const std::vector<std::string>& labels, const OracleOptions& oracle,
+                               const OracleCacheOptions& cache, const RasterOptions& raster,
+                               const GlContext& gl, int frames);
+
+}  // namespace so
