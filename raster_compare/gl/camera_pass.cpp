@@ -82,9 +82,17 @@ Bounds3d CameraPass::receiverBounds() const {
     const std::vector<float> pos =
         readTextureTopFirst(position_.get(), GL_RGBA, 4, width(), height());
     Bounds3d lsReceivers;
-    for (size_t i = 0; i < size_t(width()) * size_t(height()); ++i)
-        if (pos[4 * i + 3] != 0.0f)
-            lsReceivers.extend(glm::dvec3(pos[4 * i], pos[4 * i + 1], pos[4 * i + 2]));
+    const glm::dvec3 forward = camera_.wsForward();  // the local frame only scales and shifts
+    DepthRange depths{1e300, 0.0};
+    for (size_t i = 0; i < size_t(width()) * size_t(height()); ++i) {
+        if (pos[4 * i + 3] == 0.0f) continue;
+        const glm::dvec3 p(pos[4 * i], pos[4 * i + 1], pos[4 * i + 2]);
+        lsReceivers.extend(p);
+        const double d = glm::dot(p - lsEye_, forward);
+        depths.nearest = std::min(depths.nearest, d);
+        depths.farthest = std::max(depths.farthest, d);
+    }
+    visibleDepths_ = lsReceivers.empty() ? DepthRange{} : depths;
     return lsReceivers;
 }
 

@@ -35,6 +35,13 @@ class CameraPass {
     void render() const;
     // Renders once and returns the local-frame bounds of the surfaces seen (empty if none).
     Bounds3d receiverBounds() const;
+    // The nearest and farthest view depth (local units, along the camera's forward axis) of a
+    // surface seen, from the same readback as the last receiverBounds(); {0, 0} when nothing was
+    // seen or before the first call.
+    struct DepthRange {
+        double nearest = 0.0, farthest = 0.0;
+    };
+    const DepthRange& visibleDepthRange() const { return visibleDepths_; }
     // The geometry channels of docs/exr-channels.md from the last render.
     void readGeometry(ChannelImage& image) const;
 
@@ -47,6 +54,7 @@ class CameraPass {
     GlProgram program_;
     GlTexture position_, normal_, prim_, depth_;
     GlFramebuffer fbo_;
+    mutable DepthRange visibleDepths_;
 };
 
 // One light's visibility target: V and the predicted aliasing, sharing the camera pass's depth.

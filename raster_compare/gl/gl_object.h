@@ -77,6 +77,17 @@ inline GlTexture makeTexture(GLenum target) {
     glCreateTextures(target, 1, &n);
     return GlTexture(n);
 }
+// A single-level 2D texture, point-sampled and clamped: the intermediate targets and tables
+// that are read texel by texel.
+inline GlTexture makeTexture2D(GLenum format, int width, int height) {
+    GlTexture t = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(t.get(), 1, format, width, height);
+    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
 inline GlFramebuffer makeFramebuffer() {
     GLuint n = 0;
     glCreateFramebuffers(1, &n);

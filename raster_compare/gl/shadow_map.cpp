@@ -11,6 +11,12 @@
 
 namespace so {
 
+ParamSpec fitParam() {
+    return {"fit", 0,
+            0,     1,
+            true,  "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"};
+}
+
 ParamTable shadowMapParams(ParamTable own) {
     ParamTable p = {
         {"resolution", 2048, 16, 16384, true,
@@ -22,8 +28,7 @@ ParamTable shadowMapParams(ParamTable own) {
          true,
          "depth buffer bits: 16, 24 (fixed point) or 32 (float)",
          {16, 24, 32}},
-        {"fit", 0, 0, 1, true,
-         "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"},
+        fitParam(),
         {"cascades", 1, 1, 8, true,
          "directional lights: maps over slices of the view's depth range (1: one map); others "
          "ignore it"},
@@ -84,18 +89,8 @@ GLenum depthFormat(int bits) {
                         : GL_DEPTH_COMPONENT32F;
 }
 
-GlTexture makeSquare(GLenum format, int size, bool linear) {
-    GlTexture t = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(t.get(), 1, format, size, size);
-    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, linear ? GL_LINEAR : GL_NEAREST);
-    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
-    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
-
-// The camera's frame and the depth range of what it sees, from its last render (the renderer
-// rendered it for the receivers' bounds, needsReceiverBounds).
+// The camera's frame and the depth range of what it sees (the renderer rendered it for the
+// receivers' bounds, needsReceiverBounds).
 CascadeView cascadeView(const CameraPass& camera) {
     const Camera& c = camera.camera();
     CascadeView v;
@@ -103,15 +98,9 @@ CascadeView cascadeView(const CameraPass& camera) {
     v.forward = c.wsForward(), v.right = c.wsRight(), v.up = c.wsUp();
     v.tanHalfVfov = 0.5 * camera.pixelScale() * double(camera.height());
     v.aspect = double(camera.width()) / double(camera.height());
-    const std::vector<float> pos =
-        readTextureTopFirst(camera.positionTexture(), GL_RGBA, 4, camera.width(), camera.height());
-    double nearest = 1e300, farthest = 0.0;
-    for (size_t i = 0; i + 3 < pos.size(); i += 4) {
-        if (pos[i + 3] == 0.0f) continue;
-        const double d = glm::dot(glm::dvec3(pos[i], pos[i + 1], pos[i + 2]) - v.lsEye, v.forward);
-        nearest = std::min(nearest, d);
-        farthest = std::max(farthest, d);
-    }
+    // The range the renderer's receiverBounds() readback found (no second readback).
+    const double nearest = camera.visibleDepthRange().nearest,
+                 farthest = camera.visibleDepthRange().farthest;
     // Nothing in view: any range will do.
     v.lsNearest = farthest > 0.0 ? std::max(nearest, 0.0) : 1e-3;
     v.lsFarthest = farthest > 0.0 ? farthest : 1.0;
@@ -209,7 +198,7 @@ void ShadowMapLight::createMap() {
 
 void ShadowMapLight::createMomentTargets() {
     const int res = technique_.resolution();
-    faceDepth_ = makeSquare(depthFormat(technique_.depthBits()), res, false);
+    faceDepth_ = makeTexture2D(depthFormat(technique_.depthBits()), res, res);
     momentsProg_ = buildProgram(
         scene_.alphaDefines() + ("#define MOMENTS_PASS\n" + technique_.shaderDefines()),
         shaders::scene_vert,
@@ -229,8 +218,8 @@ void ShadowMapLight::createMomentTargets() {
         }
         return;
     }
-    faceTex_ = makeSquare(GL_RGBA32F, res, false);
-    tempTex_ = makeSquare(GL_RGBA32F, res, false);
+    faceTex_ = makeTexture2D(GL_RGBA32F, res, res);
+    tempTex_ = makeTexture2D(GL_RGBA32F, res, res);
     faceFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(faceFbo_.get(), GL_COLOR_ATTACHMENT0, faceTex_.get(), 0);
     glNamedFramebufferTexture(faceFbo_.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);

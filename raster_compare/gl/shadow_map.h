@@ -35,6 +35,9 @@ enum class MapStorage {
     Moments,               // RGBA32F moments, bilinear, blurred
 };
 
+// `fit`: a directional map over the scene's bounds (0) or the receivers in view (1); the adaptive
+// map's too.
+ParamSpec fitParam();
 // The common parameters first, then the technique's own.
 ParamTable shadowMapParams(ParamTable own);
 

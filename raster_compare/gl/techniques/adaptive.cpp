@@ -104,8 +104,7 @@ ParamTable Adaptive::params() {
         {"refine", 1, 0, 1, true,
          "1: when the pool cannot hold every page asked for, fill half of it first, "
          "then ask for finer pages only near the shadow edges found there; 0: by footprint alone"},
-        {"fit", 0, 0, 1, true,
-         "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"},
+        fitParam(),
     };
     for (ParamSpec& s : SlopeBias::params()) p.push_back(std::move(s));
     return p;
@@ -182,16 +181,6 @@ AdaptiveLight::AdaptiveLight(const Adaptive& technique, const LightSetup& setup,
     createTargets();
     createPrograms();
     computeMeshRects();
-}
-
-GlTexture makeTexture2D(GLenum format, int width, int height) {
-    GlTexture t = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(t.get(), 1, format, width, height);
-    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
 }
 
 void AdaptiveLight::createTargets() {
