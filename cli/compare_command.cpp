@@ -10,6 +10,7 @@
 #include <set>
 
 #include "cli/compare_path.h"
+#include "cli/csv_table.h"
 #include "cli/output.h"
 #include "core/camera_path.h"
 #include "core/channels.h"
@@ -48,48 +49,6 @@ TechniqueSpec parseTechniqueSpec(const std::string& spec) {
 }
 
 namespace {
-
-std::string csvField(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
-
-// metrics_wide.csv: one row per light x technique, the technique's parameters ("param.NAME") and
-// every metric as columns (docs/cli.md). Columns are the union over rows, in first-seen order.
-class WideCsv {
-  public:
-    void add(const std::vector<std::pair<std::string, std::string>>& row) {
-        std::map<std::string, std::string> r;
-        for (const auto& [column, value] : row) {
-            if (!r.count(column) && !known_.count(column)) {
-                known_.insert(column);
-                columns_.push_back(column);
-            }
-            r[column] = value;
-        }
-        rows_.push_back(std::move(r));
-    }
-    void write(const fs::path& path) const {
-        std::ofstream out(path);
-        if (!out) throwInputError(path.string(), "", "cannot be written");
-        for (size_t c = 0; c < columns_.size(); ++c) out << (c ? "," : "") << csvField(columns_[c]);
-        out << "\n";
-        for (const auto& r : rows_) {
-            for (size_t c = 0; c < columns_.size(); ++c) {
-                const auto it = r.find(columns_[c]);
-                out << (c ? "," : "") << (it == r.end() ? "" : csvField(it->second));
-            }
-            out << "\n";
-        }
-    }
-
-  private:
-    std::vector<std::string> columns_;
-    std::set<std::string> known_;
-    std::vector<std::map<std::string, std::string>> rows_;
-};
 
 // A technique as the user asked for it, created (and so validated) before any work starts.
 struct TechniqueRun {
@@ -353,8 +312,9 @@ int runCompareCommand(const CompareOptions& options) {
     if (options.raster.height > 0) oracleOptions.height = options.raster.height;
     const CachedOracle oracle =
         traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
-    writeExr((out / "oracle.exr").string(), oracle.image,
-             {{"shadowOracle/sceneHash", scene.contentHash}});
+    if (!options.sweepTask)
+        writeExr((out / "oracle.exr").string(), oracle.image,
+                 {{"shadowOracle/sceneHash", scene.contentHash}});
 
     GlContext gl;
     CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv"),
@@ -386,12 +346,14 @@ int runCompareCommand(const CompareOptions& options) {
     const nlohmann::json metrics = metricsJson(job, results);
     writeJsonFile(out / "metrics.json", metrics);
     job.wide.write(out / "metrics_wide.csv");
-    report.oracle = oracle.image;
-    report.timedOn = gl.renderer();
-    report.oracleCurves = job.oracleCurves;
-    report.embedImages = options.embedImages;
-    report.provenance = provenance(metrics, oracle, oracleOptions);
-    writeReport((out / "report.html").string(), report);
+    if (!options.sweepTask) {
+        report.oracle = oracle.image;
+        report.timedOn = gl.renderer();
+        report.oracleCurves = job.oracleCurves;
+        report.embedImages = options.embedImages;
+        report.provenance = provenance(metrics, oracle, oracleOptions);
+        writeReport((out / "report.html").string(), report);
+    }
     std::cout << "compared " << options.scenePath << ": " << runs.size() << " techniques, oracle "
               << (oracle.fromCache ? "from the cache" : "traced") << "\n  "
               << (out / "metrics.json").string() << "\n  " << (out / "metrics.csv").string()

@@ -35,6 +35,9 @@ struct CompareOptions {
     // --frames-path N (>= 2): the scene's camera path in N frames, for temporal_flicker_rate;
     // 0: none.
     int pathFrames = 0;
+    // A sweep's task (docs/sweep.md): no report.html and no copy of the oracle in the folder, which
+    // the sweep reads metrics.json from and then drops.
+    bool sweepTask = false;
 };
 
 int runCompareCommand(const CompareOptions& options);

@@ -12,8 +12,12 @@
 #include "cli/gate_command.h"
 #include "cli/index_command.h"
 #include "cli/raster_command.h"
+#include "cli/sweep_command.h"
+#include "cli/sweep_merge.h"
+#include "cli/sweep_task.h"
 #include "cli/techniques_command.h"
 #include "cli/trace_command.h"
+#include "cli/trace_merge_command.h"
 #include "core/error.h"
 #include "core/version.h"
 #include "raster_compare/gl/gl_context.h"
@@ -75,10 +79,30 @@ static Runner addTrace(CLI::App& app) {
         ->add_option("--verify-samples", o->oracle.verify.areaSamples,
                      "reference samples per area-light pixel checked (default 4096)")
         ->check(CLI::Range(64, 1 << 20));
+    // Checked by the command (one line naming --tile, exit 2), not by CLI11.
+    traceCmd->add_option("--tile", o->tile,
+                         "I/N: trace only band I of N bands of rows (0 <= I < N <= 4096), for "
+                         "`trace-merge` to join; not with --verify");
 
     return [o, quiet] {
         o->oracle.progress = !*quiet;
         return so::runTraceCommand(*o);
+    };
+}
+
+static Runner addTraceMerge(CLI::App& app) {
+    auto o = std::make_shared<so::TraceMergeOptions>();
+    auto quiet = std::make_shared<bool>(false);
+    CLI::App* mergeCmd = app.add_subcommand(
+        "trace-merge", "join the folders of `trace --tile I/N` into the whole oracle.exr");
+    mergeCmd->add_option("tiles", o->tileDirs, "output folders of trace --tile, one per band")
+        ->required();
+    mergeCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
+    mergeCmd->add_flag("--quiet", *quiet, "no progress output");
+
+    return [o, quiet] {
+        o->progress = !*quiet;
+        return so::runTraceMergeCommand(*o);
     };
 }
 
@@ -160,6 +184,64 @@ static Runner addCompare(CLI::App& app) {
     };
 }
 
+static Runner addSweep(CLI::App& app) {
+    auto o = std::make_shared<so::SweepOptions>();
+    auto quiet = std::make_shared<bool>(false);
+    CLI::App* cmd = app.add_subcommand(
+        "sweep",
+        "every setting of a sweep spec over its scenes: locally or as Slurm job arrays, "
+        "resumable, merged into metrics.csv and a report with Pareto fronts");
+    cmd->add_option("spec", o->specPath, "sweep spec (docs/sweep.md)")->required();
+    cmd->add_option("--out", o->outDir, "the sweep's folder (created; rerun to resume)")
+        ->required();
+    auto* jobs = cmd->add_option("--jobs", o->jobs, "tasks at once on this machine (default 1)")
+                     ->check(CLI::Range(1, 1024));
+    auto* slurm = cmd->add_flag("--slurm", o->slurm,
+                                "submit job arrays to Slurm instead (DIR on a shared file system)");
+    slurm->excludes(jobs);
+    cmd->add_option("--partition", o->slurmOptions.partition, "Slurm partition")->needs(slurm);
+    cmd->add_option("--max-concurrent", o->slurmOptions.maxConcurrent,
+                    "Slurm: at most K array tasks at once (--array=...%K)")
+        ->check(CLI::Range(1, 1000000))
+        ->needs(slurm);
+    cmd->add_option("--sbatch-arg", o->slurmOptions.sbatchArgs,
+                    "Slurm: an #SBATCH line for every script, e.g. --sbatch-arg=--time=10 "
+                    "(repeatable)")
+        ->needs(slurm);
+    cmd->add_flag("--dry-run", o->slurmOptions.dryRun,
+                  "Slurm: write and print the batch scripts, submit nothing")
+        ->needs(slurm);
+    cmd->add_flag("--quiet", *quiet, "no progress output");
+    return [o, quiet] {
+        o->progress = !*quiet;
+        return so::runSweepCommand(*o);
+    };
+}
+
+static Runner addSweepTask(CLI::App& app) {
+    auto o = std::make_shared<so::SweepTaskOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "sweep-task", "one task of a planned sweep (what `sweep` and its Slurm arrays run)");
+    cmd->add_option("dir", o->dir, "the sweep's folder (holding sweep.json)")->required();
+    auto* index = cmd->add_option("--index", o->index, "technique task K (from 0)")
+                      ->check(CLI::Range(0L, 100000000L));
+    cmd->add_option("--oracle", o->oracle, "the oracle of scene S (from 0)")
+        ->check(CLI::Range(0L, 100000000L))
+        ->excludes(index);
+    return [o] { return so::runSweepTask(*o); };
+}
+
+static Runner addSweepMerge(CLI::App& app) {
+    auto o = std::make_shared<so::SweepMergeOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "sweep-merge",
+        "a sweep's finished tasks into metrics.csv, metrics.json and report.html; "
+        "exit 1 listing the tasks that did not finish");
+    cmd->add_option("dir", o->dir, "the sweep's folder (holding sweep.json)")->required();
+    cmd->add_flag("--quiet", o->quiet, "do not list the unfinished tasks");
+    return [o] { return so::runSweepMerge(*o); };
+}
+
 static Runner addGate(CLI::App& app) {
     auto o = std::make_shared<so::GateOptions>();
     CLI::App* gateCmd = app.add_subcommand(
@@ -204,8 +286,16 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version",
                          std::string(so::kToolVersion) + " (" + so::kGitRevision + ")");
     const std::vector<std::pair<std::string, Runner>> commands = {
-        {"trace", addTrace(app)}, {"raster", addRaster(app)}, {"compare", addCompare(app)},
-        {"gate", addGate(app)},   {"index", addIndex(app)},   {"techniques", addTechniques(app)}};
+        {"trace", addTrace(app)},
+        {"trace-merge", addTraceMerge(app)},
+        {"raster", addRaster(app)},
+        {"compare", addCompare(app)},
+        {"sweep", addSweep(app)},
+        {"sweep-task", addSweepTask(app)},
+        {"sweep-merge", addSweepMerge(app)},
+        {"gate", addGate(app)},
+        {"index", addIndex(app)},
+        {"techniques", addTechniques(app)}};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -87,10 +87,83 @@ int reportVerification(const OracleStats& stats, const std::string& scenePath,
     return 3;
 }
 
+// The "tile" block of a band's oracle.json (docs/oracle.md, "Tiles").
+nlohmann::json tileJson(const TileSpec& tile, const RowBand& rows, const OracleOptions& oracle,
+                        const CameraDesc& cam) {
+    return {{"index", tile.index},
+            {"count", tile.count},
+            {"rows", {rows.begin, rows.end}},
+            {"options", tracedOptionsJson(oracle, cam)}};
+}
+
+// --tile, checked before the scene is loaded.
+std::optional<TileSpec> tileOf(const TraceCommandOptions& options) {
+    if (options.tile.empty()) return std::nullopt;
+    const TileSpec tile = parseTileSpec(options.tile);
+    if (options.oracle.verify.pixels > 0)
+        throwInputError("command line", "--tile",
+                        "cannot be used with --verify (verify the merged image's scene without "
+                        "--tile)");
+    return tile;
+}
+
+// Every band must hold at least one row of 4x4 tiles of the image.
+void checkTileFits(const TileSpec& tile, const CameraDesc& cam) {
+    if (tile.count > tileRowCount(cam.height))
+        throwInputError("command line", "--tile",
+                        std::to_string(tile.count) + " bands is more than the " +
+                            std::to_string(tileRowCount(cam.height)) +
+                            " rows of 4x4 pixel tiles of an image " + std::to_string(cam.height) +
+                            " pixels high");
+}
+
 }  // namespace
+
+TileSpec parseTileSpec(const std::string& text) {
+    // Digits only, so "-1/4", "+1/4", " 1/4" and "1/4x" are all refused.
+    const auto number = [&](const std::string& part) {
+        if (part.empty() || part.size() > 4 ||
+            part.find_first_not_of("0123456789") != std::string::npos)
+            throwInputError("command line", "--tile",
+                            "\"" + printable(text, 40) + "\" is not I/N (e.g. 0/4)");
+        return std::stoi(part);
+    };
+    const size_t slash = text.find('/');
+    if (slash == std::string::npos)
+        throwInputError("command line", "--tile",
+                        "\"" + printable(text, 40) + "\" is not I/N (e.g. 0/4)");
+    const TileSpec t{number(text.substr(0, slash)), number(text.substr(slash + 1))};
+    if (t.count < 1 || t.count > kMaxTiles)
+        throwInputError(
+            "command line", "--tile",
+            "N must be 1 to " + std::to_string(kMaxTiles) + ", not " + std::to_string(t.count));
+    if (t.index >= t.count)
+        throwInputError("command line", "--tile",
+                        "I must be 0 to N - 1 = " + std::to_string(t.count - 1) + ", not " +
+                            std::to_string(t.index));
+    return t;
+}
+
+nlohmann::json tracedOptionsJson(const OracleOptions& o, const CameraDesc& cam) {
+    // Everything that changes a pixel: the camera, the sampling, the seed, the offset policy.
+    return {
+        {"width", cam.width},
+        {"height", cam.height},
+        {"eye", {cam.wsEye.x, cam.wsEye.y, cam.wsEye.z}},
+        {"target", {cam.wsTarget.x, cam.wsTarget.y, cam.wsTarget.z}},
+        {"up", {cam.wsUp.x, cam.wsUp.y, cam.wsUp.z}},
+        {"vfov_deg", cam.vfovDeg},
+        {"seed", o.area.seed},
+        {"spp", o.area.fixedSpp},
+        {"target_error", o.area.targetError},
+        {"agreement_target", o.area.agreementTarget},
+        {"max_spp", o.area.maxSpp},
+        {"offset_policy", o.offsetPolicy == OffsetPolicy::ErrorBound ? "error bound" : "legacy"}};
+}
 
 int runTraceCommand(const TraceCommandOptions& options) {
     using Clock = std::chrono::steady_clock;
+    const std::optional<TileSpec> tile = tileOf(options);
     auto t0 = Clock::now();
     Scene scene = loadScene(options.scenePath);
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -105,27 +178,44 @@ int runTraceCommand(const TraceCommandOptions& options) {
         uint64_t(cam.width) * uint64_t(cam.height) > limits.maxImagePixels)
         throwInputError("command line", "--width/--height", "image too large");
 
+    OracleOptions oracle = options.oracle;
+    if (tile) {
+        checkTileFits(*tile, cam);
+        oracle.rows = tileRows(cam.height, tile->index, tile->count);
+    }
+    const RowBand rows = oracle.rows.value_or(RowBand{0, cam.height});
+
     const std::filesystem::path out = makeOutputDir(options.outDir);
-    OracleResult result = runOracle(scene, options.oracle);
+    OracleResult result = runOracle(scene, oracle);
 
     t0 = Clock::now();
     const std::string exrPath = (out / "oracle.exr").string();
     {
-        Progress progress("writing " + exrPath, result.image.pixelCount(), options.oracle.progress);
-        writeExr(exrPath, result.image,
-                 {{"shadowOracle/sceneHash", scene.contentHash},
-                  {"shadowOracle/toolVersion", toolVersionString()}},
-                 result.stats.threads, &progress);
+        // A band is a data window inside the full display window (core/image.h ExrRows);
+        // trace-merge drops the tile attribute, so the merged file's header is the whole run's.
+        ExrAttributes attributes = {{"shadowOracle/sceneHash", scene.contentHash},
+                                    {"shadowOracle/toolVersion", toolVersionString()}};
+        if (tile)
+            attributes.emplace_back(
+                kTileAttribute, std::to_string(tile->index) + "/" + std::to_string(tile->count));
+        Progress progress("writing " + exrPath, result.image.pixelCount(), oracle.progress);
+        writeExr(exrPath, result.image, attributes, result.stats.threads, &progress,
+                 {rows.begin, cam.height});
     }
     const std::vector<std::string> previews = writePreviews(out, result.image, scene.lights);
     const double writeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
     const std::filesystem::path jsonPath = out / "oracle.json";
-    writeJsonFile(jsonPath,
-                  oracleJson(options, scene, cam, result.stats, loadSeconds, writeSeconds));
+    nlohmann::json j = oracleJson(options, scene, cam, result.stats, loadSeconds, writeSeconds);
+    if (tile) j["tile"] = tileJson(*tile, rows, oracle, cam);
+    writeJsonFile(jsonPath, j);
 
     std::cout << "traced " << options.scenePath << " (" << scene.stats.triangles << " triangles, "
-              << cam.width << "x" << cam.height << ", " << scene.lights.size() << " lights)\n"
+              << cam.width << "x" << cam.height << ", " << scene.lights.size() << " lights"
+              << (tile ? ", rows " + std::to_string(rows.begin) + " to " +
+                             std::to_string(rows.end - 1) + " (tile " + options.tile + ")"
+                       : std::string())
+              << ")\n"
               << "  " << exrPath << "\n  " << jsonPath.string() << "\n";
     for (const std::string& p : previews) std::cout << "  " << p << "\n";
     printOracleCost(result.stats);

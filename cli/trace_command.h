@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "oracle/oracle.h"
 
 namespace so {
@@ -12,10 +14,26 @@ struct TraceCommandOptions {
     std::string scenePath;
     std::string outDir;
     OracleOptions oracle;
+    // --tile I/N: trace only band I of N bands of rows (oracle.h tileRows); empty: the whole
+    // image. Parsed by runTraceCommand, which sets oracle.rows.
+    std::string tile;
 };
 
 // Returns the process exit code; InputError propagates to main (exit 2).
 int runTraceCommand(const TraceCommandOptions& options);
+
+// "I/N" with 0 <= I < N <= kMaxTiles, or an InputError naming --tile.
+struct TileSpec {
+    int index = 0, count = 1;
+};
+inline constexpr int kMaxTiles = 4096;
+// The EXR attribute naming a band's tile ("I/N"); the merged file has none.
+inline constexpr const char* kTileAttribute = "shadowOracle/tile";
+TileSpec parseTileSpec(const std::string& text);
+
+// The options that decide the pixels, as a tile's oracle.json records them ("tile.options"):
+// trace-merge joins only tiles whose options are equal.
+nlohmann::json tracedOptionsJson(const OracleOptions& options, const CameraDesc& camera);
 
 // Shaded preview of one light: grey Lambert with a little ambient, times V, so a person sees the
 // shadows (and the attached-shadow side) at a glance.

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <utility>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -35,16 +36,25 @@ const float* ChannelImage::channel(const std::string& name) const {
     return const_cast<ChannelImage*>(this)->channel(name);
 }
 
-void writeExr(const std::string& path, const ChannelImage& image,
-              const std::vector<std::pair<std::string, std::string>>& attributes, int threads,
-              Progress* progress) {
-    Imf::Header header(image.width(), image.height());
+void writeExr(const std::string& path, const ChannelImage& image, const ExrAttributes& attributes,
+              int threads, Progress* progress, ExrRows rows) {
+    // A whole image is the plain header (display window = data window); a band sits inside a
+    // display window of the full height, so readers place its rows where they belong.
+    const int fullHeight = rows.fullHeight > 0 ? rows.fullHeight : image.height();
+    SO_CHECK(rows.rowBegin >= 0 && rows.rowBegin + image.height() <= fullHeight);
+    const Imath::Box2i displayWindow({0, 0}, {image.width() - 1, fullHeight - 1});
+    const Imath::Box2i dataWindow({0, rows.rowBegin},
+                                  {image.width() - 1, rows.rowBegin + image.height() - 1});
+    Imf::Header header(displayWindow, dataWindow);
     header.compression() = Imf::ZIP_COMPRESSION;
     for (const auto& [key, value] : attributes) header.insert(key, Imf::StringAttribute(value));
     Imf::FrameBuffer fb;
+    // OpenEXR addresses a slice by absolute (x, y): the base points at where row 0 would be.
+    const ptrdiff_t rowOffset =
+        ptrdiff_t(rows.rowBegin) * ptrdiff_t(image.width()) * ptrdiff_t(sizeof(float));
     for (const std::string& name : image.names()) {
         header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-        char* base = reinterpret_cast<char*>(const_cast<float*>(image.channel(name)));
+        char* base = reinterpret_cast<char*>(const_cast<float*>(image.channel(name))) - rowOffset;
         fb.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
                                    sizeof(float) * size_t(image.width())));
     }
@@ -66,9 +76,21 @@ void writeExr(const std::string& path, const ChannelImage& image,
 }
 
 ChannelImage readExr(const std::string& path) {
+    return readExrFile(path).image;
+}
+
+ExrFile readExrFile(const std::string& path) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
+        const Imath::Box2i display = file.header().displayWindow();
+        ExrFile out;
+        out.rows = {dw.min.y - display.min.y, display.max.y - display.min.y + 1};
+        out.fullWidth = display.max.x - display.min.x + 1;
+        out.columnBegin = dw.min.x - display.min.x;
+        for (auto a = file.header().begin(); a != file.header().end(); ++a)
+            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a.attribute()))
+                out.attributes.emplace_back(a.name(), s->value());
         int width = dw.max.x - dw.min.x + 1, height = dw.max.y - dw.min.y + 1;
         ChannelImage image(width, height);
         Imf::FrameBuffer fb;
@@ -83,7 +105,8 @@ ChannelImage readExr(const std::string& path) {
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
-        return image;
+        out.image = std::move(image);
+        return out;
     } catch (const InputError&) {
         throw;
     } catch (const std::exception& e) {

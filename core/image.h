@@ -32,14 +32,34 @@ class ChannelImage {
 
 class Progress;
 
+// Where an image's rows lie in a taller one: a band of `shadow-oracle trace --tile` is stored as
+// an OpenEXR data window (rows rowBegin .. rowBegin + image height - 1) inside a display window
+// fullHeight rows high. fullHeight 0: the image is the whole.
+struct ExrRows {
+    int rowBegin = 0;
+    int fullHeight = 0;
+};
+
+using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
+
 // Writes all channels as 32-bit float, ZIP-compressed scanlines, with string attributes (e.g.
 // provenance). Deterministic: the same image gives the same bytes whatever `threads` (OpenEXR
 // compresses blocks in parallel but writes them in order). `progress` may be null.
 void writeExr(const std::string& path, const ChannelImage& image,
-              const std::vector<std::pair<std::string, std::string>>& attributes = {},
-              int threads = 1, Progress* progress = nullptr);
-// Reads every channel as float. Throws InputError on a bad file.
+              const ExrAttributes& attributes = {}, int threads = 1, Progress* progress = nullptr,
+              ExrRows rows = {});
+// Reads every channel as float (the data window). Throws InputError on a bad file.
 ChannelImage readExr(const std::string& path);
+
+// The data window with where it lies in the display window, and the string attributes.
+struct ExrFile {
+    ChannelImage image;
+    ExrRows rows;         // fullHeight: the display window's height
+    int fullWidth = 0;    // the display window's width
+    int columnBegin = 0;  // the data window's first column
+    ExrAttributes attributes;
+};
+ExrFile readExrFile(const std::string& path);
 
 // PNGs and textures: core/image_codec.h.
 

@@ -354,9 +354,10 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
             break;
     }
     ++st.pixelsSampled;
-    const PixelResult r = samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
-                                      areaPixelSeed(sampling.seed, stream, uint32_t(px)),
-                                      sb.lsRayOrigin(s), sb.originId[s], packet, st);
+    const PixelResult r =
+        samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
+                    areaPixelSeed(sampling.seed, stream, uint32_t(sb.fullImagePixel(px))),
+                    sb.lsRayOrigin(s), sb.originId[s], packet, st);
     V[px] = float(r.est.V);
     stderr_[px] = float(r.est.stderr_);
     spp[px] = float(r.samples);

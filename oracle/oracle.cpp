@@ -1,5 +1,6 @@
 #include "oracle/oracle.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -264,6 +265,19 @@ void describeSetup(const Scene& scene, const OracleOptions& options, const Accel
 
 }  // namespace
 
+int tileRowCount(int height) {
+    return (height + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
+}
+
+RowBand tileRows(int height, int index, int count) {
+    const int64_t tiles = tileRowCount(height);
+    SO_CHECK(0 <= index && index < count && count <= tiles);
+    // Tile rows [floor(index * tiles / count), floor((index + 1) * tiles / count)): every band
+    // gets at least one since count <= tiles.
+    const int64_t t0 = int64_t(index) * tiles / count, t1 = int64_t(index + 1) * tiles / count;
+    return {int(t0) * SurfaceBuffer::kTile, std::min(height, int(t1) * SurfaceBuffer::kTile)};
+}
+
 CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
     CameraDesc desc = options.camera.value_or(scene.camera);
     if (options.width > 0) desc.width = options.width;
@@ -293,14 +307,22 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
                                     size_t(stats.threads));
     tbb::task_arena arena(stats.threads);
 
-    result.image = ChannelImage(camera.width(), camera.height());
-    const uint64_t pixels = uint64_t(camera.width()) * uint64_t(camera.height());
+    // A band (trace --tile) keeps only its rows; every pass indexes pixels within it.
+    const RowBand rows = options.rows.value_or(RowBand{0, camera.height()});
+    SO_CHECK(rows.begin % SurfaceBuffer::kTile == 0 && 0 <= rows.begin && rows.begin < rows.end &&
+             rows.end <= camera.height());
+    if (options.rows && options.verify.pixels > 0)
+        throwInputError("command line", "--tile", "cannot be used with --verify");
+    result.image = ChannelImage(camera.width(), rows.count());
+    const uint64_t pixels = result.image.pixelCount();
 
     t0 = Clock::now();
     SurfaceBuffer sb;
     {
         Progress progress("primary rays", pixels, options.progress);
-        arena.execute([&] { sb = tracePrimary(accel, camera, &progress, options.offsetPolicy); });
+        arena.execute([&] {
+            sb = tracePrimary(accel, camera, &progress, options.offsetPolicy, rows.begin, rows.end);
+        });
     }
     stats.primarySeconds = secondsSince(t0);
     stats.primaryAlphaTests = sb.alphaTests;

@@ -14,6 +14,20 @@
 
 namespace so {
 
+// Image rows [begin, end).
+struct RowBand {
+    int begin = 0, end = 0;
+    int count() const { return end - begin; }
+    bool operator==(const RowBand&) const = default;
+};
+
+// Band `index` of `count` bands of an image `height` rows high: the 4x4 pixel tile rows the
+// oracle traces (SurfaceBuffer::kTile) split as evenly as they go, so that the bands' boundaries
+// are multiples of 4 and a band traces exactly the whole run's packets. Needs 0 <= index < count
+// <= tileRowCount(height).
+RowBand tileRows(int height, int index, int count);
+int tileRowCount(int height);
+
 struct OracleOptions {
     int width = 0, height = 0;  // 0: the scene camera's size
     // Another camera than the scene's (a frame of compare --frames-path); width and height above
@@ -26,10 +40,14 @@ struct OracleOptions {
     // catches the occluders it missed (oracle/offset.h).
     OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound;
     VerifyOptions verify;  // --verify N: re-trace N pixels per light independently (verify.h)
+    // `trace --tile`: only this band of image rows is traced (tileRows), and the result image
+    // holds only those rows. Every pixel is computed exactly as in the whole run. Not with
+    // --verify.
+    std::optional<RowBand> rows;
 };
 
 struct OracleResult {
-    ChannelImage image;  // channels as in docs/exr-channels.md
+    ChannelImage image;  // channels as in docs/exr-channels.md; with options.rows, only those rows
     OracleStats stats;   // the oracle.json content that depends on the run (toJson); with
                          // --verify, stats.verify has one LightVerification per light
 };

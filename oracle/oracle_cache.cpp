@@ -55,6 +55,8 @@ std::string oracleCacheKey(const Scene& scene, const OracleOptions& o) {
                       c.wsUp.y, c.wsUp.z, c.vfovDeg);
         k["camera"] = pose;
     }
+    // A band of rows (trace --tile) is another image: in the key whenever set.
+    if (o.rows) k["rows"] = {o.rows->begin, o.rows->end};
     return hashBytes(k.dump());
 }
 

@@ -534,4 +534,164 @@ OracleStats oracleStatsFromJson(const json& j, const std::string& file) {
     return s;
 }
 
+// ---- merging the bands of trace --tile ---------------------------------------------------------
+
+namespace {
+
+void addHard(OracleHardStats& total, const OracleHardStats& s) {
+    total.raysTraced += s.raysTraced;
+    total.raysOccluded += s.raysOccluded;
+    total.skippedBackground += s.skippedBackground;
+    total.skippedAttached += s.skippedAttached;
+    if (s.skippedOutsideCone)
+        total.skippedOutsideCone = total.skippedOutsideCone.value_or(0) + *s.skippedOutsideCone;
+    if (s.skippedBehindLight)
+        total.skippedBehindLight = total.skippedBehindLight.value_or(0) + *s.skippedBehindLight;
+    total.closestHitQueries += s.closestHitQueries;
+    total.exactDecisions += s.exactDecisions;
+    total.alphaTests += s.alphaTests;
+    total.seconds += s.seconds;
+}
+
+// The counts of the sampled pass; the means and the curve are re-weighted by the caller.
+void addAreaCounts(OracleAreaStats& total, const OracleAreaStats& s) {
+    total.raysTraced += s.raysTraced;
+    total.raysOccluded += s.raysOccluded;
+    total.skippedBackground += s.skippedBackground;
+    total.skippedBelowHorizon += s.skippedBelowHorizon;
+    total.skippedBehindLight += s.skippedBehindLight;
+    total.skippedInsideLight += s.skippedInsideLight;
+    total.exactDecisions += s.exactDecisions;
+    total.alphaTests += s.alphaTests;
+    total.samples += s.samples;
+    total.pixelsSampled += s.pixelsSampled;
+    total.pixelsWithoutUsableSamples += s.pixelsWithoutUsableSamples;
+    total.sppMax = std::max(total.sppMax, s.sppMax);
+    total.pixelsUnconverged += s.pixelsUnconverged;
+    total.pixelsAgreeing += s.pixelsAgreeing;
+    total.samplesAgreeing += s.samplesAgreeing;
+    total.worstHalfWidth = std::max(total.worstHalfWidth, s.worstHalfWidth);
+    total.uniformSpp = std::max(total.uniformSpp, s.uniformSpp);
+    total.seconds += s.seconds;
+}
+
+// A band's curve at `rounds` packets: its own point there, or, past its last point (every one of
+// its pixels had stopped), that last point. Null without a curve.
+const CostPoint* curveAt(const OracleAreaStats& s, int rounds) {
+    for (const CostPoint& p : s.costCurve)
+        if (p.rounds == rounds) return &p;
+    if (!s.costCurve.empty() && s.costCurve.back().rounds < rounds) return &s.costCurve.back();
+    return nullptr;
+}
+
+// The whole image's cost curve: read at the rounds of the band that sampled longest (the whole
+// run reads at the same ones), each band's mean weighted by its pixels.
+std::vector<CostPoint> mergeCurves(const std::vector<const OracleAreaStats*>& bands,
+                                   const std::vector<uint64_t>& penumbraPixels,
+                                   uint64_t pixelsSampled) {
+    const OracleAreaStats* longest = nullptr;
+    for (const OracleAreaStats* b : bands)
+        if (!b->costCurve.empty() &&
+            (!longest || b->costCurve.back().rounds > longest->costCurve.back().rounds))
+            longest = b;
+    std::vector<CostPoint> curve;
+    if (!longest) return curve;
+    uint64_t penumbraTotal = 0;
+    for (uint64_t n : penumbraPixels) penumbraTotal += n;
+    for (const CostPoint& at : longest->costCurve) {
+        CostPoint point{at.rounds, 0, 0.0, std::nullopt};
+        double penumbraSum = 0.0;
+        for (size_t b = 0; b < bands.size(); ++b) {
+            const CostPoint* p = curveAt(*bands[b], at.rounds);
+            if (!p) continue;
+            point.samples += p->samples;
+            point.meanHalfWidth += p->meanHalfWidth * double(bands[b]->pixelsSampled);
+            if (p->penumbraMeanHalfWidth)
+                penumbraSum += *p->penumbraMeanHalfWidth * double(penumbraPixels[b]);
+        }
+        point.meanHalfWidth /= double(pixelsSampled);
+        if (penumbraTotal) point.penumbraMeanHalfWidth = penumbraSum / double(penumbraTotal);
+        curve.push_back(point);
+    }
+    return curve;
+}
+
+OracleAreaStats mergeArea(const std::vector<const OracleAreaStats*>& bands,
+                          const std::vector<uint64_t>& penumbraPixels) {
+    OracleAreaStats total;
+    total.sampling = bands.front()->sampling;
+    total.targetError = bands.front()->targetError;
+    total.agreementTarget = bands.front()->agreementTarget;
+    total.maxSpp = bands.front()->maxSpp;
+    double reached = 0.0, efficiency = 0.0;
+    for (const OracleAreaStats* b : bands) {
+        addAreaCounts(total, *b);
+        // share * pixels gives back the band's count of pixels that reached the target exactly.
+        reached += std::round(b->shareReachedTarget * double(b->pixelsSampled));
+        efficiency += b->samplingEfficiency * double(b->pixelsSampled);
+    }
+    if (total.pixelsSampled) {
+        total.shareReachedTarget = reached / double(total.pixelsSampled);
+        total.samplingEfficiency = efficiency / double(total.pixelsSampled);
+        total.costCurve = mergeCurves(bands, penumbraPixels, total.pixelsSampled);
+    }
+    return total;
+}
+
+OracleLightStats mergeLight(const std::vector<TileStats>& tiles, size_t li) {
+    const OracleLightStats& first = tiles.front().stats.lights[li];
+    OracleLightStats l;
+    l.name = first.name;
+    l.type = first.type;
+    l.method = first.method;
+    std::vector<const OracleAreaStats*> areas;
+    std::vector<uint64_t> penumbra;
+    for (const TileStats& t : tiles) {
+        const OracleLightStats& b = t.stats.lights[li];
+        SO_CHECK(b.name == first.name && b.area.has_value() == first.area.has_value() &&
+                 b.hard.has_value() == first.hard.has_value());
+        if (b.area) {
+            areas.push_back(&*b.area);
+            penumbra.push_back(li < t.penumbraPixels.size() ? t.penumbraPixels[li] : 0);
+        }
+        if (b.hard) addHard(l.hard ? *l.hard : l.hard.emplace(), *b.hard);
+    }
+    if (!areas.empty()) l.area = mergeArea(areas, penumbra);
+    return l;
+}
+
+}  // namespace
+
+OracleStats mergeTileStats(const std::vector<TileStats>& tiles, int width, int height) {
+    SO_CHECK(!tiles.empty());
+    const OracleStats& first = tiles.front().stats;
+    OracleStats s;
+    s.width = width;
+    s.height = height;
+    s.threads = first.threads;
+    s.effects = first.effects;
+    s.seed = first.seed;
+    s.frame = first.frame;
+    s.offsetPolicy = first.offsetPolicy;
+    s.embree = first.embree;
+    s.tbbVersion = first.tbbVersion;
+    for (const TileStats& t : tiles) {
+        const OracleStats& b = t.stats;
+        SO_CHECK_EQ(b.lights.size(), first.lights.size());
+        s.buildBvhSeconds += b.buildBvhSeconds;
+        s.primarySeconds += b.primarySeconds;
+        s.shadowSeconds += b.shadowSeconds;
+        s.shadowRays += b.shadowRays;
+        s.closestHitQueries += b.closestHitQueries;
+        s.primaryAlphaTests += b.primaryAlphaTests;
+        s.shadowAlphaTests += b.shadowAlphaTests;
+        s.offsetPolicy.maxBlindDistance =
+            std::max(s.offsetPolicy.maxBlindDistance, b.offsetPolicy.maxBlindDistance);
+        s.offsetPolicy.maxBlindDistanceRelative = std::max(s.offsetPolicy.maxBlindDistanceRelative,
+                                                           b.offsetPolicy.maxBlindDistanceRelative);
+    }
+    for (size_t li = 0; li < first.lights.size(); ++li) s.lights.push_back(mergeLight(tiles, li));
+    return s;
+}
+
 }  // namespace so

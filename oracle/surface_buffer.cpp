@@ -8,15 +8,20 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "core/error.h"
 #include "core/progress.h"
 
 namespace so {
 
 SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
-                           OffsetPolicy offsetPolicy) {
+                           OffsetPolicy offsetPolicy, int rowBegin, int rowEnd) {
+    if (rowEnd < 0) rowEnd = camera.height();
+    SO_CHECK(rowBegin % SurfaceBuffer::kTile == 0 && 0 <= rowBegin && rowBegin < rowEnd &&
+             rowEnd <= camera.height());
     SurfaceBuffer sb;
     sb.width = camera.width();
-    sb.height = camera.height();
+    sb.height = rowEnd - rowBegin;
+    sb.rowBegin = rowBegin;
     sb.tilesX = (sb.width + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
     sb.tilesY = (sb.height + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
     const size_t n = size_t(sb.tilesX) * size_t(sb.tilesY) * 16;
@@ -48,7 +53,8 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                      s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s) {
                     const size_t pixel = sb.pixelOfSlot(s);
                     if (pixel == SIZE_MAX) continue;
-                    const int x = int(pixel % size_t(sb.width)), y = int(pixel / size_t(sb.width));
+                    const int x = int(pixel % size_t(sb.width));
+                    const int y = sb.rowBegin + int(pixel / size_t(sb.width));  // in the image
                     // The direction is the same in world and local space: the frame only translates
                     // and scales uniformly.
                     const glm::dvec3 wsDir = camera.generateRay(x, y).direction;

@@ -20,7 +20,11 @@ class Progress;
 
 struct SurfaceBuffer {
     static constexpr int kTile = 4;
+    // The buffer covers image rows rowBegin .. rowBegin + height - 1 (all of them unless `trace
+    // --tile` asks for a band); rowBegin is a multiple of kTile, so a band holds exactly the
+    // whole run's tiles. Slots and pixel indices are relative to the band.
     int width = 0, height = 0;
+    int rowBegin = 0;
     int tilesX = 0, tilesY = 0;
     glm::dvec3 lsEye{0.0};
     // One entry per slot (tilesX * tilesY * 16); slots outside the image have hit = 0.
@@ -49,17 +53,23 @@ struct SurfaceBuffer {
         return (size_t(y / kTile) * size_t(tilesX) + size_t(x / kTile)) * 16 +
                size_t((y % kTile) * kTile + x % kTile);
     }
-    // Row-major pixel index of a slot, or SIZE_MAX for padding slots outside the image.
+    // Row-major pixel index (within the band) of a slot, or SIZE_MAX for padding slots outside
+    // the image.
     size_t pixelOfSlot(size_t s) const {
         size_t tile = s / 16, k = s % 16;
         int x = int(tile % size_t(tilesX)) * kTile + int(k % kTile);
         int y = int(tile / size_t(tilesX)) * kTile + int(k / kTile);
         return (x < width && y < height) ? size_t(y) * size_t(width) + size_t(x) : SIZE_MAX;
     }
+    // The pixel's row-major index in the whole image: what per-pixel seeds use, so that a pixel
+    // gets the same samples whichever band traces it.
+    size_t fullImagePixel(size_t pixel) const { return pixel + size_t(rowBegin) * size_t(width); }
 };
 
-// Traces the primary rays in parallel (call inside the caller's tbb::task_arena).
+// Traces the primary rays of image rows [rowBegin, rowEnd) in parallel (call inside the caller's
+// tbb::task_arena); rowEnd -1: to the last row. rowBegin must be a multiple of kTile.
 SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
-                           OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound);
+                           OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound, int rowBegin = 0,
+                           int rowEnd = -1);
 
 }  // namespace so

@@ -5,7 +5,8 @@ it names (seed-*), so inputs added by `scripts/fuzz --merge` stay.
 
 The gltf harness reads one byte of mode first (fuzz_gltf.cpp): 0 = .glb, 1 = .gltf followed by NUL
 and the buffer file b.bin; +2 = load through loadScene. The gate harness reads the limits file,
-NUL, metrics.json.
+NUL, metrics.json. The sweep harness reads a sweep spec whose folder holds a.scene.json,
+b.scene.json and sub/c.scene.json, with ../outside.scene.json beside it (fuzz_sweep.cpp).
 """
 import json
 import pathlib
@@ -87,6 +88,50 @@ def main():
     write("index", "metrics-v1.json",
           b'{"schema_version": 1, "scene": {"file": "a.scene.json"}, "results": [{"technique": '
           b'"basic", "lights": {"key": {"mae": 0.1, "acne_rate": null}}}]}')
+    sweep_seeds()
+
+
+# sweep: specs over the harness's stand-in techniques (fuzz_sweep.cpp): basic (resolution),
+# slope-bias (alpha, min, resolution), pcf (kernel, resolution).
+SWEEP_SEEDS = {
+    "minimal.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
+                     "techniques": [{"name": "basic"}]},
+    "full.json": {
+        "sweep_format": 1, "name": "bias study", "scenes": ["*.scene.json", "sub/c.scene.json"],
+        "width": 320, "height": 240, "frames": 3, "boundary_radius": 2, "keep_outputs": True,
+        "oracle": {"seed": 7, "target_error": 0.01, "agreement_target": 0.02, "max_spp": 4096,
+                   "spp": 64},
+        "techniques": [
+            {"name": "basic", "params": {"resolution": [512, 1024, 2048]}},
+            {"name": "slope-bias", "params": {"alpha": {"from": 0, "to": 4, "steps": 5},
+                                              "min": [0, 0.5], "resolution": 2048}},
+            {"name": "pcf", "params": {"kernel": [1, 3, 5],
+                                       "resolution": {"from": 512, "to": 4096, "steps": 4,
+                                                      "log": True}}}]},
+    "globs.json": {"sweep_format": 1, "scenes": ["?.scene.json", "[ab].scene.json", "s*/*.json",
+                                                 "../outside.scene.json"],
+                   "techniques": [{"name": "slope-bias", "params": {"alpha": [1, 2]}}]},
+    "large-grid.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
+                        "techniques": [{"name": "slope-bias", "params": {
+                            "alpha": {"from": 0, "to": 16, "steps": 50},
+                            "min": {"from": 0.01, "to": 16, "steps": 20, "log": True}}}]},
+    "bad-unknown-param.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
+                               "techniques": [{"name": "pcf", "params": {"alpha": 1}}]},
+    "bad-out-of-range.json": {"sweep_format": 1, "scenes": ["b.scene.json"],
+                              "techniques": [{"name": "basic",
+                                              "params": {"resolution": [128, 256]}}]},
+    "bad-twice.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
+                       "techniques": [{"name": "basic", "params": {"resolution": [512, 512]}}]},
+    "bad-no-scene.json": {"sweep_format": 1, "scenes": ["missing/*.scene.json"],
+                          "techniques": [{"name": "basic"}]},
+    "bad-format.json": {"sweep_format": 2, "scenes": ["a.scene.json"],
+                        "techniques": [{"name": "basic"}], "oracle": {"spp": 0}},
+}
+
+
+def sweep_seeds():
+    for name, spec in SWEEP_SEEDS.items():
+        write("sweep", name, (json.dumps(spec, indent=1) + "\n").encode())
 
 
 def json_strings(j, out):
@@ -102,9 +147,14 @@ def json_strings(j, out):
             json_strings(v, out)
 
 
-def write_dicts():
+# Strings the JSON keys do not give: the sweep harness's scene files and a few globs.
+DICT_EXTRA = {"sweep": ["a.scene.json", "b.scene.json", "sub/c.scene.json",
+                        "../outside.scene.json", "*.scene.json", "sub/*"]}
+
+
+def write_dicts(harnesses=("scene", "gltf", "gate", "index", "sweep")):
     """tests/fuzz/<harness>.dict: libFuzzer dictionaries of the JSON keys of each corpus."""
-    for h in ["scene", "gltf", "gate", "index"]:
+    for h in harnesses:
         found = set()
         for f in (CORPUS / h).iterdir():
             data = f.read_bytes()[1:] if h == "gltf" else f.read_bytes()
@@ -113,6 +163,7 @@ def write_dicts():
                     json_strings(json.loads(part), found)
                 except (ValueError, RecursionError):
                     pass
+        found.update(DICT_EXTRA.get(h, []))
         words = sorted(k for k in found
                        if 0 < len(k) <= 40 and re.fullmatch(r"[A-Za-z0-9_.:/*?# -]+", k))
         with open(CORPUS.parent / (h + ".dict"), "w") as out:

@@ -1,0 +1,186 @@
+#include "cli/slurm.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <set>
+
+#include "core/error.h"
+
+namespace so {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string shellQuote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+// Runs a shell command, returning its exit status and standard output (stderr passes through).
+int runCaptured(const std::string& command, std::string& output) {
+    output.clear();
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) return -1;
+    char buffer[4096];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
+    const int status = ::pclose(pipe);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+bool onPath(const std::string& command) {
+    std::string out;
+    return runCaptured("command -v " + command + " >/dev/null 2>&1", out) == 0;
+}
+
+// The cluster's MaxArraySize (array indices must stay below it); 1001, Slurm's default, when
+// scontrol cannot tell.
+size_t maxArraySize() {
+    std::string out;
+    if (runCaptured("scontrol show config 2>/dev/null", out) != 0) return 1001;
+    const size_t at = out.find("MaxArraySize");
+    if (at == std::string::npos) return 1001;
+    const size_t eq = out.find('=', at);
+    return eq == std::string::npos ? 1001
+                                   : size_t(std::strtoull(out.c_str() + eq + 1, nullptr, 10));
+}
+
+struct BatchScript {
+    std::string name;  // file name in DIR/slurm
+    std::string text;
+};
+
+// A job name Slurm shows in squeue: the sweep's name, letters and digits kept.
+std::string jobName(const SweepPlan& plan, const std::string& what) {
+    std::string name = "so-";
+    for (char c : plan.name.substr(0, 32)) name += std::isalnum((unsigned char)c) ? c : '-';
+    return name + "-" + what;
+}
+
+BatchScript script(const SweepPlan& plan, const fs::path& dir, const SlurmOptions& o,
+                   const std::string& what, const std::string& array, const std::string& log,
+                   const std::string& command) {
+    std::string s = "#!/bin/bash\n# shadow-oracle sweep \"" + plan.name + "\": " + what +
+                    " (written by `shadow-oracle sweep --slurm`, docs/sweep.md)\n";
+    s += "#SBATCH --job-name=" + jobName(plan, what) + "\n";
+    if (!array.empty()) s += "#SBATCH --array=" + array + "\n";
+    s += "#SBATCH --output=" + (dir / "logs" / log).string() + "\n";
+    if (!o.partition.empty()) s += "#SBATCH --partition=" + o.partition + "\n";
+    // A task whose dependency can no longer be met (an oracle failed) is cancelled rather than
+    // left pending for ever, so that the merge job still runs and reports it.
+    s += "#SBATCH --kill-on-invalid-dep=yes\n";
+    for (const std::string& a : o.sbatchArgs) s += "#SBATCH " + a + "\n";
+    s += "set -euo pipefail\nexec " + command + "\n";
+    return {what + ".sbatch", s};
+}
+
+std::string exePath() {
+    std::error_code ec;
+    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("shadow-oracle") : p.string();
+}
+
+// sbatch --parsable: "JOBID" or "JOBID;CLUSTER".
+std::string submit(const fs::path& file, const std::string& dependency) {
+    std::string command = "sbatch --parsable";
+    if (!dependency.empty()) command += " --dependency=" + dependency;
+    command += " " + shellQuote(file.string());
+    std::string out;
+    const int rc = runCaptured(command, out);
+    const std::string id = out.substr(0, out.find_first_of(";\n"));
+    if (rc != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+        throw std::runtime_error("sbatch failed (exit " + std::to_string(rc) + ") for " +
+                                 file.string() + (out.empty() ? "" : ": " + out));
+    return id;
+}
+
+}  // namespace
+
+std::string slurmArrayList(const std::vector<size_t>& indices) {
+    std::string list;
+    for (size_t i = 0; i < indices.size();) {
+        size_t j = i;
+        while (j + 1 < indices.size() && indices[j + 1] == indices[j] + 1) ++j;
+        list += (list.empty() ? "" : ",") + std::to_string(indices[i]);
+        if (j > i) list += "-" + std::to_string(indices[j]);
+        i = j + 1;
+    }
+    return list;
+}
+
+int submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir, const SlurmOptions& o) {
+    std::vector<size_t> tasks;
+    std::set<size_t> scenes;
+    for (size_t i = 0; i < plan.tasks.size(); ++i)
+        if (!fs::exists(sweepRowPath(dir, plan.tasks[i]))) {
+            tasks.push_back(i);
+            scenes.insert(plan.tasks[i].scene);
+        }
+    if (tasks.empty()) {
+        std::cout << "all " << plan.tasks.size() << " tasks of " << dir.string()
+                  << " are finished: nothing to submit (shadow-oracle sweep-merge " << dir.string()
+                  << " merges them)\n";
+        return 0;
+    }
+    if (!o.dryRun && !onPath("sbatch"))
+        throwInputError("command line", "--slurm",
+                        "sbatch is not on PATH: --slurm needs Slurm's client commands (--dry-run "
+                        "prints the scripts without them)");
+    if (!o.dryRun && tasks.back() >= maxArraySize())
+        throwInputError("command line", "--slurm",
+                        "task index " + std::to_string(tasks.back()) +
+                            " is not below the cluster's MaxArraySize (" +
+                            std::to_string(maxArraySize()) +
+                            "): raise MaxArraySize in slurm.conf or split the sweep");
+    const std::string exe = shellQuote(exePath()), qdir = shellQuote(dir.string());
+    const std::string limit = o.maxConcurrent > 0 ? "%" + std::to_string(o.maxConcurrent) : "";
+    const std::vector<size_t> sceneList(scenes.begin(), scenes.end());
+    const BatchScript scripts[3] = {
+        script(plan, dir, o, "oracles", slurmArrayList(sceneList) + limit, "oracle-%a.log",
+               exe + " sweep-task " + qdir + " --oracle \"$SLURM_ARRAY_TASK_ID\""),
+        script(plan, dir, o, "tasks", slurmArrayList(tasks) + limit, "task-%a.log",
+               exe + " sweep-task " + qdir + " --index \"$SLURM_ARRAY_TASK_ID\""),
+        script(plan, dir, o, "merge", "", "merge.log", exe + " sweep-merge " + qdir)};
+    std::error_code ec;
+    fs::create_directories(dir / "slurm", ec);
+    fs::create_directories(dir / "logs", ec);
+    for (const BatchScript& s : scripts) writeFileAtomically(dir / "slurm" / s.name, s.text);
+    if (o.dryRun) {
+        const char* deps[3] = {"", " --dependency=afterok:<oracles job>",
+                               " --dependency=afterany:<tasks job>"};
+        for (int k = 0; k < 3; ++k)
+            std::cout << "# sbatch --parsable" << deps[k] << " "
+                      << (dir / "slurm" / scripts[k].name).string() << "\n"
+                      << scripts[k].text << "\n";
+        std::cout << "# dry run: " << tasks.size() << " tasks over " << scenes.size()
+                  << " scenes, nothing submitted\n";
+        return 0;
+    }
+    const std::string oracles = submit(dir / "slurm" / scripts[0].name, "");
+    const std::string array = submit(dir / "slurm" / scripts[1].name, "afterok:" + oracles);
+    const std::string merge = submit(dir / "slurm" / scripts[2].name, "afterany:" + array);
+    std::ofstream history(dir / "slurm" / "submitted.jsonl", std::ios::app);
+    history << nlohmann::json{{"time", std::time(nullptr)},
+                              {"oracles_job", oracles},
+                              {"tasks_job", array},
+                              {"merge_job", merge},
+                              {"tasks", tasks}}
+                   .dump()
+            << "\n";
+    std::cout << "submitted to Slurm: oracles job " << oracles << " (" << scenes.size()
+              << " scenes), tasks job " << array << " (" << tasks.size() << " of "
+              << plan.tasks.size() << " tasks"
+              << (limit.empty() ? "" : ", " + limit.substr(1) + " at once") << "), merge job "
+              << merge << "\n  logs: " << (dir / "logs").string() << "\n  when job " << merge
+              << " ends: " << (dir / "report.html").string() << "\n";
+    return 0;
+}
+
+}  // namespace so

@@ -1,0 +1,205 @@
+#include "cli/sweep_command.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+
+#include "cli/output.h"
+#include "cli/sweep_merge.h"
+#include "core/error.h"
+#include "raster_compare/gl/technique.h"
+
+extern char** environ;
+
+namespace so {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// One child `shadow-oracle sweep-task ...`, its output into its log (truncated: the log is the
+// latest attempt's).
+pid_t spawnTask(const std::vector<std::string>& args, const fs::path& log) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    const int rc = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(rc));
+    return pid;
+}
+
+std::string duration(double seconds) {
+    char text[32];
+    const long s = long(seconds + 0.5);
+    if (s >= 3600)
+        std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, s / 60 % 60);
+    else
+        std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
+    return text;
+}
+
+// A progress line on stderr: redrawn in place on a terminal, else one line every few seconds.
+class SweepProgress {
+  public:
+    SweepProgress(std::string what, size_t total, bool enabled)
+        : what_(std::move(what)), total_(total), enabled_(enabled), tty_(::isatty(2)) {}
+    void update(size_t done, size_t failed, size_t running, bool final = false) {
+        if (!enabled_) return;
+        const auto now = Clock::now();
+        if (!tty_ && !final && now - last_ < std::chrono::seconds(5)) return;
+        last_ = now;
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        const size_t ended = done + failed;
+        const size_t filled = total_ ? 20 * ended / total_ : 20;
+        std::string line = what_ + " [" + std::string(filled, '#') + std::string(20 - filled, '.') +
+                           "] " + std::to_string(ended) + "/" + std::to_string(total_);
+        if (failed) line += " (" + std::to_string(failed) + " failed)";
+        line += ", " + std::to_string(running) + " running, " + duration(elapsed) + " elapsed";
+        if (ended > 0 && ended < total_)
+            line += ", ETA " + duration(elapsed / double(ended) * double(total_ - ended));
+        std::cerr << (tty_ ? "\r\033[K" : "") << line << (tty_ && !final ? "" : "\n") << std::flush;
+    }
+
+  private:
+    std::string what_;
+    size_t total_;
+    bool enabled_, tty_;
+    Clock::time_point start_ = Clock::now(), last_ = Clock::now() - std::chrono::hours(1);
+};
+
+struct Job {
+    std::vector<std::string> args;
+    fs::path log;
+};
+
+// Runs the jobs, at most `parallel` at once; returns the indices of those that failed.
+std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, SweepProgress& progress) {
+    std::map<pid_t, size_t> running;
+    std::set<size_t> failed;
+    size_t next = 0, done = 0;
+    while (next < jobs.size() || !running.empty()) {
+        while (next < jobs.size() && running.size() < size_t(parallel)) {
+            running[spawnTask(jobs[next].args, jobs[next].log)] = next;
+            ++next;
+        }
+        progress.update(done, failed.size(), running.size());
+        int status = 0;
+        const pid_t pid = ::waitpid(-1, &status, 0);
+        if (pid < 0) break;
+        const auto it = running.find(pid);
+        if (it == running.end()) continue;
+        const size_t k = it->second;
+        running.erase(it);
+        if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+            ++done;
+            continue;
+        }
+        failed.insert(k);
+        // A crash prints nothing of its own: the log says so, for sweep-merge's list.
+        std::ofstream(jobs[k].log, std::ios::app)
+            << (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                    : "exit " + std::to_string(WEXITSTATUS(status)))
+            << "\n";
+    }
+    progress.update(done, failed.size(), 0, /*final=*/true);
+    return failed;
+}
+
+std::string exePath() {
+    std::error_code ec;
+    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error("cannot find this program's path: " + ec.message());
+    return p.string();
+}
+
+// DIR/sweep.json: written on the first run; a later run must be of the same spec.
+void keepPlan(const fs::path& dir, const SweepPlan& plan) {
+    if (fs::exists(dir / "sweep.json")) {
+        const SweepPlan old = readPlan(dir);
+        if (old.specHash != plan.specHash)
+            throwInputError(plan.specFile.string(), "",
+                            "differs from the spec of the sweep in " + dir.string() + " (" +
+                                old.specFile.string() +
+                                "): give another --out, or remove that folder");
+    }
+    writePlan(dir, plan);
+}
+
+// What killed tasks of an earlier local run left: their compare folders and temporary rows. Only
+// the local runner does this: on a cluster, tasks of another submission may be writing them.
+void removeLeftovers(const fs::path& dir) {
+    std::error_code ec;
+    fs::remove_all(dir / "work", ec);
+    if (!fs::is_directory(dir / "rows")) return;
+    std::vector<fs::path> temporary;
+    for (const auto& e : fs::directory_iterator(dir / "rows", ec))
+        if (e.path().filename().string().rfind('.', 0) == 0) temporary.push_back(e.path());
+    for (const fs::path& p : temporary) fs::remove(p, ec);
+}
+
+int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o) {
+    const std::string exe = exePath();
+    removeLeftovers(dir);
+    std::vector<Job> oracles, tasks;
+    std::set<size_t> scenes;
+    std::vector<size_t> taskIndex;
+    for (size_t i = 0; i < plan.tasks.size(); ++i)
+        if (!fs::exists(sweepRowPath(dir, plan.tasks[i]))) {
+            scenes.insert(plan.tasks[i].scene);
+            taskIndex.push_back(i);
+        }
+    std::error_code ec;
+    fs::create_directories(dir / "logs", ec);
+    std::cerr << "sweep " << plan.name << ": " << plan.tasks.size() - taskIndex.size() << " of "
+              << plan.tasks.size() << " tasks already finished, " << taskIndex.size()
+              << " to run over " << scenes.size() << " scenes, " << o.jobs << " at once\n";
+    const std::vector<size_t> sceneList(scenes.begin(), scenes.end());
+    for (size_t s : sceneList)
+        oracles.push_back({{exe, "sweep-task", dir.string(), "--oracle", std::to_string(s)},
+                           sweepOracleLogPath(dir, s)});
+    SweepProgress oracleProgress("oracles", oracles.size(), o.progress);
+    std::set<size_t> badScenes;
+    for (size_t k : runPool(oracles, o.jobs, oracleProgress)) badScenes.insert(sceneList[k]);
+    for (size_t i : taskIndex)
+        if (!badScenes.count(plan.tasks[i].scene))  // its oracle's log says why
+            tasks.push_back({{exe, "sweep-task", dir.string(), "--index", std::to_string(i)},
+                             sweepTaskLogPath(dir, i)});
+        else
+            fs::remove(sweepTaskLogPath(dir, i), ec);
+    SweepProgress taskProgress("tasks", tasks.size(), o.progress);
+    runPool(tasks, o.jobs, taskProgress);
+    fs::remove(dir / "work", ec);  // empty now, unless a task failed half-way
+    return runSweepMerge({dir.string(), false});
+}
+
+}  // namespace
+
+int runSweepCommand(const SweepOptions& options) {
+    if (options.jobs < 1) throwInputError("command line", "--jobs", "must be at least 1");
+    const SweepPlan plan =
+        planSweep(options.specPath, [](const std::string& name, const std::vector<std::string>& s) {
+            createTechnique(name, s);
+        });
+    const fs::path dir = fs::absolute(makeOutputDir(options.outDir));
+    keepPlan(dir, plan);
+    if (options.slurm) return submitSweepToSlurm(plan, dir, options.slurmOptions);
+    return runLocally(plan, dir, options);
+}
+
+}  // namespace so

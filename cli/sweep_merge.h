@@ -1,0 +1,19 @@
+// `shadow-oracle sweep-merge DIR`: the rows of a sweep's finished tasks into one metrics.csv,
+// metrics_wide.csv and metrics.json, and the sweep report (report.html); the tasks that did not
+// finish are listed with their logs (docs/sweep.md).
+#pragma once
+
+#include <string>
+
+namespace so {
+
+struct SweepMergeOptions {
+    std::string dir;
+    bool quiet = false;  // no list of the unfinished tasks on stderr
+};
+
+// 0 when every task of the plan finished, 1 when some did not (the files are written either way,
+// over the finished ones).
+int runSweepMerge(const SweepMergeOptions& options);
+
+}  // namespace so

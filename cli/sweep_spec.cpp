@@ -1,0 +1,417 @@
+#include "cli/sweep_spec.h"
+
+#include <glob.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/hash.h"
+
+namespace so {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+// A spec is small; anything larger is not one (and must not be read whole).
+constexpr uintmax_t kMaxSpecBytes = 4u << 20;
+constexpr size_t kMaxValuesPerParam = 100000;
+
+// Reads `path` (bounded), as text.
+std::string readBounded(const fs::path& path, uintmax_t maxBytes, const std::string& what) {
+    std::error_code ec;
+    const uintmax_t size = fs::file_size(path, ec);
+    if (ec) throwInputError(path.string(), "", what + " cannot be read: " + ec.message());
+    if (size > maxBytes)
+        throwInputError(path.string(), "",
+                        what + " too large (" + std::to_string(size) + " bytes, at most " +
+                            std::to_string(maxBytes) + ")");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throwInputError(path.string(), "", what + " cannot be opened");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void checkKeys(const Json& obj, const std::set<std::string>& allowed, const std::string& file,
+               const std::string& field) {
+    if (!obj.is_object()) throwInputError(file, field, "must be an object");
+    for (const auto& [key, value] : obj.items())
+        if (!allowed.count(key)) {
+            std::string valid;
+            for (const std::string& a : allowed) valid += (valid.empty() ? "" : ", ") + a;
+            throwInputError(file, (field.empty() ? "" : field + ".") + printable(key, 40),
+                            "unknown key (valid: " + valid + ")");
+        }
+}
+
+double number(const Json& v, const std::string& file, const std::string& field) {
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+        throwInputError(file, field, "must be a finite number");
+    return v.get<double>();
+}
+
+int integer(const Json& v, const std::string& file, const std::string& field, int lo, int hi) {
+    const double d = number(v, file, field);
+    if (d != std::floor(d) || d < lo || d > hi)
+        throwInputError(
+            file, field,
+            "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return int(d);
+}
+
+// The spec's oracle block (the same meaning and ranges as compare's options).
+void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& oracle) {
+    checkKeys(o, {"seed", "target_error", "agreement_target", "max_spp", "spp"}, file, "oracle");
+    if (o.contains("seed"))
+        oracle.seed = uint32_t(integer(o["seed"], file, "oracle.seed", 0, INT32_MAX));
+    for (const auto& [key, target] : {std::pair{"target_error", &oracle.targetError},
+                                      std::pair{"agreement_target", &oracle.agreementTarget}}) {
+        if (!o.contains(key)) continue;
+        const double v = number(o[key], file, std::string("oracle.") + key);
+        if (v < 1e-4 || v > 0.5)
+            throwInputError(file, std::string("oracle.") + key, "must be in [0.0001, 0.5]");
+        *target = v;
+    }
+    if (o.contains("max_spp"))
+        oracle.maxSpp = integer(o["max_spp"], file, "oracle.max_spp", 16, 1 << 20);
+    if (o.contains("spp")) oracle.fixedSpp = integer(o["spp"], file, "oracle.spp", 1, 1 << 20);
+}
+
+SweepSettings parseSettings(const Json& spec, const std::string& file) {
+    SweepSettings s;
+    if (spec.contains("width")) s.oracle.width = integer(spec["width"], file, "width", 1, 16384);
+    if (spec.contains("height"))
+        s.oracle.height = integer(spec["height"], file, "height", 1, 16384);
+    if (spec.contains("frames")) s.frames = integer(spec["frames"], file, "frames", 1, 1000);
+    if (spec.contains("boundary_radius"))
+        s.boundaryRadius = integer(spec["boundary_radius"], file, "boundary_radius", 0, 64);
+    if (spec.contains("keep_outputs")) {
+        if (!spec["keep_outputs"].is_boolean())
+            throwInputError(file, "keep_outputs", "must be true or false");
+        s.keepOutputs = spec["keep_outputs"].get<bool>();
+    }
+    if (spec.contains("oracle")) parseOracle(spec["oracle"], file, s.oracle);
+    return s;
+}
+
+// One entry of "scenes": a path or a glob, relative to the spec's folder.
+std::vector<fs::path> matchScenes(const std::string& pattern, const fs::path& specDir,
+                                  const std::string& file, const std::string& field) {
+    const fs::path p = fs::path(pattern).is_absolute() ? fs::path(pattern) : specDir / pattern;
+    std::vector<fs::path> found;
+    std::error_code ec;  // a name too long for the file system is "no such file", not an exception
+    if (pattern.find_first_of("*?[") == std::string::npos) {
+        if (!fs::is_regular_file(p, ec))
+            throwInputError(file, field, "no such scene file: " + printable(p.string()));
+        return {p};
+    }
+    glob_t g{};
+    const int rc = ::glob(p.c_str(), 0, nullptr, &g);
+    for (size_t i = 0; rc == 0 && i < g.gl_pathc; ++i)
+        if (fs::is_regular_file(g.gl_pathv[i], ec)) found.emplace_back(g.gl_pathv[i]);
+    ::globfree(&g);
+    if (found.empty()) throwInputError(file, field, "matches no scene file: " + printable(pattern));
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+std::vector<SweepScene> expandScenes(const Json& spec, const fs::path& specDir,
+                                     const std::string& file) {
+    if (!spec.contains("scenes") || !spec["scenes"].is_array() || spec["scenes"].empty())
+        throwInputError(file, "scenes", "must be a non-empty list of scene paths or globs");
+    std::vector<SweepScene> scenes;
+    std::set<fs::path> seen;
+    for (size_t i = 0; i < spec["scenes"].size(); ++i) {
+        const std::string field = "scenes[" + std::to_string(i) + "]";
+        if (!spec["scenes"][i].is_string()) throwInputError(file, field, "must be a string");
+        for (const fs::path& p :
+             matchScenes(spec["scenes"][i].get<std::string>(), specDir, file, field)) {
+            const fs::path abs = fs::weakly_canonical(p);
+            if (!seen.insert(abs).second) continue;  // a scene two globs match runs once
+            // Named as written: relative to the spec's folder ("../contact_box.scene.json") when
+            // the entry is, so that names and ids do not depend on where the checkout lies.
+            const fs::path rel = abs.lexically_relative(fs::weakly_canonical(specDir));
+            const bool relative = !fs::path(spec["scenes"][i].get<std::string>()).is_absolute();
+            scenes.push_back({relative && !rel.empty() ? rel.generic_string() : abs.string(), abs});
+        }
+    }
+    return scenes;
+}
+
+// A parameter's values: a number, a list of numbers, or {"from", "to", "steps"[, "log"]}.
+std::vector<double> paramValues(const Json& v, const std::string& file, const std::string& field) {
+    if (v.is_number()) return {number(v, file, field)};
+    std::vector<double> values;
+    if (v.is_array()) {
+        if (v.empty() || v.size() > kMaxValuesPerParam)
+            throwInputError(file, field, "a list needs 1 to 100000 numbers");
+        for (size_t i = 0; i < v.size(); ++i)
+            values.push_back(number(v[i], file, field + "[" + std::to_string(i) + "]"));
+        return values;
+    }
+    if (!v.is_object())
+        throwInputError(file, field, "must be a number, a list or {\"from\", \"to\", \"steps\"}");
+    checkKeys(v, {"from", "to", "steps", "log"}, file, field);
+    for (const char* k : {"from", "to", "steps"})
+        if (!v.contains(k)) throwInputError(file, field + "." + k, "missing");
+    const double from = number(v["from"], file, field + ".from");
+    const double to = number(v["to"], file, field + ".to");
+    const int steps = integer(v["steps"], file, field + ".steps", 1, int(kMaxValuesPerParam));
+    const bool log = v.contains("log") && v["log"].is_boolean() && v["log"].get<bool>();
+    if (v.contains("log") && !v["log"].is_boolean())
+        throwInputError(file, field + ".log", "must be true or false");
+    if (log && (from <= 0 || to <= 0))
+        throwInputError(file, field, "a log range needs from > 0 and to > 0");
+    if (steps == 1) return {from};
+    for (int i = 0; i < steps; ++i) {
+        const double t = double(i) / double(steps - 1);
+        // (1 - t) from + t to: finite for any finite ends, where from + (to - from) t overflows.
+        double x = log ? from * std::pow(to / from, t) : (1.0 - t) * from + t * to;
+        // To 12 significant digits, so that a step lands on the number the user means: 0.3, not
+        // 0.1 + 0.2 = 0.30000000000000004; 10 of 0.001..1000 in log steps, not 9.99999999999999.
+        char text[32];
+        std::snprintf(text, sizeof text, "%.12g", x);
+        x = i == steps - 1 ? to : std::strtod(text, nullptr);
+        if (!std::isfinite(x)) throwInputError(file, field, "a value of the range is not finite");
+        values.push_back(x);
+    }
+    return values;
+}
+
+struct ParamGrid {
+    std::string name;
+    std::vector<double> values;
+    std::vector<std::string> settings;  // "name=value" per value, formatted once
+};
+
+std::string settingLabel(const std::string& technique, const std::vector<std::string>& settings) {
+    std::string label = technique;
+    for (size_t i = 0; i < settings.size(); ++i) label += (i ? "," : ":") + settings[i];
+    return label;
+}
+
+// The settings of one "techniques" entry, the grid's last parameter varying fastest.
+void expandTechnique(const Json& t, size_t ti, const std::string& file,
+                     const SettingValidator& validate, std::vector<SweepTask>& settings) {
+    const std::string field = "techniques[" + std::to_string(ti) + "]";
+    checkKeys(t, {"name", "params"}, file, field);
+    if (!t.contains("name") || !t["name"].is_string())
+        throwInputError(file, field + ".name", "must be a technique name");
+    const std::string name = t["name"].get<std::string>();
+    try {
+        validate(name, {});
+    } catch (const InputError& e) {
+        throwInputError(file, field + ".name", e.message());
+    }
+    std::vector<ParamGrid> grid;
+    size_t count = 1;
+    if (t.contains("params")) {
+        if (!t["params"].is_object()) throwInputError(file, field + ".params", "must be an object");
+        // Bounded as each parameter is read, so that no spec makes many large ranges first.
+        for (const auto& [key, v] : t["params"].items()) {
+            grid.push_back(
+                {key, paramValues(v, file, field + ".params." + printable(key, 40)), {}});
+            count *= grid.back().values.size();
+            if (count + settings.size() > kMaxSweepTasks)  // with the entries before this one
+                throwInputError(
+                    file, field + ".params",
+                    "the sweep has more than " + std::to_string(kMaxSweepTasks) + " settings");
+            for (double x : grid.back().values)
+                grid.back().settings.push_back(key + "=" + shortestNumber(x));
+        }
+    }
+    for (size_t k = 0; k < count; ++k) {
+        SweepTask s;
+        s.technique = name;
+        size_t rest = k;
+        for (size_t gi = grid.size(); gi-- > 0;) {
+            const ParamGrid& g = grid[gi];
+            const size_t vi = rest % g.values.size();
+            rest /= g.values.size();
+            s.settings.insert(s.settings.begin(), g.settings[vi]);
+            if (g.values.size() > 1) s.swept.insert(s.swept.begin(), {g.name, g.values[vi]});
+        }
+        s.label = settingLabel(name, s.settings);
+        try {
+            validate(name, s.settings);  // every error before any work, with its field
+        } catch (const InputError& e) {
+            throwInputError(file, field + ".params", s.label + ": " + e.message());
+        }
+        settings.push_back(std::move(s));
+    }
+}
+
+void expandTasks(const std::string& file, SweepPlan& plan, const SettingValidator& validate) {
+    const Json& spec = plan.spec;
+    if (!spec.contains("techniques") || !spec["techniques"].is_array() ||
+        spec["techniques"].empty())
+        throwInputError(file, "techniques", "must be a non-empty list of {\"name\", \"params\"}");
+    std::vector<SweepTask> settings;
+    for (size_t ti = 0; ti < spec["techniques"].size(); ++ti)
+        expandTechnique(spec["techniques"][ti], ti, file, validate, settings);
+    if (settings.size() * plan.scenes.size() > kMaxSweepTasks)
+        throwInputError(file, "techniques",
+                        "more than " + std::to_string(kMaxSweepTasks) + " tasks in all");
+    std::set<std::string> ids;
+    for (size_t si = 0; si < plan.scenes.size(); ++si)
+        for (const SweepTask& s : settings) {
+            SweepTask task = s;
+            task.scene = si;
+            task.id = hashBytes(plan.scenes[si].name + "\n" + s.label).substr(0, 12);
+            if (!ids.insert(task.id).second)
+                throwInputError(file, "techniques",
+                                "the setting " + s.label + " is listed twice for scene " +
+                                    plan.scenes[si].name);
+            plan.tasks.push_back(std::move(task));
+        }
+}
+
+Json taskJson(const SweepTask& t) {
+    Json swept = Json::object();
+    for (const auto& [k, v] : t.swept) swept[k] = v;
+    return {{"id", t.id},       {"scene", t.scene},       {"technique", t.technique},
+            {"label", t.label}, {"settings", t.settings}, {"swept", swept}};
+}
+
+SweepTask taskFromJson(const Json& j) {
+    SweepTask t;
+    t.id = j.at("id").get<std::string>();
+    t.scene = j.at("scene").get<size_t>();
+    t.technique = j.at("technique").get<std::string>();
+    t.label = j.at("label").get<std::string>();
+    t.settings = j.at("settings").get<std::vector<std::string>>();
+    for (const auto& [k, v] : j.at("swept").items()) t.swept.emplace_back(k, v.get<double>());
+    return t;
+}
+
+}  // namespace
+
+std::string shortestNumber(double v) {
+    char text[32];
+    // Whole numbers as such: resolution=1000, not the equally short 1e+03.
+    if (v == std::floor(v) && std::fabs(v) < 1e15) {
+        std::snprintf(text, sizeof text, "%.0f", v);
+        return text;
+    }
+    for (int digits = 1; digits <= 17; ++digits) {
+        std::snprintf(text, sizeof text, "%.*g", digits, v);
+        if (std::strtod(text, nullptr) == v) break;
+    }
+    return text;
+}
+
+SweepPlan planSweep(const fs::path& specPath, const SettingValidator& validate) {
+    return planSweepText(readBounded(specPath, kMaxSpecBytes, "sweep spec"), specPath, validate);
+}
+
+SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
+                        const SettingValidator& validate) {
+    const std::string file = specPath.string();
+    if (text.size() > kMaxSpecBytes) throwInputError(file, "", "sweep spec too large");
+    SweepPlan plan;
+    try {
+        plan.spec = Json::parse(text);
+    } catch (const Json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
+        throwInputError(file, "", std::string("not valid JSON: ") + e.what());
+    }
+    checkKeys(plan.spec,
+              {"sweep_format", "name", "scenes", "width", "height", "frames", "boundary_radius",
+               "keep_outputs", "oracle", "techniques"},
+              file, "");
+    if (!plan.spec.contains("sweep_format"))
+        throwInputError(file, "sweep_format", "missing (this tool writes and reads 1)");
+    if (integer(plan.spec["sweep_format"], file, "sweep_format", 0, 1 << 30) != kSweepFormat)
+        throwInputError(file, "sweep_format", "unsupported (this tool reads 1; docs/sweep.md)");
+    plan.specFile = fs::absolute(specPath);
+    plan.specHash = hashBytes(text);
+    plan.name = plan.specFile.stem().string();
+    if (plan.spec.contains("name")) {
+        if (!plan.spec["name"].is_string()) throwInputError(file, "name", "must be a string");
+        plan.name = plan.spec["name"].get<std::string>();
+    }
+    plan.settings = parseSettings(plan.spec, file);
+    plan.scenes = expandScenes(plan.spec, plan.specFile.parent_path(), file);
+    expandTasks(file, plan, validate);
+    return plan;
+}
+
+fs::path sweepRowPath(const fs::path& dir, const SweepTask& task) {
+    return dir / "rows" / (task.id + ".json");
+}
+fs::path sweepTaskLogPath(const fs::path& dir, size_t index) {
+    return dir / "logs" / ("task-" + std::to_string(index) + ".log");
+}
+fs::path sweepOracleLogPath(const fs::path& dir, size_t scene) {
+    return dir / "logs" / ("oracle-" + std::to_string(scene) + ".log");
+}
+fs::path sweepOracleCacheDir(const fs::path& dir) {
+    return dir / "oracles";
+}
+
+void writeFileAtomically(const fs::path& path, const std::string& text) {
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    // Unique per process: two writers of one file (a task run twice) do not share a temp file.
+    const fs::path tmp =
+        path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        out.flush();
+        if (!out) throwInputError(tmp.string(), "", "cannot be written");
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) throwInputError(path.string(), "", "cannot be renamed into place: " + ec.message());
+}
+
+void writePlan(const fs::path& dir, const SweepPlan& plan) {
+    Json scenes = Json::array(), tasks = Json::array();
+    for (const SweepScene& s : plan.scenes)
+        scenes.push_back({{"name", s.name}, {"path", s.path.string()}});
+    for (const SweepTask& t : plan.tasks) tasks.push_back(taskJson(t));
+    const Json j = {{"sweep_format", kSweepFormat},
+                    {"name", plan.name},
+                    {"spec_file", plan.specFile.string()},
+                    {"spec_hash", plan.specHash},
+                    {"spec", plan.spec},
+                    {"scenes", scenes},
+                    {"tasks", tasks}};
+    writeFileAtomically(dir / "sweep.json", j.dump(1) + "\n");
+}
+
+SweepPlan readPlan(const fs::path& dir) {
+    const fs::path path = dir / "sweep.json";
+    const std::string file = path.string();
+    if (!fs::exists(path))
+        throwInputError(file, "", "missing: not a sweep folder (made by `shadow-oracle sweep`)");
+    SweepPlan plan;
+    try {
+        const Json j = Json::parse(readBounded(path, uintmax_t(1) << 31, "sweep plan"));
+        if (j.at("sweep_format").get<int>() != kSweepFormat)
+            throwInputError(file, "sweep_format", "unsupported (this tool reads 1)");
+        plan.name = j.at("name").get<std::string>();
+        plan.specFile = j.at("spec_file").get<std::string>();
+        plan.specHash = j.at("spec_hash").get<std::string>();
+        plan.spec = j.at("spec");
+        plan.settings = parseSettings(plan.spec, file);
+        for (const Json& s : j.at("scenes"))
+            plan.scenes.push_back(
+                {s.at("name").get<std::string>(), s.at("path").get<std::string>()});
+        for (const Json& t : j.at("tasks")) plan.tasks.push_back(taskFromJson(t));
+    } catch (const Json::exception& e) {
+        throwInputError(file, "", std::string("not a sweep plan: ") + e.what());
+    }
+    for (const SweepTask& t : plan.tasks)
+        if (t.scene >= plan.scenes.size())
+            throwInputError(file, "tasks", "scene index out of range");
+    return plan;
+}
+
+}  // namespace so

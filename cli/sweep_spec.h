@@ -1,0 +1,96 @@
+// A sweep (docs/sweep.md): the spec a user writes (scenes, oracle options, techniques with
+// parameter grids), expanded once into a plan of tasks (scene x technique setting) with stable ids,
+// kept as DIR/sweep.json so that every later step (a local job, a Slurm array task, the merge)
+// reads the same list, whatever the globs would match by then.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace so {
+
+inline constexpr int kSweepFormat = 1;
+// At most this many tasks in one sweep: a bound on what a mistyped range can allocate.
+inline constexpr size_t kMaxSweepTasks = 100000;
+
+struct SweepScene {
+    std::string name;            // as matched, relative to the spec's folder
+    std::filesystem::path path;  // absolute
+};
+
+struct SweepTask {
+    std::string id;  // stable: a hash of the scene's name and the label
+    size_t scene = 0;
+    std::string technique;
+    std::string label;                  // "slope-bias:alpha=2,min=0.5", what compare takes
+    std::vector<std::string> settings;  // "key=value"
+    // The parameters given more than one value for this technique, with this task's values.
+    std::vector<std::pair<std::string, double>> swept;
+};
+
+// The oracle options a spec sets (docs/sweep.md, "oracle"); what it leaves out keeps compare's
+// default. Width and height are the raster's too.
+struct SweepOracleSettings {
+    int width = 0, height = 0;  // 0: the scene camera's
+    std::optional<uint32_t> seed;
+    std::optional<double> targetError, agreementTarget;
+    std::optional<int> maxSpp, fixedSpp;
+};
+
+// What every task of the sweep shares.
+struct SweepSettings {
+    SweepOracleSettings oracle;
+    int frames = 9;
+    int boundaryRadius = 2;
+    bool keepOutputs = false;  // keep each task's compare folder (images, error EXRs)
+};
+
+struct SweepPlan {
+    std::string name;
+    std::filesystem::path specFile;  // absolute
+    std::string specHash;            // of the spec file's bytes
+    nlohmann::ordered_json spec;     // as written
+    SweepSettings settings;
+    std::vector<SweepScene> scenes;
+    std::vector<SweepTask> tasks;
+};
+
+// Reads, validates (every setting is created, so every error names its field) and expands a spec.
+// Creates a setting of a technique, throwing InputError when the technique or a setting is not
+// valid: createTechnique (raster_compare/gl/technique.h) in the tool; the fuzz harness, which
+// links no GL, passes its own.
+using SettingValidator =
+    std::function<void(const std::string& technique, const std::vector<std::string>& settings)>;
+SweepPlan planSweep(const std::filesystem::path& specPath, const SettingValidator& validate);
+// The same from the spec's text; `specPath` names it in errors and anchors relative scene paths.
+SweepPlan planSweepText(const std::string& text, const std::filesystem::path& specPath,
+                        const SettingValidator& validate);
+
+// DIR/sweep.json: writes it (atomically), or reads it back; a missing or foreign file is an
+// InputError naming it.
+void writePlan(const std::filesystem::path& dir, const SweepPlan& plan);
+// The tasks' settings are not validated again: each task's compare does.
+SweepPlan readPlan(const std::filesystem::path& dir);
+
+// Files of a sweep folder, in one place (docs/sweep.md, "The output folder").
+std::filesystem::path sweepRowPath(const std::filesystem::path& dir, const SweepTask& task);
+std::filesystem::path sweepTaskLogPath(const std::filesystem::path& dir, size_t index);
+std::filesystem::path sweepOracleLogPath(const std::filesystem::path& dir, size_t scene);
+std::filesystem::path sweepOracleCacheDir(const std::filesystem::path& dir);
+
+// Writes `text` to a temporary file beside `path` and renames it over `path`: readers see the old
+// file or the whole new one, never a part.
+void writeFileAtomically(const std::filesystem::path& path, const std::string& text);
+
+// The shortest text that reads back as the same double ("0.1", "2048").
+std::string shortestNumber(double v);
+
+}  // namespace so

@@ -1,0 +1,138 @@
+#include "cli/sweep_task.h"
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+
+#include "cli/compare_command.h"
+#include "cli/output.h"
+#include "cli/sweep_spec.h"
+#include "core/error.h"
+#include "oracle/oracle_cache.h"
+
+namespace so {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The spec's oracle settings over compare's defaults: the same options, so the same cache key, in
+// the oracle task and in every technique task of the scene.
+OracleOptions oracleOptions(const SweepOracleSettings& s) {
+    OracleOptions o;
+    o.progress = false;
+    o.width = s.width;
+    o.height = s.height;
+    if (s.seed) o.area.seed = *s.seed;
+    if (s.targetError) o.area.targetError = *s.targetError;
+    if (s.agreementTarget) o.area.agreementTarget = *s.agreementTarget;
+    if (s.maxSpp) o.area.maxSpp = *s.maxSpp;
+    if (s.fixedSpp) o.area.fixedSpp = *s.fixedSpp;
+    return o;
+}
+
+// The oracle of scene S into DIR/oracles (oracle_cache.h: content-addressed by the scene's hash
+// and the oracle options, so a present and valid entry is loaded, never traced again).
+int runOracleTask(const fs::path& dir, const SweepPlan& plan, size_t si) {
+    const SweepScene& s = plan.scenes[si];
+    const Scene scene = loadScene(s.path.string());
+    printSceneWarnings(s.path.string(), scene);
+    const OracleOptions options = oracleOptions(plan.settings.oracle);
+    const CachedOracle oracle =
+        traceOrLoad(scene, options, {sweepOracleCacheDir(dir), /*use=*/true});
+    std::cout << "oracle of " << s.name << ": " << (oracle.fromCache ? "present" : "traced") << " ("
+              << oracle.key << ")\n";
+    return 0;
+}
+
+// The row of a task (docs/sweep.md, "Rows"): the task, and its setting's entry of compare's
+// metrics.json with what made it.
+nlohmann::json taskRow(const SweepPlan& plan, size_t index, const nlohmann::json& metrics,
+                       double seconds) {
+    const SweepTask& t = plan.tasks[index];
+    nlohmann::json swept = nlohmann::json::object();
+    for (const auto& [k, v] : t.swept) swept[k] = v;
+    return {
+        {"sweep_format", kSweepFormat},
+        {"task",
+         {{"index", index},
+          {"id", t.id},
+          {"scene", plan.scenes[t.scene].name},
+          {"technique", t.technique},
+          {"label", t.label},
+          {"swept", swept}}},
+        {"seconds", seconds},
+        {"tool", metrics.at("tool")},
+        {"gl", metrics.at("gl")},
+        {"scene", metrics.at("scene")},
+        {"options", metrics.at("options")},
+        {"oracle",
+         {{"key", metrics.at("oracle").at("key")}, {"cached", metrics.at("oracle").at("cached")}}},
+        {"result", metrics.at("results").at(0)}};
+}
+
+int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, size_t index) {
+    const SweepTask& t = plan.tasks[index];
+    const fs::path row = sweepRowPath(dir, t);
+    if (fs::exists(row)) {
+        std::cout << "task " << index << " (" << t.id << ") already finished: " << row.string()
+                  << "\n";
+        return 0;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const fs::path work = dir / "work" / t.id;
+    std::error_code ec;
+    fs::remove_all(work, ec);  // what a killed run of this task left
+    CompareOptions c;
+    c.scenePath = plan.scenes[t.scene].path.string();
+    c.outDir = work.string();
+    c.techniques = {t.label};
+    c.oracle = oracleOptions(plan.settings.oracle);
+    c.raster.width = plan.settings.oracle.width;
+    c.raster.height = plan.settings.oracle.height;
+    c.raster.frames = plan.settings.frames;
+    c.cacheDir = sweepOracleCacheDir(dir);
+    c.boundaryRadius = plan.settings.boundaryRadius;
+    c.sweepTask = true;
+    const int rc = runCompareCommand(c);
+    if (rc != 0) return rc;
+    std::ifstream in(work / "metrics.json");
+    const nlohmann::json metrics = nlohmann::json::parse(in);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The row last, atomically: it is what marks the task done.
+    writeFileAtomically(row, taskRow(plan, index, metrics, seconds).dump() + "\n");
+    if (plan.settings.keepOutputs) {
+        fs::remove_all(dir / "outputs" / t.id, ec);
+        fs::create_directories(dir / "outputs", ec);
+        fs::rename(work, dir / "outputs" / t.id, ec);
+    } else {
+        fs::remove_all(work, ec);
+    }
+    std::cout << "task " << index << " (" << t.id << ", " << t.label << " on "
+              << plan.scenes[t.scene].name << ") finished in " << seconds << " s\n";
+    return 0;
+}
+
+}  // namespace
+
+int runSweepTask(const SweepTaskOptions& options) {
+    const fs::path dir = options.dir;
+    const SweepPlan plan = readPlan(dir);
+    if ((options.index >= 0) == (options.oracle >= 0))
+        throwInputError("command line", "--index", "give exactly one of --index K and --oracle S");
+    if (options.oracle >= 0) {
+        if (size_t(options.oracle) >= plan.scenes.size())
+            throwInputError("command line", "--oracle",
+                            std::to_string(options.oracle) + " is out of range: the sweep has " +
+                                std::to_string(plan.scenes.size()) + " scenes");
+        return runOracleTask(dir, plan, size_t(options.oracle));
+    }
+    if (size_t(options.index) >= plan.tasks.size())
+        throwInputError("command line", "--index",
+                        std::to_string(options.index) + " is out of range: the sweep has " +
+                            std::to_string(plan.tasks.size()) + " tasks");
+    return runTechniqueTask(dir, plan, size_t(options.index));
+}
+
+}  // namespace so

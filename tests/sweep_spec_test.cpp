@@ -1,0 +1,171 @@
+// The sweep spec (docs/sweep.md): grids expanded in a stated order with exact range ends, task ids
+// that do not move when the spec grows, and every mistake a one-line error naming its field.
+// Label "loader": the ASan build runs it too.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cli/sweep_spec.h"
+#include "core/error.h"
+
+namespace so {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A made-up technique table: "shadow" with alpha and min in [0, 16] and an integer resolution.
+void validate(const std::string& technique, const std::vector<std::string>& settings) {
+    if (technique != "shadow" && technique != "other")
+        throwInputError("command line", "--technique", "unknown technique \"" + technique + "\"");
+    for (const std::string& kv : settings) {
+        const std::string key = kv.substr(0, kv.find('='));
+        const double v = std::stod(kv.substr(kv.find('=') + 1));
+        if (key != "alpha" && key != "min" && key != "resolution")
+            throwInputError("command line", technique, "unknown parameter \"" + key + "\"");
+        if (v < 0 || v > (key == "resolution" ? 8192 : 16))
+            throwInputError("command line", technique, key + " out of range");
+    }
+}
+
+class SweepSpec : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("so_sweep_spec_" + std::to_string(::getpid()));
+        fs::create_directories(dir_ / "scenes");
+        for (const char* s : {"b.scene.json", "a.scene.json", "c.gltf"})
+            std::ofstream(dir_ / "scenes" / s) << "{}";
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    SweepPlan plan(const std::string& techniques,
+                   const std::string& scenes = R"(["scenes/*.scene.json"])",
+                   const std::string& extra = "") {
+        const std::string text = R"({"sweep_format": 1, "scenes": )" + scenes + extra +
+                                 R"(, "techniques": )" + techniques + "}";
+        return planSweepText(text, dir_ / "spec.json", validate);
+    }
+    // The error's text, or "" when the spec was accepted.
+    std::string error(const std::string& text) {
+        try {
+            planSweepText(text, dir_ / "spec.json", validate);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    }
+    fs::path dir_;
+};
+
+TEST_F(SweepSpec, GridsExpandWithTheLastParameterFastestAndExactRangeEnds) {
+    const SweepPlan p = plan(R"([{"name": "shadow", "params": {
+        "alpha": {"from": 0.1, "to": 0.7, "steps": 4}, "min": [0, 0.5], "resolution": 1024}}])");
+    ASSERT_EQ(p.scenes.size(), 2u);
+    EXPECT_EQ(p.scenes[0].name, "scenes/a.scene.json") << "globs are sorted";
+    EXPECT_EQ(p.scenes[1].name, "scenes/b.scene.json");
+    ASSERT_EQ(p.tasks.size(), 16u);
+    EXPECT_EQ(p.tasks[0].label, "shadow:alpha=0.1,min=0,resolution=1024");
+    EXPECT_EQ(p.tasks[1].label, "shadow:alpha=0.1,min=0.5,resolution=1024");
+    EXPECT_EQ(p.tasks[2].label, "shadow:alpha=0.3,min=0,resolution=1024")
+        << "not 0.30000000000000004";
+    EXPECT_EQ(p.tasks[7].label, "shadow:alpha=0.7,min=0.5,resolution=1024");
+    EXPECT_EQ(p.tasks[8].scene, 1u);
+    ASSERT_EQ(p.tasks[7].swept.size(), 2u) << "resolution has one value: not swept";
+    EXPECT_EQ(p.tasks[7].swept[0], (std::pair<std::string, double>{"alpha", 0.7}));
+    EXPECT_EQ(p.tasks[7].swept[1], (std::pair<std::string, double>{"min", 0.5}));
+    const SweepPlan log = plan(R"([{"name": "shadow", "params": {
+        "resolution": {"from": 512, "to": 4096, "steps": 4, "log": true}}}])");
+    std::vector<std::string> labels;
+    for (size_t i = 0; i < 4; ++i) labels.push_back(log.tasks[i].label);
+    // Log steps land on round numbers; whole numbers print as such; one step is `from`; a range
+    // whose steps overflow is refused.
+    const SweepPlan decades = plan(R"([{"name": "shadow", "params": {
+        "alpha": {"from": 3, "to": 9, "steps": 1},
+        "min": {"from": 0.0001, "to": 10, "steps": 6, "log": true}}}])");
+    EXPECT_EQ(decades.tasks[3].label, "shadow:alpha=3,min=0.1");
+    EXPECT_EQ(decades.tasks[4].label, "shadow:alpha=3,min=1");
+    EXPECT_NE(error(R"({"sweep_format": 1, "scenes": ["scenes/a.scene.json"], "techniques": [
+        {"name": "shadow", "params": {"alpha": {"from": -1e308, "to": 1e308, "steps": 3}}}]})")
+                  .find("alpha out of range"),
+              std::string::npos);
+    EXPECT_EQ(labels,
+              (std::vector<std::string>{"shadow:resolution=512", "shadow:resolution=1024",
+                                        "shadow:resolution=2048", "shadow:resolution=4096"}));
+}
+
+TEST_F(SweepSpec, TaskIdsAreStableWhenTheSpecGrows) {
+    const SweepPlan small = plan(R"([{"name": "shadow", "params": {"alpha": [1, 2]}}])");
+    const SweepPlan grown =
+        plan(R"([{"name": "other"}, {"name": "shadow", "params": {"alpha": [0, 1, 2]}}])",
+             R"(["scenes/b.scene.json", "scenes/*.scene.json"])");
+    std::map<std::string, std::string> idOf;  // scene + label -> id
+    std::set<std::string> ids;
+    for (const SweepTask& t : grown.tasks) {
+        idOf[grown.scenes[t.scene].name + " " + t.label] = t.id;
+        ids.insert(t.id);
+        EXPECT_EQ(t.id.size(), 12u);
+    }
+    EXPECT_EQ(ids.size(), grown.tasks.size());
+    EXPECT_EQ(grown.scenes.size(), 2u) << "a scene two entries match runs once";
+    for (const SweepTask& t : small.tasks)
+        EXPECT_EQ(idOf.at(small.scenes[t.scene].name + " " + t.label), t.id) << t.label;
+    // A scene outside the spec's folder keeps a relative name (ids must not depend on where the
+    // checkout lies); an absolute entry stays absolute.
+    fs::create_directories(dir_ / "sweeps");
+    const SweepPlan up =
+        planSweepText(R"({"sweep_format": 1, "scenes": ["../scenes/a.scene.json", ")" +
+                          (dir_ / "scenes" / "b.scene.json").string() +
+                          R"("], "techniques": [{"name": "other"}]})",
+                      dir_ / "sweeps" / "spec.json", validate);
+    ASSERT_EQ(up.scenes.size(), 2u);
+    EXPECT_EQ(up.scenes[0].name, "../scenes/a.scene.json");
+    EXPECT_EQ(up.scenes[1].name, (dir_ / "scenes" / "b.scene.json").string());
+    EXPECT_EQ(up.scenes[1].path, fs::weakly_canonical(dir_ / "scenes" / "b.scene.json"));
+}
+
+TEST_F(SweepSpec, MistakesNameTheFileAndTheField) {
+    const std::string file = (dir_ / "spec.json").string();
+    const std::string scenes = R"(, "scenes": ["scenes/a.scene.json"])";
+    const auto spec = [&](const std::string& body) {
+        return "{\"sweep_format\": 1" + scenes + body + "}";
+    };
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {R"({"scenes": []})", "sweep_format: missing"},
+        {R"({"sweep_format": 2})", "sweep_format: unsupported"},
+        {spec(R"(, "techniques": [{"name": "shadow"}], "widht": 3)"), ": widht: unknown key"},
+        {spec(R"(, "techniques": [{"name": "shadow"}], "oracle": {"sed": 1})"),
+         "oracle.sed: unknown key"},
+        {spec(R"(, "techniques": [{"name": "shadow"}], "oracle": {"target_error": 2})"),
+         "oracle.target_error: must be in [0.0001, 0.5]"},
+        {spec(R"(, "techniques": [{"name": "nope"}])"), "techniques[0].name: unknown technique"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {"alpha": [1, "x"]}}])"),
+         "techniques[0].params.alpha[1]: must be a finite number"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {"alpha": {"from": 0, "to": 1}}}])"),
+         "techniques[0].params.alpha.steps: missing"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {"alpha": [1, 99]}}])"),
+         "techniques[0].params: shadow:alpha=99: alpha out of range"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {"alpha": [1, 1]}}])"),
+         "techniques: the setting shadow:alpha=1 is listed twice"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {
+            "alpha": {"from": 0, "to": 1, "steps": 1000}, "min": {"from": 0, "to": 1, "steps": 101}}}])"),
+         "the sweep has more than 100000 settings"},
+        {spec(R"(, "techniques": [])"), "techniques: must be a non-empty list"},
+        {R"({"sweep_format": 1, "scenes": ["scenes/*.glb"], "techniques": [{"name": "shadow"}]})",
+         "scenes[0]: matches no scene file: scenes/*.glb"},
+        {R"({"sweep_format": 1, "scenes": ["nope.json"], "techniques": [{"name": "shadow"}]})",
+         "scenes[0]: no such scene file"},
+        {"{\"sweep_format\": 1,", "not valid JSON"},
+    };
+    for (const auto& [text, expected] : cases) {
+        const std::string e = error(text);
+        EXPECT_EQ(e.rfind(file + ": ", 0), 0u) << text << "\n -> " << e;
+        EXPECT_NE(e.find(expected), std::string::npos) << text << "\n -> " << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+    }
+}
+
+}  // namespace
+}  // namespace so

@@ -1,0 +1,192 @@
+// The sweep end to end on this machine (label gl): `sweep --jobs 2` over two scenes, resumed after
+// lost rows, a failed oracle reported with its log and retried, a killed run, and a task's row
+// against a plain `compare` of the same setting (the merged table has compare's numbers).
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "gl_test_context.h"
+#include "sweep_test_util.h"
+
+namespace so {
+namespace {
+
+using namespace so::test;
+namespace fs = std::filesystem;
+
+// Two shipped scenes copied beside the spec (so a test can break one), and a 2 x 2 grid of
+// slope-bias settings: 8 tasks.
+struct SweepFixture {
+    fs::path dir, spec, brokenScene, out;
+    explicit SweepFixture(const std::string& name) {
+        dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+        fs::remove_all(dir);
+        fs::create_directories(dir / "scenes");
+        fs::copy(fs::path(SO_SCENES_DIR) / "meshes", dir / "scenes" / "meshes",
+                 fs::copy_options::recursive);
+        for (const char* s : {"contact_box.scene.json", "spot_objects.scene.json"})
+            fs::copy_file(fs::path(SO_SCENES_DIR) / s, dir / "scenes" / s);
+        brokenScene = dir / "scenes" / "spot_objects.scene.json";
+        spec = dir / "spec.json";
+        std::ofstream(spec)
+            << R"({"sweep_format": 1, "name": "t", "scenes": ["scenes/*.scene.json"],
+            "width": 64, "height": 48, "frames": 1,
+            "techniques": [{"name": "slope-bias", "params": {"alpha": [0, 2], "min": [0, 0.5],
+                                                             "resolution": 512}}]})";
+        out = dir / "out";
+    }
+    ~SweepFixture() { fs::remove_all(dir); }
+    int sweep(std::string* log, const std::string& extra = "--jobs 2 --quiet") const {
+        return runCli("sweep " + spec.string() + " --out " + out.string() + " " + extra, log);
+    }
+    size_t rows() const {
+        size_t n = 0;
+        for (const auto& e : fs::directory_iterator(out / "rows"))
+            n += e.path().extension() == ".json";
+        return n;
+    }
+};
+
+TEST(Sweep, RunsLocallyAndMergesCompareNumbers) {
+    REQUIRE_GL();
+    const SweepFixture f("so_sweep_local");
+    std::string log;
+    ASSERT_EQ(f.sweep(&log), 0) << log;
+    EXPECT_NE(log.find("merged 8 of 8 tasks"), std::string::npos) << log;
+    EXPECT_EQ(f.rows(), 8u);
+    const auto merged = mergedResults(f.out);
+    ASSERT_EQ(merged.size(), 8u);
+    // The swept parameters are columns of the long table; the fixed one is not.
+    const std::string csv = readText(f.out / "metrics.csv");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "scene,light,technique,label,metric,value,task,param.alpha,param.min");
+    EXPECT_NE(readText(f.out / "metrics_wide.csv").find("param.resolution"), std::string::npos);
+    EXPECT_NE(readText(f.out / "report.html").find("8 of 8 tasks"), std::string::npos);
+
+    // One task against compare of the same setting with the sweep's oracle: the same metrics.
+    std::ifstream in(f.out / "metrics.json");
+    const nlohmann::json all = nlohmann::json::parse(in);
+    const nlohmann::json& r = all["results"][5];
+    const std::string label = r["label"], id = r["task"]["id"];
+    const std::string scene = (f.dir / r["task"]["scene"].get<std::string>()).string();
+    ASSERT_EQ(runCli("compare " + scene + " --technique " + label +
+                         " --width 64 --height 48 --frames 1 --cache " +
+                         (f.out / "oracles").string() + " --out " + (f.dir / "compare").string(),
+                     &log),
+              0)
+        << log;
+    EXPECT_NE(log.find("oracle from the cache"), std::string::npos)
+        << "the sweep's oracle: " << log;
+    std::ifstream cin(f.dir / "compare" / "metrics.json");
+    const nlohmann::json compare = nlohmann::json::parse(cin);
+    EXPECT_EQ(withoutTimings(compare["results"][0]["lights"]), merged.at(id)["lights"]);
+}
+
+TEST(Sweep, ResumesRetriesAndReportsFailuresWithTheirLogs) {
+    REQUIRE_GL();
+    const SweepFixture f("so_sweep_resume");
+    std::string log;
+    ASSERT_EQ(f.sweep(&log), 0) << log;
+    const auto first = mergedResults(f.out);
+    // Two rows lost and the second scene broken: its oracle fails, its tasks do not run, the
+    // merge lists them with the oracle's log and the sweep exits 1.
+    std::vector<fs::path> lost;
+    for (const auto& e : fs::directory_iterator(f.out / "rows")) lost.push_back(e.path());
+    std::sort(lost.begin(), lost.end());
+    std::ifstream in(f.out / "metrics.json");
+    const nlohmann::json all = nlohmann::json::parse(in);
+    std::vector<std::string> spotIds;
+    for (const auto& r : all["results"])
+        if (r["task"]["scene"].get<std::string>().find("spot") != std::string::npos)
+            spotIds.push_back(r["task"]["id"]);
+    ASSERT_EQ(spotIds.size(), 4u);
+    for (size_t k = 0; k < 2; ++k) fs::remove(f.out / "rows" / (spotIds[k] + ".json"));
+    const std::string good = readText(f.brokenScene);
+    std::ofstream(f.brokenScene) << "{ not json";
+    ASSERT_EQ(f.sweep(&log, "--jobs 2"), 1) << log;
+    EXPECT_NE(log.find("6 of 8 tasks already finished, 2 to run over 1 scenes"), std::string::npos)
+        << log;
+    EXPECT_NE(log.find("2 of 8 tasks did not finish"), std::string::npos) << log;
+    EXPECT_NE(log.find("its scene's oracle failed"), std::string::npos) << log;
+    EXPECT_NE(log.find("logs/oracle-1.log"), std::string::npos) << log;
+    std::ifstream jin(f.out / "metrics.json");
+    EXPECT_EQ(nlohmann::json::parse(jin)["failed"].size(), 2u);
+    // Mended, the rerun runs just those two, with the oracle already present.
+    std::ofstream(f.brokenScene) << good;
+    ASSERT_EQ(f.sweep(&log), 0) << log;
+    EXPECT_EQ(f.rows(), 8u);
+    EXPECT_NE(readText(f.out / "logs" / "oracle-1.log").find("present"), std::string::npos);
+    EXPECT_EQ(mergedResults(f.out), first) << "a resumed sweep has the numbers of a whole one";
+    // A finished sweep reruns nothing.
+    ASSERT_EQ(f.sweep(&log, "--jobs 2"), 0) << log;
+    EXPECT_NE(log.find("8 of 8 tasks already finished, 0 to run"), std::string::npos) << log;
+}
+
+TEST(Sweep, AKilledRunLosesOnlyTheTasksInFlight) {
+    REQUIRE_GL();
+    const SweepFixture f("so_sweep_kill");
+    // The sweep in its own process group, killed (SIGKILL, children too) once some rows exist.
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        ::setpgid(0, 0);
+        const std::string cmd = std::string(SO_CLI_PATH) + " sweep " + f.spec.string() + " --out " +
+                                f.out.string() + " --jobs 2 --quiet > /dev/null 2>&1";
+        ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::setpgid(pid, pid);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (std::chrono::steady_clock::now() < deadline &&
+           !(fs::exists(f.out / "rows") && f.rows() >= 2))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ::kill(-pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    const size_t kept = fs::exists(f.out / "rows") ? f.rows() : 0;
+    // Every row that exists is whole (written to a temporary file, then renamed).
+    for (const auto& e : fs::directory_iterator(f.out / "rows")) {
+        if (e.path().extension() != ".json") continue;
+        EXPECT_NO_THROW(nlohmann::json::parse(readText(e.path()))) << e.path();
+    }
+    std::string log;
+    ASSERT_EQ(f.sweep(&log, "--jobs 2"), 0) << log;
+    EXPECT_NE(log.find(std::to_string(kept) + " of 8 tasks already finished"), std::string::npos)
+        << log;
+    EXPECT_EQ(f.rows(), 8u);
+}
+
+TEST(Sweep, ForeignFoldersAndIndicesAreOneLineErrors) {
+    REQUIRE_GL();
+    const SweepFixture f("so_sweep_errors");
+    std::string log;
+    ASSERT_EQ(f.sweep(&log), 0) << log;
+    // Another spec into the same folder.
+    const fs::path other = f.dir / "other.json";
+    std::ofstream(other) << R"({"sweep_format": 1, "scenes": ["scenes/contact_box.scene.json"],
+        "techniques": [{"name": "basic"}]})";
+    EXPECT_EQ(runCli("sweep " + other.string() + " --out " + f.out.string(), &log), 2);
+    EXPECT_NE(log.find(other.string() + ": differs from the spec of the sweep in"),
+              std::string::npos)
+        << log;
+    EXPECT_EQ(runCli("sweep-task " + f.out.string() + " --index 8", &log), 2);
+    EXPECT_NE(log.find("--index: 8 is out of range: the sweep has 8 tasks"), std::string::npos)
+        << log;
+    EXPECT_EQ(runCli("sweep-merge " + f.dir.string(), &log), 2);
+    EXPECT_NE(log.find((f.dir / "sweep.json").string() + ": missing"), std::string::npos) << log;
+    // A task run again is a no-op: its row stays.
+    EXPECT_EQ(runCli("sweep-task " + f.out.string() + " --index 3", &log), 0);
+    EXPECT_NE(log.find("already finished"), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace so
