@@ -1,6 +1,7 @@
 // Text into HTML, for the report and the index page: the one escaping both use.
 #pragma once
 
+#include <cstdio>
 #include <string>
 
 namespace so {
@@ -15,6 +16,26 @@ inline std::string htmlEscape(const std::string& s) {
              : c == '&' ? "&amp;"
              : c == '"' ? "&quot;"
                         : std::string(1, c);
+    return o;
+}
+
+// Percent-encodes every byte but the unreserved characters of RFC 3986 and those in `keep` ("/"
+// for a relative path): a link built from user text stays a relative link ("javascript:", '#',
+// spaces and quotes are encoded).
+inline std::string urlEncode(const std::string& s, const std::string& keep) {
+    std::string o;
+    for (unsigned char c : s) {
+        const bool unreserved = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                                (c >= '0' && c <= '9') || c == '-' || c == '.' || c == '_' ||
+                                c == '~';
+        if (unreserved || keep.find(char(c)) != std::string::npos) {
+            o += char(c);
+        } else {
+            char buf[4];
+            std::snprintf(buf, sizeof buf, "%%%02X", c);
+            o += buf;
+        }
+    }
     return o;
 }
 

@@ -125,25 +125,6 @@ std::string html(const std::string& s) {
     return htmlEscape(s);
 }
 
-// Scene folders and light names are the user's: percent-encoded, a space or '#' in one cannot
-// break the link. `keep` is what may stay as is ("/" in a path, nothing more in a fragment).
-std::string urlEncode(const std::string& s, const std::string& keep) {
-    std::string o;
-    for (unsigned char c : s) {
-        const bool unreserved = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-                                (c >= '0' && c <= '9') || c == '-' || c == '.' || c == '_' ||
-                                c == '~';
-        if (unreserved || keep.find(char(c)) != std::string::npos) {
-            o += char(c);
-        } else {
-            char buf[4];
-            std::snprintf(buf, sizeof buf, "%%%02X", c);
-            o += buf;
-        }
-    }
-    return o;
-}
-
 std::string lightHref(const std::string& report, const std::string& light) {
     return urlEncode(report, "/") + "#light-" + urlEncode(light, "");
 }

@@ -39,25 +39,6 @@ std::string exact(double v) {
     return buf;
 }
 
-// Log paths are the planner's, but may hold a user's scene name: percent-encoded, a space, '#' or
-// a "javascript:" cannot turn the link into anything but a relative path (as index_page.cpp).
-std::string urlEncode(const std::string& s) {
-    std::string o;
-    for (unsigned char c : s) {
-        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-                          (c >= '0' && c <= '9') || c == '-' || c == '.' || c == '_' || c == '~' ||
-                          c == '/';
-        if (keep) {
-            o += char(c);
-        } else {
-            char buf[4];
-            std::snprintf(buf, sizeof buf, "%%%02X", c);
-            o += buf;
-        }
-    }
-    return o;
-}
-
 const std::string kMae = "mae";
 const std::string kAcne = artifactClass(Artifact::Acne).metric;
 const std::string kPeterPanning = artifactClass(Artifact::PeterPanning).metric;
@@ -756,7 +737,7 @@ void writeFailed(std::ostream& o, const SweepReportInput& in) {
           << html(f.scene) << "</td><td class=\"text\">" << html(f.label)
           << "</td><td class=\"text\">" << html(f.reason) << "</td><td class=\"text\">";
         if (!f.log.empty())
-            o << "<a href=\"" << html(urlEncode(f.log)) << "\">" << html(f.log) << "</a>";
+            o << "<a href=\"" << html(urlEncode(f.log, "/")) << "\">" << html(f.log) << "</a>";
         o << "</td></tr>";
     }
     o << "</tbody></table></div>";
