@@ -131,7 +131,7 @@ std::string exePath() {
 // DIR/sweep.json: written on the first run; a later run must be of the same spec.
 void keepPlan(const fs::path& dir, const SweepPlan& plan) {
     if (fs::exists(dir / "sweep.json")) {
-        const SweepPlan old = readPlan(dir);
+        const SweepPlan old = readPlan(dir, /*withTasks=*/false);
         if (old.specHash != plan.specHash)
             throwInputError(plan.specFile.string(), "",
                             "differs from the spec of the sweep in " + dir.string() + " (" +

@@ -339,6 +339,7 @@ SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
     plan.settings = parseSettings(plan.spec, file);
     plan.scenes = expandScenes(plan.spec, plan.specFile.parent_path(), file);
     expandTasks(file, plan, validate);
+    plan.taskCount = plan.tasks.size();
     return plan;
 }
 
@@ -371,29 +372,53 @@ void writeFileAtomically(const fs::path& path, const std::string& text) {
     if (ec) throwInputError(path.string(), "", "cannot be renamed into place: " + ec.message());
 }
 
+// The tasks go to tasks.jsonl, one per line, so that a task (an array task of thousands) reads its
+// own line, not a plan of megabytes; sweep.json has the rest and is written last.
 void writePlan(const fs::path& dir, const SweepPlan& plan) {
-    Json scenes = Json::array(), tasks = Json::array();
+    std::string lines;
+    for (const SweepTask& t : plan.tasks) lines += taskJson(t).dump() + "\n";
+    writeFileAtomically(dir / "tasks.jsonl", lines);
+    Json scenes = Json::array();
     for (const SweepScene& s : plan.scenes)
         scenes.push_back({{"name", s.name}, {"path", s.path.string()}});
-    for (const SweepTask& t : plan.tasks) tasks.push_back(taskJson(t));
     const Json j = {{"sweep_format", kSweepFormat},
                     {"name", plan.name},
                     {"spec_file", plan.specFile.string()},
                     {"spec_hash", plan.specHash},
                     {"spec", plan.spec},
                     {"scenes", scenes},
-                    {"tasks", tasks}};
+                    {"tasks", plan.tasks.size()},
+                    {"tasks_file", "tasks.jsonl"}};
     writeFileAtomically(dir / "sweep.json", j.dump(1) + "\n");
 }
 
-SweepPlan readPlan(const fs::path& dir) {
+namespace {
+
+// One line of tasks.jsonl as a task, checked against the plan.
+SweepTask parseTaskLine(const std::string& line, const SweepPlan& plan, const std::string& file,
+                        size_t index) {
+    SweepTask t;
+    try {
+        t = taskFromJson(Json::parse(line));
+    } catch (const Json::exception& e) {
+        throwInputError(file, "line " + std::to_string(index + 1),
+                        std::string("not a task: ") + e.what());
+    }
+    if (t.scene >= plan.scenes.size())
+        throwInputError(file, "line " + std::to_string(index + 1), "scene index out of range");
+    return t;
+}
+
+}  // namespace
+
+SweepPlan readPlan(const fs::path& dir, bool withTasks) {
     const fs::path path = dir / "sweep.json";
     const std::string file = path.string();
     if (!fs::exists(path))
         throwInputError(file, "", "missing: not a sweep folder (made by `shadow-oracle sweep`)");
     SweepPlan plan;
     try {
-        const Json j = Json::parse(readBounded(path, uintmax_t(1) << 31, "sweep plan"));
+        const Json j = Json::parse(readBounded(path, kMaxSpecBytes * 4, "sweep plan"));
         if (j.at("sweep_format").get<int>() != kSweepFormat)
             throwInputError(file, "sweep_format", "unsupported (this tool reads 1)");
         plan.name = j.at("name").get<std::string>();
@@ -404,14 +429,35 @@ SweepPlan readPlan(const fs::path& dir) {
         for (const Json& s : j.at("scenes"))
             plan.scenes.push_back(
                 {s.at("name").get<std::string>(), s.at("path").get<std::string>()});
-        for (const Json& t : j.at("tasks")) plan.tasks.push_back(taskFromJson(t));
+        plan.taskCount = j.at("tasks").get<size_t>();
     } catch (const Json::exception& e) {
         throwInputError(file, "", std::string("not a sweep plan: ") + e.what());
     }
-    for (const SweepTask& t : plan.tasks)
-        if (t.scene >= plan.scenes.size())
-            throwInputError(file, "tasks", "scene index out of range");
+    if (plan.taskCount > kMaxSweepTasks) throwInputError(file, "tasks", "too many");
+    if (!withTasks) return plan;
+    const fs::path tasksPath = dir / "tasks.jsonl";
+    std::istringstream in(readBounded(tasksPath, uintmax_t(1) << 32, "sweep tasks"));
+    std::string line;
+    while (plan.tasks.size() < plan.taskCount && std::getline(in, line))
+        plan.tasks.push_back(parseTaskLine(line, plan, tasksPath.string(), plan.tasks.size()));
+    if (plan.tasks.size() != plan.taskCount)
+        throwInputError(tasksPath.string(), "", "fewer tasks than sweep.json says");
     return plan;
+}
+
+SweepTask readPlanTask(const fs::path& dir, const SweepPlan& plan, size_t index) {
+    const fs::path path = dir / "tasks.jsonl";
+    const std::string text = readBounded(path, uintmax_t(1) << 32, "sweep tasks");
+    size_t at = 0;
+    for (size_t k = 0; k < index && at != std::string::npos; ++k) {
+        at = text.find('\n', at);
+        if (at != std::string::npos) ++at;
+    }
+    if (at == std::string::npos || at >= text.size())
+        throwInputError(path.string(), "", "has no task " + std::to_string(index));
+    const size_t end = text.find('\n', at);
+    return parseTaskLine(text.substr(at, end == std::string::npos ? std::string::npos : end - at),
+                         plan, path.string(), index);
 }
 
 }  // namespace so

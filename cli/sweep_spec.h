@@ -61,6 +61,7 @@ struct SweepPlan {
     SweepSettings settings;
     std::vector<SweepScene> scenes;
     std::vector<SweepTask> tasks;
+    size_t taskCount = 0;  // read back: tasks.size() once read
 };
 
 // Reads, validates (every setting is created, so every error names its field) and expands a spec.
@@ -74,11 +75,13 @@ SweepPlan planSweep(const std::filesystem::path& specPath, const SettingValidato
 SweepPlan planSweepText(const std::string& text, const std::filesystem::path& specPath,
                         const SettingValidator& validate);
 
-// DIR/sweep.json: writes it (atomically), or reads it back; a missing or foreign file is an
-// InputError naming it.
+// DIR/sweep.json and DIR/tasks.jsonl: writes them (atomically), or reads them back; a missing or
+// foreign file is an InputError naming it.
 void writePlan(const std::filesystem::path& dir, const SweepPlan& plan);
-// The tasks' settings are not validated again: each task's compare does.
-SweepPlan readPlan(const std::filesystem::path& dir);
+// The tasks' settings are not validated again: each task's compare does. Without `withTasks`,
+// `tasks` stays empty (taskCount says how many): what one task needs, with readPlanTask.
+SweepPlan readPlan(const std::filesystem::path& dir, bool withTasks = true);
+SweepTask readPlanTask(const std::filesystem::path& dir, const SweepPlan& plan, size_t index);
 
 // Files of a sweep folder, in one place (docs/sweep.md, "The output folder").
 std::filesystem::path sweepRowPath(const std::filesystem::path& dir, const SweepTask& task);

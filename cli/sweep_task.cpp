@@ -47,9 +47,8 @@ int runOracleTask(const fs::path& dir, const SweepPlan& plan, size_t si) {
 
 // The row of a task (docs/sweep.md, "Rows"): the task, and its setting's entry of compare's
 // metrics.json with what made it.
-nlohmann::json taskRow(const SweepPlan& plan, size_t index, const nlohmann::json& metrics,
-                       double seconds) {
-    const SweepTask& t = plan.tasks[index];
+nlohmann::json taskRow(const SweepPlan& plan, const SweepTask& t, size_t index,
+                       const nlohmann::json& metrics, double seconds) {
     nlohmann::json swept = nlohmann::json::object();
     for (const auto& [k, v] : t.swept) swept[k] = v;
     return {
@@ -71,8 +70,7 @@ nlohmann::json taskRow(const SweepPlan& plan, size_t index, const nlohmann::json
         {"result", metrics.at("results").at(0)}};
 }
 
-int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, size_t index) {
-    const SweepTask& t = plan.tasks[index];
+int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask& t, size_t index) {
     const fs::path row = sweepRowPath(dir, t);
     if (fs::exists(row)) {
         std::cout << "task " << index << " (" << t.id << ") already finished: " << row.string()
@@ -101,7 +99,7 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, size_t index) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The row last, atomically: it is what marks the task done.
-    writeFileAtomically(row, taskRow(plan, index, metrics, seconds).dump() + "\n");
+    writeFileAtomically(row, taskRow(plan, t, index, metrics, seconds).dump() + "\n");
     if (plan.settings.keepOutputs) {
         fs::remove_all(dir / "outputs" / t.id, ec);
         fs::create_directories(dir / "outputs", ec);
@@ -118,7 +116,7 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, size_t index) {
 
 int runSweepTask(const SweepTaskOptions& options) {
     const fs::path dir = options.dir;
-    const SweepPlan plan = readPlan(dir);
+    const SweepPlan plan = readPlan(dir, /*withTasks=*/false);
     if ((options.index >= 0) == (options.oracle >= 0))
         throwInputError("command line", "--index", "give exactly one of --index K and --oracle S");
     if (options.oracle >= 0) {
@@ -128,11 +126,12 @@ int runSweepTask(const SweepTaskOptions& options) {
                                 std::to_string(plan.scenes.size()) + " scenes");
         return runOracleTask(dir, plan, size_t(options.oracle));
     }
-    if (size_t(options.index) >= plan.tasks.size())
+    if (size_t(options.index) >= plan.taskCount)
         throwInputError("command line", "--index",
                         std::to_string(options.index) + " is out of range: the sweep has " +
-                            std::to_string(plan.tasks.size()) + " tasks");
-    return runTechniqueTask(dir, plan, size_t(options.index));
+                            std::to_string(plan.taskCount) + " tasks");
+    const size_t index = size_t(options.index);
+    return runTechniqueTask(dir, plan, readPlanTask(dir, plan, index), index);
 }
 
 }  // namespace so
