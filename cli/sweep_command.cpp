@@ -15,6 +15,7 @@
 #include "cli/output.h"
 #include "cli/sweep_merge.h"
 #include "core/error.h"
+#include "core/scene.h"
 #include "raster_compare/gl/technique.h"
 
 extern char** environ;
@@ -190,6 +191,36 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
 
 }  // namespace
 
+// A scene edited since its rows were made (same name, other content) makes them stale: they are
+// removed, so that its tasks run again, and the scene's hash is recorded for sweep-merge, which
+// counts a row of another hash as not finished. A scene that does not load keeps its rows (its
+// oracle task will fail and say why).
+void dropStaleRows(const SweepPlan& plan, const fs::path& dir) {
+    const fs::path path = sweepSceneHashesPath(dir);
+    nlohmann::json hashes = nlohmann::json::object();
+    if (std::ifstream in(path); in) hashes = nlohmann::json::parse(in, nullptr, false);
+    if (!hashes.is_object()) hashes = nlohmann::json::object();
+    for (size_t si = 0; si < plan.scenes.size(); ++si) {
+        std::string hash;
+        try {
+            hash = loadScene(plan.scenes[si].path.string()).contentHash;
+        } catch (const InputError&) {
+            continue;
+        }
+        const std::string key = std::to_string(si);
+        if (hashes.contains(key) && hashes[key] != hash) {
+            size_t removed = 0;
+            for (const SweepTask& t : plan.tasks)
+                if (t.scene == si) removed += fs::remove(sweepRowPath(dir, t));
+            std::cerr << "sweep: " << plan.scenes[si].name
+                      << " changed since its rows were made: " << removed
+                      << " rows removed, its tasks run again\n";
+        }
+        hashes[key] = hash;
+    }
+    writeFileAtomically(path, hashes.dump(1) + "\n");
+}
+
 int runSweepCommand(const SweepOptions& options) {
     if (options.jobs < 1) throwInputError("command line", "--jobs", "must be at least 1");
     const SweepPlan plan =
@@ -198,6 +229,7 @@ int runSweepCommand(const SweepOptions& options) {
         });
     const fs::path dir = fs::absolute(makeOutputDir(options.outDir));
     keepPlan(dir, plan);
+    dropStaleRows(plan, dir);
     if (options.slurm) return submitSweepToSlurm(plan, dir, options.slurmOptions);
     return runLocally(plan, dir, options);
 }

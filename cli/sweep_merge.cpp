@@ -50,14 +50,32 @@ struct Rows {
     std::vector<SweepFailure> failed;
 };
 
+// A row made from another content of its scene than the sweep last recorded
+// (scene_hashes.json): stale, not finished.
+bool stale(const nlohmann::json& row, const nlohmann::json& hashes, size_t scene) {
+    const std::string key = std::to_string(scene);
+    return hashes.is_object() && hashes.contains(key) &&
+           row.at("scene").at("hash") != hashes.at(key);
+}
+
 Rows readRows(const fs::path& dir, const SweepPlan& plan) {
     Rows rows;
+    nlohmann::json hashes;
+    if (std::ifstream in(sweepSceneHashesPath(dir)); in)
+        hashes = nlohmann::json::parse(in, nullptr, false);
     for (size_t i = 0; i < plan.tasks.size(); ++i) {
         const fs::path path = sweepRowPath(dir, plan.tasks[i]);
         std::ifstream in(path);
         if (in) {
             try {
-                rows.done.emplace_back(i, nlohmann::json::parse(in));
+                nlohmann::json row = nlohmann::json::parse(in);
+                if (!stale(row, hashes, plan.tasks[i].scene)) {
+                    rows.done.emplace_back(i, std::move(row));
+                    continue;
+                }
+                SweepFailure f = failure(dir, plan, i);
+                f.reason = "stale: its scene changed since the row was made (rerun the sweep)";
+                rows.failed.push_back(f);
                 continue;
             } catch (const nlohmann::json::exception& e) {
                 std::cerr << "warning: " << path.string() << ": unreadable row, task " << i

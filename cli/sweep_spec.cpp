@@ -355,6 +355,9 @@ fs::path sweepOracleLogPath(const fs::path& dir, size_t scene) {
 fs::path sweepOracleCacheDir(const fs::path& dir) {
     return dir / "oracles";
 }
+fs::path sweepSceneHashesPath(const fs::path& dir) {
+    return dir / "scene_hashes.json";
+}
 
 void writeFileAtomically(const fs::path& path, const std::string& text) {
     std::error_code ec;

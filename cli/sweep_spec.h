@@ -88,6 +88,8 @@ std::filesystem::path sweepRowPath(const std::filesystem::path& dir, const Sweep
 std::filesystem::path sweepTaskLogPath(const std::filesystem::path& dir, size_t index);
 std::filesystem::path sweepOracleLogPath(const std::filesystem::path& dir, size_t scene);
 std::filesystem::path sweepOracleCacheDir(const std::filesystem::path& dir);
+// DIR/scene_hashes.json: per scene (by index), the content hash its rows were made from.
+std::filesystem::path sweepSceneHashesPath(const std::filesystem::path& dir);
 
 // Writes `text` to a temporary file beside `path` and renames it over `path`: readers see the old
 // file or the whole new one, never a part.

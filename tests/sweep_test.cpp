@@ -129,6 +129,26 @@ TEST(Sweep, ResumesRetriesAndReportsFailuresWithTheirLogs) {
     // A finished sweep reruns nothing.
     ASSERT_EQ(f.sweep(&log, "--jobs 2"), 0) << log;
     EXPECT_NE(log.find("8 of 8 tasks already finished, 0 to run"), std::string::npos) << log;
+    // A scene edited under the same name: its rows are stale, and sweep-merge says so where the
+    // sweep has not run since; the sweep runs them again.
+    const fs::path box = f.dir / "scenes" / "contact_box.scene.json";
+    nlohmann::json scene = nlohmann::json::parse(readText(box));
+    scene["lights"][0]["position"][0] = scene["lights"][0]["position"][0].get<double>() + 1.0;
+    std::ofstream(box) << scene.dump(1);
+    nlohmann::json hashes = nlohmann::json::parse(readText(f.out / "scene_hashes.json"));
+    const nlohmann::json recorded = hashes;
+    hashes["0"] = "0123";
+    std::ofstream(f.out / "scene_hashes.json") << hashes.dump();
+    EXPECT_EQ(runCli("sweep-merge " + f.out.string(), &log), 1);
+    EXPECT_NE(log.find("stale: its scene changed"), std::string::npos) << log;
+    std::ofstream(f.out / "scene_hashes.json") << recorded.dump();
+    ASSERT_EQ(f.sweep(&log, "--jobs 2"), 0) << log;
+    EXPECT_NE(log.find("scenes/contact_box.scene.json changed since its rows were made: 4 rows "
+                       "removed"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(log.find("4 of 8 tasks already finished, 4 to run"), std::string::npos) << log;
+    EXPECT_NE(mergedResults(f.out), first) << "the moved light changes the box's metrics";
 }
 
 TEST(Sweep, AKilledRunLosesOnlyTheTasksInFlight) {
