@@ -129,6 +129,10 @@ int submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir, const SlurmOp
                   << " merges them)\n";
         return 0;
     }
+    // #SBATCH lines are split at white space: a log path there cannot hold any.
+    if (dir.string().find_first_of(" \t\n") != std::string::npos)
+        throwInputError("command line", "--out",
+                        "--slurm needs a folder path without spaces (#SBATCH --output takes it)");
     if (!o.dryRun && !onPath("sbatch"))
         throwInputError("command line", "--slurm",
                         "sbatch is not on PATH: --slurm needs Slurm's client commands (--dry-run "
