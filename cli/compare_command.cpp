@@ -162,7 +162,9 @@ ReportTechnique compareTechnique(CompareJob& job, size_t index, const TechniqueR
     const fs::path dir = job.out / run.spec.fileLabel;
     std::error_code ec;
     fs::create_directories(dir, ec);
-    writeExr((dir / "raster.exr").string(), r.image, {{"shadowOracle/technique", run.spec.label}});
+    if (job.options.writeImages)
+        writeExr((dir / "raster.exr").string(), r.image,
+                 {{"shadowOracle/technique", run.spec.label}});
     writeJsonFile(dir / "raster.json", toJson(r.stats));
     job.metricOptions.filteredTechnique = run.technique->filtered();
     ReportTechnique rt;
@@ -191,8 +193,9 @@ ReportTechnique compareTechnique(CompareJob& job, size_t index, const TechniqueR
         writeCsvRows(job, run, lc.light, lights[lc.light]);
         rt.lights.push_back(std::move(lc));
     }
-    writeErrorExr(job.out / ("error_" + run.spec.fileLabel + ".exr"), rt.lights, r.image.width(),
-                  r.image.height());
+    if (job.options.writeImages)
+        writeErrorExr(job.out / ("error_" + run.spec.fileLabel + ".exr"), rt.lights,
+                      r.image.width(), r.image.height());
     rt.image = std::move(r.image);
     row = {{"technique", run.spec.name},
            {"family", rt.family},
@@ -312,7 +315,7 @@ int runCompareCommand(const CompareOptions& options) {
     if (options.raster.height > 0) oracleOptions.height = options.raster.height;
     const CachedOracle oracle =
         traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
-    if (!options.sweepTask)
+    if (options.writeReport)
         writeExr((out / "oracle.exr").string(), oracle.image,
                  {{"shadowOracle/sceneHash", scene.contentHash}});
 
@@ -346,7 +349,7 @@ int runCompareCommand(const CompareOptions& options) {
     const nlohmann::json metrics = metricsJson(job, results);
     writeJsonFile(out / "metrics.json", metrics);
     job.wide.write(out / "metrics_wide.csv");
-    if (!options.sweepTask) {
+    if (options.writeReport) {
         report.oracle = oracle.image;
         report.timedOn = gl.renderer();
         report.oracleCurves = job.oracleCurves;

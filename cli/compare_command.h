@@ -35,9 +35,11 @@ struct CompareOptions {
     // --frames-path N (>= 2): the scene's camera path in N frames, for temporal_flicker_rate;
     // 0: none.
     int pathFrames = 0;
-    // A sweep's task (docs/sweep.md): no report.html and no copy of the oracle in the folder, which
-    // the sweep reads metrics.json from and then drops.
-    bool sweepTask = false;
+    // report.html and the copy of the oracle it shows; a sweep's task writes neither (its report
+    // is sweep-merge's, docs/sweep.md).
+    bool writeReport = true;
+    // Per technique raster.exr and the error EXR; a sweep's task only when it keeps its outputs.
+    bool writeImages = true;
 };
 
 int runCompareCommand(const CompareOptions& options);

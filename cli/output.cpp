@@ -51,4 +51,11 @@ void writeJsonFile(const std::filesystem::path& path, const nlohmann::json& j) {
     out << j.dump(2) << "\n";
 }
 
+std::filesystem::path thisExecutable() {
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) throw std::runtime_error("cannot find this program's path: " + ec.message());
+    return p;
+}
+
 }  // namespace so

@@ -29,6 +29,10 @@ void printSceneWarnings(const std::string& scenePath, const Scene& scene);
 std::vector<std::string> writePreviews(const std::filesystem::path& dir, const ChannelImage& image,
                                        const std::vector<Light>& lights);
 
+// The absolute path of the running shadow-oracle (/proc/self/exe): what a sweep starts as child
+// processes and names in its Slurm scripts.
+std::filesystem::path thisExecutable();
+
 // Writes `j` (indented) to the file, or an InputError naming it.
 void writeJsonFile(const std::filesystem::path& path, const nlohmann::json& j);
 

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <set>
 
+#include "cli/output.h"
 #include "core/error.h"
 
 namespace so {
@@ -81,12 +82,6 @@ BatchScript script(const SweepPlan& plan, const fs::path& dir, const SlurmOption
     return {what + ".sbatch", s};
 }
 
-std::string exePath() {
-    std::error_code ec;
-    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? std::string("shadow-oracle") : p.string();
-}
-
 // sbatch --parsable: "JOBID" or "JOBID;CLUSTER".
 std::string submit(const fs::path& file, const std::string& dependency) {
     std::string command = "sbatch --parsable";
@@ -143,7 +138,7 @@ int submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir, const SlurmOp
                             " is not below the cluster's MaxArraySize (" +
                             std::to_string(maxArraySize()) +
                             "): raise MaxArraySize in slurm.conf or split the sweep");
-    const std::string exe = shellQuote(exePath()), qdir = shellQuote(dir.string());
+    const std::string exe = shellQuote(thisExecutable().string()), qdir = shellQuote(dir.string());
     const std::string limit = o.maxConcurrent > 0 ? "%" + std::to_string(o.maxConcurrent) : "";
     const std::vector<size_t> sceneList(scenes.begin(), scenes.end());
     const BatchScript scripts[3] = {

@@ -5,7 +5,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -15,6 +14,7 @@
 #include "cli/output.h"
 #include "cli/sweep_merge.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/scene.h"
 #include "raster_compare/gl/technique.h"
 
@@ -25,8 +25,6 @@ namespace so {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // One child `shadow-oracle sweep-task ...`, its output into its log (truncated: the log is the
 // latest attempt's).
@@ -45,61 +43,35 @@ pid_t spawnTask(const std::vector<std::string>& args, const fs::path& log) {
     return pid;
 }
 
-std::string duration(double seconds) {
-    char text[32];
-    const long s = long(seconds + 0.5);
-    if (s >= 3600)
-        std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, s / 60 % 60);
-    else
-        std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
-    return text;
-}
-
-// A progress line on stderr: redrawn in place on a terminal, else one line every few seconds.
-class SweepProgress {
-  public:
-    SweepProgress(std::string what, size_t total, bool enabled)
-        : what_(std::move(what)), total_(total), enabled_(enabled), tty_(::isatty(2)) {}
-    void update(size_t done, size_t failed, size_t running, bool final = false) {
-        if (!enabled_) return;
-        const auto now = Clock::now();
-        if (!tty_ && !final && now - last_ < std::chrono::seconds(5)) return;
-        last_ = now;
-        const double elapsed = std::chrono::duration<double>(now - start_).count();
-        const size_t ended = done + failed;
-        const size_t filled = total_ ? 20 * ended / total_ : 20;
-        std::string line = what_ + " [" + std::string(filled, '#') + std::string(20 - filled, '.') +
-                           "] " + std::to_string(ended) + "/" + std::to_string(total_);
-        if (failed) line += " (" + std::to_string(failed) + " failed)";
-        line += ", " + std::to_string(running) + " running, " + duration(elapsed) + " elapsed";
-        if (ended > 0 && ended < total_)
-            line += ", ETA " + duration(elapsed / double(ended) * double(total_ - ended));
-        std::cerr << (tty_ ? "\r\033[K" : "") << line << (tty_ && !final ? "" : "\n") << std::flush;
-    }
-
-  private:
-    std::string what_;
-    size_t total_;
-    bool enabled_, tty_;
-    Clock::time_point start_ = Clock::now(), last_ = Clock::now() - std::chrono::hours(1);
-};
-
 struct Job {
     std::vector<std::string> args;
     fs::path log;
 };
 
+// "3/12, 1 failed, 2 running": the progress bar's note.
+std::string poolNote(size_t ended, size_t total, size_t failed, size_t running) {
+    return std::to_string(ended) + "/" + std::to_string(total) +
+           (failed ? ", " + std::to_string(failed) + " failed" : "") + ", " +
+           std::to_string(running) + " running";
+}
+
 // Runs the jobs, at most `parallel` at once; returns the indices of those that failed.
-std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, SweepProgress& progress) {
+std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, Progress& progress) {
     std::map<pid_t, size_t> running;
     std::set<size_t> failed;
-    size_t next = 0, done = 0;
+    size_t next = 0, ended = 0, unreported = 0;
+    // The bar moves once the ended tasks' successors run, so its note counts those running.
+    const auto report = [&] {
+        progress.setNote(poolNote(ended, jobs.size(), failed.size(), running.size()));
+        progress.advance(unreported);
+        unreported = 0;
+    };
     while (next < jobs.size() || !running.empty()) {
         while (next < jobs.size() && running.size() < size_t(parallel)) {
             running[spawnTask(jobs[next].args, jobs[next].log)] = next;
             ++next;
         }
-        progress.update(done, failed.size(), running.size());
+        report();
         int status = 0;
         const pid_t pid = ::waitpid(-1, &status, 0);
         if (pid < 0) break;
@@ -107,26 +79,19 @@ std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, SweepProgre
         if (it == running.end()) continue;
         const size_t k = it->second;
         running.erase(it);
-        if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-            ++done;
-            continue;
+        ++ended;
+        ++unreported;
+        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+            failed.insert(k);
+            // A crash prints nothing of its own: the log says so, for sweep-merge's list.
+            std::ofstream(jobs[k].log, std::ios::app)
+                << (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                        : "exit " + std::to_string(WEXITSTATUS(status)))
+                << "\n";
         }
-        failed.insert(k);
-        // A crash prints nothing of its own: the log says so, for sweep-merge's list.
-        std::ofstream(jobs[k].log, std::ios::app)
-            << (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
-                                    : "exit " + std::to_string(WEXITSTATUS(status)))
-            << "\n";
     }
-    progress.update(done, failed.size(), 0, /*final=*/true);
+    report();
     return failed;
-}
-
-std::string exePath() {
-    std::error_code ec;
-    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) throw std::runtime_error("cannot find this program's path: " + ec.message());
-    return p.string();
 }
 
 // DIR/sweep.json: written on the first run; a later run must be of the same spec.
@@ -155,7 +120,7 @@ void removeLeftovers(const fs::path& dir) {
 }
 
 int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o) {
-    const std::string exe = exePath();
+    const std::string exe = thisExecutable().string();
     removeLeftovers(dir);
     std::vector<Job> oracles, tasks;
     std::set<size_t> scenes;
@@ -174,17 +139,21 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
     for (size_t s : sceneList)
         oracles.push_back({{exe, "sweep-task", dir.string(), "--oracle", std::to_string(s)},
                            sweepOracleLogPath(dir, s)});
-    SweepProgress oracleProgress("oracles", oracles.size(), o.progress);
     std::set<size_t> badScenes;
-    for (size_t k : runPool(oracles, o.jobs, oracleProgress)) badScenes.insert(sceneList[k]);
+    {
+        Progress progress("oracles", oracles.size(), o.progress);
+        for (size_t k : runPool(oracles, o.jobs, progress)) badScenes.insert(sceneList[k]);
+    }
     for (size_t i : taskIndex)
         if (!badScenes.count(plan.tasks[i].scene))  // its oracle's log says why
             tasks.push_back({{exe, "sweep-task", dir.string(), "--index", std::to_string(i)},
                              sweepTaskLogPath(dir, i)});
         else
             fs::remove(sweepTaskLogPath(dir, i), ec);
-    SweepProgress taskProgress("tasks", tasks.size(), o.progress);
-    runPool(tasks, o.jobs, taskProgress);
+    {
+        Progress progress("tasks", tasks.size(), o.progress);
+        runPool(tasks, o.jobs, progress);
+    }
     fs::remove(dir / "work", ec);  // empty now, unless a task failed half-way
     return runSweepMerge({dir.string(), false});
 }

@@ -91,7 +91,8 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     c.raster.frames = plan.settings.frames;
     c.cacheDir = sweepOracleCacheDir(dir);
     c.boundaryRadius = plan.settings.boundaryRadius;
-    c.sweepTask = true;
+    c.writeReport = false;
+    c.writeImages = plan.settings.keepOutputs;
     const int rc = runCompareCommand(c);
     if (rc != 0) return rc;
     std::ifstream in(work / "metrics.json");

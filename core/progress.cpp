@@ -3,6 +3,7 @@
 #include <unistd.h>
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace so {
 
@@ -36,17 +37,45 @@ void Progress::advance(uint64_t n) {
     draw(done, false);
 }
 
+void Progress::setNote(std::string note) {
+    std::lock_guard lock(mutex_);
+    note_ = std::move(note);
+}
+
+namespace {
+
+// "42s", "3m07s", "2h05m": what an ETA needs, not more.
+std::string duration(double seconds) {
+    char text[32];
+    const long s = long(seconds + 0.5);
+    if (s < 60)
+        std::snprintf(text, sizeof text, "%lds", s);
+    else if (s < 3600)
+        std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
+    else
+        std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, s / 60 % 60);
+    return text;
+}
+
+}  // namespace
+
 void Progress::draw(uint64_t done, bool final) {
     double frac = total_ ? std::min(1.0, double(done) / double(total_)) : 1.0;
     double secs = std::chrono::duration<double>(Clock::now() - start_).count();
+    std::string tail;
+    if (done > 0 && done < total_) tail += " ETA " + duration(secs / frac - secs);
+    if (!note_.empty()) tail += (tty_ ? "  " : "; ") + note_;
     if (tty_) {
         const int width = 30;
         int filled = int(frac * width + 0.5);
-        std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%% %6.1fs", label_.c_str(), filled,
-                     "==============================", width - filled, "", 100.0 * frac, secs);
+        // \033[K: a shorter line than the last leaves none of it behind.
+        std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%% %6.1fs%s\033[K", label_.c_str(), filled,
+                     "==============================", width - filled, "", 100.0 * frac, secs,
+                     tail.c_str());
         if (final) std::fputc('\n', stderr);
     } else {
-        std::fprintf(stderr, "%s: %5.1f%% after %.1fs\n", label_.c_str(), 100.0 * frac, secs);
+        std::fprintf(stderr, "%s: %5.1f%% after %.1fs%s\n", label_.c_str(), 100.0 * frac, secs,
+                     tail.c_str());
     }
     std::fflush(stderr);
     drawn_ = true;

@@ -1,5 +1,6 @@
 // Progress on stderr for long runs: a bar redrawn in place on a terminal, otherwise one line every
-// few seconds (so CI logs show life without filling up). Thread-safe: workers call advance().
+// few seconds (so CI logs show life without filling up), with the time so far and, once something
+// is done, an ETA from the rate so far. Thread-safe: workers call advance().
 #pragma once
 
 #include <atomic>
@@ -18,6 +19,8 @@ class Progress {
     Progress& operator=(const Progress&) = delete;
 
     void advance(uint64_t n);
+    // Text after the bar, e.g. "2 failed, 2 running" (a sweep); shown from the next draw.
+    void setNote(std::string note);
 
   private:
     void draw(uint64_t done, bool final);
@@ -28,6 +31,7 @@ class Progress {
     std::mutex mutex_;
     std::chrono::steady_clock::time_point start_, lastDraw_;
     bool drawn_ = false;
+    std::string note_;  // guarded by mutex_
 };
 
 }  // namespace so

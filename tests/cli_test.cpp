@@ -14,32 +14,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int exitCode = -1;
-    std::string stderrText;
-};
-
-RunResult run(const std::string& args) {
-    const fs::path errFile =
-        fs::temp_directory_path() / ("so_cli_test_" + std::to_string(::getpid()) + ".err");
-    std::string cmd = std::string(SO_CLI_PATH) + " " + args + " > /dev/null 2> " + errFile.string();
-    int status = std::system(cmd.c_str());
-    RunResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::ifstream in(errFile);
-    r.stderrText.assign(std::istreambuf_iterator<char>(in), {});
-    fs::remove(errFile);
-    return r;
-}
-
-std::string readBytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using so::test::readBytes;
+using so::test::run;
+using so::test::RunResult;
 
 TEST(Cli, EveryBrokenFileExitsTwoWithOneLine) {
     const fs::path out = fs::temp_directory_path() / "so_cli_broken_out";

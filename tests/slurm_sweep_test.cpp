@@ -97,7 +97,7 @@ TEST(SlurmSweep, EqualsALocalRunAndResubmitsOnlyWhatIsMissing) {
     ASSERT_FALSE(job.empty()) << log;
     ASSERT_TRUE(waitForJob(job, 600)) << "the merge job " << job << " did not end in 10 minutes";
     ASSERT_TRUE(fs::exists(fs::path(slurmOut) / "metrics.json"))
-        << readText(fs::path(slurmOut) / "logs" / "merge.log");
+        << readBytes(fs::path(slurmOut) / "logs" / "merge.log");
     ASSERT_EQ(runCli("sweep " + spec.string() + " --out " + localOut + " --jobs 2 --quiet", &log),
               0)
         << log;
@@ -106,7 +106,7 @@ TEST(SlurmSweep, EqualsALocalRunAndResubmitsOnlyWhatIsMissing) {
     EXPECT_EQ(slurm, local);
     EXPECT_EQ(csvWithoutTimings(fs::path(slurmOut) / "metrics.csv"),
               csvWithoutTimings(fs::path(localOut) / "metrics.csv"));
-    EXPECT_NE(readText(fs::path(slurmOut) / "slurm" / "tasks.sbatch").find("#SBATCH --time=10"),
+    EXPECT_NE(readBytes(fs::path(slurmOut) / "slurm" / "tasks.sbatch").find("#SBATCH --time=10"),
               std::string::npos);
 
     // Two rows lost: the next submission's array holds just those two tasks.

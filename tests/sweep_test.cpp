@@ -66,11 +66,11 @@ TEST(Sweep, RunsLocallyAndMergesCompareNumbers) {
     const auto merged = mergedResults(f.out);
     ASSERT_EQ(merged.size(), 8u);
     // The swept parameters are columns of the long table; the fixed one is not.
-    const std::string csv = readText(f.out / "metrics.csv");
+    const std::string csv = readBytes(f.out / "metrics.csv");
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
               "scene,light,technique,label,metric,value,task,param.alpha,param.min");
-    EXPECT_NE(readText(f.out / "metrics_wide.csv").find("param.resolution"), std::string::npos);
-    EXPECT_NE(readText(f.out / "report.html").find("8 of 8 tasks"), std::string::npos);
+    EXPECT_NE(readBytes(f.out / "metrics_wide.csv").find("param.resolution"), std::string::npos);
+    EXPECT_NE(readBytes(f.out / "report.html").find("8 of 8 tasks"), std::string::npos);
 
     // One task against compare of the same setting with the sweep's oracle: the same metrics.
     std::ifstream in(f.out / "metrics.json");
@@ -110,7 +110,7 @@ TEST(Sweep, ResumesRetriesAndReportsFailuresWithTheirLogs) {
             spotIds.push_back(r["task"]["id"]);
     ASSERT_EQ(spotIds.size(), 4u);
     for (size_t k = 0; k < 2; ++k) fs::remove(f.out / "rows" / (spotIds[k] + ".json"));
-    const std::string good = readText(f.brokenScene);
+    const std::string good = readBytes(f.brokenScene);
     std::ofstream(f.brokenScene) << "{ not json";
     ASSERT_EQ(f.sweep(&log, "--jobs 2"), 1) << log;
     EXPECT_NE(log.find("6 of 8 tasks already finished, 2 to run over 1 scenes"), std::string::npos)
@@ -124,7 +124,7 @@ TEST(Sweep, ResumesRetriesAndReportsFailuresWithTheirLogs) {
     std::ofstream(f.brokenScene) << good;
     ASSERT_EQ(f.sweep(&log), 0) << log;
     EXPECT_EQ(f.rows(), 8u);
-    EXPECT_NE(readText(f.out / "logs" / "oracle-1.log").find("present"), std::string::npos);
+    EXPECT_NE(readBytes(f.out / "logs" / "oracle-1.log").find("present"), std::string::npos);
     EXPECT_EQ(mergedResults(f.out), first) << "a resumed sweep has the numbers of a whole one";
     // A finished sweep reruns nothing.
     ASSERT_EQ(f.sweep(&log, "--jobs 2"), 0) << log;
@@ -132,10 +132,10 @@ TEST(Sweep, ResumesRetriesAndReportsFailuresWithTheirLogs) {
     // A scene edited under the same name: its rows are stale, and sweep-merge says so where the
     // sweep has not run since; the sweep runs them again.
     const fs::path box = f.dir / "scenes" / "contact_box.scene.json";
-    nlohmann::json scene = nlohmann::json::parse(readText(box));
+    nlohmann::json scene = nlohmann::json::parse(readBytes(box));
     scene["lights"][0]["position"][0] = scene["lights"][0]["position"][0].get<double>() + 1.0;
     std::ofstream(box) << scene.dump(1);
-    nlohmann::json hashes = nlohmann::json::parse(readText(f.out / "scene_hashes.json"));
+    nlohmann::json hashes = nlohmann::json::parse(readBytes(f.out / "scene_hashes.json"));
     const nlohmann::json recorded = hashes;
     hashes["0"] = "0123";
     std::ofstream(f.out / "scene_hashes.json") << hashes.dump();
@@ -176,7 +176,7 @@ TEST(Sweep, AKilledRunLosesOnlyTheTasksInFlight) {
     // Every row that exists is whole (written to a temporary file, then renamed).
     for (const auto& e : fs::directory_iterator(f.out / "rows")) {
         if (e.path().extension() != ".json") continue;
-        EXPECT_NO_THROW(nlohmann::json::parse(readText(e.path()))) << e.path();
+        EXPECT_NO_THROW(nlohmann::json::parse(readBytes(e.path()))) << e.path();
     }
     std::string log;
     ASSERT_EQ(f.sweep(&log, "--jobs 2"), 0) << log;

@@ -15,24 +15,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
+
 namespace so::test {
 
-// Runs `shadow-oracle ARGS`, stdout and stderr into *output; the exit code (-1 on a signal).
+// Runs `shadow-oracle ARGS`; its standard output, then its error, into *output; the exit code.
 inline int runCli(const std::string& args, std::string* output) {
-    const std::string log = (std::filesystem::temp_directory_path() /
-                             ("so_sweep_cli_" + std::to_string(::getpid()) + ".log"))
-                                .string();
-    const int status =
-        std::system((std::string(SO_CLI_PATH) + " " + args + " > " + log + " 2>&1").c_str());
-    std::ifstream in(log);
-    output->assign(std::istreambuf_iterator<char>(in), {});
-    std::filesystem::remove(log);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-inline std::string readText(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), {});
+    const RunResult r = run(args);
+    *output = r.stdoutText + r.stderrText;
+    return r.exitCode;
 }
 
 // A metric that measures time (or says whether a time was noisy): not comparable between runs.

@@ -16,35 +16,17 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
+
 #include "core/image.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int exitCode = -1;
-    std::string stderrText;
-};
-
-RunResult run(const std::string& args) {
-    const fs::path errFile =
-        fs::temp_directory_path() / ("so_tile_test_" + std::to_string(::getpid()) + ".err");
-    const std::string cmd =
-        std::string(SO_CLI_PATH) + " " + args + " > /dev/null 2> " + errFile.string();
-    const int status = std::system(cmd.c_str());
-    RunResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::ifstream in(errFile);
-    r.stderrText.assign(std::istreambuf_iterator<char>(in), {});
-    fs::remove(errFile);
-    return r;
-}
-
-std::string readBytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using so::test::readBytes;
+using so::test::run;
+using so::test::RunResult;
 
 nlohmann::json readJson(const fs::path& p) {
     std::ifstream in(p);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "raster_compare/compare/colour_scale.h"
 #include "raster_compare/compare/html.h"
 
 namespace so {
@@ -136,78 +137,6 @@ std::string num(double v) {
     return buf;
 }
 
-// How a matrix maps values to colours. Errors often span decades (acne from 0.3 on the plain
-// shadow map down to 1e-4 with a bias): a linear scale would paint everything but the worst cell
-// the same colour, so such a matrix is drawn on a log scale.
-struct ColourScale {
-    double lo = 0.0, hi = 0.0;
-    bool log = false;
-};
-
-constexpr double kLogWhenRatioAbove = 10.0;
-
-ColourScale scaleOf(const std::vector<double>& values) {
-    ColourScale s;
-    if (values.empty()) return s;
-    s.lo = *std::min_element(values.begin(), values.end());
-    s.hi = *std::max_element(values.begin(), values.end());
-    double minPositive = 0.0;
-    for (double v : values)
-        if (v > 0.0 && (minPositive == 0.0 || v < minPositive)) minPositive = v;
-    if (minPositive > 0.0 && s.hi / minPositive > kLogWhenRatioAbove) {
-        s.log = true;
-        s.lo = minPositive;  // zeros take the lowest colour
-    }
-    return s;
-}
-
-// 0 at the lowest value of the matrix, 1 at the highest.
-double position(const ColourScale& s, double v) {
-    if (s.hi <= s.lo || v <= s.lo) return 0.0;
-    if (v >= s.hi) return 1.0;
-    return s.log ? std::log(v / s.lo) / std::log(s.hi / s.lo) : (v - s.lo) / (s.hi - s.lo);
-}
-
-// Viridis (matplotlib's, sampled at nine points): sequential, perceptually uniform and readable
-// with any colour vision; dark purple is the lowest error, yellow the highest.
-constexpr std::array<std::array<int, 3>, 9> kRamp = {{{68, 1, 84},
-                                                      {72, 40, 120},
-                                                      {62, 73, 137},
-                                                      {49, 104, 142},
-                                                      {38, 130, 142},
-                                                      {31, 158, 137},
-                                                      {53, 183, 121},
-                                                      {110, 206, 88},
-                                                      {253, 231, 37}}};
-
-std::array<int, 3> rampColour(double t) {
-    const double x = std::clamp(t, 0.0, 1.0) * double(kRamp.size() - 1);
-    const size_t k = std::min(kRamp.size() - 2, size_t(x));
-    const double f = x - double(k);
-    std::array<int, 3> c{};
-    for (size_t i = 0; i < 3; ++i)
-        c[i] = int(std::lround(kRamp[k][i] + f * (kRamp[k + 1][i] - kRamp[k][i])));
-    return c;
-}
-
-std::string hex(const std::array<int, 3>& c) {
-    char buf[8];
-    std::snprintf(buf, sizeof buf, "#%02x%02x%02x", c[0], c[1], c[2]);
-    return buf;
-}
-
-// The text colour, black or white, with the higher WCAG contrast on this background, so a value
-// stays legible on every step of the ramp.
-std::string textColour(const std::array<int, 3>& c) {
-    double luminance = 0.0;
-    const double weights[3] = {0.2126, 0.7152, 0.0722};
-    for (size_t i = 0; i < 3; ++i) {
-        const double s = c[i] / 255.0;
-        luminance += weights[i] * (s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4));
-    }
-    return 1.05 / (luminance + 0.05) > (luminance + 0.05) / 0.05 ? "#fff" : "#000";
-}
-
 // The grid shared by every matrix: rows are the technique labels of all runs in first-seen
 // order, columns every (run, light).
 struct Column {
@@ -258,9 +187,8 @@ std::vector<double> valuesOf(const Grid& g, const MetricSpec& spec) {
 std::string legend(const ColourScale& s) {
     std::ostringstream o;
     o << "<div class=\"legend\"><span>" << num(s.lo)
-      << "</span><span class=\"ramp\" style=\"background:linear-gradient(to right";
-    for (size_t k = 0; k < kRamp.size(); ++k) o << "," << hex(kRamp[k]);
-    o << ")\"></span><span>" << num(s.hi) << "</span><span class=\"note\">"
+      << "</span><span class=\"ramp\" style=\"background:" << rampGradient() << "\"></span><span>"
+      << num(s.hi) << "</span><span class=\"note\">"
       << (s.log ? "log scale (a 0 takes the lowest colour)" : "linear scale")
       << "; lower is better</span></div>";
     return o.str();
@@ -293,9 +221,9 @@ void writeCell(std::ostream& o, const IndexLightMetrics* m, const MetricSpec& sp
         return;
     }
     const double v = *(m->*spec.value);
-    const std::array<int, 3> bg = rampColour(position(scale, v));
+    const std::array<int, 3> bg = rampColour(scalePosition(scale, v));
     const std::string cost = m->frameMs ? " · " + num(*m->frameMs) + " ms" : "";
-    o << "<td class=\"v" << rule << "\" style=\"background:" << hex(bg)
+    o << "<td class=\"v" << rule << "\" style=\"background:" << hexColour(bg)
       << ";color:" << textColour(bg) << "\" title=\"" << spec.name << " " << v
       << (m->frameMs ? ", frame " + num(*m->frameMs) + " ms" : "") << "\"><a href=\"" << html(href)
       << "\">" << num(v) << cost << "</a></td>";

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "raster_compare/compare/artifacts.h"
+#include "raster_compare/compare/colour_scale.h"
 #include "raster_compare/compare/html.h"
 #include "raster_compare/compare/tradeoff.h"
 
@@ -463,64 +464,16 @@ std::optional<Grid> gridOf(const std::vector<const SweepRow*>& rows) {
     return g;
 }
 
-// How cells map values to colours, as on the index page (index_page.cpp): rates span decades
-// (acne from 0.3 unbiased to 1e-4 with a bias), so more than 10x is drawn on a log scale, a 0
-// taking the lowest colour.
-struct ColourScale {
-    double lo = 0.0, hi = 0.0;
-    bool log = false;
-};
-
-ColourScale scaleOf(const std::vector<double>& values) {
-    ColourScale s;
-    if (values.empty()) return s;
-    s.lo = *std::min_element(values.begin(), values.end());
-    s.hi = *std::max_element(values.begin(), values.end());
-    double minPositive = 0.0;
-    for (double v : values)
-        if (v > 0.0 && (minPositive == 0.0 || v < minPositive)) minPositive = v;
-    if (minPositive > 0.0 && s.hi / minPositive > 10.0) {
-        s.log = true;
-        s.lo = minPositive;
-    }
-    return s;
-}
-
-// Viridis at five points (sequential, readable with any colour vision): dark purple the lowest
-// error, yellow the highest.
-constexpr std::array<std::array<int, 3>, 5> kRamp = {
-    {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
-
-std::array<int, 3> colourAt(const ColourScale& s, double v) {
-    double t = 0.0;
-    if (s.hi > s.lo && v > s.lo)
-        t = v >= s.hi ? 1.0
-            : s.log   ? std::log(v / s.lo) / std::log(s.hi / s.lo)
-                      : (v - s.lo) / (s.hi - s.lo);
-    const double x = t * double(kRamp.size() - 1);
-    const size_t k = std::min(kRamp.size() - 2, size_t(x));
-    std::array<int, 3> c{};
-    for (size_t i = 0; i < 3; ++i)
-        c[i] = int(std::lround(kRamp[k][i] + (x - double(k)) * (kRamp[k + 1][i] - kRamp[k][i])));
-    return c;
-}
-
-// "#rrggbb;color:#fff": the cell's background and the text colour (black on the light end of the
-// ramp, white on the dark) that keeps the value legible.
-std::string cellStyle(const std::array<int, 3>& c) {
-    char buf[48];
-    const double luma = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-    std::snprintf(buf, sizeof buf, "background:#%02x%02x%02x;color:%s", c[0], c[1], c[2],
-                  luma > 140.0 ? "#000" : "#fff");
-    return buf;
+// "background:#rrggbb;color:#fff": the cell's colour and a text colour that keeps it legible.
+std::string cellStyle(const Rgb& c) {
+    return "background:" + hexColour(c) + ";color:" + textColour(c);
 }
 
 std::string scaleLegend(const ColourScale& s, bool acne) {
     std::ostringstream o;
     o << "<div class=\"legend\"><span>" << num(s.lo) << "</span><span class=\"ramp\" "
-      << "style=\"background:linear-gradient(to right";
-    for (const auto& c : kRamp) o << ",rgb(" << c[0] << "," << c[1] << "," << c[2] << ")";
-    o << ")\"></span><span>" << num(s.hi) << "</span><span class=\"muted\">"
+      << "style=\"background:" << rampGradient() << "\"></span><span>" << num(s.hi)
+      << "</span><span class=\"muted\">"
       << (s.log ? "log scale (0 takes the lowest colour)" : "linear scale")
       << "; &#9733; the lowest" << (acne ? "; &#10003; no acne (exactly 0)" : "")
       << "</span></div>";
@@ -535,8 +488,8 @@ std::string heatCell(const SweepRow* r, const std::string& metric, const ColourS
     const bool best = *v == lowest, clean = metric == kAcne && *v == 0.0;
     std::string cls = std::string(best ? " best" : "") + (clean ? " clean" : "");
     return "<td class=\"cell" + cls + "\" data-v=\"" + exact(*v) + "\" style=\"" +
-           cellStyle(colourAt(scale, *v)) + "\" title=\"" + html(r->label) + "\">" +
-           (best ? "&#9733; " : "") + (clean ? "&#10003; " : "") + num(*v) + "</td>";
+           cellStyle(rampColour(scalePosition(scale, *v))) + "\" title=\"" + html(r->label) +
+           "\">" + (best ? "&#9733; " : "") + (clean ? "&#10003; " : "") + num(*v) + "</td>";
 }
 
 std::vector<double> gridValues(const Grid& g, const std::string& metric) {
