@@ -290,7 +290,7 @@ int verifyExitCode(const CompareOptions& options, const OracleStats& stats) {
 
 }  // namespace
 
-int runCompareCommand(const CompareOptions& options) {
+int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut) {
     // Everything the user can get wrong is checked before any work starts.
     std::vector<TechniqueRun> runs;
     for (const std::string& s : options.techniques) {
@@ -361,6 +361,7 @@ int runCompareCommand(const CompareOptions& options) {
               << (oracle.fromCache ? "from the cache" : "traced") << "\n  "
               << (out / "metrics.json").string() << "\n  " << (out / "metrics.csv").string()
               << "\n  " << (out / "metrics_wide.csv").string() << "\n";
+    if (metricsOut) *metricsOut = metrics;
     return verifyExitCode(options, oracle.stats);
 }
 

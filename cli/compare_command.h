@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "oracle/oracle_cache.h"
 #include "raster_compare/gl/renderer.h"
 
@@ -42,6 +44,7 @@ struct CompareOptions {
     bool writeImages = true;
 };
 
-int runCompareCommand(const CompareOptions& options);
+// `metrics`, when given, gets what metrics.json holds (a sweep task's row is made from it).
+int runCompareCommand(const CompareOptions& options, nlohmann::json* metrics = nullptr);
 
 }  // namespace so

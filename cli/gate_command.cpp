@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/output.h"
 #include "core/error.h"
 #include "raster_compare/compare/gate.h"
 
@@ -14,16 +15,6 @@ namespace so {
 using nlohmann::json;
 
 namespace {
-
-json readJson(const std::string& path, const std::string& what) {
-    std::ifstream in(path);
-    if (!in) throwInputError(path, "", "cannot be read (" + what + ")");
-    try {
-        return json::parse(in);
-    } catch (const json::exception& e) {
-        throwInputError(path, "", "invalid JSON: " + printable(e.what(), 160));
-    }
-}
 
 std::string xmlEscape(const std::string& s) {
     std::string o;
@@ -78,8 +69,8 @@ void writeJunit(const std::string& path, const std::vector<GateCheck>& checks, s
 }  // namespace
 
 int runGateCommand(const GateOptions& options) {
-    const json metrics = readJson(options.metricsPath, "metrics");
-    const json limits = readJson(options.limitsPath, "limits");
+    const json metrics = readJsonFile(options.metricsPath, "metrics");
+    const json limits = readJsonFile(options.limitsPath, "limits");
     const std::vector<GateCheck> checks =
         evaluateGate(metrics, options.metricsPath, limits, options.limitsPath);
     size_t failures = 0;

@@ -35,9 +35,15 @@ static void addImageSize(CLI::App* cmd, int& width, int& height) {
 // in shared_ptrs because CLI11 writes into them during parsing, after these functions return.
 using Runner = std::function<int()>;
 
+// --quiet: no progress output. `progress` is a field of the command's options, which its Runner
+// keeps alive.
+static void addQuiet(CLI::App* cmd, bool& progress) {
+    cmd->add_flag_callback(
+        "--quiet", [&progress] { progress = false; }, "no progress output");
+}
+
 static Runner addTrace(CLI::App& app) {
     auto o = std::make_shared<so::TraceCommandOptions>();
-    auto quiet = std::make_shared<bool>(false);
     CLI::App* traceCmd = app.add_subcommand(
         "trace", "ground-truth shadows with Embree: oracle.exr, oracle.json, previews");
     traceCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
@@ -69,7 +75,7 @@ static Runner addTrace(CLI::App& app) {
     sppOpt->excludes("--target-error");
     sppOpt->excludes("--max-spp");
     sppOpt->excludes("--agreement-target");
-    traceCmd->add_flag("--quiet", *quiet, "no progress output");
+    addQuiet(traceCmd, o->oracle.progress);
     traceCmd
         ->add_option("--verify", o->oracle.verify.pixels,
                      "re-trace N random pixels per light (plus up to N near the horizon) with an "
@@ -84,26 +90,19 @@ static Runner addTrace(CLI::App& app) {
                          "I/N: trace only band I of N bands of rows (0 <= I < N <= 4096), for "
                          "`trace-merge` to join; not with --verify");
 
-    return [o, quiet] {
-        o->oracle.progress = !*quiet;
-        return so::runTraceCommand(*o);
-    };
+    return [o] { return so::runTraceCommand(*o); };
 }
 
 static Runner addTraceMerge(CLI::App& app) {
     auto o = std::make_shared<so::TraceMergeOptions>();
-    auto quiet = std::make_shared<bool>(false);
     CLI::App* mergeCmd = app.add_subcommand(
         "trace-merge", "join the folders of `trace --tile I/N` into the whole oracle.exr");
     mergeCmd->add_option("tiles", o->tileDirs, "output folders of trace --tile, one per band")
         ->required();
     mergeCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
-    mergeCmd->add_flag("--quiet", *quiet, "no progress output");
+    addQuiet(mergeCmd, o->progress);
 
-    return [o, quiet] {
-        o->progress = !*quiet;
-        return so::runTraceMergeCommand(*o);
-    };
+    return [o] { return so::runTraceMergeCommand(*o); };
 }
 
 static Runner addRaster(CLI::App& app) {
@@ -186,7 +185,6 @@ static Runner addCompare(CLI::App& app) {
 
 static Runner addSweep(CLI::App& app) {
     auto o = std::make_shared<so::SweepOptions>();
-    auto quiet = std::make_shared<bool>(false);
     CLI::App* cmd = app.add_subcommand(
         "sweep",
         "every setting of a sweep spec over its scenes: locally or as Slurm job arrays, "
@@ -211,11 +209,8 @@ static Runner addSweep(CLI::App& app) {
     cmd->add_flag("--dry-run", o->slurmOptions.dryRun,
                   "Slurm: write and print the batch scripts, submit nothing")
         ->needs(slurm);
-    cmd->add_flag("--quiet", *quiet, "no progress output");
-    return [o, quiet] {
-        o->progress = !*quiet;
-        return so::runSweepCommand(*o);
-    };
+    addQuiet(cmd, o->progress);
+    return [o] { return so::runSweepCommand(*o); };
 }
 
 static Runner addSweepTask(CLI::App& app) {

@@ -33,6 +33,8 @@ std::vector<std::string> writePreviews(const std::filesystem::path& dir, const C
 // processes and names in its Slurm scripts.
 std::filesystem::path thisExecutable();
 
+// The file's JSON, or an InputError naming it: "cannot be read (WHAT)" or "invalid JSON: ...".
+nlohmann::json readJsonFile(const std::string& path, const std::string& what);
 // Writes `j` (indented) to the file, or an InputError naming it.
 void writeJsonFile(const std::filesystem::path& path, const nlohmann::json& j);
 

@@ -3,11 +3,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <iostream>
-#include <set>
 
 #include "cli/output.h"
 #include "core/error.h"
@@ -111,13 +111,8 @@ std::string slurmArrayList(const std::vector<size_t>& indices) {
 }
 
 int submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir, const SlurmOptions& o) {
-    std::vector<size_t> tasks;
-    std::set<size_t> scenes;
-    for (size_t i = 0; i < plan.tasks.size(); ++i)
-        if (!fs::exists(sweepRowPath(dir, plan.tasks[i]))) {
-            tasks.push_back(i);
-            scenes.insert(plan.tasks[i].scene);
-        }
+    const UnfinishedTasks left = unfinishedTasks(dir, plan);
+    const std::vector<size_t>&tasks = left.tasks, &scenes = left.scenes;
     if (tasks.empty()) {
         std::cout << "all " << plan.tasks.size() << " tasks of " << dir.string()
                   << " are finished: nothing to submit (shadow-oracle sweep-merge " << dir.string()
@@ -132,17 +127,15 @@ int submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir, const SlurmOp
         throwInputError("command line", "--slurm",
                         "sbatch is not on PATH: --slurm needs Slurm's client commands (--dry-run "
                         "prints the scripts without them)");
-    if (!o.dryRun && tasks.back() >= maxArraySize())
+    if (const size_t limit = o.dryRun ? SIZE_MAX : maxArraySize(); tasks.back() >= limit)
         throwInputError("command line", "--slurm",
                         "task index " + std::to_string(tasks.back()) +
-                            " is not below the cluster's MaxArraySize (" +
-                            std::to_string(maxArraySize()) +
+                            " is not below the cluster's MaxArraySize (" + std::to_string(limit) +
                             "): raise MaxArraySize in slurm.conf or split the sweep");
     const std::string exe = shellQuote(thisExecutable().string()), qdir = shellQuote(dir.string());
     const std::string limit = o.maxConcurrent > 0 ? "%" + std::to_string(o.maxConcurrent) : "";
-    const std::vector<size_t> sceneList(scenes.begin(), scenes.end());
     const BatchScript scripts[3] = {
-        script(plan, dir, o, "oracles", slurmArrayList(sceneList) + limit, "oracle-%a.log",
+        script(plan, dir, o, "oracles", slurmArrayList(scenes) + limit, "oracle-%a.log",
                exe + " sweep-task " + qdir + " --oracle \"$SLURM_ARRAY_TASK_ID\""),
         script(plan, dir, o, "tasks", slurmArrayList(tasks) + limit, "task-%a.log",
                exe + " sweep-task " + qdir + " --index \"$SLURM_ARRAY_TASK_ID\""),

@@ -123,19 +123,13 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
     const std::string exe = thisExecutable().string();
     removeLeftovers(dir);
     std::vector<Job> oracles, tasks;
-    std::set<size_t> scenes;
-    std::vector<size_t> taskIndex;
-    for (size_t i = 0; i < plan.tasks.size(); ++i)
-        if (!fs::exists(sweepRowPath(dir, plan.tasks[i]))) {
-            scenes.insert(plan.tasks[i].scene);
-            taskIndex.push_back(i);
-        }
+    const UnfinishedTasks left = unfinishedTasks(dir, plan);
+    const std::vector<size_t>& sceneList = left.scenes;
     std::error_code ec;
     fs::create_directories(dir / "logs", ec);
-    std::cerr << "sweep " << plan.name << ": " << plan.tasks.size() - taskIndex.size() << " of "
-              << plan.tasks.size() << " tasks already finished, " << taskIndex.size()
-              << " to run over " << scenes.size() << " scenes, " << o.jobs << " at once\n";
-    const std::vector<size_t> sceneList(scenes.begin(), scenes.end());
+    std::cerr << "sweep " << plan.name << ": " << plan.tasks.size() - left.tasks.size() << " of "
+              << plan.tasks.size() << " tasks already finished, " << left.tasks.size()
+              << " to run over " << sceneList.size() << " scenes, " << o.jobs << " at once\n";
     for (size_t s : sceneList)
         oracles.push_back({{exe, "sweep-task", dir.string(), "--oracle", std::to_string(s)},
                            sweepOracleLogPath(dir, s)});
@@ -144,7 +138,7 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
         Progress progress("oracles", oracles.size(), o.progress);
         for (size_t k : runPool(oracles, o.jobs, progress)) badScenes.insert(sceneList[k]);
     }
-    for (size_t i : taskIndex)
+    for (size_t i : left.tasks)
         if (!badScenes.count(plan.tasks[i].scene))  // its oracle's log says why
             tasks.push_back({{exe, "sweep-task", dir.string(), "--index", std::to_string(i)},
                              sweepTaskLogPath(dir, i)});

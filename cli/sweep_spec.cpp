@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/read_file.h"
 
 namespace so {
 
@@ -24,20 +25,6 @@ namespace {
 // A spec is small; anything larger is not one (and must not be read whole).
 constexpr uintmax_t kMaxSpecBytes = 4u << 20;
 constexpr size_t kMaxValuesPerParam = 100000;
-
-// Reads `path` (bounded), as text.
-std::string readBounded(const fs::path& path, uintmax_t maxBytes, const std::string& what) {
-    std::error_code ec;
-    const uintmax_t size = fs::file_size(path, ec);
-    if (ec) throwInputError(path.string(), "", what + " cannot be read: " + ec.message());
-    if (size > maxBytes)
-        throwInputError(path.string(), "",
-                        what + " too large (" + std::to_string(size) + " bytes, at most " +
-                            std::to_string(maxBytes) + ")");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throwInputError(path.string(), "", what + " cannot be opened");
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 void checkKeys(const Json& obj, const std::set<std::string>& allowed, const std::string& file,
                const std::string& field) {
@@ -308,7 +295,8 @@ std::string shortestNumber(double v) {
 }
 
 SweepPlan planSweep(const fs::path& specPath, const SettingValidator& validate) {
-    return planSweepText(readBounded(specPath, kMaxSpecBytes, "sweep spec"), specPath, validate);
+    return planSweepText(readFileCapped(specPath, specPath.string(), kMaxSpecBytes), specPath,
+                         validate);
 }
 
 SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
@@ -345,6 +333,17 @@ SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
 
 fs::path sweepRowPath(const fs::path& dir, const SweepTask& task) {
     return dir / "rows" / (task.id + ".json");
+}
+UnfinishedTasks unfinishedTasks(const fs::path& dir, const SweepPlan& plan) {
+    UnfinishedTasks left;
+    std::set<size_t> scenes;
+    for (size_t i = 0; i < plan.tasks.size(); ++i)
+        if (!fs::exists(sweepRowPath(dir, plan.tasks[i]))) {
+            left.tasks.push_back(i);
+            scenes.insert(plan.tasks[i].scene);
+        }
+    left.scenes.assign(scenes.begin(), scenes.end());
+    return left;
 }
 fs::path sweepTaskLogPath(const fs::path& dir, size_t index) {
     return dir / "logs" / ("task-" + std::to_string(index) + ".log");
@@ -421,7 +420,7 @@ SweepPlan readPlan(const fs::path& dir, bool withTasks) {
         throwInputError(file, "", "missing: not a sweep folder (made by `shadow-oracle sweep`)");
     SweepPlan plan;
     try {
-        const Json j = Json::parse(readBounded(path, kMaxSpecBytes * 4, "sweep plan"));
+        const Json j = Json::parse(readFileCapped(path, file, kMaxSpecBytes * 4));
         if (j.at("sweep_format").get<int>() != kSweepFormat)
             throwInputError(file, "sweep_format", "unsupported (this tool reads 1)");
         plan.name = j.at("name").get<std::string>();
@@ -439,7 +438,7 @@ SweepPlan readPlan(const fs::path& dir, bool withTasks) {
     if (plan.taskCount > kMaxSweepTasks) throwInputError(file, "tasks", "too many");
     if (!withTasks) return plan;
     const fs::path tasksPath = dir / "tasks.jsonl";
-    std::istringstream in(readBounded(tasksPath, uintmax_t(1) << 32, "sweep tasks"));
+    std::istringstream in(readFileCapped(tasksPath, tasksPath.string(), uint64_t(1) << 32));
     std::string line;
     while (plan.tasks.size() < plan.taskCount && std::getline(in, line))
         plan.tasks.push_back(parseTaskLine(line, plan, tasksPath.string(), plan.tasks.size()));
@@ -450,7 +449,7 @@ SweepPlan readPlan(const fs::path& dir, bool withTasks) {
 
 SweepTask readPlanTask(const fs::path& dir, const SweepPlan& plan, size_t index) {
     const fs::path path = dir / "tasks.jsonl";
-    const std::string text = readBounded(path, uintmax_t(1) << 32, "sweep tasks");
+    const std::string text = readFileCapped(path, path.string(), uint64_t(1) << 32);
     size_t at = 0;
     for (size_t k = 0; k < index && at != std::string::npos; ++k) {
         at = text.find('\n', at);

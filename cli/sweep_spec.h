@@ -91,6 +91,13 @@ std::filesystem::path sweepOracleCacheDir(const std::filesystem::path& dir);
 // DIR/scene_hashes.json: per scene (by index), the content hash its rows were made from.
 std::filesystem::path sweepSceneHashesPath(const std::filesystem::path& dir);
 
+// The tasks without a row, by plan index, and the scenes they need, both ascending: what a run
+// (local or --slurm) has left to do.
+struct UnfinishedTasks {
+    std::vector<size_t> tasks, scenes;
+};
+UnfinishedTasks unfinishedTasks(const std::filesystem::path& dir, const SweepPlan& plan);
+
 // Writes `text` to a temporary file beside `path` and renames it over `path`: readers see the old
 // file or the whole new one, never a part.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text);

@@ -1,7 +1,6 @@
 #include "cli/sweep_task.h"
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
 
 #include "cli/compare_command.h"
@@ -93,10 +92,9 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     c.boundaryRadius = plan.settings.boundaryRadius;
     c.writeReport = false;
     c.writeImages = plan.settings.keepOutputs;
-    const int rc = runCompareCommand(c);
+    nlohmann::json metrics;
+    const int rc = runCompareCommand(c, &metrics);
     if (rc != 0) return rc;
-    std::ifstream in(work / "metrics.json");
-    const nlohmann::json metrics = nlohmann::json::parse(in);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The row last, atomically: it is what marks the task done.

@@ -11,6 +11,7 @@
 #include "core/image_codec.h"
 #include "core/progress.h"
 #include "oracle/embree_handles.h"
+#include "oracle/oracle_cache.h"
 
 namespace so {
 
@@ -145,20 +146,15 @@ TileSpec parseTileSpec(const std::string& text) {
 }
 
 nlohmann::json tracedOptionsJson(const OracleOptions& o, const CameraDesc& cam) {
-    // Everything that changes a pixel: the camera, the sampling, the seed, the offset policy.
-    return {
-        {"width", cam.width},
-        {"height", cam.height},
-        {"eye", {cam.wsEye.x, cam.wsEye.y, cam.wsEye.z}},
-        {"target", {cam.wsTarget.x, cam.wsTarget.y, cam.wsTarget.z}},
-        {"up", {cam.wsUp.x, cam.wsUp.y, cam.wsUp.z}},
-        {"vfov_deg", cam.vfovDeg},
-        {"seed", o.area.seed},
-        {"spp", o.area.fixedSpp},
-        {"target_error", o.area.targetError},
-        {"agreement_target", o.area.agreementTarget},
-        {"max_spp", o.area.maxSpp},
-        {"offset_policy", o.offsetPolicy == OffsetPolicy::ErrorBound ? "error bound" : "legacy"}};
+    // Everything that changes a pixel: the sampling, the camera's pose, the offset policy.
+    nlohmann::json options = oracleSamplingJson(o, cam);
+    options["eye"] = {cam.wsEye.x, cam.wsEye.y, cam.wsEye.z};
+    options["target"] = {cam.wsTarget.x, cam.wsTarget.y, cam.wsTarget.z};
+    options["up"] = {cam.wsUp.x, cam.wsUp.y, cam.wsUp.z};
+    options["vfov_deg"] = cam.vfovDeg;
+    options["offset_policy"] =
+        o.offsetPolicy == OffsetPolicy::ErrorBound ? "error bound" : "legacy";
+    return options;
 }
 
 int runTraceCommand(const TraceCommandOptions& options) {

@@ -35,22 +35,17 @@ struct Tile {
     ExrFile exr;
 };
 
-json readJson(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throwInputError(path, "", "cannot be read (not an output folder of trace --tile?)");
-    try {
-        return json::parse(in);
-    } catch (const json::exception& e) {
-        throwInputError(path, "", std::string("not JSON: ") + printable(e.what(), 120));
-    }
+// "/tile/index" as errors name the field: "tile.index".
+std::string fieldName(const char* pointer) {
+    std::string field = std::string(pointer).substr(1);
+    std::replace(field.begin(), field.end(), '/', '.');
+    return field;
 }
 
 int intAt(const json& j, const std::string& path, const char* pointer) {
     const json::json_pointer p(pointer);
-    std::string field = std::string(pointer).substr(1);
-    std::replace(field.begin(), field.end(), '/', '.');
     if (!j.contains(p) || !j.at(p).is_number_integer())
-        throwInputError(path, field, j.contains(p) ? "must be an integer" : "missing");
+        throwInputError(path, fieldName(pointer), j.contains(p) ? "must be an integer" : "missing");
     return j.at(p).get<int>();
 }
 
@@ -58,7 +53,7 @@ Tile readTile(const std::string& dir) {
     Tile t;
     t.dir = dir;
     t.jsonPath = (t.dir / "oracle.json").string();
-    t.j = readJson(t.jsonPath);
+    t.j = readJsonFile(t.jsonPath, "not an output folder of trace --tile?");
     if (!t.j.is_object() || !t.j.contains("tile"))
         throwInputError(t.jsonPath, "tile", "missing: not written by trace --tile");
     t.spec = {intAt(t.j, t.jsonPath, "/tile/index"), intAt(t.j, t.jsonPath, "/tile/count")};
@@ -77,9 +72,7 @@ void checkSame(const Tile& first, const Tile& t, const char* pointer) {
     const json a = first.j.contains(p) ? first.j.at(p) : json();
     const json b = t.j.contains(p) ? t.j.at(p) : json();
     if (a == b) return;
-    std::string field = std::string(pointer).substr(1);
-    std::replace(field.begin(), field.end(), '/', '.');
-    throwInputError(t.jsonPath, field,
+    throwInputError(t.jsonPath, fieldName(pointer),
                     printable(b.dump(), 60) + " differs from " + printable(a.dump(), 60) + " in " +
                         first.jsonPath + ": the tiles are not of one trace");
 }

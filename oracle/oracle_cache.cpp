@@ -28,22 +28,27 @@ fs::path defaultOracleCacheDir() {
     return fs::temp_directory_path() / "shadow-oracle-cache";
 }
 
+nlohmann::json oracleSamplingJson(const OracleOptions& o, const CameraDesc& cam) {
+    return {{"width", cam.width},
+            {"height", cam.height},
+            {"seed", o.area.seed},
+            {"spp", o.area.fixedSpp},
+            {"target_error", o.area.targetError},
+            {"agreement_target", o.area.agreementTarget},
+            {"max_spp", o.area.maxSpp}};
+}
+
 // The oracle's result is a function of the scene's content, the options that change it and the
 // code that made it: all go into the key. Entries made before keep their keys: change nothing here
 // without a reason to invalidate them.
+// (nlohmann::json keeps an object's keys sorted, so the key's text does not depend on the order in
+// which they are added.)
 std::string oracleCacheKey(const Scene& scene, const OracleOptions& o) {
-    const CameraDesc cam = effectiveCamera(scene, o);
-    nlohmann::json k = {{"scene", scene.contentHash},
-                        {"width", cam.width},
-                        {"height", cam.height},
-                        {"seed", o.area.seed},
-                        {"target_error", o.area.targetError},
-                        {"agreement_target", o.area.agreementTarget},
-                        {"max_spp", o.area.maxSpp},
-                        {"spp", o.area.fixedSpp},
-                        {"verify", o.verify.pixels},
-                        {"verify_samples", o.verify.areaSamples},
-                        {"tool", std::string(kToolVersion) + " " + kGitRevision}};
+    nlohmann::json k = oracleSamplingJson(o, effectiveCamera(scene, o));
+    k["scene"] = scene.contentHash;
+    k["verify"] = o.verify.pixels;
+    k["verify_samples"] = o.verify.areaSamples;
+    k["tool"] = std::string(kToolVersion) + " " + kGitRevision;
     // A camera override (a path frame) sees other pixels. Only then is the pose in the key, so
     // the scene camera's entries keep the keys they had. Doubles as %.17g: exact round trip.
     if (o.camera) {

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/image.h"
 #include "core/scene.h"
 #include "oracle/oracle.h"
@@ -29,6 +31,11 @@ struct CachedOracle {
 // $XDG_CACHE_HOME/shadow-oracle, else ~/.cache/shadow-oracle, else the temp folder's
 // shadow-oracle-cache.
 std::filesystem::path defaultOracleCacheDir();
+
+// The options besides the scene and the camera's pose that decide the pixels: width, height, seed,
+// spp, target_error, agreement_target and max_spp. The cache key and the `options` block of a
+// tile's oracle.json (trace --tile) both start from it and add their own.
+nlohmann::json oracleSamplingJson(const OracleOptions& options, const CameraDesc& cam);
 
 // The entry's folder name: a hash of what the oracle's result is a function of.
 std::string oracleCacheKey(const Scene& scene, const OracleOptions& options);
