@@ -29,8 +29,9 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
     sb.meshId.assign(n, 0);
     sb.primId.assign(n, 0);
     sb.originId.assign(n, kNoOriginTriangle);
-    for (auto* v : {&sb.lsPointX, &sb.lsPointY, &sb.lsPointZ, &sb.lsNormalX, &sb.lsNormalY,
-                    &sb.lsNormalZ, &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ})
+    for (auto* v :
+         {&sb.lsPointX, &sb.lsPointY, &sb.lsPointZ, &sb.lsNormalX, &sb.lsNormalY, &sb.lsNormalZ,
+          &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ, &sb.baryU, &sb.baryV})
         v->assign(n, 0.0f);
     sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
     const LocalFrame& frame = accel.frame();
@@ -99,6 +100,8 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                     sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
                     sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
                     sb.wsDepth[s] = float(frame.wsLength(glm::length(p - sb.lsEye)));
+                    sb.baryU[s] = rh.hit.u;
+                    sb.baryV[s] = rh.hit.v;
                     rowMax = std::max(rowMax, glm::length(glm::dvec3(org) - p));
                 }
                 rowMaxOffset[size_t(ty)] = rowMax;

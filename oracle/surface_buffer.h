@@ -41,8 +41,12 @@ struct SurfaceBuffer {
     std::vector<float> lsOriginX, lsOriginY,
         lsOriginZ;               // offset origin for rays leaving on the normal's side
     std::vector<float> wsDepth;  // distance from the eye, world units
-    double lsMaxOffset = 0.0;    // the largest |origin - hit point|: the oracle's blind distance
-    uint64_t alphaTests = 0;     // candidate hits on alpha-tested geometry, tested
+    // Embree's barycentrics of the hit on triangle (meshId, primId): the point is rebuilt from
+    // them on the double triangle, so they replay a hit exactly (gbuffer.exr's bary.u, bary.v;
+    // trace --points, docs/external.md).
+    std::vector<float> baryU, baryV;
+    double lsMaxOffset = 0.0;  // the largest |origin - hit point|: the oracle's blind distance
+    uint64_t alphaTests = 0;   // candidate hits on alpha-tested geometry, tested
 
     size_t slotCount() const { return hit.size(); }
     glm::vec3 lsPoint(size_t s) const { return {lsPointX[s], lsPointY[s], lsPointZ[s]}; }
