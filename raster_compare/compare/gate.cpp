@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "raster_compare/compare/baseline.h"
 #include "raster_compare/compare/metrics.h"
 
 namespace so {
@@ -55,11 +56,13 @@ bool nestedDeeperThan(const json& j, int depth) {
     return false;
 }
 
+}  // namespace
+
 void checkMetricsShape(const json& metrics, const std::string& mp) {
     const auto version = metrics.is_object() ? metrics.find("schema_version") : metrics.end();
     if (version == metrics.end() || !version->is_number_integer() || version->get<int64_t>() < 1 ||
-        version->get<int64_t>() > 4 || !metrics.contains("results"))
-        throwInputError(mp, "schema_version", "not a metrics.json of schema_version 1 to 4");
+        version->get<int64_t>() > kMaxMetricsSchema || !metrics.contains("results"))
+        throwInputError(mp, "schema_version", "not a metrics.json of schema_version 1 to 5");
     const auto scene = metrics.find("scene");
     if (scene != metrics.end()) {
         if (!scene->is_object()) throwInputError(mp, "scene", "expected an object");
@@ -86,6 +89,8 @@ void checkMetricsShape(const json& metrics, const std::string& mp) {
         }
     }
 }
+
+namespace {
 
 // Every metric name the metrics file can have, so a misspelled limit is an error, not a pass.
 // The temporal metrics are known even where this run had no camera path (compare --frames-path):
@@ -138,12 +143,19 @@ std::vector<Rule> readRules(const json& limits, const std::string& lf,
                             const std::set<std::string>& known) {
     if (!limits.is_object()) throwInputError(lf, "", "expected an object");
     for (auto it = limits.begin(); it != limits.end(); ++it)
-        if (it.key() != "limits_format" && it.key() != "default" && it.key() != "rules")
+        if (it.key() != "limits_format" && it.key() != "default" && it.key() != "rules" &&
+            it.key() != "baseline")
             throwInputError(lf, printable(it.key(), 40),
-                            "unknown key (valid: limits_format, default, rules)");
+                            "unknown key (valid: limits_format, default, rules, baseline)");
+    // Format 2 added `baseline` (docs/gate.md#baseline); format 1 files are read as they were.
     const auto format = limits.find("limits_format");
-    if (format == limits.end() || !format->is_number() || format->get<double>() != 1.0)
-        throwInputError(lf, "limits_format", "missing or not 1");
+    if (format == limits.end() || !format->is_number() ||
+        (format->get<double>() != 1.0 && format->get<double>() != 2.0))
+        throwInputError(lf, "limits_format", "missing or not 1 or 2");
+    if (limits.contains("baseline")) {
+        if (format->get<double>() != 2.0) throwInputError(lf, "baseline", "needs limits_format 2");
+        readBaselineSettings(&limits, lf);  // checked here too: a typo fails without --baseline
+    }
     std::vector<Rule> rules;
     if (limits.contains("default"))
         rules.push_back({"*", "*", "*", readMax(limits["default"], lf, "default", known)});
@@ -161,7 +173,8 @@ std::vector<GateCheck> evaluateGate(const json& metrics, const std::string& metr
                                     const json& limits, const std::string& limitsPath) {
     // Version 2 added metrics and made aliasing_rate null on area lights; version 3 added metrics
     // and turned penumbra_bias's sign, version 4 added cost.oracle_ms_at_equal_error
-    // (docs/metrics.md): the gate reads all four.
+    // (docs/metrics.md); version 5 added rows of external images (compare --image), whose costs
+    // may be null: the gate reads all five.
     checkMetricsShape(metrics, metricsPath);
     const std::vector<Rule> rules = readRules(limits, limitsPath, knownMetrics(metrics));
     const auto sceneObject = metrics.find("scene");

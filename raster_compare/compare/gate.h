@@ -24,6 +24,13 @@ struct GateCheck {
 std::vector<GateCheck> evaluateGate(const nlohmann::json& metrics, const std::string& metricsPath,
                                     const nlohmann::json& limits, const std::string& limitsPath);
 
+// The newest metrics.json schema_version the gate reads (it reads 1 to this).
+constexpr int kMaxMetricsSchema = 5;
+
+// Checks the shape of a metrics.json before it is read (schema_version, results[].lights{} of
+// metric objects); throws InputError naming the file and field.
+void checkMetricsShape(const nlohmann::json& metrics, const std::string& metricsPath);
+
 // Shell-style pattern with * and ?, matched against the whole text.
 bool globMatch(const std::string& pattern, const std::string& text);
 

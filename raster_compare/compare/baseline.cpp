@@ -1,0 +1,327 @@
+#include "raster_compare/compare/baseline.h"
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "core/error.h"
+#include "raster_compare/compare/gate.h"
+#include "raster_compare/compare/metrics.h"
+
+namespace so {
+
+using nlohmann::json;
+
+const std::vector<BaselineMetric>& baselineMetricTable() {
+    // Tolerances: "V" and "share" metrics abs 0.001 + rel 5% (the limits file's baseline.default
+    // replaces both); pixel distances a quarter pixel (the penumbra profiles' step) + 5%; costs,
+    // compared only when asked, 0.5 ms + 50% (timings of one frame on a shared machine).
+    constexpr Tolerance kFine{0.001, 0.05}, kPixels{0.25, 0.05}, kTime{0.5, 0.5},
+        kMemory{0.0, 0.01};
+    using B = Better;
+    using N = OracleNoise;
+    static const std::vector<BaselineMetric> table = {
+        {"mae", B::Lower, true, "V", kFine, N::MeanHalfWidth},
+        {"rmse", B::Lower, true, "V", kFine, N::MeanHalfWidth},
+        {"max_abs", B::Lower, true, "V", kFine, N::WorstHalfWidth},
+        {"false_shadow_rate", B::Lower, true, "share", kFine, N::None},
+        {"false_lit_rate", B::Lower, true, "share", kFine, N::None},
+        {"acne_rate", B::Lower, true, "share", kFine, N::None},
+        {"peter_panning_rate", B::Lower, true, "share", kFine, N::None},
+        {"light_leak_distance", B::Lower, true, "world", kFine, N::None},
+        {"boundary_displacement_px.mean", B::Lower, true, "px", kPixels, N::None},
+        {"boundary_displacement_px.p95", B::Lower, true, "px", kPixels, N::None},
+        {"boundary_displacement_px.max", B::Lower, true, "px", kPixels, N::None},
+        {"boundary_band_mae", B::Lower, true, "V", kFine, N::MeanHalfWidth},
+        {"aliasing_rate", B::Lower, true, "share", kFine, N::None},
+        {"other_false_shadow_rate", B::Lower, true, "share", kFine, N::None},
+        {"other_false_lit_rate", B::Lower, true, "share", kFine, N::None},
+        {"light_bleeding_rate", B::Lower, true, "share", kFine, N::None},
+        {"penumbra_mae", B::Lower, true, "V", kFine, N::MeanHalfWidth},
+        {"penumbra_bias", B::SmallerMagnitude, true, "V", kFine, N::MeanHalfWidth},
+        {"umbra_mae", B::Lower, true, "V", kFine, N::MeanHalfWidth},
+        {"lit_mae", B::Lower, true, "V", kFine, N::MeanHalfWidth},
+        {"penumbra_width_error_px.mean", B::Lower, true, "px", kPixels, N::None},
+        {"penumbra_width_error_px.p95", B::Lower, true, "px", kPixels, N::None},
+        {"temporal_flicker_rate", B::Lower, true, "share", kFine, N::None},
+        {"cost.frame_ms", B::Lower, false, "ms", kTime, N::None},
+        {"cost.shadow_map_ms", B::Lower, false, "ms", kTime, N::None},
+        {"cost.visibility_ms", B::Lower, false, "ms", kTime, N::None},
+        {"cost.camera_ms", B::Lower, false, "ms", kTime, N::None},
+        {"cost.memory_bytes", B::Lower, false, "bytes", kMemory, N::None},
+    };
+    return table;
+}
+
+namespace {
+
+double score(Better b, double v) {
+    return b == Better::SmallerMagnitude ? std::fabs(v) : v;
+}
+
+}  // namespace
+
+double BaselineCheck::worsening() const {
+    return score(better, *value) - score(better, *baseline);
+}
+
+double BaselineCheck::allowed() const {
+    return tolerance.abs + tolerance.rel * std::fabs(score(better, *baseline)) + noise;
+}
+
+size_t BaselineComparison::regressions() const {
+    size_t n = 0;
+    for (const BaselineCheck& c : checks) n += c.regressed();
+    return n;
+}
+
+namespace {
+
+const BaselineMetric* findMetric(const std::string& name) {
+    for (const BaselineMetric& m : baselineMetricTable())
+        if (name == m.name) return &m;
+    return nullptr;
+}
+
+Tolerance readTolerance(const json& j, const std::string& lf, const std::string& field,
+                        Tolerance t) {
+    if (!j.is_object()) throwInputError(lf, field, "expected an object {\"abs\": x, \"rel\": y}");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const std::string f = field + "." + printable(it.key(), 40);
+        if (it.key() != "abs" && it.key() != "rel")
+            throwInputError(lf, f, "unknown key (valid: abs, rel)");
+        if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < 0.0)
+            throwInputError(lf, f, "expected a finite number >= 0");
+        (it.key() == "abs" ? t.abs : t.rel) = it->get<double>();
+    }
+    return t;
+}
+
+std::string knownNames() {
+    std::string s;
+    for (const BaselineMetric& m : baselineMetricTable())
+        s += (s.empty() ? "" : ", ") + std::string(m.name);
+    return s;
+}
+
+}  // namespace
+
+BaselineSettings readBaselineSettings(const json* limits, const std::string& lf) {
+    const json empty = json::object();
+    const json* b = &empty;
+    if (limits && limits->is_object() && limits->contains("baseline")) b = &(*limits)["baseline"];
+    if (!b->is_object()) throwInputError(lf, "baseline", "expected an object");
+    for (auto it = b->begin(); it != b->end(); ++it)
+        if (it.key() != "default" && it.key() != "metrics" && it.key() != "ignore")
+            throwInputError(lf, "baseline." + printable(it.key(), 40),
+                            "unknown key (valid: default, metrics, ignore)");
+    std::optional<Tolerance> fileDefault;
+    if (b->contains("default"))
+        fileDefault = readTolerance((*b)["default"], lf, "baseline.default", {0.001, 0.05});
+    std::map<const BaselineMetric*, Tolerance> named;
+    if (b->contains("metrics")) {
+        const json& ms = (*b)["metrics"];
+        if (!ms.is_object())
+            throwInputError(lf, "baseline.metrics", "expected an object of metric: tolerance");
+        for (auto it = ms.begin(); it != ms.end(); ++it) {
+            const std::string f = "baseline.metrics." + printable(it.key(), 60);
+            const BaselineMetric* m = findMetric(it.key());
+            if (!m)
+                throwInputError(lf, f, "not a metric the baseline compares (" + knownNames() + ")");
+            Tolerance t = m->tolerance;
+            if (fileDefault && (std::string(m->unit) == "V" || std::string(m->unit) == "share"))
+                t = *fileDefault;
+            named[m] = readTolerance(*it, lf, f, t);
+        }
+    }
+    std::set<const BaselineMetric*> ignored;
+    if (b->contains("ignore")) {
+        const json& ig = (*b)["ignore"];
+        if (!ig.is_array()) throwInputError(lf, "baseline.ignore", "expected an array of metrics");
+        for (size_t i = 0; i < ig.size(); ++i) {
+            const std::string f = "baseline.ignore[" + std::to_string(i) + "]";
+            if (!ig[i].is_string()) throwInputError(lf, f, "expected a metric name");
+            const BaselineMetric* m = findMetric(ig[i].get<std::string>());
+            if (!m)
+                throwInputError(lf, f, "not a metric the baseline compares (" + knownNames() + ")");
+            if (named.count(m))
+                throwInputError(lf, f, "both ignored and named in baseline.metrics");
+            ignored.insert(m);
+        }
+    }
+    BaselineSettings s;
+    for (const BaselineMetric& m : baselineMetricTable()) {
+        if (ignored.count(&m)) continue;
+        if (named.count(&m)) {
+            s.compared.emplace_back(&m, named[&m]);
+        } else if (m.byDefault) {
+            const bool generic = std::string(m.unit) == "V" || std::string(m.unit) == "share";
+            s.compared.emplace_back(&m, fileDefault && generic ? *fileDefault : m.tolerance);
+        }
+    }
+    return s;
+}
+
+namespace {
+
+// The sampled oracle's stated uncertainty per light, from metrics.json's oracle.stats.lights[]
+// (docs/oracle.md): the mean 95% half-width over the penumbra's pixels at the end of the run (the
+// last cost_curve point) and the worst pixel's. Hard lights (exact, no cost curve) have none.
+struct OracleUncertainty {
+    double meanHalfWidth = 0.0, worstHalfWidth = 0.0;
+};
+
+double optionalNumber(const json& o, const char* key, const std::string& path,
+                      const std::string& field) {
+    const auto it = o.find(key);
+    if (it == o.end() || it->is_null()) return 0.0;
+    if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < 0.0)
+        throwInputError(path, field + "." + key, "expected a number >= 0");
+    return it->get<double>();
+}
+
+std::map<std::string, OracleUncertainty> oracleUncertainty(const json& metrics,
+                                                           const std::string& path) {
+    std::map<std::string, OracleUncertainty> out;
+    const auto oracle = metrics.find("oracle");
+    if (oracle == metrics.end() || !oracle->is_object()) return out;
+    const auto stats = oracle->find("stats");
+    if (stats == oracle->end() || !stats->is_object()) return out;
+    const auto lights = stats->find("lights");
+    if (lights == stats->end()) return out;
+    if (!lights->is_array()) throwInputError(path, "oracle.stats.lights", "expected an array");
+    for (size_t i = 0; i < lights->size(); ++i) {
+        const std::string f = "oracle.stats.lights[" + std::to_string(i) + "]";
+        const json& l = (*lights)[i];
+        if (!l.is_object()) throwInputError(path, f, "expected an object");
+        const auto name = l.find("name");
+        if (name == l.end() || !name->is_string())
+            throwInputError(path, f + ".name", "missing or not a string");
+        OracleUncertainty u;
+        u.worstHalfWidth = optionalNumber(l, "worst_half_width", path, f);
+        const auto curve = l.find("cost_curve");
+        if (curve != l.end() && !curve->is_null()) {
+            if (!curve->is_array()) throwInputError(path, f + ".cost_curve", "expected an array");
+            if (!curve->empty()) {
+                const std::string pf = f + ".cost_curve[" + std::to_string(curve->size() - 1) + "]";
+                const json& last = curve->back();
+                if (!last.is_object()) throwInputError(path, pf, "expected an object");
+                u.meanHalfWidth = optionalNumber(last, "penumbra_mean_half_width", path, pf);
+                if (u.meanHalfWidth == 0.0)  // no penumbra pixels: the mean over all sampled ones
+                    u.meanHalfWidth = optionalNumber(last, "mean_half_width", path, pf);
+            }
+        }
+        out[name->get<std::string>()] = u;
+    }
+    return out;
+}
+
+using RowKey = std::tuple<std::string, std::string, std::string>;  // scene file name, light, label
+
+struct Run {
+    std::map<RowKey, std::map<std::string, json>> rows;
+    std::vector<RowKey> order;
+    std::map<std::string, OracleUncertainty> uncertainty;
+};
+
+Run readRun(const json& metrics, const std::string& path) {
+    checkMetricsShape(metrics, path);
+    Run run;
+    const auto sceneObject = metrics.find("scene");
+    const std::string scene =
+        std::filesystem::path(sceneObject == metrics.end() ? std::string()
+                                                           : sceneObject->value("file", ""))
+            .filename()
+            .string();
+    const json& results = metrics["results"];
+    for (size_t i = 0; i < results.size(); ++i) {
+        const json& r = results[i];
+        const std::string technique = r.value("technique", ""), label = r.value("label", technique);
+        for (const auto& [light, m] : r["lights"].items()) {
+            RowKey key{scene, light, label};
+            if (run.rows.count(key))
+                throwInputError(path, "results[" + std::to_string(i) + "].label",
+                                "the row (" + printable(scene, 60) + ", " + printable(light, 40) +
+                                    ", " + printable(label, 60) +
+                                    ") is there twice: rows are matched by scene, light and label");
+            std::map<std::string, json>& flat = run.rows[key];
+            for (auto& [name, value] : flatMetrics(m)) flat[name] = std::move(value);
+            run.order.push_back(key);
+        }
+    }
+    run.uncertainty = oracleUncertainty(metrics, path);
+    return run;
+}
+
+// Versions whose metrics mean the same (docs/metrics.md, Versions): 4 and 5 (5 adds rows of
+// external images, not new definitions); each earlier one only with itself.
+int64_t metricsEpoch(int64_t version) {
+    return version >= 4 ? 4 : version;
+}
+
+std::optional<double> numberOrNull(const std::map<std::string, json>& row, const std::string& name,
+                                   bool* present) {
+    const auto it = row.find(name);
+    if (it == row.end()) return std::nullopt;
+    *present = true;
+    if (!it->second.is_number()) return std::nullopt;
+    return it->second.get<double>();
+}
+
+}  // namespace
+
+BaselineComparison compareToBaseline(const json& metrics, const std::string& metricsPath,
+                                     const json& baseline, const std::string& baselinePath,
+                                     const json* limits, const std::string& limitsPath) {
+    const Run now = readRun(metrics, metricsPath), before = readRun(baseline, baselinePath);
+    const int64_t vNew = metrics["schema_version"].get<int64_t>(),
+                  vOld = baseline["schema_version"].get<int64_t>();
+    if (metricsEpoch(vNew) != metricsEpoch(vOld))
+        throwInputError(baselinePath, "schema_version",
+                        std::to_string(vOld) + " and the new run's " + std::to_string(vNew) +
+                            " define the metrics differently (docs/metrics.md, Versions): rerun "
+                            "the baseline with this version");
+    const BaselineSettings settings = readBaselineSettings(limits, limitsPath);
+    BaselineComparison out;
+    for (const RowKey& key : now.order) {
+        const auto old = before.rows.find(key);
+        const auto& [scene, light, label] = key;
+        if (old == before.rows.end()) {
+            out.added.push_back({scene, light, label});
+            continue;
+        }
+        const std::map<std::string, json>& rowNew = now.rows.at(key);
+        const auto uNew = now.uncertainty.find(light), uOld = before.uncertainty.find(light);
+        const OracleUncertainty un = uNew == now.uncertainty.end() ? OracleUncertainty{}
+                                                                   : uNew->second,
+                                uo = uOld == before.uncertainty.end() ? OracleUncertainty{}
+                                                                      : uOld->second;
+        for (const auto& [metric, tolerance] : settings.compared) {
+            bool present = false;
+            BaselineCheck c{scene,
+                            light,
+                            label,
+                            metric->name,
+                            numberOrNull(old->second, metric->name, &present),
+                            numberOrNull(rowNew, metric->name, &present),
+                            metric->better,
+                            tolerance,
+                            0.0};
+            if (!present) continue;  // in neither run (a temporal metric without a camera path)
+            if (metric->noise == OracleNoise::MeanHalfWidth)
+                c.noise = std::hypot(un.meanHalfWidth, uo.meanHalfWidth);
+            else if (metric->noise == OracleNoise::WorstHalfWidth)
+                c.noise = std::hypot(un.worstHalfWidth, uo.worstHalfWidth);
+            out.checks.push_back(std::move(c));
+        }
+    }
+    for (const RowKey& key : before.order)
+        if (!now.rows.count(key))
+            out.missing.push_back({std::get<0>(key), std::get<1>(key), std::get<2>(key)});
+    return out;
+}
+
+}  // namespace so

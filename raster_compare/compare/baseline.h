@@ -1,0 +1,99 @@
+// The gate against a baseline (docs/gate.md#baseline): the metrics of a new compare run against
+// those of an earlier one (the last good run), metric by metric, with a tolerance and the sampled
+// oracle's own uncertainty. The files are read by the command (cli/gate_command.cpp); this
+// compares.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace so {
+
+// Which way a metric gets better.
+enum class Better {
+    Lower,            // an error, a rate, a distance, a cost
+    SmallerMagnitude  // signed: |x| matters (penumbra_bias: < 0 too hard, > 0 too soft)
+};
+
+// What widens a metric's tolerance by the sampled oracle's stated uncertainty (area lights).
+enum class OracleNoise {
+    None,           // shares of pixels, pixel distances, costs: the tolerance covers it
+    MeanHalfWidth,  // means of V errors: the mean stated 95% half-width over the penumbra
+    WorstHalfWidth  // max_abs: the largest stated 95% half-width
+};
+
+struct Tolerance {
+    double abs = 0.0;  // in the metric's unit
+    double rel = 0.0;  // of the baseline's |value|
+};
+
+// One row of the table of metrics the baseline compares (docs/gate.md#baseline repeats it).
+struct BaselineMetric {
+    const char* name;  // as in the limits file: nested names joined by a dot
+    Better better;
+    bool byDefault;       // false: compared only when the limits file's baseline.metrics names it
+    const char* unit;     // "V" and "share" take the limits file's baseline.default; others do not
+    Tolerance tolerance;  // built-in default
+    OracleNoise noise;
+};
+
+// Every metric the baseline can compare; the others (counts such as counted_pixels,
+// excluded_share, the predicted aliasing, the oracle's costs, the cost quartiles) are not quality
+// metrics and are never compared.
+const std::vector<BaselineMetric>& baselineMetricTable();
+
+struct BaselineCheck {
+    std::string scene, light, label, metric;
+    std::optional<double> baseline, value;  // none: null (not applicable) in that run
+    Better better = Better::Lower;
+    Tolerance tolerance;
+    double noise = 0.0;  // sqrt(h_old^2 + h_new^2) of the oracle's stated half-widths, or 0
+
+    // How much worse (> 0) or better (< 0) the new value is, in the metric's unit: for
+    // SmallerMagnitude, the change of |x|. Valid only when both values are present.
+    double worsening() const;
+    // abs + rel * |baseline score| + noise.
+    double allowed() const;
+    bool applicable() const { return baseline && value; }
+    bool regressed() const { return applicable() && worsening() > allowed(); }
+    bool improved() const { return applicable() && -worsening() > allowed(); }
+};
+
+// A row (scene file name, light, label) present in one run only.
+struct BaselineRow {
+    std::string scene, light, label;
+};
+
+struct BaselineComparison {
+    std::vector<BaselineCheck> checks;  // every compared (scene, light, label, metric)
+    std::vector<BaselineRow> missing;   // in the baseline, not in the new run: fails
+    std::vector<BaselineRow> added;     // in the new run only: passes, with a note
+    size_t regressions() const;
+    bool failed() const { return regressions() > 0 || !missing.empty(); }
+};
+
+// What the limits file's `baseline` object (limits_format 2) says: per compared metric its
+// tolerance, in the order of the table.
+struct BaselineSettings {
+    std::vector<std::pair<const BaselineMetric*, Tolerance>> compared;
+};
+
+// Reads `limits`'s `baseline` object (null limits, or none there: the built-in defaults). Throws
+// InputError naming the file and field: an unknown key or metric, a tolerance that is not a finite
+// number >= 0.
+BaselineSettings readBaselineSettings(const nlohmann::json* limits, const std::string& limitsPath);
+
+// Compares the rows of `metrics` with those of `baseline`, matched by (scene file name, light,
+// label). `limits` (may be null: the built-in tolerances) is a limits file whose optional
+// `baseline` object sets tolerances and which metrics are compared. Throws InputError naming the
+// file and field on a malformed file, two rows with the same key, or schema versions whose metrics
+// differ in meaning.
+BaselineComparison compareToBaseline(const nlohmann::json& metrics, const std::string& metricsPath,
+                                     const nlohmann::json& baseline,
+                                     const std::string& baselinePath, const nlohmann::json* limits,
+                                     const std::string& limitsPath);
+
+}  // namespace so
