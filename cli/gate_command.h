@@ -1,6 +1,7 @@
-// `shadow-oracle gate METRICS --limits LIMITS [--junit FILE]`: limits on metrics.json as an exit
-// code for CI (docs/gate.md). 0: every limit holds; 1: at least one fails (one line each, with the
-// measured value); 2: bad input.
+// `shadow-oracle gate METRICS [--limits LIMITS] [--baseline OLD] [--junit FILE] [--summary MD]`:
+// limits on metrics.json, and its metrics against an earlier run's, as an exit code for CI
+// (docs/gate.md). 0: every limit holds and nothing regressed; 1: a limit fails, a metric regressed
+// or a row of the baseline is missing (one line each); 2: bad input.
 #pragma once
 
 #include <string>
@@ -9,11 +10,11 @@ namespace so {
 
 struct GateOptions {
     std::string metricsPath;
-    std::string limitsPath;
-    std::string junitPath;  // empty: none
+    std::string limitsPath;    // empty: none (then baselinePath is given)
+    std::string baselinePath;  // empty: none; else the last good run's metrics.json
+    std::string junitPath;     // empty: none
+    std::string summaryPath;   // empty: none; else a Markdown summary for a pull request
 };
 
 int runGateCommand(const GateOptions& options);
-
-// Shell-style pattern: '*' any run, '?' any one character.
 }  // namespace so

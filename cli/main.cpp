@@ -111,7 +111,7 @@ static Runner addRaster(CLI::App& app) {
     for (const so::TechniqueInfo* t : so::allTechniques())
         techniqueHelp += "\n  " + t->name + ": " + t->summary;
     CLI::App* rasterCmd = app.add_subcommand(
-        "raster", "render with an OpenGL shadow technique: o->exr, o->json, previews");
+        "raster", "render with an OpenGL shadow technique: raster.exr, raster.json, previews");
     rasterCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     rasterCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     rasterCmd->add_option("--technique", o->technique, "shadow technique:" + techniqueHelp)
@@ -240,10 +240,17 @@ static Runner addSweepMerge(CLI::App& app) {
 static Runner addGate(CLI::App& app) {
     auto o = std::make_shared<so::GateOptions>();
     CLI::App* gateCmd = app.add_subcommand(
-        "gate", "limits on metrics.json as an exit code: 0 all hold, 1 a limit fails, 2 bad input");
+        "gate",
+        "limits on metrics.json, and a baseline run, as an exit code: 0 all hold, 1 a limit fails "
+        "or a metric regressed, 2 bad input");
     gateCmd->add_option("metrics", o->metricsPath, "metrics.json from compare")->required();
-    gateCmd->add_option("--limits", o->limitsPath, "limits file (docs/o->md)")->required();
+    gateCmd->add_option("--limits", o->limitsPath, "limits file (docs/gate.md)");
+    gateCmd->add_option("--baseline", o->baselinePath,
+                        "the last good run's metrics.json: fail where a metric got worse "
+                        "(docs/gate.md#baseline)");
     gateCmd->add_option("--junit", o->junitPath, "also write JUnit XML here");
+    gateCmd->add_option("--summary", o->summaryPath,
+                        "also write a Markdown summary here (for a pull request comment)");
 
     return [o] { return so::runGateCommand(*o); };
 }

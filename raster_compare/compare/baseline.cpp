@@ -112,7 +112,12 @@ std::string knownNames() {
 BaselineSettings readBaselineSettings(const json* limits, const std::string& lf) {
     const json empty = json::object();
     const json* b = &empty;
-    if (limits && limits->is_object() && limits->contains("baseline")) b = &(*limits)["baseline"];
+    if (limits && limits->is_object() && limits->contains("baseline")) {
+        const auto format = limits->find("limits_format");
+        if (format == limits->end() || !format->is_number() || format->get<double>() != 2.0)
+            throwInputError(lf, "baseline", "needs limits_format 2");
+        b = &(*limits)["baseline"];
+    }
     if (!b->is_object()) throwInputError(lf, "baseline", "expected an object");
     for (auto it = b->begin(); it != b->end(); ++it)
         if (it.key() != "default" && it.key() != "metrics" && it.key() != "ignore")
