@@ -81,14 +81,37 @@ def main():
     write("gate", "limits-globs.json",
           b'{"limits_format": 1, "rules": [{"scene": "contact*", "light": "k?y", "technique": '
           b'"*", "max": {"boundary_displacement_px.max": 2, "mae": 0.5}}]}')
+    # gate --baseline: a limits_format 2 file with the baseline object, and two metrics files.
+    baseline_limits = (b'{"limits_format": 2, "default": {"mae": 0.5}, "baseline": {"default": '
+                       b'{"abs": 0.001, "rel": 0.05}, "metrics": {"cost.frame_ms": {"rel": 0.5}, '
+                       b'"boundary_displacement_px.p95": {"abs": 1}}, "ignore": ["max_abs"]}}')
+    write("gate", "limits-baseline.json", baseline_limits)
+    write("gate", "baseline-pair.bin", baseline_limits + b"\0" + BASELINE_NEW + b"\0" + BASELINE_OLD)
     metrics = small_metrics()
     if metrics:
         write("gate", "limits-and-metrics.json", limits + b"\0" + metrics)
+        write("gate", "baseline-demo.bin", baseline_limits + b"\0" + metrics + b"\0" + metrics)
         write("index", "metrics.json", metrics)
     write("index", "metrics-v1.json",
           b'{"schema_version": 1, "scene": {"file": "a.scene.json"}, "results": [{"technique": '
           b'"basic", "lights": {"key": {"mae": 0.1, "acne_rate": null}}}]}')
     sweep_seeds()
+
+
+# gate --baseline: two small runs of one scene, an area light with the oracle's stats, a row in
+# each that the other lacks, a null on one side.
+BASELINE_OLD = (b'{"schema_version": 4, "scene": {"file": "scenes/p.scene.json"}, "oracle": {"stats": '
+                b'{"lights": [{"name": "panel", "worst_half_width": 0.01, "cost_curve": [{"mean_half_width": '
+                b'0.02, "penumbra_mean_half_width": 0.01}]}, {"name": "sun"}]}}, "results": [{"label": "pcss", '
+                b'"technique": "pcss", "lights": {"panel": {"mae": 0.1, "penumbra_bias": -0.02, '
+                b'"penumbra_mae": null, "cost": {"frame_ms": 2.0}}, "sun": {"acne_rate": 0.01}}}, '
+                b'{"label": "gone", "lights": {"panel": {"mae": 0.3}}}]}')
+BASELINE_NEW = (b'{"schema_version": 5, "scene": {"file": "scenes/p.scene.json"}, "oracle": {"stats": '
+                b'{"lights": [{"name": "panel", "worst_half_width": 0.01, "cost_curve": [{"mean_half_width": '
+                b'0.02, "penumbra_mean_half_width": 0.01}]}]}}, "results": [{"label": "pcss", '
+                b'"technique": "pcss", "source": "external", "lights": {"panel": {"mae": 0.2, '
+                b'"penumbra_bias": 0.03, "penumbra_mae": 0.1, "cost": {"frame_ms": null}}, "sun": '
+                b'{"acne_rate": 0.5}}}, {"label": "added", "lights": {"panel": {"mae": 0.3}}}]}')
 
 
 # sweep: specs over the harness's stand-in techniques (fuzz_sweep.cpp): basic (resolution),
