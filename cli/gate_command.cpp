@@ -20,6 +20,7 @@ using nlohmann::json;
 
 namespace {
 
+// Attribute text: labels come from the user (compare --image LABEL=PATH).
 std::string xmlEscape(const std::string& s) {
     std::string o;
     for (char c : s) {
@@ -37,7 +38,8 @@ std::string xmlEscape(const std::string& s) {
                 o += "&quot;";
                 break;
             default:
-                o += c;
+                // XML 1.0 has no other control characters, even escaped; a label may hold one.
+                o += static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' ? '?' : c;
         }
     }
     return o;
@@ -187,9 +189,10 @@ void writeSummary(const std::string& path, const std::vector<GateCheck>* limits,
             unchanged += c.applicable() && !c.improved() && !c.regressed();
         }
         md << "Against the baseline: **" << regressed << " worse**, " << missing
-           << " rows missing in the new run, " << improved << " better, " << unchanged
-           << " unchanged within tolerance, " << na << " not applicable (null), " << b->added.size()
-           << " new rows.\n\n";
+           << (missing == 1 ? " row" : " rows") << " missing in the new run, " << improved
+           << " better, " << unchanged << " unchanged within tolerance, " << na
+           << " not applicable (null), " << b->added.size()
+           << (b->added.size() == 1 ? " new row" : " new rows") << ".\n\n";
         if (regressed + improved + missing + b->added.size()) {
             md << "| | scene | light | label | metric | baseline | new | change | tolerance |\n"
                   "|---|---|---|---|---|---|---|---|---|\n";
