@@ -128,10 +128,19 @@ TEST(GateBaseline, SchemaVersionsThatDefineMetricsDifferentlyAreAnInputError) {
         EXPECT_EQ(e.field(), "schema_version");
     }
     EXPECT_THROW(compare(run(rows, 6), run(rows, 4)), InputError);
-    // Two rows with one key.
-    json dup = run(rows);
-    dup["results"].push_back(dup["results"][0]);
-    EXPECT_THROW(compare(dup, run(rows)), InputError);
+    // A label given twice: the n-th row matches the other run's n-th.
+    json twice = run(rows);
+    twice["results"].push_back(twice["results"][0]);
+    twice["results"][1]["lights"]["l"]["mae"] = 0.5;
+    json twiceLater = twice;
+    twiceLater["results"][1]["lights"]["l"]["mae"] = 0.9;
+    const BaselineComparison b = compare(twiceLater, twice);
+    EXPECT_FALSE(find(b, "a", "mae")->regressed());
+    ASSERT_NE(find(b, "a#2", "mae"), nullptr);
+    EXPECT_TRUE(find(b, "a#2", "mae")->regressed());
+    const BaselineComparison once = compare(run(rows), twice);
+    ASSERT_EQ(once.missing.size(), 1u);
+    EXPECT_EQ(once.missing[0].label, "a#2");
 }
 
 TEST(GateBaseline, TheOracleNoiseOfBothRunsWidensAreaLightErrors) {

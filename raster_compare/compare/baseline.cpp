@@ -229,6 +229,7 @@ using RowKey = std::tuple<std::string, std::string, std::string>;  // scene file
 struct Run {
     std::map<RowKey, std::map<std::string, json>> rows;
     std::vector<RowKey> order;
+    std::map<RowKey, int> seen;  // rows so far with that (scene, light, label)
     std::map<std::string, OracleUncertainty> uncertainty;
 };
 
@@ -246,12 +247,12 @@ Run readRun(const json& metrics, const std::string& path) {
         const json& r = results[i];
         const std::string technique = r.value("technique", ""), label = r.value("label", technique);
         for (const auto& [light, m] : r["lights"].items()) {
-            RowKey key{scene, light, label};
-            if (run.rows.count(key))
-                throwInputError(path, "results[" + std::to_string(i) + "].label",
-                                "the row (" + printable(scene, 60) + ", " + printable(light, 40) +
-                                    ", " + printable(label, 60) +
-                                    ") is there twice: rows are matched by scene, light and label");
+            // The same label twice in one run (compare --technique basic --technique basic): the
+            // n-th matches the other run's n-th, shown as LABEL#n.
+            const int first = ++run.seen[{scene, light, label}];
+            RowKey key{scene, light, first == 1 ? label : label + "#" + std::to_string(first)};
+            for (int n = first + 1; run.rows.count(key); ++n)  // past a label "basic#2" itself
+                key = {scene, light, label + "#" + std::to_string(n)};
             std::map<std::string, json>& flat = run.rows[key];
             for (auto& [name, value] : flatMetrics(m)) flat[name] = std::move(value);
             run.order.push_back(key);

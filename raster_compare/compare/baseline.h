@@ -87,10 +87,10 @@ struct BaselineSettings {
 BaselineSettings readBaselineSettings(const nlohmann::json* limits, const std::string& limitsPath);
 
 // Compares the rows of `metrics` with those of `baseline`, matched by (scene file name, light,
-// label). `limits` (may be null: the built-in tolerances) is a limits file whose optional
-// `baseline` object sets tolerances and which metrics are compared. Throws InputError naming the
-// file and field on a malformed file, two rows with the same key, or schema versions whose metrics
-// differ in meaning.
+// label; the n-th row of a label given twice matches the other run's n-th, labelled LABEL#n).
+// `limits` (may be null: the built-in tolerances) is a limits file whose optional `baseline`
+// object sets tolerances and which metrics are compared. Throws InputError naming the file and
+// field on a malformed file or schema versions whose metrics differ in meaning.
 BaselineComparison compareToBaseline(const nlohmann::json& metrics, const std::string& metricsPath,
                                      const nlohmann::json& baseline,
                                      const std::string& baselinePath, const nlohmann::json* limits,
