@@ -100,13 +100,6 @@ Tolerance readTolerance(const json& j, const std::string& lf, const std::string&
     return t;
 }
 
-std::string knownNames() {
-    std::string s;
-    for (const BaselineMetric& m : baselineMetricTable())
-        s += (s.empty() ? "" : ", ") + std::string(m.name);
-    return s;
-}
-
 }  // namespace
 
 BaselineSettings readBaselineSettings(const json* limits, const std::string& lf) {
@@ -135,7 +128,8 @@ BaselineSettings readBaselineSettings(const json* limits, const std::string& lf)
             const std::string f = "baseline.metrics." + printable(it.key(), 60);
             const BaselineMetric* m = findMetric(it.key());
             if (!m)
-                throwInputError(lf, f, "not a metric the baseline compares (" + knownNames() + ")");
+                throwInputError(lf, f,
+                                "not a metric the baseline compares (docs/gate.md#baseline)");
             Tolerance t = m->tolerance;
             if (fileDefault && (std::string(m->unit) == "V" || std::string(m->unit) == "share"))
                 t = *fileDefault;
@@ -151,7 +145,8 @@ BaselineSettings readBaselineSettings(const json* limits, const std::string& lf)
             if (!ig[i].is_string()) throwInputError(lf, f, "expected a metric name");
             const BaselineMetric* m = findMetric(ig[i].get<std::string>());
             if (!m)
-                throwInputError(lf, f, "not a metric the baseline compares (" + knownNames() + ")");
+                throwInputError(lf, f,
+                                "not a metric the baseline compares (docs/gate.md#baseline)");
             if (named.count(m))
                 throwInputError(lf, f, "both ignored and named in baseline.metrics");
             ignored.insert(m);
