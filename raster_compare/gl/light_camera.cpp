@@ -25,14 +25,22 @@ std::array<glm::dvec3, 8> corners(const Bounds3d& b) {
     return c;
 }
 
-// Near and far planes around a point that enclose the bounds: far reaches the farthest corner;
-// near is the distance to the box (a little less), but at least far / 1e4 for depth precision.
-void enclose(const glm::dvec3& eye, const Bounds3d& b, double& near, double& far) {
+// Near and far planes around a point that enclose the bounds, for a square frustum of half-angle
+// `halfFovRad`: far reaches the farthest corner; near lies in front of every point of the box
+// inside the frustum (a little more), but at least far / 1e4 for depth precision. A plane cuts at
+// view depth, not distance: a point at distance d inside the frustum has depth at least
+// d cos(alpha), alpha the angle of the frustum's corner ray (tan alpha = sqrt(2) tan(half-angle)).
+// With the distance alone the tops of the objects nearest a tilted spot fell in front of the near
+// plane and out of the map (found by tests/view_test.cpp).
+void enclose(const glm::dvec3& eye, const Bounds3d& b, double halfFovRad, double& near,
+             double& far) {
     far = 0.0;
     for (const glm::dvec3& c : corners(b)) far = std::max(far, glm::length(c - eye));
     far = far * 1.01 + 1e-6;
     const glm::dvec3 nearest = glm::clamp(eye, b.lo, b.hi);
-    near = std::max(0.99 * glm::length(nearest - eye), far * 1e-4);
+    const double t = std::tan(halfFovRad);
+    const double cosCorner = 1.0 / std::sqrt(1.0 + 2.0 * t * t);
+    near = std::max(0.99 * glm::length(nearest - eye) * cosCorner, far * 1e-4);
 }
 
 // Points in a view's frame: their bounds.
@@ -84,10 +92,10 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
         lc.texelScale = 2.0 * half / resolution;
         return lc;
     }
-    enclose(lc.lsPosition, b, lc.near, lc.far);
     if (light.type == LightType::Spot) {
         lc.kind = LightCamera::Kind::Perspective;
         lc.fovYDeg = std::min(170.0, 2.0 * light.outerConeDeg * 1.02);
+        enclose(lc.lsPosition, b, 0.5 * lc.fovYDeg * std::numbers::pi / 180.0, lc.near, lc.far);
         lc.cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
         lc.viewFromLocal[0] =
             glm::lookAtRH(lc.lsPosition, lc.lsPosition + lc.lsDirection, anyUp(lc.lsDirection));
@@ -100,6 +108,7 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
     lc.kind = LightCamera::Kind::Cube;
     lc.faces = 6;
     lc.fovYDeg = 90.0;
+    enclose(lc.lsPosition, b, std::numbers::pi / 4, lc.near, lc.far);
     const glm::dvec3 dirs[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                 {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
     const glm::dvec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
@@ -111,6 +120,33 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
     }
     lc.texelScale = 2.0 / resolution;
     return lc;
+}
+
+std::vector<LightSpaceFace> lightSpaceFaces(const Light& light, const Bounds3d& wsSceneBounds,
+                                            const Bounds3d* lsReceivers) {
+    const LocalFrame frame = LocalFrame::fit(wsSceneBounds);
+    Bounds3d lsBounds;
+    if (!wsSceneBounds.empty()) {
+        lsBounds.extend(frame.lsFromWs(wsSceneBounds.lo));
+        lsBounds.extend(frame.lsFromWs(wsSceneBounds.hi));
+    }
+    // The resolution only sets texelScale, which is not handed out.
+    const LightCamera lc = fitLightCamera(light, frame, lsBounds, 2048, lsReceivers);
+    // localFromWorld = S T(-centre) with S = 2^-exponent: a lookAt in local space is R (l - eye),
+    // so S^-1 viewFromLocal localFromWorld = R (w - wsEye) is rigid, and the projection takes
+    // S back: clipFromView S.
+    const double toLocal = std::ldexp(1.0, -frame.exponent);
+    const glm::dmat4 localFromWorld =
+        glm::translate(glm::scale(glm::dmat4(1.0), glm::dvec3(toLocal)), -frame.wsCenter);
+    const glm::dmat4 scaleToLocal = glm::scale(glm::dmat4(1.0), glm::dvec3(toLocal));
+    const glm::dmat4 scaleToWorld = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0 / toLocal));
+    static const char* const kCubeFaces[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    std::vector<LightSpaceFace> faces;
+    for (int f = 0; f < lc.faces; ++f)
+        faces.push_back({lc.kind == LightCamera::Kind::Cube ? kCubeFaces[f] : "map",
+                         scaleToWorld * lc.viewFromLocal[size_t(f)] * localFromWorld,
+                         lc.clipFromView[size_t(f)] * scaleToLocal});
+    return faces;
 }
 
 double practicalSplit(double near, double far, int i, int n, double lambda) {
