@@ -18,6 +18,7 @@
 #include "cli/techniques_command.h"
 #include "cli/trace_command.h"
 #include "cli/trace_merge_command.h"
+#include "cli/view_command.h"
 #include "core/error.h"
 #include "core/version.h"
 #include "raster_compare/gl/gl_context.h"
@@ -103,6 +104,21 @@ static Runner addTraceMerge(CLI::App& app) {
     addQuiet(mergeCmd, o->progress);
 
     return [o] { return so::runTraceMergeCommand(*o); };
+}
+
+static Runner addView(CLI::App& app) {
+    auto o = std::make_shared<so::ViewCommandOptions>();
+    CLI::App* viewCmd = app.add_subcommand(
+        "view",
+        "the exact view for another renderer: view.json (camera and light matrices) and "
+        "gbuffer.exr (docs/external.md)");
+    viewCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
+    viewCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
+    addImageSize(viewCmd, o->oracle.width, o->oracle.height);
+    viewCmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    addQuiet(viewCmd, o->oracle.progress);
+    return [o] { return so::runViewCommand(*o); };
 }
 
 static Runner addRaster(CLI::App& app) {
@@ -290,6 +306,7 @@ int main(int argc, char** argv) {
     const std::vector<std::pair<std::string, Runner>> commands = {
         {"trace", addTrace(app)},
         {"trace-merge", addTraceMerge(app)},
+        {"view", addView(app)},
         {"raster", addRaster(app)},
         {"compare", addCompare(app)},
         {"sweep", addSweep(app)},

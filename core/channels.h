@@ -17,6 +17,10 @@ inline constexpr const char* kNZ = "N.Z";
 inline constexpr const char* kDepth = "Z";  // distance from the eye along the ray, world units
 inline constexpr const char* kMeshId = "id.mesh";
 inline constexpr const char* kPrimId = "id.prim";
+// Embree's barycentrics of the primary hit on triangle (id.mesh, id.prim): gbuffer.exr's exact
+// replay channels, read by `trace --points` (docs/external.md).
+inline constexpr const char* kBaryU = "bary.u";
+inline constexpr const char* kBaryV = "bary.v";
 
 // Per-light channel suffixes: "<light name>.<suffix>".
 inline constexpr const char* kVisibility = "V";

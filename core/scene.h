@@ -126,12 +126,21 @@ struct SceneStats {
     bool totalTrianglesExceeded(const struct LoadLimits& limits) const;
 };
 
+// A glTF file of the scene as the scene file places it (docs/scene-format.md): its own node
+// transforms, then `scale`, then `translate`. `shadow-oracle view` hands these to other renderers
+// (docs/external.md); a bare glTF scene is one source, unscaled.
+struct GeometrySource {
+    std::filesystem::path file;  // absolute
+    glm::dvec3 translate{0.0}, scale{1.0};
+};
+
 struct Scene {
     std::filesystem::path path;  // the file the user named
     std::string contentHash;     // hash of the scene file and every file it references
     CameraDesc camera;
     std::optional<CameraPath> cameraPath;  // scene_format 2 only; for compare --frames-path
     std::vector<MeshPrimitive> meshes;
+    std::vector<GeometrySource> geometry;
     std::vector<Light> lights;
     std::vector<std::string> effects;  // as given, validated; default {"hard"}
     bool hasEffect(const std::string& e) const;

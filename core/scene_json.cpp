@@ -503,6 +503,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         if (!std::filesystem::is_regular_file(file, ec))
             r.fail(f + ".file", "\"" + printable(rel, 60) + "\": no such file");
         GltfContent g = loadGltf(file, gltfDisplay, wsFromFile, limits);
+        scene.geometry.push_back({std::filesystem::absolute(file, ec), translate, scale});
         for (const auto& fr : g.filesRead) {
             std::string relName = fr.lexically_relative(folder).generic_string();
             hasher.addFile(fr, relName);
@@ -560,6 +561,9 @@ Scene loadSceneGltf(const std::filesystem::path& path, const std::string& displa
     GltfContent g = loadGltf(path, display, glm::dmat4(1.0), limits);
     Scene scene;
     scene.path = path;
+    std::error_code ec;
+    scene.geometry.push_back(
+        {std::filesystem::absolute(path, ec), glm::dvec3(0.0), glm::dvec3(1.0)});
     uint64_t totalBytes = 0;
     addGltf(scene, g, totalBytes, limits, display);
     ContentHasher hasher;

@@ -21,6 +21,7 @@
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
 #include "oracle/hard_shadow.h"
+#include "oracle/primary_image.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {
@@ -30,17 +31,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-void fillGeometryChannels(const SurfaceBuffer& sb, const Accel& accel, ChannelImage& img) {
-    GeometryChannelWriter out(img);
-    const LocalFrame& frame = accel.frame();
-    for (size_t s = 0; s < sb.slotCount(); ++s) {
-        const size_t i = sb.pixelOfSlot(s);
-        if (i == SIZE_MAX || !sb.hit[s]) continue;
-        out.set(i, frame.wsFromLs(glm::dvec3(sb.lsPoint(s))), sb.lsNormal(s), sb.wsDepth[s],
-                float(sb.meshId[s]), float(sb.primId[s]));
-    }
 }
 
 OracleOffsetStats offsetPolicyStats(OffsetPolicy policy, const LocalFrame& frame,

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -77,6 +78,19 @@ LightCamera fitCascades(const Light& light, const Bounds3d& lsBounds, int resolu
 // only occluders inside the receivers' footprint can shadow them.
 LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bounds3d& lsBounds,
                            int resolution, const Bounds3d* lsReceivers = nullptr);
+
+// One shadow-map camera of a light in world space, as `shadow-oracle view` hands it to other
+// renderers (docs/external.md): viewFromWorld is rigid (world units), clipFromView maps depth to
+// [0, 1] as the raster path's maps do (glClipControl GL_ZERO_TO_ONE), y up.
+struct LightSpaceFace {
+    std::string face;  // "map"; a cube's "+x", "-x", "+y", "-y", "+z", "-z" (GL face order)
+    glm::dmat4 viewFromWorld{1.0}, clipFromView{1.0};
+};
+
+// fitLightCamera in world space: the scene's frame is LocalFrame::fit(scene.wsBounds), as the
+// raster path's GpuScene; `lsReceivers` as for fitLightCamera.
+std::vector<LightSpaceFace> lightSpaceFaces(const Light& light, const Bounds3d& wsSceneBounds,
+                                            const Bounds3d* lsReceivers);
 
 // The width of an area light as the soft-shadow approximations take it (pcss, plateaus): the side
 // of a square of its area (rect: sqrt(|u x v|); disk and sphere: r sqrt(pi)), world units; 0 for
