@@ -56,7 +56,7 @@ struct OraclePointsStats {
     uint64_t offSurface = 0;             // covered, but no surface within the snap tolerance
     uint64_t background = 0;             // coverage 0
     uint64_t replayRejected = 0;  // had replay channels that do not fit this scene: snapped instead
-    double wsMaxSnapDistance = 0.0;  // the largest |P - snapped point|, world units
+    double wsMaxSnapDistance = 0.0;   // the largest |P - snapped point|, world units
     double wsMaxSnapTolerance = 0.0;  // the largest snap tolerance used, world units
 };
 

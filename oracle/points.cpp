@@ -136,7 +136,8 @@ PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GB
                     out.status[pixel] = uint8_t(PointStatus::OffSurface);
                     continue;
                 }
-                out.status[pixel] = uint8_t(replayed ? PointStatus::Replayed : PointStatus::Snapped);
+                out.status[pixel] =
+                    uint8_t(replayed ? PointStatus::Replayed : PointStatus::Snapped);
                 glm::dvec3 a, b, c;
                 accel.triangle(h.mesh, h.prim, a, b, c);
                 const double u = h.u, v = h.v;
@@ -157,8 +158,8 @@ PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GB
                 sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
                 sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
                 sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
-                sb.wsDepth[s] = g.depth.empty() ? std::numeric_limits<float>::quiet_NaN()
-                                                : g.depth[pixel];
+                sb.wsDepth[s] =
+                    g.depth.empty() ? std::numeric_limits<float>::quiet_NaN() : g.depth[pixel];
                 sb.baryU[s] = h.u;
                 sb.baryV[s] = h.v;
                 row.offset = std::max(row.offset, glm::length(glm::dvec3(org) - p));

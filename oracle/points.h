@@ -41,7 +41,7 @@ inline constexpr double kReplayBaryTolerance = 1.0 / 1048576.0;  // 2^-20
 double snapTolerance(const LocalFrame& frame, const glm::dvec3& wsP);
 
 struct PointsSurface {
-    SurfaceBuffer sb;  // lsEye empty; wsDepth the G-buffer's Z, NaN without one
+    SurfaceBuffer sb;             // lsEye empty; wsDepth the G-buffer's Z, NaN without one
     std::vector<uint8_t> status;  // PointStatus per pixel, row-major
     OraclePointsStats stats;
 };
