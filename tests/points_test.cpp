@@ -27,6 +27,7 @@
 #include "oracle/oracle.h"
 #include "oracle/points.h"
 #include "oracle/surface_buffer.h"
+#include "oracle/verify.h"
 
 using namespace so;
 namespace ch = so::channels;
@@ -255,6 +256,34 @@ TEST(Points, VerifyFindsNoDisagreement) {
         EXPECT_GE(checked, 600u);
         EXPECT_EQ(pts.stats.disagreements(), 0u) << "replay " << replay;
     }
+}
+
+// The points-mode verifier is not a rubber stamp: V flipped after the oracle ran is found.
+TEST(Points, VerifyFindsFlippedPixels) {
+    const Scene scene = shippedScene("spot_objects");
+    const OracleOptions o = smallOptions();
+    const PlainRun plain = plainRun(scene, o, false);
+    const OracleResult pts = runOracleAtPoints(scene, plain.gbuffer, pointsOptions(o));
+    EmbreeDevice device("threads=0");
+    const Accel accel(scene, device);
+    const PointsSurface ps = surfaceFromPoints(scene, accel, plain.gbuffer);
+    VerifyOptions vo;
+    vo.pixels = kW * kH;
+    const Verifier verifier(scene, accel.frame(), nullptr, vo, 0);
+    const Light& light = scene.lights[1];
+    const float* V0 = pts.image.channel(ch::lightChannel(light.name, ch::kVisibility));
+    const float* cosine = pts.image.channel(ch::lightChannel(light.name, ch::kCosine));
+    std::vector<float> V(V0, V0 + pts.image.pixelCount());
+    size_t flipped = 0;
+    for (size_t i = 5; i < V.size() && flipped < 40; i += 53)
+        if (plain.gbuffer.covered(i) && cosine[i] > 0.05f) V[i] = 1.0f - V[i], ++flipped;
+    ASSERT_EQ(flipped, 40u);
+    const LightVerification clean =
+        verifier.verifyLight(light, 1, false, ps.sb, V0, nullptr, nullptr);
+    EXPECT_EQ(clean.disagree, 0u);
+    const LightVerification l =
+        verifier.verifyLight(light, 1, false, ps.sb, V.data(), nullptr, nullptr);
+    EXPECT_EQ(l.disagree, 40u);
 }
 
 // (c) and the command line: --threads 1 and 2 write the same oracle.exr bytes; oracle.json says
