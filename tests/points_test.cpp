@@ -128,10 +128,22 @@ void writeGBuffer(const fs::path& path, const GBuffer& g, bool replay) {
     writeExr(path.string(), img);
 }
 
+// The test's scratch folder, removed when the test binary exits.
+const fs::path& scratchDir() {
+    static const struct Dir {
+        fs::path path =
+            fs::temp_directory_path() / ("so_points_test_" + std::to_string(::getpid()));
+        ~Dir() {
+            std::error_code ec;
+            fs::remove_all(path, ec);
+        }
+    } dir;
+    return dir.path;
+}
+
 fs::path scratch(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("so_points_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d / name;
+    fs::create_directories(scratchDir());
+    return scratchDir() / name;
 }
 
 class ExactReplay : public ::testing::TestWithParam<const char*> {};
