@@ -77,12 +77,14 @@ GBuffer readGBuffer(const std::string& path, const LoadLimits& limits) {
         const char* replay[] = {ch::kMeshId, ch::kPrimId, ch::kBaryU, ch::kBaryV};
         int replayPresent = 0;
         for (const char* name : replay) replayPresent += has(name);
-        if (replayPresent != 0 && replayPresent != 4)
+        // oracle.exr and raster.exr carry the ids without barycentrics: those are snapped. A
+        // barycentric channel without the other three is a broken replay, refused.
+        if ((has(ch::kBaryU) || has(ch::kBaryV)) && replayPresent != 4)
             for (const char* name : replay)
                 if (!has(name))
                     throwInputError(path, name,
                                     "missing: the exact-replay channels id.mesh, id.prim, bary.u "
-                                    "and bary.v come all four or none");
+                                    "and bary.v come all four together");
 
         std::vector<std::pair<std::string, std::vector<float>*>> planes = {
             {g.coverageChannel, &g.coverage},

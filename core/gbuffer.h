@@ -21,7 +21,8 @@ struct GBuffer {
     std::vector<float> coverage;  // covered where != 0
     std::vector<float> wsPX, wsPY, wsPZ;
     std::vector<float> wsNX, wsNY, wsNZ;  // any length > 0 in covered pixels
-    // The exact-replay channels id.mesh, id.prim, bary.u, bary.v: all four or none (empty).
+    // The exact-replay channels id.mesh, id.prim, bary.u, bary.v: all four or none (empty; ids
+    // without barycentrics, as in oracle.exr, are not read).
     std::vector<float> meshId, primId, baryU, baryV;
     std::vector<float> depth;  // Z, copied through when present (empty: absent)
 
@@ -34,9 +35,10 @@ struct GBuffer {
 
 // Reads and validates a G-buffer EXR. Throws InputError ("FILE: CHANNEL: why") on an unreadable
 // file, a data window other than the display window, more than limits.maxImagePixels pixels or a
-// side above limits.maxImageSide, a missing channel (P.X/Y/Z, N.X/Y/Z, a coverage channel; some but
-// not all of the replay channels), a non-finite coverage, or a covered pixel with a non-finite P or
-// N or a zero N. Only the channels above are read, so memory is bounded by the pixel limit.
+// side above limits.maxImageSide, a missing channel (P.X/Y/Z, N.X/Y/Z, a coverage channel; a
+// barycentric channel without all of the other replay channels), a non-finite coverage, or a
+// covered pixel with a non-finite P or N or a zero N. Only the channels above are read, so memory
+// is bounded by the pixel limit.
 GBuffer readGBuffer(const std::string& path, const LoadLimits& limits = {});
 
 }  // namespace so
