@@ -75,6 +75,14 @@ double snapTolerance(const LocalFrame& frame, const glm::dvec3& wsP) {
 
 PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GBuffer& g,
                                 OffsetPolicy offsetPolicy) {
+    const size_t pixels = g.pixelCount();
+    for (const std::vector<float>* v :
+         {&g.coverage, &g.wsPX, &g.wsPY, &g.wsPZ, &g.wsNX, &g.wsNY, &g.wsNZ})
+        SO_CHECK_EQ(v->size(), pixels);
+    if (g.hasReplay())
+        for (const std::vector<float>* v : {&g.primId, &g.baryU, &g.baryV})
+            SO_CHECK_EQ(v->size(), pixels);
+    if (!g.depth.empty()) SO_CHECK_EQ(g.depth.size(), pixels);
     PointsSurface out;
     SurfaceBuffer& sb = out.sb;
     sb.width = g.width;
