@@ -1,7 +1,9 @@
 #include "core/gbuffer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <utility>
 
 #include <ImfChannelList.h>
@@ -40,11 +42,82 @@ void checkPixels(const GBuffer& g) {
     }
 }
 
+// The header walked before OpenEXR sees the file: OpenEXR allocates every attribute at the size
+// the file declares (a few bytes can ask for gigabytes) and the chunk table at the data window's
+// size, before any check of ours. Here every attribute must fit in the file, the file must be a
+// single-part flat image, and the data window (equal to the display window) must fit the limits.
+// Layout (OpenEXR file layout): magic, version, then (name NUL, type NUL, int32 size, value)
+// until an empty name.
+void checkHeader(const std::string& path, const LoadLimits& limits) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throwInputError(path, "", "cannot open");
+    in.seekg(0, std::ios::end);
+    const int64_t fileSize = int64_t(in.tellg());
+    in.seekg(0);
+    const auto readInt = [&](const char* what) {
+        unsigned char b[4];
+        if (!in.read(reinterpret_cast<char*>(b), 4))
+            throwInputError(path, what, "the file ends inside the header");
+        return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 |
+                       uint32_t(b[3]) << 24);
+    };
+    const auto readName = [&](const char* what) {
+        std::string name;
+        for (char c; in.get(c) && c != '\0';) {
+            name += c;
+            if (name.size() > 255) throwInputError(path, what, "a name longer than 255 bytes");
+        }
+        if (!in) throwInputError(path, what, "the file ends inside the header");
+        return name;
+    };
+    if (readInt("magic") != 20000630) throwInputError(path, "magic", "not an OpenEXR file");
+    const int32_t version = readInt("version");
+    if (version & 0x1800)
+        throwInputError(path, "version",
+                        "a multi-part or deep file; give a single-part scanline or tiled image");
+    int32_t box[2][4] = {};
+    bool found[2] = {false, false};
+    for (;;) {
+        const std::string name = readName("header");
+        if (name.empty()) break;
+        const std::string type = readName(printable(name, 40).c_str());
+        const int32_t size = readInt(name.c_str());
+        const int64_t left = fileSize - int64_t(in.tellg());
+        if (size < 0 || int64_t(size) > left)
+            throwInputError(path, printable(name, 40),
+                            "attribute of " + std::to_string(size) + " bytes, more than the " +
+                                std::to_string(left) + " left in the file");
+        const int w = name == "dataWindow" ? 0 : name == "displayWindow" ? 1 : -1;
+        if (w >= 0 && type == "box2i" && size == 16) {
+            for (int k = 0; k < 4; ++k) box[w][k] = readInt(name.c_str());
+            found[w] = true;
+        } else {
+            in.seekg(size, std::ios::cur);
+        }
+    }
+    if (!found[0] || !found[1])
+        throwInputError(path, found[0] ? "displayWindow" : "dataWindow", "missing");
+    if (!std::equal(box[0], box[0] + 4, box[1]))
+        throwInputError(path, "dataWindow",
+                        "differs from the display window (a cropped image or a band of trace "
+                        "--tile); give the whole image");
+    const int64_t w = int64_t(box[0][2]) - int64_t(box[0][0]) + 1;
+    const int64_t h = int64_t(box[0][3]) - int64_t(box[0][1]) + 1;
+    if (w < 1 || h < 1 || w > limits.maxImageSide || h > limits.maxImageSide ||
+        uint64_t(w) * uint64_t(h) > limits.maxImagePixels)
+        throwInputError(path, "dataWindow",
+                        "image of " + std::to_string(w) + " x " + std::to_string(h) +
+                            " pixels is empty or too large (at most " +
+                            std::to_string(limits.maxImageSide) + " per side and " +
+                            std::to_string(limits.maxImagePixels) + " pixels)");
+}
+
 }  // namespace
 
 GBuffer readGBuffer(const std::string& path, const LoadLimits& limits) {
     GBuffer g;
     g.path = path;
+    checkHeader(path, limits);
     try {
         Imf::InputFile file(path.c_str());
         const Imf::Header& header = file.header();
