@@ -42,26 +42,30 @@ void checkPixels(const GBuffer& g) {
     }
 }
 
-// The header walked before OpenEXR sees the file: OpenEXR allocates every attribute at the size
-// the file declares (a few bytes can ask for gigabytes) and the chunk table at the data window's
-// size, before any check of ours. Here every attribute must fit in the file, the file must be a
-// single-part flat image, and the data window (equal to the display window) must fit the limits.
-// Layout (OpenEXR file layout): magic, version, then (name NUL, type NUL, int32 size, value)
-// until an empty name.
+// The header walked before OpenEXR sees the file, consuming bytes exactly as OpenEXR 3.1's
+// Header::readFrom does: it allocates attributes at sizes the file declares (a 1 KB file can ask
+// for gigabytes: found by fuzz_gbuffer) and the chunk table at the data window's size, before any
+// check of ours. Typed attributes are read at their fixed size whatever the declared one (so this
+// walk follows them the same way), a chlist up to its empty name, a preview by its own width and
+// height; everything else by the declared size. Every length must fit in what is left of the file;
+// the file must be single-part and flat, and the data window, equal to the display window, must
+// fit the limits. Layout: magic, version, then (name NUL, type NUL, int32 size, value) until an
+// empty name.
 void checkHeader(const std::string& path, const LoadLimits& limits) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throwInputError(path, "", "cannot open");
     in.seekg(0, std::ios::end);
     const int64_t fileSize = int64_t(in.tellg());
     in.seekg(0);
-    const auto readInt = [&](const char* what) {
+    const auto left = [&] { return fileSize - int64_t(in.tellg()); };
+    const auto readInt = [&](const std::string& what) {
         unsigned char b[4];
         if (!in.read(reinterpret_cast<char*>(b), 4))
             throwInputError(path, what, "the file ends inside the header");
         return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 |
                        uint32_t(b[3]) << 24);
     };
-    const auto readName = [&](const char* what) {
+    const auto readName = [&](const std::string& what) {
         std::string name;
         for (char c; in.get(c) && c != '\0';) {
             name += c;
@@ -70,29 +74,76 @@ void checkHeader(const std::string& path, const LoadLimits& limits) {
         if (!in) throwInputError(path, what, "the file ends inside the header");
         return name;
     };
+    const auto skip = [&](const std::string& what, int64_t bytes) {
+        if (bytes < 0 || bytes > left())
+            throwInputError(path, what,
+                            "declares " + std::to_string(bytes) + " bytes, more than the " +
+                                std::to_string(left()) + " left in the file");
+        in.seekg(bytes, std::ios::cur);
+    };
     if (readInt("magic") != 20000630) throwInputError(path, "magic", "not an OpenEXR file");
     const int32_t version = readInt("version");
     if (version & 0x1800)
         throwInputError(path, "version",
                         "a multi-part or deep file; give a single-part scanline or tiled image");
+    static const std::pair<const char*, int> kFixed[] = {{"box2i", 16},
+                                                         {"box2f", 16},
+                                                         {"chromaticities", 32},
+                                                         {"compression", 1},
+                                                         {"deepImageState", 1},
+                                                         {"double", 8},
+                                                         {"envmap", 1},
+                                                         {"float", 4},
+                                                         {"int", 4},
+                                                         {"keycode", 28},
+                                                         {"lineOrder", 1},
+                                                         {"m33f", 36},
+                                                         {"m33d", 72},
+                                                         {"m44f", 64},
+                                                         {"m44d", 128},
+                                                         {"rational", 8},
+                                                         {"timecode", 8},
+                                                         {"tiledesc", 9},
+                                                         {"v2i", 8},
+                                                         {"v2f", 8},
+                                                         {"v2d", 16},
+                                                         {"v3i", 12},
+                                                         {"v3f", 12},
+                                                         {"v3d", 24}};
     int32_t box[2][4] = {};
     bool found[2] = {false, false};
     for (;;) {
         const std::string name = readName("header");
         if (name.empty()) break;
-        const std::string type = readName(printable(name, 40).c_str());
-        const int32_t size = readInt(name.c_str());
-        const int64_t left = fileSize - int64_t(in.tellg());
-        if (size < 0 || int64_t(size) > left)
-            throwInputError(path, printable(name, 40),
-                            "attribute of " + std::to_string(size) + " bytes, more than the " +
-                                std::to_string(left) + " left in the file");
+        const std::string field = printable(name, 40);
+        const std::string type = readName(field);
+        const int32_t size = readInt(field);
         const int w = name == "dataWindow" ? 0 : name == "displayWindow" ? 1 : -1;
-        if (w >= 0 && type == "box2i" && size == 16) {
-            for (int k = 0; k < 4; ++k) box[w][k] = readInt(name.c_str());
+        int fixed = -1;
+        for (const auto& [t, n] : kFixed)
+            if (type == t) fixed = n;
+        if (w >= 0 && type == "box2i") {
+            for (int k = 0; k < 4; ++k) box[w][k] = readInt(field);
             found[w] = true;
+        } else if (fixed >= 0) {
+            skip(field, fixed);
+        } else if (type == "chlist") {
+            while (!readName(field).empty()) skip(field, 16);
+        } else if (type == "preview") {
+            const int64_t pw = uint32_t(readInt(field)), ph = uint32_t(readInt(field));
+            skip(field, 4 * pw * ph);
+        } else if (type == "stringvector") {
+            skip(field, 0);
+            for (int64_t read = 0; read < size;) {
+                const int32_t n = readInt(field);
+                skip(field, n);
+                read += 4 + int64_t(n);
+            }
+        } else if (type == "idmanifest") {
+            readInt(field);  // the uncompressed size: allocated only when decompressed
+            skip(field, readInt(field));
         } else {
-            in.seekg(size, std::ios::cur);
+            skip(field, size);  // string, floatvector, and unknown types (opaque)
         }
     }
     if (!found[0] || !found[1])
