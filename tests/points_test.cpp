@@ -171,6 +171,22 @@ TEST_P(ExactReplay, GivesThePlainTraceBitForBit) {
     EXPECT_EQ(pts.image.names().size(), a.names().size() + 1);  // plus points.status
 }
 
+// The same with adaptive sampling (the default): a pixel's stopping depends on its own samples
+// only, so the replayed points stop where the plain trace's did.
+TEST(Points, ExactReplayWithAdaptiveSampling) {
+    const Scene scene = shippedScene("penumbra_square");
+    OracleOptions o = smallOptions();
+    o.area = AreaSampling{};
+    o.area.seed = 7;
+    const PlainRun plain = plainRun(scene, o, true);
+    const OracleResult pts = runOracleAtPoints(scene, plain.gbuffer, pointsOptions(o));
+    EXPECT_EQ(pts.points->replayed, coveredCount(plain.gbuffer));
+    const ChannelImage& a = plain.result.image;
+    ASSERT_TRUE(a.has(ch::lightChannel("panel", ch::kUnconverged)));
+    for (const std::string& name : a.names())
+        EXPECT_TRUE(sameBits(a.channel(name), pts.image.channel(name), a.pixelCount())) << name;
+}
+
 INSTANTIATE_TEST_SUITE_P(ShippedScenes, ExactReplay,
                          ::testing::Values("spot_objects", "contact_box", "terrain_sun",
                                            "alpha_grate", "penumbra_square", "sphere_light"));
