@@ -56,6 +56,7 @@ PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GB
 // every light's channels as runOracle. options.width/height/camera/rows must be unset; --verify
 // re-traces the shadow rays (the primary-ray check is skipped: there is no camera). result.points
 // holds the counts. The library entry point for `compare --points` as well as `trace --points`.
+// Defined in oracle.cpp, beside runOracle, whose setup and shadow passes it shares.
 OracleResult runOracleAtPoints(const Scene& scene, const GBuffer& gbuffer,
                                const OracleOptions& options);
 
