@@ -90,6 +90,11 @@ static Runner addTrace(CLI::App& app) {
     traceCmd->add_option("--tile", o->tile,
                          "I/N: trace only band I of N bands of rows (0 <= I < N <= 4096), for "
                          "`trace-merge` to join; not with --verify");
+    traceCmd->add_option(
+        "--points", o->pointsPath,
+        "GBUFFER.exr: the oracle at a renderer's own surface points (P, N, A), one "
+        "result per pixel of that image (docs/external.md); not with --tile, "
+        "--width, --height");
 
     return [o] { return so::runTraceCommand(*o); };
 }

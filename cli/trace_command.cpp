@@ -8,10 +8,12 @@
 
 #include "cli/output.h"
 #include "core/error.h"
+#include "core/gbuffer.h"
 #include "core/image_codec.h"
 #include "core/progress.h"
 #include "oracle/embree_handles.h"
 #include "oracle/oracle_cache.h"
+#include "oracle/points.h"
 
 namespace so {
 
@@ -22,7 +24,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
                           const CameraDesc& cam, const OracleStats& stats, double loadSeconds,
                           double writeSeconds) {
     nlohmann::json j = {
-        {"format_version", 7},
+        {"format_version", 8},
         {"tool", toolJson()},
         {"scene",
          {{"file", options.scenePath},
@@ -157,7 +159,63 @@ nlohmann::json tracedOptionsJson(const OracleOptions& o, const CameraDesc& cam) 
     return options;
 }
 
+namespace {
+
+// trace --points: the oracle at a G-buffer's points (docs/external.md, "Points in"). Everything is
+// read and checked before the output folder is made.
+int runTracePoints(const TraceCommandOptions& options) {
+    using Clock = std::chrono::steady_clock;
+    if (!options.tile.empty())
+        throwInputError("command line", "--tile", "cannot be used with --points");
+    if (options.oracle.width > 0 || options.oracle.height > 0)
+        throwInputError("command line", "--width/--height",
+                        "cannot be used with --points (the image is the G-buffer's size)");
+    auto t0 = Clock::now();
+    const GBuffer gbuffer = readGBuffer(options.pointsPath);
+    Scene scene = loadScene(options.scenePath);
+    const double loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    printSceneWarnings(options.scenePath, scene);
+
+    const std::filesystem::path out = makeOutputDir(options.outDir);
+    OracleResult result = runOracleAtPoints(scene, gbuffer, options.oracle);
+    const OraclePointsStats& points = *result.points;
+
+    t0 = Clock::now();
+    const std::string exrPath = (out / "oracle.exr").string();
+    {
+        const ExrAttributes attributes = {{"shadowOracle/sceneHash", scene.contentHash},
+                                          {"shadowOracle/toolVersion", toolVersionString()}};
+        Progress progress("writing " + exrPath, result.image.pixelCount(), options.oracle.progress);
+        writeExr(exrPath, result.image, attributes, result.stats.threads, &progress);
+    }
+    const std::vector<std::string> previews = writePreviews(out, result.image, scene.lights);
+    const double writeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+    const std::filesystem::path jsonPath = out / "oracle.json";
+    nlohmann::json j = oracleJson(options, scene, effectiveCamera(scene, options.oracle),
+                                  result.stats, loadSeconds, writeSeconds);
+    j["camera"] = nullptr;  // no camera: the points are the G-buffer's
+    j["points"] = toJson(points);
+    writeJsonFile(jsonPath, j);
+
+    std::cout << "traced " << options.scenePath << " at the points of " << options.pointsPath
+              << " (" << gbuffer.width << "x" << gbuffer.height << ": " << points.replayed
+              << " replayed exactly, " << points.snapped << " snapped, " << points.offSurface
+              << " off surface, " << points.background << " background)\n"
+              << "  " << exrPath << "\n  " << jsonPath.string() << "\n";
+    for (const std::string& p : previews) std::cout << "  " << p << "\n";
+    if (points.offSurface)
+        std::cerr << "warning: " << options.pointsPath << ": " << points.offSurface
+                  << " covered pixels lie farther than the snap tolerance from every surface of "
+                  << options.scenePath << " (no oracle result: A = 0, points.status = 3)\n";
+    printOracleCost(result.stats);
+    return reportVerification(result.stats, options.scenePath, jsonPath);
+}
+
+}  // namespace
+
 int runTraceCommand(const TraceCommandOptions& options) {
+    if (!options.pointsPath.empty()) return runTracePoints(options);
     using Clock = std::chrono::steady_clock;
     const std::optional<TileSpec> tile = tileOf(options);
     auto t0 = Clock::now();

@@ -17,6 +17,9 @@ struct TraceCommandOptions {
     // --tile I/N: trace only band I of N bands of rows (oracle.h tileRows); empty: the whole
     // image. Parsed by runTraceCommand, which sets oracle.rows.
     std::string tile;
+    // --points GBUFFER.exr: the oracle at the G-buffer's points (oracle/points.h) instead of the
+    // camera's primary hits; empty: a plain trace.
+    std::string pointsPath;
 };
 
 // Returns the process exit code; InputError propagates to main (exit 2).

@@ -21,6 +21,11 @@ inline constexpr const char* kPrimId = "id.prim";
 // replay channels, read by `trace --points` (docs/external.md).
 inline constexpr const char* kBaryU = "bary.u";
 inline constexpr const char* kBaryV = "bary.v";
+// trace --points: how each pixel was placed (docs/exr-channels.md): 0 background, 1 replayed
+// exactly, 2 snapped to the nearest surface, 3 off every surface (no oracle result).
+inline constexpr const char* kPointsStatus = "points.status";
+// The G-buffer coverage channels trace --points accepts, in the order they are looked for.
+inline constexpr const char* kCoverage = "coverage";
 
 // Per-light channel suffixes: "<light name>.<suffix>".
 inline constexpr const char* kVisibility = "V";

@@ -22,6 +22,7 @@
 #include "oracle/area_light.h"
 #include "oracle/hard_shadow.h"
 #include "oracle/primary_image.h"
+#include "oracle/points.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {
@@ -192,7 +193,7 @@ constexpr size_t kVerifyMaxTriangles = size_t(1) << 25;  // about 7 GB for the r
 
 // The reference for --verify, built once for all lights; null without --verify.
 std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& options,
-                                       const LocalFrame& frame, const Camera& camera,
+                                       const LocalFrame& frame, const Camera* camera,
                                        OracleStats& stats) {
     if (options.verify.pixels <= 0) return nullptr;
     for (size_t m = 0; m < scene.meshes.size(); ++m)
@@ -275,27 +276,62 @@ CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options) {
     return desc;
 }
 
+namespace {
+
+// What runOracle and runOracleAtPoints share: the BVH (built with a fixed configuration whatever
+// --threads says, so that the same scene always gives the same tree and therefore the same closest
+// hit on exact ties) and the arena with exactly the requested number of threads, even above the
+// core count (the determinism tests oversubscribe on purpose; TBB would otherwise cap the arena
+// and warn).
+struct OracleSetup {
+    OracleSetup(const Scene& scene, int threads)
+        : device("threads=0"),
+          accel(scene, device),
+          parallelism(tbb::global_control::max_allowed_parallelism, size_t(threads)),
+          arena(threads) {}
+    EmbreeDevice device;
+    const Accel accel;
+    tbb::global_control parallelism;
+    tbb::task_arena arena;
+};
+
+int resolvedThreads(const OracleOptions& options) {
+    return options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+}
+
+// The shadow passes over every light, on a filled SurfaceBuffer. camera: null in points mode.
+void traceShadowPasses(const Scene& scene, const OracleOptions& options, OracleSetup& setup,
+                       const SurfaceBuffer& sb, const Camera* camera, OracleResult& result) {
+    OracleStats& stats = result.stats;
+    const std::unique_ptr<Verifier> verifier =
+        makeVerifier(scene, options, setup.accel.frame(), camera, stats);
+    const LightPass pass{scene,
+                         options,
+                         setup.accel,
+                         sb,
+                         setup.arena,
+                         result.image,
+                         result.image.pixelCount(),
+                         scene.hasEffect("penumbra"),
+                         scene.hasEffect("contact")};
+    traceLights(pass, verifier.get(), stats);
+    describeSetup(scene, options, setup.accel, sb, stats);
+}
+
+}  // namespace
+
 OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     OracleResult result;
     OracleStats& stats = result.stats;
-    stats.threads =
-        options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+    stats.threads = resolvedThreads(options);
     const Camera camera(effectiveCamera(scene, options));
     stats.width = camera.width();
     stats.height = camera.height();
 
-    // The BVH is built with a fixed configuration whatever --threads says, so that the same scene
-    // always gives the same tree and therefore the same closest hit on exact ties.
     auto t0 = Clock::now();
-    EmbreeDevice device("threads=0");
-    const Accel accel(scene, device);
+    OracleSetup setup(scene, stats.threads);
     stats.buildBvhSeconds = secondsSince(t0);
-
-    // Tracing uses exactly the requested number of threads, even above the core count (the
-    // determinism tests oversubscribe on purpose); TBB would otherwise cap the arena and warn.
-    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
-                                    size_t(stats.threads));
-    tbb::task_arena arena(stats.threads);
+    const Accel& accel = setup.accel;
 
     // A band (trace --tile) keeps only its rows; every pass indexes pixels within it.
     const RowBand rows = options.rows.value_or(RowBand{0, camera.height()});
@@ -310,27 +346,46 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     SurfaceBuffer sb;
     {
         Progress progress("primary rays", pixels, options.progress);
-        arena.execute([&] {
+        setup.arena.execute([&] {
             sb = tracePrimary(accel, camera, &progress, options.offsetPolicy, rows.begin, rows.end);
         });
     }
     stats.primarySeconds = secondsSince(t0);
     stats.primaryAlphaTests = sb.alphaTests;
     fillGeometryChannels(sb, accel, result.image);
+    traceShadowPasses(scene, options, setup, sb, &camera, result);
+    return result;
+}
 
-    const std::unique_ptr<Verifier> verifier =
-        makeVerifier(scene, options, accel.frame(), camera, stats);
-    const LightPass pass{scene,
-                         options,
-                         accel,
-                         sb,
-                         arena,
-                         result.image,
-                         pixels,
-                         scene.hasEffect("penumbra"),
-                         scene.hasEffect("contact")};
-    traceLights(pass, verifier.get(), stats);
-    describeSetup(scene, options, accel, sb, stats);
+OracleResult runOracleAtPoints(const Scene& scene, const GBuffer& gbuffer,
+                               const OracleOptions& options) {
+    if (options.width > 0 || options.height > 0)
+        throwInputError("command line", "--width/--height",
+                        "cannot be used with --points (the image is the G-buffer's size)");
+    if (options.rows) throwInputError("command line", "--tile", "cannot be used with --points");
+    SO_CHECK(!options.camera);
+    OracleResult result;
+    OracleStats& stats = result.stats;
+    stats.threads = resolvedThreads(options);
+    stats.width = gbuffer.width;
+    stats.height = gbuffer.height;
+
+    auto t0 = Clock::now();
+    OracleSetup setup(scene, stats.threads);
+    stats.buildBvhSeconds = secondsSince(t0);
+
+    t0 = Clock::now();
+    PointsSurface ps;
+    setup.arena.execute(
+        [&] { ps = surfaceFromPoints(scene, setup.accel, gbuffer, options.offsetPolicy); });
+    stats.primarySeconds = secondsSince(t0);
+    stats.primaryAlphaTests = ps.sb.alphaTests;
+    result.image = ChannelImage(gbuffer.width, gbuffer.height);
+    fillGeometryChannels(ps.sb, setup.accel, result.image);
+    float* status = result.image.addChannel(channels::kPointsStatus);
+    for (size_t i = 0; i < ps.status.size(); ++i) status[i] = float(ps.status[i]);
+    traceShadowPasses(scene, options, setup, ps.sb, nullptr, result);
+    result.points = std::move(ps.stats);
     return result;
 }
 

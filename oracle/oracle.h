@@ -46,10 +46,25 @@ struct OracleOptions {
     std::optional<RowBand> rows;
 };
 
+// What `trace --points` (oracle/points.h) did with the G-buffer's pixels: oracle.json "points".
+struct OraclePointsStats {
+    std::string file;
+    bool replayChannels = false;         // the G-buffer has id.mesh, id.prim, bary.u, bary.v
+    std::string coverageChannel;         // "A" or "coverage"
+    bool depthChannel = false;           // Z copied through
+    uint64_t replayed = 0, snapped = 0;  // covered pixels by route
+    uint64_t offSurface = 0;             // covered, but no surface within the snap tolerance
+    uint64_t background = 0;             // coverage 0
+    uint64_t replayRejected = 0;  // had replay channels that do not fit this scene: snapped instead
+    double wsMaxSnapDistance = 0.0;   // the largest |P - snapped point|, world units
+    double wsMaxSnapTolerance = 0.0;  // the largest snap tolerance used, world units
+};
+
 struct OracleResult {
     ChannelImage image;  // channels as in docs/exr-channels.md; with options.rows, only those rows
     OracleStats stats;   // the oracle.json content that depends on the run (toJson); with
                          // --verify, stats.verify has one LightVerification per light
+    std::optional<OraclePointsStats> points;  // runOracleAtPoints (oracle/points.h) only
 };
 
 // The camera description actually used (options.camera, else the scene camera, with the

@@ -36,7 +36,8 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
     sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
     const LocalFrame& frame = accel.frame();
     sb.lsEye = frame.lsFromWs(camera.wsEye());
-    const glm::vec3 lsEyeF(sb.lsEye);
+    const glm::dvec3 lsEye = *sb.lsEye;
+    const glm::vec3 lsEyeF(lsEye);
 
     // Per-tile-row maxima, reduced in a fixed order afterwards so the result is thread-count
     // independent.
@@ -99,7 +100,7 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                     sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
                     sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
                     sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
-                    sb.wsDepth[s] = float(frame.wsLength(glm::length(p - sb.lsEye)));
+                    sb.wsDepth[s] = float(frame.wsLength(glm::length(p - lsEye)));
                     sb.baryU[s] = rh.hit.u;
                     sb.baryV[s] = rh.hit.v;
                     rowMax = std::max(rowMax, glm::length(glm::dvec3(org) - p));

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -26,7 +27,9 @@ struct SurfaceBuffer {
     int width = 0, height = 0;
     int rowBegin = 0;
     int tilesX = 0, tilesY = 0;
-    glm::dvec3 lsEye{0.0};
+    // The eye, local frame; none when the buffer comes from a G-buffer's points (trace --points,
+    // oracle/points.h): there is no camera then, and verify.cpp skips its primary-ray check.
+    std::optional<glm::dvec3> lsEye;
     // One entry per slot (tilesX * tilesY * 16); slots outside the image have hit = 0.
     std::vector<uint8_t> hit;        // 1 where the primary ray hit
     std::vector<uint32_t> meshId;    // id.mesh (Embree geomID)
@@ -40,7 +43,7 @@ struct SurfaceBuffer {
         lsNormalZ;  // unit geometric normal (from double), facing the camera
     std::vector<float> lsOriginX, lsOriginY,
         lsOriginZ;               // offset origin for rays leaving on the normal's side
-    std::vector<float> wsDepth;  // distance from the eye, world units
+    std::vector<float> wsDepth;  // distance from the eye, world units (points: the G-buffer's Z)
     // Embree's barycentrics of the hit on triangle (meshId, primId): the point is rebuilt from
     // them on the double triangle, so they replay a hit exactly (gbuffer.exr's bary.u, bary.v;
     // trace --points, docs/external.md).

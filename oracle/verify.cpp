@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "core/error.h"
 #include "oracle/area_shadow.h"
 #include "oracle/offset.h"
 #include "oracle/reference_light.h"
@@ -70,12 +71,12 @@ struct Verifier::PixelRef {
     double lsPointGap = 0.0;  // |oracle's hit point - p|: the primary hit's own uncertainty
 };
 
-Verifier::Verifier(const Scene& scene, const LocalFrame& frame, const Camera& camera,
+Verifier::Verifier(const Scene& scene, const LocalFrame& frame, const Camera* camera,
                    const VerifyOptions& options, uint32_t seed)
     : lsPositions_(toLocal(scene, frame)),
       tracer_(views(lsPositions_, scene)),
       frame_(frame),
-      camera_(camera),
+      camera_(camera ? std::optional<Camera>(*camera) : std::nullopt),
       options_(options),
       seed_(seed) {
     for (const MeshPrimitive& m : scene.meshes) indices_.push_back(&m.indices);
@@ -120,8 +121,26 @@ std::vector<size_t> Verifier::choosePixels(const Light& light, uint32_t lightInd
 // different surface (a disagreement unless within the tolerance).
 Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot,
                                     PixelRef& ref, VerifyDisagreement& d) const {
-    const glm::dvec3 lsEye = sb.lsEye;
-    const glm::dvec3 dir = camera_.generateRay(x, y).direction;
+    if (!camera_) {
+        // Points mode: no primary ray. The oracle's triangle and barycentrics on the reference's
+        // own double vertices, the normal oriented as the oracle's (which agrees with the
+        // G-buffer's N).
+        const TriangleId id{sb.meshId[slot], sb.primId[slot]};
+        const std::vector<glm::dvec3>& P = lsPositions_[id.mesh];
+        const std::vector<uint32_t>& I = *indices_[id.mesh];
+        const glm::dvec3 a = P[I[3 * id.prim]], b = P[I[3 * id.prim + 1]],
+                         c = P[I[3 * id.prim + 2]];
+        const double u = sb.baryU[slot], v = sb.baryV[slot];
+        ref.p = (1.0 - u - v) * a + u * b + v * c;
+        ref.n = glm::normalize(glm::cross(b - a, c - a));
+        if (glm::dot(ref.n, glm::dvec3(sb.lsNormal(slot))) < 0.0) ref.n = -ref.n;
+        ref.id = id;
+        ref.lsPointGap = glm::length(glm::dvec3(sb.lsPoint(slot)) - ref.p);
+        return Verdict::Agree;
+    }
+    SO_CHECK(sb.lsEye.has_value());
+    const glm::dvec3 lsEye = *sb.lsEye;
+    const glm::dvec3 dir = camera_->generateRay(x, y).direction;
     const ExactTracer::Hit h = tracer_.closestHit(lsEye, dir, 0.0, kInf);
     const TriangleId oracleId{sb.meshId[slot], sb.primId[slot]};
     if (h.found && sb.hit[slot] && h.id == oracleId) {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,8 +60,11 @@ class Verifier {
   public:
     enum class Verdict { Agree, Ambiguous, Disagree };
 
-    // Builds the reference BVH from the scene's double-precision vertices in `frame`.
-    Verifier(const Scene& scene, const LocalFrame& frame, const Camera& camera,
+    // Builds the reference BVH from the scene's double-precision vertices in `frame`. camera null:
+    // points mode (trace --points, oracle/points.h): there is no primary ray to re-trace, so the
+    // reference takes the oracle's triangle and barycentrics, rebuilds the point on its own double
+    // vertices and checks the shadow rays from there.
+    Verifier(const Scene& scene, const LocalFrame& frame, const Camera* camera,
              const VerifyOptions& options, uint32_t seed);
 
     // V, halfWidth (nullable for hard lights) and spp (nullable) are the oracle's channels.
@@ -96,7 +100,7 @@ class Verifier {
     std::vector<const std::vector<uint32_t>*> indices_;
     ExactTracer tracer_;
     LocalFrame frame_;
-    Camera camera_;
+    std::optional<Camera> camera_;  // none in points mode
     VerifyOptions options_;
     uint32_t seed_;
 };

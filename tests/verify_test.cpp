@@ -117,7 +117,7 @@ struct VerifierRig {
           accel(scene, device),
           camera(effectiveCamera(scene, options)),
           sb(tracePrimary(accel, camera, nullptr)),
-          verifier(scene, accel.frame(), camera, everyPixel(camera), 0) {}
+          verifier(scene, accel.frame(), &camera, everyPixel(camera), 0) {}
     static OracleOptions quietOptions() {
         OracleOptions o;
         o.progress = false;

@@ -1,0 +1,222 @@
+#include "oracle/points.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+
+namespace so {
+
+namespace {
+
+// A hit found for one pixel: the triangle and Embree's barycentrics on it.
+struct PointHit {
+    unsigned mesh = 0, prim = 0;
+    float u = 0.0f, v = 0.0f;
+};
+
+// The replay channels of pixel i, if they name a triangle of this scene and a point inside it.
+bool replayHit(const Scene& scene, const GBuffer& g, size_t i, PointHit& h) {
+    const float m = g.meshId[i], t = g.primId[i], u = g.baryU[i], v = g.baryV[i];
+    if (!(m >= 0.0f && m < float(scene.meshes.size()) && m == std::floor(m))) return false;
+    const MeshPrimitive& mesh = scene.meshes[size_t(m)];
+    if (!(t >= 0.0f && t < float(mesh.indices.size() / 3) && t == std::floor(t))) return false;
+    if (!std::isfinite(u) || !std::isfinite(v)) return false;
+    const double tol = kReplayBaryTolerance;
+    if (u < -tol || v < -tol || double(u) + double(v) > 1.0 + tol) return false;
+    h = {unsigned(m), unsigned(t), u, v};
+    return true;
+}
+
+// The nearer surface along +n or -n from lsP within tol (local frame), or false.
+bool snapHit(const Accel& accel, RTCIntersectContext& ctx, const glm::dvec3& lsP,
+             const glm::dvec3& n, double tol, PointHit& h) {
+    float best = std::numeric_limits<float>::infinity();
+    bool found = false;
+    for (double sign : {1.0, -1.0}) {
+        RTCRayHit rh;
+        rh.ray.org_x = float(lsP.x);
+        rh.ray.org_y = float(lsP.y);
+        rh.ray.org_z = float(lsP.z);
+        rh.ray.dir_x = float(sign * n.x);
+        rh.ray.dir_y = float(sign * n.y);
+        rh.ray.dir_z = float(sign * n.z);
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = float(tol);
+        rh.ray.mask = 0xFFFFFFFFu;  // a zero mask would hit nothing (Embree masks are on)
+        rh.ray.time = 0.0f;
+        rh.ray.flags = 0;
+        rh.ray.id = kNoOriginTriangle;  // leaves from no surface: skip nothing
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(accel.rtcScene(), &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !(rh.ray.tfar < best)) continue;
+        best = rh.ray.tfar;
+        h = {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v};
+        found = true;
+    }
+    return found;
+}
+
+}  // namespace
+
+double snapTolerance(const LocalFrame& frame, const glm::dvec3& wsP) {
+    const double m = std::max({std::fabs(wsP.x), std::fabs(wsP.y), std::fabs(wsP.z)});
+    // One float spacing at m is at most m * 2^-23.
+    return kSnapLsAbs + frame.lsLength(kSnapUlps * std::ldexp(m, -23));
+}
+
+PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GBuffer& g,
+                                OffsetPolicy offsetPolicy) {
+    const size_t pixels = g.pixelCount();
+    for (const std::vector<float>* v :
+         {&g.coverage, &g.wsPX, &g.wsPY, &g.wsPZ, &g.wsNX, &g.wsNY, &g.wsNZ})
+        SO_CHECK_EQ(v->size(), pixels);
+    if (g.hasReplay())
+        for (const std::vector<float>* v : {&g.primId, &g.baryU, &g.baryV})
+            SO_CHECK_EQ(v->size(), pixels);
+    if (!g.depth.empty()) SO_CHECK_EQ(g.depth.size(), pixels);
+    PointsSurface out;
+    SurfaceBuffer& sb = out.sb;
+    sb.width = g.width;
+    sb.height = g.height;
+    sb.rowBegin = 0;
+    sb.tilesX = (sb.width + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
+    sb.tilesY = (sb.height + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
+    const size_t n = size_t(sb.tilesX) * size_t(sb.tilesY) * 16;
+    sb.hit.assign(n, 0);
+    sb.meshId.assign(n, 0);
+    sb.primId.assign(n, 0);
+    sb.originId.assign(n, kNoOriginTriangle);
+    for (auto* v :
+         {&sb.lsPointX, &sb.lsPointY, &sb.lsPointZ, &sb.lsNormalX, &sb.lsNormalY, &sb.lsNormalZ,
+          &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ, &sb.baryU, &sb.baryV})
+        v->assign(n, 0.0f);
+    sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
+    out.status.assign(g.pixelCount(), uint8_t(PointStatus::Background));
+    const LocalFrame& frame = accel.frame();
+
+    // Per-tile-row maxima, reduced in a fixed order afterwards: thread-count independent.
+    struct RowMax {
+        double offset = 0.0, snap = 0.0, tol = 0.0;
+        uint64_t rejected = 0;
+    };
+    std::vector<RowMax> rowMax(size_t(sb.tilesY));
+    std::atomic<uint64_t> alphaTests{0};
+    tbb::parallel_for(tbb::blocked_range<int>(0, sb.tilesY), [&](const tbb::blocked_range<int>& r) {
+        setEmbreeFloatMode();
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        const uint64_t alphaTests0 = Accel::alphaTestsOnThisThread();
+        for (int ty = r.begin(); ty != r.end(); ++ty) {
+            RowMax& row = rowMax[size_t(ty)];
+            for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
+                 s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s) {
+                const size_t pixel = sb.pixelOfSlot(s);
+                if (pixel == SIZE_MAX || !g.covered(pixel)) continue;
+                const glm::dvec3 wsP = g.wsPoint(pixel);
+                const glm::dvec3 lsP = frame.lsFromWs(wsP);
+                const glm::dvec3 wsN = g.wsNormal(pixel);
+                const glm::dvec3 nGiven = wsN / glm::length(wsN);  // same direction in ls
+                const double tol = snapTolerance(frame, wsP);
+                row.tol = std::max(row.tol, tol);
+
+                PointHit h;
+                bool replayed = false;
+                if (g.hasReplay() && replayHit(scene, g, pixel, h)) {
+                    glm::dvec3 a, b, c;
+                    accel.triangle(h.mesh, h.prim, a, b, c);
+                    const double u = h.u, v = h.v;
+                    const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
+                    const double area = glm::length(glm::cross(b - a, c - a));
+                    // The ids must be this scene's: the rebuilt point lies where P says.
+                    replayed = area > 0.0 && glm::length(p - lsP) <= tol;
+                    if (!replayed) ++row.rejected;
+                }
+                if (!replayed && !snapHit(accel, ctx, lsP, nGiven, tol, h)) {
+                    out.status[pixel] = uint8_t(PointStatus::OffSurface);
+                    continue;
+                }
+                out.status[pixel] =
+                    uint8_t(replayed ? PointStatus::Replayed : PointStatus::Snapped);
+                glm::dvec3 a, b, c;
+                accel.triangle(h.mesh, h.prim, a, b, c);
+                const double u = h.u, v = h.v;
+                // As tracePrimary: rebuilt on the double triangle, the unit geometric normal
+                // oriented to agree with the side the renderer shades.
+                const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
+                glm::dvec3 ng = glm::cross(b - a, c - a);
+                ng /= glm::length(ng);  // a hit or replayed triangle has non-zero area
+                if (glm::dot(ng, nGiven) < 0.0) ng = -ng;
+                sb.hit[s] = 1;
+                sb.meshId[s] = h.mesh;
+                sb.primId[s] = h.prim;
+                sb.originId[s] = accel.originId(h.mesh, h.prim);
+                const glm::vec3 pf(p), nf(ng);
+                const glm::vec3 org = offsetPolicy == OffsetPolicy::ErrorBound
+                                          ? errorBoundOrigin(p, ng)
+                                          : offsetRayOrigin(pf, nf);
+                sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
+                sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
+                sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
+                sb.wsDepth[s] =
+                    g.depth.empty() ? std::numeric_limits<float>::quiet_NaN() : g.depth[pixel];
+                sb.baryU[s] = h.u;
+                sb.baryV[s] = h.v;
+                row.offset = std::max(row.offset, glm::length(glm::dvec3(org) - p));
+                if (!replayed) row.snap = std::max(row.snap, glm::length(p - lsP));
+            }
+        }
+        alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;
+    });
+
+    OraclePointsStats& st = out.stats;
+    st.file = g.path;
+    st.replayChannels = g.hasReplay();
+    st.coverageChannel = g.coverageChannel;
+    st.depthChannel = !g.depth.empty();
+    double maxTol = 0.0, maxSnap = 0.0;
+    for (const RowMax& row : rowMax) {
+        sb.lsMaxOffset = std::max(sb.lsMaxOffset, row.offset);
+        maxTol = std::max(maxTol, row.tol);
+        maxSnap = std::max(maxSnap, row.snap);
+        st.replayRejected += row.rejected;
+    }
+    st.wsMaxSnapTolerance = frame.wsLength(maxTol);
+    st.wsMaxSnapDistance = frame.wsLength(maxSnap);
+    for (uint8_t s : out.status) {
+        st.background += s == uint8_t(PointStatus::Background);
+        st.replayed += s == uint8_t(PointStatus::Replayed);
+        st.snapped += s == uint8_t(PointStatus::Snapped);
+        st.offSurface += s == uint8_t(PointStatus::OffSurface);
+    }
+    sb.alphaTests = alphaTests.load();
+    return out;
+}
+
+nlohmann::json toJson(const OraclePointsStats& s) {
+    return {{"file", s.file},
+            {"coverage_channel", s.coverageChannel},
+            {"replay_channels", s.replayChannels},
+            {"depth_channel", s.depthChannel},
+            {"pixels_replayed", s.replayed},
+            {"pixels_snapped", s.snapped},
+            {"pixels_off_surface", s.offSurface},
+            {"pixels_background", s.background},
+            {"replay_rejected", s.replayRejected},
+            {"snap_tolerance",
+             {{"local_abs", kSnapLsAbs},
+              {"float_spacings_of_P", kSnapUlps},
+              {"max_world", s.wsMaxSnapTolerance}}},
+            {"max_snap_distance", s.wsMaxSnapDistance},
+            {"verify_primary", "skipped: no camera in points mode; the shadow rays are re-traced"}};
+}
+
+}  // namespace so
