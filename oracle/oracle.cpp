@@ -21,8 +21,8 @@
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
 #include "oracle/hard_shadow.h"
-#include "oracle/primary_image.h"
 #include "oracle/points.h"
+#include "oracle/primary_image.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {

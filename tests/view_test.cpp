@@ -180,3 +180,39 @@ TEST(View, BadInputExitsTwoWithOneLine) {
 }
 
 }  // namespace
+
+namespace {
+
+// gbuffer.exr of `view` fed back to `trace --points`: every pixel replayed exactly, and every
+// channel of oracle.exr but the points' own identical to a plain trace (hard lights and, with the
+// same seed, sampled area lights bit for bit).
+TEST(View, GbufferBackThroughTracePointsGivesThePlainTrace) {
+    const fs::path out = fs::temp_directory_path() / "so_view_points";
+    for (const char* scene : {"spot_objects.scene.json", "penumbra_square.scene.json"}) {
+        SCOPED_TRACE(scene);
+        const View v = makeView(scene, 64, 48, out / "view");
+        const std::string s = std::string(SO_SCENES_DIR "/") + scene;
+        auto r = run("trace " + s + " --out " + (out / "plain").string() +
+                     " --width 64 --height 48 --quiet");
+        ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+        r = run("trace " + s + " --points " + (out / "view" / "gbuffer.exr").string() + " --out " +
+                (out / "points").string() + " --quiet");
+        ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+        const so::ChannelImage plain = so::readExr((out / "plain" / "oracle.exr").string());
+        const so::ChannelImage points = so::readExr((out / "points" / "oracle.exr").string());
+        size_t compared = 0;
+        for (const std::string& c : plain.names()) {
+            SCOPED_TRACE(c);
+            ASSERT_TRUE(points.has(c));
+            EXPECT_EQ(std::memcmp(plain.channel(c), points.channel(c), plain.pixelCount() * 4), 0);
+            ++compared;
+        }
+        EXPECT_GE(compared, 11u);
+        const float* status = points.channel(so::channels::kPointsStatus);
+        for (size_t i = 0; i < points.pixelCount(); ++i)
+            EXPECT_EQ(status[i], plain.channel(so::channels::kHit)[i] != 0.0f ? 1.0f : 0.0f) << i;
+        fs::remove_all(out);
+    }
+}
+
+}  // namespace
