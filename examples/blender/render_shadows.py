@@ -327,6 +327,10 @@ def make_light(lj, engine, soft):
         ld.cycles.max_bounces = 0
     else:
         ld.use_contact_shadow = False
+        # EEVEE culls a light beyond the distance where its intensity falls under
+        # scene.eevee.light_threshold: that would cut the unshadowed image too (V = 0 there).
+        ld.use_custom_distance = True
+        ld.cutoff_distance = 1.0e6
         if typ == "directional":
             ld.shadow_cascade_count = soft["cascades"]
     ob = bpy.data.objects.new("so_" + name, ld)
@@ -388,6 +392,7 @@ def set_render(engine, opts, w, h):
         e.shadow_cascade_size = str(opts["cascade"])
         e.use_gtao = e.use_ssr = e.use_bloom = e.use_motion_blur = e.use_volumetric_lights = False
         e.gi_diffuse_bounces = 0
+        e.light_threshold = 0.0
         r.filter_size = 0.01  # EEVEE's film filter, in pixels: the pixel centre, as Cycles
 
 
