@@ -370,11 +370,10 @@ TEST(BlenderExternal, CompareGradesTheImages) {
                 images += " --image " + key.substr(name.size() + 1) + "=" + quote(path);
         const fs::path out = workDir() / name / "report";
         fs::remove_all(out);
-        const test::RunResult c = test::run(
-            "compare " + quote(scene(name).string()) + " --width " + std::to_string(kWidth) +
-            " --height " + std::to_string(kHeight) + images +
-            " --image-encoding linear --target-error 0.002 --threads 2 --no-cache --out " +
-            quote(out.string()));
+        const test::RunResult c =
+            test::run("compare " + quote(scene(name).string()) + " --width " +
+                      std::to_string(kWidth) + " --height " + std::to_string(kHeight) + images +
+                      " --target-error 0.002 --threads 2 --no-cache --out " + quote(out.string()));
         ASSERT_EQ(c.exitCode, 0) << c.stderrText;
         const auto rows = readCsv(out / "metrics_wide.csv");
         std::map<std::string, std::map<std::string, std::string>> byKey;

@@ -88,6 +88,6 @@ if [ "$eevee" = 1 ]; then
 fi
 
 echo "== 3. compare" >&2
-"$so" compare "$scene" "${size[@]}" "${images[@]}" --image-encoding linear --out "$out/report" ||
+"$so" compare "$scene" "${size[@]}" "${images[@]}" --out "$out/report" ||
   { echo "grade.sh: error: shadow-oracle compare failed" >&2; exit 1; }
 echo "grade.sh: report in $out/report (report.html, metrics.json, metrics_wide.csv)" >&2

@@ -255,7 +255,7 @@ def frame_from_z(z_axis, x_hint=None):
     return Matrix((x, y, z)).transposed().to_4x4()
 
 
-def make_light(lj, engine, soft):
+def make_light(lj, engine, opts):
     """One Blender light object for a view.json light; returns (object, description)."""
     name = lj.get("name")
     typ = lj.get("type")
@@ -332,7 +332,7 @@ def make_light(lj, engine, soft):
         ld.use_custom_distance = True
         ld.cutoff_distance = 1.0e6
         if typ == "directional":
-            ld.shadow_cascade_count = soft["cascades"]
+            ld.shadow_cascade_count = opts["cascades"]
     ob = bpy.data.objects.new("so_" + name, ld)
     ob.matrix_world = mw
     return ob
@@ -356,7 +356,6 @@ def set_render(engine, opts, w, h):
     scene.view_settings.look = "None"
     scene.view_settings.exposure = 0.0
     scene.view_settings.gamma = 1.0
-    scene.sequencer_colorspace_settings.name = scene.sequencer_colorspace_settings.name
     world = bpy.data.worlds.new("so_black")
     world.use_nodes = True
     bg = world.node_tree.nodes.get("Background")
@@ -467,6 +466,11 @@ def main():
     if len(set(names)) != len(names):
         die("light names are not unique")
     os.makedirs(opts["out"], exist_ok=True)
+    effects = view["scene"].get("effects") or []
+    if "alpha" in effects:
+        sys.stderr.write("render_shadows.py: warning: the scene asks for alpha-tested materials; "
+                         "every surface here is an opaque white Lambert, so they cast solid "
+                         "shadows\n")
 
     clear_scene()
     objects = import_geometry(view)
