@@ -19,6 +19,11 @@ SO_PACKAGES=(
 # oracle is re-traced on; chromium, nodejs and npm run the browser test of the HTML reports
 # (tests/browser, ctest label "browser").
 SO_TEST_PACKAGES=(libcgal-demo chromium nodejs npm)
+# Blender grades its own shadows against the oracle in the external-renderer test (ctest label
+# "external", examples/blender/, docs/external.md): its glTF importer needs numpy, which Debian's
+# blender does not pull in; xvfb and xauth are EEVEE's fallback display. Installed apart, like the
+# fuzz packages, so that test skips, saying why, where they cannot be installed.
+SO_EXTERNAL_PACKAGES=(blender python3-numpy xvfb xauth)
 # clang with libFuzzer builds the fuzz harnesses (scripts/fuzz, docs/fuzzing.md). Installed apart
 # from SO_TEST_PACKAGES so that scripts/test skips fuzzing, rather than failing, where they cannot
 # be installed.
