@@ -15,6 +15,8 @@
 #include "core/camera_path.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/gbuffer.h"
+#include "oracle/points.h"
 #include "raster_compare/compare/report.h"
 #include "raster_compare/compare/tradeoff.h"
 #include "raster_compare/gl/gl_context.h"
@@ -22,6 +24,17 @@
 namespace so {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// The label made safe for file names: letters, digits, '-' and '.' kept, anything else '_'.
+std::string fileLabelOf(const std::string& label) {
+    std::string out;
+    for (char c : label) out += (std::isalnum((unsigned char)c) || c == '-' || c == '.') ? c : '_';
+    return out;
+}
+
+}  // namespace
 
 TechniqueSpec parseTechniqueSpec(const std::string& spec) {
     TechniqueSpec t;
@@ -43,9 +56,20 @@ TechniqueSpec parseTechniqueSpec(const std::string& spec) {
             start = comma + 1;
         }
     }
-    for (char c : spec)
-        t.fileLabel += (std::isalnum((unsigned char)c) || c == '-' || c == '.') ? c : '_';
+    t.fileLabel = fileLabelOf(spec);
     return t;
+}
+
+ImageSpec parseImageSpec(const std::string& text) {
+    const auto eq = text.find('=');
+    ImageSpec spec;
+    spec.label = text.substr(0, std::min(eq, text.size()));
+    spec.path = eq == std::string::npos ? "" : text.substr(eq + 1);
+    if (spec.label.empty() || spec.path.empty())
+        throwInputError("command line", "--image",
+                        "\"" + printable(text, 60) + "\" is not LABEL=PATH");
+    spec.fileLabel = fileLabelOf(spec.label);
+    return spec;
 }
 
 namespace {
@@ -61,7 +85,7 @@ struct CompareJob {
     const CompareOptions& options;
     const Scene& scene;
     const CachedOracle& oracle;
-    const GlContext& gl;
+    const GlContext* gl;  // null when only images are compared: no GL needed
     MetricOptions metricOptions;
     fs::path out;
     std::ofstream csv;
@@ -76,8 +100,9 @@ struct CompareJob {
 // Several light passes (none today) add up (core/timing.h).
 TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSeconds) {
     TechniqueCost cost;
+    cost.visibilityMs = cost.shadowMapMs = TimingStats{};
     for (const auto& [pass, t] : stats.lights[li].passMs)
-        (pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs) += t;
+        *(pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs) += t;
     cost.frameMs = stats.timings.wallMs;
     cost.cameraMs = stats.timings.cameraMs;
     cost.memoryBytes = stats.lights[li].memoryBytes;
@@ -87,22 +112,20 @@ TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSe
 
 // The long form (a row per metric) and a row of the wide form.
 // `row`: the light's row of metrics.json.
-void writeCsvRows(CompareJob& job, const TechniqueRun& run, const std::string& light,
-                  const nlohmann::json& row) {
+void writeCsvRows(CompareJob& job, const std::string& technique, const std::string& label,
+                  const std::vector<std::pair<std::string, nlohmann::json>>& params,
+                  const std::string& light, const nlohmann::json& row) {
     const std::vector<std::pair<std::string, nlohmann::json>> rows = flatMetrics(row);
-    const TechniqueSpec& spec = run.spec;
     std::vector<std::pair<std::string, std::string>> wide = {{"scene", job.options.scenePath},
                                                              {"light", light},
-                                                             {"technique", spec.name},
-                                                             {"label", spec.label}};
-    const nlohmann::json params = toJson(run.technique->values().settings());
-    for (const auto& [name, value] : params.items())
-        wide.emplace_back("param." + name, value.dump());
+                                                             {"technique", technique},
+                                                             {"label", label}};
+    for (const auto& [name, value] : params) wide.emplace_back("param." + name, value.dump());
     for (const auto& [metric, value] : rows) {
         const std::string text = value.is_null() ? "" : value.dump();
         job.csv << csvField(job.options.scenePath) << ',' << csvField(light) << ','
-                << csvField(spec.name) << ',' << csvField(spec.label) << ',' << metric << ','
-                << text << "\n";
+                << csvField(technique) << ',' << csvField(label) << ',' << metric << ',' << text
+                << "\n";
         wide.emplace_back(metric, text);
     }
     job.wide.add(wide);
@@ -178,6 +201,9 @@ ReportTechnique compareTechnique(CompareJob& job, size_t index, const TechniqueR
                       key.c_str(), value);
         rt.parameters += text;
     }
+    const nlohmann::json settings = toJson(run.technique->values().settings());
+    std::vector<std::pair<std::string, nlohmann::json>> params;
+    for (const auto& [name, value] : settings.items()) params.emplace_back(name, value);
     nlohmann::json lights = nlohmann::json::object();
     for (size_t li = 0; li < job.scene.lights.size(); ++li) {
         LightComparison lc;
@@ -190,19 +216,108 @@ ReportTechnique compareTechnique(CompareJob& job, size_t index, const TechniqueR
             lc.cost.oracleMsAtEqualError =
                 oracleMsAtError(job.oracleCurves[li], *lc.metrics.penumbraMae);
         lights[lc.light] = lc.toJson();
-        writeCsvRows(job, run, lc.light, lights[lc.light]);
+        writeCsvRows(job, run.spec.name, run.spec.label, params, lc.light, lights[lc.light]);
         rt.lights.push_back(std::move(lc));
     }
     if (job.options.writeImages)
         writeErrorExr(job.out / ("error_" + run.spec.fileLabel + ".exr"), rt.lights,
                       r.image.width(), r.image.height());
     rt.image = std::move(r.image);
-    row = {{"technique", run.spec.name},
+    row = {{"source", "technique"},
+           {"technique", run.spec.name},
            {"family", rt.family},
            {"label", run.spec.label},
            {"parameters", toJson(run.technique->values().settings())},
            {"timings", toJson(r.stats.timings)},
            {"lights", lights}};
+    return rt;
+}
+
+// A renderer's image (compare --image), read and validated before any work starts.
+struct ImageRun {
+    ImageSpec spec;
+    VisibilityImage image;
+};
+
+// What the renderer drew, as the metrics take a technique's render: the oracle's geometry channels
+// (the renderer drew the same view: no pixel can be on a different surface) and its V per light.
+ChannelImage asRasterImage(const ImageRun& run, const ChannelImage& oracle,
+                           const std::vector<Light>& lights) {
+    ChannelImage img(oracle.width(), oracle.height());
+    for (const char* c :
+         {channels::kHit, channels::kPX, channels::kPY, channels::kPZ, channels::kNX, channels::kNY,
+          channels::kNZ, channels::kDepth, channels::kMeshId, channels::kPrimId})
+        std::copy_n(oracle.channel(c), oracle.pixelCount(), img.addChannel(c));
+    for (size_t li = 0; li < lights.size(); ++li)
+        std::copy(run.image.v[li].begin(), run.image.v[li].end(),
+                  img.addChannel(channels::lightChannel(lights[li].name, channels::kVisibility)));
+    return img;
+}
+
+// The cost file's figures (absent ones stay unknown); frame_ms is also the camera-free frame.
+TechniqueCost imageCost(const ImageRun& run, double oracleSeconds) {
+    TechniqueCost cost;
+    cost.quartiles = false;
+    cost.oracleSeconds = oracleSeconds;
+    if (!run.image.cost) return cost;
+    const ExternalCost& c = *run.image.cost;
+    const auto timing = [](std::optional<double> ms) {
+        return ms ? std::optional(TimingStats{*ms, *ms, *ms}) : std::nullopt;
+    };
+    cost.frameMs = timing(c.frameMs);
+    cost.shadowMapMs = timing(c.shadowMs);
+    cost.memoryBytes = c.memoryBytes;
+    return cost;
+}
+
+// One image measured against the oracle per light, as compareTechnique does for a render.
+ReportTechnique compareImage(CompareJob& job, const ImageRun& run, nlohmann::json& row) {
+    const fs::path dir = job.out / run.spec.fileLabel;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    ChannelImage image = asRasterImage(run, job.oracle.image, job.scene.lights);
+    const std::string renderer = run.image.cost ? run.image.cost->renderer : "";
+    const nlohmann::json params =
+        run.image.cost ? run.image.cost->params : nlohmann::json::object();
+    if (job.options.writeImages)
+        writeExr(
+            (dir / "raster.exr").string(), image,
+            {{"shadowOracle/technique", run.spec.label}, {"shadowOracle/image", run.spec.path}});
+    writeJsonFile(dir / "raster.json", {{"source", "external"},
+                                        {"image", run.spec.path},
+                                        {"renderer", renderer},
+                                        {"params", params}});
+    job.metricOptions.filteredTechnique = false;
+    ReportTechnique rt;
+    rt.label = run.spec.label;
+    rt.family = "external";
+    rt.curve = "external " + run.spec.label;  // no quality parameter: a point of its own
+    rt.fileLabel = run.spec.fileLabel;
+    rt.parameters = renderer.empty() ? "image " + run.spec.path : renderer;
+    for (const auto& [key, value] : params.items()) rt.parameters += " " + key + "=" + value.dump();
+    std::vector<std::pair<std::string, nlohmann::json>> csvParams;
+    for (const auto& [key, value] : params.items()) csvParams.emplace_back(key, value);
+    nlohmann::json lights = nlohmann::json::object();
+    for (size_t li = 0; li < job.scene.lights.size(); ++li) {
+        LightComparison lc;
+        lc.light = job.scene.lights[li].name;
+        lc.metrics =
+            computeLightMetrics(job.oracle.image, image, lc.light, job.metricOptions, &lc.maps);
+        lc.cost = imageCost(run, job.oracle.stats.lights[li].seconds());
+        if (lc.metrics.penumbraMae)
+            lc.cost.oracleMsAtEqualError =
+                oracleMsAtError(job.oracleCurves[li], *lc.metrics.penumbraMae);
+        lights[lc.light] = lc.toJson();
+        writeCsvRows(job, "external", run.spec.label, csvParams, lc.light, lights[lc.light]);
+        rt.lights.push_back(std::move(lc));
+    }
+    if (job.options.writeImages)
+        writeErrorExr(job.out / ("error_" + run.spec.fileLabel + ".exr"), rt.lights, image.width(),
+                      image.height());
+    rt.image = std::move(image);
+    row = {{"source", "external"},    {"technique", "external"}, {"family", "external"},
+           {"label", run.spec.label}, {"image", run.spec.path},  {"renderer", renderer},
+           {"parameters", params},    {"timings", nullptr},      {"lights", lights}};
     return rt;
 }
 
@@ -223,7 +338,7 @@ void renderAll(CompareJob& job, const std::vector<TechniqueRun>& runs, ReportInp
     const auto done = [&](size_t i, RasterResult&& r) {
         report.techniques[i] = compareTechnique(job, i, runs[i], std::move(r), results[i]);
     };
-    renderInterleaved(job.scene, techniques, job.options.raster, job.gl, {groupStarts, done});
+    renderInterleaved(job.scene, techniques, job.options.raster, *job.gl, {groupStarts, done});
 }
 
 nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results) {
@@ -231,20 +346,22 @@ nlohmann::json metricsJson(const CompareJob& job, const nlohmann::json& results)
     nlohmann::json options = {{"boundary_radius_px", job.options.boundaryRadius},
                               {"contact_threshold", job.metricOptions.contactThreshold}};
     if (job.path) options["frames_path"] = job.path->frames;
-    return {{"schema_version", 4},
-            {"tool", toolJson()},
-            {"scene",
-             {{"file", job.options.scenePath},
-              {"hash", scene.contentHash},
-              {"extent", scene.wsBounds.extent()},
-              {"effects", scene.effects}}},
-            {"options", options},
-            {"oracle",
-             {{"cached", job.oracle.fromCache},
-              {"key", job.oracle.key},
-              {"stats", toJson(job.oracle.stats)}}},
-            {"gl", toJson(GlInfo{job.gl.renderer(), job.gl.version(), job.gl.platform()})},
-            {"results", results}};
+    return {
+        {"schema_version", kMetricsSchemaVersion},
+        {"tool", toolJson()},
+        {"scene",
+         {{"file", job.options.scenePath},
+          {"hash", scene.contentHash},
+          {"extent", scene.wsBounds.extent()},
+          {"effects", scene.effects}}},
+        {"options", options},
+        {"oracle",
+         {{"cached", job.oracle.fromCache},
+          {"key", job.oracle.key},
+          {"stats", toJson(job.oracle.stats)}}},
+        {"gl", job.gl ? toJson(GlInfo{job.gl->renderer(), job.gl->version(), job.gl->platform()})
+                      : nlohmann::json(nullptr)},
+        {"results", results}};
 }
 
 // --verify: the oracle re-traced independently (docs/oracle.md#verification); a ground truth that
@@ -257,7 +374,7 @@ std::vector<std::pair<std::string, std::string>> provenance(const nlohmann::json
     char date[32];
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
     const auto& tool = metrics["tool"];
-    const auto& gl = metrics["gl"];
+    const nlohmann::json gl = metrics["gl"].is_object() ? metrics["gl"] : nlohmann::json::object();
     char sampling[160];
     std::snprintf(sampling, sizeof sampling,
                   "target error %g, agreement target %g, max spp %d, fixed spp %d, seed %u",
@@ -288,16 +405,90 @@ int verifyExitCode(const CompareOptions& options, const OracleStats& stats) {
     return 3;
 }
 
-}  // namespace
-
-int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut) {
-    // Everything the user can get wrong is checked before any work starts.
+// Techniques and images as the user named them, each created or read (so validated) before any
+// work starts; a label used twice is refused, since rows are told apart by it.
+std::vector<TechniqueRun> createTechniques(const CompareOptions& options) {
     std::vector<TechniqueRun> runs;
     for (const std::string& s : options.techniques) {
         TechniqueSpec spec = parseTechniqueSpec(s);
         std::unique_ptr<Technique> technique = createTechnique(spec.name, spec.settings);
         runs.push_back({std::move(spec), std::move(technique)});
     }
+    return runs;
+}
+
+std::vector<ImageSpec> parseImages(const CompareOptions& options,
+                                   const std::vector<TechniqueRun>& runs) {
+    if (runs.empty() && options.images.empty())
+        throwInputError("command line", "--technique",
+                        "nothing to compare: give --technique NAME or --image LABEL=PATH");
+    std::set<std::string> labels, fileLabels;
+    for (const TechniqueRun& r : runs) fileLabels.insert(r.spec.fileLabel);
+    std::vector<ImageSpec> specs;
+    for (const std::string& text : options.images) {
+        ImageSpec spec = parseImageSpec(text);
+        if (!labels.insert(spec.label).second || !fileLabels.insert(spec.fileLabel).second)
+            throwInputError("command line", "--image",
+                            "label \"" + printable(spec.label, 60) +
+                                "\" is used twice (or names the same folder as another row)");
+        specs.push_back(std::move(spec));
+    }
+    if (!options.pointsPath.empty()) {
+        if (!runs.empty())
+            throwInputError("command line", "--points",
+                            "judges images only: the built-in techniques render the scene's "
+                            "camera, not the G-buffer's pixels (drop --technique)");
+        if (options.raster.width > 0 || options.raster.height > 0)
+            throwInputError("command line", "--points",
+                            "the image is the G-buffer's size: drop --width and --height");
+    }
+    if (options.pathFrames > 0 && !specs.empty())
+        throwInputError("command line", "--frames-path",
+                        "an image is one frame: --frames-path works with --technique only");
+    return specs;
+}
+
+// The oracle: at the G-buffer's points (never cached: the cache is keyed by a camera), or from the
+// cache when the same scene content and options were traced before.
+CachedOracle oracleFor(const CompareOptions& options, const Scene& scene,
+                       const OracleOptions& oracleOptions, const GBuffer* points) {
+    if (!points) return traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+    OracleResult r = runOracleAtPoints(scene, *points, oracleOptions);
+    return {std::move(r.image), std::move(r.stats), false, "points " + points->path};
+}
+
+// --frames-path: every technique along the scene's camera path (compare_path.h).
+void measureFlicker(CompareJob& job, const std::vector<TechniqueRun>& runs,
+                    const OracleOptions& oracleOptions, ReportInput& report) {
+    std::vector<const Technique*> techniques;
+    std::vector<std::string> labels;
+    for (const TechniqueRun& run : runs) {
+        techniques.push_back(run.technique.get());
+        labels.push_back(run.spec.label);
+    }
+    const CompareOptions& o = job.options;
+    job.path = measurePathFlicker(job.scene, techniques, labels, oracleOptions,
+                                  {o.cacheDir, o.useCache}, o.raster, *job.gl, o.pathFrames);
+    report.pathFrames = o.pathFrames;
+    report.flickerStrips = std::move(job.path->strips);
+}
+
+void writeReportFile(const CompareJob& job, ReportInput& report, const nlohmann::json& metrics,
+                     const OracleOptions& oracleOptions) {
+    report.oracle = job.oracle.image;
+    report.timedOn = job.gl ? job.gl->renderer() : "";
+    report.oracleCurves = job.oracleCurves;
+    report.embedImages = job.options.embedImages;
+    report.provenance = provenance(metrics, job.oracle, oracleOptions);
+    writeReport((job.out / "report.html").string(), report);
+}
+
+}  // namespace
+
+int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut) {
+    // Everything the user can get wrong is checked before any work starts.
+    std::vector<TechniqueRun> runs = createTechniques(options);
+    const std::vector<ImageSpec> imageSpecs = parseImages(options, runs);
     const Scene scene = loadScene(options.scenePath);
     printSceneWarnings(options.scenePath, scene);
     if (options.pathFrames > 0 && !scene.cameraPath)
@@ -307,21 +498,32 @@ int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut)
     // Degenerate interpolated poses are input errors too: found before any work.
     if (options.pathFrames > 0)
         sampleCameraPath(*scene.cameraPath, scene.camera, options.pathFrames);
-    const fs::path out = makeOutputDir(options.outDir);
-
-    // The oracle, from the cache when the same scene content and options were traced before.
     OracleOptions oracleOptions = options.oracle;
     if (options.raster.width > 0) oracleOptions.width = options.raster.width;
     if (options.raster.height > 0) oracleOptions.height = options.raster.height;
+    std::optional<GBuffer> points;
+    if (!options.pointsPath.empty()) points = readGBuffer(options.pointsPath);
+    const CameraDesc camera = effectiveCamera(scene, oracleOptions);
+    const int width = points ? points->width : camera.width,
+              height = points ? points->height : camera.height;
+    std::vector<ImageRun> images;
+    for (const ImageSpec& spec : imageSpecs)
+        images.push_back({spec, readVisibilityImage(spec.path, scene.lights, width, height,
+                                                    options.imageEncoding)});
+    const fs::path out = makeOutputDir(options.outDir);
+
     const CachedOracle oracle =
-        traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+        oracleFor(options, scene, oracleOptions, points ? &*points : nullptr);
     if (options.writeReport)
         writeExr((out / "oracle.exr").string(), oracle.image,
                  {{"shadowOracle/sceneHash", scene.contentHash}});
 
-    GlContext gl;
-    CompareJob job{options, scene, oracle, gl, {}, out, std::ofstream(out / "metrics.csv"),
-                   {},      {},    {}};
+    // GL only where something renders: images alone are judged without it.
+    std::optional<GlContext> gl;
+    if (!runs.empty()) gl.emplace();
+    CompareJob job{
+        options, scene, oracle, gl ? &*gl : nullptr, {}, out, std::ofstream(out / "metrics.csv"),
+        {},      {},    {}};
     for (const OracleLightStats& l : oracle.stats.lights)
         job.oracleCurves.push_back(oraclePenumbraCurve(l));
     job.metricOptions.boundaryRadius = options.boundaryRadius;
@@ -330,37 +532,26 @@ int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut)
     ReportInput report;
     report.sceneFile = options.scenePath;
     for (const Light& l : scene.lights) report.lights.push_back(l.name);
-    if (options.pathFrames > 0) {
-        std::vector<const Technique*> techniques;
-        std::vector<std::string> labels;
-        for (const TechniqueRun& run : runs) {
-            techniques.push_back(run.technique.get());
-            labels.push_back(run.spec.label);
-        }
-        job.path = measurePathFlicker(scene, techniques, labels, oracleOptions,
-                                      {options.cacheDir, options.useCache}, options.raster, gl,
-                                      options.pathFrames);
-        report.pathFrames = options.pathFrames;
-        report.flickerStrips = std::move(job.path->strips);
-    }
+    if (options.pathFrames > 0) measureFlicker(job, runs, oracleOptions, report);
     nlohmann::json results = nlohmann::json::array();
-    renderAll(job, runs, report, results);
+    if (!runs.empty()) renderAll(job, runs, report, results);
+    for (const ImageRun& image : images) {
+        results.push_back(nullptr);
+        report.techniques.push_back(compareImage(job, image, results.back()));
+    }
 
     const nlohmann::json metrics = metricsJson(job, results);
     writeJsonFile(out / "metrics.json", metrics);
     job.wide.write(out / "metrics_wide.csv");
-    if (options.writeReport) {
-        report.oracle = oracle.image;
-        report.timedOn = gl.renderer();
-        report.oracleCurves = job.oracleCurves;
-        report.embedImages = options.embedImages;
-        report.provenance = provenance(metrics, oracle, oracleOptions);
-        writeReport((out / "report.html").string(), report);
-    }
-    std::cout << "compared " << options.scenePath << ": " << runs.size() << " techniques, oracle "
-              << (oracle.fromCache ? "from the cache" : "traced") << "\n  "
-              << (out / "metrics.json").string() << "\n  " << (out / "metrics.csv").string()
-              << "\n  " << (out / "metrics_wide.csv").string() << "\n";
+    if (options.writeReport) writeReportFile(job, report, metrics, oracleOptions);
+    std::cout << "compared " << options.scenePath << ": " << runs.size() << " techniques, "
+              << images.size() << " images, oracle "
+              << (points             ? "at the G-buffer's points"
+                  : oracle.fromCache ? "from the cache"
+                                     : "traced")
+              << "\n  " << (out / "metrics.json").string() << "\n  "
+              << (out / "metrics.csv").string() << "\n  " << (out / "metrics_wide.csv").string()
+              << "\n";
     if (metricsOut) *metricsOut = metrics;
     return verifyExitCode(options, oracle.stats);
 }

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "raster_compare/gl/renderer.h"
 
@@ -23,10 +24,24 @@ struct TechniqueSpec {
 // "name[:key=value,...]"; throws InputError on an empty name.
 TechniqueSpec parseTechniqueSpec(const std::string& spec);
 
+// `--image LABEL=PATH`: a renderer's image judged like a technique (docs/external.md).
+struct ImageSpec {
+    std::string label;      // as given; the row's label
+    std::string fileLabel;  // made safe for file names, as TechniqueSpec's
+    std::string path;
+};
+// Splits at the first '='; throws InputError naming --image on an empty label or path.
+ImageSpec parseImageSpec(const std::string& text);
+
 struct CompareOptions {
     std::string scenePath;
     std::string outDir;
     std::vector<std::string> techniques;
+    std::vector<std::string> images;  // LABEL=PATH
+    ImageEncoding imageEncoding = ImageEncoding::Linear;
+    // --points GBUFFER.exr: the oracle at a renderer's own G-buffer points (trace --points) instead
+    // of the scene camera's pixels; images only, the G-buffer's size.
+    std::string pointsPath;
     OracleOptions oracle;
     RasterOptions raster;
     std::filesystem::path cacheDir;  // empty: defaultOracleCacheDir()

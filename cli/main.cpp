@@ -157,8 +157,17 @@ static Runner addCompare(CLI::App& app) {
         "compare", "the oracle against techniques: metrics.json, metrics.csv, error EXRs");
     compareCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     compareCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
-    compareCmd->add_option("--technique", o->techniques, "NAME[:key=value,...] (repeatable)")
-        ->required();
+    compareCmd->add_option("--technique", o->techniques, "NAME[:key=value,...] (repeatable)");
+    compareCmd->add_option("--image", o->images,
+                           "LABEL=PATH: a renderer's shadow image (EXR with NAME.V per light, or "
+                           "a grey PNG), judged like a technique; PATH.json beside it gives its "
+                           "cost (repeatable; docs/external.md)");
+    auto encoding = std::make_shared<std::string>("linear");
+    compareCmd->add_option("--image-encoding", *encoding,
+                           "how a PNG's codes are V: linear (V = code / max, default) or srgb");
+    compareCmd->add_option("--points", o->pointsPath,
+                           "GBUFFER.exr: the oracle at a renderer's own G-buffer points instead of "
+                           "the scene camera's pixels (with --image only; trace --points)");
     addImageSize(compareCmd, o->raster.width, o->raster.height);
     compareCmd
         ->add_option(
@@ -197,8 +206,9 @@ static Runner addCompare(CLI::App& app) {
                      "technique) for temporal_flicker_rate (docs/metrics.md)")
         ->check(CLI::Range(2, 10000));
 
-    return [o, noCache] {
+    return [o, noCache, encoding] {
         o->useCache = !*noCache;
+        o->imageEncoding = so::parseImageEncoding(*encoding, "--image-encoding");
         o->oracle.progress = false;
         return so::runCompareCommand(*o);
     };

@@ -183,7 +183,7 @@ int runSweepMerge(const SweepMergeOptions& options) {
     }
     writeFileAtomically(dir / "metrics.csv", t.csv.str());
     writeFileAtomically(dir / "metrics_wide.csv", t.wide.text());
-    const nlohmann::json metrics = {{"schema_version", 4},
+    const nlohmann::json metrics = {{"schema_version", kMetricsSchemaVersion},
                                     {"sweep_format", kSweepFormat},
                                     {"tool", toolJson()},
                                     {"sweep", {{"name", plan.name}, {"spec_file", plan.specFile}}},

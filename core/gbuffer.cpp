@@ -51,7 +51,10 @@ void checkPixels(const GBuffer& g) {
 // the file must be single-part and flat, and the data window, equal to the display window, must
 // fit the limits. Layout: magic, version, then (name NUL, type NUL, int32 size, value) until an
 // empty name.
-void checkHeader(const std::string& path, const LoadLimits& limits) {
+
+}  // namespace
+
+void checkExrHeader(const std::string& path, const LoadLimits& limits) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throwInputError(path, "", "cannot open");
     in.seekg(0, std::ios::end);
@@ -163,12 +166,10 @@ void checkHeader(const std::string& path, const LoadLimits& limits) {
                             std::to_string(limits.maxImagePixels) + " pixels)");
 }
 
-}  // namespace
-
 GBuffer readGBuffer(const std::string& path, const LoadLimits& limits) {
     GBuffer g;
     g.path = path;
-    checkHeader(path, limits);
+    checkExrHeader(path, limits);
     try {
         Imf::InputFile file(path.c_str());
         const Imf::Header& header = file.header();

@@ -41,4 +41,10 @@ struct GBuffer {
 // is bounded by the pixel limit.
 GBuffer readGBuffer(const std::string& path, const LoadLimits& limits = {});
 
+// The checks every reader of a user's EXR makes before OpenEXR opens it (OpenEXR 3.1 allocates
+// what a header declares before any check of ours): a header walk in which every length fits the
+// file, a single-part flat image whose data window equals its display window and fits
+// limits.maxImageSide and limits.maxImagePixels. Throws InputError naming the file and field.
+void checkExrHeader(const std::string& path, const LoadLimits& limits = {});
+
 }  // namespace so

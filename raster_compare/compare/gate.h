@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raster_compare/compare/metrics.h"
+
 namespace so {
 
 struct GateCheck {
@@ -25,7 +27,7 @@ std::vector<GateCheck> evaluateGate(const nlohmann::json& metrics, const std::st
                                     const nlohmann::json& limits, const std::string& limitsPath);
 
 // The newest metrics.json schema_version the gate reads (it reads 1 to this).
-constexpr int kMaxMetricsSchema = 5;
+constexpr int kMaxMetricsSchema = kMetricsSchemaVersion;
 
 // Checks the shape of a metrics.json before it is read (schema_version, results[].lights{} of
 // metric objects); throws InputError naming the file and field.

@@ -301,9 +301,9 @@ void writeIntro(std::ostream& o, const std::vector<IndexEntry>& entries) {
 SceneMetrics parseSceneMetrics(const json& metrics, const std::string& path) {
     if (!metrics.is_object()) throwInputError(path, "", "expected a JSON object (metrics.json)");
     const auto version = metrics.find("schema_version");
-    // 1 to 4 keep the names read here (docs/metrics.md, Versions); a later one may not.
-    if (version == metrics.end() || !version->is_number_integer() || *version < 1 || *version > 4)
-        throwInputError(path, "schema_version", "not a metrics.json of schema_version 1 to 4");
+    // 1 to 5 keep the names read here (docs/metrics.md, Versions); a later one may not.
+    if (version == metrics.end() || !version->is_number_integer() || *version < 1 || *version > 5)
+        throwInputError(path, "schema_version", "not a metrics.json of schema_version 1 to 5");
     SceneMetrics out;
     out.path = path;
     out.schemaVersion = version->get<int>();

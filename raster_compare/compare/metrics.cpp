@@ -365,7 +365,7 @@ std::vector<std::pair<std::string, nlohmann::json>> flatMetrics(const nlohmann::
 
 nlohmann::json TechniqueCost::toJson() const {
     nlohmann::json j = {
-        {"memory_bytes", memoryBytes},
+        {"memory_bytes", memoryBytes ? nlohmann::json(*memoryBytes) : nlohmann::json(nullptr)},
         {"oracle_seconds", oracleSeconds},
         {"oracle_ms_at_equal_error",
          oracleMsAtEqualError ? nlohmann::json(*oracleMsAtEqualError) : nlohmann::json(nullptr)},
@@ -373,9 +373,10 @@ nlohmann::json TechniqueCost::toJson() const {
     for (const auto& [key, t] :
          {std::pair{"shadow_map", shadowMapMs}, std::pair{"visibility", visibilityMs},
           std::pair{"camera", cameraMs}, std::pair{"frame", frameMs}}) {
-        j[std::string(key) + "_ms"] = t.median;
-        j[std::string(key) + "_ms_p25"] = t.p25;
-        j[std::string(key) + "_ms_p75"] = t.p75;
+        const bool q = t && quartiles;
+        j[std::string(key) + "_ms"] = t ? nlohmann::json(t->median) : nlohmann::json(nullptr);
+        j[std::string(key) + "_ms_p25"] = q ? nlohmann::json(t->p25) : nlohmann::json(nullptr);
+        j[std::string(key) + "_ms_p75"] = q ? nlohmann::json(t->p75) : nlohmann::json(nullptr);
     }
     return j;
 }

@@ -18,6 +18,10 @@
 
 namespace so {
 
+// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 5 adds
+// rows of external images (compare --image), whose costs may be null.
+inline constexpr int kMetricsSchemaVersion = 5;
+
 struct MetricOptions {
     int boundaryRadius = 2;  // r: pixels from an oracle shadow boundary
     double contactThreshold =
@@ -72,17 +76,26 @@ struct ErrorMaps {
 };
 
 // What a technique's shadows cost, beside its metrics in every row of metrics.json.
+// An external image's (compare --image) are what its cost file says, each possibly unknown:
+// null in metrics.json and empty in the tables, never 0.
 struct TechniqueCost {
-    TimingStats shadowMapMs, visibilityMs, frameMs;  // over the timed frames
-    TimingStats cameraMs;        // the camera pass (shared by the lights: the same in each row)
-    uint64_t memoryBytes = 0;    // GL memory the technique holds for this light
+    std::optional<TimingStats> shadowMapMs, visibilityMs, frameMs;  // over the timed frames
+    // The camera pass (shared by the lights: the same in each row).
+    std::optional<TimingStats> cameraMs;
+    std::optional<uint64_t> memoryBytes;  // GL memory the technique holds for this light
+    // An external image's times are one figure each, not a median of frames: no quartiles.
+    bool quartiles = true;
     double oracleSeconds = 0.0;  // what the ground truth of this light cost
     // Sampled area lights: the oracle's time until its penumbra's mean stated 95% half-width came
     // down to this technique's penumbra_mae (tradeoff.h); none for hard lights, or when its run
     // ended above it.
     std::optional<double> oracleMsAtEqualError;
     // A spread above 20% of the median in any of the three times (TimingStats::noisy).
-    bool noisy() const { return shadowMapMs.noisy() || visibilityMs.noisy() || frameMs.noisy(); }
+    bool noisy() const {
+        for (const auto* t : {&shadowMapMs, &visibilityMs, &frameMs})
+            if (quartiles && *t && (*t)->noisy()) return true;
+        return false;
+    }
     nlohmann::json toJson() const;
 };
 

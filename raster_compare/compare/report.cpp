@@ -72,6 +72,10 @@ struct Column {
     bool inSummary = true;
 };
 
+std::optional<double> median(const std::optional<TimingStats>& t) {
+    return t ? std::optional(t->median) : std::nullopt;
+}
+
 const std::vector<Column>& columns() {
     using L = const LightComparison&;
     static const std::vector<Column> cols = {
@@ -110,16 +114,19 @@ const std::vector<Column>& columns() {
         {"false_lit_rate", "false lit", "share of counted pixels that are false lit",
          Format::Percent, [](L l) { return std::optional(l.metrics.falseLitRate); }, false},
         {"cost.frame_ms", "frame ms", "median frame time: the light's passes and the camera pass",
-         Format::Ms, [](L l) { return std::optional(l.cost.frameMs.median); }},
+         Format::Ms, [](L l) { return median(l.cost.frameMs); }},
         {"cost.shadow_map_ms", "shadow pass ms",
          "median of the light's passes before the visibility pass (the map, the volumes)",
-         Format::Ms, [](L l) { return std::optional(l.cost.shadowMapMs.median); }},
+         Format::Ms, [](L l) { return median(l.cost.shadowMapMs); }},
         {"cost.visibility_ms", "visibility ms", "median of the visibility pass", Format::Ms,
-         [](L l) { return std::optional(l.cost.visibilityMs.median); }},
+         [](L l) { return median(l.cost.visibilityMs); }},
         {"cost.camera_ms", "camera ms", "median of the camera pass, shared by the lights",
-         Format::Ms, [](L l) { return std::optional(l.cost.cameraMs.median); }},
+         Format::Ms, [](L l) { return median(l.cost.cameraMs); }},
         {"cost.memory_bytes", "memory MiB", "GL memory the technique holds for the light",
-         Format::MiB, [](L l) { return std::optional(double(l.cost.memoryBytes)); }},
+         Format::MiB,
+         [](L l) {
+             return l.cost.memoryBytes ? std::optional(double(*l.cost.memoryBytes)) : std::nullopt;
+         }},
         {"cost.oracle_ms_at_equal_error", "oracle ms at same error",
          "the oracle's time until its penumbra's 95% half-width came down to this penumbra mae",
          Format::Ms, [](L l) { return l.cost.oracleMsAtEqualError; }, false},
@@ -185,7 +192,8 @@ ChartData chartData(const ReportInput& in, size_t light) {
     for (const ReportTechnique& t : in.techniques) {
         const LightMetrics& m = t.lights[light].metrics;
         if (area && !m.penumbraMae) continue;
-        d.points.push_back({t.label, t.curve, t.quality, t.lights[light].cost.frameMs.median,
+        if (!t.lights[light].cost.frameMs) continue;  // an external image without its cost
+        d.points.push_back({t.label, t.curve, t.quality, t.lights[light].cost.frameMs->median,
                             area ? *m.penumbraMae : m.mae});
     }
     if (area && light < in.oracleCurves.size())
@@ -429,10 +437,10 @@ void writeTechniqueRow(std::ostream& o, const ReportInput& in, size_t li, size_t
     o << "<tr id=\"" << rowId(li, k) << "\"><td><b>" << html(t.label)
       << "</b><br><span class=\"muted\">" << html(t.family) << "<br>" << html(t.parameters)
       << "<br>mae " << num(lc.metrics.mae) << ", frame "
-      << formatted(lc.cost.frameMs.median, Format::Ms) << " ms<br><a href=\"" << html(t.fileLabel)
-      << "/raster.exr\">raster.exr</a> · <a href=\"" << html(t.fileLabel)
-      << "/raster.json\">raster.json</a> · <a href=\"error_" << html(t.fileLabel)
-      << ".exr\">errors</a></span></td><td>"
+      << (lc.cost.frameMs ? formatted(lc.cost.frameMs->median, Format::Ms) + " ms" : "unknown")
+      << "<br><a href=\"" << html(t.fileLabel) << "/raster.exr\">raster.exr</a> · <a href=\""
+      << html(t.fileLabel) << "/raster.json\">raster.json</a> · <a href=\"error_"
+      << html(t.fileLabel) << ".exr\">errors</a></span></td><td>"
       << zoomable(sink.src(key + "_render", w, h, render), t.label, "", oracleId) << "</td><td>"
       << zoomable(sink.src(key + "_classes", w, h, classMap(in.oracle, lc.maps, light)),
                   t.label + " errors by class", "", oracleId)
