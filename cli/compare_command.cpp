@@ -60,16 +60,18 @@ TechniqueSpec parseTechniqueSpec(const std::string& spec) {
     return t;
 }
 
+ImageSpec makeImageSpec(const std::string& label, const std::string& path) {
+    return {label, fileLabelOf(label), path};
+}
+
 ImageSpec parseImageSpec(const std::string& text) {
     const auto eq = text.find('=');
-    ImageSpec spec;
-    spec.label = text.substr(0, std::min(eq, text.size()));
-    spec.path = eq == std::string::npos ? "" : text.substr(eq + 1);
-    if (spec.label.empty() || spec.path.empty())
+    const std::string label = text.substr(0, std::min(eq, text.size()));
+    const std::string path = eq == std::string::npos ? "" : text.substr(eq + 1);
+    if (label.empty() || path.empty())
         throwInputError("command line", "--image",
                         "\"" + printable(text, 60) + "\" is not LABEL=PATH");
-    spec.fileLabel = fileLabelOf(spec.label);
-    return spec;
+    return makeImageSpec(label, path);
 }
 
 namespace {
@@ -419,14 +421,16 @@ std::vector<TechniqueRun> createTechniques(const CompareOptions& options) {
 
 std::vector<ImageSpec> parseImages(const CompareOptions& options,
                                    const std::vector<TechniqueRun>& runs) {
-    if (runs.empty() && options.images.empty())
+    if (runs.empty() && options.images.empty() && options.imageSpecs.empty())
         throwInputError("command line", "--technique",
                         "nothing to compare: give --technique NAME or --image LABEL=PATH");
     std::set<std::string> labels, fileLabels;
     for (const TechniqueRun& r : runs) fileLabels.insert(r.spec.fileLabel);
     std::vector<ImageSpec> specs;
-    for (const std::string& text : options.images) {
-        ImageSpec spec = parseImageSpec(text);
+    std::vector<ImageSpec> given;
+    for (const std::string& text : options.images) given.push_back(parseImageSpec(text));
+    given.insert(given.end(), options.imageSpecs.begin(), options.imageSpecs.end());
+    for (ImageSpec& spec : given) {
         if (!labels.insert(spec.label).second || !fileLabels.insert(spec.fileLabel).second)
             throwInputError("command line", "--image",
                             "label \"" + printable(spec.label, 60) +

@@ -32,12 +32,16 @@ struct ImageSpec {
 };
 // Splits at the first '='; throws InputError naming --image on an empty label or path.
 ImageSpec parseImageSpec(const std::string& text);
+// A label and a path as they are (a sweep's image tasks, whose labels hold '=').
+ImageSpec makeImageSpec(const std::string& label, const std::string& path);
 
 struct CompareOptions {
     std::string scenePath;
     std::string outDir;
     std::vector<std::string> techniques;
     std::vector<std::string> images;  // LABEL=PATH
+    // Images already split (a sweep's tasks: their labels hold '='), judged after `images`.
+    std::vector<ImageSpec> imageSpecs;
     ImageEncoding imageEncoding = ImageEncoding::Linear;
     // --points GBUFFER.exr: the oracle at a renderer's own G-buffer points (trace --points) instead
     // of the scene camera's pixels; images only, the G-buffer's size.

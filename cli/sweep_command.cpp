@@ -154,6 +154,30 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
 
 }  // namespace
 
+namespace {
+
+// An image re-rendered since its row was made (another hash of the image and its cost file, or
+// gone) makes the row stale: removed, so that the task runs again (and fails, saying why, when
+// the image is gone).
+void dropStaleImageRows(const SweepPlan& plan, const fs::path& dir) {
+    size_t removed = 0;
+    for (const SweepTask& t : plan.tasks) {
+        if (t.image.empty()) continue;
+        const fs::path row = sweepRowPath(dir, t);
+        std::ifstream in(row);
+        if (!in) continue;
+        const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+        in.close();
+        if (imageRowIsStale(j, t)) removed += fs::remove(row);
+    }
+    if (removed)
+        std::cerr << "sweep: " << removed
+                  << " images changed since their rows were made: those rows removed, their "
+                     "tasks run again\n";
+}
+
+}  // namespace
+
 // A scene edited since its rows were made (same name, other content) makes them stale: they are
 // removed, so that its tasks run again, and the scene's hash is recorded for sweep-merge, which
 // counts a row of another hash as not finished. A scene that does not load keeps its rows (its
@@ -182,6 +206,7 @@ void dropStaleRows(const SweepPlan& plan, const fs::path& dir) {
         hashes[key] = hash;
     }
     writeFileAtomically(path, hashes.dump(1) + "\n");
+    dropStaleImageRows(plan, dir);
 }
 
 int runSweepCommand(const SweepOptions& options) {

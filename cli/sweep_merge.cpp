@@ -69,12 +69,15 @@ Rows readRows(const fs::path& dir, const SweepPlan& plan) {
         if (in) {
             try {
                 nlohmann::json row = nlohmann::json::parse(in);
-                if (!stale(row, hashes, plan.tasks[i].scene)) {
+                const bool sceneChanged = stale(row, hashes, plan.tasks[i].scene);
+                const bool imageChanged = !sceneChanged && imageRowIsStale(row, plan.tasks[i]);
+                if (!sceneChanged && !imageChanged) {
                     rows.done.emplace_back(i, std::move(row));
                     continue;
                 }
                 SweepFailure f = failure(dir, plan, i);
-                f.reason = "stale: its scene changed since the row was made (rerun the sweep)";
+                f.reason = std::string("stale: its ") + (sceneChanged ? "scene" : "image") +
+                           " changed since the row was made (rerun the sweep)";
                 rows.failed.push_back(f);
                 continue;
             } catch (const nlohmann::json::exception& e) {
@@ -149,8 +152,12 @@ void addRow(Tables& t, const SweepPlan& plan, const std::vector<std::string>& sw
     r["swept"] = row.at("task").at("swept");
     r["oracle_key"] = row.at("oracle").at("key");
     r["gl"] = row.at("gl");
+    // Who measured the times: the GL renderer, or for an image the renderer its cost file names.
+    const nlohmann::json& gl = row.at("gl");
+    const std::string renderer =
+        gl.is_object() ? gl.value("renderer", "") : result.value("renderer", std::string());
+    if (!renderer.empty()) t.renderers.insert(renderer);
     t.results.push_back(std::move(r));
-    t.renderers.insert(row.at("gl").value("renderer", ""));
 }
 
 nlohmann::json failedJson(const std::vector<SweepFailure>& failed) {

@@ -1,5 +1,6 @@
 #include "cli/sweep_spec.h"
 
+#include <fnmatch.h>
 #include <glob.h>
 #include <unistd.h>
 
@@ -184,29 +185,22 @@ std::string settingLabel(const std::string& technique, const std::vector<std::st
     return label;
 }
 
-// The settings of one "techniques" entry, the grid's last parameter varying fastest.
-void expandTechnique(const Json& t, size_t ti, const std::string& file,
-                     const SettingValidator& validate, std::vector<SweepTask>& settings) {
-    const std::string field = "techniques[" + std::to_string(ti) + "]";
-    checkKeys(t, {"name", "params"}, file, field);
-    if (!t.contains("name") || !t["name"].is_string())
-        throwInputError(file, field + ".name", "must be a technique name");
-    const std::string name = t["name"].get<std::string>();
-    try {
-        validate(name, {});
-    } catch (const InputError& e) {
-        throwInputError(file, field + ".name", e.message());
-    }
+// The settings of one grid ("params" of a "techniques" or "images" entry), the last parameter
+// varying fastest; `before`: the settings of the entries before this one, for the bound.
+std::vector<SweepTask> expandGrid(const Json& entry, const std::string& name,
+                                  const std::string& file, const std::string& field,
+                                  size_t before) {
     std::vector<ParamGrid> grid;
     size_t count = 1;
-    if (t.contains("params")) {
-        if (!t["params"].is_object()) throwInputError(file, field + ".params", "must be an object");
+    if (entry.contains("params")) {
+        if (!entry["params"].is_object())
+            throwInputError(file, field + ".params", "must be an object");
         // Bounded as each parameter is read, so that no spec makes many large ranges first.
-        for (const auto& [key, v] : t["params"].items()) {
+        for (const auto& [key, v] : entry["params"].items()) {
             grid.push_back(
                 {key, paramValues(v, file, field + ".params." + printable(key, 40)), {}});
             count *= grid.back().values.size();
-            if (count + settings.size() > kMaxSweepTasks)  // with the entries before this one
+            if (count + before > kMaxSweepTasks)
                 throwInputError(
                     file, field + ".params",
                     "the sweep has more than " + std::to_string(kMaxSweepTasks) + " settings");
@@ -214,6 +208,7 @@ void expandTechnique(const Json& t, size_t ti, const std::string& file,
                 grid.back().settings.push_back(key + "=" + shortestNumber(x));
         }
     }
+    std::vector<SweepTask> settings;
     for (size_t k = 0; k < count; ++k) {
         SweepTask s;
         s.technique = name;
@@ -226,6 +221,25 @@ void expandTechnique(const Json& t, size_t ti, const std::string& file,
             if (g.values.size() > 1) s.swept.insert(s.swept.begin(), {g.name, g.values[vi]});
         }
         s.label = settingLabel(name, s.settings);
+        settings.push_back(std::move(s));
+    }
+    return settings;
+}
+
+// The settings of one "techniques" entry, each created (so validated) before any work.
+void expandTechnique(const Json& t, size_t ti, const std::string& file,
+                     const SettingValidator& validate, std::vector<SweepTask>& settings) {
+    const std::string field = "techniques[" + std::to_string(ti) + "]";
+    checkKeys(t, {"name", "params"}, file, field);
+    if (!t.contains("name") || !t["name"].is_string())
+        throwInputError(file, field + ".name", "must be a technique name");
+    const std::string name = t["name"].get<std::string>();
+    try {
+        validate(name, {});
+    } catch (const InputError& e) {
+        throwInputError(file, field + ".name", e.message());
+    }
+    for (SweepTask& s : expandGrid(t, name, file, field, settings.size())) {
         try {
             validate(name, s.settings);  // every error before any work, with its field
         } catch (const InputError& e) {
@@ -235,36 +249,191 @@ void expandTechnique(const Json& t, size_t ti, const std::string& file,
     }
 }
 
+// A scene's name for an image path: its file name up to the first dot ("spot_objects").
+std::string sceneStem(const SweepScene& scene) {
+    const std::string name = scene.path.filename().string();
+    return name.substr(0, name.find('.'));
+}
+
+// An "images" entry's path with {scene} and each {PARAM} replaced by the setting's values.
+std::string imagePath(const std::string& pattern, const SweepScene& scene, const SweepTask& s,
+                      const std::string& file, const std::string& field) {
+    std::string out;
+    for (size_t i = 0; i < pattern.size();) {
+        if (pattern[i] == '}') throwInputError(file, field, "a '}' without its '{'");
+        if (pattern[i] != '{') {
+            out += pattern[i++];
+            continue;
+        }
+        const size_t end = pattern.find('}', i);
+        if (end == std::string::npos) throwInputError(file, field, "a '{' without its '}'");
+        const std::string key = pattern.substr(i + 1, end - i - 1);
+        std::string value;
+        bool found = key == "scene";
+        if (found) value = sceneStem(scene);
+        for (const std::string& setting : s.settings)
+            if (setting.compare(0, key.size() + 1, key + "=") == 0) {
+                value = setting.substr(key.size() + 1);
+                found = true;
+            }
+        if (!found)
+            throwInputError(file, field,
+                            "{" + printable(key, 40) + "} is neither {scene} nor a parameter");
+        out += value;
+        i = end + 1;
+    }
+    return out;
+}
+
+// The scenes an "images" entry covers: all, or those its "scenes" names or globs match (the
+// names as in the plan, relative to the spec's folder).
+std::vector<size_t> imageScenes(const Json& entry, const std::vector<SweepScene>& scenes,
+                                const std::string& file, const std::string& field) {
+    std::vector<size_t> covered;
+    if (!entry.contains("scenes")) {
+        for (size_t si = 0; si < scenes.size(); ++si) covered.push_back(si);
+        return covered;
+    }
+    const Json& list = entry["scenes"];
+    if (!list.is_array() || list.empty())
+        throwInputError(file, field + ".scenes",
+                        "must be a non-empty list of scene names or globs");
+    for (size_t k = 0; k < list.size(); ++k) {
+        const std::string f = field + ".scenes[" + std::to_string(k) + "]";
+        if (!list[k].is_string()) throwInputError(file, f, "must be a string");
+        const std::string pattern = list[k].get<std::string>();
+        bool matched = false;
+        for (size_t si = 0; si < scenes.size(); ++si)
+            if (::fnmatch(pattern.c_str(), scenes[si].name.c_str(), 0) == 0) {
+                matched = true;
+                if (std::find(covered.begin(), covered.end(), si) == covered.end())
+                    covered.push_back(si);
+            }
+        if (!matched)
+            throwInputError(file, f,
+                            "matches none of the sweep's scenes: " + printable(pattern, 80));
+    }
+    std::sort(covered.begin(), covered.end());
+    return covered;
+}
+
+// What a renderer's and its parameters' names may hold: no ':' ',' '=' of a label, no '{' of a
+// path.
+constexpr const char* kNameChars =
+    "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.";
+
+// The settings of one "images" entry, per scene it covers, each image present.
+void expandImages(const Json& entry, size_t ii, const SweepPlan& plan, const std::string& file,
+                  const SettingValidator& validate, size_t before, std::vector<SweepTask>& tasks) {
+    const std::string field = "images[" + std::to_string(ii) + "]";
+    checkKeys(entry, {"name", "path", "params", "scenes", "encoding"}, file, field);
+    if (!entry.contains("name") || !entry["name"].is_string())
+        throwInputError(file, field + ".name", "must be the renderer's name");
+    const std::string name = entry["name"].get<std::string>();
+    if (name.empty() || name.size() > 64 || name.find_first_not_of(kNameChars) != std::string::npos)
+        throwInputError(file, field + ".name", "must be 1 to 64 of A-Z a-z 0-9 _ - .");
+    bool builtIn = true;
+    try {
+        validate(name, {});
+    } catch (const InputError&) {
+        builtIn = false;
+    }
+    if (builtIn)
+        throwInputError(file, field + ".name",
+                        "\"" + name + "\" is a built-in technique: name the renderer instead");
+    if (!entry.contains("path") || !entry["path"].is_string() ||
+        entry["path"].get<std::string>().empty())
+        throwInputError(file, field + ".path", "must be the image's path (with {scene}, {PARAM})");
+    std::string encoding = "linear";
+    if (entry.contains("encoding")) {
+        if (!entry["encoding"].is_string() ||
+            (entry["encoding"] != "linear" && entry["encoding"] != "srgb"))
+            throwInputError(file, field + ".encoding", "must be \"linear\" or \"srgb\"");
+        encoding = entry["encoding"].get<std::string>();
+    }
+    // A parameter's name goes into the label and the path: no separator of either.
+    if (entry.contains("params") && entry["params"].is_object())
+        for (const auto& [key, v] : entry["params"].items())
+            if (key.empty() || key.size() > 64 ||
+                key.find_first_not_of(kNameChars) != std::string::npos)
+                throwInputError(file, field + ".params." + printable(key, 40),
+                                "a parameter's name must be 1 to 64 of A-Z a-z 0-9 _ - .");
+    const std::vector<SweepTask> grid = expandGrid(entry, name, file, field, before);
+    const fs::path specDir = plan.specFile.parent_path();
+    for (size_t si : imageScenes(entry, plan.scenes, file, field))
+        for (const SweepTask& s : grid) {
+            if (before + tasks.size() >= kMaxSweepTasks)
+                throwInputError(file, "images",
+                                "more than " + std::to_string(kMaxSweepTasks) + " tasks in all");
+            SweepTask task = s;
+            task.scene = si;
+            const fs::path p = imagePath(entry["path"].get<std::string>(), plan.scenes[si], s, file,
+                                         field + ".path");
+            task.image = (p.is_absolute() ? p : specDir / p).lexically_normal().string();
+            task.encoding = encoding;
+            std::error_code ec;
+            if (!fs::is_regular_file(task.image, ec))
+                throwInputError(file, field + ".path",
+                                "no such image for " + task.label + " on " + plan.scenes[si].name +
+                                    ": " + printable(task.image));
+            tasks.push_back(std::move(task));
+        }
+}
+
 void expandTasks(const std::string& file, SweepPlan& plan, const SettingValidator& validate) {
     const Json& spec = plan.spec;
-    if (!spec.contains("techniques") || !spec["techniques"].is_array() ||
-        spec["techniques"].empty())
-        throwInputError(file, "techniques", "must be a non-empty list of {\"name\", \"params\"}");
+    const bool hasImages = spec.contains("images");
+    if (hasImages && (!spec["images"].is_array() || spec["images"].empty()))
+        throwInputError(file, "images",
+                        "must be a non-empty list of {\"name\", \"path\", \"params\"}");
+    if (spec.contains("techniques") || !hasImages)
+        if (!spec.contains("techniques") || !spec["techniques"].is_array() ||
+            spec["techniques"].empty())
+            throwInputError(file, "techniques",
+                            "must be a non-empty list of {\"name\", \"params\"} (or give "
+                            "\"images\")");
     std::vector<SweepTask> settings;
-    for (size_t ti = 0; ti < spec["techniques"].size(); ++ti)
-        expandTechnique(spec["techniques"][ti], ti, file, validate, settings);
+    if (spec.contains("techniques"))
+        for (size_t ti = 0; ti < spec["techniques"].size(); ++ti)
+            expandTechnique(spec["techniques"][ti], ti, file, validate, settings);
     if (settings.size() * plan.scenes.size() > kMaxSweepTasks)
         throwInputError(file, "techniques",
                         "more than " + std::to_string(kMaxSweepTasks) + " tasks in all");
+    std::vector<SweepTask> images;
+    if (hasImages)
+        for (size_t ii = 0; ii < spec["images"].size(); ++ii)
+            expandImages(spec["images"][ii], ii, plan, file, validate,
+                         settings.size() * plan.scenes.size(), images);
     std::set<std::string> ids;
-    for (size_t si = 0; si < plan.scenes.size(); ++si)
+    const auto add = [&](SweepTask task, const char* field) {
+        task.id = hashBytes(plan.scenes[task.scene].name + "\n" + task.label).substr(0, 12);
+        if (!ids.insert(task.id).second)
+            throwInputError(file, field,
+                            "the setting " + task.label + " is listed twice for scene " +
+                                plan.scenes[task.scene].name);
+        plan.tasks.push_back(std::move(task));
+    };
+    for (size_t si = 0; si < plan.scenes.size(); ++si) {
         for (const SweepTask& s : settings) {
             SweepTask task = s;
             task.scene = si;
-            task.id = hashBytes(plan.scenes[si].name + "\n" + s.label).substr(0, 12);
-            if (!ids.insert(task.id).second)
-                throwInputError(file, "techniques",
-                                "the setting " + s.label + " is listed twice for scene " +
-                                    plan.scenes[si].name);
-            plan.tasks.push_back(std::move(task));
+            add(std::move(task), "techniques");
         }
+        for (const SweepTask& image : images)
+            if (image.scene == si) add(image, "images");
+    }
 }
 
 Json taskJson(const SweepTask& t) {
     Json swept = Json::object();
     for (const auto& [k, v] : t.swept) swept[k] = v;
-    return {{"id", t.id},       {"scene", t.scene},       {"technique", t.technique},
-            {"label", t.label}, {"settings", t.settings}, {"swept", swept}};
+    Json j = {{"id", t.id},       {"scene", t.scene},       {"technique", t.technique},
+              {"label", t.label}, {"settings", t.settings}, {"swept", swept}};
+    if (!t.image.empty()) {
+        j["image"] = t.image;
+        j["encoding"] = t.encoding;
+    }
+    return j;
 }
 
 SweepTask taskFromJson(const Json& j) {
@@ -275,6 +444,12 @@ SweepTask taskFromJson(const Json& j) {
     t.label = j.at("label").get<std::string>();
     t.settings = j.at("settings").get<std::vector<std::string>>();
     for (const auto& [k, v] : j.at("swept").items()) t.swept.emplace_back(k, v.get<double>());
+    if (j.contains("image")) {
+        t.image = j.at("image").get<std::string>();
+        t.encoding = j.at("encoding").get<std::string>();
+        if (t.encoding != "linear" && t.encoding != "srgb")
+            throw Json::other_error::create(501, "unknown image encoding", &j);
+    }
     return t;
 }
 
@@ -311,7 +486,7 @@ SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
     }
     checkKeys(plan.spec,
               {"sweep_format", "name", "scenes", "width", "height", "frames", "boundary_radius",
-               "keep_outputs", "oracle", "techniques"},
+               "keep_outputs", "oracle", "techniques", "images"},
               file, "");
     if (!plan.spec.contains("sweep_format"))
         throwInputError(file, "sweep_format", "missing (this tool writes and reads 1)");
@@ -329,6 +504,33 @@ SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
     expandTasks(file, plan, validate);
     plan.taskCount = plan.tasks.size();
     return plan;
+}
+
+std::string imageInputsHash(const fs::path& image) {
+    // Images are bounded by the compare's reader; this cap only keeps a wrong path (a disk image)
+    // from being hashed whole.
+    constexpr uint64_t kMaxImageBytes = uint64_t(4) << 30;
+    std::string bytes = readFileCapped(image, image.string(), kMaxImageBytes);
+    const fs::path cost = image.string() + ".json";
+    std::error_code ec;
+    if (fs::is_regular_file(cost, ec))
+        bytes += "\ncost\n" + readFileCapped(cost, cost.string(), kMaxImageBytes);
+    return hashBytes(bytes);
+}
+
+bool imageRowIsStale(const nlohmann::json& row, const SweepTask& task) {
+    if (task.image.empty()) return false;
+    std::string now;
+    try {
+        now = imageInputsHash(task.image);
+    } catch (const InputError&) {
+        return true;  // gone or unreadable: the task runs again and says why
+    }
+    if (!row.is_object() || !row.contains("task") || !row["task"].is_object()) return true;
+    const nlohmann::json& t = row["task"];
+    if (!t.contains("image") || !t["image"].is_object()) return true;
+    const nlohmann::json hash = t["image"].contains("hash") ? t["image"]["hash"] : nlohmann::json();
+    return !hash.is_string() || hash.get<std::string>() != now;
 }
 
 fs::path sweepRowPath(const fs::path& dir, const SweepTask& task) {

@@ -34,6 +34,10 @@ struct SweepTask {
     std::vector<std::string> settings;  // "key=value"
     // The parameters given more than one value for this technique, with this task's values.
     std::vector<std::pair<std::string, double>> swept;
+    // An "images" task (a renderer's render of this setting, judged as compare --image judges
+    // it): the image's absolute path and "linear" or "srgb" for a PNG; empty for a technique.
+    std::string image;
+    std::string encoding;
 };
 
 // The oracle options a spec sets (docs/sweep.md, "oracle"); what it leaves out keeps compare's
@@ -64,7 +68,8 @@ struct SweepPlan {
     size_t taskCount = 0;  // read back: tasks.size() once read
 };
 
-// Reads, validates (every setting is created, so every error names its field) and expands a spec.
+// Reads, validates (every setting is created, so every error names its field) and expands a spec:
+// per scene, the technique settings, then the images of that scene (each of which must exist).
 // Creates a setting of a technique, throwing InputError when the technique or a setting is not
 // valid: createTechnique (raster_compare/gl/technique.h) in the tool; the fuzz harness, which
 // links no GL, passes its own.
@@ -104,5 +109,12 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
 
 // The shortest text that reads back as the same double ("0.1", "2048").
 std::string shortestNumber(double v);
+
+// What an image task's row records of its inputs: the hash of the image's bytes and of its cost
+// file's (PATH.json, when present), so that a re-rendered image makes its row stale.
+std::string imageInputsHash(const std::filesystem::path& image);
+// Whether an image task's row (any JSON: a malformed one counts as stale) was made from other bytes
+// of its image or cost file than are there now, or its image is gone; false for a technique's task.
+bool imageRowIsStale(const nlohmann::json& row, const SweepTask& task);
 
 }  // namespace so

@@ -7,6 +7,7 @@
 #include "cli/output.h"
 #include "cli/sweep_spec.h"
 #include "core/error.h"
+#include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 
 namespace so {
@@ -47,18 +48,28 @@ int runOracleTask(const fs::path& dir, const SweepPlan& plan, size_t si) {
 // The row of a task (docs/sweep.md, "Rows"): the task, and its setting's entry of compare's
 // metrics.json with what made it.
 nlohmann::json taskRow(const SweepPlan& plan, const SweepTask& t, size_t index,
-                       const nlohmann::json& metrics, double seconds) {
+                       const nlohmann::json& metrics, double seconds,
+                       const std::string& imageHash) {
     nlohmann::json swept = nlohmann::json::object();
     for (const auto& [k, v] : t.swept) swept[k] = v;
+    nlohmann::json result = metrics.at("results").at(0);
+    nlohmann::json taskJson = {
+        {"index", index},           {"id", t.id},       {"scene", plan.scenes[t.scene].name},
+        {"technique", t.technique}, {"label", t.label}, {"swept", swept}};
+    if (!t.image.empty()) {
+        taskJson["image"] = {{"path", t.image}, {"hash", imageHash}};
+        // The grid's values are the image's parameters too (the cost file's, where it has them,
+        // come first: they are the renderer's own account).
+        for (const std::string& s : t.settings) {
+            const size_t eq = s.find('=');
+            const std::string key = s.substr(0, eq);
+            if (!result["parameters"].contains(key))
+                result["parameters"][key] = std::stod(s.substr(eq + 1));
+        }
+    }
     return {
         {"sweep_format", kSweepFormat},
-        {"task",
-         {{"index", index},
-          {"id", t.id},
-          {"scene", plan.scenes[t.scene].name},
-          {"technique", t.technique},
-          {"label", t.label},
-          {"swept", swept}}},
+        {"task", taskJson},
         {"seconds", seconds},
         {"tool", metrics.at("tool")},
         {"gl", metrics.at("gl")},
@@ -66,7 +77,7 @@ nlohmann::json taskRow(const SweepPlan& plan, const SweepTask& t, size_t index,
         {"options", metrics.at("options")},
         {"oracle",
          {{"key", metrics.at("oracle").at("key")}, {"cached", metrics.at("oracle").at("cached")}}},
-        {"result", metrics.at("results").at(0)}};
+        {"result", result}};
 }
 
 int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask& t, size_t index) {
@@ -83,7 +94,15 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     CompareOptions c;
     c.scenePath = plan.scenes[t.scene].path.string();
     c.outDir = work.string();
-    c.techniques = {t.label};
+    // The image's hash before it is read: a renderer rewriting it meanwhile makes the row stale.
+    std::string imageHash;
+    if (t.image.empty()) {
+        c.techniques = {t.label};
+    } else {
+        imageHash = imageInputsHash(t.image);
+        c.imageSpecs = {makeImageSpec(t.label, t.image)};
+        c.imageEncoding = parseImageEncoding(t.encoding, "encoding");
+    }
     c.oracle = oracleOptions(plan.settings.oracle);
     c.raster.width = plan.settings.oracle.width;
     c.raster.height = plan.settings.oracle.height;
@@ -98,7 +117,7 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The row last, atomically: it is what marks the task done.
-    writeFileAtomically(row, taskRow(plan, t, index, metrics, seconds).dump() + "\n");
+    writeFileAtomically(row, taskRow(plan, t, index, metrics, seconds, imageHash).dump() + "\n");
     if (plan.settings.keepOutputs) {
         fs::remove_all(dir / "outputs" / t.id, ec);
         fs::create_directories(dir / "outputs", ec);

@@ -172,9 +172,9 @@ TEST(IndexPage, MalformedMetricsNameTheFileAndField) {
     json noResults = alphaMetrics();
     noResults.erase("results");
     expectInputError(noResults, "results");
-    json version5 = alphaMetrics();
-    version5["schema_version"] = 5;
-    expectInputError(version5, "schema_version");
+    json version6 = alphaMetrics();
+    version6["schema_version"] = 6;
+    expectInputError(version6, "schema_version");
     json noVersion = alphaMetrics();
     noVersion.erase("schema_version");
     expectInputError(noVersion, "schema_version");

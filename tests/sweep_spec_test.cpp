@@ -9,6 +9,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli/sweep_spec.h"
 #include "core/error.h"
@@ -165,6 +166,137 @@ TEST_F(SweepSpec, MistakesNameTheFileAndTheField) {
         EXPECT_NE(e.find(expected), std::string::npos) << text << "\n -> " << e;
         EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
     }
+}
+
+// A renderer's images (docs/sweep.md, "images"): per scene after that scene's technique settings,
+// {scene} and {PARAM} filled in, the paths absolute, and every image present before anything runs.
+class SweepSpecImages : public SweepSpec {
+  protected:
+    void SetUp() override {
+        SweepSpec::SetUp();
+        for (const char* scene : {"a", "b"})
+            for (const char* bias : {"0.5", "1"}) {
+                fs::create_directories(dir_ / "renders" / scene);
+                std::ofstream(dir_ / "renders" / scene / (std::string("bias_") + bias + ".exr"))
+                    << scene << bias;
+            }
+    }
+    static std::string spec(const std::string& images, const std::string& techniques = "") {
+        return R"({"sweep_format": 1, "scenes": ["scenes/*.scene.json"])" +
+               (techniques.empty() ? "" : R"(, "techniques": )" + techniques) + R"(, "images": )" +
+               images + "}";
+    }
+};
+
+TEST_F(SweepSpecImages, FollowTheirScenesTechniquesWithPathsFilledIn) {
+    const SweepPlan p =
+        planSweepText(spec(R"([{"name": "engine", "path": "renders/{scene}/bias_{bias}.exr",
+                  "params": {"bias": [0.5, 1], "cascades": 4}}])",
+                           R"([{"name": "shadow", "params": {"alpha": [1, 2]}}])"),
+                      dir_ / "spec.json", validate);
+    ASSERT_EQ(p.tasks.size(), 8u);
+    std::vector<std::string> labels;
+    for (const SweepTask& t : p.tasks)
+        labels.push_back(
+            p.scenes[t.scene].name + " " + t.label + " " +
+            (t.image.empty() ? "-" : fs::path(t.image).lexically_relative(dir_).string()));
+    EXPECT_EQ(labels,
+              (std::vector<std::string>{
+                  "scenes/a.scene.json shadow:alpha=1 -", "scenes/a.scene.json shadow:alpha=2 -",
+                  "scenes/a.scene.json engine:bias=0.5,cascades=4 renders/a/bias_0.5.exr",
+                  "scenes/a.scene.json engine:bias=1,cascades=4 renders/a/bias_1.exr",
+                  "scenes/b.scene.json shadow:alpha=1 -", "scenes/b.scene.json shadow:alpha=2 -",
+                  "scenes/b.scene.json engine:bias=0.5,cascades=4 renders/b/bias_0.5.exr",
+                  "scenes/b.scene.json engine:bias=1,cascades=4 renders/b/bias_1.exr"}));
+    const SweepTask& image = p.tasks[3];
+    EXPECT_TRUE(fs::path(image.image).is_absolute());
+    EXPECT_EQ(image.technique, "engine");
+    EXPECT_EQ(image.encoding, "linear");
+    ASSERT_EQ(image.swept.size(), 1u) << "cascades has one value: not swept";
+    EXPECT_EQ(image.swept[0], (std::pair<std::string, double>{"bias", 1.0}));
+    // The task's line reads back as it was written (tasks.jsonl).
+    fs::create_directories(dir_ / "out");
+    writePlan(dir_ / "out", p);
+    const SweepTask back = readPlanTask(dir_ / "out", readPlan(dir_ / "out", false), 3);
+    EXPECT_EQ(back.image, image.image);
+    EXPECT_EQ(back.encoding, image.encoding);
+    EXPECT_EQ(back.label, image.label);
+
+    // Images alone, on the scenes an entry names, with its encoding.
+    const SweepPlan only =
+        planSweepText(spec(R"([{"name": "engine", "path": "renders/{scene}/bias_{bias}.exr",
+                  "params": {"bias": 1}, "scenes": ["scenes/b*"], "encoding": "srgb"}])"),
+                      dir_ / "spec.json", validate);
+    ASSERT_EQ(only.tasks.size(), 1u);
+    EXPECT_EQ(only.scenes[only.tasks[0].scene].name, "scenes/b.scene.json");
+    EXPECT_EQ(only.tasks[0].encoding, "srgb");
+    EXPECT_EQ(only.tasks[0].label, "engine:bias=1");
+}
+
+TEST_F(SweepSpecImages, MistakesNameTheEntryAndTheField) {
+    const std::string file = (dir_ / "spec.json").string();
+    const std::string path = R"("path": "renders/{scene}/bias_{bias}.exr")";
+    const auto entry = [&](const std::string& body) { return spec("[{" + body + "}]"); };
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {entry(R"("name": "engine", "path": "renders/{scene}/bias_{bias}.exr",
+                   "params": {"bias": [0.5, 1, 2]})"),
+         "images[0].path: no such image for engine:bias=2 on scenes/a.scene.json: " +
+             (dir_ / "renders" / "a" / "bias_2.exr").string()},
+        {entry(R"("name": "shadow", )" + path + R"(, "params": {"bias": 1})"),
+         "images[0].name: \"shadow\" is a built-in technique"},
+        {entry(R"("name": "my:engine", )" + path), "images[0].name: must be 1 to 64 of"},
+        {entry(R"("name": "engine", "path": "renders/{scene}/bias_{nope}.exr")"),
+         "images[0].path: {nope} is neither {scene} nor a parameter"},
+        {entry(R"("name": "engine", "path": "renders/{scene/bias.exr")"),
+         "images[0].path: a '{' without its '}'"},
+        {entry(R"("name": "engine", "path": "renders/scene}/bias.exr")"),
+         "images[0].path: a '}' without its '{'"},
+        {entry(R"("name": "engine")"), "images[0].path: must be the image's path"},
+        {entry(R"("path": "x.exr")"), "images[0].name: must be the renderer's name"},
+        {entry(R"("name": "engine", )" + path + R"(, "params": {"bias": 1}, "encoding": "gamma")"),
+         "images[0].encoding: must be \"linear\" or \"srgb\""},
+        {entry(R"("name": "engine", )" + path + R"(, "params": {"bias": 1}, "scenes": ["x*"])"),
+         "images[0].scenes[0]: matches none of the sweep's scenes: x*"},
+        {entry(R"("name": "engine", )" + path + R"(, "params": {"bias": 1, "a=b": 2})"),
+         "images[0].params.a=b: a parameter's name must be"},
+        {entry(R"("name": "engine", )" + path + R"(, "params": {"bias": 1}, "size": 3)"),
+         "images[0].size: unknown key"},
+        {spec("[]"), "images: must be a non-empty list"},
+        {R"({"sweep_format": 1, "scenes": ["scenes/a.scene.json"]})",
+         "techniques: must be a non-empty list of {\"name\", \"params\"} (or give \"images\")"},
+    };
+    for (const auto& [text, expected] : cases) {
+        const std::string e = error(text);
+        EXPECT_EQ(e.rfind(file + ": ", 0), 0u) << text << "\n -> " << e;
+        EXPECT_NE(e.find(expected), std::string::npos) << text << "\n -> " << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+    }
+}
+
+// A row remembers the bytes of its image and cost file: another render, or none, makes it stale.
+TEST_F(SweepSpecImages, ARowIsStaleWhenItsImageOrCostFileChanges) {
+    const SweepPlan p =
+        planSweepText(spec(R"([{"name": "engine", "path": "renders/{scene}/bias_{bias}.exr",
+                  "params": {"bias": 1}, "scenes": ["scenes/a.scene.json"]}])"),
+                      dir_ / "spec.json", validate);
+    ASSERT_EQ(p.tasks.size(), 1u);
+    const SweepTask& t = p.tasks[0];
+    const nlohmann::json row = {
+        {"task", {{"image", {{"path", t.image}, {"hash", imageInputsHash(t.image)}}}}}};
+    EXPECT_FALSE(imageRowIsStale(row, t));
+    EXPECT_TRUE(imageRowIsStale(nlohmann::json::object(), t)) << "a row without the image's hash";
+    EXPECT_TRUE(imageRowIsStale(nlohmann::json("not a row"), t));
+    std::ofstream(t.image + ".json") << R"({"frame_ms": 2})";
+    EXPECT_TRUE(imageRowIsStale(row, t)) << "a cost file counts";
+    fs::remove(t.image + ".json");
+    EXPECT_FALSE(imageRowIsStale(row, t));
+    std::ofstream(t.image) << "re-rendered";
+    EXPECT_TRUE(imageRowIsStale(row, t));
+    fs::remove(t.image);
+    EXPECT_TRUE(imageRowIsStale(row, t)) << "gone";
+    SweepTask technique = t;
+    technique.image.clear();
+    EXPECT_FALSE(imageRowIsStale(nlohmann::json::object(), technique));
 }
 
 }  // namespace

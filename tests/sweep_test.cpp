@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/image.h"
 #include "gl_test_context.h"
 #include "sweep_test_util.h"
 
@@ -203,6 +204,125 @@ TEST(Sweep, ForeignFoldersAndIndicesAreOneLineErrors) {
     // A task run again is a no-op: its row stays.
     EXPECT_EQ(runCli("sweep-task " + f.out.string() + " --index 3", &log), 0);
     EXPECT_NE(log.find("already finished"), std::string::npos) << log;
+}
+
+// The named channels of `from`, shifted `dx` pixels to the right: a renderer's image whose error
+// grows with dx.
+void writeShifted(const fs::path& path, const ChannelImage& from, int dx) {
+    ChannelImage img(from.width(), from.height());
+    for (const char* n : {"cone.V", "fill.V"}) {
+        float* dst = img.addChannel(n);
+        const float* src = from.channel(n);
+        for (int y = 0; y < from.height(); ++y)
+            for (int x = 0; x < from.width(); ++x)
+                dst[size_t(y) * size_t(from.width()) + size_t(x)] =
+                    src[size_t(y) * size_t(from.width()) + size_t(std::max(x - dx, 0))];
+    }
+    writeExr(path.string(), img);
+}
+
+const nlohmann::json& resultOf(const nlohmann::json& metrics, const std::string& label) {
+    for (const nlohmann::json& r : metrics.at("results"))
+        if (r.at("label") == label) return r;
+    ADD_FAILURE() << "no result " << label;
+    return metrics.at("results").at(0);
+}
+
+// A renderer's settings grid (its images, with cost files) merges with the built-in techniques into
+// one table and one Pareto front; an image row has compare --image's numbers; a re-rendered image
+// makes its row stale, and the sweep runs that task again.
+TEST(Sweep, ARenderersImagesJoinTheBuiltInTechniquesFront) {
+    REQUIRE_GL();
+    const fs::path dir =
+        fs::temp_directory_path() / ("so_sweep_images_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "scenes");
+    fs::copy(fs::path(SO_SCENES_DIR) / "meshes", dir / "scenes" / "meshes",
+             fs::copy_options::recursive);
+    const fs::path scene = dir / "scenes" / "spot_objects.scene.json";  // hard lights cone, fill
+    fs::copy_file(fs::path(SO_SCENES_DIR) / "spot_objects.scene.json", scene);
+    std::string log;
+    ASSERT_EQ(runCli("trace " + scene.string() + " --out " + (dir / "trace").string() +
+                         " --width 64 --height 48 --quiet",
+                     &log),
+              0)
+        << log;
+    const ChannelImage oracle = readExr((dir / "trace" / "oracle.exr").string());
+    const fs::path renders = dir / "renders" / "spot_objects";
+    fs::create_directories(renders);
+    // Exact but slow, in between, cheap and wrong: the front's two ends are the renderer's.
+    const std::vector<std::pair<int, double>> shiftMs = {{0, 1e4}, {2, 1.0}, {4, 1e-3}};
+    for (const auto& [shift, ms] : shiftMs) {
+        const fs::path image = renders / ("shift_" + std::to_string(shift) + ".exr");
+        writeShifted(image, oracle, shift);
+        std::ofstream(image.string() + ".json")
+            << nlohmann::json{{"renderer", "engine 1.0"}, {"frame_ms", ms}, {"memory_bytes", 4096}};
+    }
+    const fs::path spec = dir / "spec.json", out = dir / "out";
+    std::ofstream(spec) << R"({"sweep_format": 1, "scenes": ["scenes/*.scene.json"],
+        "width": 64, "height": 48, "frames": 1,
+        "techniques": [{"name": "slope-bias", "params": {"alpha": [0, 2], "resolution": 512}}],
+        "images": [{"name": "engine", "path": "renders/{scene}/shift_{shift}.exr",
+                    "params": {"shift": [0, 2, 4]}}]})";
+    const std::string sweep = "sweep " + spec.string() + " --out " + out.string() + " --jobs 2";
+    ASSERT_EQ(runCli(sweep + " --quiet", &log), 0) << log;
+    EXPECT_NE(log.find("merged 5 of 5 tasks"), std::string::npos) << log;
+
+    const nlohmann::json merged = nlohmann::json::parse(readBytes(out / "metrics.json"));
+    const nlohmann::json& exact = resultOf(merged, "engine:shift=0");
+    EXPECT_EQ(exact["source"], "external");
+    EXPECT_EQ(exact["renderer"], "engine 1.0");
+    EXPECT_EQ(exact["parameters"]["shift"], 0.0) << "the grid's values are the image's parameters";
+    for (const char* light : {"cone", "fill"}) {
+        EXPECT_EQ(exact["lights"][light]["mae"], 0.0) << light;
+        EXPECT_EQ(exact["lights"][light]["cost"]["frame_ms"], 1e4) << light;
+        EXPECT_GT(resultOf(merged, "engine:shift=4")["lights"][light]["mae"].get<double>(), 0.0);
+    }
+    const std::string csv = readBytes(out / "metrics.csv");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "scene,light,technique,label,metric,value,task,param.alpha,param.shift");
+    EXPECT_NE(csv.find(",cone,engine,engine:shift=4,mae,"), std::string::npos);
+    // One front over both: the exact image is its most accurate end, the cheap one its cheapest.
+    const std::string html = readBytes(out / "report.html");
+    const std::string tableStart =
+        R"(<table class="front" data-metric="mae" data-cost="cost.frame_ms">)";
+    const size_t at = html.find(tableStart);
+    ASSERT_NE(at, std::string::npos);
+    const std::string front = html.substr(at, html.find("</table>", at) - at);
+    EXPECT_NE(front.find(">engine:shift=0<"), std::string::npos) << front;
+    EXPECT_NE(front.find(">engine:shift=4<"), std::string::npos) << front;
+    EXPECT_NE(html.find("slope-bias"), std::string::npos);
+
+    // The row of shift=2 against compare --image of the same file with the sweep's oracle.
+    const fs::path shift2 = renders / "shift_2.exr";
+    ASSERT_EQ(runCli("compare " + scene.string() + " --image e=" + shift2.string() +
+                         " --width 64 --height 48 --frames 1 --cache " +
+                         (out / "oracles").string() + " --out " + (dir / "compare").string(),
+                     &log),
+              0)
+        << log;
+    EXPECT_NE(log.find("oracle from the cache"), std::string::npos) << log;
+    const nlohmann::json compare =
+        nlohmann::json::parse(readBytes(dir / "compare" / "metrics.json"));
+    EXPECT_EQ(withoutTimings(compare["results"][0]["lights"]),
+              withoutTimings(resultOf(merged, "engine:shift=2")["lights"]));
+
+    // Re-rendered: the merge counts the row stale, the sweep runs that task again.
+    writeShifted(shift2, oracle, 3);
+    EXPECT_EQ(runCli("sweep-merge " + out.string(), &log), 1);
+    EXPECT_NE(log.find("stale: its image changed"), std::string::npos) << log;
+    ASSERT_EQ(runCli(sweep, &log), 0) << log;
+    EXPECT_NE(log.find("1 images changed since their rows were made"), std::string::npos) << log;
+    EXPECT_NE(log.find("4 of 5 tasks already finished, 1 to run"), std::string::npos) << log;
+    const nlohmann::json again = nlohmann::json::parse(readBytes(out / "metrics.json"));
+    EXPECT_NE(resultOf(again, "engine:shift=2")["lights"]["cone"]["mae"],
+              resultOf(merged, "engine:shift=2")["lights"]["cone"]["mae"]);
+    // A render gone: the spec no longer plans, one line naming the entry.
+    fs::remove(shift2);
+    EXPECT_EQ(runCli(sweep, &log), 2);
+    EXPECT_NE(log.find("images[0].path: no such image for engine:shift=2"), std::string::npos)
+        << log;
+    fs::remove_all(dir);
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // `shadow-oracle sweep` (docs/sweep.md). The input is the spec's text; the spec is named
 // SCRATCH/spec/spec.json (never written: only its folder is used, to resolve the scenes), and that
 // folder holds a few empty scene files (a.scene.json, b.scene.json, sub/c.scene.json, and
-// ../outside.scene.json beside it), since scenes are only matched and checked to exist, not loaded.
+// ../outside.scene.json beside it), since scenes are only matched and checked to exist, not loaded,
+// and a few empty images for "images" entries (img/a_1.exr, a_2, b_1, b_2, c_1.png).
 // The technique table is a small stand-in for the tool's (which needs GL), with the same rules as
 // raster_compare/gl/params.cpp: unknown technique or key, a value that is not a finite number, not
 // an integer or out of range is an InputError. Beyond "only InputError", the harness checks what
@@ -88,7 +89,8 @@ const fs::path& specDir() {
     static const fs::path dir = [] {
         const fs::path d = so::fuzz::scratchDir() / "spec";
         for (const char* f : {"spec/a.scene.json", "spec/b.scene.json", "spec/sub/c.scene.json",
-                              "outside.scene.json"})
+                              "outside.scene.json", "spec/img/a_1.exr", "spec/img/a_2.exr",
+                              "spec/img/b_1.exr", "spec/img/b_2.exr", "spec/img/c_1.png"})
             so::fuzz::writeFile(so::fuzz::scratchDir() / f, "");
         return d;
     }();
@@ -109,12 +111,13 @@ bool globsStayInside(const nlohmann::json& spec) {
     return true;
 }
 
-// How many values the spec gives `key` in some "techniques" entry named `technique` (the largest).
-size_t valuesInSpec(const nlohmann::ordered_json& spec, const std::string& technique,
+// How many values the spec gives `key` in some entry of `list` ("techniques" or "images") named
+// `name` (the largest).
+size_t valuesInSpec(const nlohmann::ordered_json& spec, const char* list, const std::string& name,
                     const std::string& key) {
     size_t most = 0;
-    for (const auto& t : spec.at("techniques")) {
-        if (t.at("name").get<std::string>() != technique || !t.contains("params")) continue;
+    for (const auto& t : spec.at(list)) {
+        if (t.at("name").get<std::string>() != name || !t.contains("params")) continue;
         const auto& params = t.at("params");
         if (!params.contains(key)) continue;
         const auto& v = params.at(key);
@@ -133,12 +136,24 @@ bool isId(const std::string& id) {
     return true;
 }
 
-// What the plan promises (cli/sweep_spec.h), checked cheaply: a plan can have 10^6 tasks.
+// A task's image: an absolute path to a file, read as linear or srgb; none for a technique.
+void checkImage(const so::SweepTask& t) {
+    if (t.image.empty()) {
+        if (!t.encoding.empty()) finding("task " + t.id + ": an encoding without an image");
+        return;
+    }
+    if (!fs::path(t.image).is_absolute() || !fs::is_regular_file(t.image))
+        finding("task " + t.id +
+                ": image not an absolute path to a file: " + so::printable(t.image));
+    if (t.encoding != "linear" && t.encoding != "srgb")
+        finding("task " + t.id + ": encoding " + so::printable(t.encoding));
+}
+
+// What the plan promises (cli/sweep_spec.h), checked cheaply: a plan can have 10^6 tasks. Per
+// scene, in scene order: the same technique settings, then that scene's images.
 void checkPlan(const so::SweepPlan& plan) {
     if (plan.tasks.size() > so::kMaxSweepTasks) finding("more tasks than kMaxSweepTasks");
     if (plan.scenes.empty() || plan.tasks.empty()) finding("a plan without scenes or tasks");
-    if (plan.tasks.size() % plan.scenes.size() != 0)
-        finding("the scenes do not all have the same settings");
     std::set<std::string> sceneNames;
     for (const so::SweepScene& s : plan.scenes) {
         if (!sceneNames.insert(s.name).second) finding("scene listed twice: " + s.name);
@@ -146,13 +161,19 @@ void checkPlan(const so::SweepPlan& plan) {
             finding("scene path not an absolute path to a file: " + s.path.string());
     }
     std::unordered_set<std::string_view> ids;
-    std::map<std::pair<std::string, std::string>, size_t> valuesOf;  // (technique, key): count
-    const size_t perScene = plan.tasks.size() / plan.scenes.size();
+    std::map<std::pair<std::string, std::string>, size_t> valuesOf;  // (entry name, key): count
+    std::vector<size_t> techniqueTasks(plan.scenes.size(), 0);
     for (size_t i = 0; i < plan.tasks.size(); ++i) {
         const so::SweepTask& t = plan.tasks[i];
         if (!isId(t.id)) finding("task id is not 12 hex digits: " + so::printable(t.id));
         if (!ids.insert(t.id).second) finding("task id twice: " + t.id);
-        if (t.scene != i / perScene) finding("task " + t.id + ": scene index out of order");
+        if (t.scene >= plan.scenes.size()) finding("task " + t.id + ": scene index out of range");
+        if (i > 0 && (t.scene < plan.tasks[i - 1].scene ||
+                      (t.scene == plan.tasks[i - 1].scene && t.image.empty() &&
+                       !plan.tasks[i - 1].image.empty())))
+            finding("task " + t.id + ": not in scene order, techniques before images");
+        checkImage(t);
+        if (t.image.empty()) ++techniqueTasks[t.scene];
         std::string label = t.technique;
         for (size_t k = 0; k < t.settings.size(); ++k) label += (k ? "," : ":") + t.settings[k];
         if (t.label != label || t.label.rfind(t.technique, 0) != 0)
@@ -165,11 +186,15 @@ void checkPlan(const so::SweepPlan& plan) {
                     inSettings = std::strtod(s.c_str() + key.size() + 1, nullptr) == v;
             if (!inSettings) finding("task " + t.id + ": swept " + key + " not in its settings");
             // The spec is valid here: every lookup in valuesInSpec finds what it looks for.
-            auto [it, added] = valuesOf.try_emplace({t.technique, key}, 0);
-            if (added) it->second = valuesInSpec(plan.spec, t.technique, key);
+            const char* list = t.image.empty() ? "techniques" : "images";
+            auto [it, added] =
+                valuesOf.try_emplace({std::string(list) + " " + t.technique, key}, 0);
+            if (added) it->second = valuesInSpec(plan.spec, list, t.technique, key);
             if (it->second < 2) finding("task " + t.id + ": " + key + " swept but given one value");
         }
     }
+    for (size_t n : techniqueTasks)
+        if (n != techniqueTasks[0]) finding("the scenes do not all have the same settings");
 }
 
 }  // namespace
