@@ -1,5 +1,6 @@
 #include "cli/compare_command.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -477,10 +478,30 @@ void measureFlicker(CompareJob& job, const std::vector<TechniqueRun>& runs,
     report.flickerStrips = std::move(job.path->strips);
 }
 
+// Who measured the report's times: the GL renderer for the techniques, and for images the
+// renderers their cost files name ("" where none does).
+std::string timedOn(const CompareJob& job, const nlohmann::json& metrics) {
+    std::vector<std::string> renderers;
+    bool images = false;
+    for (const nlohmann::json& r : metrics.at("results")) {
+        if (r.value("source", "") != "external") continue;
+        images = true;
+        const std::string name = r.value("renderer", "");
+        if (!name.empty() && std::find(renderers.begin(), renderers.end(), name) == renderers.end())
+            renderers.push_back(name);
+    }
+    std::string own;
+    for (const std::string& name : renderers) own += (own.empty() ? "" : ", ") + name;
+    const std::string gl = job.gl ? job.gl->renderer() : "";
+    if (!images) return gl;
+    if (own.empty()) return gl.empty() ? "none: the images have no cost files" : gl;
+    return gl.empty() ? own + " (the images' cost files)" : gl + "; the images by " + own;
+}
+
 void writeReportFile(const CompareJob& job, ReportInput& report, const nlohmann::json& metrics,
                      const OracleOptions& oracleOptions) {
     report.oracle = job.oracle.image;
-    report.timedOn = job.gl ? job.gl->renderer() : "";
+    report.timedOn = timedOn(job, metrics);
     report.oracleCurves = job.oracleCurves;
     report.embedImages = job.options.embedImages;
     report.provenance = provenance(metrics, job.oracle, oracleOptions);

@@ -132,6 +132,9 @@ TEST(ExternalImage, TheOraclesOwnVisibilityScoresZero) {
         for (const char* c : {"frame_ms", "shadow_map_ms", "visibility_ms", "memory_bytes"})
             EXPECT_TRUE(row["lights"][light]["cost"][c].is_null()) << c;
     }
+    EXPECT_NE(so::test::readBytes(d / "cmp_spot" / "report.html")
+                  .find("Times were measured on <b>none: the images have no cost files</b>"),
+              std::string::npos);
 
     // A sampled area light through a 16-bit PNG: within half a code of the oracle's V.
     const so::ChannelImage rect = traceOracle(kRect, d / "rect");
@@ -250,6 +253,8 @@ TEST(ExternalImage, TheRowReachesEveryOutput) {
     EXPECT_NE(html.find(">mine<"), std::string::npos);
     EXPECT_NE(html.find("external"), std::string::npos);
     EXPECT_TRUE(fs::exists(cmp / "error_mine.exr"));
+    // No cost file: the times are the GL renderer's alone, and the image's cells are empty.
+    EXPECT_EQ(html.find("the images by"), std::string::npos);
     r = run("index " + cmp.string() + " --out " + (d / "index.html").string());
     ASSERT_EQ(r.exitCode, 0) << r.stderrText;
     EXPECT_NE(so::test::readBytes(d / "index.html").find("mine"), std::string::npos);
