@@ -96,6 +96,68 @@ def main():
           b'{"schema_version": 1, "scene": {"file": "a.scene.json"}, "results": [{"technique": '
           b'"basic", "lights": {"key": {"mae": 0.1, "acne_rate": null}}}]}')
     sweep_seeds()
+    image_seeds()
+
+
+def png_grey(width, height, codes, bits):
+    """A grey PNG (8 or 16 bit) of row-major codes: signature, IHDR, one IDAT, IEND."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+    raw = b""
+    for y in range(height):
+        row = codes[y * width:(y + 1) * width]
+        raw += b"\0" + (bytes(row) if bits == 8 else b"".join(struct.pack(">H", c) for c in row))
+    ihdr = struct.pack(">IIBBBBB", width, height, bits, 0, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(raw)) +
+            chunk(b"IEND", b""))
+
+
+def image_input(flags, width, height, image, cost=b""):
+    """The image harness's input (fuzz_image.cpp): flags, the camera's size, the cost file's
+    length, the cost file, the image."""
+    return bytes([flags, width, height, len(cost) & 0xFF, len(cost) >> 8]) + cost + image
+
+
+def image_seeds():
+    """fuzz_image: oracle.exr of two shipped scenes at 16 x 12 (traced by the Release build's
+    shadow-oracle, skipped without it), grey PNGs, and cost files good and bad."""
+    import subprocess
+    import tempfile
+    cli = ROOT / "build/cli/shadow-oracle"
+    w, h = 16, 12
+    cost = (b'{"renderer": "my-engine 1.2", "frame_ms": 1.5, "shadow_ms": 0.5, "memory_bytes": '
+            b'4096, "params": {"bias": 0.5, "filter": "pcf", "soft": true}}')
+    codes = [(x * 17 + y * 5) % 256 for y in range(h) for x in range(w)]
+    write("image", "png8.bin", image_input(1, w, h, png_grey(w, h, codes, 8), cost))
+    write("image", "png16-srgb.bin",
+          image_input(1 | 4, w, h, png_grey(w, h, [c * 257 for c in codes], 16)))
+    write("image", "png-bad-cost.bin",
+          image_input(1, w, h, png_grey(w, h, codes, 8), b'{"frame_ms": -1, "fps": 60}'))
+    write("image", "png-two-lights.bin", image_input(1 | 2, w, h, png_grey(w, h, codes, 8)))
+    with open(CORPUS.parent / "image.dict", "w") as out:
+        out.write("# libFuzzer dictionary for fuzz_image: the cost file's keys and the channel names"
+                  "\n# (written by tests/fuzz/make_corpus.py).\n")
+        for word in ("renderer", "frame_ms", "shadow_ms", "memory_bytes", "params", "panel.V",
+                     "cone.V", "fill.V"):
+            out.write('"%s"\n' % word)
+    if not cli.is_file():
+        print("image seeds: no %s, EXR seeds left out" % cli)
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        for scene, flags in (("spot_objects", 2), ("penumbra_square", 0)):
+            out = pathlib.Path(tmp) / scene
+            subprocess.run([str(cli), "trace", str(ROOT / "scenes" / (scene + ".scene.json")),
+                            "--out", str(out), "--width", str(w), "--height", str(h), "--quiet"],
+                           check=True)
+            exr = (out / "oracle.exr").read_bytes()
+            write("image", scene + ".bin", image_input(flags, w, h, exr))
+            write("image", scene + "-cost.bin", image_input(flags, w, h, exr, cost))
+            write("image", scene + "-wrong-size.bin", image_input(flags, w + 1, h, exr))
+            write("image", scene + "-other-lights.bin", image_input(flags ^ 2, w, h, exr))
 
 
 # gate --baseline: two small runs of one scene, an area light with the oracle's stats, a row in
