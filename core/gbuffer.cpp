@@ -52,6 +52,17 @@ void checkPixels(const GBuffer& g) {
 // fit the limits. Layout: magic, version, then (name NUL, type NUL, int32 size, value) until an
 // empty name.
 
+// The data window's size within the limits, as a one-line error naming it.
+void checkWindowSize(const std::string& path, int64_t w, int64_t h, const LoadLimits& limits) {
+    if (w < 1 || h < 1 || w > limits.maxImageSide || h > limits.maxImageSide ||
+        uint64_t(w) * uint64_t(h) > limits.maxImagePixels)
+        throwInputError(path, "dataWindow",
+                        "image of " + std::to_string(w) + " x " + std::to_string(h) +
+                            " pixels is empty or too large (at most " +
+                            std::to_string(limits.maxImageSide) + " per side and " +
+                            std::to_string(limits.maxImagePixels) + " pixels)");
+}
+
 }  // namespace
 
 void checkExrHeader(const std::string& path, const LoadLimits& limits) {
@@ -155,15 +166,8 @@ void checkExrHeader(const std::string& path, const LoadLimits& limits) {
         throwInputError(path, "dataWindow",
                         "differs from the display window (a cropped image or a band of trace "
                         "--tile); give the whole image");
-    const int64_t w = int64_t(box[0][2]) - int64_t(box[0][0]) + 1;
-    const int64_t h = int64_t(box[0][3]) - int64_t(box[0][1]) + 1;
-    if (w < 1 || h < 1 || w > limits.maxImageSide || h > limits.maxImageSide ||
-        uint64_t(w) * uint64_t(h) > limits.maxImagePixels)
-        throwInputError(path, "dataWindow",
-                        "image of " + std::to_string(w) + " x " + std::to_string(h) +
-                            " pixels is empty or too large (at most " +
-                            std::to_string(limits.maxImageSide) + " per side and " +
-                            std::to_string(limits.maxImagePixels) + " pixels)");
+    checkWindowSize(path, int64_t(box[0][2]) - int64_t(box[0][0]) + 1,
+                    int64_t(box[0][3]) - int64_t(box[0][1]) + 1, limits);
 }
 
 GBuffer readGBuffer(const std::string& path, const LoadLimits& limits) {
@@ -180,13 +184,7 @@ GBuffer readGBuffer(const std::string& path, const LoadLimits& limits) {
                             "--tile); give the whole image");
         const int64_t w = int64_t(dw.max.x) - int64_t(dw.min.x) + 1;
         const int64_t h = int64_t(dw.max.y) - int64_t(dw.min.y) + 1;
-        if (w < 1 || h < 1 || w > limits.maxImageSide || h > limits.maxImageSide ||
-            uint64_t(w) * uint64_t(h) > limits.maxImagePixels)
-            throwInputError(path, "dataWindow",
-                            "image of " + std::to_string(w) + " x " + std::to_string(h) +
-                                " pixels is empty or too large (at most " +
-                                std::to_string(limits.maxImageSide) + " per side and " +
-                                std::to_string(limits.maxImagePixels) + " pixels)");
+        checkWindowSize(path, w, h, limits);  // as the header walk read it, now as OpenEXR does
         g.width = int(w);
         g.height = int(h);
         const Imf::ChannelList& list = header.channels();

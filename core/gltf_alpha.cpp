@@ -143,7 +143,12 @@ void GltfAlpha::parseTexture(size_t i, const tinygltf::TextureInfo& info, Materi
             fail(ctx_, sField + ".magFilter",
                  std::to_string(s.magFilter) + " is not 9728 NEAREST or 9729 LINEAR");
     }
-    mask.texture = decodedTexture(size_t(tex.source));
+    if (ctx_.readAlphaTextures) {
+        mask.texture = decodedTexture(size_t(tex.source));
+    } else {
+        imagesNotRead_.insert(size_t(tex.source));  // the mask is not tested: no texture needed
+        mask.texture = -1;
+    }
 }
 
 // KHR_texture_transform on the base colour texture: uv' = T(offset) R(rotation) S(scale) uv, the
@@ -235,7 +240,10 @@ std::vector<unsigned char> GltfAlpha::imageBytes(size_t i) {
         fail(ctx_, field + ".uri", quoted(image.uri) + ": outside the model's folder");
     std::vector<unsigned char> bytes;
     if (std::string why = readCapped(ctx_, p, bytes); !why.empty())
-        fail(ctx_, field + ".uri", quoted(image.uri) + ": " + why);
+        fail(ctx_, field + ".uri",
+             quoted(image.uri) + ": " + why +
+                 " (an alpha-tested material's texture; a scene file without the \"alpha\" "
+                 "effect draws it opaque and reads no image)");
     return bytes;
 }
 

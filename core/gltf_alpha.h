@@ -7,6 +7,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,8 @@ class GltfAlpha {
     size_t fromBlend() const { return fromBlend_; }
     // The decoded textures; AlphaMask::texture indexes this list.
     std::vector<AlphaTexture> takeTextures() { return std::move(textures_); }
+    // The images masks name but that were not read (Context::readAlphaTextures off), in order.
+    const std::set<size_t>& imagesNotRead() const { return imagesNotRead_; }
 
   private:
     struct Material {
@@ -52,6 +55,7 @@ class GltfAlpha {
     const Json& doc_;
     std::map<size_t, Material> materials_;
     std::map<size_t, int> textureOfImage_;
+    std::set<size_t> imagesNotRead_;
     std::vector<AlphaTexture> textures_;
     uint64_t texturePixels_ = 0;
     size_t masked_ = 0, fromBlend_ = 0;

@@ -36,6 +36,9 @@ struct Context {
     // Bytes of images stored in the file (bufferView or data: URI), by image index, as tinygltf
     // hands them to its image callback (gltf_alpha.cpp decodes those that masks use).
     std::map<int, std::vector<unsigned char>> embeddedImages;
+    // Whether alpha-tested materials' textures are read and decoded: only when the scene's
+    // effects include "alpha" (a scene that draws them opaque needs no image, nor its files).
+    bool readAlphaTextures = true;
 };
 
 [[noreturn]] void fail(const Context& ctx, const std::string& field, const std::string& message);

@@ -884,6 +884,23 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
     out.meshes.reserve(plan.size());
     for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, pp, alpha));
     out.alphaTextures = alpha.takeTextures();
+    if (!alpha.imagesNotRead().empty()) {
+        std::string names;
+        size_t listed = 0;
+        for (size_t i : alpha.imagesNotRead()) {
+            if (listed++ == 4) {
+                names += ", and " + std::to_string(alpha.imagesNotRead().size() - 4) + " more";
+                break;
+            }
+            const std::string& uri = model.images[i].uri;
+            names += (names.empty() ? "" : ", ") + idx("images", i) +
+                     (uri.empty() ? "" : " " + quoted(printable(uri, 60)));
+        }
+        out.warnings.push_back(std::to_string(alpha.imagesNotRead().size()) +
+                               " image(s) of alpha-tested materials not read (effects lacks "
+                               "\"alpha\"): " +
+                               names);
+    }
     if (alpha.fromBlend() > 0)
         out.warnings.push_back(std::to_string(alpha.fromBlend()) +
                                " primitive(s) with alphaMode BLEND read as MASK at cutoff 0.5");
@@ -892,11 +909,13 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
 }  // namespace
 
 GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
-                     const glm::dmat4& wsFromFile, const LoadLimits& limits) {
+                     const glm::dmat4& wsFromFile, const LoadLimits& limits,
+                     bool readAlphaTextures) {
     GltfContent content;
     Context ctx;
     ctx.displayName = displayName;
     ctx.limits = limits;
+    ctx.readAlphaTextures = readAlphaTextures;
     ctx.out = &content;
     std::error_code ec;
     fs::path folder = fs::absolute(path, ec).lexically_normal().parent_path();

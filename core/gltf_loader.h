@@ -27,8 +27,11 @@ struct GltfContent {
 };
 
 // Loads the default scene of a glTF file, applying `wsFromFile` (the scene file's placement) after
-// the node transforms. `displayName` is the name used in error messages.
+// the node transforms. `displayName` is the name used in error messages. Without
+// `readAlphaTextures` (a scene without the "alpha" effect) alpha-tested materials keep their mask
+// but no texture: their images are neither read nor decoded, and a warning names them.
 GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
-                     const glm::dmat4& wsFromFile, const LoadLimits& limits);
+                     const glm::dmat4& wsFromFile, const LoadLimits& limits,
+                     bool readAlphaTextures = true);
 
 }  // namespace so

@@ -473,6 +473,27 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     std::filesystem::path folder = path.parent_path();
     uint64_t totalBytes = text.size();
 
+    // Effects first: they decide what the geometry's files must hold (alpha textures).
+    scene.effects = {"hard"};
+    if (root.contains("effects")) {
+        const json& je = root["effects"];
+        if (!je.is_array())
+            r.fail("effects", "expected an array of strings, got " + Reader::typeName(je));
+        scene.effects.clear();
+        std::set<std::string> seen;
+        for (size_t i = 0; i < je.size(); ++i) {
+            std::string f = Reader::index("effects", i);
+            std::string e = r.string(je[i], f);
+            if (e != "hard" && e != "penumbra" && e != "contact" && e != "alpha")
+                r.fail(f, "unknown effect \"" + printable(e, 40) +
+                              "\" (valid: hard, penumbra, contact, alpha)");
+            if (!seen.insert(e).second) r.fail(f, "\"" + e + "\" listed twice");
+            scene.effects.push_back(e);
+        }
+        if (scene.effects.empty())
+            r.fail("effects", "empty: nothing to simulate (omit it for [\"hard\"])");
+    }
+
     if (!root.contains("geometry")) r.fail("geometry", "missing");
     const json& jg = root["geometry"];
     if (!jg.is_array()) r.fail("geometry", "expected an array, got " + Reader::typeName(jg));
@@ -502,7 +523,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         std::error_code ec;
         if (!std::filesystem::is_regular_file(file, ec))
             r.fail(f + ".file", "\"" + printable(rel, 60) + "\": no such file");
-        GltfContent g = loadGltf(file, gltfDisplay, wsFromFile, limits);
+        GltfContent g = loadGltf(file, gltfDisplay, wsFromFile, limits, scene.hasEffect("alpha"));
         scene.geometry.push_back({std::filesystem::absolute(file, ec), translate, scale});
         for (const auto& fr : g.filesRead) {
             std::string relName = fr.lexically_relative(folder).generic_string();
@@ -518,26 +539,6 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
 
     if (!root.contains("lights")) r.fail("lights", "missing");
     parseLights(root["lights"], r, limits, scene);
-
-    scene.effects = {"hard"};
-    if (root.contains("effects")) {
-        const json& je = root["effects"];
-        if (!je.is_array())
-            r.fail("effects", "expected an array of strings, got " + Reader::typeName(je));
-        scene.effects.clear();
-        std::set<std::string> seen;
-        for (size_t i = 0; i < je.size(); ++i) {
-            std::string f = Reader::index("effects", i);
-            std::string e = r.string(je[i], f);
-            if (e != "hard" && e != "penumbra" && e != "contact" && e != "alpha")
-                r.fail(f, "unknown effect \"" + printable(e, 40) +
-                              "\" (valid: hard, penumbra, contact, alpha)");
-            if (!seen.insert(e).second) r.fail(f, "\"" + e + "\" listed twice");
-            scene.effects.push_back(e);
-        }
-        if (scene.effects.empty())
-            r.fail("effects", "empty: nothing to simulate (omit it for [\"hard\"])");
-    }
 
     warnAboutEffects(scene);
     finalizeScene(scene);

@@ -84,22 +84,8 @@ PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GB
             SO_CHECK_EQ(v->size(), pixels);
     if (!g.depth.empty()) SO_CHECK_EQ(g.depth.size(), pixels);
     PointsSurface out;
+    out.sb = SurfaceBuffer::empty(g.width, g.height, 0);
     SurfaceBuffer& sb = out.sb;
-    sb.width = g.width;
-    sb.height = g.height;
-    sb.rowBegin = 0;
-    sb.tilesX = (sb.width + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
-    sb.tilesY = (sb.height + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
-    const size_t n = size_t(sb.tilesX) * size_t(sb.tilesY) * 16;
-    sb.hit.assign(n, 0);
-    sb.meshId.assign(n, 0);
-    sb.primId.assign(n, 0);
-    sb.originId.assign(n, kNoOriginTriangle);
-    for (auto* v :
-         {&sb.lsPointX, &sb.lsPointY, &sb.lsPointZ, &sb.lsNormalX, &sb.lsNormalY, &sb.lsNormalZ,
-          &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ, &sb.baryU, &sb.baryV})
-        v->assign(n, 0.0f);
-    sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
     out.status.assign(g.pixelCount(), uint8_t(PointStatus::Background));
     const LocalFrame& frame = accel.frame();
 

@@ -13,14 +13,10 @@
 
 namespace so {
 
-SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
-                           OffsetPolicy offsetPolicy, int rowBegin, int rowEnd) {
-    if (rowEnd < 0) rowEnd = camera.height();
-    SO_CHECK(rowBegin % SurfaceBuffer::kTile == 0 && 0 <= rowBegin && rowBegin < rowEnd &&
-             rowEnd <= camera.height());
+SurfaceBuffer SurfaceBuffer::empty(int width, int height, int rowBegin) {
     SurfaceBuffer sb;
-    sb.width = camera.width();
-    sb.height = rowEnd - rowBegin;
+    sb.width = width;
+    sb.height = height;
     sb.rowBegin = rowBegin;
     sb.tilesX = (sb.width + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
     sb.tilesY = (sb.height + SurfaceBuffer::kTile - 1) / SurfaceBuffer::kTile;
@@ -34,6 +30,15 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
           &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ, &sb.baryU, &sb.baryV})
         v->assign(n, 0.0f);
     sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
+    return sb;
+}
+
+SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
+                           OffsetPolicy offsetPolicy, int rowBegin, int rowEnd) {
+    if (rowEnd < 0) rowEnd = camera.height();
+    SO_CHECK(rowBegin % SurfaceBuffer::kTile == 0 && 0 <= rowBegin && rowBegin < rowEnd &&
+             rowEnd <= camera.height());
+    SurfaceBuffer sb = SurfaceBuffer::empty(camera.width(), rowEnd - rowBegin, rowBegin);
     const LocalFrame& frame = accel.frame();
     sb.lsEye = frame.lsFromWs(camera.wsEye());
     const glm::dvec3 lsEye = *sb.lsEye;

@@ -51,6 +51,10 @@ struct SurfaceBuffer {
     double lsMaxOffset = 0.0;  // the largest |origin - hit point|: the oracle's blind distance
     uint64_t alphaTests = 0;   // candidate hits on alpha-tested geometry, tested
 
+    // An empty buffer of width x height pixels from image row rowBegin: every slot a miss, at
+    // infinite depth, with no origin triangle.
+    static SurfaceBuffer empty(int width, int height, int rowBegin);
+
     size_t slotCount() const { return hit.size(); }
     glm::vec3 lsPoint(size_t s) const { return {lsPointX[s], lsPointY[s], lsPointZ[s]}; }
     glm::vec3 lsNormal(size_t s) const { return {lsNormalX[s], lsNormalY[s], lsNormalZ[s]}; }

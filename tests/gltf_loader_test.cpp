@@ -410,6 +410,23 @@ void checkSharedAsset(const std::string& name) {
     std::printf("[ loader ] %s: %llu triangles, %zu alpha-tested primitives, %zu alpha textures\n",
                 name.c_str(), (unsigned long long)triangles, masked, c.alphaTextures.size());
     if (p != original) fs::remove_all(p.parent_path());
+
+    // The asset as shipped (textures or not) in a scene without the alpha effect: no image read.
+    const fs::path tmp =
+        fs::temp_directory_path() / ("so_shared_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(tmp);
+    fs::create_directories(tmp);
+    for (const auto& e : fs::directory_iterator(original.parent_path()))
+        if (e.path().extension() == ".gltf" || e.path().extension() == ".bin")
+            fs::copy_file(e.path(), tmp / e.path().filename());
+    std::ofstream(tmp / "opaque.scene.json")
+        << R"({"scene_format": 1, "geometry": [{"file": ")" << original.filename().string()
+        << R"("}], "lights": [{"name": "sun", "type": "directional", "direction": [0, -1, 0]}]})";
+    so::Scene opaque;
+    ASSERT_NO_THROW(opaque = so::loadScene(tmp / "opaque.scene.json"));
+    EXPECT_EQ(opaque.stats.triangles, triangles);
+    EXPECT_TRUE(opaque.alphaTextures.empty());
+    fs::remove_all(tmp);
 }
 
 }  // namespace
@@ -519,6 +536,48 @@ TEST(GltfLoaderAlpha, ShippedGrateSceneAndItsHash) {
     fs::copy_file(kValid / "alpha_checker.png", tmp / "meshes" / "grate.png",
                   fs::copy_options::overwrite_existing);
     EXPECT_NE(so::loadScene(tmp / scene.filename()).contentHash, before);
+    fs::remove_all(tmp);
+}
+
+// A scene that does not test alpha needs no texture: without its PNG the grate loads, drawn
+// opaque, and a warning names the image not read; with "alpha" the missing PNG is an error naming
+// it (a real asset shipped without its textures, e.g. FlightHelmet's PNGs left out).
+TEST(GltfLoaderAlpha, TexturesAreReadOnlyForTheAlphaEffect) {
+    const fs::path scene = fs::path(SO_SCENES_DIR) / "alpha_grate.scene.json";
+    const fs::path tmp =
+        fs::temp_directory_path() / ("so_alpha_unread_" + std::to_string(::getpid()));
+    fs::remove_all(tmp);
+    fs::create_directories(tmp / "meshes");
+    for (const char* f : {"floor.gltf", "grate.gltf"})  // not grate.png
+        fs::copy_file(scene.parent_path() / "meshes" / f, tmp / "meshes" / f);
+    std::ifstream in(scene);
+    nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_TRUE(j.contains("effects"));
+    j["effects"] = {"hard"};
+    std::ofstream(tmp / "opaque.scene.json") << j.dump();
+    j["effects"] = {"hard", "alpha"};
+    std::ofstream(tmp / "alpha.scene.json") << j.dump();
+
+    const so::Scene opaque = so::loadScene(tmp / "opaque.scene.json");
+    ASSERT_EQ(opaque.meshes.size(), 2u);
+    EXPECT_FALSE(opaque.alphaTested(1));
+    EXPECT_TRUE(opaque.alphaTextures.empty());
+    std::string warnings;
+    for (const std::string& w : opaque.stats.warnings) warnings += w + "\n";
+    EXPECT_NE(warnings.find("1 image(s) of alpha-tested materials not read (effects lacks "
+                            "\"alpha\"): images[0] 'grate.png'"),
+              std::string::npos)
+        << warnings;
+    EXPECT_NE(warnings.find("1 alpha-tested primitive(s) drawn opaque"), std::string::npos)
+        << warnings;
+    try {
+        so::loadScene(tmp / "alpha.scene.json");
+        ADD_FAILURE() << "the alpha effect needs the texture";
+    } catch (const so::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("images[0].uri: 'grate.png': not found"),
+                  std::string::npos)
+            << e.what();
+    }
     fs::remove_all(tmp);
 }
 
