@@ -19,6 +19,11 @@ std::string number(double v) {
 }
 
 std::string range(const ParamSpec& p) {
+    if (!p.names.empty()) {
+        std::string s;
+        for (const std::string& n : p.names) s += (s.empty() ? "" : ", ") + n;
+        return s;
+    }
     if (!p.allowed.empty()) {
         std::string s;
         for (double a : p.allowed) s += (s.empty() ? "" : ", ") + number(a);
@@ -42,7 +47,7 @@ std::string markdown() {
         o << "| parameter | default | range | meaning |\n|---|---|---|---|\n";
         for (const ParamSpec& p : t->params)
             o << "| `" << p.name << "`" << (p.quality ? " (quality)" : "") << " | "
-              << number(p.defaultValue) << " | " << range(p) << " | " << p.doc << " |\n";
+              << paramValueText(p, p.defaultValue) << " | " << range(p) << " | " << p.doc << " |\n";
     }
     return o.str();
 }
@@ -52,8 +57,8 @@ std::string text() {
     for (const TechniqueInfo* t : allTechniques()) {
         o << t->name << " (" << t->family << "): " << t->summary << "\n";
         for (const ParamSpec& p : t->params)
-            o << "    " << p.name << " = " << number(p.defaultValue) << "  [" << range(p) << "]  "
-              << p.doc << "\n";
+            o << "    " << p.name << " = " << paramValueText(p, p.defaultValue) << "  [" << range(p)
+              << "]  " << p.doc << "\n";
     }
     return o.str();
 }
@@ -66,6 +71,7 @@ std::string json() {
             nlohmann::json j = {{"name", p.name}, {"default", p.defaultValue}, {"min", p.min},
                                 {"max", p.max},   {"integer", p.integer},      {"doc", p.doc}};
             if (!p.allowed.empty()) j["allowed"] = p.allowed;
+            if (!p.names.empty()) j["names"] = p.names;  // value k is names[k]
             if (p.quality) j["quality"] = true;
             params.push_back(j);
         }
@@ -74,7 +80,7 @@ std::string json() {
                        {"summary", t->summary},
                        {"parameters", params}});
     }
-    return nlohmann::json({{"format_version", 2}, {"techniques", all}}).dump(2) + "\n";
+    return nlohmann::json({{"format_version", 3}, {"techniques", all}}).dump(2) + "\n";
 }
 
 }  // namespace

@@ -709,6 +709,39 @@ TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
     EXPECT_THROW(createTechnique("pcf", {"kernel=4"}), InputError) << "an even kernel";
 }
 
+// Parameters that pick a method take their names, and the numbers they took before names; any
+// other word is an error that lists the names.
+TEST(Raster, MethodParametersTakeNamesAndTheirNumbers) {
+    size_t named = 0;
+    for (const TechniqueInfo* t : allTechniques())
+        for (const ParamSpec& p : t->params) {
+            if (p.names.empty()) continue;
+            ++named;
+            EXPECT_EQ(p.min, 0.0) << t->name << " " << p.name;
+            EXPECT_EQ(p.max, double(p.names.size() - 1)) << t->name << " " << p.name;
+            for (size_t k = 0; k < p.names.size(); ++k) {
+                const auto byName = createTechnique(t->name, {p.name + "=" + p.names[k]});
+                const auto byNumber = createTechnique(t->name, {p.name + "=" + std::to_string(k)});
+                EXPECT_EQ(byName->values().real(p.name), double(k)) << t->name << " " << p.name;
+                EXPECT_EQ(byName->values().all(), byNumber->values().all()) << t->name;
+                EXPECT_EQ(paramValueText(p, double(k)), p.names[k]);
+            }
+            try {
+                createTechnique(t->name, {p.name + "=sideways"});
+                ADD_FAILURE() << t->name << " accepted " << p.name << "=sideways";
+            } catch (const InputError& e) {
+                EXPECT_NE(std::string(e.what()).find("\"sideways\" is not one of " + p.names[0] +
+                                                     ", " + p.names[1]),
+                          std::string::npos)
+                    << e.what();
+            }
+        }
+    EXPECT_GE(named, 9u);  // fit, snap (every shadow map), method, bilateral, pattern x2, ...
+    const auto pcf = createTechnique("pcf", {"pattern=poisson", "kernel=5"});
+    EXPECT_EQ(pcf->values().integer("pattern"), 1);
+    EXPECT_THROW(createTechnique("pcf", {"kernel=grid"}), InputError) << "names only where named";
+}
+
 // Every registered technique constructs at its defaults, reports every parameter of its table,
 // and a created technique is of the family it is listed under.
 TEST(Raster, RegistryListsEveryTechniqueWithItsTable) {

@@ -1,5 +1,6 @@
 #include "raster_compare/gl/params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +32,13 @@ std::string listOf(const std::vector<double>& values) {
     std::ostringstream os;
     for (size_t i = 0; i < values.size(); ++i) os << (i ? ", " : "") << values[i];
     return os.str();
+}
+
+// "grid, poisson" (or their numbers, 0..1).
+std::string namesOf(const ParamSpec& spec) {
+    std::string s;
+    for (const std::string& n : spec.names) s += (s.empty() ? "" : ", ") + n;
+    return s + " (or their numbers, 0.." + std::to_string(spec.names.size() - 1) + ")";
 }
 
 void validate(const std::string& file, const ParamSpec& spec, double v) {
@@ -71,10 +79,15 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
             if (s.name == key) spec = &s;
         if (!spec)
             throwInputError(file, printable(key, 40), "unknown parameter (valid: " + valid + ")");
+        const auto named = std::find(spec->names.begin(), spec->names.end(), text);
         char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0' || !std::isfinite(v))
-            throwInputError(file, key, "\"" + printable(text, 40) + "\" is not a number");
+        const double v = named != spec->names.end() ? double(named - spec->names.begin())
+                                                    : std::strtod(text.c_str(), &end);
+        if (named == spec->names.end() && (text.empty() || *end != '\0' || !std::isfinite(v)))
+            throwInputError(
+                file, key,
+                "\"" + printable(text, 40) + "\" is not " +
+                    (spec->names.empty() ? std::string("a number") : "one of " + namesOf(*spec)));
         validate(file, *spec, v);
         values.values_[key] = v;
     }
@@ -92,6 +105,23 @@ std::string glslFloat(double v) {
 
 std::string glslDefine(const std::string& name, double v) {
     return "#define " + name + " " + glslFloat(v) + "\n";
+}
+
+ParamSpec methodParam(std::string name, int defaultIndex, std::vector<std::string> names,
+                      std::string doc) {
+    SO_CHECK(names.size() >= 2 && defaultIndex >= 0 && size_t(defaultIndex) < names.size());
+    ParamSpec p{std::move(name), double(defaultIndex), 0.0, double(names.size() - 1), true,
+                std::move(doc)};
+    p.names = std::move(names);
+    return p;
+}
+
+std::string paramValueText(const ParamSpec& spec, double v) {
+    if (!spec.names.empty() && v >= 0 && v < double(spec.names.size()) && v == std::floor(v))
+        return spec.names[size_t(v)];
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
 }
 
 const ParamSpec* qualityParam(const ParamTable& table) {

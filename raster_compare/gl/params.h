@@ -21,8 +21,17 @@ struct ParamSpec {
     // The technique's main quality parameter (at most one per table): the report draws the
     // settings that differ only in it as one curve of error against cost.
     bool quality = false;
+    // A parameter that picks a method: the names of its values 0, 1, ... (made by methodParam).
+    // A setting gives the name ("pattern=poisson") or, as before names, the number.
+    std::vector<std::string> names = {};
 };
 using ParamTable = std::vector<ParamSpec>;
+
+// A parameter that picks one of `names`: value k is names[k], the default names[defaultIndex].
+ParamSpec methodParam(std::string name, int defaultIndex, std::vector<std::string> names,
+                      std::string doc);
+// The name of value v of a method parameter, or its number ("2048", "0.5") for any other.
+std::string paramValueText(const ParamSpec& spec, double v);
 
 // The table's quality parameter, or null.
 const ParamSpec* qualityParam(const ParamTable& table);

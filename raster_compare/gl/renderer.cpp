@@ -50,7 +50,7 @@ double renderFrame(const CameraPass& camera, std::vector<FrameLight>& lights, Pa
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The receivers the camera sees, rendered once for every technique that asks (fit=1).
+// The receivers the camera sees, rendered once for every technique that asks (fit=receivers).
 std::optional<Bounds3d> receiverBounds(const CameraPass& camera,
                                        const std::vector<const Technique*>& techniques) {
     for (const Technique* t : techniques)

@@ -12,9 +12,9 @@
 namespace so {
 
 ParamSpec fitParam() {
-    return {"fit", 0,
-            0,     1,
-            true,  "directional maps: 0 fit the scene's bounds, 1 only the receivers in view"};
+    return methodParam("fit", 0, {"bounds", "receivers"},
+                       "directional maps: fitted to the scene's bounds, or only to the receivers "
+                       "in view");
 }
 
 ParamTable shadowMapParams(ParamTable own) {
@@ -34,8 +34,9 @@ ParamTable shadowMapParams(ParamTable own) {
          "ignore it"},
         {"split_lambda", 0.5, 0.0, 1.0, false,
          "cascades' practical split: 0 uniform, 1 logarithmic"},
-        {"snap", 1, 0, 1, true,
-         "cascades: 1 bounding-sphere fit with texel snapping, 0 each slice's tight box"},
+        methodParam("snap", 1, {"off", "on"},
+                    "cascades: on, a bounding-sphere fit with texel snapping; off, each slice's "
+                    "tight box"),
         {"blend", 0.1, 0.0, 0.5, false,
          "cascades: fraction of each one's depth range over which it fades into the next"},
     };

@@ -1,15 +1,15 @@
 // accumulate: soft shadows as the average of many hard ones (the course's "many point lights,
 // additive blending"): `samples` points on the area light, from an Owen-scrambled Sobol sequence
 // as the oracle's are (uniform by area on rect and disk lights, uniform over a sphere light's
-// surface), each a point light whose hard shadow a technique renders: `method=1` stencil shadow
-// volumes (volume-zfail, exact per sample), `method=0` a slope-biased shadow map of `resolution`.
-// Each sample's V is weighted per pixel as the oracle weights its samples, by
-// G = cos(receiver) cos(emitter) / r^2 (one-sided for rect and disk lights), and the result is
-// sum(G v) / sum(G): the limit as the samples grow is the oracle's V, not an unweighted average.
-// Lights that are not area lights are their own single sample. Every sample's passes run every
-// frame: the cost grows with `samples`. Alpha-tested casters are what the inner technique makes
-// of them: opaque with method=1 (the volumes are built from whole triangles), cut by their masks
-// with method=0.
+// surface), each a point light whose hard shadow a technique renders: `method=volume` stencil
+// shadow volumes (volume-zfail, exact per sample), `method=map` a slope-biased shadow map of
+// `resolution`. Each sample's V is weighted per pixel as the oracle weights its samples, by G =
+// cos(receiver) cos(emitter) / r^2 (one-sided for rect and disk lights), and the result is sum(G v)
+// / sum(G): the limit as the samples grow is the oracle's V, not an unweighted average. Lights that
+// are not area lights are their own single sample. Every sample's passes run every frame: the cost
+// grows with `samples`. Alpha-tested casters are what the inner technique makes of them: opaque
+// with method=volume (the volumes are built from whole triangles), cut by their masks with
+// method=map.
 #include <cmath>
 #include <deque>
 #include <numbers>
@@ -84,10 +84,10 @@ class Accumulate final : public Technique {
     static constexpr const char* kFamily = "accumulation";
     static ParamTable params() {
         return {{"samples", 64, 1, 1024, true, "points on the light, each a hard shadow", {}, true},
-                {"method", 1, 0, 1, true,
-                 "1: stencil shadow volumes (volume-zfail: alpha-tested casters opaque); 0: "
-                 "slope-biased shadow maps (alpha-tested)"},
-                {"resolution", 512, 16, 16384, true, "method=0: each map's side in texels"}};
+                methodParam("method", 1, {"map", "volume"},
+                            "volume: stencil shadow volumes (volume-zfail: alpha-tested casters "
+                            "opaque); map: slope-biased shadow maps (alpha-tested)"),
+                {"resolution", 512, 16, 16384, true, "method=map: each map's side in texels"}};
     }
     explicit Accumulate(const ParamValues& v)
         : Technique(v),

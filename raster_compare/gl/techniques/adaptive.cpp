@@ -101,9 +101,10 @@ ParamTable Adaptive::params() {
         {"density", 1.0, 1.0 / 64.0, 1024.0, false,
          "texels wanted across a pixel's footprint (at n.l): pages are asked for at the coarsest "
          "level with predicted aliasing <= 1/density"},
-        {"refine", 1, 0, 1, true,
-         "1: when the pool cannot hold every page asked for, fill half of it first, "
-         "then ask for finer pages only near the shadow edges found there; 0: by footprint alone"},
+        methodParam("refine", 1, {"off", "on"},
+                    "on: when the pool cannot hold every page asked for, fill half of it first, "
+                    "then ask for finer pages only near the shadow edges found there; off: by "
+                    "footprint alone"),
         fitParam(),
     };
     for (ParamSpec& s : SlopeBias::params()) p.push_back(std::move(s));

@@ -1,6 +1,6 @@
 // blur: the course's post-processing soft shadow. A hard shadow (a slope-biased shadow map of
 // `resolution`) is rendered into the screen, then blurred there by a separable Gaussian of
-// `radius` pixels (sigma = radius / 2). With `bilateral=1` a tap counts only where the camera
+// `radius` pixels (sigma = radius / 2). With `bilateral=on` a tap counts only where the camera
 // sees the same kind of surface: its normal within about 25 degrees and its distance within 5%
 // of the pixel's, so the blur does not run across silhouettes. The penumbra's width is the
 // radius everywhere, whatever the distance from occluder to receiver: what the metrics measure.
@@ -46,8 +46,8 @@ class Blur final : public Technique {
     static ParamTable params() {
         return {
             {"radius", 4, 0, 64, true, "Gaussian radius in pixels (sigma = radius / 2)", {}, true},
-            {"bilateral", 0, 0, 1, true,
-             "1: only taps on a similar surface (normal and distance) count"},
+            methodParam("bilateral", 0, {"off", "on"},
+                        "on: only taps on a similar surface (normal and distance) count"),
             {"resolution", 2048, 16, 16384, true, "the hard shadow map's side in texels"}};
     }
     explicit Blur(const ParamValues& v)

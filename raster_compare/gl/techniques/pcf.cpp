@@ -13,7 +13,8 @@ class Pcf final : public ShadowMapTechnique {
     static ParamTable params() {
         ParamTable own = {
             {"kernel", 3, 1, 15, true, "grid side in texels, odd", {1, 3, 5, 7, 9, 11, 13, 15}},
-            {"pattern", 0, 0, 1, true, "0: kernel x kernel grid, 1: 16-tap Poisson disk"}};
+            methodParam("pattern", 0, {"grid", "poisson"},
+                        "grid: kernel x kernel taps; poisson: a 16-tap Poisson disk")};
         for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
         return shadowMapParams(own);
     }

@@ -31,10 +31,10 @@ class Pcss final : public ShadowMapTechnique {
              "light's (side of a square of its area)"},
             {"blocker_samples", 16, 1, 256, true, "taps of the blocker search"},
             {"filter_samples", 32, 1, 256, true, "taps of the variable PCF", {}, true},
-            {"pattern", 0, 0, 1, true,
-             "taps: 0 one golden-angle spiral for every pixel (smooth; may band at few taps), 1 "
-             "the spiral turned per pixel by interleaved gradient noise (banding traded for "
-             "noise)"},
+            methodParam("pattern", 0, {"spiral", "rotated"},
+                        "taps: spiral, one golden-angle spiral for every pixel (smooth; may band "
+                        "at few taps); rotated, the spiral turned per pixel by interleaved "
+                        "gradient noise (banding traded for noise)"),
             {"search_max", 128, 1, 1024, false, "largest blocker-search radius, texels"},
             {"filter_max", 128, 0, 1024, false, "largest filter radius, texels"}};
         for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);

@@ -19,8 +19,9 @@ class Planar final : public Technique {
         return {receiverParam(),
                 {"lift", 1e-4, 0.0, 0.1, false,
                  "the plane raised towards the light, in units of the scene's diagonal"},
-                {"stencil", 1, 0, 1, true,
-                 "1: shadow only on the receiver's pixels, each darkened once; 0: no stencil"},
+                methodParam("stencil", 1, {"off", "on"},
+                            "on: shadow only on the receiver's pixels, each darkened once; off: "
+                            "no stencil"),
                 {"alpha", 1.0, 0.0, 1.0, false, "shadow opacity: V = 1 - alpha in shadow"}};
     }
     explicit Planar(const ParamValues& v) : Technique(v) {

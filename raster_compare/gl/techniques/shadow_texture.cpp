@@ -19,7 +19,8 @@ class ShadowTexture final : public ShadowMapTechnique {
     static constexpr const char* kFamily = "shadow texture";
     static ParamTable params() {
         return shadowMapParams(
-            {{"filter", 1, 0, 1, true, "1: bilinear lookup of the texture; 0: point sampling"},
+            {methodParam("filter", 1, {"point", "bilinear"},
+                         "bilinear lookup of the texture, or point sampling"),
              {"receiver", -1, -1, 1e6, true,
               "mesh index (as id.mesh) of the receiver; -1: the largest planar mesh"}});
     }

@@ -15,8 +15,9 @@ namespace {
 class VolumeZPass final : public ShadowVolumeTechnique {
   public:
     static ParamTable params() {
-        return {{"init_count", 1, 0, 1, true,
-                 "1: start the count at the volumes containing the eye (CPU); 0: at 0 (naive)"}};
+        return {methodParam("init_count", 1, {"zero", "eye"},
+                            "eye: start the count at the volumes containing the eye (CPU); zero: "
+                            "at 0 (naive)")};
     }
     explicit VolumeZPass(const ParamValues& v)
         : ShadowVolumeTechnique(v), initCount_(v.integer("init_count") == 1) {}
