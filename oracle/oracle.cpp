@@ -8,7 +8,6 @@
 #include <thread>
 #include <utility>
 
-#include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 #include <tbb/version.h>
@@ -24,6 +23,7 @@
 #include "oracle/points.h"
 #include "oracle/primary_image.h"
 #include "oracle/surface_buffer.h"
+#include "oracle/thread_arena.h"
 
 namespace so {
 
@@ -280,19 +280,17 @@ namespace {
 
 // What runOracle and runOracleAtPoints share: the BVH (built with a fixed configuration whatever
 // --threads says, so that the same scene always gives the same tree and therefore the same closest
-// hit on exact ties) and the arena with exactly the requested number of threads, even above the
-// core count (the determinism tests oversubscribe on purpose; TBB would otherwise cap the arena
-// and warn).
+// hit on exact ties) and the arena with exactly the requested number of threads (thread_arena.h).
 struct OracleSetup {
     OracleSetup(const Scene& scene, int threads)
         : device("threads=0"),
           accel(scene, device),
-          parallelism(tbb::global_control::max_allowed_parallelism, size_t(threads)),
-          arena(threads) {}
+          threadArena(threads),
+          arena(threadArena.arena()) {}
     EmbreeDevice device;
     const Accel accel;
-    tbb::global_control parallelism;
-    tbb::task_arena arena;
+    ThreadArena threadArena;
+    tbb::task_arena& arena;
 };
 
 int resolvedThreads(const OracleOptions& options) {

@@ -2,7 +2,6 @@
 
 #include <thread>
 
-#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include "core/camera.h"
@@ -12,6 +11,7 @@
 #include "oracle/accel.h"
 #include "oracle/embree_handles.h"
 #include "oracle/surface_buffer.h"
+#include "oracle/thread_arena.h"
 
 namespace so {
 
@@ -33,8 +33,8 @@ PrimaryImage tracePrimaryImage(const Scene& scene, const OracleOptions& options)
     // The same BVH configuration as runOracle, so the same hits.
     EmbreeDevice device("threads=0");
     const Accel accel(scene, device);
-    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    tbb::task_arena arena(threads);
+    ThreadArena threadArena(threads);
+    tbb::task_arena& arena = threadArena.arena();
     SurfaceBuffer sb;
     {
         Progress progress("primary rays", uint64_t(camera.width()) * uint64_t(camera.height()),

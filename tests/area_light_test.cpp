@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numeric>
 #include <set>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -475,6 +476,30 @@ TEST(AreaLight, SameImageAtAnyThreadCount) {
     OracleRun other = run(s.scene, a, 1);
     EXPECT_NE(0, std::memcmp(ref.img.channel("panel.V"), other.img.channel("panel.V"),
                              ref.img.pixelCount() * sizeof(float)));
+}
+
+// Two oracles at once in one process (a library caller's threads, a Python session's), one at
+// fewer threads than cores and one oversubscribed: each gives what it gives alone, bit for bit.
+TEST(AreaLight, TwoOraclesAtOnceGiveWhatEachGivesAlone) {
+    PenumbraScene s = makePenumbraScene(48, 36);
+    AreaSampling a;
+    a.targetError = 0.03;
+    const OracleRun alone1 = run(s.scene, a, 1), alone7 = run(s.scene, a, 7);
+    for (int round = 0; round < 3; ++round) {
+        OracleRun at1, at7;
+        std::thread first([&] { at1 = run(s.scene, a, 1); });
+        std::thread second([&] { at7 = run(s.scene, a, 7); });
+        first.join();
+        second.join();
+        for (const std::string& name : alone1.img.names()) {
+            EXPECT_EQ(0, std::memcmp(alone1.img.channel(name), at1.img.channel(name),
+                                     alone1.img.pixelCount() * sizeof(float)))
+                << name << " differs at 1 thread beside another oracle, round " << round;
+            EXPECT_EQ(0, std::memcmp(alone7.img.channel(name), at7.img.channel(name),
+                                     alone7.img.pixelCount() * sizeof(float)))
+                << name << " differs at 7 threads beside another oracle, round " << round;
+        }
+    }
 }
 
 TEST(Effects, WithoutPenumbraOneRayPerLitFacingPixel) {
