@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "core/error.h"
@@ -86,12 +87,23 @@ std::vector<std::string> imageModuleCandidates() {
     namespace fs = std::filesystem;
     std::vector<std::string> paths;
     std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        paths.push_back((exe.parent_path() / SO_IMAGE_MODULE_FILE_NAME).string());
+    const auto besides = [&](const fs::path& file) {
+        paths.push_back((file.parent_path() / SO_IMAGE_MODULE_FILE_NAME).string());
         paths.push_back(
-            (exe.parent_path().parent_path() / "core" / SO_IMAGE_MODULE_FILE_NAME).string());
+            (file.parent_path().parent_path() / "core" / SO_IMAGE_MODULE_FILE_NAME).string());
+    };
+    // Beside the file that holds this code: a shared library's own folder (a Python module's,
+    // whose process is python3, so that /proc/self/exe names the interpreter), or for code linked
+    // into a program, the program (glibc names it by argv[0], which may lack its folder: then
+    // /proc/self/exe, next, finds it).
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<const void*>(&imageModuleCandidates), &info) && info.dli_fname &&
+        std::string_view(info.dli_fname).find('/') != std::string_view::npos) {
+        const fs::path self = fs::weakly_canonical(info.dli_fname, ec);
+        if (!ec) besides(self);
     }
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) besides(exe);
     paths.push_back(SO_IMAGE_MODULE_BUILD_PATH);
     // The build path is usually one of the first two: try each file once.
     std::vector<std::string> unique;
