@@ -249,7 +249,8 @@ static Runner addSweepTask(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "sweep-task", "one task of a planned sweep (what `sweep` and its Slurm arrays run)");
     cmd->add_option("dir", o->dir, "the sweep's folder (holding sweep.json)")->required();
-    auto* index = cmd->add_option("--index", o->index, "technique task K (from 0)")
+    auto* index = cmd->add_option("--index", o->index,
+                                  "task K of the plan, a technique's or an image's (from 0)")
                       ->check(CLI::Range(0L, 100000000L));
     cmd->add_option("--oracle", o->oracle, "the oracle of scene S (from 0)")
         ->check(CLI::Range(0L, 100000000L))
