@@ -144,8 +144,14 @@ void checkExrHeader(const std::string& path, const LoadLimits& limits) {
         } else if (type == "chlist") {
             while (!readName(field).empty()) skip(field, 16);
         } else if (type == "preview") {
-            const int64_t pw = uint32_t(readInt(field)), ph = uint32_t(readInt(field));
-            skip(field, 4 * pw * ph);
+            const uint64_t pw = uint32_t(readInt(field)), ph = uint32_t(readInt(field));
+            const uint64_t pixels = pw * ph;  // below 2^64; 4 bytes each could overflow
+            if (pixels > uint64_t(std::max<int64_t>(left(), 0)) / 4)
+                throwInputError(path, field,
+                                "a preview of " + std::to_string(pw) + " x " + std::to_string(ph) +
+                                    " pixels, more than the " + std::to_string(left()) +
+                                    " bytes left in the file");
+            skip(field, int64_t(4 * pixels));
         } else if (type == "stringvector") {
             skip(field, 0);
             for (int64_t read = 0; read < size;) {
