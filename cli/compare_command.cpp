@@ -422,22 +422,17 @@ std::vector<TechniqueRun> createTechniques(const CompareOptions& options) {
 
 std::vector<ImageSpec> parseImages(const CompareOptions& options,
                                    const std::vector<TechniqueRun>& runs) {
-    if (runs.empty() && options.images.empty() && options.imageSpecs.empty())
+    if (runs.empty() && options.images.empty())
         throwInputError("command line", "--technique",
                         "nothing to compare: give --technique NAME or --image LABEL=PATH");
     std::set<std::string> labels, fileLabels;
     for (const TechniqueRun& r : runs) fileLabels.insert(r.spec.fileLabel);
-    std::vector<ImageSpec> specs;
-    std::vector<ImageSpec> given;
-    for (const std::string& text : options.images) given.push_back(parseImageSpec(text));
-    given.insert(given.end(), options.imageSpecs.begin(), options.imageSpecs.end());
-    for (ImageSpec& spec : given) {
+    for (const ImageSpec& spec : options.images)
         if (!labels.insert(spec.label).second || !fileLabels.insert(spec.fileLabel).second)
             throwInputError("command line", "--image",
                             "label \"" + printable(spec.label, 60) +
                                 "\" is used twice (or names the same folder as another row)");
-        specs.push_back(std::move(spec));
-    }
+    const std::vector<ImageSpec>& specs = options.images;
     if (!options.pointsPath.empty()) {
         if (!runs.empty())
             throwInputError("command line", "--points",
@@ -479,29 +474,26 @@ void measureFlicker(CompareJob& job, const std::vector<TechniqueRun>& runs,
 }
 
 // Who measured the report's times: the GL renderer for the techniques, and for images the
-// renderers their cost files name ("" where none does).
-std::string timedOn(const CompareJob& job, const nlohmann::json& metrics) {
+// renderers their cost files name.
+std::string timedOn(const CompareJob& job, const std::vector<ImageRun>& images) {
     std::vector<std::string> renderers;
-    bool images = false;
-    for (const nlohmann::json& r : metrics.at("results")) {
-        if (r.value("source", "") != "external") continue;
-        images = true;
-        const std::string name = r.value("renderer", "");
+    for (const ImageRun& run : images) {
+        const std::string name = run.image.cost ? run.image.cost->renderer : "";
         if (!name.empty() && std::find(renderers.begin(), renderers.end(), name) == renderers.end())
             renderers.push_back(name);
     }
     std::string own;
     for (const std::string& name : renderers) own += (own.empty() ? "" : ", ") + name;
     const std::string gl = job.gl ? job.gl->renderer() : "";
-    if (!images) return gl;
+    if (images.empty()) return gl;
     if (own.empty()) return gl.empty() ? "none: the images have no cost files" : gl;
     return gl.empty() ? own + " (the images' cost files)" : gl + "; the images by " + own;
 }
 
 void writeReportFile(const CompareJob& job, ReportInput& report, const nlohmann::json& metrics,
-                     const OracleOptions& oracleOptions) {
+                     const OracleOptions& oracleOptions, const std::vector<ImageRun>& images) {
     report.oracle = job.oracle.image;
-    report.timedOn = timedOn(job, metrics);
+    report.timedOn = timedOn(job, images);
     report.oracleCurves = job.oracleCurves;
     report.embedImages = job.options.embedImages;
     report.provenance = provenance(metrics, job.oracle, oracleOptions);
@@ -568,7 +560,7 @@ int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut)
     const nlohmann::json metrics = metricsJson(job, results);
     writeJsonFile(out / "metrics.json", metrics);
     job.wide.write(out / "metrics_wide.csv");
-    if (options.writeReport) writeReportFile(job, report, metrics, oracleOptions);
+    if (options.writeReport) writeReportFile(job, report, metrics, oracleOptions, images);
     std::cout << "compared " << options.scenePath << ": " << runs.size() << " techniques, "
               << images.size() << " images, oracle "
               << (points             ? "at the G-buffer's points"

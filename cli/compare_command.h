@@ -39,9 +39,9 @@ struct CompareOptions {
     std::string scenePath;
     std::string outDir;
     std::vector<std::string> techniques;
-    std::vector<std::string> images;  // LABEL=PATH
-    // Images already split (a sweep's tasks: their labels hold '='), judged after `images`.
-    std::vector<ImageSpec> imageSpecs;
+    // --image LABEL=PATH (parseImageSpec), or a sweep's image tasks (makeImageSpec: their labels
+    // hold '=').
+    std::vector<ImageSpec> images;
     ImageEncoding imageEncoding = ImageEncoding::Linear;
     // --points GBUFFER.exr: the oracle at a renderer's own G-buffer points (trace --points) instead
     // of the scene camera's pixels; images only, the G-buffer's size.

@@ -158,7 +158,8 @@ static Runner addCompare(CLI::App& app) {
     compareCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     compareCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     compareCmd->add_option("--technique", o->techniques, "NAME[:key=value,...] (repeatable)");
-    compareCmd->add_option("--image", o->images,
+    auto images = std::make_shared<std::vector<std::string>>();
+    compareCmd->add_option("--image", *images,
                            "LABEL=PATH: a renderer's shadow image (EXR with NAME.V per light, or "
                            "a grey PNG), judged like a technique; PATH.json beside it gives its "
                            "cost (repeatable; docs/external.md)");
@@ -206,8 +207,9 @@ static Runner addCompare(CLI::App& app) {
                      "technique) for temporal_flicker_rate (docs/metrics.md)")
         ->check(CLI::Range(2, 10000));
 
-    return [o, noCache, encoding] {
+    return [o, noCache, encoding, images] {
         o->useCache = !*noCache;
+        for (const std::string& text : *images) o->images.push_back(so::parseImageSpec(text));
         o->imageEncoding = so::parseImageEncoding(*encoding, "--image-encoding");
         o->oracle.progress = false;
         return so::runCompareCommand(*o);

@@ -149,12 +149,8 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
         runPool(tasks, o.jobs, progress);
     }
     fs::remove(dir / "work", ec);  // empty now, unless a task failed half-way
-    return runSweepMerge({dir.string(), false});
+    return runSweepMerge({dir.string(), false, true});
 }
-
-}  // namespace
-
-namespace {
 
 // An image re-rendered since its row was made (another hash of the image and its cost file, or
 // gone) makes the row stale: removed, so that the task runs again (and fails, saying why, when

@@ -58,7 +58,7 @@ bool stale(const nlohmann::json& row, const nlohmann::json& hashes, size_t scene
            row.at("scene").at("hash") != hashes.at(key);
 }
 
-Rows readRows(const fs::path& dir, const SweepPlan& plan) {
+Rows readRows(const fs::path& dir, const SweepPlan& plan, bool imagesChecked) {
     Rows rows;
     nlohmann::json hashes;
     if (std::ifstream in(sweepSceneHashesPath(dir)); in)
@@ -70,7 +70,8 @@ Rows readRows(const fs::path& dir, const SweepPlan& plan) {
             try {
                 nlohmann::json row = nlohmann::json::parse(in);
                 const bool sceneChanged = stale(row, hashes, plan.tasks[i].scene);
-                const bool imageChanged = !sceneChanged && imageRowIsStale(row, plan.tasks[i]);
+                const bool imageChanged =
+                    !sceneChanged && !imagesChecked && imageRowIsStale(row, plan.tasks[i]);
                 if (!sceneChanged && !imageChanged) {
                     rows.done.emplace_back(i, std::move(row));
                     continue;
@@ -176,7 +177,7 @@ nlohmann::json failedJson(const std::vector<SweepFailure>& failed) {
 int runSweepMerge(const SweepMergeOptions& options) {
     const fs::path dir = options.dir;
     const SweepPlan plan = readPlan(dir);
-    Rows rows = readRows(dir, plan);
+    Rows rows = readRows(dir, plan, options.imagesChecked);
     const std::vector<std::string> swept = sweptColumns(plan);
     Tables t;
     t.csv << "scene,light,technique,label,metric,value,task";

@@ -520,17 +520,17 @@ std::string imageInputsHash(const fs::path& image) {
 
 bool imageRowIsStale(const nlohmann::json& row, const SweepTask& task) {
     if (task.image.empty()) return false;
-    std::string now;
-    try {
-        now = imageInputsHash(task.image);
-    } catch (const InputError&) {
-        return true;  // gone or unreadable: the task runs again and says why
-    }
+    // What the row says first, so that a malformed row costs no read of the image.
     if (!row.is_object() || !row.contains("task") || !row["task"].is_object()) return true;
     const nlohmann::json& t = row["task"];
     if (!t.contains("image") || !t["image"].is_object()) return true;
     const nlohmann::json hash = t["image"].contains("hash") ? t["image"]["hash"] : nlohmann::json();
-    return !hash.is_string() || hash.get<std::string>() != now;
+    if (!hash.is_string()) return true;
+    try {
+        return hash.get<std::string>() != imageInputsHash(task.image);
+    } catch (const InputError&) {
+        return true;  // gone or unreadable: the task runs again and says why
+    }
 }
 
 fs::path sweepRowPath(const fs::path& dir, const SweepTask& task) {

@@ -100,7 +100,7 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
         c.techniques = {t.label};
     } else {
         imageHash = imageInputsHash(t.image);
-        c.imageSpecs = {makeImageSpec(t.label, t.image)};
+        c.images = {makeImageSpec(t.label, t.image)};
         c.imageEncoding = parseImageEncoding(t.encoding, "encoding");
     }
     c.oracle = oracleOptions(plan.settings.oracle);
