@@ -186,7 +186,6 @@ int main(int argc, char** argv) {
     small.effects = {"penumbra"};
     small.lights = {benchLights()[0]};
     OracleOptions o;
-    o.progress = false;
     OracleResult adaptive = runOracle(small, o);
     const OracleAreaStats& la = *adaptive.stats.lights[0].area;
     o.area.fixedSpp = int(la.sppMax);

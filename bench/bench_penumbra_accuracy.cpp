@@ -163,7 +163,6 @@ int main(int argc, char** argv) {
     bool reported = false;
     for (double target : {0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125}) {
         OracleOptions o;
-        o.progress = false;
         o.width = o.height = size;
         o.area.targetError = target;
         const OracleResult r = runOracle(scene, o);

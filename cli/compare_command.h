@@ -1,6 +1,7 @@
 // `shadow-oracle compare`: the oracle (reused from a cache keyed by scene content and oracle
 // options) against each technique, metrics per scene x light x technique (docs/metrics.md), written
-// as metrics.json, metrics.csv and an error EXR per technique (docs/cli.md).
+// as metrics.json, metrics.csv and an error EXR per technique (docs/cli.md). The comparison itself
+// is raster_compare/comparison's; this parses, calls and writes.
 #pragma once
 
 #include <filesystem>
@@ -11,29 +12,14 @@
 
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
+#include "raster_compare/comparison/comparison.h"
 #include "raster_compare/gl/renderer.h"
 
 namespace so {
 
-struct TechniqueSpec {
-    std::string name;
-    std::vector<std::string> settings;  // key=value
-    std::string label;                  // "name" or "name:k=v,k=v", as given
-    std::string fileLabel;              // the label made safe for file names
-};
-// "name[:key=value,...]"; throws InputError on an empty name.
-TechniqueSpec parseTechniqueSpec(const std::string& spec);
-
-// `--image LABEL=PATH`: a renderer's image judged like a technique (docs/external.md).
-struct ImageSpec {
-    std::string label;      // as given; the row's label
-    std::string fileLabel;  // made safe for file names, as TechniqueSpec's
-    std::string path;
-};
-// Splits at the first '='; throws InputError naming --image on an empty label or path.
+// `--image LABEL=PATH`: split at the first '='; throws InputError naming --image on an empty label
+// or path.
 ImageSpec parseImageSpec(const std::string& text);
-// A label and a path as they are (a sweep's image tasks, whose labels hold '=').
-ImageSpec makeImageSpec(const std::string& label, const std::string& path);
 
 struct CompareOptions {
     std::string scenePath;

@@ -76,7 +76,7 @@ static Runner addTrace(CLI::App& app) {
     sppOpt->excludes("--target-error");
     sppOpt->excludes("--max-spp");
     sppOpt->excludes("--agreement-target");
-    addQuiet(traceCmd, o->oracle.progress);
+    addQuiet(traceCmd, o->progress);
     traceCmd
         ->add_option("--verify", o->oracle.verify.pixels,
                      "re-trace N random pixels per light (plus up to N near the horizon) with an "
@@ -122,7 +122,7 @@ static Runner addView(CLI::App& app) {
     addImageSize(viewCmd, o->oracle.width, o->oracle.height);
     viewCmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
-    addQuiet(viewCmd, o->oracle.progress);
+    addQuiet(viewCmd, o->progress);
     return [o] { return so::runViewCommand(*o); };
 }
 
@@ -211,7 +211,6 @@ static Runner addCompare(CLI::App& app) {
         o->useCache = !*noCache;
         for (const std::string& text : *images) o->images.push_back(so::parseImageSpec(text));
         o->imageEncoding = so::parseImageEncoding(*encoding, "--image-encoding");
-        o->oracle.progress = false;
         return so::runCompareCommand(*o);
     };
 }

@@ -18,14 +18,6 @@ std::filesystem::path makeOutputDir(const std::string& dir) {
     return std::filesystem::path(dir);
 }
 
-nlohmann::json toolJson() {
-    return {{"name", "shadow-oracle"}, {"version", kToolVersion}, {"git_revision", kGitRevision}};
-}
-
-std::string toolVersionString() {
-    return std::string(kToolVersion) + " " + kGitRevision;
-}
-
 void printSceneWarnings(const std::string& scenePath, const Scene& scene) {
     for (const std::string& w : scene.stats.warnings)
         std::cerr << "warning: " << scenePath << ": " << w << "\n";

@@ -10,16 +10,12 @@
 
 #include "core/image.h"
 #include "core/scene.h"
+#include "core/tool_info.h"
 
 namespace so {
 
 // Creates the folder (and its parents); an InputError naming --out when it cannot.
 std::filesystem::path makeOutputDir(const std::string& dir);
-
-// {"name": "shadow-oracle", "version": ..., "git_revision": ...}: every JSON file carries it.
-nlohmann::json toolJson();
-// "<tool version> <git revision>", for EXR attributes.
-std::string toolVersionString();
 
 // The scene loader's warnings, one "warning: <file>: <text>" line each on stderr.
 void printSceneWarnings(const std::string& scenePath, const Scene& scene);

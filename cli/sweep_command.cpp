@@ -14,7 +14,7 @@
 #include "cli/output.h"
 #include "cli/sweep_merge.h"
 #include "core/error.h"
-#include "core/progress.h"
+#include "cli/progress_bar.h"
 #include "core/scene.h"
 #include "raster_compare/gl/technique.h"
 
@@ -56,15 +56,15 @@ std::string poolNote(size_t ended, size_t total, size_t failed, size_t running) 
 }
 
 // Runs the jobs, at most `parallel` at once; returns the indices of those that failed.
-std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, Progress& progress) {
+std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, ProgressBar& bar,
+                         const std::string& stage) {
     std::map<pid_t, size_t> running;
     std::set<size_t> failed;
-    size_t next = 0, ended = 0, unreported = 0;
+    size_t next = 0, ended = 0;
     // The bar moves once the ended tasks' successors run, so its note counts those running.
     const auto report = [&] {
-        progress.setNote(poolNote(ended, jobs.size(), failed.size(), running.size()));
-        progress.advance(unreported);
-        unreported = 0;
+        bar.setNote(poolNote(ended, jobs.size(), failed.size(), running.size()));
+        bar.update(stage, ended, jobs.size());
     };
     while (next < jobs.size() || !running.empty()) {
         while (next < jobs.size() && running.size() < size_t(parallel)) {
@@ -80,7 +80,6 @@ std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, Progress& p
         const size_t k = it->second;
         running.erase(it);
         ++ended;
-        ++unreported;
         if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
             failed.insert(k);
             // A crash prints nothing of its own: the log says so, for sweep-merge's list.
@@ -134,20 +133,16 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
         oracles.push_back({{exe, "sweep-task", dir.string(), "--oracle", std::to_string(s)},
                            sweepOracleLogPath(dir, s)});
     std::set<size_t> badScenes;
-    {
-        Progress progress("oracles", oracles.size(), o.progress);
-        for (size_t k : runPool(oracles, o.jobs, progress)) badScenes.insert(sceneList[k]);
-    }
+    ProgressBar bar(o.progress);
+    for (size_t k : runPool(oracles, o.jobs, bar, "oracles")) badScenes.insert(sceneList[k]);
     for (size_t i : left.tasks)
         if (!badScenes.count(plan.tasks[i].scene))  // its oracle's log says why
             tasks.push_back({{exe, "sweep-task", dir.string(), "--index", std::to_string(i)},
                              sweepTaskLogPath(dir, i)});
         else
             fs::remove(sweepTaskLogPath(dir, i), ec);
-    {
-        Progress progress("tasks", tasks.size(), o.progress);
-        runPool(tasks, o.jobs, progress);
-    }
+    bar.setNote("");
+    runPool(tasks, o.jobs, bar, "tasks");
     fs::remove(dir / "work", ec);  // empty now, unless a task failed half-way
     return runSweepMerge({dir.string(), false, true});
 }

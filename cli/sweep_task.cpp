@@ -20,7 +20,6 @@ namespace {
 // the oracle task and in every technique task of the scene.
 OracleOptions oracleOptions(const SweepOracleSettings& s) {
     OracleOptions o;
-    o.progress = false;
     o.width = s.width;
     o.height = s.height;
     if (s.seed) o.area.seed = *s.seed;

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/gbuffer.h"
 #include "core/image_codec.h"
+#include "cli/progress_bar.h"
 #include "core/progress.h"
 #include "oracle/embree_handles.h"
 #include "oracle/oracle_cache.h"
@@ -177,7 +178,10 @@ int runTracePoints(const TraceCommandOptions& options) {
     printSceneWarnings(options.scenePath, scene);
 
     const std::filesystem::path out = makeOutputDir(options.outDir);
-    OracleResult result = runOracleAtPoints(scene, gbuffer, options.oracle);
+    ProgressBar bar(options.progress);
+    OracleOptions oracle = options.oracle;
+    oracle.progress = bar.callback();
+    OracleResult result = runOracleAtPoints(scene, gbuffer, oracle);
     const OraclePointsStats& points = *result.points;
 
     t0 = Clock::now();
@@ -185,7 +189,7 @@ int runTracePoints(const TraceCommandOptions& options) {
     {
         const ExrAttributes attributes = {{"shadowOracle/sceneHash", scene.contentHash},
                                           {"shadowOracle/toolVersion", toolVersionString()}};
-        Progress progress("writing " + exrPath, result.image.pixelCount(), options.oracle.progress);
+        Progress progress("writing " + exrPath, result.image.pixelCount(), oracle.progress);
         writeExr(exrPath, result.image, attributes, result.stats.threads, &progress);
     }
     const std::vector<std::string> previews = writePreviews(out, result.image, scene.lights);
@@ -232,7 +236,9 @@ int runTraceCommand(const TraceCommandOptions& options) {
         uint64_t(cam.width) * uint64_t(cam.height) > limits.maxImagePixels)
         throwInputError("command line", "--width/--height", "image too large");
 
+    ProgressBar bar(options.progress);
     OracleOptions oracle = options.oracle;
+    oracle.progress = bar.callback();
     if (tile) {
         checkTileFits(*tile, cam);
         oracle.rows = tileRows(cam.height, tile->index, tile->count);

@@ -13,7 +13,8 @@ namespace so {
 struct TraceCommandOptions {
     std::string scenePath;
     std::string outDir;
-    OracleOptions oracle;
+    OracleOptions oracle;  // its progress callback is the command's own bar
+    bool progress = true;  // --quiet: false
     // --tile I/N: trace only band I of N bands of rows (oracle.h tileRows); empty: the whole
     // image. Parsed by runTraceCommand, which sets oracle.rows.
     std::string tile;

@@ -15,6 +15,7 @@
 #include "cli/trace_command.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "cli/progress_bar.h"
 #include "core/progress.h"
 #include "oracle/oracle.h"
 
@@ -221,7 +222,8 @@ int runTraceMergeCommand(const TraceMergeOptions& options) {
         ExrAttributes attributes;
         for (const auto& a : first.exr.attributes)
             if (a.first != kTileAttribute) attributes.push_back(a);
-        Progress progress("writing " + exrPath, image.pixelCount(), options.progress);
+        ProgressBar bar(options.progress);
+        Progress progress("writing " + exrPath, image.pixelCount(), bar.callback());
         writeExr(exrPath, image, attributes, int(std::thread::hardware_concurrency()), &progress);
     }
     std::vector<Light> lights;

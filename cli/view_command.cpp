@@ -1,5 +1,7 @@
 #include "cli/view_command.h"
 
+#include "cli/progress_bar.h"
+
 #include <algorithm>
 #include <iostream>
 
@@ -144,7 +146,10 @@ int runViewCommand(const ViewCommandOptions& options) {
     const fs::path out = makeOutputDir(options.outDir);
     const CameraDesc desc = effectiveCamera(scene, options.oracle);
     const Camera camera(desc);
-    const PrimaryImage primary = tracePrimaryImage(scene, options.oracle);
+    ProgressBar bar(options.progress);
+    OracleOptions oracle = options.oracle;
+    oracle.progress = bar.callback();
+    const PrimaryImage primary = tracePrimaryImage(scene, oracle);
 
     json lights = json::array();
     for (const Light& l : scene.lights)

@@ -15,7 +15,8 @@ namespace so {
 struct ViewCommandOptions {
     std::string scenePath;
     std::string outDir;
-    OracleOptions oracle;  // width, height, threads, progress
+    OracleOptions oracle;  // width, height, threads
+    bool progress = true;  // --quiet: false
 };
 
 int runViewCommand(const ViewCommandOptions& options);

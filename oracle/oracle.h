@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/image.h"
+#include "core/progress.h"
 #include "core/scene.h"
 #include "oracle/area_shadow.h"
 #include "oracle/offset.h"
@@ -34,7 +35,9 @@ struct OracleOptions {
     // still override its size. Part of the oracle cache's key.
     std::optional<CameraDesc> camera;
     int threads = 0;  // 0: all hardware threads
-    bool progress = true;
+    // Reports each stage (primary rays, each light) and can cancel (core/progress.h); empty:
+    // silent.
+    ProgressCallback progress;
     AreaSampling area;  // area lights, when the scene asks for "penumbra"
     // Not on the command line: Legacy256Ulp exists only for the tests that show the verifier
     // catches the occluders it missed (oracle/offset.h).

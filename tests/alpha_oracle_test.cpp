@@ -102,7 +102,6 @@ TEST(AlphaOracle, CheckerSquareCastsAnExactCheckerShadow) {
     const CheckerScene c = makeCheckerScene(true);
     const OracleResult r = runOracle(c.scene, [] {
         OracleOptions o;
-        o.progress = false;
         return o;
     }());
     const ChannelImage& img = r.image;
@@ -163,7 +162,6 @@ TEST(AlphaOracle, CheckerSquareCastsAnExactCheckerShadow) {
 TEST(AlphaOracle, WithoutTheEffectTheSquareIsOpaque) {
     const CheckerScene c = makeCheckerScene(false);
     OracleOptions o;
-    o.progress = false;
     const OracleResult r = runOracle(c.scene, o);
     const float* A = r.image.channel(ch::kHit);
     const float* V = r.image.channel("key.V");
@@ -189,7 +187,6 @@ TEST(AlphaOracle, ConstantAlphaBelowTheCutoffRemovesTheMesh) {
     c.scene.meshes[1].alpha->factor = 0.25f;
     c.scene.meshes[1].uvs.clear();
     OracleOptions o;
-    o.progress = false;
     const OracleResult r = runOracle(c.scene, o);
     const float* A = r.image.channel(ch::kHit);
     const float* V = r.image.channel("key.V");
@@ -276,7 +273,6 @@ double exactGrateV(const GrateScene& g, const glm::dvec3& p) {
 TEST(AlphaOracle, GrateUnderARectLightMatchesLambertWithinStatedIntervals) {
     const GrateScene g = makeGrateScene(96);
     OracleOptions o;
-    o.progress = false;
     const OracleResult r = runOracle(g.scene, o);
     const float* A = r.image.channel(ch::kHit);
     const float* V = r.image.channel("panel.V");

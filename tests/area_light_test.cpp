@@ -57,7 +57,6 @@ struct OracleRun {
 
 OracleRun run(const Scene& scene, const AreaSampling& area, int threads = 0) {
     OracleOptions o;
-    o.progress = false;
     o.threads = threads;
     o.area = area;
     OracleResult r = runOracle(scene, o);

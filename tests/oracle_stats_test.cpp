@@ -56,7 +56,6 @@ Scene lightsOfEveryKind(int width, int height, std::vector<std::string> effects)
 
 OracleOptions quiet() {
     OracleOptions o;
-    o.progress = false;
     o.threads = 2;
     return o;
 }

@@ -46,7 +46,6 @@ OracleOptions smallOptions() {
     o.width = kW;
     o.height = kH;
     o.threads = 2;
-    o.progress = false;
     o.area.fixedSpp = 256;  // quick, and every pixel gets an interval
     return o;
 }

@@ -155,7 +155,6 @@ TEST(Rqmc, DiskAndSphereIntervalsCoverAnIndependentReference) {
         EmbreeDevice device;
         const Accel accel(scene, device);
         OracleOptions adaptive;
-        adaptive.progress = false;
         const ChannelImage adaptiveImg = runOracle(scene, adaptive).image;
         std::vector<Pixel> pixels = penumbraPixels(accel, scene.lights[0], adaptiveImg);
         ASSERT_GE(pixels.size(), 250u) << what;

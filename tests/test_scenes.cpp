@@ -81,7 +81,6 @@ Scene transformScene(const Scene& scene, double scale, const glm::dvec3& t) {
 ChannelImage runQuiet(const Scene& scene, int threads) {
     OracleOptions o;
     o.threads = threads;
-    o.progress = false;
     return runOracle(scene, o).image;
 }
 

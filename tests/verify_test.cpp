@@ -59,7 +59,6 @@ const MeshPrimitive* bunnyMesh(std::string& whyNot) {
 OracleResult runVerified(const Scene& scene, int pixels, OffsetPolicy policy,
                          int areaSamples = 4096) {
     OracleOptions o;
-    o.progress = false;
     o.offsetPolicy = policy;
     o.verify.pixels = pixels;
     o.verify.areaSamples = areaSamples;
@@ -120,7 +119,6 @@ struct VerifierRig {
           verifier(scene, accel.frame(), &camera, everyPixel(camera), 0) {}
     static OracleOptions quietOptions() {
         OracleOptions o;
-        o.progress = false;
         return o;
     }
     static VerifyOptions everyPixel(const Camera& c) {

@@ -1,6 +1,4 @@
-#include "cli/compare_path.h"
-
-#include <iostream>
+#include "raster_compare/comparison/path_flicker.h"
 
 #include "core/camera_path.h"
 #include "core/channels.h"
@@ -82,10 +80,11 @@ void measurePair(const PathFrame& prev, const PathFrame& next, const Scene& scen
 PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Technique*>& techniques,
                                const std::vector<std::string>& labels, const OracleOptions& oracle,
                                const OracleCacheOptions& cache, const RasterOptions& raster,
-                               const GlContext& gl, int frames) {
+                               const GlContext& gl, int frames,
+                               const ProgressCallback& progressCallback) {
     if (!scene.cameraPath)
         throwInputError(scene.path.string(), "camera_path",
-                        "missing: --frames-path needs a camera path (scene_format 2, "
+                        "missing: frames along the camera path need one (scene_format 2, "
                         "docs/scene-format.md)");
     const std::vector<CameraDesc> poses = sampleCameraPath(*scene.cameraPath, scene.camera, frames);
     PathFlicker out;
@@ -94,12 +93,13 @@ PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Techn
     std::vector<std::vector<WorstPair>> worst(techniques.size(),
                                               std::vector<WorstPair>(scene.lights.size()));
     PathFrame prev;
+    Progress progress("camera path frames", uint64_t(frames), progressCallback);
     for (int f = 0; f < frames; ++f) {
-        std::cerr << "camera path: frame " << f + 1 << " of " << frames << "\n";
         PathFrame next =
             renderFrame(scene, techniques, oracle, cache, raster, gl, poses[size_t(f)]);
         if (f > 0) measurePair(prev, next, scene, labels, f - 1, out, worst);
         prev = std::move(next);
+        progress.advance(1);
     }
     // Per light, the strip of the technique with the highest rate.
     out.strips.resize(scene.lights.size());

@@ -1,12 +1,14 @@
-// compare --frames-path N: the scene's camera path (scene_format 2) rendered in N frames, the
-// oracle and every technique once per frame, measured for temporal flicker (temporal.h,
-// docs/metrics.md#temporal-flicker). The compare command's own metrics stay on the scene camera.
+// Temporal flicker (compare --frames-path N): the scene's camera path (scene_format 2) rendered in
+// N frames, the oracle and every technique once per frame, measured for temporal flicker
+// (temporal.h, docs/metrics.md#temporal-flicker). A comparison's other metrics stay on the scene
+// camera.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
 #include "oracle/oracle_cache.h"
 #include "raster_compare/compare/report.h"
 #include "raster_compare/compare/temporal.h"
@@ -23,10 +25,12 @@ struct PathFlicker {
 };
 
 // Throws InputError (the scene file, camera_path) when the scene has no camera path.
-// `labels`: the techniques' labels, for progress and the strips.
+// `labels`: the techniques' labels, for the strips. `progress` counts frames ("camera path
+// frames") and can cancel.
 PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Technique*>& techniques,
                                const std::vector<std::string>& labels, const OracleOptions& oracle,
                                const OracleCacheOptions& cache, const RasterOptions& raster,
-                               const GlContext& gl, int frames);
+                               const GlContext& gl, int frames,
+                               const ProgressCallback& progress = {});
 
 }  // namespace so

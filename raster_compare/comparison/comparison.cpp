@@ -1,0 +1,353 @@
+#include "raster_compare/comparison/comparison.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+
+#include "core/camera_path.h"
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/tool_info.h"
+#include "raster_compare/compare/tradeoff.h"
+#include "raster_compare/gl/gl_context.h"
+
+namespace so {
+
+std::string fileLabelOf(const std::string& label) {
+    std::string out;
+    for (char c : label) out += (std::isalnum((unsigned char)c) || c == '-' || c == '.') ? c : '_';
+    return out;
+}
+
+TechniqueSpec parseTechniqueSpec(const std::string& spec) {
+    TechniqueSpec t;
+    t.label = spec;
+    const auto colon = spec.find(':');
+    t.name = spec.substr(0, colon);
+    if (t.name.empty())
+        throwInputError("technique", "", "empty technique name in \"" + printable(spec, 60) + "\"");
+    if (colon != std::string::npos) {
+        const std::string rest = spec.substr(colon + 1);
+        size_t start = 0;
+        while (start <= rest.size()) {
+            const size_t comma = rest.find(',', start);
+            const std::string kv =
+                rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+            if (!kv.empty()) t.settings.push_back(kv);
+            if (comma == std::string::npos) break;
+            start = comma + 1;
+        }
+    }
+    t.fileLabel = fileLabelOf(spec);
+    return t;
+}
+
+ImageSpec makeImageSpec(const std::string& label, const std::string& path) {
+    return {label, fileLabelOf(label), path};
+}
+
+namespace {
+
+// A technique as the user asked for it, created (and so validated) before any work starts.
+struct TechniqueRun {
+    TechniqueSpec spec;
+    std::unique_ptr<Technique> technique;
+};
+
+// Everything one comparison shares between its rows.
+struct Job {
+    const Scene& scene;
+    const CachedOracle& oracle;
+    MetricOptions metricOptions;
+    const std::vector<std::vector<std::pair<double, double>>>& oracleCurves;
+    const PathFlicker* path;
+};
+
+// What the light's own passes and the visibility pass cost (docs/metrics.md, cost).
+// Several light passes (none today) add up (core/timing.h).
+TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSeconds) {
+    TechniqueCost cost;
+    cost.visibilityMs = cost.shadowMapMs = TimingStats{};
+    for (const auto& [pass, t] : stats.lights[li].passMs)
+        *(pass == "visibility" ? cost.visibilityMs : cost.shadowMapMs) += t;
+    cost.frameMs = stats.timings.wallMs;
+    cost.cameraMs = stats.timings.cameraMs;
+    cost.memoryBytes = stats.lights[li].memoryBytes;
+    cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
+    return cost;
+}
+
+// The oracle's cost curve for one light as the report and tradeoff.h take it: (ms, mean stated 95%
+// half-width over the penumbra's pixels), the time pro rata of the samples; empty for hard lights.
+std::vector<std::pair<double, double>> oraclePenumbraCurve(const OracleLightStats& l) {
+    std::vector<std::pair<double, double>> curve;
+    if (l.area && l.area->samples)
+        for (const CostPoint& p : l.area->costCurve)
+            if (p.penumbraMeanHalfWidth)
+                curve.emplace_back(
+                    1e3 * l.area->seconds * double(p.samples) / double(l.area->samples),
+                    *p.penumbraMeanHalfWidth);
+    return curve;
+}
+
+// The shortest form that reads back as the same double: 0.1, not 0.10000000000000001.
+std::string shortest(double value) {
+    char text[32];
+    for (int digits = 15; digits <= 17; ++digits) {
+        std::snprintf(text, sizeof text, "%.*g", digits, value);
+        if (std::strtod(text, nullptr) == value) break;
+    }
+    return text;
+}
+
+// The curve key and quality value of a setting (TradeoffPoint): the name and every parameter but
+// the quality one; and every parameter as the report shows it.
+void describeSetting(ReportTechnique& rt, const TechniqueRun& run) {
+    const ParamSpec* q = qualityParam(findTechnique(run.spec.name).params);
+    rt.curve = run.spec.name;
+    for (const auto& [key, value] : run.technique->values().all()) {
+        char text[48];
+        std::snprintf(text, sizeof text, "%s%s=%.10g", rt.parameters.empty() ? "" : " ",
+                      key.c_str(), value);
+        rt.parameters += text;
+        if (q && key == q->name)
+            rt.quality = value;
+        else
+            rt.curve += " " + key + "=" + shortest(value);
+    }
+}
+
+// Every light of one row measured against the oracle.
+void measureLights(const Job& job, ReportTechnique& rt, const ChannelImage& image,
+                   const std::function<TechniqueCost(size_t li, double oracleSeconds)>& costOf,
+                   const std::vector<TemporalFlicker>* temporal) {
+    for (size_t li = 0; li < job.scene.lights.size(); ++li) {
+        LightComparison lc;
+        lc.light = job.scene.lights[li].name;
+        lc.metrics =
+            computeLightMetrics(job.oracle.image, image, lc.light, job.metricOptions, &lc.maps);
+        lc.cost = costOf(li, job.oracle.stats.lights[li].seconds());
+        if (temporal) lc.temporal = (*temporal)[li];
+        if (lc.metrics.penumbraMae)
+            lc.cost.oracleMsAtEqualError =
+                oracleMsAtError(job.oracleCurves[li], *lc.metrics.penumbraMae);
+        rt.lights.push_back(std::move(lc));
+    }
+}
+
+ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, RasterResult&& r) {
+    ComparedRow row;
+    row.source = "technique";
+    row.technique = run.spec.name;
+    row.parameters = toJson(run.technique->values().settings());
+    ReportTechnique& rt = row.report;
+    rt.label = run.spec.label;
+    rt.family = findTechnique(run.spec.name).family;
+    rt.fileLabel = run.spec.fileLabel;
+    describeSetting(rt, run);
+    job.metricOptions.filteredTechnique = run.technique->filtered();
+    measureLights(
+        job, rt, r.image,
+        [&](size_t li, double oracleSeconds) { return techniqueCost(r.stats, li, oracleSeconds); },
+        job.path ? &job.path->flicker[index] : nullptr);
+    rt.image = std::move(r.image);
+    row.stats = std::move(r.stats);
+    return row;
+}
+
+// What the renderer drew, as the metrics take a technique's render: the oracle's geometry channels
+// (the renderer drew the same view: no pixel can be on a different surface) and its V per light.
+ChannelImage asRasterImage(const ImageInput& in, const ChannelImage& oracle,
+                           const std::vector<Light>& lights) {
+    ChannelImage img(oracle.width(), oracle.height());
+    for (const char* c :
+         {channels::kHit, channels::kPX, channels::kPY, channels::kPZ, channels::kNX, channels::kNY,
+          channels::kNZ, channels::kDepth, channels::kMeshId, channels::kPrimId})
+        std::copy_n(oracle.channel(c), oracle.pixelCount(), img.addChannel(c));
+    for (size_t li = 0; li < lights.size(); ++li)
+        std::copy(in.image.v[li].begin(), in.image.v[li].end(),
+                  img.addChannel(channels::lightChannel(lights[li].name, channels::kVisibility)));
+    return img;
+}
+
+// The cost file's figures (absent ones stay unknown); frame_ms is also the camera-free frame.
+TechniqueCost imageCost(const ImageInput& in, double oracleSeconds) {
+    TechniqueCost cost;
+    cost.quartiles = false;
+    cost.oracleSeconds = oracleSeconds;
+    if (!in.image.cost) return cost;
+    const ExternalCost& c = *in.image.cost;
+    const auto timing = [](std::optional<double> ms) {
+        return ms ? std::optional(TimingStats{*ms, *ms, *ms}) : std::nullopt;
+    };
+    cost.frameMs = timing(c.frameMs);
+    cost.shadowMapMs = timing(c.shadowMs);
+    cost.memoryBytes = c.memoryBytes;
+    return cost;
+}
+
+ComparedRow compareImage(Job job, const ImageInput& in) {
+    ComparedRow row;
+    row.source = "external";
+    row.technique = "external";
+    row.imagePath = in.spec.path;
+    row.renderer = in.image.cost ? in.image.cost->renderer : "";
+    row.parameters = in.image.cost ? in.image.cost->params : nlohmann::json::object();
+    ReportTechnique& rt = row.report;
+    rt.label = in.spec.label;
+    rt.family = "external";
+    rt.curve = "external " + in.spec.label;  // no quality parameter: a point of its own
+    rt.fileLabel = in.spec.fileLabel;
+    rt.parameters = row.renderer.empty() ? "image " + in.spec.path : row.renderer;
+    for (const auto& [key, value] : row.parameters.items())
+        rt.parameters += " " + key + "=" + value.dump();
+    ChannelImage image = asRasterImage(in, job.oracle.image, job.scene.lights);
+    job.metricOptions.filteredTechnique = false;
+    measureLights(
+        job, rt, image,
+        [&](size_t, double oracleSeconds) { return imageCost(in, oracleSeconds); }, nullptr);
+    rt.image = std::move(image);
+    return row;
+}
+
+// Techniques created (so validated) and labels checked before any work starts; a label used twice
+// is refused, since rows are told apart by it.
+std::vector<TechniqueRun> createTechniques(const std::vector<TechniqueSpec>& specs,
+                                           const std::vector<ImageInput>& images) {
+    if (specs.empty() && images.empty())
+        throwInputError("comparison", "", "nothing to compare: no technique and no image");
+    std::vector<TechniqueRun> runs;
+    std::set<std::string> labels, fileLabels;
+    for (const TechniqueSpec& spec : specs) {
+        runs.push_back({spec, createTechnique(spec.name, spec.settings)});
+        fileLabels.insert(spec.fileLabel);
+    }
+    for (const ImageInput& in : images)
+        if (!labels.insert(in.spec.label).second || !fileLabels.insert(in.spec.fileLabel).second)
+            throwInputError("image", in.spec.label,
+                            "the label is used twice (or names the same folder as another row)");
+    return runs;
+}
+
+void checkImages(const std::vector<ImageInput>& images, const Scene& scene,
+                 const ChannelImage& oracle) {
+    const size_t pixels = oracle.pixelCount();
+    for (const ImageInput& in : images) {
+        bool fits = in.image.v.size() == scene.lights.size();
+        for (const std::vector<float>& v : in.image.v) fits = fits && v.size() == pixels;
+        if (!fits)
+            throwInputError(in.spec.path, in.spec.label,
+                            "not one plane of " + std::to_string(oracle.width()) + " x " +
+                                std::to_string(oracle.height()) + " per light of the scene (" +
+                                std::to_string(scene.lights.size()) + ")");
+    }
+}
+
+// Every technique rendered, its frames interleaved with the others' (renderer.h), and measured as
+// soon as its group is done.
+void renderAll(const Job& job, const std::vector<TechniqueRun>& runs,
+               const ComparisonOptions& options, const GlContext& gl,
+               std::vector<ComparedRow>& rows) {
+    std::vector<const Technique*> techniques;
+    for (const TechniqueRun& run : runs) techniques.push_back(run.technique.get());
+    rows.resize(runs.size());
+    const auto groupStarts = [&](const std::vector<size_t>& group) {
+        if (!options.renderingGroup) return;
+        std::vector<std::string> labels;
+        for (size_t i : group) labels.push_back(runs[i].spec.label);
+        options.renderingGroup(labels);
+    };
+    const auto done = [&](size_t i, RasterResult&& r) {
+        rows[i] = compareTechnique(job, i, runs[i], std::move(r));
+    };
+    renderInterleaved(job.scene, techniques, options.raster, gl, {groupStarts, done});
+}
+
+}  // namespace
+
+Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
+                             const std::vector<TechniqueSpec>& techniques,
+                             const std::vector<ImageInput>& images,
+                             const ComparisonOptions& options, const GlContext* gl) {
+    const std::vector<TechniqueRun> runs = createTechniques(techniques, images);
+    checkImages(images, scene, oracle.image);
+    if (options.pathFrames > 0) {
+        if (!images.empty())
+            throwInputError("comparison", "frames",
+                            "an image is one frame: camera path frames take techniques only");
+        if (!scene.cameraPath)
+            throwInputError(scene.path.string(), "camera_path",
+                            "missing: frames along the camera path need one (scene_format 2, "
+                            "docs/scene-format.md)");
+        // Degenerate interpolated poses are input errors too: found before any work.
+        sampleCameraPath(*scene.cameraPath, scene.camera, options.pathFrames);
+    }
+    std::optional<GlContext> ownGl;
+    if (!runs.empty() && !gl) gl = &ownGl.emplace();
+
+    Comparison out;
+    for (const OracleLightStats& l : oracle.stats.lights)
+        out.oracleCurves.push_back(oraclePenumbraCurve(l));
+    out.metricOptions.boundaryRadius = options.boundaryRadius;
+    out.metricOptions.contactThreshold = options.contactThresholdRelative * scene.wsBounds.extent();
+    if (gl) out.gl = GlInfo{gl->renderer(), gl->version(), gl->platform()};
+    if (options.pathFrames > 0) {
+        std::vector<const Technique*> list;
+        std::vector<std::string> labels;
+        for (const TechniqueRun& run : runs) {
+            list.push_back(run.technique.get());
+            labels.push_back(run.spec.label);
+        }
+        out.path = measurePathFlicker(scene, list, labels, options.pathOracle, options.pathCache,
+                                      options.raster, *gl, options.pathFrames, options.progress);
+    }
+    const Job job{scene, oracle, out.metricOptions, out.oracleCurves,
+                  out.path ? &*out.path : nullptr};
+    if (!runs.empty()) renderAll(job, runs, options, *gl, out.rows);
+    for (const ImageInput& in : images) out.rows.push_back(compareImage(job, in));
+    return out;
+}
+
+nlohmann::json rowJson(const ComparedRow& row) {
+    nlohmann::json lights = nlohmann::json::object();
+    for (const LightComparison& lc : row.report.lights) lights[lc.light] = lc.toJson();
+    if (row.source == "external")
+        return {{"source", "external"},   {"technique", "external"},
+                {"family", "external"},   {"label", row.report.label},
+                {"image", row.imagePath}, {"renderer", row.renderer},
+                {"parameters", row.parameters}, {"timings", nullptr},
+                {"lights", lights}};
+    return {{"source", "technique"},
+            {"technique", row.technique},
+            {"family", row.report.family},
+            {"label", row.report.label},
+            {"parameters", row.parameters},
+            {"timings", row.stats ? toJson(row.stats->timings) : nlohmann::json(nullptr)},
+            {"lights", lights}};
+}
+
+nlohmann::json metricsJson(const Scene& scene, const std::string& sceneFile,
+                           const CachedOracle& oracle, const Comparison& comparison,
+                           int boundaryRadius) {
+    nlohmann::json options = {{"boundary_radius_px", boundaryRadius},
+                              {"contact_threshold", comparison.metricOptions.contactThreshold}};
+    if (comparison.path) options["frames_path"] = comparison.path->frames;
+    nlohmann::json results = nlohmann::json::array();
+    for (const ComparedRow& row : comparison.rows) results.push_back(rowJson(row));
+    return {{"schema_version", kMetricsSchemaVersion},
+            {"tool", toolJson()},
+            {"scene",
+             {{"file", sceneFile},
+              {"hash", scene.contentHash},
+              {"extent", scene.wsBounds.extent()},
+              {"effects", scene.effects}}},
+            {"options", options},
+            {"oracle",
+             {{"cached", oracle.fromCache}, {"key", oracle.key}, {"stats", toJson(oracle.stats)}}},
+            {"gl", comparison.gl ? toJson(*comparison.gl) : nlohmann::json(nullptr)},
+            {"results", results}};
+}
+
+}  // namespace so

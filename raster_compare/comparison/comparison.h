@@ -1,0 +1,110 @@
+// A comparison as a function: the built-in techniques rendered (raster_compare/gl) and renderers'
+// images, each measured against the oracle per light (raster_compare/compare), returned as typed
+// rows. No files, no terminal: `shadow-oracle compare` (cli/compare_command.h) writes what this
+// returns; the C++ package and the Python module return it. JSON only where a file is made
+// (metricsJson, rowJson).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/progress.h"
+#include "core/visibility_image.h"
+#include "oracle/oracle_cache.h"
+#include "raster_compare/comparison/path_flicker.h"
+#include "raster_compare/compare/report.h"
+#include "raster_compare/gl/raster_result.h"
+#include "raster_compare/gl/renderer.h"
+
+namespace so {
+
+class GlContext;
+
+// A technique as asked for: "name[:key=value,...]".
+struct TechniqueSpec {
+    std::string name;
+    std::vector<std::string> settings;  // key=value
+    std::string label;                  // "name" or "name:k=v,k=v", as given
+    std::string fileLabel;              // the label made safe for file names
+};
+// Throws InputError (file "technique", the spec as field) on an empty name.
+TechniqueSpec parseTechniqueSpec(const std::string& spec);
+
+// A renderer's image judged like a technique (docs/external.md, "Images in").
+struct ImageSpec {
+    std::string label;      // the row's label, as given
+    std::string fileLabel;  // made safe for file names, as TechniqueSpec's
+    std::string path;
+};
+ImageSpec makeImageSpec(const std::string& label, const std::string& path);
+
+// Letters, digits, '-' and '.' kept, anything else '_'.
+std::string fileLabelOf(const std::string& label);
+
+// An image read and validated against the scene's lights and the oracle's size
+// (readVisibilityImage), or made in memory (a Python array).
+struct ImageInput {
+    ImageSpec spec;
+    VisibilityImage image;
+};
+
+struct ComparisonOptions {
+    // The techniques' frames; width and height must be the oracle's (0: the scene camera's).
+    RasterOptions raster;
+    int boundaryRadius = 2;                  // r of docs/metrics.md
+    double contactThresholdRelative = 0.01;  // of the scene's bounding-box diagonal
+    // N >= 2: every technique also along the scene's camera path in N frames, for
+    // temporal_flicker_rate, with the oracle of each frame from `pathOracle` and `pathCache`.
+    int pathFrames = 0;
+    OracleOptions pathOracle;
+    OracleCacheOptions pathCache;
+    // Before each group of techniques is rendered together: their labels (the CLI says so).
+    std::function<void(const std::vector<std::string>&)> renderingGroup;
+    // The camera path's frames ("camera path frames"); can cancel.
+    ProgressCallback progress;
+};
+
+// One technique or image against the oracle: a row of metrics.json.
+struct ComparedRow {
+    std::string source;     // "technique" or "external"
+    std::string technique;  // the registered name, or "external"
+    std::string imagePath, renderer;  // external rows: the image and its cost file's renderer
+    // The settings as metrics.json's "parameters": a technique's every parameter by name, an
+    // image's its cost file's params.
+    nlohmann::json parameters = nlohmann::json::object();
+    std::optional<RasterStats> stats;  // a technique's render: what raster.json holds
+    // label, family, curve, every light's metrics, costs and error maps, and the image judged.
+    ReportTechnique report;
+};
+
+struct Comparison {
+    std::vector<ComparedRow> rows;  // the techniques in the order given, then the images
+    // Per light, sampled area lights only: the oracle's penumbra cost curve (ms, mean stated 95%
+    // half-width), which every row's oracle_ms_at_equal_error is read from.
+    std::vector<std::vector<std::pair<double, double>>> oracleCurves;
+    MetricOptions metricOptions;       // what the metrics used (the contact threshold in world units)
+    std::optional<PathFlicker> path;   // pathFrames > 0
+    std::optional<GlInfo> gl;          // when a technique was rendered
+};
+
+// Every technique and image checked first (unknown names and parameters, labels used twice, a
+// camera path where pathFrames asks for one, images of another size than the oracle's): InputError
+// before any work. `gl` may be null: a context is made when a technique needs one (images alone
+// need none).
+Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
+                             const std::vector<TechniqueSpec>& techniques,
+                             const std::vector<ImageInput>& images,
+                             const ComparisonOptions& options, const GlContext* gl = nullptr);
+
+// metrics.json's entry of a row in "results" (docs/metrics.md).
+nlohmann::json rowJson(const ComparedRow& row);
+// metrics.json as a whole; `sceneFile` as the user named it.
+nlohmann::json metricsJson(const Scene& scene, const std::string& sceneFile,
+                           const CachedOracle& oracle, const Comparison& comparison,
+                           int boundaryRadius);
+
+}  // namespace so
