@@ -1,15 +1,9 @@
-// `shadow-oracle techniques`: every registered technique with its family, summary and parameter
-// table (names, defaults, ranges, meaning), as text, JSON or the Markdown of docs/techniques.md
-// (generated from the tables; a test fails when the document differs).
+// `shadow-oracle techniques`: the listing of raster_compare/gl/technique_listing.h on stdout.
 #pragma once
 
-#include <string>
+#include "raster_compare/gl/technique_listing.h"
 
 namespace so {
-
-enum class ListingFormat { Text, Json, Markdown };
-
-std::string techniquesListing(ListingFormat format);
 
 int runTechniquesCommand(ListingFormat format);
 

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace so {
@@ -23,6 +24,13 @@ class ChannelImage {
     float* channel(const std::string& name);              // CHECKs that it exists
     const float* channel(const std::string& name) const;  // CHECKs that it exists
     const std::vector<std::string>& names() const { return names_; }
+    // The planes in names() order, moved out (a large image is not copied); the image is left
+    // empty.
+    std::vector<std::vector<float>> releasePlanes() {
+        width_ = height_ = 0;
+        names_.clear();
+        return std::move(planes_);
+    }
 
   private:
     int width_ = 0, height_ = 0;

@@ -89,8 +89,11 @@ std::vector<std::string> imageModuleCandidates() {
     std::error_code ec;
     const auto besides = [&](const fs::path& file) {
         paths.push_back((file.parent_path() / SO_IMAGE_MODULE_FILE_NAME).string());
+        // The build tree (core/ beside cli/ and api/) and an installed tree (bin/ beside lib/).
         paths.push_back(
             (file.parent_path().parent_path() / "core" / SO_IMAGE_MODULE_FILE_NAME).string());
+        paths.push_back(
+            (file.parent_path().parent_path() / "lib" / SO_IMAGE_MODULE_FILE_NAME).string());
     };
     // Beside the file that holds this code: a shared library's own folder (a Python module's,
     // whose process is python3, so that /proc/self/exe names the interpreter), or for code linked

@@ -172,6 +172,15 @@ struct LoadLimits {
 // with a one-line message naming the file and the field.
 Scene loadScene(const std::filesystem::path& path, const LoadLimits& limits = {});
 
+// A scene made in memory (the C++ package and the Python module): `description` is a scene file's
+// JSON without "scene_format" and "geometry" (camera, camera_path, lights, effects: the same keys,
+// checked the same way, docs/scene-format.md); the meshes are given, their positions in world
+// space. Errors name `display` and the field ("meshes[2].triangles"). The content hash covers the
+// description and every vertex and index.
+Scene sceneFromMemory(const std::string& description, std::vector<MeshPrimitive> meshes,
+                      const std::string& display = "(scene in memory)",
+                      const LoadLimits& limits = {});
+
 // The largest vertex coordinate accepted, in absolute value: 2^62 (about 4.6e18), so that a sum of
 // three squared coordinates stays finite in float (docs/scene-format.md, limits). With a vertex at
 // 1e30 the oracle's float frame rounded a floor of size 16 to a point (docs/hard-cases.md).

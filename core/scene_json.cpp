@@ -448,6 +448,26 @@ void warnAboutEffects(Scene& scene) {
                     "light at its centre");
 }
 
+std::vector<std::string> parseEffects(const json& root, const Reader& r) {
+    if (!root.contains("effects")) return {"hard"};
+    const json& je = root["effects"];
+    if (!je.is_array())
+        r.fail("effects", "expected an array of strings, got " + Reader::typeName(je));
+    std::vector<std::string> effects;
+    std::set<std::string> seen;
+    for (size_t i = 0; i < je.size(); ++i) {
+        std::string f = Reader::index("effects", i);
+        std::string e = r.string(je[i], f);
+        if (e != "hard" && e != "penumbra" && e != "contact" && e != "alpha")
+            r.fail(f, "unknown effect \"" + printable(e, 40) +
+                          "\" (valid: hard, penumbra, contact, alpha)");
+        if (!seen.insert(e).second) r.fail(f, "\"" + e + "\" listed twice");
+        effects.push_back(e);
+    }
+    if (effects.empty()) r.fail("effects", "empty: nothing to simulate (omit it for [\"hard\"])");
+    return effects;
+}
+
 Scene loadSceneJson(const std::filesystem::path& path, const std::string& display,
                     const LoadLimits& limits) {
     Reader r(display);
@@ -474,25 +494,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     uint64_t totalBytes = text.size();
 
     // Effects first: they decide what the geometry's files must hold (alpha textures).
-    scene.effects = {"hard"};
-    if (root.contains("effects")) {
-        const json& je = root["effects"];
-        if (!je.is_array())
-            r.fail("effects", "expected an array of strings, got " + Reader::typeName(je));
-        scene.effects.clear();
-        std::set<std::string> seen;
-        for (size_t i = 0; i < je.size(); ++i) {
-            std::string f = Reader::index("effects", i);
-            std::string e = r.string(je[i], f);
-            if (e != "hard" && e != "penumbra" && e != "contact" && e != "alpha")
-                r.fail(f, "unknown effect \"" + printable(e, 40) +
-                              "\" (valid: hard, penumbra, contact, alpha)");
-            if (!seen.insert(e).second) r.fail(f, "\"" + e + "\" listed twice");
-            scene.effects.push_back(e);
-        }
-        if (scene.effects.empty())
-            r.fail("effects", "empty: nothing to simulate (omit it for [\"hard\"])");
-    }
+    scene.effects = parseEffects(root, r);
 
     if (!root.contains("geometry")) r.fail("geometry", "missing");
     const json& jg = root["geometry"];
@@ -618,6 +620,79 @@ Scene loadScene(const std::filesystem::path& path, const LoadLimits& limits) {
     throwInputError(
         display, "",
         "unknown scene file type \"" + printable(ext, 16) + "\" (expected .json, .gltf or .glb)");
+}
+
+}  // namespace so
+
+namespace so {
+
+namespace {
+
+// The meshes of a scene made in memory: every index in range, every coordinate finite, within the
+// file loader's limits.
+void checkMeshes(const std::vector<MeshPrimitive>& meshes, const Reader& r,
+                 const LoadLimits& limits) {
+    if (meshes.size() > limits.maxMeshes)
+        r.fail("meshes", "more than " + std::to_string(limits.maxMeshes) + " meshes");
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        const MeshPrimitive& mesh = meshes[m];
+        const std::string f = Reader::index("meshes", m);
+        if (mesh.indices.size() % 3 != 0)
+            r.fail(f + ".triangles", "the index count is not a multiple of 3");
+        if (mesh.triangleCount() > limits.maxTrianglesPerMesh)
+            r.fail(f + ".triangles",
+                   "more than " + std::to_string(limits.maxTrianglesPerMesh) + " triangles");
+        for (size_t i = 0; i < mesh.indices.size(); ++i)
+            if (mesh.indices[i] >= mesh.wsPositions.size())
+                r.fail(f + ".triangles", "index " + std::to_string(mesh.indices[i]) + " at " +
+                                             std::to_string(i) + " is past the " +
+                                             std::to_string(mesh.wsPositions.size()) +
+                                             " vertices");
+        for (size_t v = 0; v < mesh.wsPositions.size(); ++v) {
+            const glm::dvec3& p = mesh.wsPositions[v];
+            if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+                r.fail(f + ".vertices", "vertex " + std::to_string(v) + " is not finite");
+        }
+    }
+}
+
+}  // namespace
+
+Scene sceneFromMemory(const std::string& description, std::vector<MeshPrimitive> meshes,
+                      const std::string& display, const LoadLimits& limits) {
+    Reader r(display);
+    json root = parseStrict(description, r);
+    r.requireObject(root, "");
+    r.checkKeys(root, "", {"camera", "camera_path", "lights", "effects"});
+    Scene scene;
+    scene.effects = parseEffects(root, r);
+    checkMeshes(meshes, r, limits);
+    ContentHasher hasher;
+    hasher.add(description);
+    for (const MeshPrimitive& mesh : meshes) {
+        hasher.add(std::string_view(reinterpret_cast<const char*>(mesh.wsPositions.data()),
+                                    mesh.wsPositions.size() * sizeof(glm::dvec3)));
+        hasher.add(std::string_view(reinterpret_cast<const char*>(mesh.indices.data()),
+                                    mesh.indices.size() * sizeof(uint32_t)));
+    }
+    scene.meshes = std::move(meshes);
+    bool cameraGiven = false;
+    if (root.contains("camera")) scene.camera = parseCamera(root["camera"], r, limits, cameraGiven);
+    if (!root.contains("lights")) r.fail("lights", "missing");
+    parseLights(root["lights"], r, limits, scene);
+    warnAboutEffects(scene);
+    finalizeScene(scene);
+    if (scene.stats.totalTrianglesExceeded(limits))
+        r.fail("meshes",
+               "more than " + std::to_string(limits.maxTotalTriangles) + " triangles in all");
+    if (!cameraGiven) {
+        scene.camera = defaultFraming(scene.wsBounds);
+        scene.stats.warnings.push_back("no camera given: using the default framing of the bounds");
+    }
+    if (root.contains("camera_path"))
+        scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
+    scene.contentHash = hasher.hex();
+    return scene;
 }
 
 }  // namespace so

@@ -27,7 +27,7 @@ void checkSize(const std::string& path, int w, int h, int width, int height) {
     if (w != width || h != height)
         throwInputError(path, "size",
                         "image is " + sizeText(w, h) + ", the camera's is " +
-                            sizeText(width, height) + " (compare --width/--height)");
+                            sizeText(width, height));
 }
 
 // Every value finite and within [0, 1] up to kVisibilityTolerance, then clamped.

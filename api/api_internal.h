@@ -1,0 +1,47 @@
+// What the public API's types hold inside (include/shadow_oracle/shadow_oracle.h), and the
+// translation of the libraries' exceptions into the API's.
+#pragma once
+
+#include <utility>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/progress.h"
+#include "core/scene.h"
+#include "oracle/oracle_cache.h"
+#include "shadow_oracle/shadow_oracle.h"
+
+namespace shadow_oracle {
+
+struct Scene::Data {
+    so::Scene scene;
+};
+
+struct TraceResult::Data {
+    so::CachedOracle oracle;  // the image again (compare's input) and the typed stats
+};
+
+namespace detail {
+
+Image toApi(so::ChannelImage&& image);
+so::ChannelImage fromApi(const Image& image);
+so::ProgressCallback toLibrary(const ProgressCallback& callback);
+
+// Runs f; the libraries' exceptions come out as the API's, with the same one-line messages.
+template <typename F>
+auto translated(F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const so::Cancelled&) {
+        throw Cancelled();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(e.what());
+    }
+}
+
+}  // namespace detail
+}  // namespace shadow_oracle

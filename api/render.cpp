@@ -1,0 +1,49 @@
+// The API's GL path: one technique rendered, as `shadow-oracle raster` does.
+#include <nlohmann/json.hpp>
+
+#include "api/api_internal.h"
+#include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/technique_listing.h"
+
+namespace shadow_oracle {
+
+std::string techniquesJson() {
+    return detail::translated([] { return so::techniquesListing(so::ListingFormat::Json); });
+}
+
+so::RasterOptions rasterOptions(int width, int height, int frames, int warmup) {
+    const auto fail = [](const std::string& field, const std::string& why) {
+        so::throwInputError("render options", field, why);
+    };
+    if (width < 0 || width > 16384) fail("width", "must be in [0, 16384]");
+    if (height < 0 || height > 16384) fail("height", "must be in [0, 16384]");
+    if (frames < 1 || frames > 1000) fail("frames", "must be in [1, 1000]");
+    if (warmup < 0 || warmup > 1000) fail("warmup", "must be in [0, 1000]");
+    so::RasterOptions o;
+    o.width = width;
+    o.height = height;
+    o.frames = frames;
+    o.warmup = warmup;
+    return o;
+}
+
+RenderResult render(const Scene& scene, const std::string& technique, const Parameters& parameters,
+                    const RenderOptions& options) {
+    return detail::translated([&] {
+        std::vector<std::string> settings;
+        for (const auto& [key, value] : parameters) settings.push_back(key + "=" + value);
+        const std::unique_ptr<so::Technique> t = so::createTechnique(technique, settings);
+        const so::RasterOptions o =
+            rasterOptions(options.width, options.height, options.frames, options.warmup);
+        const so::GlContext gl;
+        so::RasterResult r = so::renderRaster(scene.data().scene, *t, o, gl);
+        RenderResult out;
+        out.frameMs = r.stats.timings.wallMs.median;
+        out.statsJson = so::toJson(r.stats).dump();
+        out.image = detail::toApi(std::move(r.image));
+        return out;
+    });
+}
+
+}  // namespace shadow_oracle

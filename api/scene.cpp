@@ -1,0 +1,65 @@
+// The API's scenes: a file, or meshes and a description in memory.
+#include "api/api_internal.h"
+
+namespace shadow_oracle {
+
+Scene Scene::load(const std::string& path) {
+    return detail::translated(
+        [&] { return Scene(std::make_shared<const Data>(Data{so::loadScene(path)})); });
+}
+
+Scene Scene::fromMeshes(const std::vector<Mesh>& meshes, const std::string& description) {
+    return detail::translated([&] {
+        std::vector<so::MeshPrimitive> prims;
+        for (size_t m = 0; m < meshes.size(); ++m) {
+            const Mesh& in = meshes[m];
+            if (in.positions.size() % 3 != 0)
+                so::throwInputError("(scene in memory)",
+                                    "meshes[" + std::to_string(m) + "].vertices",
+                                    "the coordinate count is not a multiple of 3");
+            so::MeshPrimitive p;
+            p.name = in.name.empty() ? "meshes[" + std::to_string(m) + "]" : in.name;
+            p.wsPositions.reserve(in.positions.size() / 3);
+            for (size_t i = 0; i + 2 < in.positions.size(); i += 3)
+                p.wsPositions.emplace_back(in.positions[i], in.positions[i + 1],
+                                           in.positions[i + 2]);
+            p.indices = in.triangles;
+            prims.push_back(std::move(p));
+        }
+        return Scene(std::make_shared<const Data>(
+            Data{so::sceneFromMemory(description, std::move(prims))}));
+    });
+}
+
+std::string Scene::path() const {
+    return data_->scene.path.string();
+}
+
+std::string Scene::hash() const {
+    return data_->scene.contentHash;
+}
+
+std::vector<LightInfo> Scene::lights() const {
+    std::vector<LightInfo> out;
+    for (const so::Light& l : data_->scene.lights)
+        out.push_back({l.name, so::lightTypeName(l.type), so::isAreaLight(l.type)});
+    return out;
+}
+
+std::vector<std::string> Scene::effects() const {
+    return data_->scene.effects;
+}
+
+std::pair<int, int> Scene::cameraSize() const {
+    return {data_->scene.camera.width, data_->scene.camera.height};
+}
+
+uint64_t Scene::triangles() const {
+    return data_->scene.stats.triangles;
+}
+
+std::vector<std::string> Scene::warnings() const {
+    return data_->scene.stats.warnings;
+}
+
+}  // namespace shadow_oracle

@@ -1,0 +1,14 @@
+// Every registered technique with its family, summary and parameter table (names, defaults,
+// ranges, meaning), as text, JSON (`techniques --json`, format_version 3) or the Markdown of
+// docs/techniques.md (generated from the tables; a test fails when the document differs).
+#pragma once
+
+#include <string>
+
+namespace so {
+
+enum class ListingFormat { Text, Json, Markdown };
+
+std::string techniquesListing(ListingFormat format);
+
+}  // namespace so
