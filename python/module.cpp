@@ -115,6 +115,8 @@ Result interruptible(const std::function<Result(const so::ProgressCallback&)>& w
     }
     worker.join();
     if (error) std::rethrow_exception(error);
+    // The last update (a stage's completion, or all of a run shorter than one wait).
+    if (latest && !progress.is_none()) progress(latest->stage, latest->done, latest->total);
     return std::move(*result);
 }
 
@@ -180,7 +182,7 @@ py::dict lightPlanes(const py::dict& images, const std::vector<std::string>& lig
 // P.x, P.y, P.z (or N.*) as one (height, width, 3) array.
 py::object vectorPlanes(const py::dict& images, const std::string& name) {
     py::list planes;
-    for (const char* axis : {".x", ".y", ".z"}) planes.append(images[py::str(name + axis)]);
+    for (const char* axis : {".X", ".Y", ".Z"}) planes.append(images[py::str(name + axis)]);
     return py::module_::import("numpy").attr("stack")(planes, py::arg("axis") = -1);
 }
 

@@ -56,7 +56,7 @@ struct ProgressUpdate {
 using ProgressCallback = std::function<bool(const ProgressUpdate&)>;
 
 // Float planes by EXR channel name (docs/exr-channels.md), row 0 at the top, width * height each.
-struct Image {
+struct SHADOW_ORACLE_API Image {
     int width = 0, height = 0;
     std::vector<std::string> names;
     std::vector<std::vector<float>> planes;  // planes[i] is channel names[i]
@@ -135,8 +135,9 @@ struct LightStats {
 };
 
 // The oracle's result. `image` holds oracle.exr's channels (A, P.*, N.*, Z, id.*, and per light
-// NAME.V, NAME.cos, with NAME.stderr, NAME.spp on area lights); `statsJson` is oracle.json's
-// "stats" block. Pass the whole result to compare().
+// NAME.V, NAME.cos, with NAME.stderr, NAME.spp on area lights); `statsJson` holds oracle.json's
+// statistics of the run under the same keys (lights, shadow_rays, phases_seconds, ...). Pass the
+// whole result to compare().
 struct TraceResult {
     Image image;
     std::vector<LightStats> lights;
@@ -199,7 +200,7 @@ struct CompareOptions {
 // One light of one row: every metric of metrics.json by its public name (docs/metrics.md:
 // "mae", "boundary_displacement_px.p95", "cost.frame_ms", ...), in its order; none where the
 // metric does not apply (null in metrics.json). Flags are 0 or 1.
-struct LightMetrics {
+struct SHADOW_ORACLE_API LightMetrics {
     std::string light;
     std::vector<std::pair<std::string, std::optional<double>>> values;
     std::optional<double> get(const std::string& name) const;  // throws Error for an unknown name
