@@ -11,6 +11,7 @@
 #include "cli/compare_command.h"
 #include "cli/gate_command.h"
 #include "cli/index_command.h"
+#include "cli/metrics_command.h"
 #include "cli/raster_command.h"
 #include "cli/sweep_command.h"
 #include "cli/sweep_merge.h"
@@ -315,6 +316,15 @@ static Runner addTechniques(CLI::App& app) {
     };
 }
 
+static Runner addMetrics(CLI::App& app) {
+    auto markdown = std::make_shared<bool>(false);
+    CLI::App* metricsCmd = app.add_subcommand(
+        "metrics", "list the metrics with their units, which way is better and where they apply");
+    metricsCmd->add_flag("--markdown", *markdown, "as the Markdown table of docs/metrics.md");
+
+    return [markdown] { return so::runMetricsCommand(*markdown); };
+}
+
 int main(int argc, char** argv) {
     CLI::App app{"shadow-oracle: how wrong are your real-time shadows?"};
     app.require_subcommand(1);
@@ -331,7 +341,8 @@ int main(int argc, char** argv) {
         {"sweep-merge", addSweepMerge(app)},
         {"gate", addGate(app)},
         {"index", addIndex(app)},
-        {"techniques", addTechniques(app)}};
+        {"techniques", addTechniques(app)},
+        {"metrics", addMetrics(app)}};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

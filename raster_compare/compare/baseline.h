@@ -10,13 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-namespace so {
+#include "raster_compare/compare/metric_table.h"
 
-// Which way a metric gets better.
-enum class Better {
-    Lower,            // an error, a rate, a distance, a cost
-    SmallerMagnitude  // signed: |x| matters (penumbra_bias: < 0 too hard, > 0 too soft)
-};
+namespace so {
 
 // What widens a metric's tolerance by the sampled oracle's stated uncertainty (area lights).
 enum class OracleNoise {
@@ -30,14 +26,18 @@ struct Tolerance {
     double rel = 0.0;  // of the baseline's |value|
 };
 
-// One row of the table of metrics the baseline compares (docs/gate.md#baseline repeats it).
+// One row of the table of metrics the baseline compares (docs/gate.md#baseline repeats it). The
+// metric's name, unit and which way it gets better are the metric table's (metric_table.h); this
+// adds what only the baseline needs.
 struct BaselineMetric {
-    const char* name;  // as in the limits file: nested names joined by a dot
-    Better better;
+    const MetricInfo* metric;
     bool byDefault;       // false: compared only when the limits file's baseline.metrics names it
-    const char* unit;     // "V" and "share" take the limits file's baseline.default; others do not
     Tolerance tolerance;  // built-in default
     OracleNoise noise;
+    // V and share metrics take the limits file's baseline.default; the others keep their own.
+    bool takesFileDefault() const {
+        return metric->unit == MetricUnit::V || metric->unit == MetricUnit::Share;
+    }
 };
 
 // Every metric the baseline can compare; the others (counts such as counted_pixels,

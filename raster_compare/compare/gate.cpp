@@ -3,10 +3,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
-#include <set>
 
 #include "core/error.h"
 #include "raster_compare/compare/baseline.h"
+#include "raster_compare/compare/metric_table.h"
 #include "raster_compare/compare/metrics.h"
 
 namespace so {
@@ -62,7 +62,9 @@ void checkMetricsShape(const json& metrics, const std::string& mp) {
     const auto version = metrics.is_object() ? metrics.find("schema_version") : metrics.end();
     if (version == metrics.end() || !version->is_number_integer() || version->get<int64_t>() < 1 ||
         version->get<int64_t>() > kMaxMetricsSchema || !metrics.contains("results"))
-        throwInputError(mp, "schema_version", "not a metrics.json of schema_version 1 to 5");
+        throwInputError(
+            mp, "schema_version",
+            "not a metrics.json of schema_version 1 to " + std::to_string(kMaxMetricsSchema));
     const auto scene = metrics.find("scene");
     if (scene != metrics.end()) {
         if (!scene->is_object()) throwInputError(mp, "scene", "expected an object");
@@ -92,35 +94,32 @@ void checkMetricsShape(const json& metrics, const std::string& mp) {
 
 namespace {
 
-// Every metric name the metrics file can have, so a misspelled limit is an error, not a pass.
-// The temporal metrics are known even where this run had no camera path (compare --frames-path):
-// one limits file serves runs with and without, and a limit on them there is not applicable.
-std::set<std::string> knownMetrics(const json& metrics) {
-    std::set<std::string> known = {"temporal_flicker_rate", "temporal_tracked_pairs",
-                                   "temporal_flickering_pairs", "temporal_frames"};
-    for (const auto& r : metrics["results"])
-        for (const auto& [light, m] : r["lights"].items()) {
-            for (const auto& [k, v] : flatMetrics(m)) known.insert(k);
-        }
-    return known;
+// A limit's metric must be in the table (metric_table.h), so a misspelled limit is an error, not
+// a pass. A name the table has but this run lacks (the temporal metrics without a camera path, a
+// metric newer than an old file's schema_version) is not applicable there: one limits file serves
+// every run.
+void checkMetricName(const std::string& name, const std::string& lf, const std::string& field) {
+    if (findMetric(name)) return;
+    std::string hint;
+    for (const std::string& n : nearestMetrics(name)) hint += (hint.empty() ? "" : ", ") + n;
+    throwInputError(lf, field,
+                    "unknown metric (" + (hint.empty() ? "" : "did you mean " + hint + "? ") +
+                        "see docs/metrics.md or `shadow-oracle metrics`)");
 }
 
 std::map<std::string, double> readMax(const json& j, const std::string& lf,
-                                      const std::string& field,
-                                      const std::set<std::string>& known) {
+                                      const std::string& field) {
     std::map<std::string, double> out;
     if (!j.is_object()) throwInputError(lf, field, "expected an object of metric: maximum");
     for (auto it = j.begin(); it != j.end(); ++it) {
-        if (!known.count(it.key()))
-            throwInputError(lf, field + "." + printable(it.key(), 60),
-                            "unknown metric (see docs/metrics.md)");
+        checkMetricName(it.key(), lf, field + "." + printable(it.key(), 60));
         if (!it->is_number()) throwInputError(lf, field + "." + it.key(), "expected a number");
         out[it.key()] = it->get<double>();
     }
     return out;
 }
 
-Rule readRule(const json& r, const std::string& lf, size_t i, const std::set<std::string>& known) {
+Rule readRule(const json& r, const std::string& lf, size_t i) {
     const std::string f = "rules[" + std::to_string(i) + "]";
     if (!r.is_object()) throwInputError(lf, f, "expected an object");
     for (auto it = r.begin(); it != r.end(); ++it) {
@@ -135,12 +134,11 @@ Rule readRule(const json& r, const std::string& lf, size_t i, const std::set<std
     rule.light = r.value("light", "*");
     rule.technique = r.value("technique", "*");
     if (!r.contains("max")) throwInputError(lf, f + ".max", "missing");
-    rule.max = readMax(r["max"], lf, f + ".max", known);
+    rule.max = readMax(r["max"], lf, f + ".max");
     return rule;
 }
 
-std::vector<Rule> readRules(const json& limits, const std::string& lf,
-                            const std::set<std::string>& known) {
+std::vector<Rule> readRules(const json& limits, const std::string& lf) {
     if (!limits.is_object()) throwInputError(lf, "", "expected an object");
     for (auto it = limits.begin(); it != limits.end(); ++it)
         if (it.key() != "limits_format" && it.key() != "default" && it.key() != "rules" &&
@@ -158,11 +156,11 @@ std::vector<Rule> readRules(const json& limits, const std::string& lf,
     }
     std::vector<Rule> rules;
     if (limits.contains("default"))
-        rules.push_back({"*", "*", "*", readMax(limits["default"], lf, "default", known)});
+        rules.push_back({"*", "*", "*", readMax(limits["default"], lf, "default")});
     if (limits.contains("rules")) {
         if (!limits["rules"].is_array()) throwInputError(lf, "rules", "expected an array");
         for (size_t i = 0; i < limits["rules"].size(); ++i)
-            rules.push_back(readRule(limits["rules"][i], lf, i, known));
+            rules.push_back(readRule(limits["rules"][i], lf, i));
     }
     return rules;
 }
@@ -176,7 +174,7 @@ std::vector<GateCheck> evaluateGate(const json& metrics, const std::string& metr
     // (docs/metrics.md); version 5 added rows of external images (compare --image), whose costs
     // may be null: the gate reads all five.
     checkMetricsShape(metrics, metricsPath);
-    const std::vector<Rule> rules = readRules(limits, limitsPath, knownMetrics(metrics));
+    const std::vector<Rule> rules = readRules(limits, limitsPath);
     const auto sceneObject = metrics.find("scene");
     const std::string scene =
         sceneObject == metrics.end() ? std::string() : sceneObject->value("file", "");

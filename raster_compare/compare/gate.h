@@ -21,8 +21,9 @@ struct GateCheck {
 };
 
 // Every (row, light, metric) a rule of the limits applies to; later rules override earlier ones
-// for the same metric. Throws InputError naming the file and field on a malformed limits file, an
-// unknown metric name (a misspelled limit must not pass) or a metrics file of another schema.
+// for the same metric. Throws InputError naming the file and field on a malformed limits file, a
+// metric name not in the metric table (a misspelled limit must not pass; the nearest names are
+// suggested) or a metrics file of another schema.
 std::vector<GateCheck> evaluateGate(const nlohmann::json& metrics, const std::string& metricsPath,
                                     const nlohmann::json& limits, const std::string& limitsPath);
 

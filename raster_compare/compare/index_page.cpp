@@ -12,6 +12,8 @@
 #include "core/error.h"
 #include "raster_compare/compare/colour_scale.h"
 #include "raster_compare/compare/html.h"
+#include "raster_compare/compare/metric_table.h"
+#include "raster_compare/compare/metrics.h"
 
 namespace so {
 
@@ -90,32 +92,39 @@ IndexResult parseResult(const json& r, const std::string& path, size_t i) {
 // ---- the page ----
 
 struct MetricSpec {
-    const char* name;  // as in metrics.json and metrics.csv (nested names joined by dots)
+    const MetricInfo* metric;  // its name (as in metrics.csv) and which way is better
     const char* title;
     const char* meaning;  // one line; docs/metrics.md has the definitions
     std::optional<double> IndexLightMetrics::*value;
 };
 
+// The metric table's entry of a name; a name missing there is a bug, found by any test.
+const MetricInfo* tableEntry(const char* name) {
+    const MetricInfo* info = findMetric(name);
+    SO_CHECK(info != nullptr);
+    return info;
+}
+
 const std::vector<MetricSpec>& metricSpecs() {
     static const std::vector<MetricSpec> specs = {
-        {"mae", "Mean absolute error",
+        {tableEntry("mae"), "Mean absolute error",
          "mean |V &minus; V<sub>oracle</sub>| over the counted pixels (beyond the oracle's 95% "
          "interval on area lights)",
          &IndexLightMetrics::mae},
-        {"acne_rate", "Shadow acne",
+        {tableEntry("acne_rate"), "Shadow acne",
          "share of the lit pixels away from any shadow boundary that the technique shadows",
          &IndexLightMetrics::acneRate},
-        {"peter_panning_rate", "Peter-panning",
+        {tableEntry("peter_panning_rate"), "Peter-panning",
          "share of the shadowed pixels near their occluder's contact that the technique lights",
          &IndexLightMetrics::peterPanningRate},
-        {"boundary_displacement_px.p95", "Shadow boundary displacement (p95, pixels)",
+        {tableEntry("boundary_displacement_px.p95"), "Shadow boundary displacement (p95, pixels)",
          "95th percentile of the distance from a shadow boundary pixel to the nearest one of the "
          "other image",
          &IndexLightMetrics::boundaryDisplacementP95Px},
-        {"light_bleeding_rate", "Light bleeding",
+        {tableEntry("light_bleeding_rate"), "Light bleeding",
          "filtered shadow maps only: share of the umbra's pixels lit by more than 0.1",
          &IndexLightMetrics::lightBleedingRate},
-        {"penumbra_mae", "Penumbra error",
+        {tableEntry("penumbra_mae"), "Penumbra error",
          "area lights only: mean error over the pixels the oracle puts in the penumbra",
          &IndexLightMetrics::penumbraMae},
     };
@@ -184,13 +193,13 @@ std::vector<double> valuesOf(const Grid& g, const MetricSpec& spec) {
     return values;
 }
 
-std::string legend(const ColourScale& s) {
+std::string legend(const ColourScale& s, const MetricInfo& metric) {
     std::ostringstream o;
     o << "<div class=\"legend\"><span>" << num(s.lo)
       << "</span><span class=\"ramp\" style=\"background:" << rampGradient() << "\"></span><span>"
       << num(s.hi) << "</span><span class=\"note\">"
-      << (s.log ? "log scale (a 0 takes the lowest colour)" : "linear scale")
-      << "; lower is better</span></div>";
+      << (s.log ? "log scale (a 0 takes the lowest colour)" : "linear scale") << "; "
+      << betterName(metric.better) << " is better</span></div>";
     return o.str();
 }
 
@@ -224,7 +233,7 @@ void writeCell(std::ostream& o, const IndexLightMetrics* m, const MetricSpec& sp
     const std::array<int, 3> bg = rampColour(scalePosition(scale, v));
     const std::string cost = m->frameMs ? " · " + num(*m->frameMs) + " ms" : "";
     o << "<td class=\"v" << rule << "\" style=\"background:" << hexColour(bg)
-      << ";color:" << textColour(bg) << "\" title=\"" << spec.name << " " << v
+      << ";color:" << textColour(bg) << "\" title=\"" << spec.metric->name << " " << v
       << (m->frameMs ? ", frame " + num(*m->frameMs) + " ms" : "") << "\"><a href=\"" << html(href)
       << "\">" << num(v) << cost << "</a></td>";
 }
@@ -235,9 +244,11 @@ void writeMatrix(std::ostream& o, const std::vector<IndexEntry>& entries, const 
     const std::vector<double> values = valuesOf(g, spec);
     if (values.empty()) return;
     const ColourScale scale = scaleOf(values);
-    o << "<section id=\"" << spec.name << "\"><h2>" << spec.title << " <code>" << spec.name
-      << "</code></h2><p>" << spec.meaning << ".</p>" << legend(scale);
-    o << "<div class=\"scroll\"><table class=\"matrix\" data-metric=\"" << spec.name << "\">";
+    o << "<section id=\"" << spec.metric->name << "\"><h2>" << spec.title << " <code>"
+      << spec.metric->name << "</code></h2><p>" << spec.meaning << ".</p>"
+      << legend(scale, *spec.metric);
+    o << "<div class=\"scroll\"><table class=\"matrix\" data-metric=\"" << spec.metric->name
+      << "\">";
     writeHeader(o, entries, g);
     o << "<tbody>";
     for (const std::string& row : g.rows) {
@@ -302,8 +313,11 @@ SceneMetrics parseSceneMetrics(const json& metrics, const std::string& path) {
     if (!metrics.is_object()) throwInputError(path, "", "expected a JSON object (metrics.json)");
     const auto version = metrics.find("schema_version");
     // 1 to 5 keep the names read here (docs/metrics.md, Versions); a later one may not.
-    if (version == metrics.end() || !version->is_number_integer() || *version < 1 || *version > 5)
-        throwInputError(path, "schema_version", "not a metrics.json of schema_version 1 to 5");
+    if (version == metrics.end() || !version->is_number_integer() || *version < 1 ||
+        *version > kMetricsSchemaVersion)
+        throwInputError(
+            path, "schema_version",
+            "not a metrics.json of schema_version 1 to " + std::to_string(kMetricsSchemaVersion));
     SceneMetrics out;
     out.path = path;
     out.schemaVersion = version->get<int>();
@@ -357,7 +371,7 @@ std::string sceneStem(const std::string& sceneFile) {
 const std::vector<std::string>& indexMetricNames() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> n;
-        for (const MetricSpec& s : metricSpecs()) n.push_back(s.name);
+        for (const MetricSpec& s : metricSpecs()) n.push_back(s.metric->name);
         return n;
     }();
     return names;
@@ -377,7 +391,7 @@ std::string indexPageHtml(const std::vector<IndexEntry>& entries) {
         const std::streampos before = matrices.tellp();
         writeMatrix(matrices, entries, grid, spec);
         if (matrices.tellp() != before)
-            o << "<a href=\"#" << spec.name << "\">" << spec.title << "</a>";
+            o << "<a href=\"#" << spec.metric->name << "\">" << spec.title << "</a>";
     }
     o << "</nav>\n" << matrices.str() << "</body></html>\n";
     return o.str();

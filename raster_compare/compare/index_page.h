@@ -44,7 +44,7 @@ struct SceneMetrics {
 };
 
 // Throws InputError naming `path` and the field (e.g. "results[2].lights.key.mae") on anything
-// that is not a metrics.json of schema_version 1 to 5.
+// that is not a metrics.json of schema_version 1 to kMetricsSchemaVersion.
 SceneMetrics parseSceneMetrics(const nlohmann::json& metrics, const std::string& path);
 // Reads and parses the file; InputError when it cannot be read or is not JSON.
 SceneMetrics readSceneMetrics(const std::string& path);

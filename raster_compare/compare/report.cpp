@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "raster_compare/compare/artifacts.h"
 #include "raster_compare/compare/html.h"
+#include "raster_compare/compare/metric_table.h"
 #include "raster_compare/compare/report_assets.h"
 #include "raster_compare/compare/report_images.h"
 #include "raster_compare/compare/tradeoff.h"
@@ -64,7 +65,7 @@ std::string formatted(double v, Format f) {
 }
 
 // A numeric column of the tables: its metric key (docs/metrics.md), header, tooltip, format and
-// how to read it from a row. Lower is better in every column; for a signed one, nearer zero.
+// how to read it from a row. Which way is better is the metric table's (metric_table.h).
 struct Column {
     std::string key, header, tip;
     Format format;
@@ -151,18 +152,55 @@ bool hasPenumbra(const ReportInput& in, size_t li) {
     return anyValue(in, li, findColumn("penumbra_mae"));
 }
 
-// The header cell of a numeric column: sortable, with its direction and meaning as a tooltip.
-std::string headerCell(const Column& c) {
-    return "<th data-col=\"" + html(c.key) + "\" title=\"" + html(c.key) + ": " + html(c.tip) +
-           (c.format == Format::Signed ? "" : "; lower is better") + " (docs/metrics.md)\">" +
-           html(c.header) + "</th>";
+// Whether a column's number format suits its metric's unit in the metric table.
+bool formatFits(Format f, MetricUnit u) {
+    switch (f) {
+        case Format::Error:
+        case Format::Signed:
+            return u == MetricUnit::V;
+        case Format::Percent:
+            return u == MetricUnit::Share;
+        case Format::Pixels:
+            return u == MetricUnit::Pixels;
+        case Format::Ms:
+            return u == MetricUnit::Ms;
+        case Format::MiB:
+            return u == MetricUnit::Bytes;
+    }
+    return false;
 }
 
-// The cells of one column over rows, the best (least, or nearest zero) marked.
+// The metric table's entry of a column; a key missing there, or a format that does not suit its
+// unit, is a bug, found by any test that writes a report.
+const MetricInfo& tableEntry(const Column& c) {
+    const MetricInfo* info = findMetric(c.key);
+    SO_CHECK(info != nullptr);
+    SO_CHECK(formatFits(c.format, info->unit));
+    return *info;
+}
+
+// The header cell of a numeric column: sortable, with its direction and meaning as a tooltip (a
+// signed column's tip says itself that nearer zero is better).
+std::string headerCell(const Column& c) {
+    const Better better = tableEntry(c).better;
+    const std::string direction = better == Better::Lower    ? "; lower is better"
+                                  : better == Better::Higher ? "; higher is better"
+                                                             : "";
+    return "<th data-col=\"" + html(c.key) + "\" title=\"" + html(c.key) + ": " + html(c.tip) +
+           direction + " (docs/metrics.md)\">" + html(c.header) + "</th>";
+}
+
+// The cells of one column over rows, the best (least, or nearest zero) marked; none in a column
+// whose metric has no better direction (the oracle's time at equal error).
 std::vector<std::string> columnCells(const Column& c,
                                      const std::vector<const LightComparison*>& rows) {
     std::optional<double> best;
-    auto score = [&](double v) { return c.format == Format::Signed ? std::fabs(v) : v; };
+    const Better better = tableEntry(c).better;
+    auto score = [&](double v) {
+        return better == Better::SmallerMagnitude ? std::fabs(v)
+               : better == Better::Higher         ? -v
+                                                  : v;
+    };
     for (const LightComparison* l : rows)
         if (const auto v = c.value(*l); v && (!best || score(*v) < *best)) best = score(*v);
     std::vector<std::string> cells;
@@ -170,7 +208,7 @@ std::vector<std::string> columnCells(const Column& c,
         const std::optional<double> v = c.value(*l);
         char data[40] = "";
         if (v) std::snprintf(data, sizeof data, "%.9g", *v);
-        const bool isBest = v && rows.size() > 1 && score(*v) == *best;
+        const bool isBest = v && rows.size() > 1 && better != Better::None && score(*v) == *best;
         cells.push_back(std::string("<td data-v=\"") + data + "\"" +
                         (isBest ? " class=\"best\"" : "") + ">" +
                         (v ? formatted(*v, c.format) : "–") + "</td>");

@@ -1,0 +1,249 @@
+#include "raster_compare/compare/metric_table.h"
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+
+namespace so {
+
+namespace {
+
+using U = MetricUnit;
+using B = Better;
+using S = MetricScope;
+
+// One row per name. The descriptions are one sentence each: docs/metrics.md's prose below the
+// generated table has the exact definitions (thresholds, the oracle's interval h, the radius r).
+constexpr auto kMetrics = std::to_array<MetricInfo>({
+    {"counted_pixels", U::Count, B::None, S::All,
+     "pixels that count: both paths hit the same triangle, facing the light"},
+    {"excluded_share.background", U::Share, B::None, S::All,
+     "share of all pixels left out because either path missed"},
+    {"excluded_share.different_surface", U::Share, B::None, S::All,
+     "share of all pixels left out because the two paths hit different triangles"},
+    {"excluded_share.facing_away", U::Share, B::None, S::All,
+     "share of all pixels left out because the surface faces away from the light"},
+    {"mae", U::V, B::Lower, S::All,
+     "mean error over counted pixels (beyond the oracle's 95% interval on area lights)"},
+    {"rmse", U::V, B::Lower, S::All, "root mean square error over counted pixels"},
+    {"max_abs", U::V, B::Lower, S::All, "largest error over counted pixels"},
+    {"false_shadow_rate", U::Share, B::Lower, S::All,
+     "share of counted pixels the technique makes darker than the oracle by more than 0.5 (hard "
+     "lights) or the oracle's interval (area lights)"},
+    {"false_lit_rate", U::Share, B::Lower, S::All,
+     "share of counted pixels the technique makes brighter than the oracle by more than 0.5 (hard "
+     "lights) or the oracle's interval (area lights)"},
+    {"acne_rate", U::Share, B::Lower, S::All,
+     "among fully lit pixels more than r pixels from an oracle shadow boundary, the share that "
+     "are false shadow"},
+    {"peter_panning_rate", U::Share, B::Lower, S::OccluderDistance,
+     "among shadowed pixels whose occluder is nearer than the contact threshold, the share that "
+     "are false lit"},
+    {"light_leak_distance", U::WorldUnits, B::Lower, S::OccluderDistance,
+     "the largest occluder distance among those false-lit pixels (0 if none)"},
+    {"boundary_displacement_px.mean", U::Pixels, B::Lower, S::All,
+     "mean distance between the two images' shadow boundaries, both ways"},
+    {"boundary_displacement_px.p95", U::Pixels, B::Lower, S::All,
+     "95th percentile of the distance between the two images' shadow boundaries"},
+    {"boundary_displacement_px.max", U::Pixels, B::Lower, S::All,
+     "largest distance between the two images' shadow boundaries"},
+    {"boundary_displacement_px.missing_boundary", U::Flag, B::None, S::All,
+     "true when one image has a shadow boundary and the other none (the distances are then the "
+     "image diagonal)"},
+    {"boundary_band_mae", U::V, B::Lower, S::All,
+     "mean error within r pixels of an oracle shadow boundary (null without one)"},
+    {"aliasing_rate", U::Share, B::Lower, S::HardLights,
+     "among counted pixels within r pixels of an oracle shadow boundary, the share that are "
+     "wrong"},
+    {"other_false_shadow_rate", U::Share, B::Lower, S::All,
+     "share of counted pixels that are false shadow and that no artifact class explains"},
+    {"other_false_lit_rate", U::Share, B::Lower, S::All,
+     "share of counted pixels that are false lit and that no artifact class explains"},
+    {"light_bleeding_rate", U::Share, B::Lower, S::FilteredTechniques,
+     "among counted pixels in the oracle's umbra, the share the technique lights by more than "
+     "0.1"},
+    {"penumbra_mae", U::V, B::Lower, S::AreaLights,
+     "mean error over counted pixels where the oracle's V is strictly between 0 and 1"},
+    {"penumbra_bias", U::V, B::SmallerMagnitude, S::AreaLights,
+     "signed mean error over those pixels: < 0 too hard, > 0 too soft"},
+    {"umbra_mae", U::V, B::Lower, S::AreaLights,
+     "mean error over counted pixels where the oracle's V is exactly 0"},
+    {"lit_mae", U::V, B::Lower, S::AreaLights,
+     "mean error over counted pixels where the oracle's V is exactly 1"},
+    {"penumbra_width_error_px.mean", U::Pixels, B::Lower, S::AreaLights,
+     "mean absolute difference of the penumbra's 10%-90% width, along the oracle's gradient "
+     "(null without a measurable penumbra)"},
+    {"penumbra_width_error_px.p95", U::Pixels, B::Lower, S::AreaLights,
+     "95th percentile of that width difference"},
+    {"penumbra_width_error_px.oracle_mean_width", U::Pixels, B::None, S::AreaLights,
+     "the oracle's own mean 10%-90% width, for scale"},
+    {"penumbra_width_error_px.profiles", U::Count, B::None, S::AreaLights,
+     "penumbra profiles measured"},
+    {"predicted_aliasing.mean", U::Ratio, B::None, S::AliasingPrediction,
+     "mean predicted aliasing (a map texel's footprint over a pixel's) over counted pixels"},
+    {"predicted_aliasing.correlation_with_boundary_error", U::Correlation, B::None,
+     S::AliasingPrediction,
+     "correlation of the prediction's log with the boundary displacement at the raster's "
+     "boundary pixels (null below 10 of them)"},
+    {"cost.shadow_map_ms", U::Ms, B::Lower, S::All,
+     "median time of the light's passes before the visibility pass (the map, the volumes)"},
+    {"cost.shadow_map_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
+    {"cost.shadow_map_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
+    {"cost.visibility_ms", U::Ms, B::Lower, S::All, "median time of the visibility pass"},
+    {"cost.visibility_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
+    {"cost.visibility_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
+    {"cost.camera_ms", U::Ms, B::Lower, S::All,
+     "median time of the camera pass, shared by the scene's lights"},
+    {"cost.camera_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
+    {"cost.camera_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
+    {"cost.frame_ms", U::Ms, B::Lower, S::All,
+     "median frame time: the light's passes and the camera pass"},
+    {"cost.frame_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
+    {"cost.frame_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
+    {"cost.noisy", U::Flag, B::None, S::All,
+     "true when any of the times spreads (p25 to p75) by more than 20% of its median"},
+    {"cost.memory_bytes", U::Bytes, B::Lower, S::All,
+     "GL memory the technique holds for the light"},
+    {"cost.oracle_seconds", U::Seconds, B::None, S::All, "what the ground truth of the light cost"},
+    {"cost.oracle_ms_at_equal_error", U::Ms, B::None, S::AreaLights,
+     "the oracle's time until its penumbra's mean 95% half-width came down to this technique's "
+     "penumbra_mae"},
+    {"temporal_flicker_rate", U::Share, B::Lower, S::FramesPath,
+     "share of tracked pixel pairs of consecutive frames whose V flips where the oracle's does "
+     "not"},
+    {"temporal_tracked_pairs", U::Count, B::None, S::FramesPath,
+     "pixel pairs tracked, summed over the frame pairs"},
+    {"temporal_flickering_pairs", U::Count, B::None, S::FramesPath,
+     "pixel pairs that flicker, summed over the frame pairs"},
+    {"temporal_frames", U::Count, B::None, S::FramesPath, "frames along the camera path"},
+});
+
+// Levenshtein distance, for suggestions on a misspelled limit.
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+}  // namespace
+
+std::span<const MetricInfo> allMetrics() {
+    return kMetrics;
+}
+
+const MetricInfo* findMetric(const std::string& name) {
+    for (const MetricInfo& m : kMetrics)
+        if (name == m.name) return &m;
+    return nullptr;
+}
+
+bool isMetricGroup(const std::string& name) {
+    const std::string prefix = name + ".";
+    return std::any_of(kMetrics.begin(), kMetrics.end(), [&](const MetricInfo& m) {
+        return std::string(m.name).starts_with(prefix);
+    });
+}
+
+std::vector<std::string> nearestMetrics(const std::string& name, size_t count) {
+    std::vector<std::string> out;
+    if (isMetricGroup(name)) {
+        for (const MetricInfo& m : kMetrics)
+            if (std::string(m.name).starts_with(name + ".") && out.size() < count)
+                out.push_back(m.name);
+        return out;
+    }
+    // Close enough to be a typo: a third of the name's length, at least two edits. A name from a
+    // hostile file may be long; one far longer than any metric is no typo (and the distance would
+    // cost its length times each name's).
+    if (name.size() > 80) return out;
+    const size_t limit = std::max<size_t>(2, name.size() / 3);
+    std::vector<std::pair<size_t, std::string>> near;
+    for (const MetricInfo& m : kMetrics)
+        if (const size_t d = editDistance(name, m.name); d <= limit) near.emplace_back(d, m.name);
+    std::stable_sort(near.begin(), near.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t i = 0; i < near.size() && i < count; ++i) out.push_back(near[i].second);
+    return out;
+}
+
+const char* unitName(MetricUnit u) {
+    switch (u) {
+        case U::V:
+            return "V";
+        case U::Share:
+            return "share";
+        case U::Pixels:
+            return "px";
+        case U::WorldUnits:
+            return "world units";
+        case U::Ms:
+            return "ms";
+        case U::Seconds:
+            return "s";
+        case U::Bytes:
+            return "bytes";
+        case U::Count:
+            return "count";
+        case U::Ratio:
+            return "ratio";
+        case U::Correlation:
+            return "r";
+        case U::Flag:
+            return "true/false";
+    }
+    return "";
+}
+
+const char* betterName(Better b) {
+    switch (b) {
+        case B::Lower:
+            return "lower";
+        case B::Higher:
+            return "higher";
+        case B::SmallerMagnitude:
+            return "nearer 0";
+        case B::None:
+            return "none";
+    }
+    return "";
+}
+
+const char* scopeName(MetricScope s) {
+    switch (s) {
+        case S::All:
+            return "all";
+        case S::HardLights:
+            return "hard lights";
+        case S::AreaLights:
+            return "area lights";
+        case S::FilteredTechniques:
+            return "filtered techniques";
+        case S::OccluderDistance:
+            return "with `occ_dist`";
+        case S::AliasingPrediction:
+            return "with `aliasing_pred`";
+        case S::FramesPath:
+            return "`--frames-path`";
+    }
+    return "";
+}
+
+std::string metricTableMarkdown() {
+    std::ostringstream o;
+    o << "| metric | unit | better | where | meaning |\n|---|---|---|---|---|\n";
+    for (const MetricInfo& m : kMetrics)
+        o << "| `" << m.name << "` | " << unitName(m.unit) << " | " << betterName(m.better) << " | "
+          << scopeName(m.scope) << " | " << m.description << " |\n";
+    return o.str();
+}
+
+}  // namespace so

@@ -1,0 +1,79 @@
+// The one table of public metrics (docs/metrics.md): every name metrics.json, metrics.csv and the
+// limits file use, with its unit, which way is better, where it applies and one sentence of
+// meaning. The gate validates limit keys against it, the baseline takes its directions from it,
+// the report and the index their "lower is better", and docs/metrics.md's table is generated from
+// it (scripts/update-docs; a test fails when they differ), as techniques have their parameter
+// tables. The rows themselves are still written by the structs' toJson (metrics.h): a test checks
+// that every name a full row has is here and every entry here is in some row.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace so {
+
+// Which way a metric gets better.
+enum class Better {
+    Lower,             // an error, a rate, a distance, a cost
+    Higher,            // none of today's metrics; kept so a score can be added without a new rule
+    SmallerMagnitude,  // signed: |x| matters (penumbra_bias: < 0 too hard, > 0 too soft)
+    None               // describes the view or the run, not the technique (counts, flags)
+};
+
+enum class MetricUnit {
+    V,            // visibility, 0 to 1
+    Share,        // a fraction of some pixels, 0 to 1
+    Pixels,       // distances in image pixels
+    WorldUnits,   // distances in the scene's units
+    Ms,           // milliseconds
+    Seconds,      // seconds
+    Bytes,        // bytes
+    Count,        // a whole number of pixels, pairs, frames or profiles
+    Ratio,        // a dimensionless ratio (a texel's footprint over a pixel's)
+    Correlation,  // Pearson's r, -1 to 1
+    Flag          // true or false
+};
+
+// Where a metric has a value; elsewhere it is null (not applicable: the gate counts it so).
+enum class MetricScope {
+    All,                 // every row
+    HardLights,          // point, spot and directional lights (no penumbra)
+    AreaLights,          // sampled area lights (the oracle has NAME.stderr)
+    FilteredTechniques,  // vsm, esm, evsm
+    OccluderDistance,    // the oracle has NAME.occ_dist (the contact effect)
+    AliasingPrediction,  // the raster has NAME.aliasing_pred
+    FramesPath           // compare --frames-path; absent from the row otherwise
+};
+
+struct MetricInfo {
+    const char* name;  // as in metrics.csv and the limits file: nested names joined by a dot
+    MetricUnit unit;
+    Better better;
+    MetricScope scope;
+    const char* description;  // one sentence; docs/metrics.md has the full definitions
+};
+
+// Every public metric, in the order of docs/metrics.md. metrics.json and metrics.csv order their
+// names as the JSON objects do (sorted by key at each level), which is a public contract too.
+std::span<const MetricInfo> allMetrics();
+
+// The entry of `name` (as in metrics.csv), or null.
+const MetricInfo* findMetric(const std::string& name);
+
+// A dotted name's first part with members in the table ("penumbra_width_error_px"): metrics.json
+// has the object, or null where none of its members applies.
+bool isMetricGroup(const std::string& name);
+
+// The table's names nearest to a misspelled one, best first (at most `count`): a group's members,
+// else those within a few edits. Empty when nothing is close.
+std::vector<std::string> nearestMetrics(const std::string& name, size_t count = 3);
+
+const char* unitName(MetricUnit u);    // "V", "share", "px", "world units", ...
+const char* betterName(Better b);      // "lower", "higher", "nearer 0", "none"
+const char* scopeName(MetricScope s);  // "all", "hard lights", ...
+
+// The table as docs/metrics.md shows it, between its metric-table markers.
+std::string metricTableMarkdown();
+
+}  // namespace so
