@@ -135,6 +135,7 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
             so::throwInputError("compare options", "boundary_radius", "must be in [0, 64]");
         c.boundaryRadius = options.boundaryRadius;
         c.contactThresholdRelative = options.contactThresholdRelative;
+        c.progress = detail::toLibrary(options.progress);
         const so::Comparison comparison = so::compareWithOracle(s, o, techniques, images, c);
         CompareResult out;
         out.metricsJson =

@@ -437,7 +437,7 @@ void bindCompare(py::module_& m) {
         "compare",
         [](const so::Scene& scene, const PyTrace& oracle, const py::object& images,
            const std::vector<std::string>& techniques, int boundaryRadius, int frames,
-           int warmup) {
+           int warmup, const py::object& progress) {
             so::CompareOptions o;
             o.techniques = techniques;
             if (!images.is_none())
@@ -446,13 +446,17 @@ void bindCompare(py::module_& m) {
             o.frames = frames;
             o.warmup = warmup;
             const so::CompareResult r = interruptible<so::CompareResult>(
-                [&](const so::ProgressCallback&) { return so::compare(scene, oracle.result, o); },
-                py::none());
+                [&](const so::ProgressCallback& cb) {
+                    so::CompareOptions withProgress = o;
+                    withProgress.progress = cb;
+                    return so::compare(scene, oracle.result, withProgress);
+                },
+                progress);
             return jsonLoads(r.metricsJson);
         },
         py::arg("scene"), py::arg("oracle"), py::arg("images") = py::none(), py::kw_only(),
         py::arg("techniques") = std::vector<std::string>{}, py::arg("boundary_radius") = 2,
-        py::arg("frames") = 9, py::arg("warmup") = 2,
+        py::arg("frames") = 9, py::arg("warmup") = 2, py::arg("progress") = py::none(),
         "Judges renderers' images ({label: V array, or {light: V array}}) and built-in techniques "
         "(\"pcf:kernel=5\") against the oracle; returns metrics.json as a dict.");
 }

@@ -13,12 +13,14 @@ SO_PACKAGES=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   googletest libgtest-dev
   clang-format
+  python3-dev pybind11-dev python3-numpy
 )
 
 # Only the tests need these: libcgal-demo ships the Stanford bunny (in its data.tar.gz) that the
 # oracle is re-traced on; chromium, nodejs and npm run the browser test of the HTML reports
-# (tests/browser, ctest label "browser").
-SO_TEST_PACKAGES=(libcgal-demo chromium nodejs npm)
+# (tests/browser, ctest label "browser"); pytest and matplotlib run the Python module's tests and
+# docs/python.md's example (label "python").
+SO_TEST_PACKAGES=(libcgal-demo chromium nodejs npm python3-pytest python3-matplotlib)
 # Blender grades its own shadows against the oracle in the external-renderer test (ctest label
 # "external", examples/blender/, docs/external.md): its glTF importer needs numpy, which Debian's
 # blender does not pull in; xvfb and xauth are EEVEE's fallback display. Installed apart, like the

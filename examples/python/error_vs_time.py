@@ -20,7 +20,7 @@ import shadow_oracle as so
 HERE = os.path.dirname(os.path.abspath(__file__))
 SETTINGS = {
     "pcf": [{"kernel": k} for k in (1, 3, 5, 9)],
-    "pcss": [{"light_size": s} for s in (0.05, 0.1, 0.2)],
+    "pcss": [{"filter_samples": n} for n in (8, 16, 32, 64)],
     "vsm": [{"blur": b} for b in (1, 3, 5)],
 }
 

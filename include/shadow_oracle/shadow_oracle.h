@@ -195,6 +195,8 @@ struct CompareOptions {
     int boundaryRadius = 2;                  // r of docs/metrics.md
     double contactThresholdRelative = 0.01;  // of the scene's bounding-box diagonal
     int frames = 9, warmup = 2;              // the techniques' timed and untimed frames
+    // Stage "techniques", one step per technique rendered; can cancel between techniques.
+    ProgressCallback progress;
 };
 
 // One light of one row: every metric of metrics.json by its public name (docs/metrics.md:

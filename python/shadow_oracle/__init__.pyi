@@ -108,6 +108,7 @@ def compare(
     boundary_radius: int = 2,
     frames: int = 9,
     warmup: int = 2,
+    progress: Optional[ProgressFn] = None,
 ) -> dict[str, Any]: ...
 def read_exr(path: str) -> dict[str, npt.NDArray[np.float32]]: ...
 def write_exr(

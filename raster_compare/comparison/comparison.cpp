@@ -259,8 +259,10 @@ void renderAll(const Job& job, const std::vector<TechniqueRun>& runs,
         for (size_t i : group) labels.push_back(runs[i].spec.label);
         options.renderingGroup(labels);
     };
+    Progress progress("techniques", runs.size(), options.progress);
     const auto done = [&](size_t i, RasterResult&& r) {
         rows[i] = compareTechnique(job, i, runs[i], std::move(r));
+        progress.advance(1);
     };
     renderInterleaved(job.scene, techniques, options.raster, gl, {groupStarts, done});
 }

@@ -64,7 +64,8 @@ struct ComparisonOptions {
     OracleCacheOptions pathCache;
     // Before each group of techniques is rendered together: their labels (the CLI says so).
     std::function<void(const std::vector<std::string>&)> renderingGroup;
-    // The camera path's frames ("camera path frames"); can cancel.
+    // The camera path's frames ("camera path frames") and the techniques rendered
+    // ("techniques"); can cancel between them.
     ProgressCallback progress;
 };
 
