@@ -16,8 +16,7 @@ namespace {
 
 // An image given in memory, checked as readVisibilityImage checks a file: a plane per light of
 // the oracle's size, every value finite and in [0, 1] up to the tolerance (then clamped).
-so::ImageInput imageInput(const ExternalImage& in, const so::Scene& scene, int width,
-                          int height) {
+so::ImageInput imageInput(const ExternalImage& in, const so::Scene& scene, int width, int height) {
     const std::string file = "image \"" + so::printable(in.label, 60) + "\"";
     if (in.label.empty()) so::throwInputError("image", "label", "empty");
     if (in.visibility.size() != scene.lights.size())
@@ -129,8 +128,7 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
         for (const ExternalImage& in : options.images)
             images.push_back(imageInput(in, s, o.image.width(), o.image.height()));
         so::ComparisonOptions c;
-        c.raster = rasterOptions(o.image.width(), o.image.height(), options.frames,
-                                 options.warmup);
+        c.raster = rasterOptions(o.image.width(), o.image.height(), options.frames, options.warmup);
         if (options.boundaryRadius < 0 || options.boundaryRadius > 64)
             so::throwInputError("compare options", "boundary_radius", "must be in [0, 64]");
         c.boundaryRadius = options.boundaryRadius;
@@ -141,7 +139,8 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
         out.metricsJson =
             so::metricsJson(s, s.path.string(), o, comparison, options.boundaryRadius).dump();
         for (const so::ComparedRow& row : comparison.rows) {
-            ComparedRow r{row.report.label, row.source, row.technique, row.report.family, {}, {},
+            ComparedRow r{row.report.label,      row.source, row.technique,
+                          row.report.family,     {},         {},
                           errorImage(row.report)};
             for (const so::LightComparison& lc : row.report.lights)
                 r.lights.push_back(lightMetrics(lc));

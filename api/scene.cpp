@@ -26,8 +26,8 @@ Scene Scene::fromMeshes(const std::vector<Mesh>& meshes, const std::string& desc
             p.indices = in.triangles;
             prims.push_back(std::move(p));
         }
-        return Scene(std::make_shared<const Data>(
-            Data{so::sceneFromMemory(description, std::move(prims))}));
+        return Scene(
+            std::make_shared<const Data>(Data{so::sceneFromMemory(description, std::move(prims))}));
     });
 }
 

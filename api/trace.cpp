@@ -33,7 +33,8 @@ void checkOptions(const TraceOptions& o) {
     if (o.width < 0 || o.width > 16384) fail("width", "must be in [0, 16384]");
     if (o.height < 0 || o.height > 16384) fail("height", "must be in [0, 16384]");
     if (o.threads < 0 || o.threads > 1024) fail("threads", "must be in [0, 1024]");
-    if (!(o.targetError >= 1e-4 && o.targetError <= 0.5)) fail("target_error", "must be in [1e-4, 0.5]");
+    if (!(o.targetError >= 1e-4 && o.targetError <= 0.5))
+        fail("target_error", "must be in [1e-4, 0.5]");
     if (!(o.agreementTarget >= 1e-4 && o.agreementTarget <= 0.5))
         fail("agreement_target", "must be in [1e-4, 0.5]");
     if (o.maxSpp < 16 || o.maxSpp > (1 << 20)) fail("max_spp", "must be in [16, 1048576]");

@@ -12,9 +12,9 @@
 #include <set>
 
 #include "cli/output.h"
+#include "cli/progress_bar.h"
 #include "cli/sweep_merge.h"
 #include "core/error.h"
-#include "cli/progress_bar.h"
 #include "core/scene.h"
 #include "raster_compare/gl/technique.h"
 

@@ -7,10 +7,10 @@
 #include <OpenEXR/OpenEXRConfig.h>
 
 #include "cli/output.h"
+#include "cli/progress_bar.h"
 #include "core/error.h"
 #include "core/gbuffer.h"
 #include "core/image_codec.h"
-#include "cli/progress_bar.h"
 #include "core/progress.h"
 #include "oracle/embree_handles.h"
 #include "oracle/oracle_cache.h"

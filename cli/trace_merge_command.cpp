@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/output.h"
+#include "cli/progress_bar.h"
 #include "cli/trace_command.h"
 #include "core/channels.h"
 #include "core/error.h"
-#include "cli/progress_bar.h"
 #include "core/progress.h"
 #include "oracle/oracle.h"
 
@@ -170,11 +170,10 @@ void recomputeUniformSpp(const ChannelImage& image, OracleStats& stats) {
         if (!l.area || !(l.area->worstHalfWidth > 0.0)) continue;
         const float* se = image.channel(channels::lightChannel(l.name, channels::kStdErr));
         const float* spp = image.channel(channels::lightChannel(l.name, channels::kSpp));
-        const double q = channels::kStdErrQuantile95, w = l.area->worstHalfWidth;
         double uniform = 0.0;
         for (size_t i = 0; i < image.pixelCount(); ++i) {
             const float v = float(double(se[i]) * double(se[i]) * double(spp[i]));
-            uniform = std::max(uniform, std::ceil(q * q * double(v) / (w * w)));
+            uniform = std::max(uniform, uniformSppFor(v, l.area->worstHalfWidth));
         }
         l.area->uniformSpp = uniform;
     }

@@ -14,7 +14,8 @@ Progress::Progress(std::string stage, uint64_t total, ProgressCallback callback)
 
 namespace {
 bool due(const std::atomic<Clock::rep>& last) {
-    return Clock::now() - Clock::time_point(Clock::duration(last.load(std::memory_order_relaxed))) >=
+    return Clock::now() -
+               Clock::time_point(Clock::duration(last.load(std::memory_order_relaxed))) >=
            Progress::kInterval;
 }
 }  // namespace
@@ -32,8 +33,7 @@ void Progress::advance(uint64_t n) {
         } else if (due(lastReport_)) {
             // A worker that finds another one reporting goes back to work instead of waiting.
             std::unique_lock lock(mutex_, std::try_to_lock);
-            if (lock.owns_lock() && !finalReported_ && due(lastReport_))
-                report(done);
+            if (lock.owns_lock() && !finalReported_ && due(lastReport_)) report(done);
         }
     }
     if (cancelled_.load(std::memory_order_relaxed)) throw Cancelled();

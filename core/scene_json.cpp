@@ -646,8 +646,7 @@ void checkMeshes(const std::vector<MeshPrimitive>& meshes, const Reader& r,
             if (mesh.indices[i] >= mesh.wsPositions.size())
                 r.fail(f + ".triangles", "index " + std::to_string(mesh.indices[i]) + " at " +
                                              std::to_string(i) + " is past the " +
-                                             std::to_string(mesh.wsPositions.size()) +
-                                             " vertices");
+                                             std::to_string(mesh.wsPositions.size()) + " vertices");
         for (size_t v = 0; v < mesh.wsPositions.size(); ++v) {
             const glm::dvec3& p = mesh.wsPositions[v];
             if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))

@@ -25,9 +25,9 @@ std::string sizeText(int w, int h) {
 
 void checkSize(const std::string& path, int w, int h, int width, int height) {
     if (w != width || h != height)
-        throwInputError(path, "size",
-                        "image is " + sizeText(w, h) + ", the camera's is " +
-                            sizeText(width, height));
+        throwInputError(
+            path, "size",
+            "image is " + sizeText(w, h) + ", the camera's is " + sizeText(width, height));
 }
 
 // Every value finite and within [0, 1] up to kVisibilityTolerance, then clamped.

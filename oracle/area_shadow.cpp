@@ -387,9 +387,7 @@ void AreaRun::reduceSlots(AreaShadowStats& total) const {
     if (total.worstHalfWidth > 0.0)
         for (float v : perSampleVar)
             total.uniformSppForWorst =
-                std::max(total.uniformSppForWorst,
-                         std::ceil(kIntervalQuantile95 * kIntervalQuantile95 * double(v) /
-                                   (total.worstHalfWidth * total.worstHalfWidth)));
+                std::max(total.uniformSppForWorst, uniformSppFor(v, total.worstHalfWidth));
     total.samplingEfficiency =
         total.pixelsSampled ? efficiencySum / double(total.pixelsSampled) : 1.0;
 }

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -44,6 +45,15 @@ inline constexpr int kMinAdaptiveSpp = 64;
 // Every interval the oracle states is V +- kIntervalQuantile95 * stderr: the two-sided 95%
 // Student-t quantile for kReplicas - 1 = 7 degrees of freedom.
 inline constexpr double kIntervalQuantile95 = channels::kStdErrQuantile95;
+
+// The samples a uniform run would need at a pixel of per-sample variance `perSampleVariance` (its
+// stderr^2 * spp) to bring its 95% half-width down to `halfWidth`: the oracle's uniform
+// equivalent (oracle.json uniform_equivalent), taken over pixels by their maximum, and the same
+// after trace-merge.
+inline double uniformSppFor(float perSampleVariance, double halfWidth) {
+    return std::ceil(kIntervalQuantile95 * kIntervalQuantile95 * double(perSampleVariance) /
+                     (halfWidth * halfWidth));
+}
 static_assert(kReplicas == 8, "kIntervalQuantile95 is the t quantile for 7 degrees of freedom");
 
 struct AreaSampling {

@@ -26,10 +26,10 @@ namespace {
 py::array_t<float> planeArray(std::vector<float>&& plane, int width, int height) {
     auto* owned = new std::vector<float>(std::move(plane));
     py::capsule free(owned, [](void* p) { delete static_cast<std::vector<float>*>(p); });
-    return py::array_t<float>({py::ssize_t(height), py::ssize_t(width)},
-                              {py::ssize_t(width) * py::ssize_t(sizeof(float)),
-                               py::ssize_t(sizeof(float))},
-                              owned->data(), free);
+    return py::array_t<float>(
+        {py::ssize_t(height), py::ssize_t(width)},
+        {py::ssize_t(width) * py::ssize_t(sizeof(float)), py::ssize_t(sizeof(float))},
+        owned->data(), free);
 }
 
 // Every channel by its EXR name, in the image's order.
@@ -53,8 +53,7 @@ std::vector<float> planeFrom(const py::handle& object, const std::string& what, 
         throw py::value_error(what + ": expected shape (" + std::to_string(height) + ", " +
                               std::to_string(width) + "), got " +
                               std::string(py::str(array.attr("shape"))));
-    const auto f =
-        py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
+    const auto f = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
     return std::vector<float>(f.data(), f.data() + f.size());
 }
 
@@ -134,11 +133,11 @@ std::vector<so::Mesh> meshesFrom(const py::list& meshes) {
     for (size_t m = 0; m < meshes.size(); ++m) {
         const std::string what = "meshes[" + std::to_string(m) + "]";
         const py::tuple pair = meshes[m].cast<py::tuple>();
-        if (pair.size() != 2)
-            throw py::value_error(what + ": expected (vertices, triangles)");
+        if (pair.size() != 2) throw py::value_error(what + ": expected (vertices, triangles)");
         const py::array v = py::array::ensure(pair[0]);
         const py::array t = py::array::ensure(pair[1]);
-        if (!v || v.ndim() != 2 || v.shape(1) != 3 || (v.dtype().kind() != 'f' && v.dtype().kind() != 'i'))
+        if (!v || v.ndim() != 2 || v.shape(1) != 3 ||
+            (v.dtype().kind() != 'f' && v.dtype().kind() != 'i'))
             throw py::value_error(what + ": vertices must be a numeric array of shape (N, 3)");
         if (!t || t.ndim() != 2 || t.shape(1) != 3 ||
             (t.dtype().kind() != 'i' && t.dtype().kind() != 'u'))
@@ -194,8 +193,8 @@ std::vector<std::string> lightNames(const so::Scene& scene) {
 
 void bindImages(py::module_& m) {
     m.def(
-        "read_exr",
-        [](const std::string& path) { return imageDict(so::readExr(path)); }, py::arg("path"),
+        "read_exr", [](const std::string& path) { return imageDict(so::readExr(path)); },
+        py::arg("path"),
         "Every channel of an EXR as a dict of (height, width) float32 arrays by channel name.");
     m.def(
         "write_exr",
@@ -220,7 +219,8 @@ void bindImages(py::module_& m) {
             py::gil_scoped_release release;
             so::writeExr(path, image, attributes);
         },
-        py::arg("path"), py::arg("channels"), py::arg("attributes") = std::map<std::string, std::string>{},
+        py::arg("path"), py::arg("channels"),
+        py::arg("attributes") = std::map<std::string, std::string>{},
         "Writes (height, width) float arrays as 32-bit float channels, ZIP-compressed "
         "(docs/exr-channels.md).");
 }
@@ -229,15 +229,15 @@ void bindScene(py::module_& m) {
     py::class_<so::Scene>(m, "Scene", "A loaded scene: immutable, shareable between threads.")
         .def_property_readonly("path", &so::Scene::path)
         .def_property_readonly("hash", &so::Scene::hash)
-        .def_property_readonly("lights",
-                               [](const so::Scene& s) {
-                                   py::list out;
-                                   for (const so::LightInfo& l : s.lights())
-                                       out.append(py::dict(py::arg("name") = l.name,
-                                                           py::arg("type") = l.type,
-                                                           py::arg("area") = l.area));
-                                   return out;
-                               })
+        .def_property_readonly(
+            "lights",
+            [](const so::Scene& s) {
+                py::list out;
+                for (const so::LightInfo& l : s.lights())
+                    out.append(py::dict(py::arg("name") = l.name, py::arg("type") = l.type,
+                                        py::arg("area") = l.area));
+                return out;
+            })
         .def_property_readonly("effects", &so::Scene::effects)
         .def_property_readonly("camera_size", &so::Scene::cameraSize)
         .def_property_readonly("triangles", &so::Scene::triangles)
@@ -275,13 +275,14 @@ void bindScene(py::module_& m) {
 
 void bindTrace(py::module_& m) {
     py::class_<PyTrace>(m, "Trace", "The oracle's result (trace()).")
-        .def_property_readonly("images", [](const PyTrace& t) { return t.images; },
-                               "Every channel of oracle.exr by name, (height, width) float32.")
+        .def_property_readonly(
+            "images", [](const PyTrace& t) { return t.images; },
+            "Every channel of oracle.exr by name, (height, width) float32.")
         .def_property_readonly("width", [](const PyTrace& t) { return t.width; })
         .def_property_readonly("height", [](const PyTrace& t) { return t.height; })
-        .def_property_readonly("stats",
-                               [](const PyTrace& t) { return jsonLoads(t.result.statsJson); },
-                               "oracle.json's \"stats\" as a dict.")
+        .def_property_readonly(
+            "stats", [](const PyTrace& t) { return jsonLoads(t.result.statsJson); },
+            "oracle.json's \"stats\" as a dict.")
         .def_property_readonly("disagreements",
                                [](const PyTrace& t) { return t.result.disagreements; })
         .def_property_readonly(
@@ -293,10 +294,12 @@ void bindTrace(py::module_& m) {
         .def_property_readonly(
             "spp", [](const PyTrace& t) { return lightPlanes(t.images, t.lights, "spp"); },
             "Per sampled area light: the samples each pixel took.")
-        .def_property_readonly("P", [](const PyTrace& t) { return vectorPlanes(t.images, "P"); },
-                               "World-space positions, (height, width, 3).")
-        .def_property_readonly("N", [](const PyTrace& t) { return vectorPlanes(t.images, "N"); },
-                               "World-space normals, (height, width, 3).")
+        .def_property_readonly(
+            "P", [](const PyTrace& t) { return vectorPlanes(t.images, "P"); },
+            "World-space positions, (height, width, 3).")
+        .def_property_readonly(
+            "N", [](const PyTrace& t) { return vectorPlanes(t.images, "N"); },
+            "World-space normals, (height, width, 3).")
         .def("__getitem__", [](const PyTrace& t, const std::string& name) {
             const py::str key(name);
             if (!t.images.contains(key)) throw py::key_error(name);
@@ -374,14 +377,16 @@ void bindRender(py::module_& m) {
         .def_property_readonly("images", [](const PyRender& r) { return r.images; })
         .def_property_readonly(
             "V", [](const PyRender& r) { return lightPlanes(r.images, r.lights, "V"); })
-        .def_property_readonly("frame_ms", [](const PyRender& r) { return r.frameMs; },
-                               "Median over the timed frames (llvmpipe's, where that is the GL).")
-        .def_property_readonly("stats", [](const PyRender& r) { return jsonLoads(r.statsJson); },
-                               "raster.json as a dict.");
+        .def_property_readonly(
+            "frame_ms", [](const PyRender& r) { return r.frameMs; },
+            "Median over the timed frames (llvmpipe's, where that is the GL).")
+        .def_property_readonly(
+            "stats", [](const PyRender& r) { return jsonLoads(r.statsJson); },
+            "raster.json as a dict.");
     m.def(
         "render",
-        [](const so::Scene& scene, const std::string& technique, int width, int height,
-           int frames, int warmup, const py::kwargs& kwargs) {
+        [](const so::Scene& scene, const std::string& technique, int width, int height, int frames,
+           int warmup, const py::kwargs& kwargs) {
             so::RenderOptions o{width, height, frames, warmup};
             const so::Parameters parameters = parametersFrom(kwargs);
             so::RenderResult r = interruptible<so::RenderResult>(
@@ -400,13 +405,14 @@ void bindRender(py::module_& m) {
         py::arg("height") = 0, py::arg("frames") = 9, py::arg("warmup") = 2,
         "A built-in technique through the GL path, its parameters as keywords by the names of "
         "docs/techniques.md: render(scene, \"pcf\", kernel=5, pattern=\"poisson\").");
-    m.def("techniques", [] { return jsonLoads(so::techniquesJson()); },
-          "Every technique, its family and its parameter table (techniques --json).");
+    m.def(
+        "techniques", [] { return jsonLoads(so::techniquesJson()); },
+        "Every technique, its family and its parameter table (techniques --json).");
 }
 
 // images: {label: array (one light) or {light name: array}}.
-std::vector<so::ExternalImage> imagesFrom(const py::dict& images, const so::Scene& scene,
-                                          int width, int height) {
+std::vector<so::ExternalImage> imagesFrom(const py::dict& images, const so::Scene& scene, int width,
+                                          int height) {
     std::vector<so::ExternalImage> out;
     const std::vector<std::string> lights = lightNames(scene);
     for (const auto& [key, value] : images) {
@@ -436,8 +442,8 @@ void bindCompare(py::module_& m) {
     m.def(
         "compare",
         [](const so::Scene& scene, const PyTrace& oracle, const py::object& images,
-           const std::vector<std::string>& techniques, int boundaryRadius, int frames,
-           int warmup, const py::object& progress) {
+           const std::vector<std::string>& techniques, int boundaryRadius, int frames, int warmup,
+           const py::object& progress) {
             so::CompareOptions o;
             o.techniques = techniques;
             if (!images.is_none())

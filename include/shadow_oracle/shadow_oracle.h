@@ -141,7 +141,7 @@ struct LightStats {
 struct TraceResult {
     Image image;
     std::vector<LightStats> lights;
-    double seconds = 0.0;  // BVH, primary and shadow rays
+    double seconds = 0.0;        // BVH, primary and shadow rays
     uint64_t disagreements = 0;  // with verify > 0: pixels where the re-trace disagreed
     std::string statsJson;
 
@@ -155,13 +155,13 @@ SHADOW_ORACLE_API TraceResult trace(const Scene& scene, const TraceOptions& opti
 using Parameters = std::vector<std::pair<std::string, std::string>>;
 
 struct RenderOptions {
-    int width = 0, height = 0;  // 0: the scene camera's
+    int width = 0, height = 0;   // 0: the scene camera's
     int frames = 9, warmup = 2;  // timed frames (their median is frameMs) after untimed ones
 };
 
 struct RenderResult {
-    Image image;  // raster.exr's channels (NAME.V per light and the geometry)
-    double frameMs = 0.0;  // median over the timed frames
+    Image image;            // raster.exr's channels (NAME.V per light and the geometry)
+    double frameMs = 0.0;   // median over the timed frames
     std::string statsJson;  // raster.json: passes, times, memory per light
 };
 

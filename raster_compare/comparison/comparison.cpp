@@ -206,8 +206,8 @@ ComparedRow compareImage(Job job, const ImageInput& in) {
     ChannelImage image = asRasterImage(in, job.oracle.image, job.scene.lights);
     job.metricOptions.filteredTechnique = false;
     measureLights(
-        job, rt, image,
-        [&](size_t, double oracleSeconds) { return imageCost(in, oracleSeconds); }, nullptr);
+        job, rt, image, [&](size_t, double oracleSeconds) { return imageCost(in, oracleSeconds); },
+        nullptr);
     rt.image = std::move(image);
     return row;
 }
@@ -316,11 +316,10 @@ nlohmann::json rowJson(const ComparedRow& row) {
     nlohmann::json lights = nlohmann::json::object();
     for (const LightComparison& lc : row.report.lights) lights[lc.light] = lc.toJson();
     if (row.source == "external")
-        return {{"source", "external"},   {"technique", "external"},
-                {"family", "external"},   {"label", row.report.label},
-                {"image", row.imagePath}, {"renderer", row.renderer},
-                {"parameters", row.parameters}, {"timings", nullptr},
-                {"lights", lights}};
+        return {
+            {"source", "external"},         {"technique", "external"}, {"family", "external"},
+            {"label", row.report.label},    {"image", row.imagePath},  {"renderer", row.renderer},
+            {"parameters", row.parameters}, {"timings", nullptr},      {"lights", lights}};
     return {{"source", "technique"},
             {"technique", row.technique},
             {"family", row.report.family},

@@ -15,8 +15,8 @@
 #include "core/progress.h"
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
-#include "raster_compare/comparison/path_flicker.h"
 #include "raster_compare/compare/report.h"
+#include "raster_compare/comparison/path_flicker.h"
 #include "raster_compare/gl/raster_result.h"
 #include "raster_compare/gl/renderer.h"
 
@@ -71,8 +71,8 @@ struct ComparisonOptions {
 
 // One technique or image against the oracle: a row of metrics.json.
 struct ComparedRow {
-    std::string source;     // "technique" or "external"
-    std::string technique;  // the registered name, or "external"
+    std::string source;               // "technique" or "external"
+    std::string technique;            // the registered name, or "external"
     std::string imagePath, renderer;  // external rows: the image and its cost file's renderer
     // The settings as metrics.json's "parameters": a technique's every parameter by name, an
     // image's its cost file's params.
@@ -87,9 +87,9 @@ struct Comparison {
     // Per light, sampled area lights only: the oracle's penumbra cost curve (ms, mean stated 95%
     // half-width), which every row's oracle_ms_at_equal_error is read from.
     std::vector<std::vector<std::pair<double, double>>> oracleCurves;
-    MetricOptions metricOptions;       // what the metrics used (the contact threshold in world units)
-    std::optional<PathFlicker> path;   // pathFrames > 0
-    std::optional<GlInfo> gl;          // when a technique was rendered
+    MetricOptions metricOptions;  // what the metrics used (the contact threshold in world units)
+    std::optional<PathFlicker> path;  // pathFrames > 0
+    std::optional<GlInfo> gl;         // when a technique was rendered
 };
 
 // Every technique and image checked first (unknown names and parameters, labels used twice, a

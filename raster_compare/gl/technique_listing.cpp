@@ -90,5 +90,4 @@ std::string techniquesListing(ListingFormat format) {
                                                : text();
 }
 
-
 }  // namespace so

@@ -39,8 +39,9 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
-    std::printf("consumer: %s traced through ShadowOracle %s: %zu channels equal to the program's, "
-                "%.3f s\n",
-                argv[1], so::version().c_str(), cli.names.size(), oracle.seconds);
+    std::printf(
+        "consumer: %s traced through ShadowOracle %s: %zu channels equal to the program's, "
+        "%.3f s\n",
+        argv[1], so::version().c_str(), cli.names.size(), oracle.seconds);
     return 0;
 }

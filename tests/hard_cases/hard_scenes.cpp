@@ -110,7 +110,6 @@ void rotateMesh(MeshPrimitive& mesh, const glm::dmat3& r, const glm::dvec3& cent
 
 OracleResult runHard(const Scene& scene) {
     OracleOptions o;
-    o.progress = false;
     return runOracle(scene, o);
 }
 
