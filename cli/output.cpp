@@ -26,6 +26,10 @@ std::string toolVersionString() {
     return std::string(kToolVersion) + " " + kGitRevision;
 }
 
+void printWarnings(const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+}
+
 void printSceneWarnings(const std::string& scenePath, const Scene& scene) {
     for (const std::string& w : scene.stats.warnings)
         std::cerr << "warning: " << scenePath << ": " << w << "\n";
