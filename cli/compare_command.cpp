@@ -71,7 +71,12 @@ void checkCommandLine(const CompareOptions& options, const std::vector<Technique
 // cache when the same scene content and options were traced before.
 CachedOracle oracleFor(const CompareOptions& options, const Scene& scene,
                        const OracleOptions& oracleOptions, const GBuffer* points) {
-    if (!points) return traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+    if (!points) {
+        CachedOracle oracle =
+            traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+        printWarnings(oracle.warnings);
+        return oracle;
+    }
     OracleResult r = runOracleAtPoints(scene, *points, oracleOptions);
     return {std::move(r.image), std::move(r.stats), false, "points " + points->path};
 }
@@ -264,6 +269,7 @@ int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut)
     Comparison comparison = compareWithOracle(scene, oracle, techniques, images,
                                               comparisonOptions(options, oracleOptions));
 
+    printWarnings(comparison.warnings);
     for (const ComparedRow& row : comparison.rows) writeRowFiles(out, row, options.writeImages);
     const nlohmann::json metrics =
         metricsJson(scene, options.scenePath, oracle, comparison, options.boundaryRadius);

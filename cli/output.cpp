@@ -18,6 +18,10 @@ std::filesystem::path makeOutputDir(const std::string& dir) {
     return std::filesystem::path(dir);
 }
 
+void printWarnings(const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+}
+
 void printSceneWarnings(const std::string& scenePath, const Scene& scene) {
     for (const std::string& w : scene.stats.warnings)
         std::cerr << "warning: " << scenePath << ": " << w << "\n";

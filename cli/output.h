@@ -19,6 +19,9 @@ std::filesystem::path makeOutputDir(const std::string& dir);
 
 // The scene loader's warnings, one "warning: <file>: <text>" line each on stderr.
 void printSceneWarnings(const std::string& scenePath, const Scene& scene);
+// Warnings a library call collected (CachedOracle::warnings, GlContext::takeWarnings), one
+// "warning: <text>" line each on stderr.
+void printWarnings(const std::vector<std::string>& warnings);
 
 // One PNG per light, "<dir>/<light>.png", in the grey scale of core/preview.h (with the light's
 // cosine channel when the image has one). Returns the paths written.

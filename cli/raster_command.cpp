@@ -17,7 +17,14 @@ int runRasterCommand(const RasterCommandOptions& options) {
     const std::filesystem::path out = makeOutputDir(options.outDir);
 
     GlContext gl;  // GlUnavailable propagates: main reports it
-    const RasterResult r = renderRaster(scene, *technique, options.raster, gl);
+    RasterResult r;
+    try {
+        r = renderRaster(scene, *technique, options.raster, gl);
+    } catch (const std::exception&) {
+        printWarnings(gl.takeWarnings());  // the driver's warnings may explain a GlError
+        throw;
+    }
+    printWarnings(gl.takeWarnings());
     writeExr((out / "raster.exr").string(), r.image,
              {{"shadowOracle/sceneHash", scene.contentHash},
               {"shadowOracle/toolVersion", toolVersionString()},

@@ -39,6 +39,7 @@ int runOracleTask(const fs::path& dir, const SweepPlan& plan, size_t si) {
     const OracleOptions options = oracleOptions(plan.settings.oracle);
     const CachedOracle oracle =
         traceOrLoad(scene, options, {sweepOracleCacheDir(dir), /*use=*/true});
+    printWarnings(oracle.warnings);
     std::cout << "oracle of " << s.name << ": " << (oracle.fromCache ? "present" : "traced") << " ("
               << oracle.key << ")\n";
     return 0;

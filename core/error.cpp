@@ -35,10 +35,11 @@ std::string printable(const std::string& s, size_t maxLen) {
 
 void checkFailed(const char* file, int line, const char* expr, const std::string& a,
                  const std::string& b) {
-    std::cerr << "internal error: " << file << ":" << line << ": CHECK(" << expr << ") failed";
-    if (!a.empty() || !b.empty()) std::cerr << " with " << a << " vs " << b;
-    std::cerr << std::endl;
-    std::abort();
+    std::string what = "internal error: " + std::string(file) + ":" + std::to_string(line) +
+                       ": CHECK(" + expr + ") failed";
+    // The values may be strings from a file (a channel name): kept to one line.
+    if (!a.empty() || !b.empty()) what += " with " + printable(a) + " vs " + printable(b);
+    throw InternalError(what);
 }
 
 }  // namespace so

@@ -1,10 +1,10 @@
 // Two tiers of errors, as in pbrt: InputError for anything a user can get wrong (a bad scene file,
 // a bad option), reported as one line "FILE: FIELD: message" with exit code 2; and CHECK for broken
-// invariants of our own code, which abort with both values printed.
+// invariants of our own code, which throws InternalError with both values in its message. Library
+// code never ends the process (it is linked into a shared library and a Python module): a caller's
+// misuse of an API is std::invalid_argument, and only the program's main decides how to exit.
 #pragma once
 
-#include <cstdlib>
-#include <iostream>
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +22,13 @@ class InputError : public std::runtime_error {
     std::string file_, field_, message_;
 };
 
+// A broken invariant of our own code (SO_CHECK). what() is one line:
+// "internal error: FILE:LINE: CHECK(expr) failed [with a vs b]".
+class InternalError : public std::logic_error {
+  public:
+    using std::logic_error::logic_error;
+};
+
 [[noreturn]] void throwInputError(const std::string& file, const std::string& field,
                                   const std::string& message);
 
@@ -29,6 +36,8 @@ class InputError : public std::runtime_error {
 // capped) because field names and values may come from hostile files.
 std::string printable(const std::string& s, size_t maxLen = 80);
 
+// Throws InternalError. Never use SO_CHECK where an exception cannot pass: a destructor, a noexcept
+// function, or a callback that a C library (Embree, GL) calls.
 [[noreturn]] void checkFailed(const char* file, int line, const char* expr, const std::string& a,
                               const std::string& b);
 

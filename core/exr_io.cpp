@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 #include <ImfChannelList.h>
@@ -16,7 +17,8 @@
 namespace so {
 
 float* ChannelImage::addChannel(const std::string& name, float fill) {
-    SO_CHECK(!has(name));
+    if (has(name))
+        throw std::invalid_argument("image: channel \"" + printable(name) + "\" added twice");
     names_.push_back(name);
     planes_.emplace_back(pixelCount(), fill);
     return planes_.back().data();
@@ -28,7 +30,8 @@ bool ChannelImage::has(const std::string& name) const {
 
 float* ChannelImage::channel(const std::string& name) {
     auto it = std::find(names_.begin(), names_.end(), name);
-    if (it == names_.end()) checkFailed(__FILE__, __LINE__, "channel exists", name, "");
+    if (it == names_.end())
+        throw std::invalid_argument("image: no channel \"" + printable(name) + "\"");
     return planes_[size_t(it - names_.begin())].data();
 }
 
@@ -41,7 +44,11 @@ void writeExr(const std::string& path, const ChannelImage& image, const ExrAttri
     // A whole image is the plain header (display window = data window); a band sits inside a
     // display window of the full height, so readers place its rows where they belong.
     const int fullHeight = rows.fullHeight > 0 ? rows.fullHeight : image.height();
-    SO_CHECK(rows.rowBegin >= 0 && rows.rowBegin + image.height() <= fullHeight);
+    if (rows.rowBegin < 0 || rows.rowBegin + image.height() > fullHeight)
+        throw std::invalid_argument("writeExr: rows " + std::to_string(rows.rowBegin) + ".." +
+                                    std::to_string(rows.rowBegin + image.height()) +
+                                    " do not fit an image " + std::to_string(fullHeight) +
+                                    " rows high");
     const Imath::Box2i displayWindow({0, 0}, {image.width() - 1, fullHeight - 1});
     const Imath::Box2i dataWindow({0, rows.rowBegin},
                                   {image.width() - 1, rows.rowBegin + image.height() - 1});

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <new>
 #include <vector>
 
 #include <xxhash.h>
@@ -16,7 +17,7 @@ struct ContentHasher::State {
 };
 
 ContentHasher::ContentHasher() : state_(std::make_unique<State>()) {
-    SO_CHECK(state_->xxh != nullptr);
+    if (!state_->xxh) throw std::bad_alloc();  // XXH3_createState only fails to allocate
     XXH3_128bits_reset(state_->xxh);
 }
 ContentHasher::~ContentHasher() = default;

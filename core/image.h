@@ -18,11 +18,12 @@ class ChannelImage {
     int height() const { return height_; }
     size_t pixelCount() const { return size_t(width_) * size_t(height_); }
 
-    // Adds a channel filled with `fill`; the name must be new.
+    // Adds a channel filled with `fill`; a name already there is std::invalid_argument.
     float* addChannel(const std::string& name, float fill = 0.0f);
     bool has(const std::string& name) const;
-    float* channel(const std::string& name);              // CHECKs that it exists
-    const float* channel(const std::string& name) const;  // CHECKs that it exists
+    // A missing channel is std::invalid_argument (ask has() first where it may be absent).
+    float* channel(const std::string& name);
+    const float* channel(const std::string& name) const;
     const std::vector<std::string>& names() const { return names_; }
     // The planes in names() order, moved out (a large image is not copied); the image is left
     // empty.

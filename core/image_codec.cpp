@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/image_module.h"
@@ -28,7 +29,10 @@ struct Png8 {
 };
 
 Png8 png8(int width, int height, const std::vector<float>& linearRgb) {
-    SO_CHECK_EQ(linearRgb.size(), size_t(width) * size_t(height) * 3);
+    if (width < 0 || height < 0 || linearRgb.size() != size_t(width) * size_t(height) * 3)
+        throw std::invalid_argument("PNG: " + std::to_string(linearRgb.size()) + " values for a " +
+                                    std::to_string(width) + " x " + std::to_string(height) +
+                                    " RGB image");
     Png8 png;
     png.pixels.resize(linearRgb.size());
     for (size_t i = 0; i < linearRgb.size(); ++i) png.pixels[i] = toSrgb8(linearRgb[i]);

@@ -17,6 +17,7 @@ uint8_t toSrgb8(float linear);
 // where every pixel is grey (R = G = B after encoding), RGB otherwise; lossless either way.
 void writePngRgb(const std::string& path, int width, int height,
                  const std::vector<float>& linearRgb);
+// linearRgb must hold width * height * 3 values (else std::invalid_argument).
 // The same PNG in memory (the report's images).
 std::vector<unsigned char> encodePngRgb(int width, int height, const std::vector<float>& linearRgb);
 // For data: URIs.

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -18,8 +20,10 @@ using AlphaGeometry = Accel::AlphaGeometry;
 thread_local uint64_t tAlphaTests = 0;
 
 // Rejects a candidate hit on the triangle the ray leaves from. The mesh's first global index is
-// the geometry's user data; the ray's id holds the origin triangle's global index.
-void skipOriginTriangle(const RTCFilterFunctionNArguments* args) {
+// the geometry's user data; the ray's id holds the origin triangle's global index. Like every
+// filter, called from Embree's C code during a query: noexcept (nothing here may throw, and no
+// SO_CHECK belongs here), so that a slip ends in std::terminate rather than undefined behaviour.
+void skipOriginTriangle(const RTCFilterFunctionNArguments* args) noexcept {
     const unsigned base = unsigned(reinterpret_cast<uintptr_t>(args->geometryUserPtr));
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
@@ -32,7 +36,7 @@ void skipOriginTriangle(const RTCFilterFunctionNArguments* args) {
 // hit where the material's alpha is below its cutoff is no hit (core/alpha_mask.h), for every ray:
 // primary, shadow, closest or any hit. The texture coordinate is interpolated with Embree's
 // barycentrics, as the raster path interpolates it across the triangle.
-void alphaTestHit(const RTCFilterFunctionNArguments* args) {
+void alphaTestHit(const RTCFilterFunctionNArguments* args) noexcept {
     const auto* a = static_cast<const AlphaGeometry*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
@@ -67,6 +71,16 @@ void copyIndicesWithoutDegenerates(const std::vector<glm::dvec3>& ls,
     }
 }
 
+// The loader rejects non-finite input and the frame keeps |ls| near 1, so this only fires for a
+// scene built without the loader (or on a bug); Embree would otherwise drop the triangle silently.
+void checkFinite(const std::vector<glm::dvec3>& lsPositions, size_t mesh) {
+    for (const glm::dvec3& p : lsPositions)
+        for (int k = 0; k < 3; ++k)
+            if (!std::isfinite(float(p[k])))
+                throw std::invalid_argument("scene: mesh " + std::to_string(mesh) +
+                                            " has a vertex position that is not finite");
+}
+
 }  // namespace
 
 Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
@@ -80,32 +94,26 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
     uint64_t base = 0;
     for (size_t id = 0; id < scene.meshes.size(); ++id) {
         const MeshPrimitive& mesh = scene.meshes[id];
-        // The loader caps the total at 2^28 triangles: the global index fits a ray id.
-        SO_CHECK(base + mesh.triangleCount() < uint64_t(kNoOriginTriangle));
+        // The loader caps the total at 2^28 triangles: the global index fits a ray id. A scene
+        // built by a caller may not have been through the loader.
+        if (base + mesh.triangleCount() >= uint64_t(kNoOriginTriangle))
+            throw std::invalid_argument("scene: more than 2^32 - 2 triangles");
         meshBase_.push_back(unsigned(base));
         MeshData data{{}, mesh.wsPositions, mesh.indices};
         data.lsPositions.reserve(mesh.wsPositions.size());
         for (const glm::dvec3& ws : mesh.wsPositions)
             data.lsPositions.push_back(frame_.lsFromWs(ws));
+        checkFinite(data.lsPositions, id);
 
-        RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                               data.lsPositions.size()));
-        for (size_t i = 0; i < data.lsPositions.size(); ++i) {
-            for (int k = 0; k < 3; ++k) {
-                float f = float(data.lsPositions[i][k]);
-                // The loader rejected non-finite input and the frame keeps |ls| near 1, so this
-                // only fires on a bug; Embree would otherwise drop the triangle silently.
-                SO_CHECK(std::isfinite(f));
-                vb[3 * i + k] = f;
-            }
-        }
-        auto* ib = static_cast<uint32_t*>(
-            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                    3 * sizeof(uint32_t), mesh.triangleCount()));
+        EmbreeGeometry g(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(g.newBuffer(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                   3 * sizeof(float), data.lsPositions.size()));
+        for (size_t i = 0; i < data.lsPositions.size(); ++i)
+            for (int k = 0; k < 3; ++k) vb[3 * i + k] = float(data.lsPositions[i][k]);
+        auto* ib = static_cast<uint32_t*>(g.newBuffer(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                      3 * sizeof(uint32_t), mesh.triangleCount()));
         copyIndicesWithoutDegenerates(data.lsPositions, mesh.indices, ib);
-        rtcSetGeometryMask(g, 0xFFFFFFFFu);
+        rtcSetGeometryMask(g.get(), 0xFFFFFFFFu);
         if (scene.alphaTested(id)) {
             auto a = std::make_unique<AlphaGeometry>();
             a->base = unsigned(base);
@@ -115,24 +123,27 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
                 a->texture = &scene.alphaTextures[size_t(mesh.alpha->texture)];
                 a->uvs = mesh.uvs.data();
                 a->indices = mesh.indices.data();
-                SO_CHECK_EQ(mesh.uvs.size(), mesh.wsPositions.size());
+                if (mesh.uvs.size() != mesh.wsPositions.size())
+                    throw std::invalid_argument("scene: mesh " + std::to_string(id) + " has " +
+                                                std::to_string(mesh.uvs.size()) + " uvs for " +
+                                                std::to_string(mesh.wsPositions.size()) +
+                                                " positions");
             }
-            rtcSetGeometryUserData(g, a.get());
-            rtcSetGeometryOccludedFilterFunction(g, alphaTestHit);
-            rtcSetGeometryIntersectFilterFunction(g, alphaTestHit);
+            rtcSetGeometryUserData(g.get(), a.get());
+            rtcSetGeometryOccludedFilterFunction(g.get(), alphaTestHit);
+            rtcSetGeometryIntersectFilterFunction(g.get(), alphaTestHit);
             alphaGeometries_.push_back(std::move(a));
         } else if (originFilter) {
-            rtcSetGeometryUserData(g, reinterpret_cast<void*>(uintptr_t(base)));
-            rtcSetGeometryOccludedFilterFunction(g, skipOriginTriangle);
-            rtcSetGeometryIntersectFilterFunction(g, skipOriginTriangle);
+            rtcSetGeometryUserData(g.get(), reinterpret_cast<void*>(uintptr_t(base)));
+            rtcSetGeometryOccludedFilterFunction(g.get(), skipOriginTriangle);
+            rtcSetGeometryIntersectFilterFunction(g.get(), skipOriginTriangle);
         }
-        rtcCommitGeometry(g);
-        rtcAttachGeometryByID(s, g, unsigned(id));
-        rtcReleaseGeometry(g);  // the scene holds its own reference
+        g.commit();
+        rtcScene_.attach(g, unsigned(id));  // the scene keeps its own reference to g
         meshes_.push_back(std::move(data));
         base += mesh.triangleCount();
     }
-    rtcCommitScene(s);
+    rtcScene_.commit();
 }
 
 uint64_t Accel::alphaTestsOnThisThread() {

@@ -27,7 +27,9 @@ inline constexpr unsigned kNoOriginTriangle = 0xFFFFFFFFu;
 
 class Accel {
   public:
-    // originFilter = false builds the plain Embree scene the benchmarks' baselines trace.
+    // originFilter = false builds the plain Embree scene the benchmarks' baselines trace. Throws
+    // EmbreeError where Embree fails (out of memory), std::invalid_argument for a scene the loader
+    // would have rejected (non-finite vertices, uvs missing for a textured alpha mask).
     Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter = true);
     Accel(const Accel&) = delete;
     Accel& operator=(const Accel&) = delete;

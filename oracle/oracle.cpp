@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <utility>
 
@@ -262,7 +264,10 @@ int tileRowCount(int height) {
 
 RowBand tileRows(int height, int index, int count) {
     const int64_t tiles = tileRowCount(height);
-    SO_CHECK(0 <= index && index < count && count <= tiles);
+    if (!(0 <= index && index < count && count <= tiles))
+        throw std::invalid_argument("tileRows: band " + std::to_string(index) + " of " +
+                                    std::to_string(count) + " of " + std::to_string(tiles) +
+                                    " tile rows (needs 0 <= index < count <= tile rows)");
     // Tile rows [floor(index * tiles / count), floor((index + 1) * tiles / count)): every band
     // gets at least one since count <= tiles.
     const int64_t t0 = int64_t(index) * tiles / count, t1 = int64_t(index + 1) * tiles / count;
@@ -293,6 +298,16 @@ struct OracleSetup {
     tbb::task_arena& arena;
 };
 
+// options.rows as tileRows makes them: a multiple of the tile height, inside the image, not empty.
+void checkRows(const RowBand& rows, int height) {
+    if (rows.begin % SurfaceBuffer::kTile != 0 || rows.begin < 0 || rows.begin >= rows.end ||
+        rows.end > height)
+        throw std::invalid_argument("runOracle: options.rows [" + std::to_string(rows.begin) +
+                                    ", " + std::to_string(rows.end) +
+                                    ") is not a band of tileRows for an image " +
+                                    std::to_string(height) + " rows high");
+}
+
 int resolvedThreads(const OracleOptions& options) {
     return options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
 }
@@ -314,6 +329,9 @@ void traceShadowPasses(const Scene& scene, const OracleOptions& options, OracleS
                          scene.hasEffect("contact")};
     traceLights(pass, verifier.get(), stats);
     describeSetup(scene, options, setup.accel, sb, stats);
+    // Embree reports errors from its queries only through the device: one here (none is expected
+    // after the build) would mean a result that cannot be trusted.
+    setup.device.throwIfError();
 }
 
 }  // namespace
@@ -326,17 +344,17 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     stats.width = camera.width();
     stats.height = camera.height();
 
+    // A band (trace --tile) keeps only its rows; every pass indexes pixels within it. Checked
+    // before the BVH is built: a caller's bad band fails at once.
+    const RowBand rows = options.rows.value_or(RowBand{0, camera.height()});
+    checkRows(rows, camera.height());
+    if (options.rows && options.verify.pixels > 0)
+        throwInputError("command line", "--tile", "cannot be used with --verify");
+
     auto t0 = Clock::now();
     OracleSetup setup(scene, stats.threads);
     stats.buildBvhSeconds = secondsSince(t0);
     const Accel& accel = setup.accel;
-
-    // A band (trace --tile) keeps only its rows; every pass indexes pixels within it.
-    const RowBand rows = options.rows.value_or(RowBand{0, camera.height()});
-    SO_CHECK(rows.begin % SurfaceBuffer::kTile == 0 && 0 <= rows.begin && rows.begin < rows.end &&
-             rows.end <= camera.height());
-    if (options.rows && options.verify.pixels > 0)
-        throwInputError("command line", "--tile", "cannot be used with --verify");
     result.image = ChannelImage(camera.width(), rows.count());
     const uint64_t pixels = result.image.pixelCount();
 
@@ -361,7 +379,9 @@ OracleResult runOracleAtPoints(const Scene& scene, const GBuffer& gbuffer,
         throwInputError("command line", "--width/--height",
                         "cannot be used with --points (the image is the G-buffer's size)");
     if (options.rows) throwInputError("command line", "--tile", "cannot be used with --points");
-    SO_CHECK(!options.camera);
+    if (options.camera)
+        throw std::invalid_argument(
+            "runOracleAtPoints: options.camera must be empty (the G-buffer holds the points)");
     OracleResult result;
     OracleStats& stats = result.stats;
     stats.threads = resolvedThreads(options);

@@ -25,7 +25,7 @@ struct RowBand {
 // Band `index` of `count` bands of an image `height` rows high: the 4x4 pixel tile rows the
 // oracle traces (SurfaceBuffer::kTile) split as evenly as they go, so that the bands' boundaries
 // are multiples of 4 and a band traces exactly the whole run's packets. Needs 0 <= index < count
-// <= tileRowCount(height).
+// <= tileRowCount(height), else std::invalid_argument.
 RowBand tileRows(int height, int index, int count);
 int tileRowCount(int height);
 
@@ -74,6 +74,8 @@ struct OracleResult {
 // option's width and height).
 CameraDesc effectiveCamera(const Scene& scene, const OracleOptions& options);
 
+// Throws InputError for options the user chose badly, std::invalid_argument for options no
+// command makes (rows that are not a tileRows band), EmbreeError when Embree fails (out of memory).
 OracleResult runOracle(const Scene& scene, const OracleOptions& options);
 
 }  // namespace so

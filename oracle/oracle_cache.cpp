@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <exception>
 #include <fstream>
-#include <iostream>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -87,7 +86,8 @@ std::string staleReason(const CachedOracle& c, const Scene& scene, const OracleO
     return "";
 }
 
-// Fills `out` from the entry; false (with a warning when the entry exists) if it cannot be used.
+// Fills `out` from the entry; false (with a warning in out.warnings when the entry exists) if it
+// cannot be used.
 bool loadEntry(const fs::path& entry, const Scene& scene, const OracleOptions& options,
                CachedOracle& out) {
     const fs::path exr = entry / "oracle.exr", json = entry / "oracle.json";
@@ -105,13 +105,14 @@ bool loadEntry(const fs::path& entry, const Scene& scene, const OracleOptions& o
         why = e.what();
     }
     if (why.empty()) return true;
-    std::cerr << "warning: oracle cache entry " << entry.string() << " unusable (" << why
-              << "): tracing again\n";
+    out.warnings.push_back("oracle cache entry " + entry.string() + " unusable (" + why +
+                           "): tracing again");
     return false;
 }
 
 // Written under a temporary name and renamed, so a crash never leaves half an entry.
-void storeEntry(const fs::path& entry, const ChannelImage& image, const OracleStats& stats) {
+void storeEntry(const fs::path& entry, const ChannelImage& image, const OracleStats& stats,
+                std::vector<std::string>& warnings) {
     static std::atomic<unsigned> counter{0};
     const fs::path tmp = entry.string() + ".tmp" + std::to_string(::getpid()) + "." +
                          std::to_string(counter.fetch_add(1));
@@ -129,7 +130,7 @@ void storeEntry(const fs::path& entry, const ChannelImage& image, const OracleSt
         if (ec)
             throw std::runtime_error("cannot rename to " + entry.string() + ": " + ec.message());
     } catch (const std::exception& e) {
-        std::cerr << "warning: oracle cache: not stored (" << e.what() << ")\n";
+        warnings.push_back("oracle cache: not stored (" + std::string(e.what()) + ")");
         fs::remove_all(tmp, ec);
     }
 }
@@ -148,7 +149,7 @@ CachedOracle traceOrLoad(const Scene& scene, const OracleOptions& oracle,
     OracleResult r = runOracle(scene, oracle);
     out.image = std::move(r.image);
     out.stats = std::move(r.stats);
-    if (cache.use) storeEntry(entry, out.image, out.stats);
+    if (cache.use) storeEntry(entry, out.image, out.stats, out.warnings);
     return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,9 @@ struct CachedOracle {
     OracleStats stats;
     bool fromCache = false;
     std::string key;
+    // "oracle cache entry DIR unusable (why): tracing again", "oracle cache: not stored (why)":
+    // for the caller to print (the library writes nothing to stderr).
+    std::vector<std::string> warnings = {};
 };
 
 // $XDG_CACHE_HOME/shadow-oracle, else ~/.cache/shadow-oracle, else the temp folder's
@@ -41,8 +45,8 @@ nlohmann::json oracleSamplingJson(const OracleOptions& options, const CameraDesc
 std::string oracleCacheKey(const Scene& scene, const OracleOptions& options);
 
 // The cached entry when present and readable (an unreadable or stale entry is traced again, with a
-// warning on stderr), else runOracle and store atomically (temp folder + rename) when options.use.
-// A failure to store is a warning, not an error: the result is returned either way.
+// warning in the result), else runOracle and store atomically (temp folder + rename) when
+// options.use. A failure to store is a warning, not an error: the result is returned either way.
 CachedOracle traceOrLoad(const Scene& scene, const OracleOptions& oracle,
                          const OracleCacheOptions& cache);
 

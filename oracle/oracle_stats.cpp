@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include "core/error.h"
@@ -648,8 +649,11 @@ OracleLightStats mergeLight(const std::vector<TileStats>& tiles, size_t li) {
     std::vector<uint64_t> penumbra;
     for (const TileStats& t : tiles) {
         const OracleLightStats& b = t.stats.lights[li];
-        SO_CHECK(b.name == first.name && b.area.has_value() == first.area.has_value() &&
-                 b.hard.has_value() == first.hard.has_value());
+        if (b.name != first.name || b.area.has_value() != first.area.has_value() ||
+            b.hard.has_value() != first.hard.has_value())
+            throw std::invalid_argument("mergeTileStats: light " + std::to_string(li) +
+                                        " differs between bands (\"" + printable(first.name) +
+                                        "\", \"" + printable(b.name) + "\")");
         if (b.area) {
             areas.push_back(&*b.area);
             penumbra.push_back(li < t.penumbraPixels.size() ? t.penumbraPixels[li] : 0);
@@ -663,7 +667,7 @@ OracleLightStats mergeLight(const std::vector<TileStats>& tiles, size_t li) {
 }  // namespace
 
 OracleStats mergeTileStats(const std::vector<TileStats>& tiles, int width, int height) {
-    SO_CHECK(!tiles.empty());
+    if (tiles.empty()) throw std::invalid_argument("mergeTileStats: no bands");
     const OracleStats& first = tiles.front().stats;
     OracleStats s;
     s.width = width;
@@ -677,7 +681,10 @@ OracleStats mergeTileStats(const std::vector<TileStats>& tiles, int width, int h
     s.tbbVersion = first.tbbVersion;
     for (const TileStats& t : tiles) {
         const OracleStats& b = t.stats;
-        SO_CHECK_EQ(b.lights.size(), first.lights.size());
+        if (b.lights.size() != first.lights.size())
+            throw std::invalid_argument("mergeTileStats: the bands have different light counts (" +
+                                        std::to_string(first.lights.size()) + ", " +
+                                        std::to_string(b.lights.size()) + ")");
         s.buildBvhSeconds += b.buildBvhSeconds;
         s.primarySeconds += b.primarySeconds;
         s.shadowSeconds += b.shadowSeconds;

@@ -142,7 +142,8 @@ struct TileStats {
 // samples, rays and seconds are sums, maxima are maxima, means are re-weighted by what they
 // average over, and the setup (effects, seed, frame, libraries) is the first band's. The bands
 // must come from the same scene and options, in any order. uniformSpp is the bands' largest: only
-// the per-pixel variances give the whole image's (the caller recomputes it from the image).
+// the per-pixel variances give the whole image's (the caller recomputes it from the image). No
+// bands, or bands whose lights differ, are std::invalid_argument.
 OracleStats mergeTileStats(const std::vector<TileStats>& tiles, int width, int height);
 
 // Exactly the run-dependent part of oracle.json (docs/oracle.md).

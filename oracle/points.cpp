@@ -4,6 +4,10 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -65,6 +69,24 @@ bool snapHit(const Accel& accel, RTCIntersectContext& ctx, const glm::dvec3& lsP
     return found;
 }
 
+// A G-buffer a caller filled itself (not through readGBuffer) may have planes of other sizes.
+void checkPlaneSizes(const GBuffer& g) {
+    std::vector<std::pair<const std::vector<float>*, const char*>> planes = {
+        {&g.coverage, "coverage"}, {&g.wsPX, "P.x"}, {&g.wsPY, "P.y"}, {&g.wsPZ, "P.z"},
+        {&g.wsNX, "N.x"},          {&g.wsNY, "N.y"}, {&g.wsNZ, "N.z"}};
+    if (g.hasReplay())
+        planes.insert(planes.end(), {{&g.meshId, "id.mesh"},
+                                     {&g.primId, "id.prim"},
+                                     {&g.baryU, "bary.u"},
+                                     {&g.baryV, "bary.v"}});
+    if (!g.depth.empty()) planes.push_back({&g.depth, "Z"});
+    for (const auto& [v, name] : planes)
+        if (v->size() != g.pixelCount())
+            throw std::invalid_argument("G-buffer: plane " + std::string(name) + " has " +
+                                        std::to_string(v->size()) + " values for " +
+                                        std::to_string(g.pixelCount()) + " pixels");
+}
+
 }  // namespace
 
 double snapTolerance(const LocalFrame& frame, const glm::dvec3& wsP) {
@@ -75,14 +97,7 @@ double snapTolerance(const LocalFrame& frame, const glm::dvec3& wsP) {
 
 PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GBuffer& g,
                                 OffsetPolicy offsetPolicy) {
-    const size_t pixels = g.pixelCount();
-    for (const std::vector<float>* v :
-         {&g.coverage, &g.wsPX, &g.wsPY, &g.wsPZ, &g.wsNX, &g.wsNY, &g.wsNZ})
-        SO_CHECK_EQ(v->size(), pixels);
-    if (g.hasReplay())
-        for (const std::vector<float>* v : {&g.primId, &g.baryU, &g.baryV})
-            SO_CHECK_EQ(v->size(), pixels);
-    if (!g.depth.empty()) SO_CHECK_EQ(g.depth.size(), pixels);
+    checkPlaneSizes(g);
     PointsSurface out;
     out.sb = SurfaceBuffer::empty(g.width, g.height, 0);
     SurfaceBuffer& sb = out.sb;

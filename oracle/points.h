@@ -47,7 +47,7 @@ struct PointsSurface {
 };
 
 // Builds the SurfaceBuffer from the G-buffer's points (call inside the caller's tbb::task_arena).
-// Thread-count independent.
+// Thread-count independent. A plane whose size is not width x height is std::invalid_argument.
 PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GBuffer& gbuffer,
                                 OffsetPolicy offsetPolicy = OffsetPolicy::ErrorBound);
 

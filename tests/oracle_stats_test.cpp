@@ -313,10 +313,16 @@ TEST(OracleCache, CorruptEntryIsTracedAgain) {
     const fs::path json = tmp.path / first.key / "oracle.json";
     const fs::path exr = tmp.path / first.key / "oracle.exr";
 
+    EXPECT_TRUE(first.warnings.empty());
     std::ofstream(json) << "{ \"image\": ";  // not JSON
     CachedOracle again = traceOrLoad(scene, o, {tmp.path, true});
     EXPECT_FALSE(again.fromCache);
     expectSameImage(first.image, again.image);
+    // The warning is the caller's to print (the library writes nothing to stderr).
+    ASSERT_EQ(again.warnings.size(), 1u);
+    EXPECT_EQ(again.warnings[0].rfind("oracle cache entry ", 0), 0u) << again.warnings[0];
+    EXPECT_NE(again.warnings[0].find("not valid JSON): tracing again"), std::string::npos)
+        << again.warnings[0];
     EXPECT_TRUE(traceOrLoad(scene, o, {tmp.path, true}).fromCache);  // stored again
 
     nlohmann::json j = toJson(first.stats);

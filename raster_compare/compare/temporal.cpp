@@ -1,6 +1,8 @@
 #include "raster_compare/compare/temporal.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "core/camera.h"
 #include "core/channels.h"
@@ -21,7 +23,11 @@ bool sameCamera(const CameraDesc& a, const CameraDesc& b) {
 struct FramePlanes {
     FramePlanes(const TemporalFrame& f, const std::string& light)
         : w(f.oracle->width()), h(f.oracle->height()) {
-        SO_CHECK(f.raster->width() == w && f.raster->height() == h);
+        if (f.raster->width() != w || f.raster->height() != h)
+            throw std::invalid_argument("temporal flicker: a frame's raster image is " +
+                                        std::to_string(f.raster->width()) + " x " +
+                                        std::to_string(f.raster->height()) + ", its oracle " +
+                                        std::to_string(w) + " x " + std::to_string(h));
         const ChannelImage &o = *f.oracle, &r = *f.raster;
         Ao = o.channel(ch::kHit), Ar = r.channel(ch::kHit);
         Px = o.channel(ch::kPX), Py = o.channel(ch::kPY), Pz = o.channel(ch::kPZ);
@@ -60,7 +66,7 @@ std::optional<double> TemporalFlicker::rate() const {
 }
 
 size_t TemporalFlicker::worstPair() const {
-    SO_CHECK(!pairs.empty());
+    if (pairs.empty()) throw std::invalid_argument("TemporalFlicker::worstPair: no pairs");
     size_t worst = 0;
     for (size_t k = 1; k < pairs.size(); ++k)
         if (pairs[k].flickering > pairs[worst].flickering) worst = k;

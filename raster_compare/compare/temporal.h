@@ -48,7 +48,8 @@ struct TemporalFlicker {
     std::vector<FramePairFlicker> pairs;  // pairs[k]: frames k and k+1
     // flickering / tracked; none when no pair was tracked.
     std::optional<double> rate() const;
-    // The pair with the most flickering pixels (the first on ties); pairs must not be empty.
+    // The pair with the most flickering pixels (the first on ties); no pairs:
+    // std::invalid_argument.
     size_t worstPair() const;
     void add(const FramePairFlicker& p);
     // "temporal_flicker_rate", "temporal_tracked_pairs", "temporal_flickering_pairs",

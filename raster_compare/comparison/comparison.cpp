@@ -272,7 +272,7 @@ void renderAll(const Job& job, const std::vector<TechniqueRun>& runs,
 Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
                              const std::vector<TechniqueSpec>& techniques,
                              const std::vector<ImageInput>& images,
-                             const ComparisonOptions& options, const GlContext* gl) {
+                             const ComparisonOptions& options, GlContext* gl) {
     const std::vector<TechniqueRun> runs = createTechniques(techniques, images);
     checkImages(images, scene, oracle.image);
     if (options.pathFrames > 0) {
@@ -309,6 +309,9 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
                   out.path ? &*out.path : nullptr};
     if (!runs.empty()) renderAll(job, runs, options, *gl, out.rows);
     for (const ImageInput& in : images) out.rows.push_back(compareImage(job, in));
+    if (out.path) out.warnings = out.path->warnings;
+    if (gl)
+        for (std::string& w : gl->takeWarnings()) out.warnings.push_back(std::move(w));
     return out;
 }
 

@@ -90,6 +90,8 @@ struct Comparison {
     MetricOptions metricOptions;  // what the metrics used (the contact threshold in world units)
     std::optional<PathFlicker> path;  // pathFrames > 0
     std::optional<GlInfo> gl;         // when a technique was rendered
+    // The GL driver's and the camera path's oracle cache's warnings, for the caller to print.
+    std::vector<std::string> warnings;
 };
 
 // Every technique and image checked first (unknown names and parameters, labels used twice, a
@@ -99,7 +101,7 @@ struct Comparison {
 Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
                              const std::vector<TechniqueSpec>& techniques,
                              const std::vector<ImageInput>& images,
-                             const ComparisonOptions& options, const GlContext* gl = nullptr);
+                             const ComparisonOptions& options, GlContext* gl = nullptr);
 
 // metrics.json's entry of a row in "results" (docs/metrics.md).
 nlohmann::json rowJson(const ComparedRow& row);

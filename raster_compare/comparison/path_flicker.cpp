@@ -15,6 +15,7 @@ struct PathFrame {
     CameraDesc camera;
     ChannelImage oracle;
     std::vector<ChannelImage> rasters;  // per technique
+    std::vector<std::string> warnings;  // its oracle cache's
 };
 
 std::vector<float> plane(const ChannelImage& image, const std::string& light) {
@@ -35,7 +36,9 @@ PathFrame renderFrame(const Scene& scene, const std::vector<const Technique*>& t
     OracleOptions o = oracle;
     o.camera = pose;
     frame.camera = effectiveCamera(scene, o);
-    frame.oracle = traceOrLoad(scene, o, cache).image;
+    CachedOracle oracle = traceOrLoad(scene, o, cache);
+    frame.oracle = std::move(oracle.image);
+    frame.warnings = std::move(oracle.warnings);
     // One untimed frame per technique: only the images matter here.
     RasterOptions r = raster;
     r.camera = pose;
@@ -97,6 +100,7 @@ PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Techn
     for (int f = 0; f < frames; ++f) {
         PathFrame next =
             renderFrame(scene, techniques, oracle, cache, raster, gl, poses[size_t(f)]);
+        for (std::string& w : next.warnings) out.warnings.push_back(std::move(w));
         if (f > 0) measurePair(prev, next, scene, labels, f - 1, out, worst);
         prev = std::move(next);
         progress.advance(1);

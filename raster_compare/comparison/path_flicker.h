@@ -22,6 +22,7 @@ struct PathFlicker {
     int frames = 0;
     std::vector<std::vector<TemporalFlicker>> flicker;  // [technique][light]
     std::vector<std::optional<FlickerStrip>> strips;    // [light]: the worst technique's worst pair
+    std::vector<std::string> warnings;  // the frames' oracle cache's (CachedOracle::warnings)
 };
 
 // Throws InputError (the scene file, camera_path) when the scene has no camera path.

@@ -1,11 +1,14 @@
 #include "raster_compare/gl/gl_context.h"
 
-#include <cstdio>
-#include <cstdlib>
+#include <algorithm>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
+
+#include "core/error.h"
 
 namespace so {
 
@@ -14,17 +17,62 @@ struct GlContext::Egl {
     EGLContext context = EGL_NO_CONTEXT;
 };
 
+// The callback's record: the first error's text and how many there were since throwIfError, and
+// the warnings (at most kMaxWarnings; a driver in trouble can send one per draw).
+struct GlContext::Messages {
+    static constexpr size_t kMaxWarnings = 100;
+    std::mutex mutex;  // GL_DEBUG_OUTPUT_SYNCHRONOUS calls back on the GL thread; cheap insurance
+    unsigned errors = 0;
+    std::string firstError;
+    std::vector<std::string> warnings;
+    unsigned droppedWarnings = 0;
+};
+
 namespace {
 
+// Runs inside the driver: it must not throw (noexcept turns a slip into std::terminate rather than
+// undefined behaviour), so it only records; GlContext::throwIfError throws later.
 void GLAPIENTRY onGlDebug(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
-                          const GLchar* message, const void*) {
-    if (type == GL_DEBUG_TYPE_ERROR) {
-        std::fprintf(stderr, "internal error: GL error: %s\n", message);
-#ifndef NDEBUG
-        std::abort();  // debug builds: a GL error is a bug, stop where it happens
-#endif
-    } else if (severity == GL_DEBUG_SEVERITY_HIGH) {
-        std::fprintf(stderr, "warning: GL: %s\n", message);
+                          const GLchar* message, const void* user) noexcept {
+    const bool error = type == GL_DEBUG_TYPE_ERROR;
+    if (!error && severity != GL_DEBUG_SEVERITY_HIGH) return;
+    auto& m = *static_cast<GlContext::Messages*>(const_cast<void*>(user));
+    const std::lock_guard<std::mutex> lock(m.mutex);
+    if (error) ++m.errors;  // counted first: it counts even where its text cannot be kept
+    try {
+        const std::string text = printable(message ? message : "", 300);
+        if (error) {
+            if (m.errors == 1) m.firstError = text;
+        } else if (m.warnings.size() < m.kMaxWarnings) {
+            m.warnings.push_back("GL: " + text);
+        } else {
+            ++m.droppedWarnings;
+        }
+    } catch (...) {
+        // Out of memory for the text: the error is counted, the warning lost.
+    }
+}
+
+const char* errorName(GLenum e) {
+    switch (e) {
+        case GL_INVALID_ENUM:
+            return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE:
+            return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION:
+            return "GL_INVALID_OPERATION";
+        case GL_INVALID_FRAMEBUFFER_OPERATION:
+            return "GL_INVALID_FRAMEBUFFER_OPERATION";
+        case GL_OUT_OF_MEMORY:
+            return "GL_OUT_OF_MEMORY";
+        case GL_STACK_OVERFLOW:
+            return "GL_STACK_OVERFLOW";
+        case GL_STACK_UNDERFLOW:
+            return "GL_STACK_UNDERFLOW";
+        case GL_CONTEXT_LOST:
+            return "GL_CONTEXT_LOST";
+        default:
+            return "an unknown GL error code";
     }
 }
 
@@ -46,7 +94,7 @@ EGLContext makeContext(EGLDisplay d) {
 
 }  // namespace
 
-GlContext::GlContext() : egl_(std::make_unique<Egl>()) {
+GlContext::GlContext() : egl_(std::make_unique<Egl>()), messages_(std::make_unique<Messages>()) {
     // Where no EGL driver is found (glvnd without a vendor) eglGetPlatformDisplayEXT has no
     // provider and libepoxy aborts on the first call: ask for its extension first.
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base"))
@@ -107,7 +155,7 @@ GlContext::GlContext() : egl_(std::make_unique<Egl>()) {
         throw GlUnavailable("OpenGL 4.5 is needed, the context offers " + version_);
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    glDebugMessageCallback(onGlDebug, nullptr);
+    glDebugMessageCallback(onGlDebug, messages_.get());
 }
 
 GlContext::~GlContext() {
@@ -116,6 +164,42 @@ GlContext::~GlContext() {
         if (egl_->context != EGL_NO_CONTEXT) eglDestroyContext(egl_->display, egl_->context);
         eglTerminate(egl_->display);
     }
+}
+
+void GlContext::throwIfError(const std::string& where) const {
+    unsigned errors;
+    std::string first;
+    {
+        const std::lock_guard<std::mutex> lock(messages_->mutex);
+        errors = std::exchange(messages_->errors, 0);
+        first = std::move(messages_->firstError);
+        messages_->firstError.clear();
+    }
+    // A context without debug output (the driver may send no messages to a non-debug context)
+    // still sets GL's error flags. Reading them also clears them; where messages came, they told
+    // of the same errors. One flag per kind of error at most, so the loop is short (bounded in
+    // case a lost context keeps answering).
+    for (int i = 0; i < 16; ++i) {
+        const GLenum e = glGetError();
+        if (e == GL_NO_ERROR) break;
+        if (errors == 0) first = std::string("glGetError: ") + errorName(e);
+        errors = std::max(errors, 1u);
+    }
+    if (errors == 0) return;
+    if (first.empty()) first = "(the driver's message was lost)";
+    if (errors > 1) first += " (and " + std::to_string(errors - 1) + " more GL errors)";
+    if (!where.empty()) first += " [" + where + "]";
+    throw GlError("GL error: " + first);
+}
+
+std::vector<std::string> GlContext::takeWarnings() {
+    const std::lock_guard<std::mutex> lock(messages_->mutex);
+    std::vector<std::string> out = std::move(messages_->warnings);
+    messages_->warnings.clear();
+    if (messages_->droppedWarnings > 0)
+        out.push_back("GL: " + std::to_string(std::exchange(messages_->droppedWarnings, 0)) +
+                      " more warnings not kept");
+    return out;
 }
 
 }  // namespace so

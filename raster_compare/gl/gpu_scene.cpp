@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
@@ -50,7 +52,10 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene), frame_(LocalFrame::fit(s
         draws_.push_back({GLint(vertices.size() / kFloatsPerVertex), GLsizei(m.indices.size())});
         // Only a tested textured mask reads its uvs; a constant mask has none.
         const bool uvs = scene.alphaTested(mi) && m.alpha->texture >= 0;
-        if (uvs) SO_CHECK_EQ(m.uvs.size(), m.wsPositions.size());
+        if (uvs && m.uvs.size() != m.wsPositions.size())
+            throw std::invalid_argument("scene: mesh " + std::to_string(mi) + " has " +
+                                        std::to_string(m.uvs.size()) + " uvs for " +
+                                        std::to_string(m.wsPositions.size()) + " positions");
         for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
             glm::dvec3 p[3];
             for (int k = 0; k < 3; ++k)
@@ -92,7 +97,10 @@ void GpuScene::uploadAlphaMasks() {
     for (size_t m = 0; m < scene_.meshes.size(); ++m) anyAlphaTested_ |= scene_.alphaTested(m);
     if (!anyAlphaTested_) return;
     for (const AlphaTexture& t : scene_.alphaTextures) {
-        SO_CHECK_EQ(t.alpha.size(), size_t(t.width) * size_t(t.height));
+        if (t.alpha.size() != size_t(t.width) * size_t(t.height))
+            throw std::invalid_argument(
+                "scene: an alpha texture has " + std::to_string(t.alpha.size()) + " values for " +
+                std::to_string(t.width) + " x " + std::to_string(t.height) + " texels");
         alphaTextures_.push_back(uploadAlpha(t.width, t.height, t.alpha.data()));
     }
     const float one = 1.0f;
@@ -100,7 +108,11 @@ void GpuScene::uploadAlphaMasks() {
     for (size_t m = 0; m < scene_.meshes.size(); ++m) {
         if (!scene_.alphaTested(m)) continue;
         const AlphaMask& mask = *scene_.meshes[m].alpha;
-        SO_CHECK_LT(mask.texture, int(scene_.alphaTextures.size()));
+        if (mask.texture >= int(scene_.alphaTextures.size()))
+            throw std::invalid_argument("scene: mesh " + std::to_string(m) +
+                                        "'s alpha mask names texture " +
+                                        std::to_string(mask.texture) + " of " +
+                                        std::to_string(scene_.alphaTextures.size()));
         const size_t texture = mask.texture >= 0 ? size_t(mask.texture) : alphaTextures_.size() - 1;
         alpha_[m] =
             MeshAlpha{alphaTextures_[texture].get(), samplerFor(mask), mask.cutoff, mask.factor};

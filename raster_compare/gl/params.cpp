@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -12,7 +13,10 @@ namespace so {
 
 double ParamValues::real(const std::string& name) const {
     const auto it = values_.find(name);
-    SO_CHECK(it != values_.end());
+    // A technique asking for a name its own table lacks: a slip in its code, not the user's.
+    if (it == values_.end())
+        throw std::invalid_argument("technique parameter \"" + printable(name) +
+                                    "\" is not in the technique's table");
     return it->second;
 }
 
@@ -109,7 +113,9 @@ std::string glslDefine(const std::string& name, double v) {
 
 ParamSpec methodParam(std::string name, int defaultIndex, std::vector<std::string> names,
                       std::string doc) {
-    SO_CHECK(names.size() >= 2 && defaultIndex >= 0 && size_t(defaultIndex) < names.size());
+    if (names.size() < 2 || defaultIndex < 0 || size_t(defaultIndex) >= names.size())
+        throw std::invalid_argument("methodParam \"" + name + "\": needs two names or more and a " +
+                                    "default among them");
     ParamSpec p{std::move(name), double(defaultIndex), 0.0, double(names.size() - 1), true,
                 std::move(doc)};
     p.names = std::move(names);

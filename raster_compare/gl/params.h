@@ -47,7 +47,7 @@ struct ParamSetting {
 // one, so a technique's constructor reads values that are known to be in range.
 class ParamValues {
   public:
-    double real(const std::string& name) const;  // CHECKs that the table has it
+    double real(const std::string& name) const;  // not in the table: std::invalid_argument
     int integer(const std::string& name) const;
     const std::map<std::string, double>& all() const { return values_; }
     std::map<std::string, ParamSetting> settings() const;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -138,6 +139,9 @@ void renderGroup(const CameraPass& camera, std::vector<TechniqueFrames>& group,
     for (int frame = 0; frame < options.warmup + options.frames; ++frame)
         for (TechniqueFrames& t : group) {
             const double ms = renderFrame(camera, t.lights, t.timer);
+            // Each technique's frame is checked: the error is thrown while it is known whose.
+            gl.throwIfError("technique " + t.technique->name() + ", frame " +
+                            std::to_string(frame));
             t.timer.endFrame(frame >= options.warmup);
             if (frame >= options.warmup) t.wallMs.push_back(ms);
         }
@@ -148,6 +152,7 @@ void renderGroup(const CameraPass& camera, std::vector<TechniqueFrames>& group,
     for (TechniqueFrames& t : group) {
         RasterResult r = readResult(t, geometry);
         r.stats = collectStats(t, camera, options, gl, int(group.size()));
+        gl.throwIfError("technique " + t.technique->name() + ", read back");
         if (callbacks.done) callbacks.done(t.index, std::move(r));
     }
     group.clear();
@@ -170,6 +175,8 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
     for (size_t i = 0; i < techniques.size(); ++i) {
         TechniqueFrames t{
             i, techniques[i], setUpLights(gpu, camera, *techniques[i], lsReceivers), {}, {}, 0};
+        // The scene's upload and camera pass (first technique), then this technique's set-up.
+        gl.throwIfError("technique " + techniques[i]->name() + ", set-up");
         for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();
         // A full group renders first; this technique's objects exist already and start the next.
         if (!group.empty() && groupBytes + t.memoryBytes > options.interleaveBudgetBytes) {

@@ -36,7 +36,9 @@ struct InterleavedCallbacks {
     std::function<void(size_t, RasterResult&&)> done;
 };
 
-// Renders every technique of the list on the scene, in groups whose frames interleave.
+// Renders every technique of the list on the scene, in groups whose frames interleave. A GL error
+// throws GlError (GlContext::throwIfError) after the technique's set-up or frame that caused it;
+// the GL driver's warnings wait in the context for the caller (GlContext::takeWarnings).
 void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& techniques,
                        const RasterOptions& options, const GlContext& gl,
                        const InterleavedCallbacks& callbacks);

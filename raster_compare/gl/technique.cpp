@@ -2,24 +2,31 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 
 #include "core/error.h"
 
 namespace so {
 
 namespace {
-// Built on first use, so registration from other files' static initialisers is safe in any order.
-std::map<std::string, TechniqueInfo>& registry() {
-    static std::map<std::string, TechniqueInfo> r;
-    return r;
+
+// Built on first use from the generated list (thread-safe: a function-local static). Never
+// modified afterwards, so the pointers allTechniques hands out stay valid.
+const std::map<std::string, TechniqueInfo>& registry() {
+    static const TechniqueRegistry r = [] {
+        TechniqueRegistry built;
+        registerBuiltInTechniques(built);
+        return built;
+    }();
+    return r.byName();
 }
+
 }  // namespace
 
-bool registerTechnique(TechniqueInfo info) {
+void TechniqueRegistry::add(TechniqueInfo info) {
     const std::string name = info.name;
-    const bool added = registry().emplace(name, std::move(info)).second;
-    SO_CHECK(added);
-    return added;
+    if (!byName_.emplace(name, std::move(info)).second)
+        throw std::invalid_argument("technique \"" + printable(name) + "\" registered twice");
 }
 
 std::vector<const TechniqueInfo*> allTechniques() {

@@ -1,8 +1,13 @@
 // A shadow technique, of any family, as a typed plug-in (docs/techniques.md, CONTRIBUTING.md).
 //
 // Each technique lives in one file under techniques/ (plus its GLSL file there) and registers
-// itself in one line:
+// itself in one line, at the start of a line in namespace so (after the file's anonymous
+// namespace, which holds the class):
 //     SO_REGISTER_TECHNIQUE(Pcf, "pcf", "NxN grid percentage-closer filtering, compare per tap");
+// The line defines so::soRegister_Pcf; CMake finds the lines when it configures and generates
+// technique_list.cpp, which calls every such function (registerBuiltInTechniques). The registry
+// builds itself from that list on first use, so a program linking the static so_raster names, and
+// therefore keeps, every technique: nothing depends on static initialisers a linker may drop.
 // The class gives its parameter table (`static ParamTable params()`) and a constructor that takes
 // the validated values and keeps them as typed members: the registry's `create` parses the
 // settings against the table, then constructs. Validation lives in the constructor, not in the
@@ -13,7 +18,9 @@
 // the visibility pass writes the light's V into the shared frame after it (renderer.h).
 #pragma once
 
+#include <cstddef>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -90,9 +97,24 @@ struct TechniqueInfo {
     std::function<std::unique_ptr<Technique>(const ParamValues&)> create;
 };
 
-// Called by SO_REGISTER_TECHNIQUE during static initialisation; a duplicate name CHECK-fails.
-bool registerTechnique(TechniqueInfo info);
-// Every registered technique, by family and then name.
+// Techniques by name.
+class TechniqueRegistry {
+  public:
+    // A name already there is std::invalid_argument (two files registering one name).
+    void add(TechniqueInfo info);
+    const std::map<std::string, TechniqueInfo>& byName() const { return byName_; }
+
+  private:
+    std::map<std::string, TechniqueInfo> byName_;
+};
+
+// Generated (technique_list.cpp): calls soRegister_<Class> of every registration line in
+// techniques/*.cpp, and how many lines there are.
+void registerBuiltInTechniques(TechniqueRegistry& registry);
+extern const size_t kBuiltInTechniqueCount;
+
+// Every registered technique, by family and then name. The first call builds the registry (a
+// duplicate name throws std::invalid_argument here, and again on every later call).
 std::vector<const TechniqueInfo*> allTechniques();
 // Throws InputError listing the valid names.
 const TechniqueInfo& findTechnique(const std::string& name);
@@ -101,12 +123,16 @@ const TechniqueInfo& findTechnique(const std::string& name);
 std::unique_ptr<Technique> createTechnique(const std::string& name,
                                            const std::vector<std::string>& settings);
 
-// The family's name as listed: "shadow map", ...
-#define SO_REGISTER_TECHNIQUE(Class, name, summary)                           \
-    [[maybe_unused]] const bool kRegistered##Class = ::so::registerTechnique( \
-        {name, summary, Class::kFamily, Class::params(),                      \
-         [](const ::so::ParamValues& v) -> std::unique_ptr<::so::Technique> { \
-             return std::make_unique<Class>(v);                               \
-         }})
+// Defines soRegister_<Class> (external linkage: at namespace so's scope, not in an anonymous
+// namespace, else the generated list fails to link). The trailing declaration takes the line's
+// semicolon. Class::kFamily is the family's name as listed: "shadow map", ...
+#define SO_REGISTER_TECHNIQUE(Class, name, summary)                                        \
+    void soRegister_##Class(::so::TechniqueRegistry& registry) {                           \
+        registry.add({name, summary, Class::kFamily, Class::params(),                      \
+                      [](const ::so::ParamValues& v) -> std::unique_ptr<::so::Technique> { \
+                          return std::make_unique<Class>(v);                               \
+                      }});                                                                 \
+    }                                                                                      \
+    void soRegister_##Class(::so::TechniqueRegistry& registry)
 
 }  // namespace so

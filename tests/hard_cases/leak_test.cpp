@@ -149,11 +149,11 @@ size_t leaks16(RTCScene scene, const std::vector<TestRay>& rays) {
 // The same float triangles in Embree's default mode (not robust), for comparison only.
 EmbreeScene fastScene(const EmbreeDevice& device, const Accel& accel, size_t triangles) {
     EmbreeScene scene(device);
-    RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles));
-    auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangles));
+    EmbreeGeometry g(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(g.newBuffer(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                               3 * sizeof(float), 3 * triangles));
+    auto* ib = static_cast<uint32_t*>(
+        g.newBuffer(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangles));
     for (size_t t = 0; t < triangles; ++t) {
         glm::dvec3 v[3];
         accel.triangle(0, unsigned(t), v[0], v[1], v[2]);
@@ -162,11 +162,10 @@ EmbreeScene fastScene(const EmbreeDevice& device, const Accel& accel, size_t tri
             ib[3 * t + size_t(k)] = uint32_t(3 * t + size_t(k));
         }
     }
-    rtcSetGeometryMask(g, 0xFFFFFFFFu);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene.get(), g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(scene.get());
+    rtcSetGeometryMask(g.get(), 0xFFFFFFFFu);
+    g.commit();
+    scene.attach(g, 0);
+    scene.commit();
     return scene;
 }
 

@@ -191,9 +191,10 @@ uint64_t AccumulateLight::memoryBytes() const {
     return bytes;
 }
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Accumulate, "accumulate",
                       "many hard shadows from points on the light, G-weighted like the oracle's "
                       "samples");
 
-}  // namespace
 }  // namespace so

@@ -462,8 +462,9 @@ std::unique_ptr<LightTechnique> Adaptive::setUp(const LightSetup& setup) const {
     return std::make_unique<AdaptiveLight>(*this, setup, cam);
 }
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Adaptive, "adaptive",
                       "virtual shadow map: pages at the texel density each pixel needs, in a pool");
 
-}  // namespace
 }  // namespace so

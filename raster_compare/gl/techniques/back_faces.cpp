@@ -29,9 +29,10 @@ class BackFaces final : public ShadowMapTechnique {
     double biasTexels_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(BackFaces, "back-faces",
                       "back faces in the map (front-face culling), n.l <= 0 is shadow; closed "
                       "meshes only: a single-sided occluder casts nothing");
 
-}  // namespace
 }  // namespace so

@@ -15,8 +15,9 @@ class Basic final : public ShadowMapTechnique {
     const char* glsl() const override { return shaders::basic_glsl; }
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Basic, "basic",
                       "plain depth compare: lit where receiver depth <= stored depth, no bias");
 
-}  // namespace
 }  // namespace so

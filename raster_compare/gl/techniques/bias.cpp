@@ -20,8 +20,9 @@ class Bias final : public ShadowMapTechnique {
     double biasTexels_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Bias, "bias",
                       "constant depth bias: lit where receiver depth - bias <= stored depth");
 
-}  // namespace
 }  // namespace so

@@ -107,9 +107,10 @@ void BlurLight::renderVisibility(PassClock& clock) {
     clock.end();
 }
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Blur, "blur",
                       "a hard shadow map's shadow blurred in screen space (Gaussian, optionally "
                       "bilateral)");
 
-}  // namespace
 }  // namespace so

@@ -25,10 +25,11 @@ class Cascades final : public ShadowMapTechnique {
     SlopeBias bias_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Cascades, "cascades",
                       "slope-bias in cascaded maps over the view's depth range (practical split, "
                       "optional sphere fit with texel snapping, blend band); any shadow-map "
                       "technique takes cascades=N too");
 
-}  // namespace
 }  // namespace so

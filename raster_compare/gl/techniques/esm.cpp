@@ -29,9 +29,10 @@ class Esm final : public ShadowMapTechnique {
     double c_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(
     Esm, "esm",
     "exponential shadow maps: exp(c t) blurred, lit = clamp(exp(-c t) E[exp(c t)], 0, 1)");
 
-}  // namespace
 }  // namespace so

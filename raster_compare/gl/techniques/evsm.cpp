@@ -45,9 +45,10 @@ class Evsm final : public ShadowMapTechnique {
     double cPos_, cNeg_, minVariance_, bleedReduction_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(
     Evsm, "evsm",
     "exponential variance shadow maps: VSM on exp(c_pos t) and -exp(-c_neg t), the smaller bound");
 
-}  // namespace
 }  // namespace so

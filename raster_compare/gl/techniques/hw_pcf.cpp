@@ -21,8 +21,9 @@ class HwPcf final : public ShadowMapTechnique {
     SlopeBias bias_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(HwPcf, "hw-pcf",
                       "the sampler's GL_LINEAR depth compare (driver-defined filter)");
 
-}  // namespace
 }  // namespace so

@@ -41,8 +41,9 @@ class Msm final : public ShadowMapTechnique {
     double momentBias_, bleedReduction_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Msm, "msm",
                       "moment shadow maps: four moments blurred, the Hamburger 4MSM bound");
 
-}  // namespace
 }  // namespace so

@@ -25,8 +25,9 @@ class NormalOffset final : public ShadowMapTechnique {
     double kTexels_, biasTexels_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(NormalOffset, "normal-offset",
                       "lookup moved along the normal by k texels (1 - n.l)");
 
-}  // namespace
 }  // namespace so

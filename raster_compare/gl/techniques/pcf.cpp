@@ -35,9 +35,10 @@ class Pcf final : public ShadowMapTechnique {
     SlopeBias bias_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Pcf, "pcf",
                       "percentage-closer filtering: the depth test averaged over a kernel x kernel "
                       "grid or 16 Poisson-disk taps, the slope bias times (1 + kernel / 2)");
 
-}  // namespace
 }  // namespace so

@@ -72,9 +72,10 @@ class Pcss final : public ShadowMapTechnique {
     SlopeBias bias_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Pcss, "pcss",
                       "percentage-closer soft shadows: blocker search, penumbra width from the "
                       "light's size, variable PCF");
 
-}  // namespace
 }  // namespace so

@@ -39,8 +39,9 @@ class Planar final : public Technique {
     PlanarSettings settings_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Planar, "planar",
                       "planar projected shadows: casters flattened onto the receiver's plane");
 
-}  // namespace
 }  // namespace so

@@ -39,9 +39,10 @@ class PlaneShift final : public Technique {
     PlanarSettings settings_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(PlaneShift, "plane-shift",
                       "soft planar shadows: projections onto planes shifted towards the light, "
                       "averaged");
 
-}  // namespace
 }  // namespace so

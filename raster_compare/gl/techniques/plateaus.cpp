@@ -297,11 +297,12 @@ class Plateaus final : public Technique {
     PlateauSettings settings_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Plateaus, "plateaus",
                       "soft planar shadows: the projected hard shadow's silhouette widened by "
                       "cones and quads as wide as the penumbra (Haines 2001); the hard shadow "
                       "takes alpha masks, the plateaus (from whole triangles' silhouette edges) "
                       "do not");
 
-}  // namespace
 }  // namespace so

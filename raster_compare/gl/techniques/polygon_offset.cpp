@@ -29,8 +29,9 @@ class PolygonOffset final : public ShadowMapTechnique {
     float factor_, units_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(PolygonOffset, "polygon-offset",
                       "fixed-function glPolygonOffset in the shadow pass (driver-defined units)");
 
-}  // namespace
 }  // namespace so

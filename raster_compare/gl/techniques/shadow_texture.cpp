@@ -41,9 +41,10 @@ class ShadowTexture final : public ShadowMapTechnique {
     int receiver_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(ShadowTexture, "shadow-texture",
                       "shadow texture: the casters' opacity from the light, projected onto the "
                       "receiver");
 
-}  // namespace
 }  // namespace so

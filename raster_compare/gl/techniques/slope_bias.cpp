@@ -18,8 +18,9 @@ class SlopeBiasTechnique final : public ShadowMapTechnique {
     SlopeBias bias_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(SlopeBiasTechnique, "slope-bias",
                       "slope-scaled bias clamp(alpha tan(acos(n.l)), min, max)");
 
-}  // namespace
 }  // namespace so

@@ -16,10 +16,11 @@ class VolumeZFail final : public ShadowVolumeTechnique {
     bool zFail() const override { return true; }
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(VolumeZFail, "volume-zfail",
                       "stencil shadow volumes, z-fail: capped volumes counted behind the surface; "
                       "alpha-tested casters cast opaque shadows (volumes are built from whole "
                       "triangles)");
 
-}  // namespace
 }  // namespace so

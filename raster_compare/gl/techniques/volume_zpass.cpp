@@ -28,11 +28,12 @@ class VolumeZPass final : public ShadowVolumeTechnique {
     bool initCount_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(VolumeZPass, "volume-zpass",
                       "stencil shadow volumes, z-pass: faces in front of the surface counted; "
                       "alpha-tested casters are opaque in the volumes, but a receiver the camera "
                       "sees through a caster's holes gets the count inverted (the entry through "
                       "the caster is missed)");
 
-}  // namespace
 }  // namespace so

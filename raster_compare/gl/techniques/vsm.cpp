@@ -36,9 +36,10 @@ class Vsm final : public ShadowMapTechnique {
     double minVariance_, bleedReduction_;
 };
 
+}  // namespace
+
 SO_REGISTER_TECHNIQUE(Vsm, "vsm",
                       "variance shadow maps: moments (t, t^2) blurred, the Chebyshev bound, "
                       "linstep(bleed_reduction, 1, p)");
 
-}  // namespace
 }  // namespace so
