@@ -136,6 +136,7 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
         c.progress = detail::toLibrary(options.progress);
         const so::Comparison comparison = so::compareWithOracle(s, o, techniques, images, c);
         CompareResult out;
+        out.warnings = comparison.warnings;
         out.metricsJson =
             so::metricsJson(s, s.path.string(), o, comparison, options.boundaryRadius).dump();
         for (const so::ComparedRow& row : comparison.rows) {

@@ -36,11 +36,12 @@ RenderResult render(const Scene& scene, const std::string& technique, const Para
         const std::unique_ptr<so::Technique> t = so::createTechnique(technique, settings);
         const so::RasterOptions o =
             rasterOptions(options.width, options.height, options.frames, options.warmup);
-        const so::GlContext gl;
+        so::GlContext gl;
         so::RasterResult r = so::renderRaster(scene.data().scene, *t, o, gl);
         RenderResult out;
         out.frameMs = r.stats.timings.wallMs.median;
         out.statsJson = so::toJson(r.stats).dump();
+        out.warnings = gl.takeWarnings();
         out.image = detail::toApi(std::move(r.image));
         return out;
     });

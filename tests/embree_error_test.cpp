@@ -61,7 +61,6 @@ TEST(OracleErrors, CallerPreconditionsAreInvalidArgument) {
     EXPECT_THROW(tileRows(64, 0, 17), std::invalid_argument) << "64 rows are 16 tile rows";
     const Scene scene = makeSquareOccluderScene(32, 24).scene;
     OracleOptions o;
-    o.progress = false;
     o.rows = RowBand{2, 8};  // not a multiple of the tile height
     EXPECT_THROW(runOracle(scene, o), std::invalid_argument);
 }

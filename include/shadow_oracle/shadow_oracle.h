@@ -160,9 +160,10 @@ struct RenderOptions {
 };
 
 struct RenderResult {
-    Image image;            // raster.exr's channels (NAME.V per light and the geometry)
-    double frameMs = 0.0;   // median over the timed frames
-    std::string statsJson;  // raster.json: passes, times, memory per light
+    Image image;                        // raster.exr's channels (NAME.V per light and the geometry)
+    double frameMs = 0.0;               // median over the timed frames
+    std::string statsJson;              // raster.json: passes, times, memory per light
+    std::vector<std::string> warnings;  // the GL driver's, one line each
 };
 
 // Every technique and its parameters: `shadow-oracle techniques --json` (docs/techniques.md).
@@ -219,8 +220,9 @@ struct ComparedRow {
 };
 
 struct CompareResult {
-    std::vector<ComparedRow> rows;  // the techniques in order, then the images
-    std::string metricsJson;        // metrics.json, as the compare command writes it
+    std::vector<ComparedRow> rows;      // the techniques in order, then the images
+    std::string metricsJson;            // metrics.json, as the compare command writes it
+    std::vector<std::string> warnings;  // the GL driver's, one line each
 };
 
 // Throws Error when a technique or parameter is unknown, a label is used twice, or an image does

@@ -36,9 +36,9 @@ PathFrame renderFrame(const Scene& scene, const std::vector<const Technique*>& t
     OracleOptions o = oracle;
     o.camera = pose;
     frame.camera = effectiveCamera(scene, o);
-    CachedOracle oracle = traceOrLoad(scene, o, cache);
-    frame.oracle = std::move(oracle.image);
-    frame.warnings = std::move(oracle.warnings);
+    CachedOracle traced = traceOrLoad(scene, o, cache);
+    frame.oracle = std::move(traced.image);
+    frame.warnings = std::move(traced.warnings);
     // One untimed frame per technique: only the images matter here.
     RasterOptions r = raster;
     r.camera = pose;
