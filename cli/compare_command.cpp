@@ -227,6 +227,13 @@ ComparisonOptions comparisonOptions(const CompareOptions& options,
     c.pathFrames = options.pathFrames;
     c.pathOracle = oracleOptions;
     c.pathCache = {options.cacheDir, options.useCache};
+    // The camera path's frames, a line each as they are done (the library reports, the command
+    // prints); the techniques' own progress is the "rendering" lines below.
+    c.progress = [](const ProgressUpdate& u) {
+        if (u.stage == "camera path frames")
+            std::cerr << "camera path: frame " << u.done << " of " << u.total << "\n";
+        return true;
+    };
     c.renderingGroup = [](const std::vector<std::string>& labels) {
         std::cerr << "rendering";
         for (size_t i = 0; i < labels.size(); ++i) std::cerr << (i ? ", " : " ") << labels[i];
