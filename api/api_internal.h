@@ -9,6 +9,7 @@
 #include "core/progress.h"
 #include "core/scene.h"
 #include "oracle/oracle_cache.h"
+#include "raster_compare/gl/renderer.h"
 #include "shadow_oracle/shadow_oracle.h"
 
 namespace shadow_oracle {
@@ -26,6 +27,8 @@ namespace detail {
 Image toApi(so::ChannelImage&& image);
 so::ChannelImage fromApi(const Image& image);
 so::ProgressCallback toLibrary(const ProgressCallback& callback);
+// The GL path's options from the API's, checked as the command line's parser checks them.
+so::RasterOptions rasterOptions(int width, int height, int frames, int warmup);
 
 // Runs f; the libraries' exceptions come out as the API's, with the same one-line messages.
 template <typename F>

@@ -1,6 +1,5 @@
 // The API's comparison: raster_compare/comparison's compareWithOracle, with renderers' images
 // given in memory or read as `compare --image` reads them.
-#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -9,8 +8,6 @@
 #include "raster_compare/comparison/comparison.h"
 
 namespace shadow_oracle {
-
-so::RasterOptions rasterOptions(int width, int height, int frames, int warmup);  // render.cpp
 
 namespace {
 
@@ -35,16 +32,7 @@ so::ImageInput imageInput(const ExternalImage& in, const so::Scene& scene, int w
             so::throwInputError(file, field,
                                 std::to_string(plane.size()) + " values, the oracle's image is " +
                                     std::to_string(width) + " x " + std::to_string(height));
-        for (size_t i = 0; i < plane.size(); ++i) {
-            const float x = plane[i];
-            if (!(std::isfinite(x) && x >= -so::kVisibilityTolerance &&
-                  x <= 1.0f + so::kVisibilityTolerance))
-                so::throwInputError(file, field,
-                                    "value outside [0, 1] at pixel (" +
-                                        std::to_string(i % size_t(width)) + ", " +
-                                        std::to_string(i / size_t(width)) + ")");
-            plane[i] = std::min(std::max(x, 0.0f), 1.0f);
-        }
+        so::checkVisibilityValues(file, field, plane, width);
         v.v.push_back(std::move(plane));
     }
     if (!in.renderer.empty() || in.frameMs || in.shadowMs || in.memoryBytes)
@@ -128,7 +116,8 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
         for (const ExternalImage& in : options.images)
             images.push_back(imageInput(in, s, o.image.width(), o.image.height()));
         so::ComparisonOptions c;
-        c.raster = rasterOptions(o.image.width(), o.image.height(), options.frames, options.warmup);
+        c.raster = detail::rasterOptions(o.image.width(), o.image.height(), options.frames,
+                                         options.warmup);
         if (options.boundaryRadius < 0 || options.boundaryRadius > 64)
             so::throwInputError("compare options", "boundary_radius", "must be in [0, 64]");
         c.boundaryRadius = options.boundaryRadius;

@@ -12,7 +12,7 @@ std::string techniquesJson() {
     return detail::translated([] { return so::techniquesListing(so::ListingFormat::Json); });
 }
 
-so::RasterOptions rasterOptions(int width, int height, int frames, int warmup) {
+so::RasterOptions detail::rasterOptions(int width, int height, int frames, int warmup) {
     const auto fail = [](const std::string& field, const std::string& why) {
         so::throwInputError("render options", field, why);
     };
@@ -35,7 +35,7 @@ RenderResult render(const Scene& scene, const std::string& technique, const Para
         for (const auto& [key, value] : parameters) settings.push_back(key + "=" + value);
         const std::unique_ptr<so::Technique> t = so::createTechnique(technique, settings);
         const so::RasterOptions o =
-            rasterOptions(options.width, options.height, options.frames, options.warmup);
+            detail::rasterOptions(options.width, options.height, options.frames, options.warmup);
         so::GlContext gl;
         so::RasterResult r = so::renderRaster(scene.data().scene, *t, o, gl);
         RenderResult out;

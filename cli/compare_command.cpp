@@ -3,7 +3,6 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
-#include <set>
 
 #include "cli/csv_table.h"
 #include "cli/output.h"
@@ -46,13 +45,11 @@ void checkCommandLine(const CompareOptions& options, const std::vector<Technique
         throwInputError("command line", "--technique",
                         "nothing to compare: give --technique NAME or --image LABEL=PATH");
     for (const TechniqueSpec& spec : specs) createTechnique(spec.name, spec.settings);
-    std::set<std::string> labels, fileLabels;
-    for (const TechniqueSpec& spec : specs) fileLabels.insert(spec.fileLabel);
-    for (const ImageSpec& spec : options.images)
-        if (!labels.insert(spec.label).second || !fileLabels.insert(spec.fileLabel).second)
-            throwInputError("command line", "--image",
-                            "label \"" + printable(spec.label, 60) +
-                                "\" is used twice (or names the same folder as another row)");
+    try {
+        checkRowLabels(specs, options.images);
+    } catch (const InputError& e) {
+        throwInputError("command line", "--image", e.message());
+    }
     if (!options.pointsPath.empty()) {
         if (!specs.empty())
             throwInputError("command line", "--points",

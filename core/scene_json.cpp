@@ -468,6 +468,32 @@ std::vector<std::string> parseEffects(const json& root, const Reader& r) {
     return effects;
 }
 
+// What a scene file and a scene made in memory share once their meshes are in: the camera, the
+// lights, the checks on the whole and the camera path. `geometryField` names the meshes' source
+// in errors ("geometry" of a file, "meshes" in memory).
+void finishScene(const json& root, const Reader& r, const LoadLimits& limits,
+                 const std::string& geometryField, Scene& scene) {
+    bool cameraGiven = false;
+    if (root.contains("camera")) scene.camera = parseCamera(root["camera"], r, limits, cameraGiven);
+
+    if (!root.contains("lights")) r.fail("lights", "missing");
+    parseLights(root["lights"], r, limits, scene);
+
+    warnAboutEffects(scene);
+    finalizeScene(scene);
+    if (scene.stats.totalTrianglesExceeded(limits))
+        r.fail(geometryField,
+               "more than " + std::to_string(limits.maxTotalTriangles) + " triangles in all");
+    if (!cameraGiven) {
+        scene.camera = defaultFraming(scene.wsBounds);
+        scene.stats.warnings.push_back("no camera given: using the default framing of the bounds");
+    }
+    // After the camera: a key without up takes the camera's, which must then suit its direction.
+    // The path is part of the description's text, so the content hash already covers it.
+    if (root.contains("camera_path"))
+        scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
+}
+
 Scene loadSceneJson(const std::filesystem::path& path, const std::string& display,
                     const LoadLimits& limits) {
     Reader r(display);
@@ -536,25 +562,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     if (jg.empty())
         scene.stats.warnings.push_back("the scene has no geometry: every pixel is background");
 
-    bool cameraGiven = false;
-    if (root.contains("camera")) scene.camera = parseCamera(root["camera"], r, limits, cameraGiven);
-
-    if (!root.contains("lights")) r.fail("lights", "missing");
-    parseLights(root["lights"], r, limits, scene);
-
-    warnAboutEffects(scene);
-    finalizeScene(scene);
-    if (scene.stats.totalTrianglesExceeded(limits))
-        r.fail("geometry",
-               "more than " + std::to_string(limits.maxTotalTriangles) + " triangles in all");
-    if (!cameraGiven) {
-        scene.camera = defaultFraming(scene.wsBounds);
-        scene.stats.warnings.push_back("no camera given: using the default framing of the bounds");
-    }
-    // After the camera: a key without up takes the camera's, which must then suit its direction.
-    // The path is part of the file's text, so the content hash already covers it.
-    if (root.contains("camera_path"))
-        scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
+    finishScene(root, r, limits, "geometry", scene);
     scene.contentHash = hasher.hex();
     return scene;
 }
@@ -675,21 +683,7 @@ Scene sceneFromMemory(const std::string& description, std::vector<MeshPrimitive>
                                     mesh.indices.size() * sizeof(uint32_t)));
     }
     scene.meshes = std::move(meshes);
-    bool cameraGiven = false;
-    if (root.contains("camera")) scene.camera = parseCamera(root["camera"], r, limits, cameraGiven);
-    if (!root.contains("lights")) r.fail("lights", "missing");
-    parseLights(root["lights"], r, limits, scene);
-    warnAboutEffects(scene);
-    finalizeScene(scene);
-    if (scene.stats.totalTrianglesExceeded(limits))
-        r.fail("meshes",
-               "more than " + std::to_string(limits.maxTotalTriangles) + " triangles in all");
-    if (!cameraGiven) {
-        scene.camera = defaultFraming(scene.wsBounds);
-        scene.stats.warnings.push_back("no camera given: using the default framing of the bounds");
-    }
-    if (root.contains("camera_path"))
-        scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
+    finishScene(root, r, limits, "meshes", scene);
     scene.contentHash = hasher.hex();
     return scene;
 }

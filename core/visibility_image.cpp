@@ -30,23 +30,6 @@ void checkSize(const std::string& path, int w, int h, int width, int height) {
             "image is " + sizeText(w, h) + ", the camera's is " + sizeText(width, height));
 }
 
-// Every value finite and within [0, 1] up to kVisibilityTolerance, then clamped.
-void checkValues(const std::string& path, const std::string& channel, std::vector<float>& v,
-                 int width) {
-    for (size_t i = 0; i < v.size(); ++i) {
-        const float x = v[i];
-        if (std::isfinite(x) && x >= -kVisibilityTolerance && x <= 1.0f + kVisibilityTolerance) {
-            v[i] = std::clamp(x, 0.0f, 1.0f);
-            continue;
-        }
-        throwInputError(path, channel,
-                        (std::isfinite(x) ? "value " + std::to_string(x) + " outside [0, 1]"
-                                          : std::string("non-finite value")) +
-                            " at pixel (" + std::to_string(i % size_t(width)) + ", " +
-                            std::to_string(i / size_t(width)) + ")");
-    }
-}
-
 // The channel names to read, one per light: NAME.V, or for one light a lone V, Y or R.
 std::vector<std::string> exrChannelsFor(const std::string& path, const Imf::ChannelList& list,
                                         const std::vector<Light>& lights) {
@@ -97,7 +80,8 @@ VisibilityImage readExrVisibility(const std::string& path, const std::vector<Lig
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
-        for (size_t k = 0; k < names.size(); ++k) checkValues(path, names[k], img.v[k], w);
+        for (size_t k = 0; k < names.size(); ++k)
+            checkVisibilityValues(path, names[k], img.v[k], w);
     } catch (const InputError&) {
         throw;
     } catch (const std::exception& e) {
@@ -131,7 +115,7 @@ VisibilityImage readPngVisibility(const std::string& path, const std::vector<Lig
         const float code = t.rgba[4 * i];  // code / max code, as OpenImageIO reads it
         img.v[0][i] = encoding == ImageEncoding::Srgb ? srgbToLinear(code) : code;
     }
-    checkValues(path, "V", img.v[0], t.width);
+    checkVisibilityValues(path, "V", img.v[0], t.width);
     return img;
 }
 
@@ -145,6 +129,22 @@ std::optional<double> costNumber(const nlohmann::json& j, const std::string& key
 }
 
 }  // namespace
+
+void checkVisibilityValues(const std::string& path, const std::string& channel,
+                           std::vector<float>& v, int width) {
+    for (size_t i = 0; i < v.size(); ++i) {
+        const float x = v[i];
+        if (std::isfinite(x) && x >= -kVisibilityTolerance && x <= 1.0f + kVisibilityTolerance) {
+            v[i] = std::clamp(x, 0.0f, 1.0f);
+            continue;
+        }
+        throwInputError(path, channel,
+                        (std::isfinite(x) ? "value " + std::to_string(x) + " outside [0, 1]"
+                                          : std::string("non-finite value")) +
+                            " at pixel (" + std::to_string(i % size_t(width)) + ", " +
+                            std::to_string(i / size_t(width)) + ")");
+    }
+}
 
 ImageEncoding parseImageEncoding(const std::string& text, const std::string& field) {
     if (text == "linear") return ImageEncoding::Linear;

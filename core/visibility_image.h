@@ -23,6 +23,12 @@ ImageEncoding parseImageEncoding(const std::string& text, const std::string& fie
 // Values this far outside [0, 1] are clamped (a renderer's rounding); farther is an error.
 inline constexpr float kVisibilityTolerance = 1e-3f;
 
+// Every value finite and within [0, 1] up to kVisibilityTolerance, then clamped; otherwise an
+// InputError naming `file`, `channel` and the pixel. What every image of V goes through, read from
+// a file or given in memory (the C++ and Python APIs).
+void checkVisibilityValues(const std::string& file, const std::string& channel,
+                           std::vector<float>& v, int width);
+
 // PATH.json: what the image cost to make, each entry optional (absent: unknown, not zero).
 struct ExternalCost {
     std::string renderer;

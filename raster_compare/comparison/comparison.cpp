@@ -48,6 +48,17 @@ ImageSpec makeImageSpec(const std::string& label, const std::string& path) {
     return {label, fileLabelOf(label), path};
 }
 
+void checkRowLabels(const std::vector<TechniqueSpec>& techniques,
+                    const std::vector<ImageSpec>& images) {
+    std::set<std::string> labels, fileLabels;
+    for (const TechniqueSpec& spec : techniques) fileLabels.insert(spec.fileLabel);
+    for (const ImageSpec& spec : images)
+        if (!labels.insert(spec.label).second || !fileLabels.insert(spec.fileLabel).second)
+            throwInputError("image", "label",
+                            "label \"" + printable(spec.label, 60) +
+                                "\" is used twice (or names the same folder as another row)");
+}
+
 namespace {
 
 // A technique as the user asked for it, created (and so validated) before any work starts.
@@ -212,22 +223,17 @@ ComparedRow compareImage(Job job, const ImageInput& in) {
     return row;
 }
 
-// Techniques created (so validated) and labels checked before any work starts; a label used twice
-// is refused, since rows are told apart by it.
+// Techniques created (so validated) and labels checked (checkRowLabels) before any work starts.
 std::vector<TechniqueRun> createTechniques(const std::vector<TechniqueSpec>& specs,
                                            const std::vector<ImageInput>& images) {
     if (specs.empty() && images.empty())
         throwInputError("comparison", "", "nothing to compare: no technique and no image");
     std::vector<TechniqueRun> runs;
-    std::set<std::string> labels, fileLabels;
-    for (const TechniqueSpec& spec : specs) {
+    for (const TechniqueSpec& spec : specs)
         runs.push_back({spec, createTechnique(spec.name, spec.settings)});
-        fileLabels.insert(spec.fileLabel);
-    }
-    for (const ImageInput& in : images)
-        if (!labels.insert(in.spec.label).second || !fileLabels.insert(in.spec.fileLabel).second)
-            throwInputError("image", in.spec.label,
-                            "the label is used twice (or names the same folder as another row)");
+    std::vector<ImageSpec> imageSpecs;
+    for (const ImageInput& in : images) imageSpecs.push_back(in.spec);
+    checkRowLabels(specs, imageSpecs);
     return runs;
 }
 

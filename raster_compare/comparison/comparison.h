@@ -45,6 +45,12 @@ ImageSpec makeImageSpec(const std::string& label, const std::string& path);
 // Letters, digits, '-' and '.' kept, anything else '_'.
 std::string fileLabelOf(const std::string& label);
 
+// Rows are told apart by their labels: an image's label used twice, or naming the same folder as
+// another row's, is an InputError (file "image", field "label"). A technique's label may repeat
+// (the same setting twice renders twice).
+void checkRowLabels(const std::vector<TechniqueSpec>& techniques,
+                    const std::vector<ImageSpec>& images);
+
 // An image read and validated against the scene's lights and the oracle's size
 // (readVisibilityImage), or made in memory (a Python array).
 struct ImageInput {
