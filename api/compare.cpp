@@ -82,7 +82,7 @@ ExternalImage readImage(const Scene& scene, const std::string& label, const std:
     return detail::translated([&] {
         const so::Scene& s = scene.data().scene;
         so::VisibilityImage v = so::readVisibilityImage(
-            path, s.lights, width, height, so::parseImageEncoding(encoding, "encoding"));
+            path, s.lights, width, height, so::parseImageEncoding(encoding, "options", "encoding"));
         ExternalImage out;
         out.label = label;
         out.visibility = std::move(v.v);

@@ -6,6 +6,7 @@
 
 #include "cli/csv_table.h"
 #include "cli/output.h"
+#include "cli/raster_command.h"
 #include "core/error.h"
 #include "core/gbuffer.h"
 #include "oracle/points.h"
@@ -44,7 +45,8 @@ void checkCommandLine(const CompareOptions& options, const std::vector<Technique
     if (specs.empty() && options.images.empty())
         throwInputError("command line", "--technique",
                         "nothing to compare: give --technique NAME or --image LABEL=PATH");
-    for (const TechniqueSpec& spec : specs) createTechnique(spec.name, spec.settings);
+    for (const TechniqueSpec& spec : specs)
+        createTechniqueOfFlag("--technique", spec.name, spec.settings);
     try {
         checkRowLabels(specs, options.images);
     } catch (const InputError& e) {
@@ -69,12 +71,14 @@ void checkCommandLine(const CompareOptions& options, const std::vector<Technique
 CachedOracle oracleFor(const CompareOptions& options, const Scene& scene,
                        const OracleOptions& oracleOptions, const GBuffer* points) {
     if (!points) {
-        CachedOracle oracle =
-            traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+        CachedOracle oracle = namingFlag("verify", "--verify", [&] {
+            return traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+        });
         printWarnings(oracle.warnings);
         return oracle;
     }
-    OracleResult r = runOracleAtPoints(scene, *points, oracleOptions);
+    OracleResult r = namingFlag("verify", "--verify",
+                                [&] { return runOracleAtPoints(scene, *points, oracleOptions); });
     return {std::move(r.image), std::move(r.stats), false, "points " + points->path};
 }
 
@@ -241,57 +245,69 @@ ComparisonOptions comparisonOptions(const CompareOptions& options,
 
 }  // namespace
 
-int runCompareCommand(const CompareOptions& options, nlohmann::json* metricsOut) {
+CompareRun compareScene(const CompareOptions& options) {
     // Everything the user can get wrong is checked before any work starts.
     const std::vector<TechniqueSpec> techniques = parseTechniques(options);
     checkCommandLine(options, techniques);
-    const Scene scene = loadScene(options.scenePath);
+    CompareRun run;
+    run.scene = loadScene(options.scenePath);
+    const Scene& scene = run.scene;
     printSceneWarnings(options.scenePath, scene);
     if (options.pathFrames > 0 && !scene.cameraPath)
         throwInputError(options.scenePath, "camera_path",
                         "missing: --frames-path needs the scene's camera path (scene_format 2, "
                         "docs/scene-format.md)");
-    OracleOptions oracleOptions = options.oracle;
-    if (options.raster.width > 0) oracleOptions.width = options.raster.width;
-    if (options.raster.height > 0) oracleOptions.height = options.raster.height;
+    run.oracleOptions = options.oracle;
+    if (options.raster.width > 0) run.oracleOptions.width = options.raster.width;
+    if (options.raster.height > 0) run.oracleOptions.height = options.raster.height;
     std::optional<GBuffer> points;
     if (!options.pointsPath.empty()) points = readGBuffer(options.pointsPath);
-    const CameraDesc camera = effectiveCamera(scene, oracleOptions);
+    const CameraDesc camera = effectiveCamera(scene, run.oracleOptions);
     const int width = points ? points->width : camera.width,
               height = points ? points->height : camera.height;
     std::vector<ImageInput> images;
     for (const ImageSpec& spec : options.images)
         images.push_back({spec, readVisibilityImage(spec.path, scene.lights, width, height,
                                                     options.imageEncoding)});
-    const fs::path out = makeOutputDir(options.outDir);
+    if (!options.outDir.empty()) run.out = makeOutputDir(options.outDir);
 
-    const CachedOracle oracle =
-        oracleFor(options, scene, oracleOptions, points ? &*points : nullptr);
+    run.atPoints = points.has_value();
+    run.oracle = oracleFor(options, scene, run.oracleOptions, points ? &*points : nullptr);
+    run.comparison = compareWithOracle(scene, run.oracle, techniques, images,
+                                       comparisonOptions(options, run.oracleOptions));
+    printWarnings(run.comparison.warnings);
+    return run;
+}
+
+int writeCompareOutputs(const CompareOptions& options, CompareRun& run) {
+    const fs::path& out = run.out;
+    SO_CHECK(!out.empty());
+    const Scene& scene = run.scene;
     if (options.writeReport)
-        writeExr((out / "oracle.exr").string(), oracle.image,
+        writeExr((out / "oracle.exr").string(), run.oracle.image,
                  {{"shadowOracle/sceneHash", scene.contentHash}});
-    Comparison comparison = compareWithOracle(scene, oracle, techniques, images,
-                                              comparisonOptions(options, oracleOptions));
-
-    printWarnings(comparison.warnings);
-    for (const ComparedRow& row : comparison.rows) writeRowFiles(out, row, options.writeImages);
+    for (const ComparedRow& row : run.comparison.rows) writeRowFiles(out, row, options.writeImages);
     const nlohmann::json metrics =
-        metricsJson(scene, options.scenePath, oracle, comparison, options.boundaryRadius);
+        metricsJson(scene, options.scenePath, run.oracle, run.comparison, options.boundaryRadius);
     writeJsonFile(out / "metrics.json", metrics);
     writeCsvs(out, options.scenePath, metrics);
     if (options.writeReport)
-        writeReportFile(out, options.scenePath, scene, oracle, comparison, metrics, oracleOptions,
-                        options.embedImages);
-    std::cout << "compared " << options.scenePath << ": " << techniques.size() << " techniques, "
-              << images.size() << " images, oracle "
-              << (points             ? "at the G-buffer's points"
-                  : oracle.fromCache ? "from the cache"
-                                     : "traced")
+        writeReportFile(out, options.scenePath, scene, run.oracle, run.comparison, metrics,
+                        run.oracleOptions, options.embedImages);
+    std::cout << "compared " << options.scenePath << ": " << options.techniques.size()
+              << " techniques, " << options.images.size() << " images, oracle "
+              << (run.atPoints           ? "at the G-buffer's points"
+                  : run.oracle.fromCache ? "from the cache"
+                                         : "traced")
               << "\n  " << (out / "metrics.json").string() << "\n  "
               << (out / "metrics.csv").string() << "\n  " << (out / "metrics_wide.csv").string()
               << "\n";
-    if (metricsOut) *metricsOut = metrics;
-    return verifyExitCode(options, oracle.stats);
+    return verifyExitCode(options, run.oracle.stats);
+}
+
+int runCompareCommand(const CompareOptions& options) {
+    CompareRun run = compareScene(options);
+    return writeCompareOutputs(options, run);
 }
 
 }  // namespace so

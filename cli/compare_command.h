@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "raster_compare/comparison/comparison.h"
@@ -49,7 +47,26 @@ struct CompareOptions {
     bool writeImages = true;
 };
 
-// `metrics`, when given, gets what metrics.json holds (a sweep task's row is made from it).
-int runCompareCommand(const CompareOptions& options, nlohmann::json* metrics = nullptr);
+// What a comparison of one scene produced, typed: the command writes it, a sweep task makes its
+// row from it.
+struct CompareRun {
+    Scene scene;
+    OracleOptions oracleOptions;  // the options', at the comparison's image size
+    CachedOracle oracle;
+    bool atPoints = false;  // the oracle at --points' G-buffer
+    Comparison comparison;
+    std::filesystem::path out;  // the output folder, made; empty when options.outDir is
+};
+
+// Checks the options (InputError naming their flags, before any work), loads the scene, makes the
+// output folder (unless options.outDir is empty), traces or reads the oracle and compares. Writes
+// no files but the folder; prints the warnings.
+CompareRun compareScene(const CompareOptions& options);
+// metrics.json, the CSVs, the rows' folders and (options.writeReport) oracle.exr and report.html
+// into run.out; a summary on stdout. Returns the exit code: 3 when --verify found disagreements.
+// The report takes the rows' images (run.comparison's reports are moved from).
+int writeCompareOutputs(const CompareOptions& options, CompareRun& run);
+// `shadow-oracle compare`: both.
+int runCompareCommand(const CompareOptions& options);
 
 }  // namespace so

@@ -211,7 +211,7 @@ static Runner addCompare(CLI::App& app) {
     return [o, noCache, encoding, images] {
         o->useCache = !*noCache;
         for (const std::string& text : *images) o->images.push_back(so::parseImageSpec(text));
-        o->imageEncoding = so::parseImageEncoding(*encoding, "--image-encoding");
+        o->imageEncoding = so::parseImageEncoding(*encoding, "command line", "--image-encoding");
         return so::runCompareCommand(*o);
     };
 }

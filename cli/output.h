@@ -8,11 +8,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/tool_info.h"
 
 namespace so {
+
+// Runs `f`. An InputError it throws on the library's option `field` (e.g. OracleOptions' "verify")
+// is said again naming the command's `flag` instead: the libraries never name flags.
+template <class F>
+decltype(auto) namingFlag(const std::string& field, const std::string& flag, F&& f) {
+    try {
+        return f();
+    } catch (const InputError& e) {
+        if (e.field() != field) throw;
+        throwInputError(e.file(), flag, e.message());
+    }
+}
 
 // Creates the folder (and its parents); an InputError naming --out when it cannot.
 std::filesystem::path makeOutputDir(const std::string& dir);

@@ -8,10 +8,20 @@
 
 namespace so {
 
+std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& flag, const std::string& name,
+                                                 const std::vector<std::string>& settings) {
+    try {
+        findTechnique(name);
+    } catch (const InputError& e) {
+        throwInputError("command line", flag, e.field() + ": " + e.message());
+    }
+    return createTechnique(name, settings);
+}
+
 int runRasterCommand(const RasterCommandOptions& options) {
     // Every setting is validated before the scene is read or a context made.
     const std::unique_ptr<Technique> technique =
-        createTechnique(options.technique, options.settings);
+        createTechniqueOfFlag("--technique", options.technique, options.settings);
     const Scene scene = loadScene(options.scenePath);
     printSceneWarnings(options.scenePath, scene);
     const std::filesystem::path out = makeOutputDir(options.outDir);

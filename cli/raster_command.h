@@ -2,10 +2,12 @@
 // raster.json and NAME.png previews (docs/cli.md).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/technique.h"
 
 namespace so {
 
@@ -18,5 +20,10 @@ struct RasterCommandOptions {
 };
 
 int runRasterCommand(const RasterCommandOptions& options);
+
+// The technique a command-line flag names, created (so its settings validated): an unknown name
+// is an InputError naming the flag ("command line: --technique: nope: unknown technique ...").
+std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& flag, const std::string& name,
+                                                 const std::vector<std::string>& settings);
 
 }  // namespace so

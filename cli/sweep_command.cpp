@@ -204,7 +204,7 @@ int runSweepCommand(const SweepOptions& options) {
     if (options.jobs < 1) throwInputError("command line", "--jobs", "must be at least 1");
     const SweepPlan plan =
         planSweep(options.specPath, [](const std::string& name, const std::vector<std::string>& s) {
-            createTechnique(name, s);
+            return createTechnique(name, s)->values().all();
         });
     const fs::path dir = fs::absolute(makeOutputDir(options.outDir));
     keepPlan(dir, plan);

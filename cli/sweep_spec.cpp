@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -175,9 +176,31 @@ std::vector<double> paramValues(const Json& v, const std::string& file, const st
 
 struct ParamGrid {
     std::string name;
-    std::vector<double> values;
+    std::vector<double> values;         // NaN for a method's name, until the validator reads it
     std::vector<std::string> settings;  // "name=value" per value, formatted once
 };
+
+// A technique's method parameter by name ("pattern": "poisson" or ["spiral", "rotated"]): the
+// names as given, the validator checks them against the technique's table. Null for numbers.
+std::optional<std::vector<std::string>> methodNames(const Json& v, const std::string& file,
+                                                    const std::string& field) {
+    const bool names = v.is_string() || (v.is_array() && !v.empty() && v[0].is_string());
+    if (!names) return std::nullopt;
+    if (v.is_string()) return std::vector<std::string>{v.get<std::string>()};
+    if (v.size() > kMaxValuesPerParam)
+        throwInputError(file, field, "a list needs 1 to 100000 values");
+    std::vector<std::string> out;
+    for (size_t i = 0; i < v.size(); ++i) {
+        const std::string at = field + "[" + std::to_string(i) + "]";
+        if (!v[i].is_string()) throwInputError(file, at, "a list of names holds names only");
+        const std::string name = v[i].get<std::string>();
+        if (name.empty() || name.size() > 64 ||
+            name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+            throwInputError(file, at, "a method's name is 1 to 64 of a-z 0-9 _ -");
+        out.push_back(name);
+    }
+    return out;
+}
 
 std::string settingLabel(const std::string& technique, const std::vector<std::string>& settings) {
     std::string label = technique;
@@ -188,8 +211,8 @@ std::string settingLabel(const std::string& technique, const std::vector<std::st
 // The settings of one grid ("params" of a "techniques" or "images" entry), the last parameter
 // varying fastest; `before`: the settings of the entries before this one, for the bound.
 std::vector<SweepTask> expandGrid(const Json& entry, const std::string& name,
-                                  const std::string& file, const std::string& field,
-                                  size_t before) {
+                                  const std::string& file, const std::string& field, size_t before,
+                                  bool namesAllowed) {
     std::vector<ParamGrid> grid;
     size_t count = 1;
     if (entry.contains("params")) {
@@ -197,15 +220,22 @@ std::vector<SweepTask> expandGrid(const Json& entry, const std::string& name,
             throwInputError(file, field + ".params", "must be an object");
         // Bounded as each parameter is read, so that no spec makes many large ranges first.
         for (const auto& [key, v] : entry["params"].items()) {
-            grid.push_back(
-                {key, paramValues(v, file, field + ".params." + printable(key, 40)), {}});
+            const std::string at = field + ".params." + printable(key, 40);
+            const auto names = namesAllowed ? methodNames(v, file, at) : std::nullopt;
+            ParamGrid g{key, {}, {}};
+            if (names) {
+                g.values.assign(names->size(), std::numeric_limits<double>::quiet_NaN());
+                for (const std::string& n : *names) g.settings.push_back(key + "=" + n);
+            } else {
+                g.values = paramValues(v, file, at);
+                for (double x : g.values) g.settings.push_back(key + "=" + shortestNumber(x));
+            }
+            grid.push_back(std::move(g));
             count *= grid.back().values.size();
             if (count + before > kMaxSweepTasks)
                 throwInputError(
                     file, field + ".params",
                     "the sweep has more than " + std::to_string(kMaxSweepTasks) + " settings");
-            for (double x : grid.back().values)
-                grid.back().settings.push_back(key + "=" + shortestNumber(x));
         }
     }
     std::vector<SweepTask> settings;
@@ -239,12 +269,16 @@ void expandTechnique(const Json& t, size_t ti, const std::string& file,
     } catch (const InputError& e) {
         throwInputError(file, field + ".name", e.message());
     }
-    for (SweepTask& s : expandGrid(t, name, file, field, settings.size())) {
+    for (SweepTask& s : expandGrid(t, name, file, field, settings.size(), /*namesAllowed=*/true)) {
+        ParamNumbers numbers;
         try {
-            validate(name, s.settings);  // every error before any work, with its field
+            numbers = validate(name, s.settings);  // every error before any work, with its field
         } catch (const InputError& e) {
             throwInputError(file, field + ".params", s.label + ": " + e.message());
         }
+        // A method's name swept is its number in the rows, as metrics.json's parameters hold it.
+        for (auto& [key, value] : s.swept)
+            if (std::isnan(value)) value = numbers.at(key);
         settings.push_back(std::move(s));
     }
 }
@@ -358,7 +392,8 @@ void expandImages(const Json& entry, size_t ii, const SweepPlan& plan, const std
                 key.find_first_not_of(kNameChars) != std::string::npos)
                 throwInputError(file, field + ".params." + printable(key, 40),
                                 "a parameter's name must be 1 to 64 of A-Z a-z 0-9 _ - .");
-    const std::vector<SweepTask> grid = expandGrid(entry, name, file, field, before);
+    const std::vector<SweepTask> grid =
+        expandGrid(entry, name, file, field, before, /*namesAllowed=*/false);
     const fs::path specDir = plan.specFile.parent_path();
     for (size_t si : imageScenes(entry, plan.scenes, file, field))
         for (const SweepTask& s : grid) {

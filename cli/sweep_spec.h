@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -71,10 +72,11 @@ struct SweepPlan {
 // Reads, validates (every setting is created, so every error names its field) and expands a spec:
 // per scene, the technique settings, then the images of that scene (each of which must exist).
 // Creates a setting of a technique, throwing InputError when the technique or a setting is not
-// valid: createTechnique (raster_compare/gl/technique.h) in the tool; the fuzz harness, which
-// links no GL, passes its own.
-using SettingValidator =
-    std::function<void(const std::string& technique, const std::vector<std::string>& settings)>;
+// valid, and returns every parameter's value (a method's name as its number): createTechnique
+// (raster_compare/gl/technique.h) in the tool; the fuzz harness, which links no GL, passes its own.
+using ParamNumbers = std::map<std::string, double>;
+using SettingValidator = std::function<ParamNumbers(const std::string& technique,
+                                                    const std::vector<std::string>& settings)>;
 SweepPlan planSweep(const std::filesystem::path& specPath, const SettingValidator& validate);
 // The same from the spec's text; `specPath` names it in errors and anchors relative scene paths.
 SweepPlan planSweepText(const std::string& text, const std::filesystem::path& specPath,

@@ -48,11 +48,14 @@ int runOracleTask(const fs::path& dir, const SweepPlan& plan, size_t si) {
 // The row of a task (docs/sweep.md, "Rows"): the task, and its setting's entry of compare's
 // metrics.json with what made it.
 nlohmann::json taskRow(const SweepPlan& plan, const SweepTask& t, size_t index,
-                       const nlohmann::json& metrics, double seconds,
+                       const CompareOptions& c, const CompareRun& run, double seconds,
                        const std::string& imageHash) {
     nlohmann::json swept = nlohmann::json::object();
     for (const auto& [k, v] : t.swept) swept[k] = v;
-    nlohmann::json result = metrics.at("results").at(0);
+    SO_CHECK_EQ(run.comparison.rows.size(), size_t(1));
+    nlohmann::json result = rowJson(run.comparison.rows[0]);
+    const nlohmann::json made =
+        metricsHeaderJson(run.scene, c.scenePath, run.oracle, run.comparison, c.boundaryRadius);
     nlohmann::json taskJson = {
         {"index", index},           {"id", t.id},       {"scene", plan.scenes[t.scene].name},
         {"technique", t.technique}, {"label", t.label}, {"swept", swept}};
@@ -67,17 +70,15 @@ nlohmann::json taskRow(const SweepPlan& plan, const SweepTask& t, size_t index,
                 result["parameters"][key] = std::stod(s.substr(eq + 1));
         }
     }
-    return {
-        {"sweep_format", kSweepFormat},
-        {"task", taskJson},
-        {"seconds", seconds},
-        {"tool", metrics.at("tool")},
-        {"gl", metrics.at("gl")},
-        {"scene", metrics.at("scene")},
-        {"options", metrics.at("options")},
-        {"oracle",
-         {{"key", metrics.at("oracle").at("key")}, {"cached", metrics.at("oracle").at("cached")}}},
-        {"result", result}};
+    return {{"sweep_format", kSweepFormat},
+            {"task", taskJson},
+            {"seconds", seconds},
+            {"tool", made.at("tool")},
+            {"gl", made.at("gl")},
+            {"scene", made.at("scene")},
+            {"options", made.at("options")},
+            {"oracle", {{"key", run.oracle.key}, {"cached", run.oracle.fromCache}}},
+            {"result", result}};
 }
 
 int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask& t, size_t index) {
@@ -93,7 +94,7 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     fs::remove_all(work, ec);  // what a killed run of this task left
     CompareOptions c;
     c.scenePath = plan.scenes[t.scene].path.string();
-    c.outDir = work.string();
+    if (plan.settings.keepOutputs) c.outDir = work.string();  // else no files but the row
     // The image's hash before it is read: a renderer rewriting it meanwhile makes the row stale.
     std::string imageHash;
     if (t.image.empty()) {
@@ -101,7 +102,7 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     } else {
         imageHash = imageInputsHash(t.image);
         c.images = {makeImageSpec(t.label, t.image)};
-        c.imageEncoding = parseImageEncoding(t.encoding, "encoding");
+        c.imageEncoding = parseImageEncoding(t.encoding, "tasks.jsonl", "encoding");
     }
     c.oracle = oracleOptions(plan.settings.oracle);
     c.raster.width = plan.settings.oracle.width;
@@ -110,21 +111,19 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     c.cacheDir = sweepOracleCacheDir(dir);
     c.boundaryRadius = plan.settings.boundaryRadius;
     c.writeReport = false;
-    c.writeImages = plan.settings.keepOutputs;
-    nlohmann::json metrics;
-    const int rc = runCompareCommand(c, &metrics);
-    if (rc != 0) return rc;
+    CompareRun run = compareScene(c);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // The row last, atomically: it is what marks the task done.
-    writeFileAtomically(row, taskRow(plan, t, index, metrics, seconds, imageHash).dump() + "\n");
+    const nlohmann::json taskRowJson = taskRow(plan, t, index, c, run, seconds, imageHash);
     if (plan.settings.keepOutputs) {
+        const int rc = writeCompareOutputs(c, run);
+        if (rc != 0) return rc;
         fs::remove_all(dir / "outputs" / t.id, ec);
         fs::create_directories(dir / "outputs", ec);
         fs::rename(work, dir / "outputs" / t.id, ec);
-    } else {
-        fs::remove_all(work, ec);
     }
+    // The row last, atomically: it is what marks the task done.
+    writeFileAtomically(row, taskRowJson.dump() + "\n");
     std::cout << "task " << index << " (" << t.id << ", " << t.label << " on "
               << plan.scenes[t.scene].name << ") finished in " << seconds << " s\n";
     return 0;

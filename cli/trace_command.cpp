@@ -181,7 +181,8 @@ int runTracePoints(const TraceCommandOptions& options) {
     ProgressBar bar(options.progress);
     OracleOptions oracle = options.oracle;
     oracle.progress = bar.callback();
-    OracleResult result = runOracleAtPoints(scene, gbuffer, oracle);
+    OracleResult result =
+        namingFlag("verify", "--verify", [&] { return runOracleAtPoints(scene, gbuffer, oracle); });
     const OraclePointsStats& points = *result.points;
 
     t0 = Clock::now();
@@ -246,7 +247,8 @@ int runTraceCommand(const TraceCommandOptions& options) {
     const RowBand rows = oracle.rows.value_or(RowBand{0, cam.height});
 
     const std::filesystem::path out = makeOutputDir(options.outDir);
-    OracleResult result = runOracle(scene, oracle);
+    OracleResult result =
+        namingFlag("verify", "--verify", [&] { return runOracle(scene, oracle); });
 
     t0 = Clock::now();
     const std::string exrPath = (out / "oracle.exr").string();

@@ -170,8 +170,8 @@ void checkExrHeader(const std::string& path, const LoadLimits& limits) {
         throwInputError(path, found[0] ? "displayWindow" : "dataWindow", "missing");
     if (!std::equal(box[0], box[0] + 4, box[1]))
         throwInputError(path, "dataWindow",
-                        "differs from the display window (a cropped image or a band of trace "
-                        "--tile); give the whole image");
+                        "differs from the display window (a cropped image or one band of a "
+                        "tiled trace); give the whole image");
     checkWindowSize(path, int64_t(box[0][2]) - int64_t(box[0][0]) + 1,
                     int64_t(box[0][3]) - int64_t(box[0][1]) + 1, limits);
 }
@@ -186,8 +186,8 @@ GBuffer readGBuffer(const std::string& path, const LoadLimits& limits) {
         const Imath::Box2i dw = header.dataWindow(), display = header.displayWindow();
         if (dw != display)
             throwInputError(path, "dataWindow",
-                            "differs from the display window (a cropped image or a band of trace "
-                            "--tile); give the whole image");
+                            "differs from the display window (a cropped image or one band of a "
+                            "tiled trace); give the whole image");
         const int64_t w = int64_t(dw.max.x) - int64_t(dw.min.x) + 1;
         const int64_t h = int64_t(dw.max.y) - int64_t(dw.min.y) + 1;
         checkWindowSize(path, w, h, limits);  // as the header walk read it, now as OpenEXR does

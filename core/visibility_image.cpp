@@ -146,10 +146,11 @@ void checkVisibilityValues(const std::string& path, const std::string& channel,
     }
 }
 
-ImageEncoding parseImageEncoding(const std::string& text, const std::string& field) {
+ImageEncoding parseImageEncoding(const std::string& text, const std::string& file,
+                                 const std::string& field) {
     if (text == "linear") return ImageEncoding::Linear;
     if (text == "srgb") return ImageEncoding::Srgb;
-    throwInputError("command line", field,
+    throwInputError(file, field,
                     "\"" + printable(text, 40) + "\" is not an encoding (linear or srgb)");
 }
 

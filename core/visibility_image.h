@@ -17,8 +17,9 @@ namespace so {
 // How an integer PNG's codes become V: `Linear` V = code / max code; `Srgb` the sRGB transfer
 // function decoded first. An EXR is linear whatever this says.
 enum class ImageEncoding { Linear, Srgb };
-// "linear" or "srgb"; throws InputError naming `field` otherwise.
-ImageEncoding parseImageEncoding(const std::string& text, const std::string& field);
+// "linear" or "srgb"; throws InputError naming `file` and `field` otherwise.
+ImageEncoding parseImageEncoding(const std::string& text, const std::string& file,
+                                 const std::string& field);
 
 // Values this far outside [0, 1] are clamped (a renderer's rounding); farther is an error.
 inline constexpr float kVisibilityTolerance = 1e-3f;

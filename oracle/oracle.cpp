@@ -200,13 +200,13 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
     if (options.verify.pixels <= 0) return nullptr;
     for (size_t m = 0; m < scene.meshes.size(); ++m)
         if (scene.alphaTested(m))
-            throwInputError(scene.path.string(), "--verify",
+            throwInputError(scene.path.string(), "verify",
                             "the exact re-trace does not test alpha masks (mesh " +
-                                scene.meshes[m].name + " is alpha-tested); run without --verify");
+                                scene.meshes[m].name + " is alpha-tested); trace unverified");
     // The reference keeps about 200 bytes per triangle (triangles, nodes, the double vertices):
     // refuse rather than exhaust memory on a huge scene.
     if (scene.stats.triangles > kVerifyMaxTriangles)
-        throwInputError(scene.path.string(), "--verify",
+        throwInputError(scene.path.string(), "verify",
                         "the scene has " + std::to_string(scene.stats.triangles) +
                             " triangles; the exact re-trace handles at most " +
                             std::to_string(kVerifyMaxTriangles));
@@ -349,7 +349,8 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
     const RowBand rows = options.rows.value_or(RowBand{0, camera.height()});
     checkRows(rows, camera.height());
     if (options.rows && options.verify.pixels > 0)
-        throwInputError("command line", "--tile", "cannot be used with --verify");
+        throwInputError("options", "rows",
+                        "a band of rows cannot be verified (verify the whole image)");
 
     auto t0 = Clock::now();
     OracleSetup setup(scene, stats.threads);
@@ -376,9 +377,9 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
 OracleResult runOracleAtPoints(const Scene& scene, const GBuffer& gbuffer,
                                const OracleOptions& options) {
     if (options.width > 0 || options.height > 0)
-        throwInputError("command line", "--width/--height",
-                        "cannot be used with --points (the image is the G-buffer's size)");
-    if (options.rows) throwInputError("command line", "--tile", "cannot be used with --points");
+        throwInputError("options", "width/height",
+                        "must be 0 at a G-buffer's points (the image is the G-buffer's size)");
+    if (options.rows) throwInputError("options", "rows", "must be empty at a G-buffer's points");
     if (options.camera)
         throw std::invalid_argument(
             "runOracleAtPoints: options.camera must be empty (the G-buffer holds the points)");

@@ -82,7 +82,8 @@ std::string staleReason(const CachedOracle& c, const Scene& scene, const OracleO
             return "oracle.exr has no visibility for light " + name;
     }
     if (c.stats.verified() != (options.verify.pixels > 0))
-        return "oracle.json's verification does not match --verify";
+        return options.verify.pixels > 0 ? "oracle.json is not verified, and verification is asked"
+                                         : "oracle.json is verified, and verification is not asked";
     return "";
 }
 

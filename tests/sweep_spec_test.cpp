@@ -19,18 +19,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A made-up technique table: "shadow" with alpha and min in [0, 16] and an integer resolution.
-void validate(const std::string& technique, const std::vector<std::string>& settings) {
+// A made-up technique table: "shadow" with alpha and min in [0, 16], an integer resolution, and
+// a method parameter "filter" (box or tent, 0 or 1).
+ParamNumbers validate(const std::string& technique, const std::vector<std::string>& settings) {
     if (technique != "shadow" && technique != "other")
-        throwInputError("command line", "--technique", "unknown technique \"" + technique + "\"");
+        throwInputError("technique", technique, "unknown technique");
+    ParamNumbers numbers;
     for (const std::string& kv : settings) {
-        const std::string key = kv.substr(0, kv.find('='));
-        const double v = std::stod(kv.substr(kv.find('=') + 1));
+        const std::string key = kv.substr(0, kv.find('=')), text = kv.substr(kv.find('=') + 1);
+        if (key == "filter") {
+            if (text != "box" && text != "tent" && text != "0" && text != "1")
+                throwInputError(technique, key, "\"" + text + "\" is not box or tent");
+            numbers[key] = text == "tent" || text == "1";
+            continue;
+        }
+        const double v = std::stod(text);
         if (key != "alpha" && key != "min" && key != "resolution")
-            throwInputError("command line", technique, "unknown parameter \"" + key + "\"");
+            throwInputError(technique, key, "unknown parameter");
         if (v < 0 || v > (key == "resolution" ? 8192 : 16))
-            throwInputError("command line", technique, key + " out of range");
+            throwInputError(technique, key, key + " out of range");
+        numbers[key] = v;
     }
+    return numbers;
 }
 
 class SweepSpec : public ::testing::Test {
@@ -97,6 +107,22 @@ TEST_F(SweepSpec, GridsExpandWithTheLastParameterFastestAndExactRangeEnds) {
                                         "shadow:resolution=2048", "shadow:resolution=4096"}));
 }
 
+// A parameter that picks a method takes its names (docs/sweep.md), as compare's --technique does:
+// the labels keep the names, the swept values are the methods' numbers, as metrics.json's
+// parameters hold them.
+TEST_F(SweepSpec, MethodsAreSweptByName) {
+    const SweepPlan p = plan(R"([{"name": "shadow", "params": {"filter": ["box", "tent"],
+        "alpha": [1, 2]}}, {"name": "other", "params": {"filter": "tent"}}])",
+                             R"(["scenes/a.scene.json"])");
+    ASSERT_EQ(p.tasks.size(), 5u);
+    EXPECT_EQ(p.tasks[0].label, "shadow:filter=box,alpha=1");
+    EXPECT_EQ(p.tasks[3].label, "shadow:filter=tent,alpha=2");
+    EXPECT_EQ(p.tasks[3].swept,
+              (std::vector<std::pair<std::string, double>>{{"filter", 1.0}, {"alpha", 2.0}}));
+    EXPECT_EQ(p.tasks[4].label, "other:filter=tent");
+    EXPECT_TRUE(p.tasks[4].swept.empty());
+}
+
 TEST_F(SweepSpec, TaskIdsAreStableWhenTheSpecGrows) {
     const SweepPlan small = plan(R"([{"name": "shadow", "params": {"alpha": [1, 2]}}])");
     const SweepPlan grown =
@@ -148,6 +174,12 @@ TEST_F(SweepSpec, MistakesNameTheFileAndTheField) {
          "techniques[0].params.alpha.steps: missing"},
         {spec(R"(, "techniques": [{"name": "shadow", "params": {"alpha": [1, 99]}}])"),
          "techniques[0].params: shadow:alpha=99: alpha out of range"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {"filter": ["box", "cubic"]}}])"),
+         "techniques[0].params: shadow:filter=cubic: \"cubic\" is not box or tent"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {"filter": ["box", 1]}}])"),
+         "techniques[0].params.filter[1]: a list of names holds names only"},
+        {spec(R"(, "techniques": [{"name": "shadow", "params": {"filter": ["Box=1"]}}])"),
+         "techniques[0].params.filter[0]: a method's name is 1 to 64 of a-z 0-9 _ -"},
         {spec(R"(, "techniques": [{"name": "shadow", "params": {"alpha": [1, 1]}}])"),
          "techniques: the setting shadow:alpha=1 is listed twice"},
         {spec(R"(, "techniques": [{"name": "shadow", "params": {
@@ -245,6 +277,8 @@ TEST_F(SweepSpecImages, MistakesNameTheEntryAndTheField) {
         {entry(R"("name": "shadow", )" + path + R"(, "params": {"bias": 1})"),
          "images[0].name: \"shadow\" is a built-in technique"},
         {entry(R"("name": "my:engine", )" + path), "images[0].name: must be 1 to 64 of"},
+        {entry(R"("name": "engine", )" + path + R"(, "params": {"bias": ["low"]})"),
+         "images[0].params.bias[0]: must be a finite number"},
         {entry(R"("name": "engine", "path": "renders/{scene}/bias_{nope}.exr")"),
          "images[0].path: {nope} is neither {scene} nor a parameter"},
         {entry(R"("name": "engine", "path": "renders/{scene/bias.exr")"),

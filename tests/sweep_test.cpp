@@ -206,6 +206,46 @@ TEST(Sweep, ForeignFoldersAndIndicesAreOneLineErrors) {
     EXPECT_NE(log.find("already finished"), std::string::npos) << log;
 }
 
+// keep_outputs: each task's compare folder kept as outputs/<id>/, its metrics.json the row's own
+// numbers; without it, a task writes its row and nothing else (no work/ folder is left).
+TEST(Sweep, KeepsEachTasksCompareFolderWhenAsked) {
+    REQUIRE_GL();
+    const fs::path dir =
+        fs::temp_directory_path() / ("so_sweep_keep_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const bool keep : {true, false}) {
+        const fs::path spec = dir / "spec.json", out = dir / (keep ? "kept" : "dropped");
+        std::ofstream(spec)
+            << R"({"sweep_format": 1, "scenes": [")" << SO_SCENES_DIR
+            << R"(/contact_box.scene.json"], "width": 48, "height": 36,
+            "frames": 1, "keep_outputs": )"
+            << (keep ? "true" : "false")
+            << R"(, "techniques": [{"name": "pcf", "params": {"kernel": [1, 3]}}]})";
+        std::string log;
+        ASSERT_EQ(runCli("sweep " + spec.string() + " --out " + out.string() + " --quiet", &log), 0)
+            << log;
+        const auto merged = mergedResults(out);
+        ASSERT_EQ(merged.size(), 2u);
+        EXPECT_TRUE(!fs::exists(out / "work") || fs::is_empty(out / "work"));
+        EXPECT_EQ(fs::exists(out / "outputs"), keep);
+        if (!keep) continue;
+        for (const auto& [id, result] : merged) {
+            const fs::path kept = out / "outputs" / id;
+            std::ifstream in(kept / "metrics.json");
+            ASSERT_TRUE(in) << kept;
+            const nlohmann::json metrics = nlohmann::json::parse(in);
+            EXPECT_EQ(withoutTimings(metrics["results"][0]["lights"]), result["lights"]) << id;
+            // The row's folder (the label made safe for file names) and its error EXR.
+            const std::string label = result["label"], fileLabel = "pcf_kernel_" + label.substr(11);
+            EXPECT_EQ(label.substr(0, 11), "pcf:kernel=");
+            EXPECT_TRUE(fs::exists(kept / fileLabel / "raster.exr")) << id;
+            EXPECT_TRUE(fs::exists(kept / ("error_" + fileLabel + ".exr"))) << id;
+        }
+    }
+    fs::remove_all(dir);
+}
+
 // The named channels of `from`, shifted `dx` pixels to the right: a renderer's image whose error
 // grows with dx.
 void writeShifted(const fs::path& path, const ChannelImage& from, int dx) {

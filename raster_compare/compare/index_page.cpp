@@ -400,9 +400,9 @@ std::string indexPageHtml(const std::vector<IndexEntry>& entries) {
 void writeIndexPage(const std::string& path, const std::vector<IndexEntry>& entries) {
     const std::string page = indexPageHtml(entries);
     std::ofstream f(path);
-    if (!f) throwInputError(path, "--out", "cannot be written");
+    if (!f) throwInputError(path, "index page", "cannot be written");
     f << page;
-    if (!f) throwInputError(path, "--out", "cannot be written");
+    if (!f) throwInputError(path, "index page", "cannot be written");
 }
 
 }  // namespace so

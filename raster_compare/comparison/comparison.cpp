@@ -338,14 +338,12 @@ nlohmann::json rowJson(const ComparedRow& row) {
             {"lights", lights}};
 }
 
-nlohmann::json metricsJson(const Scene& scene, const std::string& sceneFile,
-                           const CachedOracle& oracle, const Comparison& comparison,
-                           int boundaryRadius) {
+nlohmann::json metricsHeaderJson(const Scene& scene, const std::string& sceneFile,
+                                 const CachedOracle& oracle, const Comparison& comparison,
+                                 int boundaryRadius) {
     nlohmann::json options = {{"boundary_radius_px", boundaryRadius},
                               {"contact_threshold", comparison.metricOptions.contactThreshold}};
     if (comparison.path) options["frames_path"] = comparison.path->frames;
-    nlohmann::json results = nlohmann::json::array();
-    for (const ComparedRow& row : comparison.rows) results.push_back(rowJson(row));
     return {{"schema_version", kMetricsSchemaVersion},
             {"tool", toolJson()},
             {"scene",
@@ -356,8 +354,17 @@ nlohmann::json metricsJson(const Scene& scene, const std::string& sceneFile,
             {"options", options},
             {"oracle",
              {{"cached", oracle.fromCache}, {"key", oracle.key}, {"stats", toJson(oracle.stats)}}},
-            {"gl", comparison.gl ? toJson(*comparison.gl) : nlohmann::json(nullptr)},
-            {"results", results}};
+            {"gl", comparison.gl ? toJson(*comparison.gl) : nlohmann::json(nullptr)}};
+}
+
+nlohmann::json metricsJson(const Scene& scene, const std::string& sceneFile,
+                           const CachedOracle& oracle, const Comparison& comparison,
+                           int boundaryRadius) {
+    nlohmann::json metrics =
+        metricsHeaderJson(scene, sceneFile, oracle, comparison, boundaryRadius);
+    nlohmann::json& results = metrics["results"] = nlohmann::json::array();
+    for (const ComparedRow& row : comparison.rows) results.push_back(rowJson(row));
+    return metrics;
 }
 
 }  // namespace so

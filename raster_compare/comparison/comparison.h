@@ -111,6 +111,10 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
 
 // metrics.json's entry of a row in "results" (docs/metrics.md).
 nlohmann::json rowJson(const ComparedRow& row);
+// metrics.json but its "results": what made the rows (tool, scene, options, oracle, gl).
+nlohmann::json metricsHeaderJson(const Scene& scene, const std::string& sceneFile,
+                                 const CachedOracle& oracle, const Comparison& comparison,
+                                 int boundaryRadius);
 // metrics.json as a whole; `sceneFile` as the user named it.
 nlohmann::json metricsJson(const Scene& scene, const std::string& sceneFile,
                            const CachedOracle& oracle, const Comparison& comparison,

@@ -43,8 +43,7 @@ const TechniqueInfo& findTechnique(const std::string& name) {
     if (it != registry().end()) return it->second;
     std::string valid;
     for (const TechniqueInfo* t : allTechniques()) valid += (valid.empty() ? "" : ", ") + t->name;
-    throwInputError("command line", "--technique",
-                    "unknown technique \"" + printable(name, 40) + "\" (valid: " + valid + ")");
+    throwInputError("technique", printable(name, 40), "unknown technique (valid: " + valid + ")");
 }
 
 std::unique_ptr<Technique> createTechnique(const std::string& name,

@@ -38,6 +38,7 @@ struct Param {
     const char* name;
     double min, max;
     bool integer;
+    std::vector<std::string> names = {};  // a method parameter's: value k is names[k]
 };
 struct Technique {
     const char* name;
@@ -49,7 +50,10 @@ const std::vector<Technique>& techniques() {
         {"basic", {{"resolution", 256, 8192, true}}},
         {"slope-bias",
          {{"alpha", 0, 16, false}, {"min", 0, 16, false}, {"resolution", 256, 8192, true}}},
-        {"pcf", {{"kernel", 1, 15, true}, {"resolution", 256, 8192, true}}},
+        {"pcf",
+         {{"kernel", 1, 15, true},
+          {"resolution", 256, 8192, true},
+          {"pattern", 0, 1, true, {"grid", "poisson"}}}},
     };
     return table;
 }
@@ -60,12 +64,13 @@ const std::vector<Technique>& techniques() {
 }
 
 // The stand-in for createTechnique: the same checks as parseParams (raster_compare/gl/params.cpp).
-void validate(const std::string& name, const std::vector<std::string>& settings) {
+so::ParamNumbers validate(const std::string& name, const std::vector<std::string>& settings) {
     const Technique* t = nullptr;
     for (const Technique& c : techniques())
         if (name == c.name) t = &c;
     if (!t) so::throwInputError("technique", so::printable(name, 40), "unknown technique");
     const std::string file = "technique " + name;
+    so::ParamNumbers numbers;
     for (const std::string& setting : settings) {
         const size_t eq = setting.find('=');
         if (eq == std::string::npos || eq == 0)
@@ -75,13 +80,20 @@ void validate(const std::string& name, const std::vector<std::string>& settings)
         for (const Param& c : t->params)
             if (key == c.name) p = &c;
         if (!p) so::throwInputError(file, so::printable(key, 40), "unknown parameter");
+        const auto named = std::find(p->names.begin(), p->names.end(), text);
+        if (named != p->names.end()) {
+            numbers[key] = double(named - p->names.begin());
+            continue;
+        }
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
         if (text.empty() || *end != '\0' || !std::isfinite(v))
             so::throwInputError(file, key, "\"" + so::printable(text, 40) + "\" is not a number");
         if (p->integer && v != std::floor(v)) so::throwInputError(file, key, "must be an integer");
         if (!(v >= p->min && v <= p->max)) so::throwInputError(file, key, "out of range");
+        numbers[key] = v;
     }
+    return numbers;
 }
 
 // The spec's folder, made once per process: empty scene files for the globs and paths to find.
@@ -178,12 +190,17 @@ void checkPlan(const so::SweepPlan& plan) {
         for (size_t k = 0; k < t.settings.size(); ++k) label += (k ? "," : ":") + t.settings[k];
         if (t.label != label || t.label.rfind(t.technique, 0) != 0)
             finding("task " + t.id + ": label " + so::printable(t.label) + " is not its settings");
+        // A technique's settings as the stand-in reads them: a method's name as its number.
+        const so::ParamNumbers numbers =
+            t.image.empty() ? validate(t.technique, t.settings) : so::ParamNumbers{};
         for (const auto& [key, v] : t.swept) {
             if (!std::isfinite(v)) finding("task " + t.id + ": swept value not finite");
             bool inSettings = false;
             for (const std::string& s : t.settings)
                 if (s.size() > key.size() && s[key.size()] == '=' && s.rfind(key, 0) == 0)
-                    inSettings = std::strtod(s.c_str() + key.size() + 1, nullptr) == v;
+                    inSettings =
+                        (t.image.empty() ? numbers.at(key)
+                                         : std::strtod(s.c_str() + key.size() + 1, nullptr)) == v;
             if (!inSettings) finding("task " + t.id + ": swept " + key + " not in its settings");
             // The spec is valid here: every lookup in valuesInSpec finds what it looks for.
             const char* list = t.image.empty() ? "techniques" : "images";

@@ -177,7 +177,7 @@ BASELINE_NEW = (b'{"schema_version": 5, "scene": {"file": "scenes/p.scene.json"}
 
 
 # sweep: specs over the harness's stand-in techniques (fuzz_sweep.cpp): basic (resolution),
-# slope-bias (alpha, min, resolution), pcf (kernel, resolution).
+# slope-bias (alpha, min, resolution), pcf (kernel, resolution, pattern: grid or poisson).
 SWEEP_SEEDS = {
     "minimal.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
                      "techniques": [{"name": "basic"}]},
@@ -213,6 +213,13 @@ SWEEP_SEEDS = {
                         "techniques": [{"name": "slope-bias", "params": {
                             "alpha": {"from": 0, "to": 16, "steps": 50},
                             "min": {"from": 0.01, "to": 16, "steps": 20, "log": True}}}]},
+    "names.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
+                   "techniques": [{"name": "pcf", "params": {"pattern": ["grid", "poisson"],
+                                                             "kernel": [1, 3]}},
+                                  {"name": "pcf", "params": {"pattern": "poisson"}}]},
+    "bad-unknown-name.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
+                              "techniques": [{"name": "pcf",
+                                              "params": {"pattern": ["grid", "spiral"]}}]},
     "bad-unknown-param.json": {"sweep_format": 1, "scenes": ["a.scene.json"],
                                "techniques": [{"name": "pcf", "params": {"alpha": 1}}]},
     "bad-out-of-range.json": {"sweep_format": 1, "scenes": ["b.scene.json"],
