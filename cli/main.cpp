@@ -22,6 +22,7 @@
 #include "cli/view_command.h"
 #include "core/error.h"
 #include "core/version.h"
+#include "oracle/exact_penumbra.h"
 #include "raster_compare/gl/gl_context.h"
 #include "raster_compare/gl/technique.h"
 
@@ -42,6 +43,30 @@ using Runner = std::function<int()>;
 static void addQuiet(CLI::App* cmd, bool& progress) {
     cmd->add_flag_callback(
         "--quiet", [&progress] { progress = false; }, "no progress output");
+}
+
+// --penumbra and --exact-pixels (docs/oracle.md, "Exact penumbrae"): names, read when the
+// command runs so that a bad one is the tool's one-line error.
+struct PenumbraFlags {
+    std::string method = "sampled", pixels = "penumbra";
+    void applyTo(so::OracleOptions& o) const {
+        o.penumbra.method = so::parsePenumbraMethod(method, "command line", "--penumbra");
+        if (pixels != "penumbra" && pixels != "all")
+            so::throwInputError("command line", "--exact-pixels",
+                                "\"" + so::printable(pixels, 40) + "\" is not penumbra or all");
+        o.penumbra.allPixels = pixels == "all";
+    }
+};
+static std::shared_ptr<PenumbraFlags> addPenumbraFlags(CLI::App* cmd) {
+    auto flags = std::make_shared<PenumbraFlags>();
+    cmd->add_option("--penumbra", flags->method,
+                    "rect lights: sampled (RQMC with 95% intervals, default), exact (clipped "
+                    "polygons where the samples disagree; stderr 0 there) or both (V sampled, "
+                    "V_exact beside it); disk and sphere lights are always sampled");
+    cmd->add_option("--exact-pixels", flags->pixels,
+                    "with --penumbra exact or both: penumbra (pixels whose samples disagree, "
+                    "default) or all (every sampled pixel)");
+    return flags;
 }
 
 static Runner addTrace(CLI::App& app) {
@@ -96,8 +121,12 @@ static Runner addTrace(CLI::App& app) {
         "GBUFFER.exr: the oracle at a renderer's own surface points (P, N, A), one "
         "result per pixel of that image (docs/external.md); not with --tile, "
         "--width, --height");
+    const std::shared_ptr<PenumbraFlags> penumbra = addPenumbraFlags(traceCmd);
 
-    return [o] { return so::runTraceCommand(*o); };
+    return [o, penumbra] {
+        penumbra->applyTo(o->oracle);
+        return so::runTraceCommand(*o);
+    };
 }
 
 static Runner addTraceMerge(CLI::App& app) {
@@ -207,8 +236,10 @@ static Runner addCompare(CLI::App& app) {
                      "also render N frames along the scene's camera_path (oracle and every "
                      "technique) for temporal_flicker_rate (docs/metrics.md)")
         ->check(CLI::Range(2, 10000));
+    const std::shared_ptr<PenumbraFlags> penumbra = addPenumbraFlags(compareCmd);
 
-    return [o, noCache, encoding, images] {
+    return [o, noCache, encoding, images, penumbra] {
+        penumbra->applyTo(o->oracle);
         o->useCache = !*noCache;
         for (const std::string& text : *images) o->images.push_back(so::parseImageSpec(text));
         o->imageEncoding = so::parseImageEncoding(*encoding, "command line", "--image-encoding");

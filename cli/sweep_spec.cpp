@@ -12,6 +12,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/hash.h"
@@ -57,7 +58,10 @@ int integer(const Json& v, const std::string& file, const std::string& field, in
 
 // The spec's oracle block (the same meaning and ranges as compare's options).
 void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& oracle) {
-    checkKeys(o, {"seed", "target_error", "agreement_target", "max_spp", "spp"}, file, "oracle");
+    checkKeys(
+        o,
+        {"seed", "target_error", "agreement_target", "max_spp", "spp", "penumbra", "exact_pixels"},
+        file, "oracle");
     if (o.contains("seed"))
         oracle.seed = uint32_t(integer(o["seed"], file, "oracle.seed", 0, INT32_MAX));
     for (const auto& [key, target] : {std::pair{"target_error", &oracle.targetError},
@@ -71,6 +75,20 @@ void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& or
     if (o.contains("max_spp"))
         oracle.maxSpp = integer(o["max_spp"], file, "oracle.max_spp", 16, 1 << 20);
     if (o.contains("spp")) oracle.fixedSpp = integer(o["spp"], file, "oracle.spp", 1, 1 << 20);
+    // Names as trace --penumbra and --exact-pixels take them.
+    using Names = std::vector<std::string>;
+    for (const auto& [key, target, allowed] :
+         {std::tuple{"penumbra", &oracle.penumbra, Names{"sampled", "exact", "both"}},
+          std::tuple{"exact_pixels", &oracle.exactPixels, Names{"penumbra", "all"}}}) {
+        if (!o.contains(key)) continue;
+        const std::string field = std::string("oracle.") + key;
+        if (!o[key].is_string() ||
+            std::find(allowed.begin(), allowed.end(), o[key].get<std::string>()) == allowed.end())
+            throwInputError(file, field,
+                            "must be " + allowed.front() + (allowed.size() > 2 ? ", " : " or ") +
+                                allowed[1] + (allowed.size() > 2 ? " or " + allowed[2] : ""));
+        *target = o[key].get<std::string>();
+    }
 }
 
 SweepSettings parseSettings(const Json& spec, const std::string& file) {

@@ -48,6 +48,8 @@ struct SweepOracleSettings {
     std::optional<uint32_t> seed;
     std::optional<double> targetError, agreementTarget;
     std::optional<int> maxSpp, fixedSpp;
+    // "sampled", "exact" or "both"; "penumbra" or "all" (trace --penumbra, --exact-pixels).
+    std::optional<std::string> penumbra, exactPixels;
 };
 
 // What every task of the sweep shares.

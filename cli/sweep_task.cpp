@@ -27,6 +27,9 @@ OracleOptions oracleOptions(const SweepOracleSettings& s) {
     if (s.agreementTarget) o.area.agreementTarget = *s.agreementTarget;
     if (s.maxSpp) o.area.maxSpp = *s.maxSpp;
     if (s.fixedSpp) o.area.fixedSpp = *s.fixedSpp;
+    if (s.penumbra)
+        o.penumbra.method = parsePenumbraMethod(*s.penumbra, "sweep.json", "oracle.penumbra");
+    o.penumbra.allPixels = s.exactPixels == "all";
     return o;
 }
 

@@ -34,7 +34,11 @@ inline constexpr const char* kStdErr = "stderr";  // sampled area lights
 // A sampled pixel's 95% interval is V +- kStdErrQuantile95 * stderr, clamped to [0, 1]: the
 // Student-t quantile for the 7 degrees of freedom of the oracle's 8 replicas (docs/oracle.md).
 inline constexpr double kStdErrQuantile95 = 2.3646242515927849;
-inline constexpr const char* kSpp = "spp";                  // sampled area lights
+inline constexpr const char* kSpp = "spp";  // sampled area lights
+// --penumbra exact or both (docs/exr-channels.md): 1 where the exact pass gave V, else 0; and with
+// both, the exact V beside the sampled one (the sampled V where the exact pass did not apply).
+inline constexpr const char* kExact = "exact";
+inline constexpr const char* kVisibilityExact = "V_exact";
 inline constexpr const char* kUnconverged = "unconverged";  // adaptive: budget spent, target missed
 inline constexpr const char* kOccluderDistance = "occ_dist";        // the contact effect
 inline constexpr const char* kPredictedAliasing = "aliasing_pred";  // raster.exr only

@@ -12,11 +12,15 @@
 // queries are const and thread-safe.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 namespace so {
@@ -93,6 +97,18 @@ class ExactTracer {
     SegmentQuery segment(const glm::dvec3& o, const glm::dvec3& d, double tMax, TriangleId skip,
                          double tolAbs, double tolPerT) const;
 
+    // A convex region as the intersection of half-spaces {x : dot(normal, x) <= offset}.
+    struct HalfSpace {
+        glm::dvec3 normal;
+        double offset;
+    };
+    // Calls visit(v0, v1, v2, id) for every triangle that may meet the region, in BVH order:
+    // conservative (a node or triangle is left out only when it lies wholly outside one half-space
+    // by more than rounding), so the caller clips exactly. visit returns false to stop. Returns
+    // false when stopped.
+    template <class Visit>
+    bool forEachTriangleIn(const std::vector<HalfSpace>& region, Visit&& visit) const;
+
   private:
     struct Tri {
         glm::dvec3 v0, v1, v2;
@@ -122,6 +138,54 @@ class ExactTracer {
     std::vector<Node> nodes_;
     double sceneMaxAbs_ = 0;  // the largest |coordinate| of any vertex
 };
+
+template <class Visit>
+bool ExactTracer::forEachTriangleIn(const std::vector<HalfSpace>& region, Visit&& visit) const {
+    if (nodes_.empty()) return true;
+    // Outside a half-space by more than rounding: the smallest dot(normal, x) over the points is
+    // above the offset, with a relative margin far above double's error on these magnitudes.
+    const auto outside = [&](const HalfSpace& h, double lowest) {
+        const double scale =
+            std::abs(h.offset) +
+            (std::abs(h.normal.x) + std::abs(h.normal.y) + std::abs(h.normal.z)) * sceneMaxAbs_;
+        return lowest > h.offset + 1e-9 * scale;
+    };
+    const auto boxOutside = [&](const Node& node) {
+        for (const HalfSpace& h : region) {
+            double lowest = 0.0;
+            for (int k = 0; k < 3; ++k)
+                lowest += h.normal[k] * (h.normal[k] > 0.0 ? node.lo[k] : node.hi[k]);
+            if (outside(h, lowest)) return true;
+        }
+        return false;
+    };
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[stack[--top]];
+        if (boxOutside(node)) continue;
+        if (node.count == 0) {
+            const uint32_t self = uint32_t(&node - nodes_.data());
+            if (top + 2 > 128) throw std::logic_error("ExactTracer: BVH deeper than its stack");
+            stack[top++] = node.index;
+            stack[top++] = self + 1;
+            continue;
+        }
+        for (uint32_t i = node.index; i < node.index + node.count; ++i) {
+            const Tri& t = tris_[i];
+            bool cut = false;
+            for (const HalfSpace& h : region)
+                if (outside(h, std::min({glm::dot(h.normal, t.v0), glm::dot(h.normal, t.v1),
+                                         glm::dot(h.normal, t.v2)}))) {
+                    cut = true;
+                    break;
+                }
+            if (!cut && !visit(t.v0, t.v1, t.v2, t.id)) return false;
+        }
+    }
+    return true;
+}
 
 // The building blocks, exposed so that tests can check them and the BVH against brute force.
 namespace exact {

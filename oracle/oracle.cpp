@@ -21,6 +21,8 @@
 #include "core/progress.h"
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
+#include "oracle/exact_penumbra.h"
+#include "oracle/exact_scene.h"
 #include "oracle/hard_shadow.h"
 #include "oracle/points.h"
 #include "oracle/primary_image.h"
@@ -65,6 +67,8 @@ struct LightPass {
     ChannelImage& image;
     uint64_t pixels;
     bool penumbra, contact;
+    // The exact penumbra pass's scene (--penumbra exact or both, rect lights); null otherwise.
+    const ExactScene* exact;
 };
 
 // An area light with "penumbra": sampled, with V, stderr, spp and cos.
@@ -118,6 +122,42 @@ OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     return s;
 }
 
+// Why the exact pass does not apply to a light, or "" where it does.
+std::string exactNotApplied(const LightPass& p, const Light& light) {
+    if (light.type != LightType::Rect)
+        return std::string(lightTypeName(light.type)) + " light (not a polygon)";
+    if (!p.exact) return "alpha-tested meshes (the exact pass does not test alpha masks)";
+    return "";
+}
+
+// --penumbra exact or both, after the sampled pass: NAME.exact (and NAME.V_exact with both), V
+// and stderr replaced with exact where it applies.
+ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V) {
+    namespace ch = channels;
+    const Light& light = p.scene.lights[li];
+    const ExactPenumbraOptions& options = p.options.penumbra;
+    ExactPenumbraPlanes planes;
+    planes.V = V;
+    planes.stderr_ = p.image.channel(ch::lightChannel(light.name, ch::kStdErr));
+    planes.spp = p.image.channel(ch::lightChannel(light.name, ch::kSpp));
+    planes.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
+    if (options.method == PenumbraMethod::Both) {
+        planes.Vexact = p.image.addChannel(ch::lightChannel(light.name, ch::kVisibilityExact));
+        std::copy(V, V + p.pixels, planes.Vexact);
+    }
+    ExactPenumbraStats st;
+    st.method = options.method;
+    st.allPixels = options.allPixels;
+    st.notApplied = exactNotApplied(p, light);
+    if (!st.notApplied.empty()) return st;  // the mask stays 0: every pixel sampled
+    Progress progress("exact penumbra " + light.name, p.sb.slotCount(), p.options.progress);
+    p.arena.execute([&] {
+        st = exactPenumbraPass(*p.exact, p.sb, makeAreaLight(light, p.accel.frame()), options,
+                               planes, &progress);
+    });
+    return st;
+}
+
 // One shadow ray per pixel to a point: hard lights, area lights without "penumbra" (to the
 // centre), and the contact rays of sampled area lights (to the centre; then only occDist is kept).
 OracleHardStats traceHardLight(const LightPass& p, uint32_t li, bool sampled, float* V,
@@ -165,6 +205,8 @@ OracleLightStats traceLight(const LightPass& p, uint32_t li) {
     Progress progress("shadow rays " + light.name, p.pixels, p.options.progress);
     if (sampled) {
         l.area = traceSampledLight(p, li, V, cosine, progress);
+        if (p.options.penumbra.method != PenumbraMethod::Sampled)
+            l.area->exact = traceExactPenumbra(p, li, V);
         l.method = p.options.area.fixedSpp > 0 ? "sampled (penumbra), fixed spp"
                                                : "sampled (penumbra), adaptive";
     } else {
@@ -219,6 +261,19 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
     v.wsToleranceAbs = frame.wsLength(Verifier::kTolAbs);
     v.tolerancePerUnitDistance = Verifier::kTolPerT;
     return verifier;
+}
+
+// The exact penumbra pass's scene: with --penumbra exact or both, a rect light and "penumbra";
+// none on a scene with alpha-tested meshes (their lights keep the sampled V, and say why).
+std::unique_ptr<ExactScene> makeExactScene(const Scene& scene, const OracleOptions& options,
+                                           const LocalFrame& frame) {
+    if (options.penumbra.method == PenumbraMethod::Sampled || !scene.hasEffect("penumbra"))
+        return nullptr;
+    const bool rect = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                  [](const Light& l) { return l.type == LightType::Rect; });
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+        if (scene.alphaTested(m)) return nullptr;
+    return rect ? std::make_unique<ExactScene>(scene, frame) : nullptr;
 }
 
 // Every light in scene order, each verified right after it is traced (with --verify).
@@ -318,6 +373,7 @@ void traceShadowPasses(const Scene& scene, const OracleOptions& options, OracleS
     OracleStats& stats = result.stats;
     const std::unique_ptr<Verifier> verifier =
         makeVerifier(scene, options, setup.accel.frame(), camera, stats);
+    const std::unique_ptr<ExactScene> exact = makeExactScene(scene, options, setup.accel.frame());
     const LightPass pass{scene,
                          options,
                          setup.accel,
@@ -326,7 +382,8 @@ void traceShadowPasses(const Scene& scene, const OracleOptions& options, OracleS
                          result.image,
                          result.image.pixelCount(),
                          scene.hasEffect("penumbra"),
-                         scene.hasEffect("contact")};
+                         scene.hasEffect("contact"),
+                         exact.get()};
     traceLights(pass, verifier.get(), stats);
     describeSetup(scene, options, setup.accel, sb, stats);
     // Embree reports errors from its queries only through the device: one here (none is expected

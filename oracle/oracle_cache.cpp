@@ -28,13 +28,20 @@ fs::path defaultOracleCacheDir() {
 }
 
 nlohmann::json oracleSamplingJson(const OracleOptions& o, const CameraDesc& cam) {
-    return {{"width", cam.width},
-            {"height", cam.height},
-            {"seed", o.area.seed},
-            {"spp", o.area.fixedSpp},
-            {"target_error", o.area.targetError},
-            {"agreement_target", o.area.agreementTarget},
-            {"max_spp", o.area.maxSpp}};
+    nlohmann::json j = {{"width", cam.width},
+                        {"height", cam.height},
+                        {"seed", o.area.seed},
+                        {"spp", o.area.fixedSpp},
+                        {"target_error", o.area.targetError},
+                        {"agreement_target", o.area.agreementTarget},
+                        {"max_spp", o.area.maxSpp}};
+    // Only when asked, so that sampled runs keep the keys they had.
+    if (o.penumbra.method != PenumbraMethod::Sampled) {
+        j["penumbra"] = penumbraMethodName(o.penumbra.method);
+        j["exact_pixels"] = o.penumbra.allPixels ? "all" : "penumbra";
+        j["exact_max_occluders"] = o.penumbra.maxOccluders;
+    }
+    return j;
 }
 
 // The oracle's result is a function of the scene's content, the options that change it and the

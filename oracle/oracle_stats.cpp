@@ -128,6 +128,37 @@ json costCurveJson(const OracleAreaStats& s) {
     return curve;
 }
 
+json exactPenumbraJson(const ExactPenumbraStats& e) {
+    json histogram = json::array();
+    for (uint64_t c : e.occluders) histogram.push_back(c);
+    const auto mean = [&](double total) {
+        return e.pixelsExact ? json(total / double(e.pixelsExact)) : json(nullptr);
+    };
+    json j = {{"method", penumbraMethodName(e.method)},
+              {"pixels", e.allPixels ? "all" : "penumbra"},
+              {"not_applied", e.notApplied.empty() ? json(nullptr) : json(e.notApplied)},
+              {"pixels_exact", e.pixelsExact},
+              {"pixels_kept_sampled", {{"too_many_occluders", e.pixelsTooManyOccluders}}},
+              {"occluders",
+               {{"mean", mean(double(e.occludersTotal))},
+                {"p99_at_most", occluderQuantileBound(e.occluders, 0.99)},
+                {"max", e.occludersMax},
+                {"total", e.occludersTotal},
+                {"histogram_log2", histogram}}},
+              {"candidates_total", e.candidatesTotal},
+              {"seconds", e.seconds}};
+    if (e.method == PenumbraMethod::Both)
+        j["disagreement"] = {
+            {"outside_interval", e.outsideInterval},
+            {"share_outside_interval", e.pixelsExact
+                                           ? json(double(e.outsideInterval) / double(e.pixelsExact))
+                                           : json(nullptr)},
+            {"max_abs", e.maxAbsDifference},
+            {"sum_abs", e.sumAbsDifference},
+            {"mean_abs", mean(e.sumAbsDifference)}};
+    return j;
+}
+
 json areaJson(const OracleAreaStats& s) {
     return {{"sampling", s.sampling},
             {"rays_traced", s.raysTraced},
@@ -160,6 +191,7 @@ json areaJson(const OracleAreaStats& s) {
               {"note", kUniformNote}}},
             {"sampling_efficiency", s.samplingEfficiency},
             {"cost_curve", costCurveJson(s)},
+            {"exact_penumbra", s.exact ? exactPenumbraJson(*s.exact) : json(nullptr)},
             {"seconds", s.seconds},
             {"rays_per_second", s.raysPerSecond()}};
 }
@@ -280,6 +312,18 @@ class Fields {
     }
 
     bool has(const char* key) const { return j_.contains(key); }
+    bool isNull(const char* key) const { return at(key).is_null(); }
+    // An array of numbers.
+    std::vector<double> numbers(const char* key) const {
+        const json& v = at(key);
+        if (!v.is_array()) fail(name(key), "must be an array of numbers");
+        std::vector<double> out;
+        for (const json& e : v) {
+            if (!e.is_number()) fail(name(key), "must be an array of numbers");
+            out.push_back(e.get<double>());
+        }
+        return out;
+    }
     Fields object(const char* key) const { return Fields(at(key), file_, name(key)); }
     // The elements of an array, each checked to be an object.
     std::vector<Fields> objects(const char* key) const {
@@ -383,6 +427,40 @@ OracleHardStats readHard(const Fields& f) {
     return s;
 }
 
+ExactPenumbraStats readExactPenumbra(const Fields& f) {
+    ExactPenumbraStats e;
+    e.method = parsePenumbraMethod(f.str("method"), "oracle.json", f.name("method"));
+    if (e.method == PenumbraMethod::Sampled) f.fail(f.name("method"), "must be exact or both");
+    const std::string pixels = f.str("pixels");
+    if (pixels != "all" && pixels != "penumbra")
+        f.fail(f.name("pixels"), "must be all or penumbra");
+    e.allPixels = pixels == "all";
+    if (!f.isNull("not_applied")) e.notApplied = f.str("not_applied");
+    e.pixelsExact = f.u64("pixels_exact");
+    e.pixelsTooManyOccluders = f.object("pixels_kept_sampled").u64("too_many_occluders");
+    const Fields occ = f.object("occluders");
+    e.occludersMax = occ.u64("max");
+    e.occludersTotal = occ.u64("total");
+    const std::vector<double> histogram = occ.numbers("histogram_log2");
+    if (histogram.size() != e.occluders.size())
+        occ.fail(occ.name("histogram_log2"),
+                 "must hold " + std::to_string(e.occluders.size()) + " counts");
+    for (size_t k = 0; k < histogram.size(); ++k) {
+        if (!(histogram[k] >= 0) || histogram[k] != std::floor(histogram[k]))
+            occ.fail(occ.name("histogram_log2"), "must hold non-negative integers");
+        e.occluders[k] = uint64_t(histogram[k]);
+    }
+    e.candidatesTotal = f.u64("candidates_total");
+    e.seconds = f.number("seconds");
+    if (e.method == PenumbraMethod::Both) {
+        const Fields d = f.object("disagreement");
+        e.outsideInterval = d.u64("outside_interval");
+        e.maxAbsDifference = d.number("max_abs");
+        e.sumAbsDifference = d.number("sum_abs");
+    }
+    return e;
+}
+
 OracleAreaStats readArea(const Fields& f) {
     OracleAreaStats s;
     s.sampling = f.str("sampling");
@@ -414,6 +492,8 @@ OracleAreaStats readArea(const Fields& f) {
     for (const Fields& p : f.objects("cost_curve"))
         s.costCurve.push_back({p.i32("packets"), p.u64("samples"), p.number("mean_half_width"),
                                p.optionalNumber("penumbra_mean_half_width")});
+    if (f.has("exact_penumbra") && !f.isNull("exact_penumbra"))
+        s.exact = readExactPenumbra(f.object("exact_penumbra"));
     s.seconds = f.number("seconds");
     return s;
 }
@@ -617,6 +697,29 @@ std::vector<CostPoint> mergeCurves(const std::vector<const OracleAreaStats*>& ba
     return curve;
 }
 
+// The bands' exact passes: the counts add up; the sum of |V_exact - V| too (the bands' pixels
+// are disjoint), so the merged means are the whole run's.
+ExactPenumbraStats mergeExact(const std::vector<const OracleAreaStats*>& bands) {
+    ExactPenumbraStats total;
+    total.method = bands.front()->exact->method;
+    total.allPixels = bands.front()->exact->allPixels;
+    total.notApplied = bands.front()->exact->notApplied;
+    for (const OracleAreaStats* b : bands) {
+        const ExactPenumbraStats& e = *b->exact;
+        total.pixelsExact += e.pixelsExact;
+        total.pixelsTooManyOccluders += e.pixelsTooManyOccluders;
+        total.occludersTotal += e.occludersTotal;
+        total.occludersMax = std::max(total.occludersMax, e.occludersMax);
+        for (size_t k = 0; k < total.occluders.size(); ++k) total.occluders[k] += e.occluders[k];
+        total.candidatesTotal += e.candidatesTotal;
+        total.outsideInterval += e.outsideInterval;
+        total.maxAbsDifference = std::max(total.maxAbsDifference, e.maxAbsDifference);
+        total.sumAbsDifference += e.sumAbsDifference;
+        total.seconds += e.seconds;
+    }
+    return total;
+}
+
 OracleAreaStats mergeArea(const std::vector<const OracleAreaStats*>& bands,
                           const std::vector<uint64_t>& penumbraPixels) {
     OracleAreaStats total;
@@ -636,6 +739,9 @@ OracleAreaStats mergeArea(const std::vector<const OracleAreaStats*>& bands,
         total.samplingEfficiency = efficiency / double(total.pixelsSampled);
         total.costCurve = mergeCurves(bands, penumbraPixels, total.pixelsSampled);
     }
+    if (std::all_of(bands.begin(), bands.end(),
+                    [](const OracleAreaStats* b) { return b->exact.has_value(); }))
+        total.exact = mergeExact(bands);
     return total;
 }
 

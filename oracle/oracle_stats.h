@@ -14,6 +14,7 @@
 
 #include "core/scene.h"
 #include "oracle/area_shadow.h"
+#include "oracle/exact_penumbra.h"
 #include "oracle/verify.h"
 
 namespace so {
@@ -55,6 +56,8 @@ struct OracleAreaStats {
     double seconds = 0.0;
     // What accuracy cost as the run went (area_shadow.h CostPoint); seconds are pro rata.
     std::vector<CostPoint> costCurve;
+    // With --penumbra exact or both: the exact pass (oracle.json "exact_penumbra").
+    std::optional<ExactPenumbraStats> exact;
 
     uint64_t samplesWithoutRay() const { return samples - raysTraced; }
     // Adaptive runs: the seconds a run with `target` would take. The agreeing pixels' share of the

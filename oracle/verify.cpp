@@ -39,23 +39,6 @@ double normalQuantileTwoSided(double alpha) {
     return 0.5 * (lo + hi);
 }
 
-std::vector<std::vector<glm::dvec3>> toLocal(const Scene& scene, const LocalFrame& frame) {
-    std::vector<std::vector<glm::dvec3>> out(scene.meshes.size());
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-        out[m].reserve(scene.meshes[m].wsPositions.size());
-        for (const glm::dvec3& ws : scene.meshes[m].wsPositions)
-            out[m].push_back(frame.lsFromWs(ws));
-    }
-    return out;
-}
-
-std::vector<ExactTracer::MeshView> views(const std::vector<std::vector<glm::dvec3>>& ls,
-                                         const Scene& scene) {
-    std::vector<ExactTracer::MeshView> v;
-    for (size_t m = 0; m < ls.size(); ++m) v.push_back({&ls[m], &scene.meshes[m].indices});
-    return v;
-}
-
 // The light seen from p as the hard-shadow pass sees it (area lights: a point at the centre).
 struct HardTarget {
     glm::dvec3 dir{0.0};
@@ -73,14 +56,11 @@ struct Verifier::PixelRef {
 
 Verifier::Verifier(const Scene& scene, const LocalFrame& frame, const Camera* camera,
                    const VerifyOptions& options, uint32_t seed)
-    : lsPositions_(toLocal(scene, frame)),
-      tracer_(views(lsPositions_, scene)),
+    : exact_(scene, frame),
       frame_(frame),
       camera_(camera ? std::optional<Camera>(*camera) : std::nullopt),
       options_(options),
-      seed_(seed) {
-    for (const MeshPrimitive& m : scene.meshes) indices_.push_back(&m.indices);
-}
+      seed_(seed) {}
 
 std::vector<size_t> Verifier::choosePixels(const Light& light, uint32_t lightIndex,
                                            const SurfaceBuffer& sb, uint64_t& random,
@@ -126,14 +106,8 @@ Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_
         // own double vertices, the normal oriented as the oracle's (which agrees with the
         // G-buffer's N).
         const TriangleId id{sb.meshId[slot], sb.primId[slot]};
-        const std::vector<glm::dvec3>& P = lsPositions_[id.mesh];
-        const std::vector<uint32_t>& I = *indices_[id.mesh];
-        const glm::dvec3 a = P[I[3 * id.prim]], b = P[I[3 * id.prim + 1]],
-                         c = P[I[3 * id.prim + 2]];
-        const double u = sb.baryU[slot], v = sb.baryV[slot];
-        ref.p = (1.0 - u - v) * a + u * b + v * c;
-        ref.n = glm::normalize(glm::cross(b - a, c - a));
-        if (glm::dot(ref.n, glm::dvec3(sb.lsNormal(slot))) < 0.0) ref.n = -ref.n;
+        ref.p = exact_.point(id, sb.baryU[slot], sb.baryV[slot]);
+        ref.n = exact_.normal(id, glm::dvec3(sb.lsNormal(slot)));
         ref.id = id;
         ref.lsPointGap = glm::length(glm::dvec3(sb.lsPoint(slot)) - ref.p);
         return Verdict::Agree;
@@ -141,16 +115,11 @@ Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_
     SO_CHECK(sb.lsEye.has_value());
     const glm::dvec3 lsEye = *sb.lsEye;
     const glm::dvec3 dir = camera_->generateRay(x, y).direction;
-    const ExactTracer::Hit h = tracer_.closestHit(lsEye, dir, 0.0, kInf);
+    const ExactTracer::Hit h = exact_.tracer().closestHit(lsEye, dir, 0.0, kInf);
     const TriangleId oracleId{sb.meshId[slot], sb.primId[slot]};
     if (h.found && sb.hit[slot] && h.id == oracleId) {
-        const std::vector<glm::dvec3>& P = lsPositions_[h.id.mesh];
-        const std::vector<uint32_t>& I = *indices_[h.id.mesh];
-        const glm::dvec3 a = P[I[3 * h.id.prim]], b = P[I[3 * h.id.prim + 1]],
-                         c = P[I[3 * h.id.prim + 2]];
-        ref.p = (1.0 - h.b1 - h.b2) * a + h.b1 * b + h.b2 * c;
-        ref.n = glm::normalize(glm::cross(b - a, c - a));
-        if (glm::dot(ref.n, dir) > 0.0) ref.n = -ref.n;
+        ref.p = exact_.point(h.id, h.b1, h.b2);
+        ref.n = exact_.normal(h.id, -dir);
         ref.id = h.id;
         ref.lsPointGap = glm::length(glm::dvec3(sb.lsPoint(slot)) - ref.p);
         return Verdict::Agree;
@@ -163,7 +132,7 @@ Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_
     const double tFar = std::max(tOracle, tRef);
     const double tEnd = std::isfinite(tFar) ? tFar * (1.0 + 1e-6) : kInf;
     const ExactTracer::SegmentQuery q =
-        tracer_.segment(lsEye, dir, tEnd, TriangleId{}, kTolAbs, kTolPerT);
+        exact_.tracer().segment(lsEye, dir, tEnd, TriangleId{}, kTolAbs, kTolPerT);
     const bool ambiguous = q.ambiguous || std::fabs(tOracle - tRef) <= kTolAbs + kTolPerT * tRef;
     d.kind = "primary";
     d.oracleV = sb.hit[slot] ? 1.0 : 0.0;
@@ -208,8 +177,8 @@ Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, f
     bool ambiguous = tie < kCosTie;
     double refV = 0.0;
     if (reaches) {
-        const ExactTracer::SegmentQuery q =
-            tracer_.segment(ref.p, tgt.dir, tgt.tMax, ref.id, kTolAbs + ref.lsPointGap, kTolPerT);
+        const ExactTracer::SegmentQuery q = exact_.tracer().segment(
+            ref.p, tgt.dir, tgt.tMax, ref.id, kTolAbs + ref.lsPointGap, kTolPerT);
         refV = q.occluded ? 0.0 : 1.0;
         ambiguous = ambiguous || q.ambiguous;
         d.wsMargin = frame_.wsLength(q.margin);
@@ -240,7 +209,7 @@ Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, s
             std::max(0.0, glm::dot(ref.n, dir)) * std::max(0.0, -glm::dot(ny, dir)) / (dist * dist);
         if (!(G > 0.0)) continue;
         // Stop just short of the light: geometry touching it does not block it (as the oracle).
-        const bool blocked = tracer_.occluded(ref.p, dir, 0.0, dist * (1.0 - 1e-7), ref.id);
+        const bool blocked = exact_.tracer().occluded(ref.p, dir, 0.0, dist * (1.0 - 1e-7), ref.id);
         const double v = blocked ? 0.0 : 1.0;
         sw += G, swv += G * v, sw2 += G * G, sw2v += G * G * v;
         ++nonZero;

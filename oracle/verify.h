@@ -20,7 +20,7 @@
 #include "core/camera.h"
 #include "core/local_frame.h"
 #include "core/scene.h"
-#include "oracle/exact_tracer.h"
+#include "oracle/exact_scene.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {
@@ -71,7 +71,7 @@ class Verifier {
     LightVerification verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
                                   const SurfaceBuffer& sb, const float* V, const float* stderr_,
                                   const float* spp) const;
-    const ExactTracer& tracer() const { return tracer_; }
+    const ExactTracer& tracer() const { return exact_.tracer(); }
 
     // The tolerance of the hard-light test, in local units (where the scene's half-extent is in
     // [0.5, 1)): kTolAbs + kTolPerT * t, plus the distance between the oracle's hit point and the
@@ -96,9 +96,7 @@ class Verifier {
                       float oracleV, float oracleStderr, float oracleSpp, double z,
                       VerifyDisagreement& d) const;
 
-    std::vector<std::vector<glm::dvec3>> lsPositions_;
-    std::vector<const std::vector<uint32_t>*> indices_;
-    ExactTracer tracer_;
+    ExactScene exact_;
     LocalFrame frame_;
     std::optional<Camera> camera_;  // none in points mode
     VerifyOptions options_;

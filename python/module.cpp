@@ -309,6 +309,7 @@ void bindTrace(py::module_& m) {
         "trace",
         [](const so::Scene& scene, int width, int height, double targetError,
            double agreementTarget, int maxSpp, int spp, unsigned seed, int threads, int verify,
+           const std::string& penumbra, const std::string& exactPixels,
            const std::optional<std::string>& points, const py::object& progress) {
             so::TraceOptions o;
             o.width = width;
@@ -320,6 +321,8 @@ void bindTrace(py::module_& m) {
             o.seed = seed;
             o.threads = threads;
             o.verify = verify;
+            o.penumbra = penumbra;
+            o.exactPixels = exactPixels;
             o.points = points.value_or("");
             PyTrace out;
             out.result = interruptible<so::TraceResult>(
@@ -338,10 +341,12 @@ void bindTrace(py::module_& m) {
         py::arg("scene"), py::kw_only(), py::arg("width") = 0, py::arg("height") = 0,
         py::arg("target_error") = 0.01, py::arg("agreement_target") = 0.01,
         py::arg("max_spp") = 16384, py::arg("spp") = 0, py::arg("seed") = 0u,
-        py::arg("threads") = 0, py::arg("verify") = 0, py::arg("points") = py::none(),
+        py::arg("threads") = 0, py::arg("verify") = 0, py::arg("penumbra") = "sampled",
+        py::arg("exact_pixels") = "penumbra", py::arg("points") = py::none(),
         py::arg("progress") = py::none(),
         "The oracle (`shadow-oracle trace`): exact hard shadows, sampled penumbrae with 95% "
-        "intervals. progress(stage, done, total) is called every 50 ms; return False to cancel.");
+        "intervals; penumbra=\"exact\" or \"both\" computes rect lights' penumbrae exactly. "
+        "progress(stage, done, total) is called every 50 ms; return False to cancel.");
 }
 
 // A technique's keyword settings as the command line writes them: numbers, names, booleans.

@@ -21,35 +21,6 @@ namespace {
 
 namespace ch = channels;
 
-// A rect light 2 x 1.5 at height 4 emitting down, a 2 x 2 square occluder at height 1.5, the floor.
-struct PenumbraScene {
-    AxisRect light{4.0, -0.5, 1.5, -0.5, 1.0};
-    AxisRect occluder{1.5, -1.0, 1.0, -1.0, 1.0};
-    Scene scene;
-};
-
-PenumbraScene makePenumbraScene(int w, int h) {
-    PenumbraScene s;
-    Scene& sc = s.scene;
-    sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
-    sc.meshes.push_back(makeGrid({0, s.occluder.y, 0}, {2, 0, 0}, {0, 0, -2}, 1, "occluder"));
-    Light l;
-    l.name = "panel";
-    l.type = LightType::Rect;
-    l.wsPosition = {0.5 * (s.light.x0 + s.light.x1), s.light.y, 0.5 * (s.light.z0 + s.light.z1)};
-    l.wsU = {s.light.x1 - s.light.x0, 0, 0};
-    l.wsV = {0, 0, s.light.z1 - s.light.z0};  // cross(u, v) points down: it lights the floor
-    sc.lights = {l};
-    sc.effects = {"hard", "penumbra"};
-    sc.camera.wsEye = {0.25, 6.0, 5.0};
-    sc.camera.wsTarget = {0.25, 0.0, 0.0};
-    sc.camera.vfovDeg = 36;
-    sc.camera.width = w;
-    sc.camera.height = h;
-    finalizeScene(sc);
-    return s;
-}
-
 struct OracleRun {
     ChannelImage img;
     OracleStats stats;

@@ -84,4 +84,26 @@ ChannelImage runQuiet(const Scene& scene, int threads) {
     return runOracle(scene, o).image;
 }
 
+PenumbraScene makePenumbraScene(int w, int h) {
+    PenumbraScene s;
+    Scene& sc = s.scene;
+    sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
+    sc.meshes.push_back(makeGrid({0, s.occluder.y, 0}, {2, 0, 0}, {0, 0, -2}, 1, "occluder"));
+    Light l;
+    l.name = "panel";
+    l.type = LightType::Rect;
+    l.wsPosition = {0.5 * (s.light.x0 + s.light.x1), s.light.y, 0.5 * (s.light.z0 + s.light.z1)};
+    l.wsU = {s.light.x1 - s.light.x0, 0, 0};
+    l.wsV = {0, 0, s.light.z1 - s.light.z0};  // cross(u, v) points down: it lights the floor
+    sc.lights = {l};
+    sc.effects = {"hard", "penumbra"};
+    sc.camera.wsEye = {0.25, 6.0, 5.0};
+    sc.camera.wsTarget = {0.25, 0.0, 0.0};
+    sc.camera.vfovDeg = 36;
+    sc.camera.width = w;
+    sc.camera.height = h;
+    finalizeScene(sc);
+    return s;
+}
+
 }  // namespace so::test

@@ -6,6 +6,7 @@
 
 #include "core/image.h"
 #include "core/scene.h"
+#include "lambert.h"
 #include "oracle/oracle.h"
 
 namespace so::test {
@@ -26,6 +27,15 @@ struct SquareOccluderScene {
     Scene scene;
 };
 SquareOccluderScene makeSquareOccluderScene(int width, int height);
+
+// A rect light 2 x 1.5 at height 4 emitting down, a 2 x 2 square occluder at height 1.5, the
+// floor: the closed-form scene of lambert.h (exactRectLightRectOccluderV).
+struct PenumbraScene {
+    AxisRect light{4.0, -0.5, 1.5, -0.5, 1.0};
+    AxisRect occluder{1.5, -1.0, 1.0, -1.0, 1.0};
+    Scene scene;
+};
+PenumbraScene makePenumbraScene(int width, int height);
 
 // Applies p -> p * scale + translate to every position in the scene (meshes, camera, lights), and
 // scales the area lights' extents.

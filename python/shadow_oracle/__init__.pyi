@@ -85,6 +85,8 @@ def trace(
     seed: int = 0,
     threads: int = 0,
     verify: int = 0,
+    penumbra: str = "sampled",
+    exact_pixels: str = "penumbra",
     points: Optional[str] = None,
     progress: Optional[ProgressFn] = None,
 ) -> Trace: ...

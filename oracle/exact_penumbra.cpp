@@ -1,0 +1,150 @@
+#include "oracle/exact_penumbra.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "oracle/polygon_visibility.h"
+
+namespace so {
+
+const char* penumbraMethodName(PenumbraMethod m) {
+    switch (m) {
+        case PenumbraMethod::Sampled:
+            return "sampled";
+        case PenumbraMethod::Exact:
+            return "exact";
+        case PenumbraMethod::Both:
+            return "both";
+    }
+    return "sampled";
+}
+
+PenumbraMethod parsePenumbraMethod(const std::string& text, const std::string& file,
+                                   const std::string& field) {
+    for (PenumbraMethod m : {PenumbraMethod::Sampled, PenumbraMethod::Exact, PenumbraMethod::Both})
+        if (text == penumbraMethodName(m)) return m;
+    throwInputError(file, field,
+                    "\"" + printable(text, 40) + "\" is not a method (sampled, exact or both)");
+}
+
+uint64_t occluderQuantileBound(const OccluderHistogram& h, double q) {
+    uint64_t total = 0;
+    for (uint64_t c : h) total += c;
+    if (total == 0) return 0;
+    const double wanted = q * double(total);
+    uint64_t seen = 0;
+    for (int k = 0; k < kOccluderBuckets; ++k) {
+        seen += h[size_t(k)];
+        if (double(seen) >= wanted) return k == 0 ? 0 : (uint64_t(1) << k) - 1;
+    }
+    return (uint64_t(1) << (kOccluderBuckets - 1)) - 1;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int bucketOf(uint64_t occluders) {
+    int k = 0;
+    while (occluders > 0 && k < kOccluderBuckets - 1) occluders >>= 1, ++k;
+    return k;
+}
+
+RectLightShape shapeOf(const AreaLight& light) {
+    return {light.dCenter - 0.5 * light.dU - 0.5 * light.dV, light.dU, light.dV,
+            light.dEmitNormal};
+}
+
+// What one pixel's exact V came to (status Exact or TooManyOccluders), or nothing asked.
+struct PixelAnswer {
+    bool asked = false;
+    PolygonVisibility result;
+};
+
+bool selected(const ExactPenumbraOptions& options, const ExactPenumbraPlanes& planes, size_t i) {
+    if (!(planes.spp[i] > 0.0f)) return false;  // skipped by the sampled pass: V = 0, exactly
+    return options.allPixels || (planes.V[i] > 0.0f && planes.V[i] < 1.0f);
+}
+
+// The answers per slot, in parallel; nothing shared is written.
+std::vector<PixelAnswer> answers(const ExactScene& exact, const SurfaceBuffer& sb,
+                                 const RectLightShape& shape, const ExactPenumbraOptions& options,
+                                 const ExactPenumbraPlanes& planes, Progress* progress) {
+    std::vector<PixelAnswer> out(sb.slotCount());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, sb.slotCount(), 64),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t s = r.begin(); s < r.end(); ++s) {
+                              const size_t i = sb.pixelOfSlot(s);
+                              if (i == SIZE_MAX || !sb.hit[s] || !selected(options, planes, i))
+                                  continue;
+                              const TriangleId id{sb.meshId[s], sb.primId[s]};
+                              const glm::dvec3 p = exact.point(id, sb.baryU[s], sb.baryV[s]);
+                              const glm::dvec3 n = exact.normal(id, glm::dvec3(sb.lsNormal(s)));
+                              out[s] = {true, rectLightVisibility(exact.tracer(), shape, p, n, id,
+                                                                  options.maxOccluders)};
+                          }
+                          if (progress) progress->advance(r.size());
+                      });
+    return out;
+}
+
+// One exact answer into the planes and the counts.
+void apply(const PolygonVisibility& a, size_t i, const ExactPenumbraOptions& options,
+           const ExactPenumbraPlanes& planes, ExactPenumbraStats& st) {
+    if (a.status == PolygonVisibilityStatus::TooManyOccluders) {
+        ++st.pixelsTooManyOccluders;
+        return;
+    }
+    ++st.pixelsExact;
+    st.occludersTotal += a.occluders;
+    st.occludersMax = std::max<uint64_t>(st.occludersMax, a.occluders);
+    ++st.occluders[size_t(bucketOf(a.occluders))];
+    planes.exactMask[i] = 1.0f;
+    const float v = float(a.V);
+    if (options.method == PenumbraMethod::Both) {
+        planes.Vexact[i] = v;
+        const double diff = std::fabs(a.V - double(planes.V[i]));
+        st.maxAbsDifference = std::max(st.maxAbsDifference, diff);
+        st.sumAbsDifference += diff;
+        st.outsideInterval += diff > channels::kStdErrQuantile95 * double(planes.stderr_[i]);
+    } else {
+        planes.V[i] = v;
+        planes.stderr_[i] = 0.0f;
+    }
+}
+
+}  // namespace
+
+ExactPenumbraStats exactPenumbraPass(const ExactScene& exact, const SurfaceBuffer& sb,
+                                     const AreaLight& light, const ExactPenumbraOptions& options,
+                                     const ExactPenumbraPlanes& planes, Progress* progress) {
+    SO_CHECK(options.method != PenumbraMethod::Sampled);
+    SO_CHECK(light.type == LightType::Rect);
+    const auto t0 = Clock::now();
+    ExactPenumbraStats st;
+    st.method = options.method;
+    st.allPixels = options.allPixels;
+    const size_t pixels = size_t(sb.width) * size_t(sb.height);
+    std::fill(planes.exactMask, planes.exactMask + pixels, 0.0f);
+    if (options.method == PenumbraMethod::Both) std::copy(planes.V, planes.V + pixels, planes.Vexact);
+    const std::vector<PixelAnswer> all =
+        answers(exact, sb, shapeOf(light), options, planes, progress);
+    // Slot order, one thread: the sums are the same at any thread count.
+    for (size_t s = 0; s < all.size(); ++s) {
+        if (!all[s].asked) continue;
+        st.candidatesTotal += all[s].result.candidates;
+        apply(all[s].result, sb.pixelOfSlot(s), options, planes, st);
+    }
+    st.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return st;
+}
+
+}  // namespace so

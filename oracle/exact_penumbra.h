@@ -1,0 +1,81 @@
+// The exact penumbra pass (docs/oracle.md, "Exact penumbrae"): after a rect light's sampled pass,
+// the pixels it found in a penumbra (their samples disagreed), or every pixel it sampled, get V
+// from polygon_visibility.h: exact, where the sampled pass gives an interval. The two methods
+// share nothing but the scene (Embree and sampling there; clipping in double and integers here),
+// so each checks the other (`--penumbra both`).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "oracle/area_light.h"
+#include "oracle/exact_scene.h"
+#include "oracle/surface_buffer.h"
+
+namespace so {
+
+class Progress;
+
+// `--penumbra`: which method gives an area light's V.
+enum class PenumbraMethod : uint8_t {
+    Sampled,  // RQMC with 95% intervals (area_shadow.h); the only method for disk and sphere lights
+    Exact,    // the exact pass replaces V where it applies (stderr 0 there)
+    Both,     // V stays sampled; V_exact beside it, and their disagreement in oracle.json
+};
+const char* penumbraMethodName(PenumbraMethod m);
+// "sampled", "exact" or "both"; InputError naming file and field otherwise.
+PenumbraMethod parsePenumbraMethod(const std::string& text, const std::string& file,
+                                   const std::string& field);
+
+struct ExactPenumbraOptions {
+    PenumbraMethod method = PenumbraMethod::Sampled;
+    bool allPixels = false;  // every sampled pixel, not only those whose samples disagreed
+    // Triangles the pyramid from a point to the light may hold before the pixel keeps its
+    // sampled V (the pass's work per pixel grows with them).
+    uint32_t maxOccluders = 100000;
+};
+
+// Occluder counts in powers of two: bucket 0 holds 0, bucket k holds [2^(k-1), 2^k). Bands of a
+// tiled trace add up exactly (trace-merge).
+inline constexpr int kOccluderBuckets = 24;
+using OccluderHistogram = std::array<uint64_t, kOccluderBuckets>;
+// The upper end of the bucket that holds the q-quantile (q in (0, 1]): an upper bound on it.
+uint64_t occluderQuantileBound(const OccluderHistogram& h, double q);
+
+struct ExactPenumbraStats {
+    PenumbraMethod method = PenumbraMethod::Exact;
+    bool allPixels = false;
+    // Set when the light kept its sampled V everywhere: "disk light", "sphere light" (not
+    // polygons), "alpha-tested meshes" (the exact pass does not test alpha masks).
+    std::string notApplied;
+    uint64_t pixelsExact = 0;
+    uint64_t pixelsTooManyOccluders = 0;  // kept sampled
+    uint64_t occludersTotal = 0, occludersMax = 0;  // over the exact pixels
+    OccluderHistogram occluders{};
+    uint64_t candidatesTotal = 0;  // triangles the BVH query returned
+    // Both: exact pixels where the exact V lies outside the sampled 95% interval, and the
+    // largest and summed |V_exact - V|.
+    uint64_t outsideInterval = 0;
+    double maxAbsDifference = 0.0, sumAbsDifference = 0.0;
+    double seconds = 0.0;
+};
+
+// The per-pixel planes the pass reads and writes. V and stderr_ are the sampled pass's (Exact
+// overwrites them where it applies); Vexact (Both only) and exactMask (1 where exact, else 0) are
+// written in full.
+struct ExactPenumbraPlanes {
+    float* V = nullptr;
+    float* stderr_ = nullptr;
+    const float* spp = nullptr;
+    float* Vexact = nullptr;
+    float* exactMask = nullptr;
+};
+
+// Runs inside the caller's task arena; the result is the same at any thread count.
+ExactPenumbraStats exactPenumbraPass(const ExactScene& exact, const SurfaceBuffer& sb,
+                                     const AreaLight& light, const ExactPenumbraOptions& options,
+                                     const ExactPenumbraPlanes& planes, Progress* progress);
+
+}  // namespace so
