@@ -59,8 +59,7 @@ int bucketOf(uint64_t occluders) {
 }
 
 RectLightShape shapeOf(const AreaLight& light) {
-    return {light.dCenter - 0.5 * light.dU - 0.5 * light.dV, light.dU, light.dV,
-            light.dEmitNormal};
+    return {light.dCenter - 0.5 * light.dU - 0.5 * light.dV, light.dU, light.dV, light.dEmitNormal};
 }
 
 // What one pixel's exact V came to (status Exact or TooManyOccluders), or nothing asked.
@@ -134,7 +133,8 @@ ExactPenumbraStats exactPenumbraPass(const ExactScene& exact, const SurfaceBuffe
     st.allPixels = options.allPixels;
     const size_t pixels = size_t(sb.width) * size_t(sb.height);
     std::fill(planes.exactMask, planes.exactMask + pixels, 0.0f);
-    if (options.method == PenumbraMethod::Both) std::copy(planes.V, planes.V + pixels, planes.Vexact);
+    if (options.method == PenumbraMethod::Both)
+        std::copy(planes.V, planes.V + pixels, planes.Vexact);
     const std::vector<PixelAnswer> all =
         answers(exact, sb, shapeOf(light), options, planes, progress);
     // Slot order, one thread: the sums are the same at any thread count.

@@ -51,7 +51,7 @@ struct ExactPenumbraStats {
     // polygons), "alpha-tested meshes" (the exact pass does not test alpha masks).
     std::string notApplied;
     uint64_t pixelsExact = 0;
-    uint64_t pixelsTooManyOccluders = 0;  // kept sampled
+    uint64_t pixelsTooManyOccluders = 0;            // kept sampled
     uint64_t occludersTotal = 0, occludersMax = 0;  // over the exact pixels
     OccluderHistogram occluders{};
     uint64_t candidatesTotal = 0;  // triangles the BVH query returned

@@ -90,14 +90,15 @@ std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const std::vector<dv
 // segment, of no area.
 bool inPlaneOf(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
     const dvec3 normal = glm::cross(b - a, c - a);
-    const double scale = glm::length(normal) * (glm::length(p - a) + glm::length(p - b) +
-                                                glm::length(p - c));
+    const double scale =
+        glm::length(normal) * (glm::length(p - a) + glm::length(p - b) + glm::length(p - c));
     return std::abs(glm::dot(normal, p - a)) <= 1e-13 * scale;
 }
 
 }  // namespace
 
-double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n, const std::vector<dvec3>& vertices) {
+double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n,
+                                const std::vector<dvec3>& vertices) {
     double sum = 0.0;
     const size_t count = vertices.size();
     for (size_t i = 0; i < count; ++i) {
@@ -132,29 +133,31 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
     const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, light);
     ClipperLib::Paths shadows;
     bool capped = false;
-    tracer.forEachTriangleIn(planes, [&](const dvec3& a, const dvec3& b, const dvec3& c,
-                                         TriangleId id) {
-        if (++result.candidates > maxCandidates) {
-            capped = true;
-            return false;
-        }
-        if (id == self || inPlaneOf(p, a, b, c)) return true;
-        std::vector<dvec3> part = {a, b, c};
-        for (const ExactTracer::HalfSpace& h : planes) {
-            part = clipToHalfSpace(part, h);
-            if (part.size() < 3) return true;
-        }
-        // Central projection through p onto the light's plane: every point of the clipped part
-        // lies between p and the plane, so dot(emitNormal, q - p) is in [-height, 0).
-        for (dvec3& q : part) {
-            const double along = glm::dot(light.emitNormal, q - p);
-            if (!(along < 0.0)) return true;  // at p itself: only a triangle through p
-            q = p + (q - p) * (-height / along);
-        }
-        shadows.push_back(quantisedPath(frame, part));
-        ++result.occluders;
-        return true;
-    });
+    tracer.forEachTriangleIn(planes,
+                             [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
+                                 if (++result.candidates > maxCandidates) {
+                                     capped = true;
+                                     return false;
+                                 }
+                                 if (id == self || inPlaneOf(p, a, b, c)) return true;
+                                 std::vector<dvec3> part = {a, b, c};
+                                 for (const ExactTracer::HalfSpace& h : planes) {
+                                     part = clipToHalfSpace(part, h);
+                                     if (part.size() < 3) return true;
+                                 }
+                                 // Central projection through p onto the light's plane: every point
+                                 // of the clipped part lies between p and the plane, so
+                                 // dot(emitNormal, q - p) is in [-height, 0).
+                                 for (dvec3& q : part) {
+                                     const double along = glm::dot(light.emitNormal, q - p);
+                                     if (!(along < 0.0))
+                                         return true;  // at p itself: only a triangle through p
+                                     q = p + (q - p) * (-height / along);
+                                 }
+                                 shadows.push_back(quantisedPath(frame, part));
+                                 ++result.occluders;
+                                 return true;
+                             });
     if (capped) {
         result.status = PolygonVisibilityStatus::TooManyOccluders;
         return result;

@@ -38,7 +38,7 @@ enum class PolygonVisibilityStatus : uint8_t {
 struct PolygonVisibility {
     PolygonVisibilityStatus status = PolygonVisibilityStatus::NoLight;
     double V = 0.0;
-    uint32_t occluders = 0;  // triangles whose clipped projection reached the union
+    uint32_t occluders = 0;   // triangles whose clipped projection reached the union
     uint32_t candidates = 0;  // triangles the BVH query returned (the pyramid's cost)
 };
 

@@ -9,7 +9,7 @@ SO_JOBS="${SO_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 SO_PACKAGES=(
   cmake g++ make git
   libembree-dev libglm-dev libopenexr-dev libtbb-dev nlohmann-json3-dev
-  libtinygltf-dev libcli11-dev libxxhash-dev libgmp-dev libopenimageio-dev pkg-config
+  libtinygltf-dev libcli11-dev libxxhash-dev libgmp-dev libpolyclipping-dev libopenimageio-dev pkg-config
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   googletest libgtest-dev
   clang-format

@@ -12,8 +12,9 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
-#include "core/channels.h"
 #include "bunny_scene.h"
+#include "cli_run.h"
+#include "core/channels.h"
 #include "lambert.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/oracle.h"
@@ -116,7 +117,9 @@ TEST(ExactPenumbra, ClosedFormSquareOccluderWithinOneMillionth) {
                 worst = std::max(worst, std::fabs(v.V - reference));
                 penumbra += reference > 1e-9 && reference < 1.0 - 1e-9;
                 umbra += reference == 0.0;
-                if (reference == 0.0) EXPECT_EQ(v.V, 0.0) << "umbra is exactly 0";
+                if (reference == 0.0) {
+                    EXPECT_EQ(v.V, 0.0) << "umbra is exactly 0";
+                }
             }
     }
     std::printf("[ exact ] %zu penumbra and %zu umbra points: max |V - closed form| = %.3g\n",
@@ -245,7 +248,8 @@ Estimate randomEstimate(const ExactTracer& t, const RectLightShape& light, const
     SplitMix rng{seed};
     double sw = 0.0, swv = 0.0, sw2 = 0.0, sw2v = 0.0;
     for (int k = 0; k < samples; ++k) {
-        const double u = double(rng.next() >> 11) * 0x1.0p-53, v = double(rng.next() >> 11) * 0x1.0p-53;
+        const double u = double(rng.next() >> 11) * 0x1.0p-53,
+                     v = double(rng.next() >> 11) * 0x1.0p-53;
         const dvec3 d = light.corner + u * light.edgeU + v * light.edgeV - p;
         const double r2 = glm::dot(d, d);
         const double w = std::max(0.0, glm::dot(n, d)) *
@@ -283,10 +287,11 @@ TEST(ExactPenumbra, BunnyWithinTheSampledIntervalsAndAnIndependentEstimate) {
     const OracleResult r = runOracle(scene, o);
     const ExactPenumbraStats& st = *r.stats.lights[0].area->exact;
     const double n = double(st.pixelsExact), share = double(st.outsideInterval) / n;
-    std::printf("[ exact ] bunny: %llu exact pixels, %.4f outside the sampled 95%% interval, "
-                "mean |V_exact - V| %.2e, occluders mean %.1f, max %llu\n",
-                (unsigned long long)st.pixelsExact, share, st.sumAbsDifference / n,
-                double(st.occludersTotal) / n, (unsigned long long)st.occludersMax);
+    std::printf(
+        "[ exact ] bunny: %llu exact pixels, %.4f outside the sampled 95%% interval, "
+        "mean |V_exact - V| %.2e, occluders mean %.1f, max %llu\n",
+        (unsigned long long)st.pixelsExact, share, st.sumAbsDifference / n,
+        double(st.occludersTotal) / n, (unsigned long long)st.occludersMax);
     ASSERT_GT(st.pixelsExact, 300u);
     // Nominal: at most 5% outside, give or take three binomial standard errors; and some outside,
     // or the intervals would be far wider than they say.
@@ -322,6 +327,39 @@ TEST(ExactPenumbra, BunnyWithinTheSampledIntervalsAndAnIndependentEstimate) {
         ++checked;
     }
     EXPECT_EQ(checked, 4);
+}
+
+// The same exact image at any thread count, bit for bit (the pass sums in slot order).
+TEST(ExactPenumbra, SameImageAtAnyThreadCount) {
+    const PenumbraScene s = makePenumbraScene(64, 48);
+    std::vector<std::vector<float>> images;
+    for (int threads : {1, 2}) {
+        OracleOptions o;
+        o.threads = threads;
+        o.penumbra.method = PenumbraMethod::Both;
+        o.penumbra.allPixels = true;
+        const OracleResult r = runOracle(s.scene, o);
+        const float* v = r.image.channel("panel.V_exact");
+        images.emplace_back(v, v + r.image.pixelCount());
+    }
+    EXPECT_EQ(images[0], images[1]);
+}
+
+// The command line: the flags by name, a bad name one line naming its flag.
+TEST(ExactPenumbra, CommandLineFlags) {
+    const std::string scene = std::string(SO_SCENES_DIR) + "/penumbra_square.scene.json";
+    const std::string out = ::testing::TempDir() + "so_exact_cli";
+    const RunResult bad = run("trace " + scene + " --out " + out + " --penumbra exakt");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_EQ(bad.stderrText,
+              "command line: --penumbra: \"exakt\" is not a method (sampled, exact or both)\n");
+    EXPECT_EQ(run("trace " + scene + " --out " + out + " --exact-pixels some").exitCode, 2);
+    const RunResult ok = run("trace " + scene + " --out " + out +
+                             " --width 48 --height 36 --quiet --penumbra both --exact-pixels all");
+    ASSERT_EQ(ok.exitCode, 0) << ok.stderrText;
+    const ChannelImage img = readExr(out + "/oracle.exr");
+    EXPECT_NE(img.channel("panel.V_exact"), nullptr);
+    EXPECT_NE(img.channel("panel.exact"), nullptr);
 }
 
 }  // namespace
