@@ -289,9 +289,11 @@ TEST(ExactPenumbra, BunnyWithinTheSampledIntervalsAndAnIndependentEstimate) {
     const double n = double(st.pixelsExact), share = double(st.outsideInterval) / n;
     std::printf(
         "[ exact ] bunny: %llu exact pixels, %.4f outside the sampled 95%% interval, "
-        "mean |V_exact - V| %.2e, occluders mean %.1f, max %llu\n",
+        "mean |V_exact - V| %.2e, occluders mean %.1f, max %llu; exact pass %.3f s, sampled "
+        "pass (4,096 spp) %.3f s\n",
         (unsigned long long)st.pixelsExact, share, st.sumAbsDifference / n,
-        double(st.occludersTotal) / n, (unsigned long long)st.occludersMax);
+        double(st.occludersTotal) / n, (unsigned long long)st.occludersMax, st.seconds,
+        r.stats.lights[0].area->seconds);
     ASSERT_GT(st.pixelsExact, 300u);
     // Nominal: at most 5% outside, give or take three binomial standard errors; and some outside,
     // or the intervals would be far wider than they say.
