@@ -172,9 +172,9 @@ TEST(IndexPage, MalformedMetricsNameTheFileAndField) {
     json noResults = alphaMetrics();
     noResults.erase("results");
     expectInputError(noResults, "results");
-    json version6 = alphaMetrics();
-    version6["schema_version"] = 6;
-    expectInputError(version6, "schema_version");
+    json version7 = alphaMetrics();
+    version7["schema_version"] = 7;
+    expectInputError(version7, "schema_version");
     json noVersion = alphaMetrics();
     noVersion.erase("schema_version");
     expectInputError(noVersion, "schema_version");

@@ -13,20 +13,24 @@ namespace so {
 enum class Artifact {
     PeterPanning,
     LightBleeding,
+    PenumbraSpread,
     Acne,
     Aliasing,
     Penumbra,
     OtherFalseShadow,
     OtherFalseLit
 };
-inline constexpr size_t kArtifactCount = 7;
+inline constexpr size_t kArtifactCount = 8;
 
 struct ArtifactClass {
     Artifact id;
     const char* layer;   // error EXR channel "<light>.<layer>" (docs/exr-channels.md)
     const char* metric;  // its metric in metrics.json (docs/metrics.md)
     const char* legend;  // the report's name for it
-    float rgb[3];        // its colour in the report's error maps (Okabe-Ito: colour-blind safe)
+    // Its colour in the report's error maps: Okabe-Ito's seven (colour-blind safe), and white for
+    // the eighth, which has no hue to confuse; Okabe-Ito's own eighth, black, would vanish on the
+    // dimmed truth the maps draw beneath.
+    float rgb[3];
 };
 
 inline constexpr std::array<ArtifactClass, kArtifactCount> kArtifactClasses = {{
@@ -40,6 +44,11 @@ inline constexpr std::array<ArtifactClass, kArtifactCount> kArtifactClasses = {{
      "light_bleeding_rate",
      "light bleeding",
      {0.34f, 0.71f, 0.91f}},
+    {Artifact::PenumbraSpread,
+     "penumbra_spread",
+     "penumbra_spread_rate",
+     "penumbra too wide/shifted",
+     {1.0f, 1.0f, 1.0f}},
     {Artifact::Acne, "acne", "acne_rate", "acne", {0.84f, 0.37f, 0.0f}},
     {Artifact::Aliasing, "aliasing", "aliasing_rate", "aliasing", {0.94f, 0.89f, 0.26f}},
     {Artifact::Penumbra, "penumbra", "penumbra_mae", "penumbra", {0.0f, 0.45f, 0.70f}},

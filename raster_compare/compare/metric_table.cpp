@@ -35,7 +35,10 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "lights) or the oracle's interval (area lights)"},
     {"acne_rate", U::Share, B::Lower, S::All,
      "among fully lit pixels more than r pixels from an oracle shadow boundary, the share that "
-     "are false shadow"},
+     "are false shadow (on area lights, not penumbra spread)"},
+    {"penumbra_spread_rate", U::Share, B::Lower, S::AreaLights,
+     "share of counted pixels wrong just outside the oracle's penumbra where the technique's own "
+     "penumbra, too wide or shifted, covers them"},
     {"peter_panning_rate", U::Share, B::Lower, S::OccluderDistance,
      "among shadowed pixels whose occluder is nearer than the contact threshold, the share that "
      "are false lit"},

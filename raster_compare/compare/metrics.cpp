@@ -111,12 +111,17 @@ struct Planes {
         SE = oracle.has(seName) ? oracle.channel(seName) : nullptr;
         D = oracle.has(occName) ? oracle.channel(occName) : nullptr;
         area = SE != nullptr;
+        const bool normals = oracle.has(ch::kNX) && oracle.has(ch::kNY) && oracle.has(ch::kNZ);
+        No[0] = normals ? oracle.channel(ch::kNX) : nullptr;
+        No[1] = normals ? oracle.channel(ch::kNY) : nullptr;
+        No[2] = normals ? oracle.channel(ch::kNZ) : nullptr;
     }
     int w, h;
     size_t n;
     const float *Ao, *Ar, *Vo, *Vr, *Co, *mo, *po, *mr, *pr;
-    const float* SE;  // the oracle's standard error: sampled area lights only
-    const float* D;   // the oracle's occluder distance: the contact effect only
+    const float* SE;     // the oracle's standard error: sampled area lights only
+    const float* D;      // the oracle's occluder distance: the contact effect only
+    const float* No[3];  // the oracle's normals, where its image has them (null otherwise)
     bool area;
 };
 
@@ -138,12 +143,111 @@ std::vector<uint8_t> countedPixels(const Planes& p, LightMetrics& m) {
     return counted;
 }
 
+// How one counted pixel is wrong (docs/metrics.md): on an area light a difference within the
+// oracle's own 95% interval is not an error (its half-width is 0 where the oracle states stderr 0);
+// on a hard light the pixel is wrong only when the difference passes 0.5.
+struct PixelError {
+    double hw, err;
+    bool falseShadow, falseLit;
+};
+
+PixelError pixelError(const Planes& p, size_t i) {
+    const double o = p.Vo[i], r = p.Vr[i];
+    const double hw = p.area ? ch::kStdErrQuantile95 * p.SE[i] : 0.0;
+    return {hw, std::max(0.0, std::fabs(r - o) - hw), p.area ? r < o - hw : r < o - 0.5,
+            p.area ? r > o + hw : r > o + 0.5};
+}
+
+// Two neighbouring pixels on one surface: the same mesh, and (where the oracle has normals) no
+// crease between them. A technique's penumbra spreads over the surface that receives the true
+// one; across an edge it would join a surface's own acne to a shadow on its neighbour (the
+// soft_chair's back, acned all over, stands on the seat's penumbra). 30 degrees is far more than
+// a curved mesh turns from one pixel to the next.
+constexpr float kCreaseCos = 0.866f;  // cos 30 degrees
+bool sameSurface(const Planes& p, size_t a, size_t b) {
+    if (p.mo[a] != p.mo[b]) return false;
+    if (!p.No[0]) return true;
+    float dot = 0.0f;
+    for (const float* N : p.No) dot += N[a] * N[b];
+    return dot >= kCreaseCos;
+}
+
+// Where the oracle's penumbra lies, the seeds of the spread: counted pixels with 0 < O < 1 (part
+// of the light blocked, not all of it), and where the true penumbra is narrower than a pixel, both
+// pixels of a step from O = 0 to O = 1 on one surface.
+std::vector<uint8_t> penumbraSeeds(const Planes& p, const std::vector<uint8_t>& counted) {
+    std::vector<uint8_t> seed(p.n, 0);
+    for (int y = 0; y < p.h; ++y)
+        for (int x = 0; x < p.w; ++x) {
+            const size_t i = size_t(y) * size_t(p.w) + size_t(x);
+            const float o = p.Vo[i];
+            if (!counted[i]) continue;
+            if (o > 0.0f && o < 1.0f) seed[i] = 1;
+            if (o != 0.0f && o != 1.0f) continue;
+            const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+            for (int k = 0; k < 4; ++k) {
+                if (nx[k] < 0 || ny[k] < 0 || nx[k] >= p.w || ny[k] >= p.h) continue;
+                const size_t j = size_t(ny[k]) * size_t(p.w) + size_t(nx[k]);
+                if (counted[j] && p.Vo[j] == 1.0f - o && sameSurface(p, i, j)) seed[i] = 1;
+            }
+        }
+    return seed;
+}
+
+// Which side of the oracle's penumbra a pixel is wrong on within the technique's own penumbra
+// (0 < R < 1): false shadow where the oracle says fully lit, false lit where it says umbra.
+enum SpreadSide : uint8_t { kNoSide, kLitSide, kUmbraSide };
+SpreadSide spreadSide(const Planes& p, size_t i) {
+    if (!(p.Vr[i] > 0.0f && p.Vr[i] < 1.0f)) return kNoSide;
+    const PixelError e = pixelError(p, i);
+    if (p.Vo[i] == 1.0f && e.falseShadow) return kLitSide;
+    if (p.Vo[i] == 0.0f && e.falseLit) return kUmbraSide;
+    return kNoSide;
+}
+
+// Penumbra spread (area lights; docs/metrics.md): a wrong pixel outside the oracle's penumbra,
+// soft in the technique's, joined to the oracle's penumbra by a chain of such pixels (8-connected,
+// one side of it, one surface). An over-wide or shifted penumbra is such a chain; a surface's own
+// speckles lie apart from it. A flood fill from the seeds: each pixel enters the queue once, and
+// what it reaches does not depend on the order, so the result is the same on every run.
+std::vector<uint8_t> penumbraSpread(const Planes& p, const std::vector<uint8_t>& counted) {
+    std::vector<uint8_t> spread(p.n, 0);
+    if (!p.area) return spread;
+    std::vector<uint8_t> side(p.n, kNoSide);
+    for (size_t i = 0; i < p.n; ++i)
+        if (counted[i]) side[i] = spreadSide(p, i);
+    const std::vector<uint8_t> seed = penumbraSeeds(p, counted);
+    std::vector<size_t> queue;
+    for (size_t i = 0; i < p.n; ++i)
+        if (seed[i]) {
+            queue.push_back(i);
+            spread[i] = side[i] != kNoSide;  // a wrong pixel of a penumbra narrower than a pixel
+        }
+    for (size_t head = 0; head < queue.size(); ++head) {
+        const size_t j = queue[head];
+        const int x = int(j % size_t(p.w)), y = int(j / size_t(p.w));
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= p.w || ny >= p.h) continue;
+                const size_t k = size_t(ny) * size_t(p.w) + size_t(nx);
+                if (seed[k] || spread[k] || side[k] == kNoSide) continue;
+                // Beyond the seeds a chain keeps to its side: lit-side and umbra-side pixels meet
+                // only across the penumbra.
+                if ((!seed[j] && side[j] != side[k]) || !sameSurface(p, j, k)) continue;
+                spread[k] = 1;
+                queue.push_back(k);
+            }
+    }
+    return spread;
+}
+
 // Sums and counts over the counted pixels, for the rates.
 struct Tally {
     double sumAbs = 0, sumSq = 0;
     size_t falseShadow = 0, falseLit = 0;
     size_t acneEligible = 0, acne = 0, aliasEligible = 0, aliased = 0, ppEligible = 0, pp = 0,
-           umbra = 0, bleed = 0, pen = 0;
+           umbra = 0, bleed = 0, pen = 0, spread = 0;
     double leak = 0.0, penAbs = 0.0, penSoft = 0.0;
     size_t umbraExact = 0, litExact = 0;
     double umbraAbs = 0.0, litAbs = 0.0;
@@ -151,21 +255,28 @@ struct Tally {
     double bandAbs = 0.0;
 };
 
+// The class a wrong pixel is drawn as (1 + its Artifact; 0: not a wrong pixel): the first, in
+// order of precedence, that explains it, or "other" when none does (marked in `is` and counted).
+size_t drawnClass(bool fs, bool fl, std::array<bool, kArtifactCount>& is, Tally& t) {
+    if (!fs && !fl) return 0;
+    for (const ArtifactClass& c : kArtifactClasses)
+        if (is[size_t(c.id)]) return 1 + size_t(c.id);
+    const Artifact other = fs ? Artifact::OtherFalseShadow : Artifact::OtherFalseLit;
+    ++(fs ? t.otherShadow : t.otherLit);
+    is[size_t(other)] = true;
+    return 1 + size_t(other);
+}
+
 // One counted pixel into the tally and the error maps. Each class marks where the pixel counts
 // as that class's error (the classes may overlap); a wrong pixel (false shadow or false lit) is
-// also drawn as exactly one class: the first, in order of precedence, that explains it, or
-// "other" when none does.
-void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOptions& options,
-              LightMetrics& m, Tally& t, ErrorMaps* maps) {
+// also drawn as exactly one class (drawnClass). `spread`: penumbraSpread's verdict on the pixel.
+void classify(const Planes& p, size_t i, float toOracleBoundary, bool spread,
+              const MetricOptions& options, LightMetrics& m, Tally& t, ErrorMaps* maps) {
     const double o = p.Vo[i], r = p.Vr[i];
-    // An area light's difference within the oracle's own 95% interval is not an error.
-    const double hw = p.area ? ch::kStdErrQuantile95 * p.SE[i] : 0.0;
-    const double err = std::max(0.0, std::fabs(r - o) - hw);
+    const auto [hw, err, fs, fl] = pixelError(p, i);
     t.sumAbs += err;
     t.sumSq += err * err;
     m.maxAbs = std::max(m.maxAbs, err);
-    const bool fs = p.area ? r < o - hw : r < o - 0.5;
-    const bool fl = p.area ? r > o + hw : r > o + 0.5;
     t.falseShadow += fs;
     t.falseLit += fl;
     const bool fullyLit = o == 1.0;
@@ -174,8 +285,9 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOpt
     auto set = [&](Artifact a, bool v) { is[size_t(a)] = v; };
     if (fullyLit && toOracleBoundary > float(options.boundaryRadius)) {
         ++t.acneEligible;
-        t.acne += fs;
-        set(Artifact::Acne, fs);
+        // A penumbra reaching too far is not a surface shadowing itself.
+        t.acne += fs && !spread;
+        set(Artifact::Acne, fs && !spread);
     }
     if (toOracleBoundary <= float(options.boundaryRadius)) {
         ++t.band;
@@ -199,6 +311,8 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOpt
         t.bleed += r > o + 0.1;
         set(Artifact::LightBleeding, options.filteredTechnique && r > o + 0.1);
     }
+    t.spread += spread;
+    set(Artifact::PenumbraSpread, spread);
     if (p.area && o > 0.0 && o < 1.0) {
         ++t.pen;
         t.penAbs += err;
@@ -213,20 +327,7 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, const MetricOpt
         ++t.litExact;
         t.litAbs += err;
     }
-    size_t shown = 0;  // 1 + the class drawn; 0: not a wrong pixel
-    if (fs || fl) {
-        for (const ArtifactClass& c : kArtifactClasses)
-            if (is[size_t(c.id)]) {
-                shown = 1 + size_t(c.id);
-                break;
-            }
-        if (!shown) {
-            const Artifact other = fs ? Artifact::OtherFalseShadow : Artifact::OtherFalseLit;
-            ++(fs ? t.otherShadow : t.otherLit);
-            set(other, true);
-            shown = 1 + size_t(other);
-        }
-    }
+    const size_t shown = drawnClass(fs, fl, is, t);
     if (!maps) return;
     maps->error[i] = float(err);
     for (size_t k = 0; k < kArtifactCount; ++k)
@@ -251,6 +352,7 @@ void setRates(const Tally& t, const Planes& p, const MetricOptions& options, Lig
     }
     if (options.filteredTechnique) m.lightBleedingRate = share(t.bleed, t.umbra);
     if (p.area) {
+        m.penumbraSpreadRate = share(t.spread, m.counted);
         m.penumbraMae = t.pen ? t.penAbs / double(t.pen) : 0.0;
         m.penumbraBias = t.pen ? t.penSoft / double(t.pen) : 0.0;
         m.umbraMae = t.umbraExact ? t.umbraAbs / double(t.umbraExact) : 0.0;
@@ -333,9 +435,10 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
                                br = boundaries(p.Ar, p.Vr, p.w, p.h);
     const std::vector<float> toOracleBoundary = distanceTo(bo, p.w, p.h),
                              toRasterBoundary = distanceTo(br, p.w, p.h);
+    const std::vector<uint8_t> spread = penumbraSpread(p, counted);
     Tally t;
     for (size_t i = 0; i < p.n; ++i)
-        if (counted[i]) classify(p, i, toOracleBoundary[i], options, m, t, maps);
+        if (counted[i]) classify(p, i, toOracleBoundary[i], spread[i] != 0, options, m, t, maps);
     setRates(t, p, options, m);
     m.boundaryDisplacement = boundaryDisplacement(bo, br, toOracleBoundary, toRasterBoundary,
                                                   std::hypot(double(p.w), double(p.h)));
@@ -405,6 +508,7 @@ nlohmann::json LightMetrics::toJson() const {
             {"false_shadow_rate", falseShadowRate},
             {"false_lit_rate", falseLitRate},
             {artifactClass(Artifact::Acne).metric, acneRate},
+            {artifactClass(Artifact::PenumbraSpread).metric, opt(penumbraSpreadRate)},
             {artifactClass(Artifact::PeterPanning).metric, opt(peterPanningRate)},
             {"light_leak_distance", opt(lightLeakDistance)},
             {"boundary_displacement_px",

@@ -18,9 +18,10 @@
 
 namespace so {
 
-// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 5 adds
-// rows of external images (compare --image), whose costs may be null.
-inline constexpr int kMetricsSchemaVersion = 5;
+// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 6 adds
+// penumbra_spread_rate, and on area lights acne_rate and other_false_*_rate no longer count the
+// pixels of a penumbra too wide or shifted.
+inline constexpr int kMetricsSchemaVersion = 6;
 
 struct MetricOptions {
     int boundaryRadius = 2;  // r: pixels from an oracle shadow boundary
@@ -43,6 +44,8 @@ struct LightMetrics {
     size_t excludedBackground = 0, excludedDifferentSurface = 0, excludedFacingAway = 0;
     double mae = 0.0, rmse = 0.0, maxAbs = 0.0;
     double falseShadowRate = 0.0, falseLitRate = 0.0;
+    // False shadow on fully lit pixels away from an oracle boundary; on area lights, only where
+    // the technique's penumbra spreading past the oracle's does not explain it.
     double acneRate = 0.0;
     std::optional<double> peterPanningRate, lightLeakDistance;  // need the oracle's occ_dist
     BoundaryDisplacement boundaryDisplacement;
@@ -56,6 +59,9 @@ struct LightMetrics {
     // Area lights only (oracle stderr present): the mean error where the oracle's V is strictly
     // between 0 and 1, and its signed mean (too hard < 0 < too soft); where it is exactly 0 and 1.
     std::optional<double> penumbraMae, penumbraBias, umbraMae, litMae;
+    // Area lights only: wrong pixels just outside the oracle's penumbra that the technique's own
+    // penumbra, too wide or shifted, covers (docs/metrics.md), over counted pixels.
+    std::optional<double> penumbraSpreadRate;
     std::optional<PenumbraWidthError> penumbraWidth;  // area lights with a measurable penumbra
     // With the raster's NAME.aliasing_pred: its mean over counted pixels, and the Pearson
     // correlation of its log with the boundary displacement at the raster's boundary pixels.

@@ -85,6 +85,10 @@ const std::vector<Column>& columns() {
         {"acne_rate", "acne",
          "share of fully lit pixels away from a boundary that are false shadow", Format::Percent,
          [](L l) { return std::optional(l.metrics.acneRate); }},
+        {"penumbra_spread_rate", "penumbra spread",
+         "share of pixels wrong just outside the oracle's penumbra, covered by the technique's "
+         "own penumbra (too wide or shifted; area lights)",
+         Format::Percent, [](L l) { return l.metrics.penumbraSpreadRate; }},
         {"peter_panning_rate", "peter-panning",
          "share of shadowed pixels near their occluder (contact) that are false lit",
          Format::Percent, [](L l) { return l.metrics.peterPanningRate; }},
