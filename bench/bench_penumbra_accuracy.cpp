@@ -1,8 +1,8 @@
 // What penumbra accuracy costs the oracle, against the exact answer: on the shipped
 // penumbra_square scene (a rect light over a parallel square occluder, Lambert's closed form), the
 // adaptive run at several targets: rays, seconds, the realised mean |V - exact| over penumbra
-// pixels and the share of them inside their stated 95% interval (docs/benchmarks.md); then the exact
-// penumbra pass against RQMC at stated half-widths 0.01, 0.001 and 0.0001.
+// pixels and the share of them inside their stated 95% interval (docs/benchmarks.md); then the
+// exact penumbra pass against RQMC at stated half-widths 0.01, 0.001 and 0.0001.
 //
 //   bench_penumbra_accuracy [--size N] [--baseline DIR ...]
 //
@@ -171,12 +171,13 @@ void printExactComparison(const Scene& scene, int size) {
         const OracleAreaStats& la = *r.stats.lights[0].area;
         const ExactPenumbraStats& e = *la.exact;
         const Accuracy a = evaluate(r.image, kIntervalQuantile95);
-        std::printf("  exact pass, %-8s %8.3f s  on %llu pixels (occluders mean %.2f, p99 <= "
-                    "%llu, max %llu), after the sampled pass at 0.01 (%.3f s)\n",
-                    all ? "all" : "penumbra", e.seconds, (unsigned long long)e.pixelsExact,
-                    double(e.occludersTotal) / double(std::max<uint64_t>(e.pixelsExact, 1)),
-                    (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
-                    (unsigned long long)e.occludersMax, la.seconds);
+        std::printf(
+            "  exact pass, %-8s %8.3f s  on %llu pixels (occluders mean %.2f, p99 <= "
+            "%llu, max %llu), after the sampled pass at 0.01 (%.3f s)\n",
+            all ? "all" : "penumbra", e.seconds, (unsigned long long)e.pixelsExact,
+            double(e.occludersTotal) / double(std::max<uint64_t>(e.pixelsExact, 1)),
+            (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
+            (unsigned long long)e.occludersMax, la.seconds);
         std::printf("    penumbra mae %.2e, p99 %.2e against the closed form (float32 V and P)\n",
                     a.penumbraMae, a.penumbraP99);
         std::printf("    exact pass / RQMC at 0.01: %.2fx; both passes / RQMC at 0.001: %.2fx\n",
