@@ -22,7 +22,7 @@ so::OracleOptions oracleOptions(const TraceOptions& o) {
     out.area.seed = o.seed;
     out.verify.pixels = o.verify;
     out.penumbra.method = so::parsePenumbraMethod(o.penumbra, "trace options", "penumbra");
-    out.penumbra.allPixels = o.exactPixels == "all";
+    out.penumbra.allPixels = so::parseExactPixels(o.exactPixels, "trace options", "exact_pixels");
     out.progress = detail::toLibrary(o.progress);
     return out;
 }
@@ -42,8 +42,6 @@ void checkOptions(const TraceOptions& o) {
     if (o.maxSpp < 16 || o.maxSpp > (1 << 20)) fail("max_spp", "must be in [16, 1048576]");
     if (o.fixedSpp < 0 || o.fixedSpp > (1 << 20)) fail("spp", "must be in [0, 1048576]");
     if (o.verify < 0 || o.verify > (1 << 20)) fail("verify", "must be in [0, 1048576]");
-    if (o.exactPixels != "penumbra" && o.exactPixels != "all")
-        fail("exact_pixels", "must be penumbra or all");
     if (!o.points.empty() && (o.width > 0 || o.height > 0))
         fail("points", "the image is the G-buffer's size: no width or height with points");
 }

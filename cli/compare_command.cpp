@@ -32,11 +32,8 @@ namespace {
 // The techniques as the user named them; a spec the library refuses is named with its flag.
 std::vector<TechniqueSpec> parseTechniques(const CompareOptions& options) {
     std::vector<TechniqueSpec> specs;
-    for (const std::string& s : options.techniques) try {
-            specs.push_back(parseTechniqueSpec(s));
-        } catch (const InputError& e) {
-            throwInputError("command line", "--technique", e.message());
-        }
+    for (const std::string& s : options.techniques)
+        specs.push_back(asFlag("--technique", [&] { return parseTechniqueSpec(s); }));
     return specs;
 }
 
@@ -47,11 +44,7 @@ void checkCommandLine(const CompareOptions& options, const std::vector<Technique
                         "nothing to compare: give --technique NAME or --image LABEL=PATH");
     for (const TechniqueSpec& spec : specs)
         createTechniqueOfFlag("--technique", spec.name, spec.settings);
-    try {
-        checkRowLabels(specs, options.images);
-    } catch (const InputError& e) {
-        throwInputError("command line", "--image", e.message());
-    }
+    asFlag("--image", [&] { checkRowLabels(specs, options.images); });
     if (!options.pointsPath.empty()) {
         if (!specs.empty())
             throwInputError("command line", "--points",

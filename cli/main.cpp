@@ -51,10 +51,7 @@ struct PenumbraFlags {
     std::string method = "sampled", pixels = "penumbra";
     void applyTo(so::OracleOptions& o) const {
         o.penumbra.method = so::parsePenumbraMethod(method, "command line", "--penumbra");
-        if (pixels != "penumbra" && pixels != "all")
-            so::throwInputError("command line", "--exact-pixels",
-                                "\"" + so::printable(pixels, 40) + "\" is not penumbra or all");
-        o.penumbra.allPixels = pixels == "all";
+        o.penumbra.allPixels = so::parseExactPixels(pixels, "command line", "--exact-pixels");
     }
 };
 static std::shared_ptr<PenumbraFlags> addPenumbraFlags(CLI::App* cmd) {

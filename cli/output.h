@@ -15,8 +15,19 @@
 
 namespace so {
 
-// Runs `f`. An InputError it throws on the library's option `field` (e.g. OracleOptions' "verify")
-// is said again naming the command's `flag` instead: the libraries never name flags.
+// The libraries name their options, never the commands' flags; these say a library's InputError
+// again with the flag.
+// Runs `f`; any InputError it throws becomes the command line's: "command line: FLAG: message".
+template <class F>
+decltype(auto) asFlag(const std::string& flag, F&& f) {
+    try {
+        return f();
+    } catch (const InputError& e) {
+        throwInputError("command line", flag, e.message());
+    }
+}
+// Runs `f`; an InputError on the library's option `field` (e.g. OracleOptions' "verify", in the
+// scene's file) keeps its file and names `flag` as its field.
 template <class F>
 decltype(auto) namingFlag(const std::string& field, const std::string& flag, F&& f) {
     try {

@@ -10,11 +10,7 @@ namespace so {
 
 std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& flag, const std::string& name,
                                                  const std::vector<std::string>& settings) {
-    try {
-        findTechnique(name);
-    } catch (const InputError& e) {
-        throwInputError("command line", flag, e.field() + ": " + e.message());
-    }
+    asFlag(flag, [&] { findTechnique(name); });
     return createTechnique(name, settings);
 }
 

@@ -75,19 +75,20 @@ void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& or
     if (o.contains("max_spp"))
         oracle.maxSpp = integer(o["max_spp"], file, "oracle.max_spp", 16, 1 << 20);
     if (o.contains("spp")) oracle.fixedSpp = integer(o["spp"], file, "oracle.spp", 1, 1 << 20);
-    // Names as trace --penumbra and --exact-pixels take them.
+    // Names as trace --penumbra and --exact-pixels take them (the oracle, which reads them, is
+    // not linked here: the sweep task parses them with its functions).
     using Names = std::vector<std::string>;
     for (const auto& [key, target, allowed] :
          {std::tuple{"penumbra", &oracle.penumbra, Names{"sampled", "exact", "both"}},
           std::tuple{"exact_pixels", &oracle.exactPixels, Names{"penumbra", "all"}}}) {
         if (!o.contains(key)) continue;
-        const std::string field = std::string("oracle.") + key;
-        if (!o[key].is_string() ||
-            std::find(allowed.begin(), allowed.end(), o[key].get<std::string>()) == allowed.end())
-            throwInputError(file, field,
-                            "must be " + allowed.front() + (allowed.size() > 2 ? ", " : " or ") +
-                                allowed[1] + (allowed.size() > 2 ? " or " + allowed[2] : ""));
-        *target = o[key].get<std::string>();
+        const std::string value = o[key].is_string() ? o[key].get<std::string>() : "";
+        if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
+            std::string list;
+            for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+            throwInputError(file, std::string("oracle.") + key, "must be one of " + list);
+        }
+        *target = value;
     }
 }
 

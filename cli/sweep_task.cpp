@@ -29,7 +29,9 @@ OracleOptions oracleOptions(const SweepOracleSettings& s) {
     if (s.fixedSpp) o.area.fixedSpp = *s.fixedSpp;
     if (s.penumbra)
         o.penumbra.method = parsePenumbraMethod(*s.penumbra, "sweep.json", "oracle.penumbra");
-    o.penumbra.allPixels = s.exactPixels == "all";
+    if (s.exactPixels)
+        o.penumbra.allPixels =
+            parseExactPixels(*s.exactPixels, "sweep.json", "oracle.exact_pixels");
     return o;
 }
 

@@ -1,6 +1,7 @@
 #include "oracle/exact_penumbra.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -15,24 +16,28 @@
 
 namespace so {
 
+namespace {
+
+// In the enum's order.
+constexpr std::array<const char*, 3> kMethodNames = {"sampled", "exact", "both"};
+
+}  // namespace
+
 const char* penumbraMethodName(PenumbraMethod m) {
-    switch (m) {
-        case PenumbraMethod::Sampled:
-            return "sampled";
-        case PenumbraMethod::Exact:
-            return "exact";
-        case PenumbraMethod::Both:
-            return "both";
-    }
-    return "sampled";
+    return kMethodNames.at(size_t(m));
 }
 
 PenumbraMethod parsePenumbraMethod(const std::string& text, const std::string& file,
                                    const std::string& field) {
-    for (PenumbraMethod m : {PenumbraMethod::Sampled, PenumbraMethod::Exact, PenumbraMethod::Both})
-        if (text == penumbraMethodName(m)) return m;
+    for (size_t k = 0; k < kMethodNames.size(); ++k)
+        if (text == kMethodNames[k]) return PenumbraMethod(k);
     throwInputError(file, field,
                     "\"" + printable(text, 40) + "\" is not a method (sampled, exact or both)");
+}
+
+bool parseExactPixels(const std::string& text, const std::string& file, const std::string& field) {
+    if (text == "penumbra" || text == "all") return text == "all";
+    throwInputError(file, field, "\"" + printable(text, 40) + "\" is not penumbra or all");
 }
 
 uint64_t occluderQuantileBound(const OccluderHistogram& h, double q) {

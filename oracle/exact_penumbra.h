@@ -29,6 +29,9 @@ const char* penumbraMethodName(PenumbraMethod m);
 PenumbraMethod parsePenumbraMethod(const std::string& text, const std::string& file,
                                    const std::string& field);
 
+// `--exact-pixels`: "penumbra" (false) or "all" (true); InputError naming file and field otherwise.
+bool parseExactPixels(const std::string& text, const std::string& file, const std::string& field);
+
 struct ExactPenumbraOptions {
     PenumbraMethod method = PenumbraMethod::Sampled;
     bool allPixels = false;  // every sampled pixel, not only those whose samples disagreed

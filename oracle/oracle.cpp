@@ -141,15 +141,17 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
     planes.stderr_ = p.image.channel(ch::lightChannel(light.name, ch::kStdErr));
     planes.spp = p.image.channel(ch::lightChannel(light.name, ch::kSpp));
     planes.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
-    if (options.method == PenumbraMethod::Both) {
+    if (options.method == PenumbraMethod::Both)
         planes.Vexact = p.image.addChannel(ch::lightChannel(light.name, ch::kVisibilityExact));
-        std::copy(V, V + p.pixels, planes.Vexact);
-    }
     ExactPenumbraStats st;
     st.method = options.method;
     st.allPixels = options.allPixels;
     st.notApplied = exactNotApplied(p, light);
-    if (!st.notApplied.empty()) return st;  // the mask stays 0: every pixel sampled
+    if (!st.notApplied.empty()) {
+        // Every pixel sampled: the mask stays 0 (a new channel's fill), V_exact is V.
+        if (planes.Vexact) std::copy(V, V + p.pixels, planes.Vexact);
+        return st;
+    }
     Progress progress("exact penumbra " + light.name, p.sb.slotCount(), p.options.progress);
     p.arena.execute([&] {
         st = exactPenumbraPass(*p.exact, p.sb, makeAreaLight(light, p.accel.frame()), options,

@@ -1,10 +1,14 @@
 #include "oracle/polygon_visibility.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <initializer_list>
 
 #include <glm/geometric.hpp>
 #include <polyclipping/clipper.hpp>
+
+#include "core/error.h"
 
 namespace so {
 
@@ -16,19 +20,37 @@ using glm::dvec3;
 // arithmetic is plain 64-bit and exact.
 constexpr double kQuantum = double(1 << 29);
 
-// Sutherland-Hodgman: the part of the convex or non-convex `poly` where dot(normal, x) <= offset.
-std::vector<dvec3> clipToHalfSpace(const std::vector<dvec3>& poly,
-                                   const ExactTracer::HalfSpace& h) {
-    std::vector<dvec3> out;
-    const size_t n = poly.size();
-    for (size_t i = 0; i < n; ++i) {
-        const dvec3& a = poly[i];
-        const dvec3& b = poly[(i + 1) % n];
+// A convex polygon of a few vertices, on the stack: a triangle or the light's rectangle, clipped by
+// at most 6 half-spaces here (the pyramid's sides and the light's plane), each adding at most one
+// vertex. The pass clips every candidate triangle of every pixel, so no allocation per clip.
+struct SmallPolygon {
+    static constexpr size_t kCapacity = 16;
+    std::array<dvec3, kCapacity> v;
+    size_t n = 0;
+    SmallPolygon(std::initializer_list<dvec3> points) {
+        for (const dvec3& q : points) push(q);
+    }
+    void push(const dvec3& q) {
+        SO_CHECK_LT(n, kCapacity);
+        v[n++] = q;
+    }
+    const dvec3* begin() const { return v.data(); }
+    const dvec3* end() const { return v.data() + n; }
+    dvec3* begin() { return v.data(); }
+    dvec3* end() { return v.data() + n; }
+};
+
+// Sutherland-Hodgman: the part of the convex polygon where dot(normal, x) <= offset.
+SmallPolygon clipToHalfSpace(const SmallPolygon& poly, const ExactTracer::HalfSpace& h) {
+    SmallPolygon out{};
+    for (size_t i = 0; i < poly.n; ++i) {
+        const dvec3& a = poly.v[i];
+        const dvec3& b = poly.v[(i + 1) % poly.n];
         const double da = glm::dot(h.normal, a) - h.offset, db = glm::dot(h.normal, b) - h.offset;
-        if (da <= 0.0) out.push_back(a);
+        if (da <= 0.0) out.push(a);
         if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
             const double t = da / (da - db);
-            out.push_back(a + t * (b - a));
+            out.push(a + t * (b - a));
         }
     }
     return out;
@@ -53,7 +75,7 @@ struct LightFrame {
     }
 };
 
-ClipperLib::Path quantisedPath(const LightFrame& frame, const std::vector<dvec3>& poly) {
+ClipperLib::Path quantisedPath(const LightFrame& frame, const SmallPolygon& poly) {
     ClipperLib::Path path;
     for (const dvec3& y : poly) path.push_back(frame.quantised(y));
     if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);  // all windings alike
@@ -70,14 +92,14 @@ double solidAngleOf(const LightFrame& frame, const dvec3& p, const dvec3& n,
 
 // The pyramid from p to the polygon `base` (convex, in the light's plane): a side half-space per
 // edge through p, and the light's plane on p's side.
-std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const std::vector<dvec3>& base,
+std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const SmallPolygon& base,
                                             const RectLightShape& light) {
     dvec3 centroid(0.0);
     for (const dvec3& b : base) centroid += b;
-    centroid /= double(base.size());
+    centroid /= double(base.n);
     std::vector<ExactTracer::HalfSpace> planes;
-    for (size_t i = 0; i < base.size(); ++i) {
-        dvec3 m = glm::cross(base[i] - p, base[(i + 1) % base.size()] - p);
+    for (size_t i = 0; i < base.n; ++i) {
+        dvec3 m = glm::cross(base.v[i] - p, base.v[(i + 1) % base.n] - p);
         if (m == dvec3(0.0)) continue;  // a zero-length edge
         if (glm::dot(m, centroid - p) > 0.0) m = -m;
         planes.push_back({m, glm::dot(m, p)});
@@ -93,6 +115,25 @@ bool inPlaneOf(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
     const double scale =
         glm::length(normal) * (glm::length(p - a) + glm::length(p - b) + glm::length(p - c));
     return std::abs(glm::dot(normal, p - a)) <= 1e-13 * scale;
+}
+
+// The shadow triangle abc casts on the light from p: clipped to the pyramid, projected centrally
+// through p onto the light's plane (every point of the clipped part lies between p and the plane,
+// so dot(emitNormal, q - p) is in [-height, 0)), quantised. Empty where nothing is left.
+ClipperLib::Path shadowOf(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& p,
+                          double height, const std::vector<ExactTracer::HalfSpace>& planes,
+                          const LightFrame& frame) {
+    SmallPolygon part{a, b, c};
+    for (const ExactTracer::HalfSpace& h : planes) {
+        part = clipToHalfSpace(part, h);
+        if (part.n < 3) return {};
+    }
+    for (dvec3& q : part) {
+        const double along = glm::dot(frame.shape.emitNormal, q - p);
+        if (!(along < 0.0)) return {};  // at p itself: only a triangle through p
+        q = p + (q - p) * (-height / along);
+    }
+    return quantisedPath(frame, part);
 }
 
 }  // namespace
@@ -120,11 +161,11 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
     const double height = glm::dot(light.emitNormal, p - light.corner);  // > 0 on the lit side
     if (!(height > 0.0)) return result;
     // L+: the light above p's horizon.
-    const std::vector<dvec3> rect = {light.corner, light.corner + light.edgeU,
-                                     light.corner + light.edgeU + light.edgeV,
-                                     light.corner + light.edgeV};
-    const std::vector<dvec3> lit = clipToHalfSpace(rect, {-n, -glm::dot(n, p)});
-    if (lit.size() < 3) return result;
+    const SmallPolygon lit =
+        clipToHalfSpace({light.corner, light.corner + light.edgeU,
+                         light.corner + light.edgeU + light.edgeV, light.corner + light.edgeV},
+                        {-n, -glm::dot(n, p)});
+    if (lit.n < 3) return result;
     const LightFrame frame(light);
     const ClipperLib::Path litPath = quantisedPath(frame, lit);
     const double whole = solidAngleOf(frame, p, n, litPath);
@@ -133,31 +174,20 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
     const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, light);
     ClipperLib::Paths shadows;
     bool capped = false;
-    tracer.forEachTriangleIn(planes,
-                             [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
-                                 if (++result.candidates > maxCandidates) {
-                                     capped = true;
-                                     return false;
-                                 }
-                                 if (id == self || inPlaneOf(p, a, b, c)) return true;
-                                 std::vector<dvec3> part = {a, b, c};
-                                 for (const ExactTracer::HalfSpace& h : planes) {
-                                     part = clipToHalfSpace(part, h);
-                                     if (part.size() < 3) return true;
-                                 }
-                                 // Central projection through p onto the light's plane: every point
-                                 // of the clipped part lies between p and the plane, so
-                                 // dot(emitNormal, q - p) is in [-height, 0).
-                                 for (dvec3& q : part) {
-                                     const double along = glm::dot(light.emitNormal, q - p);
-                                     if (!(along < 0.0))
-                                         return true;  // at p itself: only a triangle through p
-                                     q = p + (q - p) * (-height / along);
-                                 }
-                                 shadows.push_back(quantisedPath(frame, part));
-                                 ++result.occluders;
-                                 return true;
-                             });
+    const auto visit = [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
+        if (++result.candidates > maxCandidates) {
+            capped = true;
+            return false;
+        }
+        if (id == self || inPlaneOf(p, a, b, c)) return true;
+        ClipperLib::Path shadow = shadowOf(a, b, c, p, height, planes, frame);
+        if (!shadow.empty()) {
+            shadows.push_back(std::move(shadow));
+            ++result.occluders;
+        }
+        return true;
+    };
+    tracer.forEachTriangleIn(planes, visit);
     if (capped) {
         result.status = PolygonVisibilityStatus::TooManyOccluders;
         return result;

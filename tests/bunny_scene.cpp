@@ -75,6 +75,21 @@ std::optional<MeshPrimitive> loadCgalBunny(std::string& whyNot) {
     return m;
 }
 
+const MeshPrimitive* cgalBunny(std::string& whyNot) {
+    static std::string why;
+    static const std::optional<MeshPrimitive> bunny = loadCgalBunny(why);
+    whyNot = why;
+    return bunny ? &*bunny : nullptr;
+}
+
+void useLowRectLight(Scene& scene) {
+    scene.lights = {{"panel", LightType::Rect, {-9.0, 3.0, 4.0}, {0, -1, 0}, 45, 0}};
+    scene.lights[0].wsU = {0.0, 0.0, -3.0};
+    scene.lights[0].wsV = {0.0, 2.0, 0.0};
+    scene.effects = {"hard", "penumbra"};
+    finalizeScene(scene);
+}
+
 Scene makeBunnyScene(const MeshPrimitive& bunny, int width, int height) {
     Scene scene;
     MeshPrimitive b = bunny;

@@ -14,6 +14,7 @@
 #include "bunny_scene.h"
 #include "cli_run.h"
 #include "core/channels.h"
+#include "exact_penumbra_util.h"
 #include "lambert.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/oracle.h"
@@ -27,36 +28,9 @@ namespace {
 namespace ch = channels;
 using glm::dvec3;
 
-// The closed-form scene of area_light_test.cpp: a 2 x 1.5 rect light at height 4 emitting down,
-// a 2 x 2 square occluder at height 1.5 parallel to it.
-const AxisRect kLight{4.0, -0.5, 1.5, -0.5, 1.0};
-const AxisRect kOccluder{1.5, -1.0, 1.0, -1.0, 1.0};
-
-RectLightShape lightShape(const AxisRect& l) {
-    // cross(edgeU, edgeV) points down: the light emits towards the floor.
-    return {{l.x0, l.y, l.z0}, {l.x1 - l.x0, 0, 0}, {0, 0, l.z1 - l.z0}, {0, -1, 0}};
-}
-
-// Triangles as one mesh, with the tracer over them.
-struct Occluders {
-    std::vector<dvec3> positions;
-    std::vector<uint32_t> indices;
-    void add(const dvec3& a, const dvec3& b, const dvec3& c) {
-        const uint32_t base = uint32_t(positions.size());
-        positions.insert(positions.end(), {a, b, c});
-        indices.insert(indices.end(), {base, base + 1, base + 2});
-    }
-    void addRect(const AxisRect& r) {
-        add({r.x0, r.y, r.z0}, {r.x1, r.y, r.z0}, {r.x1, r.y, r.z1});
-        add({r.x0, r.y, r.z0}, {r.x1, r.y, r.z1}, {r.x0, r.y, r.z1});
-    }
-    ExactTracer tracer() const { return ExactTracer({{&positions, &indices}}); }
-};
-
-PolygonVisibility visibility(const ExactTracer& t, const RectLightShape& light, const dvec3& p,
-                             const dvec3& n = {0, 1, 0}) {
-    return rectLightVisibility(t, light, p, n, TriangleId{}, 1u << 20);
-}
+// The closed-form scene's occluder: a 2 x 2 square at height 1.5, parallel to the light.
+const AxisRect kOccluder = PenumbraScene{}.occluder;
+const AxisRect kLight = kPenumbraLight;
 
 TEST(ExactPenumbra, LambertMatchesTheClosedFormOfAnUnoccludedLight) {
     const RectLightShape l = lightShape(kLight);
@@ -181,14 +155,10 @@ Estimate randomEstimate(const ExactTracer& t, const RectLightShape& light, const
 // samples on a few pixels, within its error.
 TEST(ExactPenumbra, BunnyWithinTheSampledIntervalsAndAnIndependentEstimate) {
     std::string why;
-    static const std::optional<MeshPrimitive> bunny = loadCgalBunny(why);
+    const MeshPrimitive* bunny = cgalBunny(why);
     if (!bunny) GTEST_SKIP() << why;
     Scene scene = makeBunnyScene(*bunny, 80, 60);
-    scene.lights = {{"panel", LightType::Rect, {-9.0, 3.0, 4.0}, {0, -1, 0}, 45, 0}};
-    scene.lights[0].wsU = {0.0, 0.0, -3.0};
-    scene.lights[0].wsV = {0.0, 2.0, 0.0};
-    scene.effects = {"hard", "penumbra"};
-    finalizeScene(scene);
+    useLowRectLight(scene);
     OracleOptions o;
     o.area.fixedSpp = 4096;
     o.penumbra.method = PenumbraMethod::Both;

@@ -914,7 +914,7 @@ TEST(Raster, ShadowVolumesOnOpenMeshesAndShippedScenes) {
 TEST(Raster, ShadowVolumesOnTheBunny) {
     REQUIRE_GL();
     std::string why;
-    static std::optional<MeshPrimitive> bunny = loadCgalBunny(why);
+    const MeshPrimitive* bunny = cgalBunny(why);
     if (!bunny) GTEST_SKIP() << why;
     Scene s = makeBunnyScene(*bunny, 240, 180);
     s.lights = {{"lamp", LightType::Point, {4, 14, 6}, {0, -1, 0}, 45, 0},

@@ -49,13 +49,6 @@ std::vector<Light> bunnyLights() {
     return out;
 }
 
-const MeshPrimitive* bunnyMesh(std::string& whyNot) {
-    static std::string why;
-    static std::optional<MeshPrimitive> bunny = loadCgalBunny(why);
-    whyNot = why;
-    return bunny ? &*bunny : nullptr;
-}
-
 OracleResult runVerified(const Scene& scene, int pixels, OffsetPolicy policy,
                          int areaSamples = 4096) {
     OracleOptions o;
@@ -97,7 +90,7 @@ std::string describe(const LightVerification& l) {
 // The bunny at 320x240 under bunnyLights(), every pixel verified; nullopt where it is absent.
 std::optional<OracleResult> verifiedBunnyHardLights(OffsetPolicy policy, const char* label,
                                                     std::string& whyNot) {
-    const MeshPrimitive* bunny = bunnyMesh(whyNot);
+    const MeshPrimitive* bunny = cgalBunny(whyNot);
     if (!bunny) return std::nullopt;
     Scene scene = makeBunnyScene(*bunny, 320, 240);
     scene.lights = bunnyLights();
@@ -252,14 +245,10 @@ TEST(Verify, LegacyOffsetMissesBunnyOccludersAndTheCheckSaysSo) {
 // the combined intervals on random pixels and on pixels where the light is near the horizon.
 TEST(Verify, BunnyRectLightPenumbraAgreesWithIndependentSamples) {
     std::string why;
-    const MeshPrimitive* bunny = bunnyMesh(why);
+    const MeshPrimitive* bunny = cgalBunny(why);
     if (!bunny) GTEST_SKIP() << why;
     Scene scene = makeBunnyScene(*bunny, 160, 120);
-    scene.lights = {{"panel", LightType::Rect, {-9.0, 3.0, 4.0}, {0, -1, 0}, 45, 0}};
-    scene.lights[0].wsU = {0.0, 0.0, -3.0};
-    scene.lights[0].wsV = {0.0, 2.0, 0.0};
-    scene.effects = {"hard", "penumbra"};
-    finalizeScene(scene);
+    useLowRectLight(scene);
     OracleResult r = runVerified(scene, 150, OffsetPolicy::ErrorBound);
     printSummary("bunny, rect light", r.stats.verify->lights);
     ASSERT_EQ(r.stats.verify->lights.size(), 1u);

@@ -43,7 +43,8 @@ const TechniqueInfo& findTechnique(const std::string& name) {
     if (it != registry().end()) return it->second;
     std::string valid;
     for (const TechniqueInfo* t : allTechniques()) valid += (valid.empty() ? "" : ", ") + t->name;
-    throwInputError("technique", printable(name, 40), "unknown technique (valid: " + valid + ")");
+    throwInputError("technique", "name",
+                    "unknown technique \"" + printable(name, 40) + "\" (valid: " + valid + ")");
 }
 
 std::unique_ptr<Technique> createTechnique(const std::string& name,

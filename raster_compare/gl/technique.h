@@ -116,7 +116,7 @@ extern const size_t kBuiltInTechniqueCount;
 // Every registered technique, by family and then name. The first call builds the registry (a
 // duplicate name throws std::invalid_argument here, and again on every later call).
 std::vector<const TechniqueInfo*> allTechniques();
-// An unknown name throws InputError (file "technique", the name as field) listing the valid names.
+// An unknown name throws InputError (file "technique", field "name") listing the valid names.
 const TechniqueInfo& findTechnique(const std::string& name);
 // Finds, parses the settings ("key=value") against the table and constructs: every user error is
 // an InputError naming the technique and the key.

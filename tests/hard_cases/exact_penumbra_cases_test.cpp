@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "exact_penumbra_util.h"
 #include "lambert.h"
 #include "oracle/polygon_visibility.h"
 
@@ -17,33 +18,7 @@ namespace {
 
 using glm::dvec3;
 
-// The closed-form scene's light: 2 x 1.5 at height 4, emitting down.
-const AxisRect kLight{4.0, -0.5, 1.5, -0.5, 1.0};
-
-RectLightShape lightShape(const AxisRect& l) {
-    return {{l.x0, l.y, l.z0}, {l.x1 - l.x0, 0, 0}, {0, 0, l.z1 - l.z0}, {0, -1, 0}};
-}
-
-// Triangles as one mesh, with the tracer over them.
-struct Occluders {
-    std::vector<dvec3> positions;
-    std::vector<uint32_t> indices;
-    void add(const dvec3& a, const dvec3& b, const dvec3& c) {
-        const uint32_t base = uint32_t(positions.size());
-        positions.insert(positions.end(), {a, b, c});
-        indices.insert(indices.end(), {base, base + 1, base + 2});
-    }
-    void addRect(const AxisRect& r) {
-        add({r.x0, r.y, r.z0}, {r.x1, r.y, r.z0}, {r.x1, r.y, r.z1});
-        add({r.x0, r.y, r.z0}, {r.x1, r.y, r.z1}, {r.x0, r.y, r.z1});
-    }
-    ExactTracer tracer() const { return ExactTracer({{&positions, &indices}}); }
-};
-
-PolygonVisibility visibility(const ExactTracer& t, const RectLightShape& light, const dvec3& p,
-                             const dvec3& n = {0, 1, 0}) {
-    return rectLightVisibility(t, light, p, n, TriangleId{}, 1u << 20);
-}
+const AxisRect kLight = kPenumbraLight;
 
 // An independent float64 estimate: the light's irradiance-weighted visibility by the midpoint
 // rule on a cells x cells grid of the light, each cell's point tested with the exact tracer's own
