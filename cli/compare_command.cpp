@@ -192,6 +192,7 @@ void writeReportFile(const fs::path& out, const std::string& scenePath, const Sc
     report.timedOn = timedOn(comparison);
     for (ComparedRow& row : comparison.rows) report.techniques.push_back(std::move(row.report));
     report.oracleCurves = comparison.oracleCurves;
+    report.oracleExact = comparison.oracleExact;
     report.embedImages = embedImages;
     report.provenance = provenance(metrics, oracle, oracleOptions);
     if (comparison.path) {

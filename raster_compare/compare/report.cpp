@@ -224,6 +224,7 @@ std::vector<std::string> columnCells(const Column& c,
 struct ChartData {
     std::vector<TradeoffPoint> points;
     std::vector<std::pair<double, double>> oracle;  // (ms, penumbra mean stated half-width)
+    std::optional<OracleExactPoint> exact;          // where the exact pass gave V
     std::string error;                              // the error's name, for the axis
 };
 
@@ -241,6 +242,7 @@ ChartData chartData(const ReportInput& in, size_t light) {
     if (area && light < in.oracleCurves.size())
         for (const auto& [ms, e] : in.oracleCurves[light])
             if (ms > 0.0 && e > 0.0) d.oracle.emplace_back(ms, e);
+    if (area && light < in.oracleExact.size()) d.exact = in.oracleExact[light];
     return d;
 }
 
@@ -266,6 +268,11 @@ std::string budgetTable(const ChartData& d) {
         s << "</tr>";
     }
     s << "</table>";
+    if (d.exact)
+        s << "<p class=\"caption\">The oracle's exact pass gave " << d.exact->pixels
+          << " pixels their V without sampling error (any budget) in " << num(d.exact->ms, 3)
+          << " ms: the sampled pass that found them and " << num(d.exact->exactMs, 3)
+          << " ms of clipping.</p>";
     return s.str();
 }
 
@@ -396,13 +403,26 @@ nlohmann::json lightData(const ReportInput& in, size_t li) {
     if (li < in.oracleCurves.size())
         for (const auto& [ms, hw] : in.oracleCurves[li])
             if (ms > 0.0 && hw > 0.0) oracle.push_back({ms, hw});
-    return {{"name", in.lights[li]}, {"errors", names(errors)}, {"costs", names(costs)},
-            {"points", points},      {"oracle", oracle},        {"oracle_error", "penumbra_mae"}};
+    nlohmann::json exact;  // null where the exact pass did not apply
+    if (li < in.oracleExact.size() && in.oracleExact[li])
+        exact = {{"ms", in.oracleExact[li]->ms},
+                 {"exact_ms", in.oracleExact[li]->exactMs},
+                 {"pixels", in.oracleExact[li]->pixels}};
+    return {{"name", in.lights[li]},
+            {"errors", names(errors)},
+            {"costs", names(costs)},
+            {"points", points},
+            {"oracle", oracle},
+            {"oracle_exact", exact},
+            {"oracle_error", "penumbra_mae"}};
 }
 
 // `d`: the light's lightData, the same the page's script draws from.
 void writeChartBox(std::ostream& o, const ReportInput& in, size_t li, const nlohmann::json& d) {
-    o << "<div class=\"chart-box\" data-light=\"" << li << "\"><h3>Error against cost</h3>"
+    // data-exact: the test harness (tests/browser) looks for the exact pass's point where it is
+    // set.
+    o << "<div class=\"chart-box\" data-light=\"" << li << "\""
+      << (d["oracle_exact"].is_null() ? "" : " data-exact=\"1\"") << "><h3>Error against cost</h3>"
       << "<label>error <select class=\"error-select\">";
     for (const auto& e : d["errors"])
         o << "<option value=\"" << html(e[0]) << "\">" << html(e[1]) << "</option>";

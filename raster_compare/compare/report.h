@@ -5,6 +5,7 @@
 // provenance. No network: style and script inline; images embedded or in a folder beside it.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -43,6 +44,14 @@ struct FlickerStrip {
     std::vector<uint8_t> mask;  // of frame pair + 1: 1 tracked, 2 flickering (temporal.h)
 };
 
+// Where the exact penumbra pass gave a light's V (--penumbra exact or both, docs/oracle.md "Exact
+// penumbrae"): what the run spent for V without sampling error at those pixels.
+struct OracleExactPoint {
+    double ms = 0.0;       // the sampled pass that found the penumbra, plus the exact pass
+    double exactMs = 0.0;  // the exact pass alone
+    uint64_t pixels = 0;   // pixels whose V it gave
+};
+
 struct ReportInput {
     std::string sceneFile;
     std::vector<std::string> lights;
@@ -58,6 +67,7 @@ struct ReportInput {
     // Per light, sampled area lights only: the oracle's own cost curve, (ms, mean stated 95%
     // half-width over the penumbra's pixels) as its adaptive run went (docs/oracle.md).
     std::vector<std::vector<std::pair<double, double>>> oracleCurves;
+    std::vector<std::optional<OracleExactPoint>> oracleExact;  // per light, where it applied
     int pathFrames = 0;  // compare --frames-path N: N, else 0 (no temporal metrics)
     std::vector<std::optional<FlickerStrip>> flickerStrips;  // per light when pathFrames > 0
 };

@@ -18,7 +18,7 @@ td.text,th.text{text-align:left}td.best{font-weight:700;background:#e3f1e3}td.be
 .chart-box{background:#fff;border-radius:6px;padding:8px;box-shadow:0 1px 3px #0002}.chart-box select{margin:0 10px 4px 4px}
 .chart .axis{stroke:#444}.chart .grid{stroke:#eee}.chart text{font-size:11px;fill:#444}.chart .label{fill:#222}
 .chart .pt{fill:#888;cursor:pointer}.chart .pt.front{fill:#d55e00}.chart .curve{fill:none;stroke:#999;stroke-width:1.2}
-.chart .oracle{fill:none;stroke:#0072b2;stroke-width:1.6}.chart .pareto{fill:none;stroke:#d55e00;stroke-width:1.5;stroke-dasharray:5 3}
+.chart .oracle{fill:none;stroke:#0072b2;stroke-width:1.6}.chart .oracle-exact{fill:#0072b2;stroke:#fff;stroke-width:1}.chart .pareto{fill:none;stroke:#d55e00;stroke-width:1.5;stroke-dasharray:5 3}
 .caption{font-size:12px;color:#444;max-width:640px;margin:4px 0}
 table.images td,table.images th{vertical-align:top;text-align:left;white-space:normal}table.images th{max-width:250px}.summary-col{flex:1 1 100%;min-width:0}.summary-wrap{max-width:100%;overflow-x:auto}table.images img{display:block;width:240px;image-rendering:pixelated;cursor:zoom-in}
 table.images img.crop{width:128px;display:inline-block;margin-right:4px}table.images tr:target{outline:3px solid #d55e00}
@@ -55,7 +55,9 @@ function drawChart(box, L) {
   const ek = box.querySelector('.error-select').value, ck = box.querySelector('.cost-select').value;
   const pts = L.points.filter(p => p.e[ek] != null && p.c[ck] != null).map(p => ({p, x: p.c[ck], y: p.e[ek]}));
   const oracle = ek === L.oracle_error && ck === 'frame_ms' ? L.oracle : [];
-  const xs = pts.map(q => q.x).concat(oracle.map(o => o[0])).filter(v => v > 0);
+  // The exact pass's V has no sampling error: its point sits on the axis's bottom (0).
+  const exact = ek === L.oracle_error && ck === 'frame_ms' ? L.oracle_exact : null;
+  const xs = pts.map(q => q.x).concat(oracle.map(o => o[0]), exact ? [exact.ms] : []).filter(v => v > 0);
   const ys = pts.map(q => q.y).concat(oracle.map(o => o[1])).filter(v => v > 0);
   const x0 = xs.length ? Math.min(...xs) / 1.4 : 1e-3, x1 = xs.length ? Math.max(...xs) * 1.4 : 1;
   const y0 = ys.length ? Math.min(...ys) / 2 : 1e-4, y1 = ys.length ? Math.max(...ys) * 1.6 : 1;
@@ -112,13 +114,21 @@ function drawChart(box, L) {
     svg.append(c);
   }
   if (oracle.length) { const o = oracle[oracle.length - 1]; label(X(o[0]), Y(o[1]), 'oracle (its 95% half-width)'); }
+  if (exact) {
+    const x = X(exact.ms), y = H - MB, d = el('path', {class: 'oracle-exact', d: `M${x},${y - 7}L${x + 6},${y}L${x},${y + 7}L${x - 6},${y}Z`});
+    d.append(el('title', {}, `oracle, exact pass: ${exact.pixels} pixels without sampling error in ${fmt(exact.ms)} ms`));
+    svg.append(d);
+    placed.push({x: x - 6, y: y - 7, w: 12, h: 14});
+    label(x, y - 4, 'oracle, exact');
+  }
   for (const q of [...front, ...pts.filter(q => !front.includes(q))]) {
     if (onCurve.has(q)) label(X(q.x), Y(q.y), q.p.curve.split(' ')[0] + ' ' + String(q.p.quality), 'label');
     else label(X(q.x), Y(q.y), q.p.label);
   }
   box.querySelector('.caption').textContent = pts.length
     ? `${pts.length} settings. Orange dashed: the Pareto front (${front.map(q => q.p.label).join(', ')}): no other setting is both cheaper and more accurate. Grey lines join the settings of one technique that differ only in its quality parameter.` +
-      (oracle.length ? ' Blue: the oracle, its penumbra\'s mean stated 95% half-width against its own time.' : '')
+      (oracle.length ? ' Blue: the oracle, its penumbra\'s mean stated 95% half-width against its own time.' : '') +
+      (exact ? ` Blue diamond on the axis: the oracle's exact pass (${exact.pixels} pixels, no sampling error), with the sampled pass that found them.` : '')
     : 'No setting has both values for this light.';
 }
 document.querySelectorAll('.chart-box').forEach(box => {

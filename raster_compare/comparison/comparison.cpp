@@ -103,6 +103,14 @@ std::vector<std::pair<double, double>> oraclePenumbraCurve(const OracleLightStat
     return curve;
 }
 
+// Where the exact pass gave some of the light's pixels their V: its cost with the sampled pass
+// that found them (the exact pass needs it, unless every pixel is asked for; it ran either way).
+std::optional<OracleExactPoint> oracleExactPoint(const OracleLightStats& l) {
+    if (!l.area || !l.area->exact || l.area->exact->pixelsExact == 0) return std::nullopt;
+    const ExactPenumbraStats& e = *l.area->exact;
+    return OracleExactPoint{1e3 * (l.area->seconds + e.seconds), 1e3 * e.seconds, e.pixelsExact};
+}
+
 // The shortest form that reads back as the same double: 0.1, not 0.10000000000000001.
 std::string shortest(double value) {
     char text[32];
@@ -296,8 +304,10 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
     if (!runs.empty() && !gl) gl = &ownGl.emplace();
 
     Comparison out;
-    for (const OracleLightStats& l : oracle.stats.lights)
+    for (const OracleLightStats& l : oracle.stats.lights) {
         out.oracleCurves.push_back(oraclePenumbraCurve(l));
+        out.oracleExact.push_back(oracleExactPoint(l));
+    }
     out.metricOptions.boundaryRadius = options.boundaryRadius;
     out.metricOptions.contactThreshold = options.contactThresholdRelative * scene.wsBounds.extent();
     if (gl) out.gl = GlInfo{gl->renderer(), gl->version(), gl->platform()};

@@ -93,6 +93,8 @@ struct Comparison {
     // Per light, sampled area lights only: the oracle's penumbra cost curve (ms, mean stated 95%
     // half-width), which every row's oracle_ms_at_equal_error is read from.
     std::vector<std::vector<std::pair<double, double>>> oracleCurves;
+    // Per light: where the oracle's exact penumbra pass gave V, what it cost (the report's chart).
+    std::vector<std::optional<OracleExactPoint>> oracleExact;
     MetricOptions metricOptions;  // what the metrics used (the contact threshold in world units)
     std::optional<PathFlicker> path;  // pathFrames > 0
     std::optional<GlInfo> gl;         // when a technique was rendered

@@ -10,7 +10,8 @@
 //   table.summary: a click on a th[data-col] whose column holds numbers sorts the rows ascending by
 //     the cells' data-v, empty data-v last; a second click sorts descending, empty still last;
 //   .chart-box: another option of select.error-select changes the circle.pt of svg.chart (their cy
-//     values or their count);
+//     values or their count); with data-exact, penumbra_mae against frame_ms draws path.oracle-exact
+//     (the oracle's exact penumbra pass) with its title;
 // and once per page: a click on the first visible img.zoomable opens #zoom (class "open", visible)
 // with a drawn #zoom-canvas; #zoom-flip changes the canvas pixels (read with toDataURL, or as an
 // element screenshot where file: images taint the canvas); where the first image's flip changes
@@ -216,6 +217,21 @@ async function pointSignature(box) {
   });
 }
 
+// A chart-box with data-exact (the oracle's exact penumbra pass applied to its light) draws the
+// pass's point (path.oracle-exact) on the bottom axis when penumbra_mae is plotted against frame ms.
+async function checkExactPoint(box, sel, where) {
+  if (!(await box.evaluate(b => b.dataset.exact === '1'))) return;
+  const cost = await box.$('select.cost-select');
+  if (cost) await cost.select('frame_ms');
+  await sel.select('penumbra_mae');
+  const r = await poll(() => box.evaluate(b => {
+    const p = b.querySelector('svg.chart path.oracle-exact');
+    return p ? {d: p.getAttribute('d'), title: (p.querySelector('title') || {}).textContent || ''} : null;
+  }), v => v !== null, 1500);
+  check(r.ok && /^M[\d.]+,[\d.]+L/.test(r.value.d) && /pixels without sampling error/.test(r.value.title), where,
+        'data-exact: the chart draws the exact pass\'s point (path.oracle-exact)' + (r.ok ? `: "${r.value.title}"` : ': none drawn'));
+}
+
 async function checkChart(page, section, where) {
   const box = await section.$('.chart-box');
   if (!check(!!box, where, 'has .chart-box')) return;
@@ -226,6 +242,9 @@ async function checkChart(page, section, where) {
   const before = await pointSignature(box);
   if (!check(before.count > 0 && before.bad === 0, where,
              `chart draws ${before.count} circle.pt for "${current}"` + (before.bad ? `, ${before.bad} with a cy that is not a number` : ''))) return;
+  await checkExactPoint(box, sel, where);
+  await sel.select(current);
+  await poll(() => pointSignature(box), s => s.count === before.count && s.key === before.key, 1500);
   const others = options.filter(o => o !== current);
   if (!check(others.length > 0, where, `select.error-select offers ${options.length} option(s): ${options.join(', ')}`)) return;
   const tried = [];

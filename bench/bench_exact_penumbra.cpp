@@ -1,0 +1,249 @@
+// What the exact penumbra pass costs (docs/benchmarks.md, "Exact penumbrae against RQMC"):
+//
+// 1. Growth: the closed-form scene (tests/test_scenes.h PenumbraScene) with its square occluder
+//    split into k x k squares, 2k^2 triangles tiling the same square, so that V and its closed
+//    form stay the same while the triangles in each pixel's pyramid grow as k^2. Per k: the exact
+//    pass's seconds per pixel, occluders per pixel (mean, p99 bound, max), the largest
+//    |V - closed form| over its pixels, and RQMC's seconds per penumbra pixel at a stated 0.001
+//    on the same scene; then the fitted growth of the time per pixel with the occluders.
+// 2. RQMC at stated half-widths 0.01, 0.001 and 0.0001 (max spp 2^20) against the exact pass on
+//    two scenes without a closed form: soft_chair's window (its sphere bulb left out: it has no
+//    exact pass) and the CGAL bunny under a low rect light. Each RQMC run's realised penumbra error
+//    is measured against the exact pass over every pixel (--exact-pixels all).
+//
+//   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bunny_scene.h"
+#include "core/channels.h"
+#include "core/local_frame.h"
+#include "core/scene.h"
+#include "lambert.h"
+#include "oracle/area_shadow.h"
+#include "oracle/offset.h"
+#include "oracle/oracle.h"
+#include "oracle/polygon_visibility.h"
+#include "test_scenes.h"
+
+using namespace so;
+
+namespace {
+
+// The closed-form scene with its occluder as k x k squares.
+Scene tiledPenumbraScene(int size, int k) {
+    test::PenumbraScene s = test::makePenumbraScene(size, size);
+    const test::AxisRect& o = s.occluder;
+    s.scene.meshes[1] = test::makeGrid({0.5 * (o.x0 + o.x1), o.y, 0.5 * (o.z0 + o.z1)},
+                                       {o.x1 - o.x0, 0, 0}, {0, 0, -(o.z1 - o.z0)}, k, "occluder");
+    finalizeScene(s.scene);
+    return s.scene;
+}
+
+OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool allPixels) {
+    OracleOptions o;
+    o.area.targetError = target;
+    o.area.maxSpp = 1 << 20;
+    o.penumbra.method = method;
+    o.penumbra.allPixels = allPixels;
+    return runOracle(scene, o);
+}
+
+double meanOccluders(const ExactPenumbraStats& e) {
+    return double(e.occludersTotal) / double(std::max<uint64_t>(e.pixelsExact, 1));
+}
+
+// The largest |V - closed form| over the pixels the exact pass gave.
+double maxClosedFormError(const ChannelImage& img, const std::string& light) {
+    namespace ch = channels;
+    const test::PenumbraScene ref;
+    const float* V = img.channel(light + ".V");
+    const float* exact = img.channel(light + "." + ch::kExact);
+    double worst = 0.0;
+    for (size_t i = 0; i < img.pixelCount(); ++i) {
+        if (exact[i] != 1.0f) continue;
+        const glm::dvec3 p(img.channel(ch::kPX)[i], img.channel(ch::kPY)[i],
+                           img.channel(ch::kPZ)[i]);
+        const glm::dvec3 n(img.channel(ch::kNX)[i], img.channel(ch::kNY)[i],
+                           img.channel(ch::kNZ)[i]);
+        const double v = test::exactRectLightRectOccluderV(p, n, ref.light, ref.occluder);
+        worst = std::max(worst, std::fabs(double(V[i]) - v));
+    }
+    return worst;
+}
+
+void growth(int size, int maxK) {
+    std::printf(
+        "growth: the closed-form scene at %dx%d, its occluder as k x k squares\n"
+        "%6s %9s %8s %10s %9s %8s %11s %12s %14s %12s\n",
+        size, size, "k", "triangles", "pixels", "occ. mean", "p99 <=", "max", "exact s",
+        "exact us/px", "max |V - cf|", "RQMC us/px");
+    std::vector<std::pair<double, double>> fit;  // (log occluders, log us per pixel)
+    for (int k = 1; k <= maxK; k *= 2) {
+        const Scene scene = tiledPenumbraScene(size, k);
+        const OracleResult ex = run(scene, 0.01, PenumbraMethod::Exact, false);
+        const ExactPenumbraStats& e = *ex.stats.lights[0].area->exact;
+        const OracleResult rq = run(scene, 0.001, PenumbraMethod::Sampled, false);
+        const OracleAreaStats& ra = *rq.stats.lights[0].area;
+        const uint64_t rqPenumbra = ra.pixelsSampled - ra.pixelsAgreeing;
+        const double usPerPixel = 1e6 * e.seconds / double(std::max<uint64_t>(e.pixelsExact, 1));
+        std::printf("%6d %9llu %8llu %10.1f %9llu %8llu %11.3f %12.1f %14.2e %12.1f\n", k,
+                    (unsigned long long)scene.stats.triangles, (unsigned long long)e.pixelsExact,
+                    meanOccluders(e), (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
+                    (unsigned long long)e.occludersMax, e.seconds, usPerPixel,
+                    maxClosedFormError(ex.image, scene.lights[0].name),
+                    1e6 * ra.seconds / double(std::max<uint64_t>(rqPenumbra, 1)));
+        std::fflush(stdout);
+        if (meanOccluders(e) >= 8.0)
+            fit.emplace_back(std::log(meanOccluders(e)), std::log(usPerPixel));
+    }
+    if (fit.size() < 2) return;
+    double mx = 0, my = 0;
+    for (const auto& [x, y] : fit) mx += x, my += y;
+    mx /= double(fit.size()), my /= double(fit.size());
+    double sxy = 0, sxx = 0;
+    for (const auto& [x, y] : fit) sxy += (x - mx) * (y - my), sxx += (x - mx) * (x - mx);
+    std::printf(
+        "  time per pixel ~ occluders^%.2f (least squares over the %zu rows with 8 or more)\n",
+        sxy / sxx, fit.size());
+}
+
+// Realised error of a sampled V against the exact one, over the pixels the exact pass gave with
+// 0 < V_exact < 1; and how its stated 95% intervals cover the exact V there.
+struct Realised {
+    double mae = 0.0, p99 = 0.0;
+    size_t pixels = 0;
+    size_t covered = 0;     // |V - V_exact| <= the stated half-width
+    size_t agreeing = 0;    // the sampled pass's samples all agreed (V 0 or 1): no exact pass
+    size_t farOutside = 0;  // sampled, disagreeing, yet beyond 10 stated half-widths
+    // Disagreeing pixels outside their interval, and those of them whose sampled V the exact V at
+    // the shadow rays' origin (p moved kLsOriginOffset along the normal, offset.h) lies within.
+    size_t outside = 0, explainedByOffset = 0;
+};
+
+// The exact V at the sampled pass's ray origin for pixel i: its P (float) put back on its
+// triangle's plane, moved along the face normal by the origin offset.
+double exactAtRayOrigin(const Scene& scene, const ExactTracer& tracer, const ChannelImage& img,
+                        size_t i) {
+    namespace ch = channels;
+    const Light& l = scene.lights[0];
+    const RectLightShape shape{l.wsPosition - 0.5 * l.wsU - 0.5 * l.wsV, l.wsU, l.wsV,
+                               l.wsEmitNormal()};
+    const TriangleId id{uint32_t(img.channel(ch::kMeshId)[i]),
+                        uint32_t(img.channel(ch::kPrimId)[i])};
+    const MeshPrimitive& m = scene.meshes[id.mesh];
+    const glm::dvec3 a = m.wsPositions[m.indices[3 * size_t(id.prim)]],
+                     b = m.wsPositions[m.indices[3 * size_t(id.prim) + 1]],
+                     c = m.wsPositions[m.indices[3 * size_t(id.prim) + 2]];
+    glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+    if (glm::dot(n, glm::dvec3(img.channel(ch::kNX)[i], img.channel(ch::kNY)[i],
+                               img.channel(ch::kNZ)[i])) < 0.0)
+        n = -n;
+    glm::dvec3 p(img.channel(ch::kPX)[i], img.channel(ch::kPY)[i], img.channel(ch::kPZ)[i]);
+    p -= glm::dot(p - a, n) * n;
+    const double wsOffset = LocalFrame::fit(scene.wsBounds).wsLength(kLsOriginOffset);
+    return rectLightVisibility(tracer, shape, p + wsOffset * n, n, id, 1u << 20).V;
+}
+
+Realised realisedError(const Scene& scene, const ChannelImage& sampled, const ChannelImage& exact) {
+    const std::string light = scene.lights[0].name;
+    std::vector<ExactTracer::MeshView> views;
+    for (const MeshPrimitive& m : scene.meshes) views.push_back({&m.wsPositions, &m.indices});
+    const ExactTracer tracer(views);
+    const float* Vs = sampled.channel(light + ".V");
+    const float* SE = sampled.channel(light + ".stderr");
+    const float* Ve = exact.channel(light + ".V");
+    const float* mask = exact.channel(light + "." + channels::kExact);
+    std::vector<double> errors;
+    Realised r;
+    for (size_t i = 0; i < exact.pixelCount(); ++i) {
+        if (!(mask[i] == 1.0f && Ve[i] > 0.0f && Ve[i] < 1.0f)) continue;
+        const double e = std::fabs(double(Vs[i]) - double(Ve[i]));
+        const double halfWidth = kIntervalQuantile95 * double(SE[i]);
+        errors.push_back(e);
+        r.covered += e <= halfWidth;
+        r.agreeing += Vs[i] == 0.0f || Vs[i] == 1.0f;
+        if (Vs[i] == 0.0f || Vs[i] == 1.0f || e <= halfWidth) continue;
+        ++r.outside;
+        r.farOutside += e > 10.0 * halfWidth;
+        const double atOrigin = exactAtRayOrigin(scene, tracer, exact, i);
+        r.explainedByOffset += std::fabs(double(Vs[i]) - atOrigin) <= halfWidth;
+    }
+    r.pixels = errors.size();
+    if (errors.empty()) return r;
+    for (double e : errors) r.mae += e;
+    r.mae /= double(errors.size());
+    const size_t q = std::min(errors.size() - 1, size_t(0.99 * double(errors.size())));
+    std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(q), errors.end());
+    r.p99 = errors[q];
+    return r;
+}
+
+// RQMC at three targets and the exact pass on one rect light (the scene's first light).
+void againstRqmc(const std::string& name, const Scene& scene) {
+    const std::string light = scene.lights[0].name;
+    std::printf("\n%s (%d x %d, %llu triangles), light \"%s\":\n", name.c_str(), scene.camera.width,
+                scene.camera.height, (unsigned long long)scene.stats.triangles, light.c_str());
+    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact, true);
+    const OracleResult pen = run(scene, 0.01, PenumbraMethod::Exact, false);
+    for (double target : {0.01, 0.001, 0.0001}) {
+        const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false);
+        const OracleAreaStats& a = *r.stats.lights[0].area;
+        const Realised e = realisedError(scene, r.image, all.image);
+        std::printf(
+            "  RQMC target %-7g %9.3f s  spp mean %8.0f  unconverged %6llu  penumbra mae %.2e  "
+            "p99 %.2e  covered %.1f%% of %zu pixels (%zu agreeing, at 0 or 1)\n"
+            "    disagreeing and outside: %zu (%zu beyond 10 half-widths); within their interval "
+            "of the exact V at the rays' offset origin: %zu\n",
+            target, a.seconds, a.sppMean(), (unsigned long long)a.pixelsUnconverged, e.mae, e.p99,
+            100.0 * double(e.covered) / double(std::max<size_t>(e.pixels, 1)), e.pixels, e.agreeing,
+            e.outside, e.farOutside, e.explainedByOffset);
+        std::fflush(stdout);
+    }
+    for (const OracleResult* r : {&pen, &all}) {
+        const OracleAreaStats& a = *r->stats.lights[0].area;
+        const ExactPenumbraStats& e = *a.exact;
+        const Realised err = realisedError(scene, r->image, all.image);
+        std::printf(
+            "  exact, %-8s %9.3f s (+ %.3f s sampled at 0.01)  %llu pixels, occluders mean %.1f, "
+            "p99 <= %llu, max %llu; kept sampled: %llu; penumbra mae %.2e\n",
+            e.allPixels ? "all" : "penumbra", e.seconds, a.seconds,
+            (unsigned long long)e.pixelsExact, meanOccluders(e),
+            (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
+            (unsigned long long)e.occludersMax, (unsigned long long)e.pixelsTooManyOccluders,
+            err.mae);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int size = 64, maxK = 128, bunnyWidth = 160;
+    CLI::App app{"the exact penumbra pass's cost: growth with occluders, against RQMC"};
+    app.add_option("--size", size, "the growth study's image side")->check(CLI::Range(16, 1024));
+    app.add_option("--max-k", maxK, "the finest split of the occluder")->check(CLI::Range(1, 1024));
+    app.add_option("--bunny-size", bunnyWidth, "the bunny image's width (height 3/4 of it)")
+        ->check(CLI::Range(16, 1024));
+    CLI11_PARSE(app, argc, argv);
+    growth(size, maxK);
+
+    Scene chair = loadScene(SO_SCENES_DIR "/soft_chair.scene.json");
+    std::erase_if(chair.lights, [](const Light& l) { return l.type != LightType::Rect; });
+    againstRqmc("soft_chair", chair);
+
+    std::string why;
+    const MeshPrimitive* bunny = test::cgalBunny(why);
+    if (!bunny) {
+        std::printf("\nbunny: skipped (%s)\n", why.c_str());
+        return 0;
+    }
+    Scene b = test::makeBunnyScene(*bunny, bunnyWidth, bunnyWidth * 3 / 4);
+    test::useLowRectLight(b);
+    againstRqmc("bunny", b);
+    return 0;
+}
