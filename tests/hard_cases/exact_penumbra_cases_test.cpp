@@ -1,7 +1,8 @@
 // The exact penumbra pass's hard cases (docs/hard-cases.md, "6. Exact penumbrae"): overlapping
 // occluders, an occluder touching the light, a receiver in the light's plane, a triangle edge-on
-// to the point, thousands of tiny triangles; each against an independent float64 estimate by
-// exact shadow rays, or against what the geometry says exactly.
+// to the point, thousands of tiny triangles, a concave crease in contact with the receiver; each
+// against an independent float64 estimate by exact shadow rays, or against what the geometry says
+// exactly.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -109,6 +110,44 @@ TEST(ExactPenumbra, ThousandsOfTinyTriangles) {
     // A cap on the work: past it the point has no exact answer (the pass keeps the sample).
     EXPECT_EQ(rectLightVisibility(t, l, {0.1, 0, 0.1}, {0, 1, 0}, {}, 50).status,
               PolygonVisibilityStatus::TooManyOccluders);
+}
+
+// A concave crease, the receiver in contact with its occluder: the receiver's plane (y = 0, x <= 0)
+// meets a plane rising at slope 0.1 from the crease line x = 0 to x = 4, and a light stands low
+// beyond it (x = 5, heights 0.1 to 1.1, facing -x). From p = (-d, e, 0), e above the receiver, a
+// ray to the light's height h passes x = 4 at e + (h - e)(4 + d)/(5 + d), under the rising
+// plane's 0.4 exactly when h < e + (0.4 - e)(5 + d)/(4 + d), for every z: V is Lambert's formula
+// over the light above that height, over the whole light's. On the surface (e = 0) with the point
+// up to 1e-10 from the crease, and lifted by the sampled pass's origin offset and more (the exact
+// pass answers for the point it is given; docs/benchmarks.md, bench_exact_penumbra).
+TEST(ExactPenumbra, ConcaveCreaseInContactWithTheReceiver) {
+    Occluders occ;
+    occ.add({-10, 0, -10}, {0, 0, -10}, {0, 0, 10});  // the receiver's plane, up to the crease
+    occ.add({-10, 0, -10}, {0, 0, 10}, {-10, 0, 10});
+    occ.add({0, 0, -10}, {4, 0.4, -10}, {4, 0.4, 10});  // the rising plane
+    occ.add({0, 0, -10}, {4, 0.4, 10}, {0, 0, 10});
+    const ExactTracer t = occ.tracer();
+    // cross(edgeU, edgeV) = -x: it emits towards the crease.
+    const RectLightShape l{{5, 0.1, -0.5}, {0, 0, 1}, {0, 1, 0}, {-1, 0, 0}};
+    const dvec3 n(0, 1, 0);
+    const auto part = [&](const dvec3& p, double y0, double y1) {
+        return cosineWeightedSolidAngle(p, n,
+                                        {{5, y0, -0.5}, {5, y0, 0.5}, {5, y1, 0.5}, {5, y1, -0.5}});
+    };
+    for (double d : {1e-1, 1e-4, 1e-7, 1e-10})
+        for (double e : {0.0, 7.6e-6, 1e-3}) {
+            const dvec3 p(-d, e, 0.0);
+            const double hidden = e + (0.4 - e) * (5 + d) / (4 + d);
+            const double closedForm = part(p, hidden, 1.1) / part(p, 0.1, 1.1);
+            const PolygonVisibility v = visibility(t, l, p);
+            ASSERT_EQ(v.status, PolygonVisibilityStatus::Exact) << d << " " << e;
+            EXPECT_NEAR(v.V, closedForm, 1e-8) << "d " << d << ", e " << e;
+            EXPECT_GT(v.V, 0.7);  // the hidden lower part weighs less: nearer p's horizon
+            EXPECT_LT(v.V, 0.9);
+        }
+    // And against the independent estimate once, at the point nearest the crease.
+    EXPECT_NEAR(visibility(t, l, {-1e-10, 0, 0}).V, gridEstimate(t, l, {-1e-10, 0, 0}, n, 800),
+                3e-3);
 }
 
 }  // namespace
