@@ -146,6 +146,26 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
     rtcScene_.commit();
 }
 
+RTCRayHit singleRayHit(const glm::vec3& org, const glm::vec3& dir, float tfar) {
+    RTCRayHit rh;
+    rh.ray.org_x = org.x;
+    rh.ray.org_y = org.y;
+    rh.ray.org_z = org.z;
+    rh.ray.dir_x = dir.x;
+    rh.ray.dir_y = dir.y;
+    rh.ray.dir_z = dir.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = tfar;
+    rh.ray.mask = 0xFFFFFFFFu;  // a zero mask would hit nothing (Embree masks are on)
+    rh.ray.time = 0.0f;
+    rh.ray.flags = 0;
+    rh.ray.id = kNoOriginTriangle;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
 uint64_t Accel::alphaTestsOnThisThread() {
     return tAlphaTests;
 }

@@ -25,6 +25,10 @@ namespace so {
 // The ray `id` of rays that leave from no surface (primary rays).
 inline constexpr unsigned kNoOriginTriangle = 0xFFFFFFFFu;
 
+// One ray for rtcIntersect1 (local frame) from org along dir, from tnear 0 to tfar, leaving from
+// no surface (id kNoOriginTriangle), every mask bit set, and no hit yet.
+RTCRayHit singleRayHit(const glm::vec3& org, const glm::vec3& dir, float tfar);
+
 class Accel {
   public:
     // originFilter = false builds the plain Embree scene the benchmarks' baselines trace. Throws

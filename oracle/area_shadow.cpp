@@ -5,13 +5,12 @@
 #include <cmath>
 #include <vector>
 
-#include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "core/progress.h"
 #include "core/sobol.h"
+#include "oracle/tile_rows.h"
 
 namespace so {
 
@@ -470,29 +469,33 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                                   std::vector<double>(rounds.size(), 0.0),
                                                   std::vector<double>(rounds.size(), 0.0), 0})};
     tbb::combinable<AreaShadowStats> partial;
-    tbb::parallel_for(tbb::blocked_range<int>(0, sb.tilesY, 1),
-                      [&](const tbb::blocked_range<int>& range) {
-                          setEmbreeFloatMode();
-                          AreaShadowStats& st = partial.local();
-                          PacketState packet;
-                          rtcInitIntersectContext(&packet.ctx);
-                          packet.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-                          const uint64_t alphaTests0 = Accel::alphaTestsOnThisThread();
-                          for (int ty = range.begin(); ty != range.end(); ++ty)
-                              for (size_t tile = size_t(ty) * size_t(sb.tilesX);
-                                   tile < size_t(ty + 1) * size_t(sb.tilesX); ++tile) {
-                                  uint64_t pixels = 0;
-                                  for (size_t s = tile * 16; s < tile * 16 + 16; ++s) {
-                                      run.pixel(s, ty, packet, st);
-                                      pixels += sb.pixelOfSlot(s) != SIZE_MAX;
-                                  }
-                                  // Per tile, not per row of tiles: a row of a wide image at a
-                                  // tight target can take seconds, and a caller's cancel (Ctrl-C in
-                                  // Python) waits for the next report.
-                                  if (progress) progress->advance(pixels);
-                              }
-                          st.alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;
-                      });
+    // A chunk of rows: the thread's counts and the chunk's packet state.
+    struct Scratch {
+        AreaShadowStats& st;
+        PacketState packet;
+    };
+    const auto makeScratch = [&] {
+        Scratch c{partial.local(), {}};
+        rtcInitIntersectContext(&c.packet.ctx);
+        c.packet.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        return c;
+    };
+    forEachTileRow(
+        sb.tilesY, makeScratch,
+        [&](int ty, Scratch& c) {
+            for (size_t tile = size_t(ty) * size_t(sb.tilesX);
+                 tile < size_t(ty + 1) * size_t(sb.tilesX); ++tile) {
+                uint64_t pixels = 0;
+                for (size_t s = tile * 16; s < tile * 16 + 16; ++s) {
+                    run.pixel(s, ty, c.packet, c.st);
+                    pixels += sb.pixelOfSlot(s) != SIZE_MAX;
+                }
+                // Per tile, not per row of tiles: a row of a wide image at a tight target can
+                // take seconds, and a caller's cancel (Ctrl-C in Python) waits for the next report.
+                if (progress) progress->advance(pixels);
+            }
+        },
+        [](Scratch& c, uint64_t alphaTestsRun) { c.st.alphaTests += alphaTestsRun; });
     AreaShadowStats total;
     partial.combine_each([&](const AreaShadowStats& s) { addCounts(total, s); });
     run.reduceSlots(total);

@@ -6,14 +6,13 @@
 #include <limits>
 #include <numbers>
 
-#include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "core/progress.h"
 #include "oracle/exact_facing.h"
 #include "oracle/offset.h"
+#include "oracle/tile_rows.h"
 
 namespace so {
 
@@ -328,25 +327,30 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
                                  Progress* progress) {
     auto t0 = std::chrono::steady_clock::now();
     tbb::combinable<HardShadowStats> partial;
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, sb.tilesY), [&](const tbb::blocked_range<int>& range) {
-            setEmbreeFloatMode();
-            HardShadowStats& st = partial.local();
-            HardPacket packet;
-            const uint64_t alphaTests0 = Accel::alphaTestsOnThisThread();
-            for (int ty = range.begin(); ty != range.end(); ++ty) {
-                for (int tx = 0; tx < sb.tilesX; ++tx)
-                    traceTile(accel, sb, light, tx, ty, packet, V, cosine, occDist, st);
-                if (progress)
-                    progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
-            }
-            st.skippedBackground += packet.counts[int(ShadowRayKind::Background)];
-            st.skippedAttached += packet.counts[int(ShadowRayKind::Attached)];
-            st.skippedOutsideCone += packet.counts[int(ShadowRayKind::OutsideCone)];
-            st.skippedBehindLight += packet.counts[int(ShadowRayKind::BehindLight)];
-            st.traced += packet.counts[int(ShadowRayKind::Traced)];
-            st.exactDecisions += packet.ps.exactDecisions;
-            st.alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;
+    // A chunk of rows: the thread's counts and the chunk's packet (which counts as it goes).
+    struct Scratch {
+        HardShadowStats& st;
+        HardPacket packet;
+    };
+    forEachTileRow(
+        sb.tilesY,
+        [&] {
+            return Scratch{partial.local(), {}};
+        },
+        [&](int ty, Scratch& c) {
+            for (int tx = 0; tx < sb.tilesX; ++tx)
+                traceTile(accel, sb, light, tx, ty, c.packet, V, cosine, occDist, c.st);
+            if (progress) progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
+        },
+        [](Scratch& c, uint64_t alphaTestsRun) {
+            HardShadowStats& st = c.st;
+            st.skippedBackground += c.packet.counts[int(ShadowRayKind::Background)];
+            st.skippedAttached += c.packet.counts[int(ShadowRayKind::Attached)];
+            st.skippedOutsideCone += c.packet.counts[int(ShadowRayKind::OutsideCone)];
+            st.skippedBehindLight += c.packet.counts[int(ShadowRayKind::BehindLight)];
+            st.traced += c.packet.counts[int(ShadowRayKind::Traced)];
+            st.exactDecisions += c.packet.ps.exactDecisions;
+            st.alphaTests += alphaTestsRun;
         });
     HardShadowStats total;
     partial.combine_each([&](const HardShadowStats& s) {

@@ -44,22 +44,7 @@ bool snapHit(const Accel& accel, RTCIntersectContext& ctx, const glm::dvec3& lsP
     float best = std::numeric_limits<float>::infinity();
     bool found = false;
     for (double sign : {1.0, -1.0}) {
-        RTCRayHit rh;
-        rh.ray.org_x = float(lsP.x);
-        rh.ray.org_y = float(lsP.y);
-        rh.ray.org_z = float(lsP.z);
-        rh.ray.dir_x = float(sign * n.x);
-        rh.ray.dir_y = float(sign * n.y);
-        rh.ray.dir_z = float(sign * n.z);
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = float(tol);
-        rh.ray.mask = 0xFFFFFFFFu;  // a zero mask would hit nothing (Embree masks are on)
-        rh.ray.time = 0.0f;
-        rh.ray.flags = 0;
-        rh.ray.id = kNoOriginTriangle;  // leaves from no surface: skip nothing
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        RTCRayHit rh = singleRayHit(glm::vec3(lsP), glm::vec3(sign * n), float(tol));
         rtcIntersect1(accel.rtcScene(), &ctx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !(rh.ray.tfar < best)) continue;
         best = rh.ray.tfar;

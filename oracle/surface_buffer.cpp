@@ -4,12 +4,11 @@
 #include <cmath>
 #include <limits>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
 #include "core/progress.h"
+#include "oracle/tile_rows.h"
 
 namespace so {
 
@@ -33,89 +32,80 @@ SurfaceBuffer SurfaceBuffer::empty(int width, int height, int rowBegin) {
     return sb;
 }
 
+namespace {
+
+// Slot s from its primary hit; returns how far its shadow-ray origin lies from the hit point.
+double fillSlot(SurfaceBuffer& sb, size_t s, const Accel& accel, const RTCRayHit& rh,
+                const glm::dvec3& wsDir, const glm::dvec3& lsEye, OffsetPolicy offsetPolicy) {
+    glm::dvec3 a, b, c;
+    accel.triangle(rh.hit.geomID, rh.hit.primID, a, b, c);
+    const double u = rh.hit.u, v = rh.hit.v;
+    // Rebuilt on the double triangle, not org + t*dir: the hit then lies on the surface to the
+    // precision of the stored float whatever the ray's length.
+    const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
+    glm::dvec3 ng = glm::cross(b - a, c - a);
+    ng /= glm::length(ng);  // a hit triangle has non-zero area
+    if (glm::dot(ng, wsDir) > 0.0) ng = -ng;
+    sb.hit[s] = 1;
+    sb.meshId[s] = rh.hit.geomID;
+    sb.primId[s] = rh.hit.primID;
+    sb.originId[s] = accel.originId(rh.hit.geomID, rh.hit.primID);
+    const glm::vec3 pf(p), nf(ng);
+    const glm::vec3 org = offsetPolicy == OffsetPolicy::ErrorBound ? errorBoundOrigin(p, ng)
+                                                                   : offsetRayOrigin(pf, nf);
+    sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
+    sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
+    sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
+    sb.wsDepth[s] = float(accel.frame().wsLength(glm::length(p - lsEye)));
+    sb.baryU[s] = rh.hit.u;
+    sb.baryV[s] = rh.hit.v;
+    return glm::length(glm::dvec3(org) - p);
+}
+
+}  // namespace
+
 SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
                            OffsetPolicy offsetPolicy, int rowBegin, int rowEnd) {
     if (rowEnd < 0) rowEnd = camera.height();
     SO_CHECK(rowBegin % SurfaceBuffer::kTile == 0 && 0 <= rowBegin && rowBegin < rowEnd &&
              rowEnd <= camera.height());
     SurfaceBuffer sb = SurfaceBuffer::empty(camera.width(), rowEnd - rowBegin, rowBegin);
-    const LocalFrame& frame = accel.frame();
-    sb.lsEye = frame.lsFromWs(camera.wsEye());
+    sb.lsEye = accel.frame().lsFromWs(camera.wsEye());
     const glm::dvec3 lsEye = *sb.lsEye;
     const glm::vec3 lsEyeF(lsEye);
 
     // Per-tile-row maxima, reduced in a fixed order afterwards so the result is thread-count
     // independent.
     std::vector<double> rowMaxOffset(size_t(sb.tilesY), 0.0);
-    std::atomic<uint64_t> alphaTests{0};  // added once per range
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, sb.tilesY), [&](const tbb::blocked_range<int>& rows) {
-            setEmbreeFloatMode();
-            RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            const uint64_t alphaTests0 = Accel::alphaTestsOnThisThread();
-            for (int ty = rows.begin(); ty != rows.end(); ++ty) {
-                double rowMax = 0.0;
-                for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
-                     s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s) {
-                    const size_t pixel = sb.pixelOfSlot(s);
-                    if (pixel == SIZE_MAX) continue;
-                    const int x = int(pixel % size_t(sb.width));
-                    const int y = sb.rowBegin + int(pixel / size_t(sb.width));  // in the image
-                    // The direction is the same in world and local space: the frame only translates
-                    // and scales uniformly.
-                    const glm::dvec3 wsDir = camera.generateRay(x, y).direction;
-                    RTCRayHit rh;
-                    rh.ray.org_x = lsEyeF.x;
-                    rh.ray.org_y = lsEyeF.y;
-                    rh.ray.org_z = lsEyeF.z;
-                    rh.ray.dir_x = float(wsDir.x);
-                    rh.ray.dir_y = float(wsDir.y);
-                    rh.ray.dir_z = float(wsDir.z);
-                    rh.ray.tnear = 0.0f;
-                    rh.ray.tfar = std::numeric_limits<float>::infinity();
-                    rh.ray.mask =
-                        0xFFFFFFFFu;  // a zero mask would hit nothing (Embree masks are on)
-                    rh.ray.time = 0.0f;
-                    rh.ray.flags = 0;
-                    rh.ray.id = kNoOriginTriangle;  // leaves from no surface: skip nothing
-                    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                    rtcIntersect1(accel.rtcScene(), &ctx, &rh);
-                    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-
-                    glm::dvec3 a, b, c;
-                    accel.triangle(rh.hit.geomID, rh.hit.primID, a, b, c);
-                    const double u = rh.hit.u, v = rh.hit.v;
-                    // Rebuilt on the double triangle, not org + t*dir: the hit then lies on the
-                    // surface to the precision of the stored float whatever the ray's length.
-                    const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
-                    glm::dvec3 ng = glm::cross(b - a, c - a);
-                    ng /= glm::length(ng);  // a hit triangle has non-zero area
-                    if (glm::dot(ng, wsDir) > 0.0) ng = -ng;
-                    sb.hit[s] = 1;
-                    sb.meshId[s] = rh.hit.geomID;
-                    sb.primId[s] = rh.hit.primID;
-                    sb.originId[s] = accel.originId(rh.hit.geomID, rh.hit.primID);
-                    const glm::vec3 pf(p), nf(ng);
-                    const glm::vec3 org = offsetPolicy == OffsetPolicy::ErrorBound
-                                              ? errorBoundOrigin(p, ng)
-                                              : offsetRayOrigin(pf, nf);
-                    sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
-                    sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
-                    sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
-                    sb.wsDepth[s] = float(frame.wsLength(glm::length(p - lsEye)));
-                    sb.baryU[s] = rh.hit.u;
-                    sb.baryV[s] = rh.hit.v;
-                    rowMax = std::max(rowMax, glm::length(glm::dvec3(org) - p));
-                }
-                rowMaxOffset[size_t(ty)] = rowMax;
-                if (progress)
-                    progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
+    std::atomic<uint64_t> alphaTests{0};  // added once per chunk of rows
+    const auto makeContext = [] {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        return ctx;
+    };
+    forEachTileRow(
+        sb.tilesY, makeContext,
+        [&](int ty, RTCIntersectContext& ctx) {
+            double rowMax = 0.0;
+            for (size_t s = size_t(ty) * size_t(sb.tilesX) * 16;
+                 s < size_t(ty + 1) * size_t(sb.tilesX) * 16; ++s) {
+                const size_t pixel = sb.pixelOfSlot(s);
+                if (pixel == SIZE_MAX) continue;
+                const int x = int(pixel % size_t(sb.width));
+                const int y = sb.rowBegin + int(pixel / size_t(sb.width));  // in the image
+                // The direction is the same in world and local space: the frame only translates
+                // and scales uniformly.
+                const glm::dvec3 wsDir = camera.generateRay(x, y).direction;
+                RTCRayHit rh =
+                    singleRayHit(lsEyeF, glm::vec3(wsDir), std::numeric_limits<float>::infinity());
+                rtcIntersect1(accel.rtcScene(), &ctx, &rh);
+                if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+                rowMax = std::max(rowMax, fillSlot(sb, s, accel, rh, wsDir, lsEye, offsetPolicy));
             }
-            alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;
-        });
+            rowMaxOffset[size_t(ty)] = rowMax;
+            if (progress) progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
+        },
+        [&](RTCIntersectContext&, uint64_t alphaTestsRun) { alphaTests += alphaTestsRun; });
     for (double m : rowMaxOffset) sb.lsMaxOffset = std::max(sb.lsMaxOffset, m);
     sb.alphaTests = alphaTests.load();
     return sb;
