@@ -7,9 +7,11 @@
 //    |V - closed form| over its pixels, and RQMC's seconds per penumbra pixel at a stated 0.001
 //    on the same scene; then the fitted growth of the time per pixel with the occluders.
 // 2. RQMC at stated half-widths 0.01, 0.001 and 0.0001 (max spp 2^20) against the exact pass on
+//    the shipped penumbra_square (200 x 200; its exact pass matches the closed form, part 1) and
 //    two scenes without a closed form: soft_chair's window (its sphere bulb left out: it has no
 //    exact pass) and the CGAL bunny under a low rect light. Each RQMC run's realised penumbra error
-//    is measured against the exact pass over every pixel (--exact-pixels all).
+//    and its intervals' coverage are measured against the exact pass over every pixel
+//    (--exact-pixels all).
 //
 //   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W]
 #include <algorithm>
@@ -24,6 +26,7 @@
 #include "core/channels.h"
 #include "core/local_frame.h"
 #include "core/scene.h"
+#include "exact_penumbra_util.h"
 #include "lambert.h"
 #include "oracle/area_shadow.h"
 #include "oracle/offset.h"
@@ -126,42 +129,59 @@ struct Realised {
     size_t outside = 0, explainedByOffset = 0;
 };
 
-// The exact V at the sampled pass's ray origin for pixel i: its P (float) put back on its
-// triangle's plane, moved along the face normal by the origin offset.
-double exactAtRayOrigin(const Scene& scene, const ExactTracer& tracer, const ChannelImage& img,
-                        size_t i) {
-    namespace ch = channels;
-    const Light& l = scene.lights[0];
-    const RectLightShape shape{l.wsPosition - 0.5 * l.wsU - 0.5 * l.wsV, l.wsU, l.wsV,
-                               l.wsEmitNormal()};
-    const TriangleId id{uint32_t(img.channel(ch::kMeshId)[i]),
-                        uint32_t(img.channel(ch::kPrimId)[i])};
-    const MeshPrimitive& m = scene.meshes[id.mesh];
-    const glm::dvec3 a = m.wsPositions[m.indices[3 * size_t(id.prim)]],
-                     b = m.wsPositions[m.indices[3 * size_t(id.prim) + 1]],
-                     c = m.wsPositions[m.indices[3 * size_t(id.prim) + 2]];
-    glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
-    if (glm::dot(n, glm::dvec3(img.channel(ch::kNX)[i], img.channel(ch::kNY)[i],
-                               img.channel(ch::kNZ)[i])) < 0.0)
-        n = -n;
-    glm::dvec3 p(img.channel(ch::kPX)[i], img.channel(ch::kPY)[i], img.channel(ch::kPZ)[i]);
-    p -= glm::dot(p - a, n) * n;
-    const double wsOffset = LocalFrame::fit(scene.wsBounds).wsLength(kLsOriginOffset);
-    return rectLightVisibility(tracer, shape, p + wsOffset * n, n, id, 1u << 20).V;
-}
-
-Realised realisedError(const Scene& scene, const ChannelImage& sampled, const ChannelImage& exact) {
-    const std::string light = scene.lights[0].name;
+// What the sampled runs are measured against: the exact pass over every pixel, and the exact
+// tracer over the scene (world space) for V at the shadow rays' offset origin.
+struct Reference {
+    const Scene& scene;
+    ChannelImage image;  // --penumbra exact --exact-pixels all
     std::vector<ExactTracer::MeshView> views;
-    for (const MeshPrimitive& m : scene.meshes) views.push_back({&m.wsPositions, &m.indices});
-    const ExactTracer tracer(views);
+    ExactTracer tracer;
+    RectLightShape shape;
+    double wsOffset;  // the origin offset (offset.h) in world units
+
+    Reference(const Scene& s, ChannelImage exact)
+        : scene(s),
+          image(std::move(exact)),
+          views(meshViews(s)),
+          tracer(views),
+          shape(test::rectLightShape(s.lights[0])),
+          wsOffset(LocalFrame::fit(s.wsBounds).wsLength(kLsOriginOffset)) {}
+
+    static std::vector<ExactTracer::MeshView> meshViews(const Scene& s) {
+        std::vector<ExactTracer::MeshView> v;
+        for (const MeshPrimitive& m : s.meshes) v.push_back({&m.wsPositions, &m.indices});
+        return v;
+    }
+
+    // The exact V at the sampled pass's ray origin for pixel i: its P (float) put back on its
+    // triangle's plane, moved along the face normal by the origin offset.
+    double atRayOrigin(size_t i) const {
+        namespace ch = channels;
+        const TriangleId id{uint32_t(image.channel(ch::kMeshId)[i]),
+                            uint32_t(image.channel(ch::kPrimId)[i])};
+        const MeshPrimitive& m = scene.meshes[id.mesh];
+        const uint32_t* t = &m.indices[3 * size_t(id.prim)];
+        const glm::dvec3 a = m.wsPositions[t[0]], b = m.wsPositions[t[1]], c = m.wsPositions[t[2]];
+        glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+        if (glm::dot(n, glm::dvec3(image.channel(ch::kNX)[i], image.channel(ch::kNY)[i],
+                                   image.channel(ch::kNZ)[i])) < 0.0)
+            n = -n;
+        glm::dvec3 p(image.channel(ch::kPX)[i], image.channel(ch::kPY)[i],
+                     image.channel(ch::kPZ)[i]);
+        p -= glm::dot(p - a, n) * n;
+        return rectLightVisibility(tracer, shape, p + wsOffset * n, n, id, 1u << 20).V;
+    }
+};
+
+Realised realisedError(const Reference& ref, const ChannelImage& sampled) {
+    const std::string light = ref.scene.lights[0].name;
     const float* Vs = sampled.channel(light + ".V");
     const float* SE = sampled.channel(light + ".stderr");
-    const float* Ve = exact.channel(light + ".V");
-    const float* mask = exact.channel(light + "." + channels::kExact);
+    const float* Ve = ref.image.channel(light + ".V");
+    const float* mask = ref.image.channel(light + "." + channels::kExact);
     std::vector<double> errors;
     Realised r;
-    for (size_t i = 0; i < exact.pixelCount(); ++i) {
+    for (size_t i = 0; i < ref.image.pixelCount(); ++i) {
         if (!(mask[i] == 1.0f && Ve[i] > 0.0f && Ve[i] < 1.0f)) continue;
         const double e = std::fabs(double(Vs[i]) - double(Ve[i]));
         const double halfWidth = kIntervalQuantile95 * double(SE[i]);
@@ -171,8 +191,7 @@ Realised realisedError(const Scene& scene, const ChannelImage& sampled, const Ch
         if (Vs[i] == 0.0f || Vs[i] == 1.0f || e <= halfWidth) continue;
         ++r.outside;
         r.farOutside += e > 10.0 * halfWidth;
-        const double atOrigin = exactAtRayOrigin(scene, tracer, exact, i);
-        r.explainedByOffset += std::fabs(double(Vs[i]) - atOrigin) <= halfWidth;
+        r.explainedByOffset += std::fabs(double(Vs[i]) - ref.atRayOrigin(i)) <= halfWidth;
     }
     r.pixels = errors.size();
     if (errors.empty()) return r;
@@ -191,10 +210,11 @@ void againstRqmc(const std::string& name, const Scene& scene) {
                 scene.camera.height, (unsigned long long)scene.stats.triangles, light.c_str());
     const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact, true);
     const OracleResult pen = run(scene, 0.01, PenumbraMethod::Exact, false);
+    const Reference ref(scene, all.image);
     for (double target : {0.01, 0.001, 0.0001}) {
         const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false);
         const OracleAreaStats& a = *r.stats.lights[0].area;
-        const Realised e = realisedError(scene, r.image, all.image);
+        const Realised e = realisedError(ref, r.image);
         std::printf(
             "  RQMC target %-7g %9.3f s  spp mean %8.0f  unconverged %6llu  penumbra mae %.2e  "
             "p99 %.2e  covered %.1f%% of %zu pixels (%zu agreeing, at 0 or 1)\n"
@@ -208,7 +228,7 @@ void againstRqmc(const std::string& name, const Scene& scene) {
     for (const OracleResult* r : {&pen, &all}) {
         const OracleAreaStats& a = *r->stats.lights[0].area;
         const ExactPenumbraStats& e = *a.exact;
-        const Realised err = realisedError(scene, r->image, all.image);
+        const Realised err = realisedError(ref, r->image);
         std::printf(
             "  exact, %-8s %9.3f s (+ %.3f s sampled at 0.01)  %llu pixels, occluders mean %.1f, "
             "p99 <= %llu, max %llu; kept sampled: %llu; penumbra mae %.2e\n",
@@ -231,6 +251,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(16, 1024));
     CLI11_PARSE(app, argc, argv);
     growth(size, maxK);
+
+    Scene square = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");
+    square.camera.width = square.camera.height = 200;
+    againstRqmc("penumbra_square", square);
 
     Scene chair = loadScene(SO_SCENES_DIR "/soft_chair.scene.json");
     std::erase_if(chair.lights, [](const Light& l) { return l.type != LightType::Rect; });

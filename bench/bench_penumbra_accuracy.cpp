@@ -1,8 +1,8 @@
 // What penumbra accuracy costs the oracle, against the exact answer: on the shipped
 // penumbra_square scene (a rect light over a parallel square occluder, Lambert's closed form), the
 // adaptive run at several targets: rays, seconds, the realised mean |V - exact| over penumbra
-// pixels and the share of them inside their stated 95% interval (docs/benchmarks.md); then the
-// exact penumbra pass against RQMC at stated half-widths 0.01, 0.001 and 0.0001.
+// pixels and the share of them inside their stated 95% interval (docs/benchmarks.md). The exact
+// penumbra pass against RQMC: bench_exact_penumbra.
 //
 //   bench_penumbra_accuracy [--size N] [--baseline DIR ...]
 //
@@ -145,46 +145,6 @@ void printEqualError(const std::vector<Run>& now, const std::vector<Run>& baseli
     }
 }
 
-// The exact pass (--penumbra exact) against RQMC at stated half-widths 0.01, 0.001 and 0.0001: the
-// seconds of each, and the exact run's error against the closed form (docs/benchmarks.md).
-void printExactComparison(const Scene& scene, int size) {
-    std::printf("\nexact penumbra pass against RQMC (seconds of the light's pass):\n");
-    double rqmc01 = 0.0, rqmc001 = 0.0;
-    for (double target : {0.01, 0.001, 0.0001}) {
-        OracleOptions o;
-        o.width = o.height = size;
-        o.area.targetError = target;
-        const OracleResult r = runOracle(scene, o);
-        const OracleAreaStats& la = *r.stats.lights[0].area;
-        const Accuracy a = evaluate(r.image, kIntervalQuantile95);
-        std::printf("  RQMC target %-8g %8.3f s  %12.0f rays  penumbra mae %.2e  p99 %.2e\n",
-                    target, la.seconds, double(la.raysTraced), a.penumbraMae, a.penumbraP99);
-        if (target == 0.01) rqmc01 = la.seconds;
-        if (target == 0.001) rqmc001 = la.seconds;
-    }
-    for (const bool all : {false, true}) {
-        OracleOptions o;
-        o.width = o.height = size;
-        o.penumbra.method = PenumbraMethod::Exact;
-        o.penumbra.allPixels = all;
-        const OracleResult r = runOracle(scene, o);
-        const OracleAreaStats& la = *r.stats.lights[0].area;
-        const ExactPenumbraStats& e = *la.exact;
-        const Accuracy a = evaluate(r.image, kIntervalQuantile95);
-        std::printf(
-            "  exact pass, %-8s %8.3f s  on %llu pixels (occluders mean %.2f, p99 <= "
-            "%llu, max %llu), after the sampled pass at 0.01 (%.3f s)\n",
-            all ? "all" : "penumbra", e.seconds, (unsigned long long)e.pixelsExact,
-            double(e.occludersTotal) / double(std::max<uint64_t>(e.pixelsExact, 1)),
-            (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
-            (unsigned long long)e.occludersMax, la.seconds);
-        std::printf("    penumbra mae %.2e, p99 %.2e against the closed form (float32 V and P)\n",
-                    a.penumbraMae, a.penumbraP99);
-        std::printf("    exact pass / RQMC at 0.01: %.2fx; both passes / RQMC at 0.001: %.2fx\n",
-                    e.seconds / rqmc01, (e.seconds + la.seconds) / rqmc001);
-    }
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -217,7 +177,6 @@ int main(int argc, char** argv) {
             reported = true;
         }
     }
-    printExactComparison(scene, size);
     if (baselineDirs.empty()) return 0;
     std::printf("\nrecorded baseline:\n");
     std::vector<Run> baseline;

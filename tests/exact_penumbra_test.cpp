@@ -186,9 +186,7 @@ TEST(ExactPenumbra, BunnyWithinTheSampledIntervalsAndAnIndependentEstimate) {
     std::vector<ExactTracer::MeshView> views;
     for (const MeshPrimitive& m : scene.meshes) views.push_back({&m.wsPositions, &m.indices});
     const ExactTracer t(views);
-    const Light& l = scene.lights[0];
-    const RectLightShape shape{l.wsPosition - 0.5 * l.wsU - 0.5 * l.wsV, l.wsU, l.wsV,
-                               l.wsEmitNormal()};
+    const RectLightShape shape = rectLightShape(scene.lights[0]);
     std::vector<size_t> penumbra;
     for (size_t i = 0; i < img.pixelCount(); ++i)
         if (exact[i] == 1.0f && Vexact[i] > 0.05f && Vexact[i] < 0.95f) penumbra.push_back(i);

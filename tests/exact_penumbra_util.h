@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/scene.h"
 #include "lambert.h"
 #include "oracle/polygon_visibility.h"
 #include "test_scenes.h"
@@ -20,6 +21,11 @@ inline const AxisRect kPenumbraLight = PenumbraScene{}.light;
 // An AxisRect light as the exact pass takes it: cross(edgeU, edgeV) points down, as it emits.
 inline RectLightShape lightShape(const AxisRect& l) {
     return {{l.x0, l.y, l.z0}, {l.x1 - l.x0, 0, 0}, {0, 0, l.z1 - l.z0}, {0, -1, 0}};
+}
+
+// A scene's rect light as the exact pass takes it, in world space.
+inline RectLightShape rectLightShape(const Light& l) {
+    return {l.wsPosition - 0.5 * l.wsU - 0.5 * l.wsV, l.wsU, l.wsV, l.wsEmitNormal()};
 }
 
 // Triangles as one mesh, with the tracer over them.
