@@ -93,8 +93,8 @@ int main(int argc, char** argv) {
         AreaShadowStats st;
         auto runOracle = [&] {
             arena.execute([&] {
-                st = traceAreaShadows(accel, sb, al, sampling, 0, V.data(), SE.data(), S.data(),
-                                      C.data(), nullptr, nullptr);
+                st = traceAreaShadows(accel, sb, al, sampling, 0,
+                                      {V.data(), SE.data(), S.data(), C.data(), nullptr}, nullptr);
             });
         };
         // The oracle's rays, prepared beforehand in its own order and packets.
@@ -187,10 +187,10 @@ int main(int argc, char** argv) {
     small.lights = {benchLights()[0]};
     OracleOptions o;
     OracleResult adaptive = runOracle(small, o);
-    const OracleAreaStats& la = *adaptive.stats.lights[0].area;
+    const AreaShadowStats& la = *adaptive.stats.lights[0].area;
     o.area.fixedSpp = int(la.sppMax);
     OracleResult uniform = runOracle(small, o);
-    const OracleAreaStats& lu = *uniform.stats.lights[0].area;
+    const AreaShadowStats& lu = *uniform.stats.lights[0].area;
     std::printf("adaptive vs uniform (rect light, %dx%d, target 0.01):\n", adaptiveSize,
                 adaptiveSize);
     std::printf(

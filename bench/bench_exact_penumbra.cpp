@@ -92,7 +92,7 @@ void growth(int size, int maxK) {
         const OracleResult ex = run(scene, 0.01, PenumbraMethod::Exact, false);
         const ExactPenumbraStats& e = *ex.stats.lights[0].area->exact;
         const OracleResult rq = run(scene, 0.001, PenumbraMethod::Sampled, false);
-        const OracleAreaStats& ra = *rq.stats.lights[0].area;
+        const AreaShadowStats& ra = *rq.stats.lights[0].area;
         const uint64_t rqPenumbra = ra.pixelsSampled - ra.pixelsAgreeing;
         const double usPerPixel = 1e6 * e.seconds / double(std::max<uint64_t>(e.pixelsExact, 1));
         std::printf("%6d %9llu %8llu %10.1f %9llu %8llu %11.3f %12.1f %14.2e %12.1f\n", k,
@@ -213,7 +213,7 @@ void againstRqmc(const std::string& name, const Scene& scene) {
     const Reference ref(scene, all.image);
     for (double target : {0.01, 0.001, 0.0001}) {
         const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false);
-        const OracleAreaStats& a = *r.stats.lights[0].area;
+        const AreaShadowStats& a = *r.stats.lights[0].area;
         const Realised e = realisedError(ref, r.image);
         std::printf(
             "  RQMC target %-7g %9.3f s  spp mean %8.0f  unconverged %6llu  penumbra mae %.2e  "
@@ -226,7 +226,7 @@ void againstRqmc(const std::string& name, const Scene& scene) {
         std::fflush(stdout);
     }
     for (const OracleResult* r : {&pen, &all}) {
-        const OracleAreaStats& a = *r->stats.lights[0].area;
+        const AreaShadowStats& a = *r->stats.lights[0].area;
         const ExactPenumbraStats& e = *a.exact;
         const Realised err = realisedError(ref, r->image);
         std::printf(

@@ -72,14 +72,14 @@ int main(int argc, char** argv) {
         HardShadowStats st;
         auto runOracle = [&] {
             arena.execute([&] {
-                st = traceHardShadows(accel, sb, hl, V.data(), C.data(), nullptr, nullptr);
+                st = traceHardShadows(accel, sb, hl, {V.data(), C.data(), nullptr}, nullptr);
             });
         };
         // The same pass on the scene without the origin filter: the filter's share of the time.
         std::vector<float> Vplain(n), Cplain(n);
         auto runOraclePlain = [&] {
             arena.execute([&] {
-                traceHardShadows(plain, sb, hl, Vplain.data(), Cplain.data(), nullptr, nullptr);
+                traceHardShadows(plain, sb, hl, {Vplain.data(), Cplain.data(), nullptr}, nullptr);
             });
         };
 
@@ -189,10 +189,10 @@ int main(int argc, char** argv) {
                     mismatch16 += (work16[p].tfar[k] >= 0.0f) != (V[i] == 1.0f);
                 }
             }
-        double mOracle = double(st.traced) / tOracle / 1e6, m1 = double(rays) / t1 / 1e6,
+        double mOracle = double(st.raysTraced) / tOracle / 1e6, m1 = double(rays) / t1 / 1e6,
                m16 = double(rays) / t16 / 1e6;
         std::printf("light %-6s %zu rays (%.1f%% occluded)\n", light.name.c_str(), rays,
-                    100.0 * double(st.occluded) / double(std::max<uint64_t>(1, st.traced)));
+                    100.0 * double(st.raysOccluded) / double(std::max<uint64_t>(1, st.raysTraced)));
         std::printf("  oracle        %7.2f Mrays/s\n", mOracle);
         std::printf(
             "  rtcOccluded1  %7.2f Mrays/s   oracle / occluded1  = %.2f (median of per-run "
@@ -206,7 +206,7 @@ int main(int argc, char** argv) {
         std::printf(
             "  answers changed by the origin filter: %zu (occluded1), %zu (occluded16) of %zu\n",
             mismatch1, mismatch16, rays);
-        if (st.traced != rays) return 1;
+        if (st.raysTraced != rays) return 1;
     }
     return 0;
 }

@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
         o.width = o.height = size;
         o.area.targetError = target;
         const OracleResult r = runOracle(scene, o);
-        const OracleAreaStats& la = *r.stats.lights[0].area;
+        const AreaShadowStats& la = *r.stats.lights[0].area;
         now.push_back({"target " + std::to_string(target), double(la.raysTraced), la.seconds,
                        evaluate(r.image, kIntervalQuantile95)});
         printRun(now.back());

@@ -61,7 +61,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
 void printOracleCost(const OracleStats& stats) {
     for (const OracleLightStats& l : stats.lights) {
         if (!l.area || !l.area->targetError) continue;
-        const OracleAreaStats& a = *l.area;
+        const AreaShadowStats& a = *l.area;
         std::cout << "  " << l.name << ": target " << *a.targetError << " took " << a.seconds
                   << " s (mean " << a.sppMean() << " spp)";
         const double tighter = *a.targetError / 2.0;

@@ -317,7 +317,7 @@ struct AreaRun {
     const AreaLight& light;
     const AreaSampling& sampling;
     uint32_t stream;
-    float *V, *stderr_, *spp, *cosine, *unconverged;
+    AreaShadowPlanes out;
     std::vector<int> rounds;
     std::vector<float> perSampleVar, halfWidth;  // per slot
     std::vector<double> efficiency;              // per slot
@@ -331,13 +331,13 @@ struct AreaRun {
 void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) {
     const size_t px = sb.pixelOfSlot(s);
     if (px == SIZE_MAX) return;
-    V[px] = stderr_[px] = spp[px] = cosine[px] = 0.0f;
+    out.V[px] = out.stderr_[px] = out.spp[px] = out.cosine[px] = 0.0f;
     if (!sb.hit[s]) {
         ++st.skippedBackground;
         return;
     }
     const glm::vec3 p = sb.lsPoint(s), n = sb.lsNormal(s);
-    cosine[px] = glm::dot(n, glm::normalize(light.lsCenter - p));
+    out.cosine[px] = glm::dot(n, glm::normalize(light.lsCenter - p));
     const PixelTies ties{accel, sb, s, packet.facingCache, st.exactDecisions};
     switch (classifyAreaPixel(light, glm::dvec3(p), glm::dvec3(n), &ties)) {
         case AreaSkip::BelowHorizon:
@@ -357,21 +357,22 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
         samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
                     areaPixelSeed(sampling.seed, stream, uint32_t(sb.fullImagePixel(px))),
                     sb.lsRayOrigin(s), sb.originId[s], packet, st);
-    V[px] = float(r.est.V);
-    stderr_[px] = float(r.est.stderr_);
-    spp[px] = float(r.samples);
-    addToCurve(rounds, packet.halfWidths, V[px] > 0.0f && V[px] < 1.0f, curveRows[size_t(ty)]);
+    out.V[px] = float(r.est.V);
+    out.stderr_[px] = float(r.est.stderr_);
+    out.spp[px] = float(r.samples);
+    addToCurve(rounds, packet.halfWidths, out.V[px] > 0.0f && out.V[px] < 1.0f,
+               curveRows[size_t(ty)]);
     const double hw = kIntervalQuantile95 * r.est.stderr_;
     st.samples += uint64_t(r.samples);
-    st.maxSpp = std::max<uint64_t>(st.maxSpp, uint64_t(r.samples));
-    st.reachedTarget += hw <= r.threshold;
+    st.sppMax = std::max<uint64_t>(st.sppMax, uint64_t(r.samples));
+    st.pixelsReachedTarget += hw <= r.threshold;
     if (r.agreeing) {
         ++st.pixelsAgreeing;
         st.samplesAgreeing += uint64_t(r.samples);
     }
     if (sampling.fixedSpp == 0 && hw > r.threshold) {
         ++st.pixelsUnconverged;
-        if (unconverged) unconverged[px] = 1.0f;
+        if (out.unconverged) out.unconverged[px] = 1.0f;
     }
     halfWidth[s] = float(hw);
     perSampleVar[s] = float(r.est.stderr_ * r.est.stderr_ * double(r.samples));
@@ -385,15 +386,14 @@ void AreaRun::reduceSlots(AreaShadowStats& total) const {
     for (float h : halfWidth) total.worstHalfWidth = std::max(total.worstHalfWidth, double(h));
     if (total.worstHalfWidth > 0.0)
         for (float v : perSampleVar)
-            total.uniformSppForWorst =
-                std::max(total.uniformSppForWorst, uniformSppFor(v, total.worstHalfWidth));
+            total.uniformSpp = std::max(total.uniformSpp, uniformSppFor(v, total.worstHalfWidth));
     total.samplingEfficiency =
         total.pixelsSampled ? efficiencySum / double(total.pixelsSampled) : 1.0;
 }
 
 // The cost curve from the rows, in row order, and the run as it ended.
 void AreaRun::reduceCurve(AreaShadowStats& total) const {
-    const int roundsUsed = int((total.maxSpp + 15) / 16);
+    const int roundsUsed = int((total.sppMax + 15) / 16);
     uint64_t penumbraPixels = 0;
     for (const CurveRow& row : curveRows) penumbraPixels += row.penumbraPixels;
     for (size_t c = 0; c < rounds.size() && rounds[c] <= roundsUsed && total.pixelsSampled; ++c) {
@@ -414,7 +414,7 @@ void AreaRun::reduceCurve(AreaShadowStats& total) const {
         for (size_t s = 0; s < halfWidth.size(); ++s) {
             sum += halfWidth[s];
             const size_t px = sb.pixelOfSlot(s);
-            if (px != SIZE_MAX && V[px] > 0.0f && V[px] < 1.0f) penumbraSum += halfWidth[s];
+            if (px != SIZE_MAX && out.V[px] > 0.0f && out.V[px] < 1.0f) penumbraSum += halfWidth[s];
         }
         total.costCurve.push_back(
             {roundsUsed, total.samples, sum / double(total.pixelsSampled),
@@ -422,31 +422,24 @@ void AreaRun::reduceCurve(AreaShadowStats& total) const {
     }
 }
 
-void addCounts(AreaShadowStats& total, const AreaShadowStats& s) {
-    total.samples += s.samples;
-    total.raysTraced += s.raysTraced;
-    total.raysOccluded += s.raysOccluded;
-    total.pixelsSampled += s.pixelsSampled;
-    total.reachedTarget += s.reachedTarget;
-    total.pixelsAgreeing += s.pixelsAgreeing;
-    total.samplesAgreeing += s.samplesAgreeing;
-    total.pixelsUnconverged += s.pixelsUnconverged;
-    total.pixelsWithoutUsableSamples += s.pixelsWithoutUsableSamples;
-    total.maxSpp = std::max(total.maxSpp, s.maxSpp);
-    total.skippedBackground += s.skippedBackground;
-    total.skippedBelowHorizon += s.skippedBelowHorizon;
-    total.skippedBehindLight += s.skippedBehindLight;
-    total.exactDecisions += s.exactDecisions;
-    total.alphaTests += s.alphaTests;
-    total.skippedInsideLight += s.skippedInsideLight;
+// The run's settings and the sampler's description, as oracle.json states them.
+AreaShadowStats settingsOf(const AreaLight& light, const AreaSampling& sampling) {
+    AreaShadowStats s;
+    s.sampling =
+        light.type == LightType::Sphere ? "solid angle of the visible cap" : "uniform by area";
+    if (sampling.fixedSpp <= 0) {
+        s.targetError = sampling.targetError;
+        s.agreementTarget = sampling.agreementTarget;
+    }
+    s.maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
+    return s;
 }
 
 }  // namespace
 
 AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                  const AreaLight& light, const AreaSampling& sampling,
-                                 uint32_t stream, float* V, float* stderr_, float* spp,
-                                 float* cosine, float* unconverged, Progress* progress) {
+                                 uint32_t stream, const AreaShadowPlanes& out, Progress* progress) {
     auto t0 = std::chrono::steady_clock::now();
     const int maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
     const std::vector<int> rounds = curveRounds((maxSpp + 15) / 16);
@@ -456,11 +449,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         light,
         sampling,
         stream,
-        V,
-        stderr_,
-        spp,
-        cosine,
-        unconverged,
+        out,
         rounds,
         std::vector<float>(sb.slotCount(), 0.0f),
         std::vector<float>(sb.slotCount(), 0.0f),
@@ -496,8 +485,8 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
             }
         },
         [](Scratch& c, uint64_t alphaTestsRun) { c.st.alphaTests += alphaTestsRun; });
-    AreaShadowStats total;
-    partial.combine_each([&](const AreaShadowStats& s) { addCounts(total, s); });
+    AreaShadowStats total = settingsOf(light, sampling);
+    partial.combine_each([&](const AreaShadowStats& s) { combineStats(total, s); });
     run.reduceSlots(total);
     run.reduceCurve(total);
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

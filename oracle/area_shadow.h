@@ -26,6 +26,7 @@
 
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
+#include "oracle/pass_stats.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {
@@ -63,42 +64,6 @@ struct AreaSampling {
     int maxSpp = 16384;
     int fixedSpp = 0;  // > 0: exactly this many samples per pixel, no adaptivity
     uint32_t seed = 0;
-};
-
-// One point of a light's cost curve: had every pixel stopped after at most `rounds` packets, the
-// samples spent over all pixels and the mean stated 95% half-width (pixels that stopped earlier
-// keep theirs).
-struct CostPoint {
-    int rounds = 0;
-    uint64_t samples = 0;
-    double meanHalfWidth = 0.0;
-    // The same mean over the penumbra's pixels only (those ending with 0 < V < 1: their samples
-    // disagreed), what a soft-shadow technique's penumbra error compares with; none without any.
-    std::optional<double> penumbraMeanHalfWidth;
-};
-
-struct AreaShadowStats {
-    uint64_t samples = 0, raysTraced = 0, raysOccluded = 0;
-    uint64_t pixelsSampled = 0, reachedTarget = 0, maxSpp = 0;
-    // Pixels whose samples all agreed (fully lit or in the umbra, as far as sampling saw), and the
-    // samples they took: the part of the cost the agreement target sets.
-    uint64_t pixelsAgreeing = 0, samplesAgreeing = 0;
-    // Adaptive runs: pixels that spent max_spp without reaching the target.
-    uint64_t pixelsUnconverged = 0;
-    // Pixels where the light is above the horizon only by a sliver no sample found: reported as
-    // V = 0 with the widest interval, and left out of worstHalfWidth (they carry no estimate).
-    uint64_t pixelsWithoutUsableSamples = 0;
-    uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
-             skippedInsideLight = 0;
-    uint64_t exactDecisions = 0;  // pixels whose horizon or emitter side was decided exactly
-    uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
-    double worstHalfWidth = 0.0;  // the largest half-width over sampled pixels
-    double uniformSppForWorst =
-        0.0;  // spp a uniform run needs for that worst half-width everywhere
-    double samplingEfficiency = 1.0;  // mean over pixels of Kish's n_eff / n for the weights
-    double seconds = 0.0;
-    // About two points per doubling of the packets, up to the most any pixel used.
-    std::vector<CostPoint> costCurve;
 };
 
 // Half-width and standard error of the estimate from the running sums (exposed for tests).
@@ -143,13 +108,19 @@ int addRound(ReplicaSums& s, const float* weight, const int* valid, const float*
 // pixel index. The sequence depends on nothing else, so the image is the same at any thread count.
 uint32_t areaPixelSeed(uint32_t seed, uint32_t stream, uint32_t pixel);
 
-// `stream` separates the sample sequences of different lights. Writes V, stderr, spp and cos
-// (towards the centre) per pixel, and where given (adaptive runs), 1 in `unconverged` where a
-// pixel spent its budget without reaching the target. Runs in parallel inside the caller's task
-// arena.
+// Where the pass writes, one float per pixel of the surface buffer's image (or band) each.
+struct AreaShadowPlanes {
+    float* V = nullptr;
+    float* stderr_ = nullptr;
+    float* spp = nullptr;
+    float* cosine = nullptr;       // towards the light's centre
+    float* unconverged = nullptr;  // adaptive runs, else null: 1 where the budget ran out first
+};
+
+// `stream` separates the sample sequences of different lights. Runs in parallel inside the
+// caller's task arena; the planes and the statistics are the same at any thread count.
 AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
                                  const AreaLight& light, const AreaSampling& sampling,
-                                 uint32_t stream, float* V, float* stderr_, float* spp,
-                                 float* cosine, float* unconverged, Progress* progress);
+                                 uint32_t stream, const AreaShadowPlanes& out, Progress* progress);
 
 }  // namespace so

@@ -40,6 +40,22 @@ bool parseExactPixels(const std::string& text, const std::string& file, const st
     throwInputError(file, field, "\"" + printable(text, 40) + "\" is not penumbra or all");
 }
 
+std::span<const StatField<ExactPenumbraStats>> ExactPenumbraStats::fields() {
+    using S = ExactPenumbraStats;
+    static constexpr StatField<S> kFields[] = {
+        {"pixels_exact", &S::pixelsExact},
+        {"pixels_kept_sampled.too_many_occluders", &S::pixelsTooManyOccluders},
+        {"occluders.total", &S::occludersTotal},
+        {"occluders.max", &S::occludersMax, Combine::Max},
+        {"candidates_total", &S::candidatesTotal},
+        {"disagreement.outside_interval", &S::outsideInterval},
+        {"disagreement.max_abs", &S::maxAbsDifference, Combine::Max},
+        {"disagreement.sum_abs", &S::sumAbsDifference},
+        {"seconds", &S::seconds},
+    };
+    return kFields;
+}
+
 uint64_t occluderQuantileBound(const OccluderHistogram& h, double q) {
     uint64_t total = 0;
     for (uint64_t c : h) total += c;

@@ -8,10 +8,12 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "oracle/area_light.h"
 #include "oracle/exact_scene.h"
+#include "oracle/stat_fields.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {
@@ -63,6 +65,8 @@ struct ExactPenumbraStats {
     uint64_t outsideInterval = 0;
     double maxAbsDifference = 0.0, sumAbsDifference = 0.0;
     double seconds = 0.0;
+    // The counters (stat_fields.h); the "disagreement." ones are written with Both only.
+    static std::span<const StatField<ExactPenumbraStats>> fields();
 };
 
 // The per-pixel planes the pass reads and writes. V and stderr_ are the sampled pass's (Exact

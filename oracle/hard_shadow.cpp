@@ -266,7 +266,10 @@ void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
 // `occDist` (the contact effect) the closest occluder's distance too. Embree sets tfar to -inf on
 // a hit; lanes not traced get V = 0. Returns the occluded rays.
 uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, size_t width,
-                   int cols, int rows, float* V, float* cosine, float* occDist) {
+                   int cols, int rows, const HardShadowPlanes& out) {
+    float* V = out.V;
+    float* cosine = out.cosine;
+    float* occDist = out.occDist;
     const RTCRay16& ray = p.rayHit.ray;
     alignas(64) float lit[16];
     uint64_t occluded = 0;
@@ -299,7 +302,7 @@ uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, si
 
 // One tile: setup, trace (any hit, or the closest with the contact effect), write.
 void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light, int tx, int ty,
-               HardPacket& p, float* V, float* cosine, float* occDist, HardShadowStats& st) {
+               HardPacket& p, const HardShadowPlanes& out, HardShadowStats& st) {
     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
     const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
     setupPacket(accel, sb, base, light, p.ps);
@@ -308,7 +311,7 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
     const int active = classifyLanes(p, cols, rows);
     if (active) {
         fillRays(sb, base, p);
-        if (occDist) {
+        if (out.occDist) {
             for (int k = 0; k < 16; ++k) p.rayHit.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect16(p.valid, accel.rtcScene(), &p.ctx, &p.rayHit);
             st.closestHitQueries += uint64_t(active);
@@ -316,14 +319,14 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
             rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx, &p.rayHit.ray);
         }
     }
-    st.occluded += writeTile(p, accel.frame(), size_t(y0) * size_t(sb.width) + size_t(x0),
-                             size_t(sb.width), cols, rows, V, cosine, occDist);
+    st.raysOccluded += writeTile(p, accel.frame(), size_t(y0) * size_t(sb.width) + size_t(x0),
+                                 size_t(sb.width), cols, rows, out);
 }
 
 }  // namespace
 
 HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
-                                 const HardLight& light, float* V, float* cosine, float* occDist,
+                                 const HardLight& light, const HardShadowPlanes& out,
                                  Progress* progress) {
     auto t0 = std::chrono::steady_clock::now();
     tbb::combinable<HardShadowStats> partial;
@@ -332,6 +335,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         HardShadowStats& st;
         HardPacket packet;
     };
+    const bool spot = light.type == LightType::Spot;
     forEachTileRow(
         sb.tilesY,
         [&] {
@@ -339,31 +343,26 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         },
         [&](int ty, Scratch& c) {
             for (int tx = 0; tx < sb.tilesX; ++tx)
-                traceTile(accel, sb, light, tx, ty, c.packet, V, cosine, occDist, c.st);
+                traceTile(accel, sb, light, tx, ty, c.packet, out, c.st);
             if (progress) progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
         },
-        [](Scratch& c, uint64_t alphaTestsRun) {
-            HardShadowStats& st = c.st;
-            st.skippedBackground += c.packet.counts[int(ShadowRayKind::Background)];
-            st.skippedAttached += c.packet.counts[int(ShadowRayKind::Attached)];
-            st.skippedOutsideCone += c.packet.counts[int(ShadowRayKind::OutsideCone)];
-            st.skippedBehindLight += c.packet.counts[int(ShadowRayKind::BehindLight)];
-            st.traced += c.packet.counts[int(ShadowRayKind::Traced)];
-            st.exactDecisions += c.packet.ps.exactDecisions;
-            st.alphaTests += alphaTestsRun;
+        [&](Scratch& c, uint64_t alphaTestsRun) {
+            const auto count = [&](ShadowRayKind k) { return c.packet.counts[int(k)]; };
+            HardShadowStats chunk;
+            chunk.skippedBackground = count(ShadowRayKind::Background);
+            chunk.skippedAttached = count(ShadowRayKind::Attached);
+            // Counted only for the lights they apply to (oracle.json leaves them out elsewhere).
+            if (spot) chunk.skippedOutsideCone = count(ShadowRayKind::OutsideCone);
+            if (light.oneSided) chunk.skippedBehindLight = count(ShadowRayKind::BehindLight);
+            chunk.raysTraced = count(ShadowRayKind::Traced);
+            chunk.exactDecisions = c.packet.ps.exactDecisions;
+            chunk.alphaTests = alphaTestsRun;
+            combineStats(c.st, chunk);
         });
     HardShadowStats total;
-    partial.combine_each([&](const HardShadowStats& s) {
-        total.traced += s.traced;
-        total.occluded += s.occluded;
-        total.skippedBackground += s.skippedBackground;
-        total.skippedAttached += s.skippedAttached;
-        total.skippedOutsideCone += s.skippedOutsideCone;
-        total.skippedBehindLight += s.skippedBehindLight;
-        total.closestHitQueries += s.closestHitQueries;
-        total.exactDecisions += s.exactDecisions;
-        total.alphaTests += s.alphaTests;
-    });
+    if (spot) total.skippedOutsideCone = 0;
+    if (light.oneSided) total.skippedBehindLight = 0;
+    partial.combine_each([&](const HardShadowStats& s) { combineStats(total, s); });
     total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return total;
 }

@@ -20,6 +20,7 @@
 #include "core/scene.h"
 #include "oracle/accel.h"
 #include "oracle/exact_facing.h"
+#include "oracle/pass_stats.h"
 #include "oracle/surface_buffer.h"
 
 namespace so {
@@ -82,22 +83,19 @@ void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const
 ShadowRaySetup setupShadowRay(const Accel& accel, const SurfaceBuffer& sb, size_t slot,
                               const HardLight& light);
 
-struct HardShadowStats {
-    uint64_t traced = 0, occluded = 0;
-    uint64_t skippedBackground = 0, skippedAttached = 0, skippedOutsideCone = 0,
-             skippedBehindLight = 0;
-    uint64_t closestHitQueries = 0;  // only with occDist (the contact effect)
-    uint64_t exactDecisions = 0;     // pixels whose facing a float tie left to exact arithmetic
-    uint64_t alphaTests = 0;         // candidate hits on alpha-tested geometry, tested
-    double seconds = 0.0;
+// Where the pass writes, one float per pixel of the surface buffer's image (or band) each.
+struct HardShadowPlanes {
+    float* V = nullptr;
+    float* cosine = nullptr;
+    // With the contact effect: the distance to the first occluder in world units (+inf where
+    // unoccluded, -1 where no ray was traced); the rays are then closest-hit queries. Null: cheaper
+    // any-hit queries.
+    float* occDist = nullptr;
 };
 
-// Fills V and cos (one float per pixel each). With occDist (the contact effect) the rays are
-// closest-hit queries and occDist gets the distance to the first occluder in world units (+inf
-// where unoccluded, -1 where no ray was traced); without it, cheaper any-hit queries. Runs in
-// parallel inside the caller's task arena.
+// Fills the planes. Runs in parallel inside the caller's task arena.
 HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
-                                 const HardLight& light, float* V, float* cosine, float* occDist,
+                                 const HardLight& light, const HardShadowPlanes& out,
                                  Progress* progress);
 
 }  // namespace so

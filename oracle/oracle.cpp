@@ -72,53 +72,20 @@ struct LightPass {
 };
 
 // An area light with "penumbra": sampled, with V, stderr, spp and cos.
-OracleAreaStats traceSampledLight(const LightPass& p, uint32_t li, float* V, float* cosine,
+AreaShadowStats traceSampledLight(const LightPass& p, uint32_t li, float* V, float* cosine,
                                   Progress& progress) {
     namespace ch = channels;
     const Light& light = p.scene.lights[li];
-    float* stderr_ = p.image.addChannel(ch::lightChannel(light.name, ch::kStdErr));
-    float* spp = p.image.addChannel(ch::lightChannel(light.name, ch::kSpp));
+    AreaShadowPlanes out{V, p.image.addChannel(ch::lightChannel(light.name, ch::kStdErr)),
+                         p.image.addChannel(ch::lightChannel(light.name, ch::kSpp)), cosine,
+                         nullptr};
     const AreaSampling& sampling = p.options.area;
     // Only adaptive runs have a target to miss.
-    float* unconverged = sampling.fixedSpp > 0
-                             ? nullptr
-                             : p.image.addChannel(ch::lightChannel(light.name, ch::kUnconverged));
+    if (sampling.fixedSpp <= 0)
+        out.unconverged = p.image.addChannel(ch::lightChannel(light.name, ch::kUnconverged));
     const AreaLight al = makeAreaLight(light, p.accel.frame());
-    AreaShadowStats st;
-    p.arena.execute([&] {
-        st = traceAreaShadows(p.accel, p.sb, al, sampling, li, V, stderr_, spp, cosine, unconverged,
-                              &progress);
-    });
-    OracleAreaStats s;
-    s.sampling =
-        light.type == LightType::Sphere ? "solid angle of the visible cap" : "uniform by area";
-    s.raysTraced = st.raysTraced;
-    s.raysOccluded = st.raysOccluded;
-    s.skippedBackground = st.skippedBackground;
-    s.skippedBelowHorizon = st.skippedBelowHorizon;
-    s.skippedBehindLight = st.skippedBehindLight;
-    s.skippedInsideLight = st.skippedInsideLight;
-    s.exactDecisions = st.exactDecisions;
-    s.alphaTests = st.alphaTests;
-    s.samples = st.samples;
-    s.pixelsSampled = st.pixelsSampled;
-    s.pixelsWithoutUsableSamples = st.pixelsWithoutUsableSamples;
-    s.sppMax = st.maxSpp;
-    if (sampling.fixedSpp <= 0) {
-        s.targetError = sampling.targetError;
-        s.agreementTarget = sampling.agreementTarget;
-    }
-    s.pixelsAgreeing = st.pixelsAgreeing;
-    s.samplesAgreeing = st.samplesAgreeing;
-    s.maxSpp = sampling.fixedSpp > 0 ? sampling.fixedSpp : sampling.maxSpp;
-    s.shareReachedTarget =
-        st.pixelsSampled ? double(st.reachedTarget) / double(st.pixelsSampled) : 1.0;
-    s.pixelsUnconverged = st.pixelsUnconverged;
-    s.worstHalfWidth = st.worstHalfWidth;
-    s.uniformSpp = st.uniformSppForWorst;
-    s.samplingEfficiency = st.samplingEfficiency;
-    s.costCurve = st.costCurve;
-    s.seconds = st.seconds;
+    AreaShadowStats s;
+    p.arena.execute([&] { s = traceAreaShadows(p.accel, p.sb, al, sampling, li, out, &progress); });
     return s;
 }
 
@@ -162,7 +129,7 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
 
 // One shadow ray per pixel to a point: hard lights, area lights without "penumbra" (to the
 // centre), and the contact rays of sampled area lights (to the centre; then only occDist is kept).
-OracleHardStats traceHardLight(const LightPass& p, uint32_t li, bool sampled, float* V,
+HardShadowStats traceHardLight(const LightPass& p, uint32_t li, bool sampled, float* V,
                                float* cosine, float* occDist, Progress& progress) {
     const Light& light = p.scene.lights[li];
     std::vector<float> scratch;
@@ -172,21 +139,11 @@ OracleHardStats traceHardLight(const LightPass& p, uint32_t li, bool sampled, fl
         cosine = scratch.data() + p.pixels;
     }
     const HardLight hl = makeHardLight(light, p.accel.frame());
-    HardShadowStats st;
+    HardShadowStats s;
     p.arena.execute([&] {
-        st = traceHardShadows(p.accel, p.sb, hl, V, cosine, occDist, sampled ? nullptr : &progress);
+        s = traceHardShadows(p.accel, p.sb, hl, {V, cosine, occDist},
+                             sampled ? nullptr : &progress);
     });
-    OracleHardStats s;
-    s.raysTraced = st.traced;
-    s.raysOccluded = st.occluded;
-    s.skippedBackground = st.skippedBackground;
-    s.skippedAttached = st.skippedAttached;
-    if (light.type == LightType::Spot) s.skippedOutsideCone = st.skippedOutsideCone;
-    if (hl.oneSided) s.skippedBehindLight = st.skippedBehindLight;
-    s.closestHitQueries = st.closestHitQueries;
-    s.exactDecisions = st.exactDecisions;
-    s.alphaTests = st.alphaTests;
-    s.seconds = st.seconds;
     return s;
 }
 

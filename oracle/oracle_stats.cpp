@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "core/error.h"
@@ -11,53 +13,6 @@
 namespace so {
 
 using nlohmann::json;
-
-double OracleHardStats::raysPerSecond() const {
-    return seconds > 0 ? double(raysTraced) / seconds : 0.0;
-}
-
-std::optional<double> OracleAreaStats::costSlope() const {
-    // The points where no pixel had stopped: samples = 16 x packets x pixels.
-    const CostPoint* first = nullptr;
-    const CostPoint* last = nullptr;
-    for (const CostPoint& p : costCurve) {
-        if (p.samples != 16 * uint64_t(p.rounds) * pixelsSampled) break;
-        if (p.rounds * 16 < kMinAdaptiveSpp || !(p.meanHalfWidth > 0.0)) continue;
-        if (!first) first = &p;
-        last = &p;
-    }
-    if (!first || last == first) return std::nullopt;
-    return std::log(last->meanHalfWidth / first->meanHalfWidth) /
-           std::log(double(last->samples) / double(first->samples));
-}
-
-std::optional<double> OracleAreaStats::predictedSeconds(double target) const {
-    const std::optional<double> slope = costSlope();
-    if (!targetError || !slope || !(*slope < 0.0) || !(target > 0.0) || samples == 0)
-        return std::nullopt;
-    const double agree = agreementTarget.value_or(0.0);
-    const double agreeShare = double(samplesAgreeing) / double(samples);
-    const double agreeScale = std::max(*targetError, agree) / std::max(target, agree);
-    return seconds * (agreeShare * agreeScale +
-                      (1.0 - agreeShare) * std::pow(target / *targetError, 1.0 / *slope));
-}
-
-double OracleAreaStats::sppMean() const {
-    return pixelsSampled ? double(samples) / double(pixelsSampled) : 0.0;
-}
-
-double OracleAreaStats::uniformSamples() const {
-    return uniformSpp * double(pixelsSampled);
-}
-
-double OracleAreaStats::uniformRays() const {
-    const double raysPerSample = samples ? double(raysTraced) / double(samples) : 0.0;
-    return uniformSamples() * raysPerSample;
-}
-
-double OracleAreaStats::raysPerSecond() const {
-    return seconds > 0 ? double(raysTraced) / seconds : 0.0;
-}
 
 double OracleLightStats::seconds() const {
     if (area) return area->seconds;
@@ -99,23 +54,48 @@ json finiteOrNull(double v) {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-json hardJson(const OracleHardStats& s) {
-    json skipped = {{"background", s.skippedBackground}, {"attached", s.skippedAttached}};
-    if (s.skippedOutsideCone) skipped["outside_cone"] = *s.skippedOutsideCone;
-    if (s.skippedBehindLight) skipped["behind_light"] = *s.skippedBehindLight;
-    return {{"rays_traced", s.raysTraced},
-            {"rays_occluded", s.raysOccluded},
-            {"rays_skipped", skipped},
-            {"closest_hit_queries", s.closestHitQueries},
-            {"exact_decisions", s.exactDecisions},
-            {"alpha_tests", s.alphaTests},
-            {"seconds", s.seconds},
-            {"rays_per_second", s.raysPerSecond()}};
+// The member of `j` at a dotted key ("rays_skipped.background"), made where missing.
+json& atKey(json& j, const char* key) {
+    json* node = &j;
+    for (const char* part = key;;) {
+        const char* dot = std::strchr(part, '.');
+        if (!dot) return (*node)[part];
+        node = &(*node)[std::string(part, dot)];
+        part = dot + 1;
+    }
+}
+
+// Every counter of the table with a key that `keep` accepts (stat_fields.h).
+template <class S, class Keep>
+void writeFields(json& j, const S& s, Keep keep) {
+    for (const StatField<S>& f : S::fields()) {
+        if (!f.key || !keep(f.key)) continue;
+        std::visit(
+            [&](auto m) {
+                if constexpr (std::is_same_v<decltype(s.*m), const std::optional<uint64_t>&>) {
+                    if (s.*m) atKey(j, f.key) = *(s.*m);
+                } else {
+                    atKey(j, f.key) = s.*m;
+                }
+            },
+            f.member);
+    }
+}
+template <class S>
+void writeFields(json& j, const S& s) {
+    writeFields(j, s, [](const char*) { return true; });
+}
+
+json hardJson(const HardShadowStats& s) {
+    json j;
+    writeFields(j, s);
+    j["rays_per_second"] = s.raysPerSecond();
+    return j;
 }
 
 // The samples and mean stated half-width had every pixel stopped after at most `packets`; the
 // seconds pro rata of the samples.
-json costCurveJson(const OracleAreaStats& s) {
+json costCurveJson(const AreaShadowStats& s) {
     json curve = json::array();
     for (const CostPoint& p : s.costCurve)
         curve.push_back(
@@ -128,72 +108,51 @@ json costCurveJson(const OracleAreaStats& s) {
     return curve;
 }
 
+bool isDisagreementKey(const char* key) {
+    return std::strncmp(key, "disagreement.", 13) == 0;
+}
+
 json exactPenumbraJson(const ExactPenumbraStats& e) {
+    const bool both = e.method == PenumbraMethod::Both;
+    json j;
+    writeFields(j, e, [&](const char* key) { return both || !isDisagreementKey(key); });
     json histogram = json::array();
     for (uint64_t c : e.occluders) histogram.push_back(c);
     const auto mean = [&](double total) {
         return e.pixelsExact ? json(total / double(e.pixelsExact)) : json(nullptr);
     };
-    json j = {{"method", penumbraMethodName(e.method)},
-              {"pixels", e.allPixels ? "all" : "penumbra"},
-              {"not_applied", e.notApplied.empty() ? json(nullptr) : json(e.notApplied)},
-              {"pixels_exact", e.pixelsExact},
-              {"pixels_kept_sampled", {{"too_many_occluders", e.pixelsTooManyOccluders}}},
-              {"occluders",
-               {{"mean", mean(double(e.occludersTotal))},
-                {"p99_at_most", occluderQuantileBound(e.occluders, 0.99)},
-                {"max", e.occludersMax},
-                {"total", e.occludersTotal},
-                {"histogram_log2", histogram}}},
-              {"candidates_total", e.candidatesTotal},
-              {"seconds", e.seconds}};
-    if (e.method == PenumbraMethod::Both)
-        j["disagreement"] = {
-            {"outside_interval", e.outsideInterval},
-            {"share_outside_interval", e.pixelsExact
-                                           ? json(double(e.outsideInterval) / double(e.pixelsExact))
-                                           : json(nullptr)},
-            {"max_abs", e.maxAbsDifference},
-            {"sum_abs", e.sumAbsDifference},
-            {"mean_abs", mean(e.sumAbsDifference)}};
+    j["method"] = penumbraMethodName(e.method);
+    j["pixels"] = e.allPixels ? "all" : "penumbra";
+    j["not_applied"] = e.notApplied.empty() ? json(nullptr) : json(e.notApplied);
+    j["occluders"]["mean"] = mean(double(e.occludersTotal));
+    j["occluders"]["p99_at_most"] = occluderQuantileBound(e.occluders, 0.99);
+    j["occluders"]["histogram_log2"] = histogram;
+    if (both) {
+        j["disagreement"]["share_outside_interval"] =
+            e.pixelsExact ? json(double(e.outsideInterval) / double(e.pixelsExact)) : json(nullptr);
+        j["disagreement"]["mean_abs"] = mean(e.sumAbsDifference);
+    }
     return j;
 }
 
-json areaJson(const OracleAreaStats& s) {
-    return {{"sampling", s.sampling},
-            {"rays_traced", s.raysTraced},
-            {"rays_occluded", s.raysOccluded},
-            {"rays_skipped",
-             {{"background", s.skippedBackground},
-              {"below_horizon", s.skippedBelowHorizon},
-              {"behind_light", s.skippedBehindLight},
-              {"inside_light", s.skippedInsideLight}}},
-            {"exact_decisions", s.exactDecisions},
-            {"alpha_tests", s.alphaTests},
-            {"samples", s.samples},
-            {"samples_without_ray", s.samplesWithoutRay()},
-            {"pixels_sampled", s.pixelsSampled},
-            {"pixels_without_usable_samples", s.pixelsWithoutUsableSamples},
-            {"spp_mean", s.sppMean()},
-            {"spp_max", s.sppMax},
-            {"target_error", s.targetError ? json(*s.targetError) : json(nullptr)},
-            {"agreement_target", s.agreementTarget ? json(*s.agreementTarget) : json(nullptr)},
-            {"max_spp", s.maxSpp},
-            {"share_reached_target", s.shareReachedTarget},
-            {"pixels_unconverged", s.pixelsUnconverged},
-            {"pixels_agreeing", s.pixelsAgreeing},
-            {"samples_agreeing", s.samplesAgreeing},
-            {"worst_half_width", s.worstHalfWidth},
-            {"uniform_equivalent",
-             {{"spp", s.uniformSpp},
-              {"samples", s.uniformSamples()},
-              {"rays", s.uniformRays()},
-              {"note", kUniformNote}}},
-            {"sampling_efficiency", s.samplingEfficiency},
-            {"cost_curve", costCurveJson(s)},
-            {"exact_penumbra", s.exact ? exactPenumbraJson(*s.exact) : json(nullptr)},
-            {"seconds", s.seconds},
-            {"rays_per_second", s.raysPerSecond()}};
+json areaJson(const AreaShadowStats& s) {
+    json j;
+    writeFields(j, s);
+    j["sampling"] = s.sampling;
+    j["samples_without_ray"] = s.samplesWithoutRay();
+    j["spp_mean"] = s.sppMean();
+    j["target_error"] = s.targetError ? json(*s.targetError) : json(nullptr);
+    j["agreement_target"] = s.agreementTarget ? json(*s.agreementTarget) : json(nullptr);
+    j["max_spp"] = s.maxSpp;
+    j["share_reached_target"] = s.shareReachedTarget();
+    j["uniform_equivalent"]["samples"] = s.uniformSamples();
+    j["uniform_equivalent"]["rays"] = s.uniformRays();
+    j["uniform_equivalent"]["note"] = kUniformNote;
+    j["sampling_efficiency"] = s.samplingEfficiency;
+    j["cost_curve"] = costCurveJson(s);
+    j["exact_penumbra"] = s.exact ? exactPenumbraJson(*s.exact) : json(nullptr);
+    j["rays_per_second"] = s.raysPerSecond();
+    return j;
 }
 
 json lightJson(const OracleLightStats& l) {
@@ -411,19 +370,41 @@ class Fields {
     std::string path_;
 };
 
-OracleHardStats readHard(const Fields& f) {
-    OracleHardStats s;
-    s.raysTraced = f.u64("rays_traced");
-    s.raysOccluded = f.u64("rays_occluded");
-    const Fields skipped = f.object("rays_skipped");
-    s.skippedBackground = skipped.u64("background");
-    s.skippedAttached = skipped.u64("attached");
-    if (skipped.has("outside_cone")) s.skippedOutsideCone = skipped.u64("outside_cone");
-    if (skipped.has("behind_light")) s.skippedBehindLight = skipped.u64("behind_light");
-    s.closestHitQueries = f.u64("closest_hit_queries");
-    s.exactDecisions = f.u64("exact_decisions");
-    s.alphaTests = f.u64("alpha_tests");
-    s.seconds = f.number("seconds");
+// Every counter of the table with a key that `keep` accepts, from `f` (its dotted keys nest).
+template <class S, class Keep>
+void readFields(const Fields& f, S& s, Keep keep) {
+    for (const StatField<S>& field : S::fields()) {
+        if (!field.key || !keep(field.key)) continue;
+        std::optional<Fields> parent;  // the object holding the leaf, when nested
+        const char* leaf = field.key;
+        for (const char* dot; (dot = std::strchr(leaf, '.'));) {
+            const std::string part(leaf, dot);
+            parent.emplace((parent ? *parent : f).object(part.c_str()));
+            leaf = dot + 1;
+        }
+        const Fields& in = parent ? *parent : f;
+        std::visit(
+            [&](auto m) {
+                using T = std::remove_cvref_t<decltype(s.*m)>;
+                if constexpr (std::is_same_v<T, std::optional<uint64_t>>) {
+                    if (in.has(leaf)) s.*m = in.u64(leaf);
+                } else if constexpr (std::is_same_v<T, uint64_t>) {
+                    s.*m = in.u64(leaf);
+                } else {
+                    s.*m = in.number(leaf);
+                }
+            },
+            field.member);
+    }
+}
+template <class S>
+void readFields(const Fields& f, S& s) {
+    readFields(f, s, [](const char*) { return true; });
+}
+
+HardShadowStats readHard(const Fields& f) {
+    HardShadowStats s;
+    readFields(f, s);
     return s;
 }
 
@@ -436,11 +417,9 @@ ExactPenumbraStats readExactPenumbra(const Fields& f) {
         f.fail(f.name("pixels"), "must be all or penumbra");
     e.allPixels = pixels == "all";
     if (!f.isNull("not_applied")) e.notApplied = f.str("not_applied");
-    e.pixelsExact = f.u64("pixels_exact");
-    e.pixelsTooManyOccluders = f.object("pixels_kept_sampled").u64("too_many_occluders");
+    const bool both = e.method == PenumbraMethod::Both;
+    readFields(f, e, [&](const char* key) { return both || !isDisagreementKey(key); });
     const Fields occ = f.object("occluders");
-    e.occludersMax = occ.u64("max");
-    e.occludersTotal = occ.u64("total");
     const std::vector<double> histogram = occ.numbers("histogram_log2");
     if (histogram.size() != e.occluders.size())
         occ.fail(occ.name("histogram_log2"),
@@ -450,51 +429,28 @@ ExactPenumbraStats readExactPenumbra(const Fields& f) {
             occ.fail(occ.name("histogram_log2"), "must hold non-negative integers");
         e.occluders[k] = uint64_t(histogram[k]);
     }
-    e.candidatesTotal = f.u64("candidates_total");
-    e.seconds = f.number("seconds");
-    if (e.method == PenumbraMethod::Both) {
-        const Fields d = f.object("disagreement");
-        e.outsideInterval = d.u64("outside_interval");
-        e.maxAbsDifference = d.number("max_abs");
-        e.sumAbsDifference = d.number("sum_abs");
-    }
     return e;
 }
 
-OracleAreaStats readArea(const Fields& f) {
-    OracleAreaStats s;
+AreaShadowStats readArea(const Fields& f) {
+    AreaShadowStats s;
+    readFields(f, s);
     s.sampling = f.str("sampling");
-    s.raysTraced = f.u64("rays_traced");
-    s.raysOccluded = f.u64("rays_occluded");
-    const Fields skipped = f.object("rays_skipped");
-    s.skippedBackground = skipped.u64("background");
-    s.skippedBelowHorizon = skipped.u64("below_horizon");
-    s.skippedBehindLight = skipped.u64("behind_light");
-    s.skippedInsideLight = skipped.u64("inside_light");
-    s.exactDecisions = f.u64("exact_decisions");
-    s.alphaTests = f.u64("alpha_tests");
-    s.samples = f.u64("samples");
     if (s.samples < s.raysTraced) f.fail(f.name("samples"), "fewer than rays_traced");
-    s.pixelsSampled = f.u64("pixels_sampled");
-    s.pixelsWithoutUsableSamples = f.u64("pixels_without_usable_samples");
-    s.sppMax = f.u64("spp_max");
+    if (s.samplesAgreeing > s.samples) f.fail(f.name("samples_agreeing"), "more than samples");
     s.targetError = f.optionalNumber("target_error");
     s.agreementTarget = f.optionalNumber("agreement_target");
     s.maxSpp = f.i32("max_spp");
-    s.shareReachedTarget = f.number("share_reached_target");
-    s.pixelsUnconverged = f.u64("pixels_unconverged");
-    s.pixelsAgreeing = f.u64("pixels_agreeing");
-    s.samplesAgreeing = f.u64("samples_agreeing");
-    if (s.samplesAgreeing > s.samples) f.fail(f.name("samples_agreeing"), "more than samples");
-    s.worstHalfWidth = f.number("worst_half_width");
-    s.uniformSpp = f.object("uniform_equivalent").number("spp");
+    // The share times the pixels gives back the count exactly (it was count / pixels).
+    const double share = f.number("share_reached_target");
+    if (!(share >= 0.0 && share <= 1.0)) f.fail(f.name("share_reached_target"), "not in [0, 1]");
+    s.pixelsReachedTarget = uint64_t(std::llround(share * double(s.pixelsSampled)));
     s.samplingEfficiency = f.number("sampling_efficiency");
     for (const Fields& p : f.objects("cost_curve"))
         s.costCurve.push_back({p.i32("packets"), p.u64("samples"), p.number("mean_half_width"),
                                p.optionalNumber("penumbra_mean_half_width")});
     if (f.has("exact_penumbra") && !f.isNull("exact_penumbra"))
         s.exact = readExactPenumbra(f.object("exact_penumbra"));
-    s.seconds = f.number("seconds");
     return s;
 }
 
@@ -619,46 +575,9 @@ OracleStats oracleStatsFromJson(const json& j, const std::string& file) {
 
 namespace {
 
-void addHard(OracleHardStats& total, const OracleHardStats& s) {
-    total.raysTraced += s.raysTraced;
-    total.raysOccluded += s.raysOccluded;
-    total.skippedBackground += s.skippedBackground;
-    total.skippedAttached += s.skippedAttached;
-    if (s.skippedOutsideCone)
-        total.skippedOutsideCone = total.skippedOutsideCone.value_or(0) + *s.skippedOutsideCone;
-    if (s.skippedBehindLight)
-        total.skippedBehindLight = total.skippedBehindLight.value_or(0) + *s.skippedBehindLight;
-    total.closestHitQueries += s.closestHitQueries;
-    total.exactDecisions += s.exactDecisions;
-    total.alphaTests += s.alphaTests;
-    total.seconds += s.seconds;
-}
-
-// The counts of the sampled pass; the means and the curve are re-weighted by the caller.
-void addAreaCounts(OracleAreaStats& total, const OracleAreaStats& s) {
-    total.raysTraced += s.raysTraced;
-    total.raysOccluded += s.raysOccluded;
-    total.skippedBackground += s.skippedBackground;
-    total.skippedBelowHorizon += s.skippedBelowHorizon;
-    total.skippedBehindLight += s.skippedBehindLight;
-    total.skippedInsideLight += s.skippedInsideLight;
-    total.exactDecisions += s.exactDecisions;
-    total.alphaTests += s.alphaTests;
-    total.samples += s.samples;
-    total.pixelsSampled += s.pixelsSampled;
-    total.pixelsWithoutUsableSamples += s.pixelsWithoutUsableSamples;
-    total.sppMax = std::max(total.sppMax, s.sppMax);
-    total.pixelsUnconverged += s.pixelsUnconverged;
-    total.pixelsAgreeing += s.pixelsAgreeing;
-    total.samplesAgreeing += s.samplesAgreeing;
-    total.worstHalfWidth = std::max(total.worstHalfWidth, s.worstHalfWidth);
-    total.uniformSpp = std::max(total.uniformSpp, s.uniformSpp);
-    total.seconds += s.seconds;
-}
-
 // A band's curve at `rounds` packets: its own point there, or, past its last point (every one of
 // its pixels had stopped), that last point. Null without a curve.
-const CostPoint* curveAt(const OracleAreaStats& s, int rounds) {
+const CostPoint* curveAt(const AreaShadowStats& s, int rounds) {
     for (const CostPoint& p : s.costCurve)
         if (p.rounds == rounds) return &p;
     if (!s.costCurve.empty() && s.costCurve.back().rounds < rounds) return &s.costCurve.back();
@@ -667,11 +586,11 @@ const CostPoint* curveAt(const OracleAreaStats& s, int rounds) {
 
 // The whole image's cost curve: read at the rounds of the band that sampled longest (the whole
 // run reads at the same ones), each band's mean weighted by its pixels.
-std::vector<CostPoint> mergeCurves(const std::vector<const OracleAreaStats*>& bands,
+std::vector<CostPoint> mergeCurves(const std::vector<const AreaShadowStats*>& bands,
                                    const std::vector<uint64_t>& penumbraPixels,
                                    uint64_t pixelsSampled) {
-    const OracleAreaStats* longest = nullptr;
-    for (const OracleAreaStats* b : bands)
+    const AreaShadowStats* longest = nullptr;
+    for (const AreaShadowStats* b : bands)
         if (!b->costCurve.empty() &&
             (!longest || b->costCurve.back().rounds > longest->costCurve.back().rounds))
             longest = b;
@@ -699,48 +618,40 @@ std::vector<CostPoint> mergeCurves(const std::vector<const OracleAreaStats*>& ba
 
 // The bands' exact passes: the counts add up; the sum of |V_exact - V| too (the bands' pixels
 // are disjoint), so the merged means are the whole run's.
-ExactPenumbraStats mergeExact(const std::vector<const OracleAreaStats*>& bands) {
+// The bands' exact passes: the counts add up; the sum of |V_exact - V| too (the bands' pixels
+// are disjoint), so the merged means are the whole run's.
+ExactPenumbraStats mergeExact(const std::vector<const AreaShadowStats*>& bands) {
     ExactPenumbraStats total;
     total.method = bands.front()->exact->method;
     total.allPixels = bands.front()->exact->allPixels;
     total.notApplied = bands.front()->exact->notApplied;
-    for (const OracleAreaStats* b : bands) {
+    for (const AreaShadowStats* b : bands) {
         const ExactPenumbraStats& e = *b->exact;
-        total.pixelsExact += e.pixelsExact;
-        total.pixelsTooManyOccluders += e.pixelsTooManyOccluders;
-        total.occludersTotal += e.occludersTotal;
-        total.occludersMax = std::max(total.occludersMax, e.occludersMax);
+        combineStats(total, e);
         for (size_t k = 0; k < total.occluders.size(); ++k) total.occluders[k] += e.occluders[k];
-        total.candidatesTotal += e.candidatesTotal;
-        total.outsideInterval += e.outsideInterval;
-        total.maxAbsDifference = std::max(total.maxAbsDifference, e.maxAbsDifference);
-        total.sumAbsDifference += e.sumAbsDifference;
-        total.seconds += e.seconds;
     }
     return total;
 }
 
-OracleAreaStats mergeArea(const std::vector<const OracleAreaStats*>& bands,
+AreaShadowStats mergeArea(const std::vector<const AreaShadowStats*>& bands,
                           const std::vector<uint64_t>& penumbraPixels) {
-    OracleAreaStats total;
-    total.sampling = bands.front()->sampling;
-    total.targetError = bands.front()->targetError;
-    total.agreementTarget = bands.front()->agreementTarget;
-    total.maxSpp = bands.front()->maxSpp;
-    double reached = 0.0, efficiency = 0.0;
-    for (const OracleAreaStats* b : bands) {
-        addAreaCounts(total, *b);
-        // share * pixels gives back the band's count of pixels that reached the target exactly.
-        reached += std::round(b->shareReachedTarget * double(b->pixelsSampled));
+    const AreaShadowStats& first = *bands.front();
+    AreaShadowStats total;
+    total.sampling = first.sampling;
+    total.targetError = first.targetError;
+    total.agreementTarget = first.agreementTarget;
+    total.maxSpp = first.maxSpp;
+    double efficiency = 0.0;
+    for (const AreaShadowStats* b : bands) {
+        combineStats(total, *b);
         efficiency += b->samplingEfficiency * double(b->pixelsSampled);
     }
     if (total.pixelsSampled) {
-        total.shareReachedTarget = reached / double(total.pixelsSampled);
         total.samplingEfficiency = efficiency / double(total.pixelsSampled);
         total.costCurve = mergeCurves(bands, penumbraPixels, total.pixelsSampled);
     }
     if (std::all_of(bands.begin(), bands.end(),
-                    [](const OracleAreaStats* b) { return b->exact.has_value(); }))
+                    [](const AreaShadowStats* b) { return b->exact.has_value(); }))
         total.exact = mergeExact(bands);
     return total;
 }
@@ -751,7 +662,7 @@ OracleLightStats mergeLight(const std::vector<TileStats>& tiles, size_t li) {
     l.name = first.name;
     l.type = first.type;
     l.method = first.method;
-    std::vector<const OracleAreaStats*> areas;
+    std::vector<const AreaShadowStats*> areas;
     std::vector<uint64_t> penumbra;
     for (const TileStats& t : tiles) {
         const OracleLightStats& b = t.stats.lights[li];
@@ -764,7 +675,7 @@ OracleLightStats mergeLight(const std::vector<TileStats>& tiles, size_t li) {
             areas.push_back(&*b.area);
             penumbra.push_back(li < t.penumbraPixels.size() ? t.penumbraPixels[li] : 0);
         }
-        if (b.hard) addHard(l.hard ? *l.hard : l.hard.emplace(), *b.hard);
+        if (b.hard) combineStats(l.hard ? *l.hard : l.hard.emplace(), *b.hard);
     }
     if (!areas.empty()) l.area = mergeArea(areas, penumbra);
     return l;

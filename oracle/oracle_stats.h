@@ -1,7 +1,8 @@
 // What a run of the oracle reports about itself (docs/oracle.md): typed, filled by runOracle, and
 // turned into JSON only where oracle.json is written (toJson) or read back (oracleStatsFromJson).
-// Values that follow from others (rays per second, spp mean, the verify totals) are methods, so
-// the JSON cannot disagree with itself.
+// Each light holds its passes' own statistics (pass_stats.h), whose counters are written, read and
+// merged through their field tables. Values that follow from others (rays per second, spp mean,
+// the verify totals) are methods, so the JSON cannot disagree with itself.
 #pragma once
 
 #include <cstdint>
@@ -13,72 +14,18 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene.h"
-#include "oracle/area_shadow.h"
-#include "oracle/exact_penumbra.h"
+#include "oracle/pass_stats.h"
 #include "oracle/verify.h"
 
 namespace so {
-
-// The hard-shadow pass of one light: hard lights, area lights without "penumbra" (one ray to the
-// centre), and the contact rays of sampled area lights.
-struct OracleHardStats {
-    uint64_t raysTraced = 0, raysOccluded = 0;
-    uint64_t skippedBackground = 0, skippedAttached = 0;
-    std::optional<uint64_t> skippedOutsideCone;  // spot lights only
-    std::optional<uint64_t> skippedBehindLight;  // one-sided lights (rect, disk) only
-    uint64_t closestHitQueries = 0;              // only with the contact effect
-    uint64_t exactDecisions = 0;  // pixels a float tie left to exact arithmetic (exact_facing.h)
-    uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
-    double seconds = 0.0;
-    double raysPerSecond() const;
-};
-
-// The sampled pass of an area light with "penumbra".
-struct OracleAreaStats {
-    std::string sampling;  // how a sample picks its point on the light
-    uint64_t raysTraced = 0, raysOccluded = 0;
-    uint64_t skippedBackground = 0, skippedBelowHorizon = 0, skippedBehindLight = 0,
-             skippedInsideLight = 0;
-    uint64_t exactDecisions = 0;  // pixels a float tie left to exact arithmetic (exact_facing.h)
-    uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
-    uint64_t samples = 0, pixelsSampled = 0, pixelsWithoutUsableSamples = 0, sppMax = 0;
-    std::optional<double> targetError;  // none with a fixed spp
-    // Adaptive: pixels whose samples all agree stop at max(targetError, this) (area_shadow.h).
-    std::optional<double> agreementTarget;
-    int maxSpp = 0;  // the fixed spp, or the adaptive cap
-    double shareReachedTarget = 1.0;
-    uint64_t pixelsUnconverged = 0;  // adaptive: budget spent, target missed (NAME.unconverged)
-    // Pixels whose samples all agreed (lit, or umbra) and the samples they took.
-    uint64_t pixelsAgreeing = 0, samplesAgreeing = 0;
-    double worstHalfWidth = 0.0;
-    double uniformSpp = 0.0;  // a uniform run reaching worstHalfWidth everywhere
-    double samplingEfficiency = 1.0;
-    double seconds = 0.0;
-    // What accuracy cost as the run went (area_shadow.h CostPoint); seconds are pro rata.
-    std::vector<CostPoint> costCurve;
-    // With --penumbra exact or both: the exact pass (oracle.json "exact_penumbra").
-    std::optional<ExactPenumbraStats> exact;
-
-    uint64_t samplesWithoutRay() const { return samples - raysTraced; }
-    // Adaptive runs: the seconds a run with `target` would take. The agreeing pixels' share of the
-    // samples scales as their threshold's inverse (the prior's half-width goes as 1 / N); the
-    // rest by the slope of the cost curve while every pixel was still sampling (the mean
-    // half-width goes as samples^slope). None without enough of the curve.
-    std::optional<double> predictedSeconds(double target) const;
-    std::optional<double> costSlope() const;
-    double sppMean() const;
-    double uniformSamples() const;  // uniformSpp over the pixels sampled
-    double uniformRays() const;     // uniformSamples at this run's rays per sample
-    double raysPerSecond() const;
-};
 
 struct OracleLightStats {
     std::string name;
     LightType type = LightType::Point;
     std::string method;                   // how the light was traced, for people
-    std::optional<OracleAreaStats> area;  // sampled (penumbra) area lights
+    std::optional<AreaShadowStats> area;  // sampled (penumbra) area lights
     // Every other light; for a sampled area light, its contact rays (with "contact" only).
-    std::optional<OracleHardStats> hard;
+    std::optional<HardShadowStats> hard;
 
     bool sampled() const { return area.has_value(); }
     // oracle.json's lights[i].seconds: the sampled pass for sampled lights, else the hard pass.

@@ -292,7 +292,7 @@ TEST(AreaLight, AdaptiveSpendsWhatTheTargetNeeds) {
     PenumbraScene s = makePenumbraScene(200, 200);
     OracleRun r = run(s.scene, AreaSampling{});
     ASSERT_TRUE(r.stats.lights[0].area);
-    const OracleAreaStats& la = *r.stats.lights[0].area;
+    const AreaShadowStats& la = *r.stats.lights[0].area;
     Exact exact = exactImage(s, r.img);
     const float* V = r.img.channel("panel.V");
     double penAbs = 0.0;
@@ -308,7 +308,7 @@ TEST(AreaLight, AdaptiveSpendsWhatTheTargetNeeds) {
         la.sppMean(), (unsigned long long)la.sppMax, (unsigned long long)la.raysTraced,
         penAbs / double(pen), pen, la.seconds);
     EXPECT_LE(la.sppMean(), 1800.0 / 5.0);
-    EXPECT_EQ(la.shareReachedTarget, 1.0);
+    EXPECT_EQ(la.shareReachedTarget(), 1.0);
 }
 
 // A tight target buys penumbra accuracy; where every sample agrees, the pixel stops at the
@@ -320,7 +320,7 @@ TEST(AreaLight, AgreeingPixelsStopAtTheAgreementTarget) {
     tight.targetError = 0.002;
     OracleRun r = run(s.scene, tight);
     ASSERT_TRUE(r.stats.lights[0].area);
-    const OracleAreaStats& la = *r.stats.lights[0].area;
+    const AreaShadowStats& la = *r.stats.lights[0].area;
     Exact exact = exactImage(s, r.img);
     const float* V = r.img.channel("panel.V");
     const float* SE = r.img.channel("panel.stderr");
@@ -348,13 +348,13 @@ TEST(AreaLight, AgreeingPixelsStopAtTheAgreementTarget) {
         "penumbra pixels\n",
         agreeingSpp / double(agreeing), agreeing, penumbraSpp / double(penumbra), penumbra);
     EXPECT_EQ(la.pixelsUnconverged, 0u);
-    EXPECT_EQ(la.shareReachedTarget, 1.0);
+    EXPECT_EQ(la.shareReachedTarget(), 1.0);
     EXPECT_GE(la.pixelsAgreeing, agreeing);
     EXPECT_GT(penumbraSpp / double(penumbra), 3.0 * agreeingSpp / double(agreeing));
     // With the agreement target at the target, agreeing pixels pay for it as they did before.
     AreaSampling strict = tight;
     strict.agreementTarget = tight.targetError;
-    const OracleAreaStats& ls = *run(s.scene, strict).stats.lights[0].area;
+    const AreaShadowStats& ls = *run(s.scene, strict).stats.lights[0].area;
     EXPECT_GT(double(ls.samplesAgreeing) / double(ls.pixelsAgreeing),
               4.0 * double(la.samplesAgreeing) / double(la.pixelsAgreeing));
 }
@@ -365,7 +365,7 @@ TEST(AreaLight, CostCurvePredictsATighterTarget) {
     PenumbraScene s = makePenumbraScene(128, 96);
     OracleRun r = run(s.scene, AreaSampling{});
     ASSERT_TRUE(r.stats.lights[0].area);
-    const OracleAreaStats& a = *r.stats.lights[0].area;
+    const AreaShadowStats& a = *r.stats.lights[0].area;
     ASSERT_GE(a.costCurve.size(), 5u);
     for (size_t k = 1; k < a.costCurve.size(); ++k) {
         EXPECT_GE(a.costCurve[k].samples, a.costCurve[k - 1].samples);
@@ -389,7 +389,7 @@ TEST(AreaLight, CostCurvePredictsATighterTarget) {
     AreaSampling half;
     half.targetError = 0.005;
     OracleRun tighter = run(s.scene, half);
-    const OracleAreaStats& b = *tighter.stats.lights[0].area;
+    const AreaShadowStats& b = *tighter.stats.lights[0].area;
     // Samples rather than seconds: the same prediction, free of the machine's load.
     const std::optional<double> predicted = a.predictedSeconds(0.005);
     ASSERT_TRUE(predicted);
@@ -410,7 +410,7 @@ TEST(AreaLight, PixelsShortOfTheTargetAreMarked) {
     tight.maxSpp = 128;
     OracleRun r = run(s.scene, tight);
     ASSERT_TRUE(r.stats.lights[0].area);
-    const OracleAreaStats& la = *r.stats.lights[0].area;
+    const AreaShadowStats& la = *r.stats.lights[0].area;
     const float* U = r.img.channel("panel.unconverged");
     const float* SE = r.img.channel("panel.stderr");
     uint64_t marked = 0;
@@ -422,7 +422,7 @@ TEST(AreaLight, PixelsShortOfTheTargetAreMarked) {
     }
     EXPECT_EQ(marked, la.pixelsUnconverged);
     EXPECT_GT(marked, la.pixelsSampled / 2) << "128 samples cannot reach 0.002";
-    EXPECT_NEAR(la.shareReachedTarget, 1.0 - double(marked) / double(la.pixelsSampled), 1e-12);
+    EXPECT_NEAR(la.shareReachedTarget(), 1.0 - double(marked) / double(la.pixelsSampled), 1e-12);
     // A fixed count has no target to miss: no channel.
     AreaSampling fixed;
     fixed.fixedSpp = 32;

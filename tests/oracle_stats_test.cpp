@@ -271,6 +271,76 @@ OracleOptions cacheOptions() {
     return o;
 }
 
+// Gives field i of the table the value (i + 1) * scale: every counter distinct.
+template <class S>
+S numbered(double scale) {
+    S s;
+    size_t i = 0;
+    for (const StatField<S>& f : S::fields()) {
+        const double v = double(++i) * scale;
+        std::visit(
+            [&](auto m) {
+                using T = std::remove_cvref_t<decltype(s.*m)>;
+                if constexpr (std::is_same_v<T, double>)
+                    s.*m = v + 0.25;
+                else
+                    s.*m = uint64_t(v);
+            },
+            f.member);
+    }
+    return s;
+}
+
+// Every counter of a table, whatever it is: its value after combineStats(a, b) is the sum (or the
+// larger) of a's and b's, and it comes back from oracle.json as it went in.
+template <class S>
+void expectCombinedAndRoundTripped(const S& a, const S& b, const S& total, const S& back) {
+    for (const StatField<S>& f : S::fields()) {
+        const std::string key = f.key ? f.key : "(no key)";
+        std::visit(
+            [&](auto m) {
+                using T = std::remove_cvref_t<decltype(a.*m)>;
+                if constexpr (std::is_same_v<T, std::optional<uint64_t>>) {
+                    const uint64_t x = *(a.*m), y = *(b.*m);
+                    EXPECT_EQ(*(total.*m), f.combine == Combine::Sum ? x + y : std::max(x, y))
+                        << key;
+                } else {
+                    EXPECT_EQ(total.*m,
+                              f.combine == Combine::Sum ? a.*m + b.*m : std::max(a.*m, b.*m))
+                        << key;
+                }
+                EXPECT_EQ(back.*m, total.*m) << key;
+            },
+            f.member);
+    }
+}
+
+TEST(StatFields, EveryCounterIsCombinedWrittenAndRead) {
+    OracleStats stats;
+    stats.lights.resize(2);
+    stats.lights[0].name = "spot";
+    stats.lights[0].type = LightType::Spot;
+    const auto hardA = numbered<HardShadowStats>(1.0), hardB = numbered<HardShadowStats>(10.0);
+    combineStats(stats.lights[0].hard.emplace(hardA), hardB);
+    stats.lights[1].name = "panel";
+    stats.lights[1].type = LightType::Rect;
+    auto areaA = numbered<AreaShadowStats>(1.0), areaB = numbered<AreaShadowStats>(10.0);
+    // What the reader checks: a share of pixels reached the target, samples cover the rays and
+    // the agreeing samples.
+    areaA.pixelsReachedTarget = 1, areaB.pixelsReachedTarget = 2;
+    areaA.samples = 1000, areaB.samples = 10000;
+    combineStats(stats.lights[1].area.emplace(areaA), areaB);
+    stats.lights[1].area->exact.emplace(numbered<ExactPenumbraStats>(1.0));
+    stats.lights[1].area->exact->method = PenumbraMethod::Both;  // writes every counter
+    const json j = toJson(stats);
+    const OracleStats back = oracleStatsFromJson(json::parse(j.dump()), "memory");
+    ASSERT_TRUE(back.lights[0].hard && back.lights[1].area && back.lights[1].area->exact);
+    expectCombinedAndRoundTripped(hardA, hardB, *stats.lights[0].hard, *back.lights[0].hard);
+    expectCombinedAndRoundTripped(areaA, areaB, *stats.lights[1].area, *back.lights[1].area);
+    const ExactPenumbraStats& e = *stats.lights[1].area->exact;
+    expectCombinedAndRoundTripped(ExactPenumbraStats{}, e, e, *back.lights[1].area->exact);
+}
+
 TEST(OracleCache, SecondRunComesFromTheCache) {
     TempDir tmp;
     const Scene scene = cacheScene();

@@ -195,7 +195,7 @@ TEST(HardDegenerate, LightInsideAClosedBox) {
     finalizeScene(s);
     OracleResult r = runHard(s);
     const VCount n = countV(r.image, "inside");
-    const OracleHardStats& h = *r.stats.lights[0].hard;
+    const HardShadowStats& h = *r.stats.lights[0].hard;
     std::printf(
         "[ hard ] light inside a box: %zu hit px, %zu lit; %llu rays traced, %llu "
         "occluded, %llu attached\n",

@@ -154,7 +154,7 @@ TEST(HardGrazing, LightsAHairOffThePlaneAreDecidedExactly) {
             wrong += V[i] != (above ? 1.0f : 0.0f);
             wrongSign += above ? !(C[i] > 0.0f) : !(C[i] < 0.0f);
         }
-        const OracleHardStats& h = *r.stats.lights[li].hard;
+        const HardShadowStats& h = *r.stats.lights[li].hard;
         EXPECT_EQ(wrong, 0u) << l.name;
         EXPECT_EQ(wrongSign, 0u) << l.name << ": the cosine channel takes the exact sign";
         EXPECT_EQ(h.exactDecisions, pixels) << l.name;

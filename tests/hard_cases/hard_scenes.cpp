@@ -217,8 +217,8 @@ PointVisibility oracleVisibilityAt(const Scene& scene, size_t light,
     }
     std::vector<float> cosine(wsPoints.size());
     out.V.assign(wsPoints.size(), 0.0f);
-    traceHardShadows(accel, sb, makeHardLight(scene.lights[light], frame), out.V.data(),
-                     cosine.data(), nullptr, nullptr);
+    traceHardShadows(accel, sb, makeHardLight(scene.lights[light], frame),
+                     {out.V.data(), cosine.data(), nullptr}, nullptr);
     out.blindDistance = frame.wsLength(sb.lsMaxOffset);
     return out;
 }
