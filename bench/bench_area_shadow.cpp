@@ -145,13 +145,9 @@ int main(int argc, char** argv) {
         };
         std::vector<double> tO, tP, ratio;
         for (int r = 0; r < reps; ++r) {
-            auto t0 = Clock::now();
-            runOracle();
-            tO.push_back(secondsSince(t0));
+            tO.push_back(timeOnce(runOracle));
             work = packets;  // outside the timing: Embree overwrites tfar
-            t0 = Clock::now();
-            runPlain();
-            tP.push_back(secondsSince(t0));
+            tP.push_back(timeOnce(runPlain));
             ratio.push_back(tP.back() / tO.back());
         }
         // The plain loop's hits, through the same estimator, give the oracle's V.

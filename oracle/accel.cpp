@@ -19,16 +19,18 @@ using AlphaGeometry = Accel::AlphaGeometry;
 
 thread_local uint64_t tAlphaTests = 0;
 
-// Rejects a candidate hit on the triangle the ray leaves from. The mesh's first global index is
-// the geometry's user data; the ray's id holds the origin triangle's global index. Like every
-// filter, called from Embree's C code during a query: noexcept (nothing here may throw, and no
-// SO_CHECK belongs here), so that a slip ends in std::terminate rather than undefined behaviour.
+// Rejects a candidate hit on the triangle the ray leaves from: the ray's id holds the origin
+// triangle's global index, the context the meshes' first global indices. A context filter, run by
+// the queries whose ShadowContext turned it on. Like every filter, called from Embree's C code
+// during a query: noexcept (nothing here may throw, and no SO_CHECK belongs here), so that a slip
+// ends in std::terminate rather than undefined behaviour.
 void skipOriginTriangle(const RTCFilterFunctionNArguments* args) noexcept {
-    const unsigned base = unsigned(reinterpret_cast<uintptr_t>(args->geometryUserPtr));
+    const unsigned* meshBase = reinterpret_cast<const ShadowContext*>(args->context)->meshBase;
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
         const unsigned origin = RTCRayN_id(args->ray, args->N, i);
-        if (origin == base + RTCHitN_primID(args->hit, args->N, i)) args->valid[i] = 0;
+        const unsigned mesh = RTCHitN_geomID(args->hit, args->N, i);
+        if (origin == meshBase[mesh] + RTCHitN_primID(args->hit, args->N, i)) args->valid[i] = 0;
     }
 }
 
@@ -87,8 +89,11 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
     : frame_(LocalFrame::fit(scene.wsBounds)), rtcScene_(device) {
     RTCScene s = rtcScene_.get();
     // Robust: watertight along shared edges, which is what a ground truth needs (contact lines,
-    // closed meshes). High build quality: built once, traced many times.
-    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    // closed meshes). High build quality: built once, traced many times. The origin filter is a
+    // context filter, run only by the queries that ask for it.
+    rtcSetSceneFlags(s, originFilter
+                            ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION
+                            : RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
     meshes_.reserve(scene.meshes.size());
     uint64_t base = 0;
@@ -133,10 +138,6 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
             rtcSetGeometryOccludedFilterFunction(g.get(), alphaTestHit);
             rtcSetGeometryIntersectFilterFunction(g.get(), alphaTestHit);
             alphaGeometries_.push_back(std::move(a));
-        } else if (originFilter) {
-            rtcSetGeometryUserData(g.get(), reinterpret_cast<void*>(uintptr_t(base)));
-            rtcSetGeometryOccludedFilterFunction(g.get(), skipOriginTriangle);
-            rtcSetGeometryIntersectFilterFunction(g.get(), skipOriginTriangle);
         }
         g.commit();
         rtcScene_.attach(g, unsigned(id));  // the scene keeps its own reference to g
@@ -144,6 +145,18 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
         base += mesh.triangleCount();
     }
     rtcScene_.commit();
+}
+
+void ShadowContext::originFilter(bool on) {
+    rtc.filter = on ? skipOriginTriangle : nullptr;
+}
+
+ShadowContext Accel::shadowContext(bool coherent) const {
+    ShadowContext c;
+    rtcInitIntersectContext(&c.rtc);
+    if (coherent) c.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    c.meshBase = meshBase_.data();
+    return c;
 }
 
 RTCRayHit singleRayHit(const glm::vec3& org, const glm::vec3& dir, float tfar) {

@@ -2,11 +2,12 @@
 // (local_frame.h), robust mode, one Embree geometry per drawn mesh primitive with geomID = id.mesh.
 // Keeps the double-precision local vertices so hit points and normals are rebuilt exactly.
 //
-// Shadow rays skip the triangle they leave from: every geometry carries an occlusion and an
-// intersection filter that rejects a hit on the triangle whose global index is the ray's `id`
-// (kNoOriginTriangle: skip nothing). A second line of defence behind the tiny origin offset
-// (offset.h), which alone clears the origin triangle on every test; it costs 3-7% of the
-// throughput (docs/benchmarks.md).
+// Shadow rays skip the triangle they leave from: a query whose ShadowContext has the origin filter
+// on rejects a hit on the triangle whose global index is the ray's `id` (kNoOriginTriangle: skip
+// nothing). It is what guarantees the answer behind the tiny origin offset (offset.h), and it
+// costs a callback per candidate hit, so the passes turn it on only for packets that hold a ray
+// Embree's rounding could turn into its own triangle (originTangencyBound); alpha-tested
+// geometries skip the origin triangle in their own filter, on every query.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +26,16 @@ namespace so {
 // The ray `id` of rays that leave from no surface (primary rays).
 inline constexpr unsigned kNoOriginTriangle = 0xFFFFFFFFu;
 
+// The intersect context of the oracle's shadow queries: Embree's, and what the origin filter reads
+// (Embree hands the context to the filter; rtc must stay the first member).
+struct ShadowContext {
+    RTCIntersectContext rtc;
+    const unsigned* meshBase = nullptr;  // global index of each mesh's first triangle
+    // The filter on (true) or off for the next queries: a hit on the ray's origin triangle is
+    // then no hit.
+    void originFilter(bool on);
+};
+
 // One ray for rtcIntersect1 (local frame) from org along dir, from tnear 0 to tfar, leaving from
 // no surface (id kNoOriginTriangle), every mask bit set, and no hit yet.
 RTCRayHit singleRayHit(const glm::vec3& org, const glm::vec3& dir, float tfar);
@@ -39,6 +50,9 @@ class Accel {
     Accel& operator=(const Accel&) = delete;
 
     RTCScene rtcScene() const { return rtcScene_.get(); }
+    // A context for shadow queries on this scene (coherent: the packets of one tile or pixel), the
+    // origin filter off.
+    ShadowContext shadowContext(bool coherent) const;
     const LocalFrame& frame() const { return frame_; }
 
     // Triangle `prim` of mesh `mesh`, vertices in the local frame, double.

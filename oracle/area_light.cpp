@@ -13,6 +13,11 @@
 
 namespace so {
 
+// The samplers' loops, once for AVX2 (eight lanes at a time) and once for any x86-64, chosen at
+// run time. Neither enables fused multiply-add, and both round every operation the same IEEE way,
+// so the samples are the same bits on any CPU.
+#define SO_SAMPLER_CLONES __attribute__((target_clones("avx2", "default")))
+
 AreaLight makeAreaLight(const Light& light, const LocalFrame& frame) {
     AreaLight a;
     a.type = light.type;
@@ -231,6 +236,67 @@ static void clipRectToHorizon(const AreaLight& light, const glm::dvec3& p, const
     px.clippedTriangles = tris;
 }
 
+// Where the horizon cuts the sphere's cone: the rings with a part above it, in bins picked in
+// proportion to their largest visible half-angle (which is monotone in the ring's angle, so a
+// bin's ends bound it), so that samples go where the cap is visible.
+static void binVisibleRings(AreaPixel& px) {
+    const double c = px.horizonC, s = px.horizonS;
+    // Rings nearer the axis than the elevation of its point under the horizon lie wholly below it
+    // (for c < 0: theta < -asin(c), 1 - cos = c^2 / (1 + s)); the bins start a hair nearer, as a
+    // ring wrongly left out would bias the estimate and one wrongly kept only costs a sample.
+    const double yLo = c < 0.0 ? (1.0 - 1e-6) * c * c / (1.0 + s) : 0.0;
+    const double yHi = px.oneMinusCosMax;
+    px.sphereYLo = float(std::min(yLo, yHi));
+    px.sphereBinY = float(std::max(0.0, yHi - yLo) / AreaPixel::kSphereBins);
+    float arc[AreaPixel::kSphereBins + 1];
+    for (int j = 0; j <= AreaPixel::kSphereBins; ++j) {
+        const float y = px.sphereYLo + float(j) * px.sphereBinY;
+        const float sinT = std::sqrt(std::max(0.0f, y * (2.0f - y)));
+        arc[j] = arcAboveHorizon(px.horizonC * (1.0f - y), px.horizonS * sinT);
+    }
+    double total = 0.0;
+    for (int j = 0; j < AreaPixel::kSphereBins; ++j) {
+        // Never 0: every bin keeps a chance, so no visible ring goes unsampled.
+        px.sphereBinArc[j] = std::max(arc[j], arc[j + 1]) + 1e-7f;
+        total += px.sphereBinArc[j];
+    }
+    double acc = 0.0;
+    for (int j = 0; j < AreaPixel::kSphereBins; ++j) {
+        acc += px.sphereBinArc[j];
+        px.sphereCdf[j] = float(acc / total);
+    }
+    px.sphereCdf[AreaPixel::kSphereBins - 1] = 1.0f;
+}
+
+static void prepareSphere(const AreaLight& light, const glm::vec3& p, const glm::vec3& n,
+                          AreaPixel& px) {
+    const glm::dvec3 d = glm::dvec3(light.lsCenter) - glm::dvec3(p);
+    const double dist = glm::length(d);
+    const glm::dvec3 wc = d / dist;
+    const double sin2 = std::min(1.0, (double(light.lsRadius) * light.lsRadius) / (dist * dist));
+    const double cosMax = std::sqrt(1.0 - sin2);
+    // t1 along the normal's part across the cone's axis: the horizon then cuts each ring of the
+    // cone in an arc symmetric about t1, which the sampler skips (mapAreaBatch).
+    const glm::dvec3 nd(n), nPerp = nd - glm::dot(nd, wc) * wc;
+    const double s = glm::length(nPerp);
+    glm::dvec3 helper = std::fabs(wc.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 t1 = s > 1e-9 ? nPerp / s : glm::normalize(glm::cross(helper, wc));
+    const double c = glm::dot(nd, wc);
+    px.horizonC = float(c);
+    px.horizonS = float(s > 1e-9 ? s : 0.0);
+    px.wc = glm::vec3(wc);
+    px.t1 = glm::vec3(t1);
+    px.t2 = glm::vec3(glm::cross(wc, t1));
+    px.dist = float(dist);
+    // 1 - cos(theta_max) without cancellation for small, distant spheres.
+    px.oneMinusCosMax = float(sin2 / (1.0 + cosMax));
+    px.radius2 = light.lsRadius * light.lsRadius;
+    // The cone's outermost ring, at its lowest, is above the horizon by c cos - s sin: with a
+    // margin over the float sampling's rounding, the whole cone is visible.
+    px.sphereClipped = !(c * cosMax - s * std::sqrt(sin2) > 1e-5);
+    if (px.sphereClipped) binVisibleRings(px);
+}
+
 AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm::vec3& n) {
     AreaPixel px;
     px.p = p;
@@ -251,60 +317,71 @@ AreaPixel prepareAreaPixel(const AreaLight& light, const glm::vec3& p, const glm
             px.diskA2 = float(a2 / s);
         }
     }
-    if (light.type == LightType::Sphere) {
-        const glm::dvec3 d = glm::dvec3(light.lsCenter) - glm::dvec3(p);
-        const double dist = glm::length(d);
-        const glm::dvec3 wc = d / dist;
-        const double sin2 =
-            std::min(1.0, (double(light.lsRadius) * light.lsRadius) / (dist * dist));
-        const double cosMax = std::sqrt(1.0 - sin2);
-        // t1 along the normal's part across the cone's axis: the horizon then cuts each ring of
-        // the cone in an arc symmetric about t1, which the sampler skips (mapAreaBatch).
-        const glm::dvec3 nd(n), nPerp = nd - glm::dot(nd, wc) * wc;
-        const double s = glm::length(nPerp);
-        glm::dvec3 helper = std::fabs(wc.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-        const glm::dvec3 t1 = s > 1e-9 ? nPerp / s : glm::normalize(glm::cross(helper, wc));
-        px.horizonC = float(glm::dot(nd, wc));
-        px.horizonS = float(s > 1e-9 ? s : 0.0);
-        px.wc = glm::vec3(wc);
-        px.t1 = glm::vec3(t1);
-        px.t2 = glm::vec3(glm::cross(wc, t1));
-        px.dist = float(dist);
-        // 1 - cos(theta_max) without cancellation for small, distant spheres.
-        px.oneMinusCosMax = float(sin2 / (1.0 + cosMax));
-        px.radius2 = light.lsRadius * light.lsRadius;
-    }
+    if (light.type == LightType::Sphere) prepareSphere(light, p, n, px);
     return px;
 }
 
-// Sphere: directions in the cone of the visible cap, straight into the batch.
-static void sphereBatch(const AreaPixel& px, const float* su, const float* sv, int count,
-                        float margin, AreaBatch& b) {
+// The direction at ring y = 1 - cos(theta) and angle phi (sin, cos) about the cone's axis, its
+// segment to the sphere's near side and its cosine to the receiver.
+struct SphereDirection {
+    float x, y, z, tfar, cosP;
+};
+static inline SphereDirection sphereDirection(const AreaPixel& px, float y, float sinPhi,
+                                              float cosPhi, float margin) {
+    const float cosT = 1.0f - y;
+    const float sinT = std::sqrt(std::max(0.0f, y * (2.0f - y)));  // exact for small cones
+    const float cx = cosPhi * sinT, cy = sinPhi * sinT;
+    SphereDirection d;
+    d.x = cx * px.t1.x + cy * px.t2.x + cosT * px.wc.x;
+    d.y = cx * px.t1.y + cy * px.t2.y + cosT * px.wc.y;
+    d.z = cx * px.t1.z + cy * px.t2.z + cosT * px.wc.z;
+    const float disc = std::max(0.0f, px.radius2 - px.dist * px.dist * sinT * sinT);
+    d.tfar = std::max(0.0f, px.dist * cosT - std::sqrt(disc) - margin);
+    d.cosP = px.n.x * d.x + px.n.y * d.y + px.n.z * d.z;
+    return d;
+}
+
+// The whole cone above the horizon: uniform in its solid angle, weight cos_p.
+SO_SAMPLER_CLONES static void sphereConeBatch(const AreaPixel& px, const float* su, const float* sv,
+                                              int count, float margin, AreaBatch& b) {
     for (int k = 0; k < 16; ++k) {
-        const float cosT = 1.0f - su[k] * px.oneMinusCosMax;
-        const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
-        // The ring at this cosT is above the horizon for |phi| < phiMax (n.d > 0 with
-        // n.d = c cosT + s sinT cos phi): phi is sampled there only, and the weight carries
-        // the ring's visible share, so no sample is spent below the horizon.
-        const float phiMax = arcAboveHorizon(px.horizonC * cosT, px.horizonS * sinT);
+        float sinPhi, cosPhi;
+        sincos2Pi(sv[k], sinPhi, cosPhi);
+        const SphereDirection d =
+            sphereDirection(px, su[k] * px.oneMinusCosMax, sinPhi, cosPhi, margin);
+        b.dirX[k] = d.x;
+        b.dirY[k] = d.y;
+        b.dirZ[k] = d.z;
+        b.tfar[k] = d.tfar;
+        b.cosine[k] = d.cosP;
+        b.weight[k] = ((k < count) & (d.cosP > 0.0f)) ? d.cosP : 0.0f;
+    }
+}
+
+// The horizon across the cone: a bin of rings by the pixel's table, a ring within it, then the
+// angle over the ring's arc above the horizon; the weight carries the arc over its bin's bound.
+SO_SAMPLER_CLONES static void sphereCapBatch(const AreaPixel& px, const float* su, const float* sv,
+                                             int count, float margin, AreaBatch& b) {
+    for (int k = 0; k < 16; ++k) {
+        int j = 0;
+        for (int e = 0; e + 1 < AreaPixel::kSphereBins; ++e) j += su[k] >= px.sphereCdf[e];
+        const float lo = j ? px.sphereCdf[j - 1] : 0.0f;
+        // The rest of u places the ring within the bin (keeps the strata).
+        const float within =
+            std::min(0.99999994f, (su[k] - lo) / std::max(px.sphereCdf[j] - lo, 1e-30f));
+        const float y = px.sphereYLo + (float(j) + within) * px.sphereBinY;
+        const float sinT = std::sqrt(std::max(0.0f, y * (2.0f - y)));
+        const float phiMax = arcAboveHorizon(px.horizonC * (1.0f - y), px.horizonS * sinT);
         float sinPhi, cosPhi;
         sincosOnArc(sv[k], phiMax, sinPhi, cosPhi);
-        const float cx = cosPhi * sinT, cy = sinPhi * sinT;
-        const float dx = cx * px.t1.x + cy * px.t2.x + cosT * px.wc.x;
-        const float dy = cx * px.t1.y + cy * px.t2.y + cosT * px.wc.y;
-        const float dz = cx * px.t1.z + cy * px.t2.z + cosT * px.wc.z;
-        // Distance to the near side of the sphere along d.
-        const float b2 = px.dist * cosT;
-        const float disc = std::max(0.0f, px.radius2 - px.dist * px.dist * sinT * sinT);
-        const float t = b2 - std::sqrt(disc);
-        const float cosP = px.n.x * dx + px.n.y * dy + px.n.z * dz;
-        b.dirX[k] = dx;
-        b.dirY[k] = dy;
-        b.dirZ[k] = dz;
-        b.tfar[k] = std::max(0.0f, t - margin);
-        b.weight[k] = ((k < count) & (cosP > 0.0f))
-                          ? cosP * (phiMax * (1.0f / std::numbers::pi_v<float>))
-                          : 0.0f;
+        const SphereDirection d = sphereDirection(px, y, sinPhi, cosPhi, margin);
+        b.dirX[k] = d.x;
+        b.dirY[k] = d.y;
+        b.dirZ[k] = d.z;
+        b.tfar[k] = d.tfar;
+        b.cosine[k] = d.cosP;
+        b.weight[k] =
+            ((k < count) & (d.cosP > 0.0f)) ? d.cosP * (phiMax / px.sphereBinArc[j]) : 0.0f;
     }
 }
 
@@ -315,7 +392,8 @@ struct LightPoints {
     float share[16];
 };
 
-static void rectPoints(const AreaLight& light, const float* su, const float* sv, LightPoints& q) {
+SO_SAMPLER_CLONES static void rectPoints(const AreaLight& light, const float* su, const float* sv,
+                                         LightPoints& q) {
     float* yx = q.x;
     float* yy = q.y;
     float* yz = q.z;
@@ -326,8 +404,8 @@ static void rectPoints(const AreaLight& light, const float* su, const float* sv,
     }
 }
 
-static void clippedRectPoints(const AreaPixel& px, const float* su, const float* sv,
-                              LightPoints& q) {
+SO_SAMPLER_CLONES static void clippedRectPoints(const AreaPixel& px, const float* su,
+                                                const float* sv, LightPoints& q) {
     float* yx = q.x;
     float* yy = q.y;
     float* yz = q.z;
@@ -344,8 +422,8 @@ static void clippedRectPoints(const AreaPixel& px, const float* su, const float*
     }
 }
 
-static void clippedDiskPoints(const AreaLight& light, const AreaPixel& px, const float* su,
-                              const float* sv, LightPoints& q) {
+SO_SAMPLER_CLONES static void clippedDiskPoints(const AreaLight& light, const AreaPixel& px,
+                                                const float* su, const float* sv, LightPoints& q) {
     float* yx = q.x;
     float* yy = q.y;
     float* yz = q.z;
@@ -366,7 +444,8 @@ static void clippedDiskPoints(const AreaLight& light, const AreaPixel& px, const
     }
 }
 
-static void diskPoints(const AreaLight& light, const float* su, const float* sv, LightPoints& q) {
+SO_SAMPLER_CLONES static void diskPoints(const AreaLight& light, const float* su, const float* sv,
+                                         LightPoints& q) {
     float* yx = q.x;
     float* yy = q.y;
     float* yz = q.z;
@@ -390,8 +469,9 @@ static void diskPoints(const AreaLight& light, const float* su, const float* sv,
 }
 
 // Directions, segment lengths and weights G / pdf from the points.
-static void finishBatch(const AreaLight& light, const AreaPixel& px, const LightPoints& q,
-                        int count, float margin, AreaBatch& b) {
+SO_SAMPLER_CLONES static void finishBatch(const AreaLight& light, const AreaPixel& px,
+                                          const LightPoints& q, int count, float margin,
+                                          AreaBatch& b) {
     const float* yx = q.x;
     const float* yy = q.y;
     const float* yz = q.z;
@@ -409,6 +489,7 @@ static void finishBatch(const AreaLight& light, const AreaPixel& px, const Light
         b.dirY[k] = wy;
         b.dirZ[k] = wz;
         b.tfar[k] = std::max(0.0f, dist - margin);
+        b.cosine[k] = cosP;
         // Computed for every lane and then selected: a conditional division keeps the loop
         // from vectorising.
         const float g = share[k] * cosP * cosY / r2;
@@ -419,7 +500,9 @@ static void finishBatch(const AreaLight& light, const AreaPixel& px, const Light
 void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, const float* sv,
                   int count, AreaBatch& b) {
     const float margin = 2.0f * light.lsEndMargin;
-    if (light.type == LightType::Sphere) return sphereBatch(px, su, sv, count, margin, b);
+    if (light.type == LightType::Sphere)
+        return px.sphereClipped ? sphereCapBatch(px, su, sv, count, margin, b)
+                                : sphereConeBatch(px, su, sv, count, margin, b);
     LightPoints q;
     std::fill(q.share, q.share + 16, 1.0f);
     if (light.type == LightType::Rect && px.clippedTriangles == 0)

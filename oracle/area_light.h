@@ -5,8 +5,11 @@
 // the ratio estimator V = sum w_i v_i / sum w_i, which is exactly 1 where nothing blocks.
 //   rect, disk: uniform by area (disk: concentric map), w = max(cos_p,0) max(cos_y,0) / r^2;
 //               a rect partly below the receiver's horizon is clipped to it first
-//   sphere:     uniform in the solid angle of the visible cap (sphere-cap sampling), w =
-//   max(cos_p,0)
+//   sphere:     in the solid angle of the visible cap only: the cone towards the sphere in rings of
+//               1 - cos(theta), and where the horizon cuts the cone, only the rings with a part
+//               above it, picked in proportion to (a bound of) that part, and the angle around
+//               each ring over its part above the horizon; w = max(cos_p, 0) times the ring's
+//               visible share over the bound its bin was picked by
 // (constant factors common to all samples of a pixel are dropped: they cancel in the ratio).
 #pragma once
 
@@ -47,6 +50,14 @@ struct AreaPixel {
     glm::vec3 wc{0.0f}, t1{0.0f}, t2{0.0f};
     float dist = 0.0f, oneMinusCosMax = 0.0f, radius2 = 0.0f;
     float horizonC = 1.0f, horizonS = 0.0f;
+    // sphere cut by the horizon: rings y = 1 - cos(theta) in [sphereYLo, oneMinusCosMax] (below
+    // sphereYLo every ring lies under the horizon), in kSphereBins bins of equal width picked by
+    // sphereCdf; sphereBinArc bounds each bin's visible half-angle from above.
+    static constexpr int kSphereBins = 16;
+    bool sphereClipped = false;
+    float sphereYLo = 0.0f, sphereBinY = 0.0f;
+    float sphereCdf[kSphereBins] = {};
+    float sphereBinArc[kSphereBins] = {};
     // disk partly below the horizon: points c + r (cos t a + sin t a_perp) are above it where
     // diskH + r diskS cos t > 0 (a: the normal's direction within the disk's plane, in (e1, e2))
     bool diskClipped = false;
@@ -83,6 +94,7 @@ struct AreaBatch {
     alignas(64) float dirZ[16];
     alignas(64) float tfar[16];
     alignas(64) float weight[16];
+    alignas(64) float cosine[16];  // to the receiver's normal (tangency: accel.h)
 };
 // acos(x) for x in [-1, 1], never below the true value and within 3e-6 of it (branch-free, so the
 // samplers' loops vectorise; exposed for tests).

@@ -153,7 +153,7 @@ namespace {
 
 // One thread's packet and batch, reused pixel after pixel.
 struct PacketState {
-    RTCIntersectContext ctx;
+    ShadowContext ctx;
     alignas(64) RTCRay16 ray;
     alignas(64) int valid[16];
     AreaBatch batch;
@@ -225,20 +225,27 @@ void addToCurve(const std::vector<int>& rounds, const std::vector<float>& halfWi
 
 // One round: two points of each replica's own scrambled Sobol sequence (lanes 2j, 2j + 1 are
 // replica j's points first, first + 1), traced as one packet, added to the replicas' sums.
+// `tangentCos`: the pixel's tangency bound (offset.h); a round holding a ray below it runs the
+// origin filter.
 void traceRound(const Accel& accel, const AreaLight& light, const AreaPixel& px,
-                const ReplicaSeeds& seeds, uint32_t first, PacketState& p, ReplicaSums& sums,
-                AreaShadowStats& st) {
+                const ReplicaSeeds& seeds, uint32_t first, float tangentCos, PacketState& p,
+                ReplicaSums& sums, AreaShadowStats& st) {
     sampleRound(light, px, seeds, first, p.batch);
-    int active = 0;
+    int active = 0, near = 0;
     for (int k = 0; k < 16; ++k) {
         p.valid[k] = p.batch.weight[k] > 0.0f ? -1 : 0;
         active += p.valid[k] != 0;
+        near |= p.valid[k] & int(!(p.batch.cosine[k] >= tangentCos));
         p.ray.dir_x[k] = p.batch.dirX[k];
         p.ray.dir_y[k] = p.batch.dirY[k];
         p.ray.dir_z[k] = p.batch.dirZ[k];
         p.ray.tfar[k] = p.batch.tfar[k];
     }
-    if (active) rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx, &p.ray);
+    if (active) {
+        p.ctx.originFilter(near != 0);
+        st.raysFiltered += near != 0 ? uint64_t(active) : 0;
+        rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.ray);
+    }
     const int lit = addRound(sums, p.batch.weight, p.valid, p.ray.tfar);
     st.raysOccluded += uint64_t(active - lit);
     st.raysTraced += uint64_t(active);
@@ -249,7 +256,7 @@ void traceRound(const Accel& accel, const AreaLight& light, const AreaPixel& px,
 // to whole rounds).
 PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPixel& px,
                         const AreaSampling& sampling, uint32_t pixelSeed, const glm::vec3& org,
-                        uint32_t originId, PacketState& p, AreaShadowStats& st) {
+                        uint32_t originId, float tangentCos, PacketState& p, AreaShadowStats& st) {
     for (int k = 0; k < 16; ++k) {
         p.ray.org_x[k] = org.x;
         p.ray.org_y[k] = org.y;
@@ -269,7 +276,7 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
     p.halfWidths.clear();
     const bool adaptive = sampling.fixedSpp == 0;
     for (uint32_t first = 0;; first += kPointsPerRound) {
-        traceRound(accel, light, px, seeds, first, p, sums, st);
+        traceRound(accel, light, px, seeds, first, tangentCos, p, sums, st);
         r.samples += 16;
         const int round = r.samples / 16;
         // A fixed count needs the estimate only where the cost curve reads it, and at the end.
@@ -356,7 +363,7 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
     const PixelResult r =
         samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
                     areaPixelSeed(sampling.seed, stream, uint32_t(sb.fullImagePixel(px))),
-                    sb.lsRayOrigin(s), sb.originId[s], packet, st);
+                    sb.lsRayOrigin(s), sb.originId[s], sb.tangentCos[s], packet, st);
     out.V[px] = float(r.est.V);
     out.stderr_[px] = float(r.est.stderr_);
     out.spp[px] = float(r.samples);
@@ -465,8 +472,7 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
     };
     const auto makeScratch = [&] {
         Scratch c{partial.local(), {}};
-        rtcInitIntersectContext(&c.packet.ctx);
-        c.packet.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        c.packet.ctx = accel.shadowContext(/*coherent=*/true);
         return c;
     };
     forEachTileRow(

@@ -215,15 +215,14 @@ namespace {
 // One thread's packet, reused tile after tile. The lanes' constant fields are set once: Embree
 // writes only tfar (and the hit, for rtcIntersect16).
 struct HardPacket {
-    RTCIntersectContext ctx;
+    ShadowContext ctx;
     alignas(64) RTCRayHit16 rayHit;
     alignas(64) int valid[16];
     PacketSetup ps;
     uint64_t counts[int(ShadowRayKind::Count)] = {};
+    uint64_t raysFiltered = 0;
 
-    HardPacket() {
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    explicit HardPacket(const Accel& accel) : ctx(accel.shadowContext(/*coherent=*/true)) {
         RTCRay16& ray = rayHit.ray;
         for (int k = 0; k < 16; ++k) {
             ray.tnear[k] = 0.0f;
@@ -246,6 +245,15 @@ int classifyLanes(HardPacket& p, int cols, int rows) {
         active += kind == ShadowRayKind::Traced;
     }
     return active;
+}
+
+// Whether a traced lane leaves within its origin triangle's tangency bound (offset.h), where only
+// the origin filter keeps it from hitting that triangle.
+bool needsOriginFilter(const SurfaceBuffer& sb, size_t base, const HardPacket& p) {
+    int near = 0;
+    for (int k = 0; k < 16; ++k)
+        near |= p.valid[k] & int(!(p.ps.cosine[k] >= sb.tangentCos[base + size_t(k)]));
+    return near != 0;
 }
 
 void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
@@ -311,12 +319,15 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
     const int active = classifyLanes(p, cols, rows);
     if (active) {
         fillRays(sb, base, p);
+        const bool filter = needsOriginFilter(sb, base, p);
+        p.ctx.originFilter(filter);
+        p.raysFiltered += filter ? uint64_t(active) : 0;
         if (out.occDist) {
             for (int k = 0; k < 16; ++k) p.rayHit.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect16(p.valid, accel.rtcScene(), &p.ctx, &p.rayHit);
+            rtcIntersect16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.rayHit);
             st.closestHitQueries += uint64_t(active);
         } else {
-            rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx, &p.rayHit.ray);
+            rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.rayHit.ray);
         }
     }
     st.raysOccluded += writeTile(p, accel.frame(), size_t(y0) * size_t(sb.width) + size_t(x0),
@@ -339,7 +350,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
     forEachTileRow(
         sb.tilesY,
         [&] {
-            return Scratch{partial.local(), {}};
+            return Scratch{partial.local(), HardPacket(accel)};
         },
         [&](int ty, Scratch& c) {
             for (int tx = 0; tx < sb.tilesX; ++tx)
@@ -357,6 +368,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
             chunk.raysTraced = count(ShadowRayKind::Traced);
             chunk.exactDecisions = c.packet.ps.exactDecisions;
             chunk.alphaTests = alphaTestsRun;
+            chunk.raysFiltered = c.packet.raysFiltered;
             combineStats(c.st, chunk);
         });
     HardShadowStats total;

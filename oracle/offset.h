@@ -37,6 +37,17 @@ inline glm::vec3 errorBoundOrigin(const glm::dvec3& p, const glm::dvec3& n) {
     return glm::vec3(p + kLsOriginOffset * n);
 }
 
+// The cosine, between a shadow ray leaving from errorBoundOrigin on triangle (a, b, c) (double,
+// local frame) and the triangle's normal, from which on Embree's float arithmetic cannot report
+// the triangle itself as hit: such a ray needs no origin filter (accel.h). +inf where even the
+// side of the triangle the origin lies on is within Embree's rounding (large triangles out of the
+// axis planes, thin ones): rays from there always run the filter. The bound follows Embree's robust
+// test operation by operation, with every rounding bounded from the triangle's extent per axis
+// (offset.cpp; docs/oracle.md, "The origin filter, where it can matter"), times two.
+// tests/origin_tangency_test.cpp traces rays at the bound without the filter on generated
+// triangles and finds no self-hit.
+float originTangencyBound(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
 namespace offset_detail {
 inline constexpr float kOrigin = 1.0f / 32.0f;  // below this, ulps are too small: go linear
 inline constexpr float kFloatScale = 1.0f / 65536.0f;

@@ -48,7 +48,8 @@ OracleOffsetStats offsetPolicyStats(OffsetPolicy policy, const LocalFrame& frame
               "moved " +
                   std::to_string(int(std::ldexp(kLsOriginOffset, 24))) +
                   " * 2^-24 along the geometric normal in the recentred frame scaled by "
-                  "2^-exponent, and the triangle the ray leaves from skipped by an Embree filter"
+                  "2^-exponent, and the triangle the ray leaves from skipped by an Embree filter "
+                  "wherever Embree's rounding could report it (rays within its tangency bound)"
             : "legacy: Waechter-Binder integer-ulp offset, 256 ulp along the geometric normal "
               "(test only)";
     o.skipsOriginTriangle = true;

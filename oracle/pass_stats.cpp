@@ -19,6 +19,7 @@ std::span<const StatField<HardShadowStats>> HardShadowStats::fields() {
         {"closest_hit_queries", &S::closestHitQueries},
         {"exact_decisions", &S::exactDecisions},
         {"alpha_tests", &S::alphaTests},
+        {"rays_filtered", &S::raysFiltered},
         {"seconds", &S::seconds},
     };
     return kFields;
@@ -35,6 +36,7 @@ std::span<const StatField<AreaShadowStats>> AreaShadowStats::fields() {
         {"rays_skipped.inside_light", &S::skippedInsideLight},
         {"exact_decisions", &S::exactDecisions},
         {"alpha_tests", &S::alphaTests},
+        {"rays_filtered", &S::raysFiltered},
         {"samples", &S::samples},
         {"pixels_sampled", &S::pixelsSampled},
         {"pixels_without_usable_samples", &S::pixelsWithoutUsableSamples},

@@ -26,6 +26,9 @@ struct HardShadowStats {
     uint64_t closestHitQueries = 0;              // only with the contact effect
     uint64_t exactDecisions = 0;  // pixels a float tie left to exact arithmetic (exact_facing.h)
     uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
+    // Rays in packets that ran the origin-triangle filter: those holding a ray within its
+    // triangle's tangency bound (offset.h, accel.h).
+    uint64_t raysFiltered = 0;
     double seconds = 0.0;
 
     double raysPerSecond() const;
@@ -58,6 +61,7 @@ struct AreaShadowStats {
              skippedInsideLight = 0;
     uint64_t exactDecisions = 0;  // pixels whose horizon or emitter side was decided exactly
     uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
+    uint64_t raysFiltered = 0;    // rays in packets that ran the origin-triangle filter
     uint64_t samples = 0, pixelsSampled = 0, sppMax = 0;
     // Pixels where the light is above the horizon only by a sliver no sample found: reported as
     // V = 0 with the widest interval, and left out of worstHalfWidth (they carry no estimate).

@@ -132,32 +132,13 @@ PointsSurface surfaceFromPoints(const Scene& scene, const Accel& accel, const GB
                 }
                 out.status[pixel] =
                     uint8_t(replayed ? PointStatus::Replayed : PointStatus::Snapped);
-                glm::dvec3 a, b, c;
-                accel.triangle(h.mesh, h.prim, a, b, c);
-                const double u = h.u, v = h.v;
-                // As tracePrimary: rebuilt on the double triangle, the unit geometric normal
-                // oriented to agree with the side the renderer shades.
-                const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
-                glm::dvec3 ng = glm::cross(b - a, c - a);
-                ng /= glm::length(ng);  // a hit or replayed triangle has non-zero area
-                if (glm::dot(ng, nGiven) < 0.0) ng = -ng;
-                sb.hit[s] = 1;
-                sb.meshId[s] = h.mesh;
-                sb.primId[s] = h.prim;
-                sb.originId[s] = accel.originId(h.mesh, h.prim);
-                const glm::vec3 pf(p), nf(ng);
-                const glm::vec3 org = offsetPolicy == OffsetPolicy::ErrorBound
-                                          ? errorBoundOrigin(p, ng)
-                                          : offsetRayOrigin(pf, nf);
-                sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
-                sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
-                sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
+                // As tracePrimary: the normal turned to the side the renderer shades.
+                const SurfacePoint sp =
+                    fillSurfaceSlot(sb, s, accel, h.mesh, h.prim, h.u, h.v, nGiven, offsetPolicy);
                 sb.wsDepth[s] =
                     g.depth.empty() ? std::numeric_limits<float>::quiet_NaN() : g.depth[pixel];
-                sb.baryU[s] = h.u;
-                sb.baryV[s] = h.v;
-                row.offset = std::max(row.offset, glm::length(glm::dvec3(org) - p));
-                if (!replayed) row.snap = std::max(row.snap, glm::length(p - lsP));
+                row.offset = std::max(row.offset, sp.lsOffset);
+                if (!replayed) row.snap = std::max(row.snap, glm::length(sp.lsPoint - lsP));
             }
         }
         alphaTests += Accel::alphaTestsOnThisThread() - alphaTests0;

@@ -29,40 +29,38 @@ SurfaceBuffer SurfaceBuffer::empty(int width, int height, int rowBegin) {
           &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ, &sb.baryU, &sb.baryV})
         v->assign(n, 0.0f);
     sb.wsDepth.assign(n, std::numeric_limits<float>::infinity());
+    sb.tangentCos.assign(n, std::numeric_limits<float>::infinity());
     return sb;
 }
 
-namespace {
-
-// Slot s from its primary hit; returns how far its shadow-ray origin lies from the hit point.
-double fillSlot(SurfaceBuffer& sb, size_t s, const Accel& accel, const RTCRayHit& rh,
-                const glm::dvec3& wsDir, const glm::dvec3& lsEye, OffsetPolicy offsetPolicy) {
+SurfacePoint fillSurfaceSlot(SurfaceBuffer& sb, size_t s, const Accel& accel, unsigned mesh,
+                             unsigned prim, float u, float v, const glm::dvec3& lsTowards,
+                             OffsetPolicy offsetPolicy) {
     glm::dvec3 a, b, c;
-    accel.triangle(rh.hit.geomID, rh.hit.primID, a, b, c);
-    const double u = rh.hit.u, v = rh.hit.v;
+    accel.triangle(mesh, prim, a, b, c);
     // Rebuilt on the double triangle, not org + t*dir: the hit then lies on the surface to the
     // precision of the stored float whatever the ray's length.
-    const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
+    const glm::dvec3 p = (1.0 - double(u) - double(v)) * a + double(u) * b + double(v) * c;
     glm::dvec3 ng = glm::cross(b - a, c - a);
     ng /= glm::length(ng);  // a hit triangle has non-zero area
-    if (glm::dot(ng, wsDir) > 0.0) ng = -ng;
+    if (glm::dot(ng, lsTowards) < 0.0) ng = -ng;
     sb.hit[s] = 1;
-    sb.meshId[s] = rh.hit.geomID;
-    sb.primId[s] = rh.hit.primID;
-    sb.originId[s] = accel.originId(rh.hit.geomID, rh.hit.primID);
+    sb.meshId[s] = mesh;
+    sb.primId[s] = prim;
+    sb.originId[s] = accel.originId(mesh, prim);
     const glm::vec3 pf(p), nf(ng);
-    const glm::vec3 org = offsetPolicy == OffsetPolicy::ErrorBound ? errorBoundOrigin(p, ng)
-                                                                   : offsetRayOrigin(pf, nf);
+    const bool errorBound = offsetPolicy == OffsetPolicy::ErrorBound;
+    const glm::vec3 org = errorBound ? errorBoundOrigin(p, ng) : offsetRayOrigin(pf, nf);
     sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
     sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
     sb.lsOriginX[s] = org.x, sb.lsOriginY[s] = org.y, sb.lsOriginZ[s] = org.z;
-    sb.wsDepth[s] = float(accel.frame().wsLength(glm::length(p - lsEye)));
-    sb.baryU[s] = rh.hit.u;
-    sb.baryV[s] = rh.hit.v;
-    return glm::length(glm::dvec3(org) - p);
+    // The bound holds for the error-bound origin only: the legacy rule's rays always filter.
+    sb.tangentCos[s] =
+        errorBound ? originTangencyBound(a, b, c) : std::numeric_limits<float>::infinity();
+    sb.baryU[s] = u;
+    sb.baryV[s] = v;
+    return {p, glm::length(glm::dvec3(org) - p)};
 }
-
-}  // namespace
 
 SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* progress,
                            OffsetPolicy offsetPolicy, int rowBegin, int rowEnd) {
@@ -100,7 +98,11 @@ SurfaceBuffer tracePrimary(const Accel& accel, const Camera& camera, Progress* p
                     singleRayHit(lsEyeF, glm::vec3(wsDir), std::numeric_limits<float>::infinity());
                 rtcIntersect1(accel.rtcScene(), &ctx, &rh);
                 if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-                rowMax = std::max(rowMax, fillSlot(sb, s, accel, rh, wsDir, lsEye, offsetPolicy));
+                // The eye's side (the direction is the same in world and local space).
+                const SurfacePoint sp = fillSurfaceSlot(sb, s, accel, rh.hit.geomID, rh.hit.primID,
+                                                        rh.hit.u, rh.hit.v, -wsDir, offsetPolicy);
+                sb.wsDepth[s] = float(accel.frame().wsLength(glm::length(sp.lsPoint - lsEye)));
+                rowMax = std::max(rowMax, sp.lsOffset);
             }
             rowMaxOffset[size_t(ty)] = rowMax;
             if (progress) progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));

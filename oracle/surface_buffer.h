@@ -42,7 +42,10 @@ struct SurfaceBuffer {
     std::vector<float> lsNormalX, lsNormalY,
         lsNormalZ;  // unit geometric normal (from double), facing the camera
     std::vector<float> lsOriginX, lsOriginY,
-        lsOriginZ;               // offset origin for rays leaving on the normal's side
+        lsOriginZ;  // offset origin for rays leaving on the normal's side
+    // The origin triangle's tangency bound (offset.h): a ray whose cosine to the normal is below
+    // it runs the origin filter (accel.h); +inf where every ray must.
+    std::vector<float> tangentCos;
     std::vector<float> wsDepth;  // distance from the eye, world units (points: the G-buffer's Z)
     // Embree's barycentrics of the hit on triangle (meshId, primId): the point is rebuilt from
     // them on the double triangle, so they replay a hit exactly (gbuffer.exr's bary.u, bary.v;
@@ -76,6 +79,18 @@ struct SurfaceBuffer {
     // gets the same samples whichever band traces it.
     size_t fullImagePixel(size_t pixel) const { return pixel + size_t(rowBegin) * size_t(width); }
 };
+
+// Fills slot s from a hit on triangle (mesh, prim) at Embree's barycentrics (u, v): the point
+// rebuilt in double on the double triangle, the unit geometric normal turned towards `lsTowards`
+// (the eye, or the side a renderer shades), the shadow-ray origin by the policy, and the tangency
+// bound. wsDepth is the caller's.
+struct SurfacePoint {
+    glm::dvec3 lsPoint;  // the rebuilt point, double
+    double lsOffset;     // how far the origin lies from it (the blind distance)
+};
+SurfacePoint fillSurfaceSlot(SurfaceBuffer& sb, size_t s, const Accel& accel, unsigned mesh,
+                             unsigned prim, float u, float v, const glm::dvec3& lsTowards,
+                             OffsetPolicy offsetPolicy);
 
 // Traces the primary rays of image rows [rowBegin, rowEnd) in parallel (call inside the caller's
 // tbb::task_arena); rowEnd -1: to the last row. rowBegin must be a multiple of kTile.

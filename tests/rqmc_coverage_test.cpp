@@ -87,9 +87,9 @@ double referenceV(const Accel& accel, const Light& l, const glm::dvec3& p, const
         ray.tfar = 0.9999f;  // stop short of the light's surface
         ray.mask = 0xFFFFFFFFu;
         ray.id = originId;
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        rtcOccluded1(accel.rtcScene(), &ctx, &ray);
+        ShadowContext ctx = accel.shadowContext(/*coherent=*/false);
+        ctx.originFilter(true);  // the ray leaves from the surface itself
+        rtcOccluded1(accel.rtcScene(), &ctx.rtc, &ray);
         sw += g;
         swv += ray.tfar >= 0.0f ? g : 0.0;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <utility>
@@ -165,6 +166,7 @@ SurfaceBuffer emptyRow(size_t n) {
                     &sb.lsNormalZ, &sb.lsOriginX, &sb.lsOriginY, &sb.lsOriginZ})
         v->assign(slots, 0.0f);
     sb.wsDepth.assign(slots, 1.0f);
+    sb.tangentCos.assign(slots, std::numeric_limits<float>::infinity());
     return sb;
 }
 
@@ -195,6 +197,7 @@ bool probePoint(const Accel& accel, const glm::dvec3& ls, const glm::dvec3& n, S
     sb.lsPointX[s] = pf.x, sb.lsPointY[s] = pf.y, sb.lsPointZ[s] = pf.z;
     sb.lsNormalX[s] = nf.x, sb.lsNormalY[s] = nf.y, sb.lsNormalZ[s] = nf.z;
     sb.lsOriginX[s] = o.x, sb.lsOriginY[s] = o.y, sb.lsOriginZ[s] = o.z;
+    sb.tangentCos[s] = originTangencyBound(a, b, c);
     sb.lsMaxOffset = std::max(sb.lsMaxOffset, glm::length(glm::dvec3(o) - p));
     return true;
 }
