@@ -246,6 +246,36 @@ TEST(Lightmap, AnAreaLightsBakeConvergesLikeAccumulate) {
     EXPECT_LT(ml.mae, ma.mae + 0.01);
 }
 
+// Triangles smaller than a texel, nearly none coplanar with a neighbour (one chart each, the
+// fallback), most covering no texel's centre: each still gets the texel of its centroid, so an
+// unshadowed bumpy plane is lit everywhere the light faces it (without the centroids, many of its
+// triangles had no texel at all, V = 0 there, and no dilation could fill them).
+TEST(Lightmap, EveryTriangleGetsATexelEvenSmallerThanOne) {
+    REQUIRE_GL();
+    Scene s;
+    MeshPrimitive bumps = makeGrid({0, 0, 0}, {4, 0, 0}, {0, 0, -4}, 40, "bumps");
+    for (glm::dvec3& p : bumps.wsPositions) p.y = 0.01 * std::sin(7.0 * p.x) * std::cos(5.0 * p.z);
+    s.meshes.push_back(bumps);
+    s.camera.wsEye = {0.0, 6.0, 0.5};
+    s.camera.wsTarget = {0.0, 0.0, 0.0};
+    s.camera.width = s.camera.height = 96;
+    s.lights = {{"sun", LightType::Directional, {0, 0, 0}, {0, -1, 0}, 0, 0}};
+    s.effects = {"hard"};
+    finalizeScene(s);
+    const RasterResult r = renderLightmap(s, "lightmap", {"texels_per_unit=4"});
+    EXPECT_GT(count(r, "charts"), 3000) << "nearly every triangle a chart of its own";
+    EXPECT_GT(count(r, "texels_from_centroids"), 1600);
+    const float* V = r.image.channel(ch::lightChannel("sun", ch::kVisibility));
+    const float* A = r.image.channel(ch::kHit);
+    size_t hit = 0, dark = 0;
+    for (size_t i = 0; i < r.image.pixelCount(); ++i) {
+        hit += A[i] != 0.0f;
+        dark += A[i] != 0.0f && V[i] < 0.99f;
+    }
+    ASSERT_GT(hit, 5000u);
+    EXPECT_EQ(dark, 0u);
+}
+
 // A density whose atlas would pass the limit is an input error naming texels_per_unit.
 TEST(Lightmap, AnAtlasOverTheLimitNamesTheParameter) {
     REQUIRE_GL();

@@ -82,7 +82,9 @@ LightmapLight::LightmapLight(const LightmapSettings& settings, const LightSetup&
                {"bake_samples", baked_.samples},
                {"bake_peak_bytes", int64_t(baked_.peakBytes)},
                {"texels_covered", int64_t(baked_.texelsCovered)},
-               {"texels_dilated", int64_t(baked_.texelsFilled - baked_.texelsCovered)}};
+               {"texels_from_centroids", int64_t(baked_.texelsFromCentroids)},
+               {"texels_dilated",
+                int64_t(baked_.texelsFilled - baked_.texelsCovered - baked_.texelsFromCentroids)}};
     buildProgram(settings, setup.camera);
 }
 

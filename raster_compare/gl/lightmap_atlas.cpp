@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <limits>
 #include <map>
@@ -22,6 +23,13 @@ constexpr double kCoplanarCos = 1.0 - 5e-7;
 // A triangle whose bounds cover more grid cells than this is checked against every triangle of
 // its chart instead of being put in the cells.
 constexpr size_t kMaxCellsPerTriangle = 256;
+
+// A number as a person writes it: 256, 0.5, 1024.25.
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
 
 // A triangle projected onto its chart's plane (world units).
 struct Tri2 {
@@ -180,9 +188,9 @@ int chartSide(double extent, const AtlasSettings& s) {
     const double texels = extent * s.texelsPerUnit;
     if (!(texels <= double(kMaxAtlasSide - 2 * s.padding)))
         throwInputError("technique " + s.technique, "texels_per_unit",
-                        "a chart of " + std::to_string(extent) + " units at " +
-                            std::to_string(s.texelsPerUnit) + " texels per unit is wider than " +
-                            "the atlas's limit of " + std::to_string(kMaxAtlasSide) +
+                        "a chart of " + number(extent) + " units at " + number(s.texelsPerUnit) +
+                            " texels per unit is wider than " + "the atlas's limit of " +
+                            std::to_string(kMaxAtlasSide) +
                             " texels (docs/techniques.md, Lightmaps)");
     return std::max(1, int(std::ceil(texels - 1e-6)));
 }
@@ -314,7 +322,7 @@ MeshLayout texcoord1Chart(const MeshPrimitive& m, size_t mesh, const AtlasSettin
 
 [[noreturn]] void tooLarge(const AtlasSettings& s, const std::string& what, uint64_t texels) {
     throwInputError("technique " + s.technique, "texels_per_unit",
-                    what + " at " + std::to_string(s.texelsPerUnit) + " texels per unit need " +
+                    what + " at " + number(s.texelsPerUnit) + " texels per unit need " +
                         std::to_string(texels) + " texels, over the atlas's limit of " +
                         std::to_string(kMaxAtlasTexels) +
                         " (2^24, docs/techniques.md, Lightmaps): lower texels_per_unit");
@@ -334,7 +342,7 @@ void checkArea(const Scene& scene, const AtlasSettings& s) {
     }
     const double texels = area * s.texelsPerUnit * s.texelsPerUnit;
     if (texels > double(kMaxAtlasTexels))
-        tooLarge(s, "the static surfaces' " + std::to_string(area) + " square units",
+        tooLarge(s, "the static surfaces' " + number(area) + " square units",
                  uint64_t(std::min(texels, 1e18)));
 }
 

@@ -26,8 +26,8 @@ struct AtlasSettings {
 };
 
 // The atlas's bounds (docs/techniques.md): either side (GL's usual largest texture), and its
-// texels in all: 2^24 holds 16 MiB of GL_R8 per light, and the bake's targets, 36 bytes a texel
-// while it runs, 576 MiB. A setting beyond them is an input error naming texels_per_unit.
+// texels in all: 2^24 holds 16 MiB of GL_R8 per light, and the bake's targets, 38 bytes a texel
+// while it runs, 608 MiB. A setting beyond them is an input error naming texels_per_unit.
 inline constexpr int kMaxAtlasSide = 16384;
 inline constexpr uint64_t kMaxAtlasTexels = uint64_t(1) << 24;
 

@@ -22,16 +22,21 @@ namespace {
 constexpr int kFloatsPerVertex = 8;  // local position, face normal, atlas texel coordinates
 
 // The static triangles in the atlas's space, with the positions and face normals GpuScene
-// uploads (so a texel's point is the point the camera's lookup maps to it).
+// uploads (so a texel's point is the point the camera's lookup maps to it), then each triangle's
+// centroid as a point: drawn after the triangles where no triangle covered a texel's centre, it
+// gives every triangle at least the texel that holds its centroid (a triangle smaller than a
+// texel, or a sliver, may cover no centre at all, and dilation cannot fill a chart that has no
+// texel).
 struct AtlasGeometry {
     GlBuffer vbo;
     GlVertexArray vao;
-    GLsizei vertices = 0;
+    GLsizei vertices = 0;   // GL_TRIANGLES, from 0
+    GLsizei centroids = 0;  // GL_POINTS, after them
 };
 
 AtlasGeometry uploadAtlasGeometry(const GpuScene& gpu, const LightmapAtlas& atlas) {
     const Scene& scene = gpu.scene();
-    std::vector<float> v;
+    std::vector<float> v, centroids;
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         const MeshPrimitive& m = scene.meshes[mi];
         for (size_t t = 0; t < atlas.chartOf[mi].size(); ++t) {
@@ -40,15 +45,20 @@ AtlasGeometry uploadAtlasGeometry(const GpuScene& gpu, const LightmapAtlas& atla
             for (size_t k = 0; k < 3; ++k)
                 p[k] = gpu.frame().lsFromWs(m.wsPositions[m.indices[3 * t + k]]);
             const glm::dvec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
-            for (size_t k = 0; k < 3; ++k) {
-                const glm::dvec2& c = atlas.corners[mi][t][k];
+            const auto& texel = atlas.corners[mi][t];
+            for (size_t k = 0; k < 3; ++k)
                 v.insert(v.end(), {float(p[k].x), float(p[k].y), float(p[k].z), float(n.x),
-                                   float(n.y), float(n.z), float(c.x), float(c.y)});
-            }
+                                   float(n.y), float(n.z), float(texel[k].x), float(texel[k].y)});
+            const glm::dvec3 pc = (p[0] + p[1] + p[2]) / 3.0;
+            const glm::dvec2 tc = (texel[0] + texel[1] + texel[2]) / 3.0;
+            centroids.insert(centroids.end(), {float(pc.x), float(pc.y), float(pc.z), float(n.x),
+                                               float(n.y), float(n.z), float(tc.x), float(tc.y)});
         }
     }
     AtlasGeometry g;
     g.vertices = GLsizei(v.size() / kFloatsPerVertex);
+    g.centroids = GLsizei(centroids.size() / kFloatsPerVertex);
+    v.insert(v.end(), centroids.begin(), centroids.end());
     g.vbo = makeBuffer();
     glNamedBufferStorage(g.vbo.get(), GLsizeiptr(std::max<size_t>(1, v.size()) * sizeof(float)),
                          v.empty() ? nullptr : v.data(), 0);
@@ -98,6 +108,9 @@ class Baker {
     BakedLightmap run();
 
   private:
+    void createMap();
+    void buildPrograms();
+    void drawAtlas(GLuint program);
     void texels();
     void sample(const Light& point, const glm::dvec3& wsSample);
     void shadowMap(const LightCamera& lc);
@@ -113,6 +126,7 @@ class Baker {
     PassTimer timer_;
     AtlasGeometry geometry_;
     Target texels_, sampleV_, sums_, ping_, pong_;
+    GlTexture depth_;  // which texels the triangles took (0) and the centroids then (0.5)
     GlTexture map_;
     std::vector<GlFramebuffer> mapFbos_;
     GlProgram depthProg_, texelsProg_, visibilityProg_, weightProg_;
@@ -131,9 +145,21 @@ Baker::Baker(const Light& light, const GpuScene& gpu, const LightmapAtlas& atlas
     texels_ = makeTarget({GL_RGBA32F, GL_RGBA16F}, W, H);
     sampleV_ = makeTarget({GL_R32F}, W, H);
     sums_ = makeTarget({GL_RG32F}, W, H);
-    // The light's shadow maps: the light's own camera, or each sample's as a point light.
-    const bool cube = light.type == LightType::Point || isAreaLight(light.type);
-    const int res = settings.resolution;
+    depth_ = makeTexture2D(GL_DEPTH_COMPONENT16, W, H);
+    for (GLuint fbo : {texels_.fbo.get(), sampleV_.fbo.get()})
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    createMap();
+    const uint64_t mapTexels = uint64_t(settings.resolution) * uint64_t(settings.resolution);
+    out_.peakBytes =
+        uint64_t(W) * uint64_t(H) * (16 + 8 + 4 + 8 + 2) + mapTexels * 4 * mapFbos_.size();
+    buildPrograms();
+}
+
+// The light's shadow maps: one map for its own camera, or a cube for a point light and for each
+// sample of an area light (a point light there); 32-bit float depth, read point-sampled.
+void Baker::createMap() {
+    const bool cube = light_.type == LightType::Point || isAreaLight(light_.type);
+    const int res = settings_.resolution;
     map_ = makeTexture(cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D);
     glTextureStorage2D(map_.get(), 1, GL_DEPTH_COMPONENT32F, res, res);
     for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
@@ -149,62 +175,97 @@ Baker::Baker(const Light& light, const GpuScene& gpu, const LightmapAtlas& atlas
         glNamedFramebufferDrawBuffer(fbo.get(), GL_NONE);
         mapFbos_.push_back(std::move(fbo));
     }
-    out_.peakBytes = uint64_t(W) * uint64_t(H) * (16 + 8 + 4 + 8) +
-                     uint64_t(res) * uint64_t(res) * 4 * (cube ? 6 : 1);
+}
 
-    depthProg_ = buildProgram(gpu.alphaDefines(), shaders::scene_vert,
+void Baker::buildPrograms() {
+    depthProg_ = buildProgram(gpu_.alphaDefines(), shaders::scene_vert,
                               {shaders::alpha_test_glsl, shaders::depth_frag});
     const std::string lightKind =
-        light.type == LightType::Directional ? "#define LIGHT_ORTHO\n" : "";
+        light_.type == LightType::Directional ? "#define LIGHT_ORTHO\n" : "";
     texelsProg_ =
         buildProgram(lightKind, shaders::lightmap_bake_vert, {shaders::lightmap_texels_frag});
     // Every sample of an area light is a point light: a cube map.
     const std::string pointKind =
-        isAreaLight(light.type) ? lightDefine(LightType::Point) : lightDefine(light.type);
+        isAreaLight(light_.type) ? lightDefine(LightType::Point) : lightDefine(light_.type);
     const SlopeBias bias(parseParams("lightmap", SlopeBias::params(), {}));
     visibilityProg_ = buildProgram(
         "#define ALPHA_TEST_OFF\n#define VISIBILITY_PASS\n#define MAP_DEPTH\n" + pointKind +
             bias.defines(),
         shaders::lightmap_bake_vert,
         {shaders::alpha_test_glsl, shaders::shadow_map_frag, shaders::slope_bias_glsl});
-    const std::string emitter = !areaSampled_                     ? "#define EMITTER_POINT\n"
-                                : light.type == LightType::Sphere ? "#define EMITTER_SPHERE\n"
-                                                                  : "#define EMITTER_ONE_SIDED\n";
+    const std::string emitter = !areaSampled_                      ? "#define EMITTER_POINT\n"
+                                : light_.type == LightType::Sphere ? "#define EMITTER_SPHERE\n"
+                                                                   : "#define EMITTER_ONE_SIDED\n";
     weightProg_ = buildProgram("#define WEIGHT_PASS\n" + emitter, shaders::fullscreen_vert,
                                {shaders::accumulate_glsl});
-    const LocalFrame& frame = gpu.frame();
+    const LocalFrame& frame = gpu_.frame();
     for (GLuint p : {texelsProg_.get(), visibilityProg_.get()})
-        glProgramUniform2f(p, glGetUniformLocation(p, "u_atlasSize"), float(W), float(H));
-    setVec3(texelsProg_.get(), "u_lsLightPosition", frame.lsFromWs(light.wsPosition));
-    setVec3(texelsProg_.get(), "u_lsLightDirection", glm::normalize(light.wsDirection));
+        glProgramUniform2f(p, glGetUniformLocation(p, "u_atlasSize"), float(atlas_.width),
+                           float(atlas_.height));
+    setVec3(texelsProg_.get(), "u_lsLightPosition", frame.lsFromWs(light_.wsPosition));
+    setVec3(texelsProg_.get(), "u_lsLightDirection", glm::normalize(light_.wsDirection));
     setInt(visibilityProg_.get(), "u_map", 0);
     const GLuint wp = weightProg_.get();
-    setVec3(wp, "u_lsLightCenter", frame.lsFromWs(light.wsPosition));
-    if (areaSampled_ && light.type != LightType::Sphere)
-        setVec3(wp, "u_lsEmitNormal", light.wsEmitNormal());
+    setVec3(wp, "u_lsLightCenter", frame.lsFromWs(light_.wsPosition));
+    if (areaSampled_ && light_.type != LightType::Sphere)
+        setVec3(wp, "u_lsEmitNormal", light_.wsEmitNormal());
     setInt(wp, "u_visibility", 0);
     setInt(wp, "u_position", 1);
     setInt(wp, "u_normal", 2);
 }
 
-// Each covered texel's point and normal; how many texels a triangle covers.
+// The triangles, then the centroids where no triangle took the texel (the bound framebuffer has
+// depth_: depth 0 for the triangles, 0.5 for the points, the test LESS against a clear of 1), so
+// the texels pass and every sample's visibility pass fill the very same texels with the very
+// same points.
+void Baker::drawAtlas(GLuint program) {
+    const float one = 1.0f;
+    glDepthMask(GL_TRUE);  // before the clear, which the mask gates (a frame ends with it off)
+    glClearBufferfv(GL_DEPTH, 0, &one);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glViewport(0, 0, atlas_.width, atlas_.height);
+    glUseProgram(program);
+    glBindVertexArray(geometry_.vao.get());
+    setFloat(program, "u_depth", 0.0);
+    glDrawArrays(GL_TRIANGLES, 0, geometry_.vertices);
+    setFloat(program, "u_depth", 0.5);
+    glDrawArrays(GL_POINTS, geometry_.vertices, geometry_.centroids);
+    glDisable(GL_DEPTH_TEST);
+}
+
+// Each covered texel's point and normal; how many texels the triangles cover, and how many more
+// the centroids took.
 void Baker::texels() {
     timer_.begin("bake.texels");
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(texels_.fbo.get(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(texels_.fbo.get(), GL_COLOR, 1, zero);
     glBindFramebuffer(GL_FRAMEBUFFER, texels_.fbo.get());
-    glViewport(0, 0, atlas_.width, atlas_.height);
-    glUseProgram(texelsProg_.get());
-    glBindVertexArray(geometry_.vao.get());
     const GlQuery covered = makeQuery(GL_SAMPLES_PASSED);
     glBeginQuery(GL_SAMPLES_PASSED, covered.get());
-    glDrawArrays(GL_TRIANGLES, 0, geometry_.vertices);
+    drawAtlas(texelsProg_.get());
     glEndQuery(GL_SAMPLES_PASSED);
     timer_.end();
-    GLuint64 n = 0;
-    glGetQueryObjectui64v(covered.get(), GL_QUERY_RESULT, &n);
-    out_.texelsCovered = n;
+    GLuint64 all = 0;
+    glGetQueryObjectui64v(covered.get(), GL_QUERY_RESULT, &all);
+    // The triangles' share: the same pass without the points, counted from the depth written.
+    const GlQuery triangles = makeQuery(GL_SAMPLES_PASSED);
+    glBeginQuery(GL_SAMPLES_PASSED, triangles.get());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    setFloat(texelsProg_.get(), "u_depth", 0.0);
+    glDrawArrays(GL_TRIANGLES, 0, geometry_.vertices);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 byTriangles = 0;
+    glGetQueryObjectui64v(triangles.get(), GL_QUERY_RESULT, &byTriangles);
+    out_.texelsCovered = byTriangles;
+    out_.texelsFromCentroids = all - byTriangles;
 }
 
 // The static meshes' depth from the light's camera (alpha-tested ones cut by their masks).
@@ -245,11 +306,8 @@ void Baker::sample(const Light& point, const glm::dvec3& wsSample) {
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(sampleV_.fbo.get(), GL_COLOR, 0, zero);
     glBindFramebuffer(GL_FRAMEBUFFER, sampleV_.fbo.get());
-    glViewport(0, 0, atlas_.width, atlas_.height);
-    glUseProgram(vp);
     glBindTextureUnit(0, map_.get());
-    glBindVertexArray(geometry_.vao.get());
-    glDrawArrays(GL_TRIANGLES, 0, geometry_.vertices);
+    drawAtlas(vp);
     timer_.end();
     timer_.begin("bake.weights");
     glEnable(GL_BLEND);
@@ -296,6 +354,7 @@ void Baker::resolveAndDilate() {
     const GlTexture geometry = std::move(texels_.textures[0]);
     texels_ = {};
     sampleV_ = {};
+    depth_ = {};
     map_ = {};
     mapFbos_.clear();
     ping_ = makeTarget({GL_RG32F}, W, H);

@@ -2,7 +2,9 @@
 // computed by the raster path as an engine's baker would, never by the oracle:
 //   1. the static triangles rasterised in the atlas's space (gl_Position = texel / size * 2 - 1,
 //      shaders/lightmap_bake.vert), each covered texel's surface point and normal kept
-//      ("bake.texels", shaders/lightmap_texels.frag);
+//      ("bake.texels", shaders/lightmap_texels.frag), then each triangle's centroid drawn as a
+//      point where no triangle covered that texel's centre: every triangle gets a texel, even one
+//      smaller than a texel or a sliver that covers no centre;
 //   2. per point of the light (the light itself, or `samples` points of an area light when the
 //      scene asks for penumbrae, light_samples.h): a shadow map of the static meshes at
 //      `resolution` (cube maps for points, "bake.shadow_map"), its depth test at every texel
@@ -36,10 +38,12 @@ struct BakeSettings {
 };
 
 struct BakedLightmap {
-    GlTexture atlas;                       // GL_R8, the atlas's size: V per texel
-    int samples = 0;                       // points of the light baked
-    uint64_t texelsCovered = 0;            // texels whose centre a triangle covers
-    uint64_t texelsFilled = 0;             // and those after dilation
+    GlTexture atlas;             // GL_R8, the atlas's size: V per texel
+    int samples = 0;             // points of the light baked
+    uint64_t texelsCovered = 0;  // texels whose centre a triangle covers
+    // More: the texel of a triangle's centroid, where no triangle covered its centre.
+    uint64_t texelsFromCentroids = 0;
+    uint64_t texelsFilled = 0;             // all filled after dilation
     std::map<std::string, double> passMs;  // GL time of each bake pass, summed over the samples
     // The bake's largest GL memory at once (its shadow map and atlas-sized targets), freed after.
     uint64_t peakBytes = 0;
