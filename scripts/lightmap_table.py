@@ -122,6 +122,30 @@ def seam_table(sweep, bench):
     return "\n".join(rows) + "\n"
 
 
+def frame_table(bench):
+    """Per frame against the shadow map a bake is made from, every setting of a scene
+    interleaved frame by frame (bench_lightmap): the frame's wall time covers every light."""
+    rows = ["| scene | texels / unit | lightmap frame ms | slope-bias 2048 frame ms | ratio | "
+            "bake ms (all lights) | memory MiB (all lights): lightmap / slope-bias |",
+            "|---|---|---|---|---|---|---|"]
+    for s in bench["scenes"]:
+        scene = s["scene"].split("/")[-1].split(".")[0]
+        lights = sorted({r["light"] for r in s["rows"]})
+        base = [r for r in s["rows"] if r["label"].startswith("slope-bias")]
+        base_ms = base[0]["frame_ms"]
+        base_mem = sum(r["memory_bytes"] for r in base) / 2**20
+        for d in sorted({r["texels_per_unit"] for r in s["rows"] if "texels_per_unit" in r}):
+            lm = [r for r in s["rows"] if r.get("texels_per_unit") == d and
+                  r.get("filter") == "bilinear" and r.get("dilate") == 2]
+            if len(lm) != len(lights):
+                continue
+            ms = lm[0]["frame_ms"]
+            rows.append(f"| {scene} | {d:g} | {ms:.2f} | {base_ms:.2f} | {ms / base_ms:.2f} | "
+                        f"{sum(r['bake_ms'] for r in lm):.0f} | "
+                        f"{sum(r['memory_bytes'] for r in lm) / 2**20:.2f} / {base_mem:.2f} |")
+    return "\n".join(rows) + "\n"
+
+
 def main(sweep_path, bench_path, doc_path):
     sweep, m, gl = load_sweep(sweep_path)
     bench, b = load_bench(bench_path)
@@ -144,7 +168,10 @@ def main(sweep_path, bench_path, doc_path):
             filter_table(sweep, bench) +
             "\n**Seams** (bilinear, with and without dilation; a seam's pixels: those whose V "
             "moves by more than 0.02 when the charts are not dilated, among the pixels the light "
-            "faces):\n\n" + seam_table(sweep, bench))
+            "faces):\n\n" + seam_table(sweep, bench) +
+            "\n**Per frame, against the shadow map a bake is made from** (`bench_lightmap`: "
+            "bilinear, every setting of a scene and the baseline taking turns frame by frame; the "
+            "frame's wall time covers all the scene's lights):\n\n" + frame_table(b))
     doc = open(doc_path).read()
     new, n = re.subn(r"(<!-- BEGIN lightmap tables[^\n]*-->\n).*?(<!-- END lightmap tables -->)",
                      lambda g: g.group(1) + "\n" + text + "\n" + g.group(2), doc, flags=re.S)
