@@ -18,8 +18,8 @@ namespace {
 
 // The affine map from a triangle's local points to its atlas texels: rows r0 and r1 with
 // texel = (r0 . (p, 1), r1 . (p, 1)), exact at the three corners and constant along the normal
-// (so a point a rounding off the plane maps where its projection does). Zero for a triangle with
-// no area.
+// (so a point a rounding error off the plane maps where its projection does). Zero for a triangle
+// with no area.
 void texelRows(const glm::dvec3 (&p)[3], const std::array<glm::dvec2, 3>& texel, glm::vec4& r0,
                glm::vec4& r1) {
     const glm::dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
