@@ -34,24 +34,6 @@ const Json* path(const Json& j, std::initializer_list<const char*> keys) {
     return at;
 }
 
-float readUvComponent(const AccessorData& a, uint64_t i, int c) {
-    const unsigned char* p = a.base + i * a.stride;
-    switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return float(p[c]) / 255.0f;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            uint16_t v;
-            std::memcpy(&v, p + 2 * c, 2);
-            return float(v) / 65535.0f;
-        }
-        default: {
-            float v;
-            std::memcpy(&v, p + 4 * c, 4);
-            return v;
-        }
-    }
-}
-
 }  // namespace
 
 void GltfAlpha::apply(const tinygltf::Primitive& prim, uint64_t vertexCount,
@@ -197,31 +179,7 @@ std::vector<glm::vec2> GltfAlpha::readUvs(const tinygltf::Primitive& prim, const
         fail(ctx_, field + ".attributes",
              "no " + name + " for the alpha-tested material " +
                  idx("materials", size_t(prim.material)));
-    const std::string aField = field + ".attributes." + name;
-    const AccessorData a =
-        checkedAccessor(ctx_, model_, doc_, it->second, aField, [&](const tinygltf::Accessor& acc) {
-            const bool normalized =
-                acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                   acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-            if (acc.type != TINYGLTF_TYPE_VEC2 ||
-                !(acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || normalized))
-                fail(ctx_, idx("accessors", size_t(it->second)),
-                     name + " must be VEC2 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT");
-        });
-    if (a.count != vertexCount)
-        fail(ctx_, aField,
-             std::to_string(a.count) + " texture coordinates for " + std::to_string(vertexCount) +
-                 " vertices");
-    std::vector<glm::vec2> uvs(size_t(a.count));
-    for (uint64_t i = 0; i < a.count; ++i) {
-        const glm::dvec3 uv(readUvComponent(a, i, 0), readUvComponent(a, i, 1), 1.0);
-        const glm::dvec3 t = m.uvFromFile * uv;
-        if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || !std::isfinite(float(t.x)) ||
-            !std::isfinite(float(t.y)))
-            fail(ctx_, aField, name + " " + std::to_string(i) + " is not finite");
-        uvs[size_t(i)] = glm::vec2(t);
-    }
-    return uvs;
+    return readTexCoords(ctx_, model_, doc_, it->second, name, vertexCount, field, m.uvFromFile);
 }
 
 // The bytes of image `i`: from the file its uri names (inside the folder, within the limits), or

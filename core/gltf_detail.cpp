@@ -1,5 +1,7 @@
 #include "core/gltf_detail.h"
 
+#include <cmath>
+#include <cstring>
 #include <fstream>
 
 namespace so::gltf_detail {
@@ -148,6 +150,59 @@ uint64_t componentCount(int type) {
         default:
             return 0;
     }
+}
+
+namespace {
+
+float readUvComponent(const AccessorData& a, uint64_t i, int c) {
+    const unsigned char* p = a.base + i * a.stride;
+    switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return float(p[c]) / 255.0f;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v;
+            std::memcpy(&v, p + 2 * c, 2);
+            return float(v) / 65535.0f;
+        }
+        default: {
+            float v;
+            std::memcpy(&v, p + 4 * c, 4);
+            return v;
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<glm::vec2> readTexCoords(const Context& ctx, const tinygltf::Model& model,
+                                     const Json& doc, int accessor, const std::string& name,
+                                     uint64_t vertexCount, const std::string& field,
+                                     const glm::dmat3& uvFromFile) {
+    const std::string aField = field + ".attributes." + name;
+    const AccessorData a =
+        checkedAccessor(ctx, model, doc, accessor, aField, [&](const tinygltf::Accessor& acc) {
+            const bool normalized =
+                acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                   acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+            if (acc.type != TINYGLTF_TYPE_VEC2 ||
+                !(acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || normalized))
+                fail(ctx, idx("accessors", size_t(accessor)),
+                     name + " must be VEC2 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT");
+        });
+    if (a.count != vertexCount)
+        fail(ctx, aField,
+             std::to_string(a.count) + " texture coordinates for " + std::to_string(vertexCount) +
+                 " vertices");
+    std::vector<glm::vec2> uvs(size_t(a.count));
+    for (uint64_t i = 0; i < a.count; ++i) {
+        const glm::dvec3 uv(readUvComponent(a, i, 0), readUvComponent(a, i, 1), 1.0);
+        const glm::dvec3 t = uvFromFile * uv;
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || !std::isfinite(float(t.x)) ||
+            !std::isfinite(float(t.y)))
+            fail(ctx, aField, name + " " + std::to_string(i) + " is not finite");
+        uvs[size_t(i)] = glm::vec2(t);
+    }
+    return uvs;
 }
 
 }  // namespace so::gltf_detail

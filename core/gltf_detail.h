@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
 #include <nlohmann/json.hpp>
 
 // Must match tinygltf_impl.cpp so that the declarations (Model, TinyGLTF) are the same.
@@ -119,5 +121,14 @@ AccessorData checkedAccessor(const Context& ctx, const tinygltf::Model& model, c
     d.componentType = a.componentType;
     return d;
 }
+
+// The primitive's TEXCOORD_n (`name`, at accessor `accessor`): VEC2 FLOAT, or normalized
+// UNSIGNED_BYTE or UNSIGNED_SHORT, one per vertex, each finite after `uvFromFile` (the texture's
+// KHR_texture_transform; the identity for a lightmap's). `field` names the primitive in errors
+// ("meshes[i].primitives[k]").
+std::vector<glm::vec2> readTexCoords(const Context& ctx, const tinygltf::Model& model,
+                                     const Json& doc, int accessor, const std::string& name,
+                                     uint64_t vertexCount, const std::string& field,
+                                     const glm::dmat3& uvFromFile);
 
 }  // namespace so::gltf_detail

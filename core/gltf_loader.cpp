@@ -710,8 +710,8 @@ uint32_t readIndex(const AccessorData& a, uint64_t i) {
     }
 }
 
-MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const PlannedPrimitive& pp,
-                    GltfAlpha& alpha) {
+MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Json& doc,
+                    const PlannedPrimitive& pp, GltfAlpha& alpha) {
     const Instance& inst = pp.instance;
     const tinygltf::Node& node = model.nodes[inst.node];
     const tinygltf::Mesh& mesh = model.meshes[pp.mesh];
@@ -763,6 +763,10 @@ MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Plan
         }
     }
     alpha.apply(prim, pp.positions.count, field, out);
+    // A lightmap's coordinates, when the file has them (raster_compare/gl/lightmap_atlas.h).
+    if (auto uv1 = prim.attributes.find("TEXCOORD_1"); uv1 != prim.attributes.end())
+        out.lightmapUvs = readTexCoords(ctx, model, doc, uv1->second, "TEXCOORD_1",
+                                        pp.positions.count, field, glm::dmat3(1.0));
     return out;
 }
 
@@ -882,7 +886,7 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
     // Pass 2: build.
     GltfAlpha alpha(ctx, model, doc);
     out.meshes.reserve(plan.size());
-    for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, pp, alpha));
+    for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, doc, pp, alpha));
     out.alphaTextures = alpha.takeTextures();
     if (!alpha.imagesNotRead().empty()) {
         std::string names;

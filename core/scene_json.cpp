@@ -26,8 +26,8 @@ namespace {
 
 using nlohmann::json;
 
-// The newest version read; every older one still loads. 2 added camera_path.
-constexpr int kSceneFormat = 2;
+// The newest version read; every older one still loads. 2 added camera_path, 3 geometry[i].dynamic.
+constexpr int kSceneFormat = 3;
 
 // Typed, path-tracking access to a JSON value, so every error names the field as a user wrote it.
 class Reader {
@@ -389,6 +389,18 @@ CameraPath parseCameraPath(const json& j, const Reader& r, const LoadLimits& lim
     return path;
 }
 
+// geometry[i].dynamic (scene_format 3): true marks the entry's meshes as moving, which only a
+// lightmap heeds (it leaves them out of its bake); absent is false.
+bool parseDynamic(const json& j, const Reader& r, const std::string& field, int format) {
+    if (!j.contains("dynamic")) return false;
+    const std::string f = field + ".dynamic";
+    if (format < 3)
+        r.fail(f, "needs scene_format 3 (the file says " + std::to_string(format) + ")");
+    if (!j["dynamic"].is_boolean())
+        r.fail(f, "expected true or false, got " + Reader::typeName(j["dynamic"]));
+    return j["dynamic"].get<bool>();
+}
+
 void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const LoadLimits& limits,
              const std::string& display) {
     totalBytes += g.bytesRead;
@@ -503,7 +515,9 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     r.requireObject(root, "");
     r.checkKeys(root, "",
                 {"scene_format", "geometry", "camera", "camera_path", "lights", "effects"});
-    if (!root.contains("scene_format")) r.fail("scene_format", "missing (this tool reads 1 and 2)");
+    if (!root.contains("scene_format"))
+        r.fail("scene_format",
+               "missing (this tool reads 1 to " + std::to_string(kSceneFormat) + ")");
     int format = r.integer(root["scene_format"], "scene_format", 0, 1 << 30);
     if (format < 1 || format > kSceneFormat)
         r.fail("scene_format", "unsupported version " + std::to_string(format) +
@@ -529,7 +543,8 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         std::string f = Reader::index("geometry", i);
         const json& j = jg[i];
         r.requireObject(j, f);
-        r.checkKeys(j, f, {"file", "translate", "scale"});
+        r.checkKeys(j, f, {"file", "translate", "scale", "dynamic"});
+        const bool dynamic = parseDynamic(j, r, f, format);
         if (!j.contains("file")) r.fail(f + ".file", "missing");
         std::string rel = r.string(j["file"], f + ".file");
         std::filesystem::path file = resolveInside(folder, rel, r, f + ".file");
@@ -552,6 +567,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         if (!std::filesystem::is_regular_file(file, ec))
             r.fail(f + ".file", "\"" + printable(rel, 60) + "\": no such file");
         GltfContent g = loadGltf(file, gltfDisplay, wsFromFile, limits, scene.hasEffect("alpha"));
+        for (MeshPrimitive& m : g.meshes) m.dynamic = dynamic;
         scene.geometry.push_back({std::filesystem::absolute(file, ec), translate, scale});
         for (const auto& fr : g.filesRead) {
             std::string relName = fr.lexically_relative(folder).generic_string();

@@ -130,6 +130,25 @@ TEST(GltfLoader, TwoNodesTrsWorldPositionsAndIndices) {
               fs::file_size(kValid / "two_nodes.gltf") + fs::file_size(kValid / "two_nodes.bin"));
 }
 
+// TEXCOORD_1, a lightmap's coordinates (tests/data/make_lightmap_gltf.py), is read for every
+// primitive that has it: floats exactly, normalized unsigned shorts as v / 65535; a primitive
+// without one has none.
+TEST(GltfLoader, LightmapCoordinatesAreRead) {
+    const std::vector<glm::vec2> expected = {
+        {0.125f, 0.25f}, {0.5f, 0.25f}, {0.5f, 0.625f}, {0.125f, 0.625f}};
+    so::GltfContent f = load(kValid / "lightmap_uv.gltf");
+    ASSERT_EQ(f.meshes.size(), 1u);
+    EXPECT_EQ(f.meshes[0].lightmapUvs, expected);
+    EXPECT_TRUE(f.meshes[0].uvs.empty()) << "TEXCOORD_1 is not an alpha mask's";
+    so::GltfContent u = load(kValid / "lightmap_uv_unorm16.gltf");
+    ASSERT_EQ(u.meshes[0].lightmapUvs.size(), 4u);
+    for (size_t i = 0; i < 4; ++i) {
+        EXPECT_NEAR(u.meshes[0].lightmapUvs[i].x, expected[i].x, 0.5 / 65535) << i;
+        EXPECT_NEAR(u.meshes[0].lightmapUvs[i].y, expected[i].y, 0.5 / 65535) << i;
+    }
+    EXPECT_TRUE(load(kValid / "two_nodes.gltf").meshes[0].lightmapUvs.empty());
+}
+
 TEST(GltfLoader, WsFromFileIsAppliedAfterNodeTransforms) {
     glm::dmat4 place = glm::translate(glm::dmat4(1.0), glm::dvec3(10, 0, 0)) *
                        glm::scale(glm::dmat4(1.0), glm::dvec3(2.0));

@@ -95,6 +95,21 @@ TEST(SceneLoader, TranslateAndScaleApply) {
     EXPECT_FALSE(s.stats.warnings.empty());
 }
 
+// geometry[i].dynamic (scene_format 3) marks that entry's meshes, and only those; absent or false
+// is static. Nothing else about the scene changes with it.
+TEST(SceneLoader, DynamicMarksTheEntrysMeshes) {
+    Scene s = loadScene(kData / "valid" / "dynamic.json");
+    ASSERT_EQ(s.meshes.size(), 3u);
+    EXPECT_FALSE(s.meshes[0].dynamic);
+    EXPECT_TRUE(s.meshes[1].dynamic);
+    EXPECT_FALSE(s.meshes[2].dynamic);
+    EXPECT_EQ(s.meshes[1].wsPositions[1], glm::dvec3(1, 1, 0));
+    // The meshes' content is what it is without the flag.
+    Scene plain = loadScene(kData / "valid" / "scene.json");
+    EXPECT_EQ(s.meshes[0].wsPositions, plain.meshes[0].wsPositions);
+    EXPECT_EQ(s.meshes[0].indices, plain.meshes[0].indices);
+}
+
 // Effects that the lights cannot show, and area lights left cheap, are reported, not silent.
 TEST(SceneLoader, EffectsWarnings) {
     const fs::path dir = fs::temp_directory_path() / "so_scene_effects_test";

@@ -57,6 +57,7 @@ const std::vector<BaselineMetric>& baselineMetricTable() {
         {m("cost.shadow_map_ms"), false, kTime, N::None},
         {m("cost.visibility_ms"), false, kTime, N::None},
         {m("cost.camera_ms"), false, kTime, N::None},
+        {m("cost.bake_ms"), false, kTime, N::None},
         {m("cost.memory_bytes"), false, kMemory, N::None},
     };
     return table;

@@ -107,6 +107,8 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "true when any of the times spreads (p25 to p75) by more than 20% of its median"},
     {"cost.memory_bytes", U::Bytes, B::Lower, S::All,
      "GL memory the technique holds for the light"},
+    {"cost.bake_ms", U::Ms, B::Lower, S::BakedTechniques,
+     "the light's bake before the first frame (lightmap), wall time; not part of frame_ms"},
     {"cost.oracle_seconds", U::Seconds, B::None, S::All, "what the ground truth of the light cost"},
     {"cost.oracle_ms_at_equal_error", U::Ms, B::None, S::AreaLights,
      "the oracle's time until its penumbra's mean 95% half-width came down to this technique's "
@@ -236,6 +238,8 @@ const char* scopeName(MetricScope s) {
             return "with `aliasing_pred`";
         case S::FramesPath:
             return "`--frames-path`";
+        case S::BakedTechniques:
+            return "baked techniques";
     }
     return "";
 }

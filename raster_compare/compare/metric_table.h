@@ -43,7 +43,8 @@ enum class MetricScope {
     FilteredTechniques,  // vsm, esm, evsm
     OccluderDistance,    // the oracle has NAME.occ_dist (the contact effect)
     AliasingPrediction,  // the raster has NAME.aliasing_pred
-    FramesPath           // compare --frames-path; absent from the row otherwise
+    FramesPath,          // compare --frames-path; absent from the row otherwise
+    BakedTechniques      // techniques that bake before the first frame (lightmap)
 };
 
 struct MetricInfo {

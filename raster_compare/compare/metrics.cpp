@@ -469,6 +469,7 @@ std::vector<std::pair<std::string, nlohmann::json>> flatMetrics(const nlohmann::
 nlohmann::json TechniqueCost::toJson() const {
     nlohmann::json j = {
         {"memory_bytes", memoryBytes ? nlohmann::json(*memoryBytes) : nlohmann::json(nullptr)},
+        {"bake_ms", bakeMs ? nlohmann::json(*bakeMs) : nlohmann::json(nullptr)},
         {"oracle_seconds", oracleSeconds},
         {"oracle_ms_at_equal_error",
          oracleMsAtEqualError ? nlohmann::json(*oracleMsAtEqualError) : nlohmann::json(nullptr)},

@@ -89,6 +89,9 @@ struct TechniqueCost {
     // The camera pass (shared by the lights: the same in each row).
     std::optional<TimingStats> cameraMs;
     std::optional<uint64_t> memoryBytes;  // GL memory the technique holds for this light
+    // A technique that precomputes (lightmaps): the light's bake before the first frame, wall
+    // time; in no frame time. Null for every other technique.
+    std::optional<double> bakeMs;
     // An external image's times are one figure each, not a median of frames: no quartiles.
     bool quartiles = true;
     double oracleSeconds = 0.0;  // what the ground truth of this light cost

@@ -86,6 +86,8 @@ TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSe
     cost.frameMs = stats.timings.wallMs;
     cost.cameraMs = stats.timings.cameraMs;
     cost.memoryBytes = stats.lights[li].memoryBytes;
+    // A bake (lightmaps) is not a frame: apart from frame_ms.
+    cost.bakeMs = stats.lights[li].bakeMs;
     cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
     return cost;
 }

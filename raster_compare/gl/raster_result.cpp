@@ -56,6 +56,10 @@ nlohmann::json toJson(const RasterLightStats& l) {
     for (const auto& [pass, t] : l.passMs) addTiming(j, pass, t);
     j["memory_bytes"] = l.memoryBytes;
     if (!l.counts.empty()) j["counts"] = l.counts;
+    if (l.bakeMs) {
+        j["bake_ms"] = *l.bakeMs;
+        j["bake_passes_ms"] = l.bakePassMs;
+    }
     return j;
 }
 }  // namespace

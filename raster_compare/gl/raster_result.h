@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ struct RasterLightStats {
     uint64_t memoryBytes = 0;
     // The family's own counts (shadow volumes: volume triangles, stencil fill), by name.
     std::map<std::string, int64_t> counts;
+    // Techniques that precompute before the first frame (lightmaps): the light's bake, which no
+    // frame time includes: its wall time (GL finished) and its passes' times, by name
+    // ("bake.shadow_map", ...). Absent for every other technique.
+    std::optional<double> bakeMs;
+    std::map<std::string, double> bakePassMs;
 };
 
 struct RasterTimings {

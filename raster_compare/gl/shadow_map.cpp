@@ -72,6 +72,10 @@ void setLightCameraUniforms(GLuint program, const CameraPass& camera, const Ligh
     setMat4(program, "u_clipFromLocal", camera.clipFromLocal());
     setVec3(program, "u_lsEye", camera.lsEye());
     setFloat(program, "u_pixelScale", camera.pixelScale());
+    setLightMapUniforms(program, lc);
+}
+
+void setLightMapUniforms(GLuint program, const LightCamera& lc) {
     setVec3(program, "u_lsLightPosition", lc.lsPosition);
     setVec3(program, "u_lsLightDirection", lc.lsDirection);
     setFloat(program, "u_cosOuter", lc.cosOuter);

@@ -49,6 +49,7 @@ def main():
     write("scene", "valid-scene.json", (ROOT / "tests/data/valid/scene.json").read_bytes())
     write("scene", "valid-path_keyframes.json",
           (ROOT / "tests/data/valid/path_keyframes.json").read_bytes())
+    write("scene", "valid-dynamic.json", (ROOT / "tests/data/valid/dynamic.json").read_bytes())
 
     # gltf: the loader tests' files, the small shipped meshes, small assimp test models.
     sources = sorted((ROOT / "tests/data/broken_gltf").glob("*.gl*"))

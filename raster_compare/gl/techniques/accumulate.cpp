@@ -10,16 +10,12 @@
 // grows with `samples`. Alpha-tested casters are what the inner technique makes of them: opaque
 // with method=volume (the volumes are built from whole triangles), cut by their masks with
 // method=map.
-#include <cmath>
 #include <deque>
-#include <numbers>
 
-#include <glm/geometric.hpp>
-
-#include "core/sobol.h"
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/light_samples.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/technique.h"
@@ -28,33 +24,6 @@ namespace so {
 namespace {
 
 class Accumulate;
-
-// The points on the light, world space: uniform by area (rect, disk) or over the sphere.
-std::vector<glm::dvec3> lightSamples(const Light& light, int n) {
-    if (!isAreaLight(light.type)) return {light.wsPosition};
-    std::vector<glm::dvec3> points;
-    for (int i = 0; i < n; ++i) {
-        float u = 0.0f, v = 0.0f;
-        sobol2D(uint32_t(i), 0x5eedu, u, v);
-        const double phi = 2.0 * std::numbers::pi * double(v);
-        if (light.type == LightType::Rect) {
-            points.push_back(light.wsPosition + (double(u) - 0.5) * light.wsU +
-                             (double(v) - 0.5) * light.wsV);
-        } else if (light.type == LightType::Disk) {
-            const glm::dvec3 axis = glm::normalize(light.wsNormal);
-            const glm::dvec3 a = glm::normalize(glm::cross(
-                axis, std::fabs(axis.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-            const glm::dvec3 b = glm::cross(axis, a);
-            const double r = light.radius * std::sqrt(double(u));
-            points.push_back(light.wsPosition + r * (std::cos(phi) * a + std::sin(phi) * b));
-        } else {
-            const double z = 1.0 - 2.0 * double(u), s = std::sqrt(std::max(0.0, 1.0 - z * z));
-            points.push_back(light.wsPosition +
-                             light.radius * glm::dvec3(s * std::cos(phi), s * std::sin(phi), z));
-        }
-    }
-    return points;
-}
 
 class AccumulateLight final : public LightTechnique {
   public:
@@ -105,7 +74,7 @@ class Accumulate final : public Technique {
 
 AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& setup)
     : light_(setup.light), camera_(setup.camera), sampleTarget_(setup.camera) {
-    for (const glm::dvec3& p : lightSamples(light_, technique.samples)) {
+    for (const glm::dvec3& p : lightSamplePoints(light_, technique.samples)) {
         Light point = light_;
         if (isAreaLight(light_.type)) {
             point.type = LightType::Point;
