@@ -188,15 +188,23 @@ def rep(ctx, size, entry):
     for previews, suffix in ((True, ""), (False, "_no_previews")):
         wall, j = trace(ctx, size, entry["method"], entry["target"], previews,
                         pathlib.Path(entry["dir"] + suffix))
-        entry["runs" + suffix].append((wall, j["phases_seconds"]))
         light = j["lights"][0]
+        # phases_seconds.shadow holds the sampled pass; the exact pass is timed apart.
+        phases = dict(j["phases_seconds"])
+        phases["exact"] = (light.get("exact_penumbra") or {}).get("seconds") or 0.0
+        entry["runs" + suffix].append((wall, phases))
         entry["spp_mean"] = light["spp_mean"]
         entry["rays"] = light["rays_traced"]
 
 
+def shadow(phases):
+    """The area light's passes: sampled, then exact (0 without --penumbra exact)."""
+    return phases["shadow"] + phases["exact"]
+
+
 def oracle_ladder(ctx, size, method, gbuffer, smallest_error, where):
     """Targets from LADDER_START down until the penumbra error is below smallest_error (or the
-    method's floor); medians of the reps. The "shadow" phase is the area light's passes."""
+    method's floor); medians of the reps."""
     m = METHODS[method]
     ladder = []
     target = LADDER_START
@@ -208,9 +216,9 @@ def oracle_ladder(ctx, size, method, gbuffer, smallest_error, where):
         error = evaluate(ctx, gbuffer, [pathlib.Path(entry["dir"]) / "oracle.exr"])["images"][0]
         entry.update(mae=error["penumbra_mae"], p99=error["penumbra_p99"],
                      signed=error["penumbra_signed_mean"])
-        print("  oracle %dx%d %s, target %.6g: penumbra mae %.3g, shadow phase %.3f s, whole "
-              "%.3f s" % (size, size, method, target, entry["mae"],
-                          entry["runs"][0][1]["shadow"], entry["runs"][0][0]))
+        print("  oracle %dx%d %s, target %.6g: penumbra mae %.3g, shadow passes %.3f s, whole "
+              "%.3f s" % (size, size, method, target, entry["mae"], shadow(entry["runs"][0][1]),
+                          entry["runs"][0][0]))
         sys.stdout.flush()
         if entry["mae"] < smallest_error:
             break
@@ -219,12 +227,18 @@ def oracle_ladder(ctx, size, method, gbuffer, smallest_error, where):
         for entry in ladder:
             rep(ctx, size, entry)
     for entry in ladder:
+        both = entry["runs"] + entry["runs_no_previews"]
+        entry["area_s"] = statistics.median(shadow(r[1]) for r in both)  # previews or not
         for suffix in ("", "_no_previews"):
             runs = entry.pop("runs" + suffix)
             entry["whole" + suffix + "_s"] = statistics.median(r[0] for r in runs)
             entry["phases" + suffix + "_s"] = {name: statistics.median(r[1][name] for r in runs)
                                                for name in runs[0][1]}
-        entry["area_s"] = entry["phases_s"]["shadow"]
+            # Medians of each run's own differences, so that a slow run does not mix with another
+            # run's phases: process start and exit (outside every phase), and all but the shadow.
+            entry["start_exit" + suffix + "_s"] = statistics.median(
+                r[0] - sum(r[1].values()) for r in runs)
+            entry["fixed" + suffix + "_s"] = statistics.median(r[0] - shadow(r[1]) for r in runs)
     return ladder
 
 
@@ -325,15 +339,13 @@ def fixed_costs_row(case, method, reference):
     else:
         r = min(ladder, key=lambda e: abs(math.log(e["mae"] / reference)))
     ph, phn = r["phases_s"], r["phases_no_previews_s"]
-    start_exit = r["whole_s"] - sum(ph.values())
-    start_exit_np = r["whole_no_previews_s"] - sum(phn.values())
     cells = ["%d x %d" % (case["size"], case["size"]), METHODS[method]["name"],
              "%.3g" % r["target"], "%.3g" % r["mae"],
              "%.3f (%.3f)" % (r["whole_s"], r["whole_no_previews_s"]), "%.3f" % r["area_s"],
              "%.3f" % (ph.get("load", 0) + ph.get("build_bvh", 0)), "%.3f" % ph.get("primary", 0),
              "%.3f" % phn.get("write", 0), "%.3f" % (ph.get("write", 0) - phn.get("write", 0)),
-             "%.3f (%.3f)" % (start_exit, start_exit_np),
-             "%.3f (%.3f)" % (r["whole_s"] - r["area_s"], r["whole_no_previews_s"] - r["area_s"])]
+             "%.3f (%.3f)" % (r["start_exit_s"], r["start_exit_no_previews_s"]),
+             "%.3f (%.3f)" % (r["fixed_s"], r["fixed_no_previews_s"])]
     return "| " + " | ".join(cells) + " |"
 
 
@@ -347,11 +359,11 @@ def goal_line(case, c):
         reached = [label for label, key in (("whole processes", "ratio_whole"),
                                             ("whole processes without previews",
                                              "ratio_whole_no_previews"),
-                                            ("Cycles' render against the shadow phase",
+                                            ("Cycles' render against the shadow passes",
                                              "ratio_render_to_area"))
                    if o[key] >= GOAL]
         parts.append("%s: %s whole process against whole process (%s with `--no-previews`), %s "
-                     "render against shadow phase; %s"
+                     "render against shadow passes; %s"
                      % (name, ratio(o["ratio_whole"], o["how"]),
                         ratio(o["ratio_whole_no_previews"], o["how"]),
                         ratio(o["ratio_render_to_area"], o["how"]),
@@ -387,13 +399,15 @@ def tables(summary):
             "The oracle at the same penumbra error, and Cycles' time over the oracle's. Sampled: "
             "interpolated between the two runs of its ladder around that error (log time against "
             "log error). Exact: the loosest target whose run's error is at most Cycles' (≤: the "
-            "time to reach exactly that error is at most this). The shadow phase is oracle.json's "
-            "`phases_seconds.shadow` (the area light's sampled pass, and the exact pass); the "
+            "time to reach exactly that error is at most this). The shadow passes are the area "
+            "light's, from oracle.json: the sampled pass (`phases_seconds.shadow`) and the exact "
+            "pass (`exact_penumbra.seconds`), the median over the runs with and without previews, "
+            "which do the same work there; the "
             "whole `trace` is timed from start to exit, with its PNG preview and with "
             "`--no-previews`:",
             "",
-            "| size | Cycles spp | error | oracle | target | shadow phase s | whole trace s | "
-            "whole, --no-previews s | Cycles render / shadow phase | Blender / trace | Blender / "
+            "| size | Cycles spp | error | oracle | target | shadow passes s | whole trace s | "
+            "whole, --no-previews s | Cycles render / shadow passes | Blender / trace | Blender / "
             "trace --no-previews |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for case in summary["cases"]:
@@ -414,14 +428,15 @@ def tables(summary):
     out += ["",
             "Where the oracle's time goes, at the run nearest Cycles' %s-spp error (sampled) and "
             "the run that reaches it (exact), or the nearest sample count's (seconds; in brackets "
-            "with `--no-previews`): the whole process; the shadow phase; scene load and BVH "
+            "with `--no-previews`): the whole process; the shadow passes; scene load and BVH "
             "build; primary rays; writing oracle.exr; the preview PNG with the OpenImageIO module "
-            "it loads (the write phase with previews less without); process start and exit (the "
-            "whole less every phase of oracle.json); everything but the shadow phase:"
+            "it loads (the write phase with previews less without); process start and exit (each "
+            "run's whole time less its phases in oracle.json); everything but the shadow passes "
+            "(each run's whole less its shadow passes); medians over the runs:"
             % spp_text(summary["reference_spp"]),
             "",
-            "| size | oracle | target | its error | whole | shadow phase | load + BVH | primary | "
-            "oracle.exr | preview PNG + module | start + exit | all but the shadow phase |",
+            "| size | oracle | target | its error | whole | shadow passes | load + BVH | primary | "
+            "oracle.exr | preview PNG + module | start + exit | all but the shadow passes |",
             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for case in summary["cases"]:
         ref = reference_row(case, summary["reference_spp"])
