@@ -100,6 +100,9 @@ static Runner addTrace(CLI::App& app) {
     sppOpt->excludes("--max-spp");
     sppOpt->excludes("--agreement-target");
     addQuiet(traceCmd, o->progress);
+    traceCmd->add_flag_callback(
+        "--no-previews", [o] { o->previews = false; },
+        "write no NAME.png previews (then OpenImageIO is not loaded)");
     traceCmd
         ->add_option("--verify", o->oracle.verify.pixels,
                      "re-trace N random pixels per light (plus up to N near the horizon) with an "

@@ -47,7 +47,10 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
         {"libraries",
          {{"embree", EmbreeDevice::version()},
           {"openexr", OPENEXR_VERSION_STRING},
-          {"openimageio", imageLibraryVersion()}}},
+          // The PNG previews' library; null without previews: nothing went through it, and asking
+          // its version would load it.
+          {"openimageio",
+           options.previews ? nlohmann::json(imageLibraryVersion()) : nlohmann::json()}}},
     };
     j.update(toJson(stats));
     j["phases_seconds"]["load"] = loadSeconds;
@@ -193,7 +196,9 @@ int runTracePoints(const TraceCommandOptions& options) {
         Progress progress("writing " + exrPath, result.image.pixelCount(), oracle.progress);
         writeExr(exrPath, result.image, attributes, result.stats.threads, &progress);
     }
-    const std::vector<std::string> previews = writePreviews(out, result.image, scene.lights);
+    const std::vector<std::string> previews = options.previews
+                                                  ? writePreviews(out, result.image, scene.lights)
+                                                  : std::vector<std::string>();
     const double writeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
     const std::filesystem::path jsonPath = out / "oracle.json";
@@ -264,7 +269,9 @@ int runTraceCommand(const TraceCommandOptions& options) {
         writeExr(exrPath, result.image, attributes, result.stats.threads, &progress,
                  {rows.begin, cam.height});
     }
-    const std::vector<std::string> previews = writePreviews(out, result.image, scene.lights);
+    const std::vector<std::string> previews = options.previews
+                                                  ? writePreviews(out, result.image, scene.lights)
+                                                  : std::vector<std::string>();
     const double writeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
     const std::filesystem::path jsonPath = out / "oracle.json";

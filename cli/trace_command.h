@@ -21,6 +21,9 @@ struct TraceCommandOptions {
     // --points GBUFFER.exr: the oracle at the G-buffer's points (oracle/points.h) instead of the
     // camera's primary hits; empty: a plain trace.
     std::string pointsPath;
+    // --no-previews: false. The PNG previews are the only images trace encodes, so without them
+    // OpenImageIO's module (~0.2 s to load, docs/benchmarks.md) is never loaded.
+    bool previews = true;
 };
 
 // Returns the process exit code; InputError propagates to main (exit 2).

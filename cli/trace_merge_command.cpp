@@ -16,6 +16,7 @@
 #include "cli/trace_command.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/image_codec.h"
 #include "core/progress.h"
 #include "oracle/oracle.h"
 
@@ -194,6 +195,8 @@ json mergedJson(const std::vector<Tile>& tiles, const OracleStats& stats, double
     j["phases_seconds"]["load"] = load;
     j["phases_seconds"]["write"] = write;
     j["libraries"]["tbb"] = j["tbb"]["version"];
+    // The merge writes previews even where the bands had none (trace --no-previews: null).
+    j["libraries"]["openimageio"] = imageLibraryVersion();
     j.erase("tbb");
     j["merged_tiles"] = {{"count", tiles.size()}, {"folders", folders}};
     return j;
