@@ -241,7 +241,8 @@ void traceLights(const LightPass& p, const Verifier* verifier, OracleStats& stat
     for (size_t li = 0; li < p.scene.lights.size(); ++li) {
         OracleLightStats l = traceLight(p, uint32_t(li));
         if (l.area) {
-            stats.shadowSeconds += l.area->seconds;
+            // The exact pass (--penumbra exact or both) is part of the light's shadows too.
+            stats.shadowSeconds += l.area->seconds + (l.area->exact ? l.area->exact->seconds : 0.0);
             stats.shadowRays += l.area->raysTraced;
             stats.shadowAlphaTests += l.area->alphaTests;
         }

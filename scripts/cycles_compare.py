@@ -189,7 +189,8 @@ def rep(ctx, size, entry):
         wall, j = trace(ctx, size, entry["method"], entry["target"], previews,
                         pathlib.Path(entry["dir"] + suffix))
         light = j["lights"][0]
-        # phases_seconds.shadow holds the sampled pass; the exact pass is timed apart.
+        # phases_seconds.shadow holds the sampled and the exact pass (format_version 10); the
+        # exact pass's own share is kept for the tables.
         phases = dict(j["phases_seconds"])
         phases["exact"] = (light.get("exact_penumbra") or {}).get("seconds") or 0.0
         entry["runs" + suffix].append((wall, phases))
@@ -199,7 +200,7 @@ def rep(ctx, size, entry):
 
 def shadow(phases):
     """The area light's passes: sampled, then exact (0 without --penumbra exact)."""
-    return phases["shadow"] + phases["exact"]
+    return phases["shadow"]
 
 
 def oracle_ladder(ctx, size, method, gbuffer, smallest_error, where):
@@ -400,8 +401,8 @@ def tables(summary):
             "interpolated between the two runs of its ladder around that error (log time against "
             "log error). Exact: the loosest target whose run's error is at most Cycles' (≤: the "
             "time to reach exactly that error is at most this). The shadow passes are the area "
-            "light's, from oracle.json: the sampled pass (`phases_seconds.shadow`) and the exact "
-            "pass (`exact_penumbra.seconds`), the median over the runs with and without previews, "
+            "light's, from oracle.json: `phases_seconds.shadow`, which holds the sampled pass and "
+            "the exact one (`exact_penumbra.seconds`), the median over the runs with and without previews, "
             "which do the same work there; the "
             "whole `trace` is timed from start to exit, with its PNG preview and with "
             "`--no-previews`:",
