@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include <tbb/combinable.h>
@@ -10,6 +11,7 @@
 
 #include "core/progress.h"
 #include "core/sobol.h"
+#include "oracle/sse_lanes.h"
 #include "oracle/tile_rows.h"
 
 namespace so {
@@ -231,19 +233,26 @@ void traceRound(const Accel& accel, const AreaLight& light, const AreaPixel& px,
                 const ReplicaSeeds& seeds, uint32_t first, float tangentCos, PacketState& p,
                 ReplicaSums& sums, AreaShadowStats& st) {
     sampleRound(light, px, seeds, first, p.batch);
-    int active = 0, near = 0;
-    for (int k = 0; k < 16; ++k) {
-        p.valid[k] = p.batch.weight[k] > 0.0f ? -1 : 0;
-        active += p.valid[k] != 0;
-        near |= p.valid[k] & int(!(p.batch.cosine[k] >= tangentCos));
-        p.ray.dir_x[k] = p.batch.dirX[k];
-        p.ray.dir_y[k] = p.batch.dirY[k];
-        p.ray.dir_z[k] = p.batch.dirZ[k];
-        p.ray.tfar[k] = p.batch.tfar[k];
+    // The lanes with weight are traced; the packet runs the filter where one of them leaves
+    // within the tangency bound (a NaN cosine counts as within). Four lanes at a time
+    // (sse_lanes.h).
+    int active = 0;
+    __m128 nearLanes = _mm_setzero_ps();
+    for (int g = 0; g < 16; g += 4) {
+        const __m128 on = _mm_cmpgt_ps(_mm_load_ps(p.batch.weight + g), _mm_setzero_ps());
+        _mm_store_si128(reinterpret_cast<__m128i*>(p.valid + g), _mm_castps_si128(on));
+        const __m128 clear = _mm_cmpge_ps(_mm_load_ps(p.batch.cosine + g), _mm_set1_ps(tangentCos));
+        nearLanes = _mm_or_ps(nearLanes, _mm_andnot_ps(clear, on));
+        active += setBits4(_mm_movemask_ps(on));
     }
+    const bool near = _mm_movemask_ps(nearLanes) != 0;
+    std::memcpy(p.ray.dir_x, p.batch.dirX, sizeof p.batch.dirX);
+    std::memcpy(p.ray.dir_y, p.batch.dirY, sizeof p.batch.dirY);
+    std::memcpy(p.ray.dir_z, p.batch.dirZ, sizeof p.batch.dirZ);
+    std::memcpy(p.ray.tfar, p.batch.tfar, sizeof p.batch.tfar);
     if (active) {
-        p.ctx.originFilter(near != 0);
-        st.raysFiltered += near != 0 ? uint64_t(active) : 0;
+        p.ctx.originFilter(near);
+        st.raysFiltered += near ? uint64_t(active) : 0;
         rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.ray);
     }
     const int lit = addRound(sums, p.batch.weight, p.valid, p.ray.tfar);

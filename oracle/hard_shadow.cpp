@@ -7,14 +7,13 @@
 #include <limits>
 #include <numbers>
 
-#include <emmintrin.h>
-
 #include <tbb/combinable.h>
 #include <glm/geometric.hpp>
 
 #include "core/progress.h"
 #include "oracle/exact_facing.h"
 #include "oracle/offset.h"
+#include "oracle/sse_lanes.h"
 #include "oracle/tile_rows.h"
 
 namespace so {
@@ -267,10 +266,7 @@ struct HardPacket {
 
 // The tile's valid mask from the setup: lanes outside the image (the last tile row or column)
 // are padding, neither traced nor written. Returns the number of rays to trace.
-// The per-lane bookkeeping of a packet in SSE2 (every x86-64 has it; target_clones elsewhere in
-// the oracle already assume x86-64): the compiler does not vectorise these loops over mixed
-// integer, byte and float lanes, and they ran lane by lane at about a third of the oracle's own
-// time per tile.
+// The per-lane bookkeeping of a packet in SSE2 (sse_lanes.h).
 __m128i laneBytes(const ShadowRayKind* kinds) {
     static_assert(sizeof(ShadowRayKind) == 1);
     return _mm_loadu_si128(reinterpret_cast<const __m128i*>(kinds));
@@ -282,10 +278,6 @@ int countLanes(__m128i bytes, ShadowRayKind kind) {
         _mm_and_si128(_mm_cmpeq_epi8(bytes, _mm_set1_epi8(char(kind))), _mm_set1_epi8(1));
     const __m128i sums = _mm_sad_epu8(ones, _mm_setzero_si128());  // two 64-bit halves
     return _mm_cvtsi128_si32(sums) + _mm_extract_epi16(sums, 4);
-}
-// Set bits of a 4-bit mask (_mm_movemask_ps).
-int bits4(int m) {
-    return (m & 1) + (m >> 1 & 1) + (m >> 2 & 1) + (m >> 3 & 1);
 }
 
 int classifyLanes(HardPacket& p, int cols, int rows) {
@@ -359,7 +351,7 @@ uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, si
         const __m128 valid =
             _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(p.valid + g)));
         const __m128 dark = _mm_cmpeq_ps(_mm_load_ps(lit + g), _mm_setzero_ps());
-        occluded += bits4(_mm_movemask_ps(_mm_and_ps(valid, dark)));
+        occluded += setBits4(_mm_movemask_ps(_mm_and_ps(valid, dark)));
     }
     if (cols == SurfaceBuffer::kTile && rows == SurfaceBuffer::kTile) {
         for (int r = 0; r < 4; ++r) {
