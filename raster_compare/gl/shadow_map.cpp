@@ -8,6 +8,7 @@
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 
@@ -226,7 +227,9 @@ void ShadowMapLight::createMomentTargets() {
     glNamedFramebufferTexture(faceFbo_.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
     tempFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(tempFbo_.get(), GL_COLOR_ATTACHMENT0, tempTex_.get(), 0);
-    blurProg_ = buildProgram("", shaders::fullscreen_vert, {shaders::blur_frag});
+    blurProg_ = buildProgram(
+        "#define SOURCE_TEXEL_BYTES " + std::to_string(texelBytes(faceTex_.get())) + "\n",
+        shaders::fullscreen_vert, {shaders::blur_frag});
     setInt(blurProg_.get(), "u_radius", technique_.blurRadius());
     setInt(blurProg_.get(), "u_source", 0);
 }
@@ -245,16 +248,23 @@ std::string lightDefine(const LightCamera& cam) {
     }
 }
 
-std::string mapDefine(MapStorage storage) {
-    return storage == MapStorage::Depth                  ? "#define MAP_DEPTH\n"
-           : storage == MapStorage::DepthHardwareCompare ? "#define MAP_HW_COMPARE\n"
-                                                         : "#define MAP_MOMENTS\n";
+// The map's kind, and what one lookup reads of it (the work counts' SO_TAP): a filtered lookup
+// (the hardware compare, bilinear moments) reads 2 x 2 texels.
+std::string mapDefines(const ShadowMapTechnique& technique, GLuint map) {
+    const MapStorage storage = technique.storage();
+    const bool filtered = storage == MapStorage::DepthHardwareCompare ||
+                          (storage == MapStorage::Moments && technique.bilinearMap());
+    return std::string(storage == MapStorage::Depth                  ? "#define MAP_DEPTH\n"
+                       : storage == MapStorage::DepthHardwareCompare ? "#define MAP_HW_COMPARE\n"
+                                                                     : "#define MAP_MOMENTS\n") +
+           "#define MAP_TEXEL_BYTES " + std::to_string(texelBytes(map)) +
+           "\n#define MAP_FILTER_TEXELS " + (filtered ? "4" : "1") + "\n";
 }
 
 void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
     const std::string defines =
         scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightDefine(cam_) +
-                                 mapDefine(technique_.storage()) + technique_.shaderDefines());
+                                 mapDefines(technique_, map_.get()) + technique_.shaderDefines());
     visibilityProg_ =
         buildProgram(defines, shaders::scene_vert,
                      {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});
