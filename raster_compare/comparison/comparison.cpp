@@ -86,6 +86,7 @@ TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSe
     cost.frameMs = stats.timings.wallMs;
     cost.cameraMs = stats.timings.cameraMs;
     cost.memoryBytes = stats.lights[li].memoryBytes;
+    if (stats.lights[li].work) cost.work = stats.lights[li].work->counts;
     cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
     return cost;
 }
