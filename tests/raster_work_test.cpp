@@ -181,9 +181,12 @@ TEST(Work, LightsAndFrameAreSumsOfTheirPasses) {
     }
     EXPECT_EQ(frame, r.stats.frameWork->counts);
     EXPECT_EQ(r.stats.cameraWork->counts.drawCalls, s.meshes.size());
-    // The moment map's blur: 2 directions of 2 blur + 1 taps over every texel of each face.
+    // The moment map's blur (blur 2: 5 taps a texel), a cube map's across its faces: per face
+    // along s over the face and 2 rows beyond either side, then along t over the face.
     const PassWork& point = pass(r, "point", "shadow_map");
-    EXPECT_EQ(point.counts.textureTaps, uint64_t(6 * 2 * 5 * 256 * 256));
+    EXPECT_EQ(point.counts.textureTaps, uint64_t(6 * 5 * 256 * (260 + 256)));
+    const PassWork& spot = pass(r, "spot", "shadow_map");
+    EXPECT_EQ(spot.counts.textureTaps, uint64_t(2 * 5 * 256 * 256));
 }
 
 // The counted frame is a build of its own: the timed frames, and so the image, are those of a

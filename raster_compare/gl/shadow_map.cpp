@@ -122,6 +122,8 @@ class ShadowMapLight final : public LightTechnique {
   private:
     void createMap();
     void createMomentTargets();
+    void createCubeBlur();
+    void blurCubeAcrossFaces();
     void createVisibilityProgram(const CameraPass& camera);
     void setCascadeUniforms(GLuint program, const CameraPass& camera) const;
     void renderMomentFace(int face);
@@ -139,8 +141,14 @@ class ShadowMapLight final : public LightTechnique {
     GlTexture faceTex_, tempTex_, faceDepth_;
     GlFramebuffer faceFbo_, tempFbo_;
     // Without a blur (radius 0) the moments go straight into the map's faces, over faceDepth_:
-    // the same values as the blur's one-tap copy, without the two copies.
+    // the same values as the blur's one-tap copy, without the two copies. A cube map's go there
+    // too, to be blurred across its faces (cube_blur.frag): along each face's s axis into a layer
+    // of cubeExt_ (the face and `radius` rows beyond it on either side), then along t back into
+    // the face.
     std::vector<GlFramebuffer> directFbos_;
+    GlProgram cubeAcrossProg_, cubeDownProg_;
+    GlTexture cubeExt_;
+    std::vector<GlFramebuffer> cubeExtFbos_;
     int receiver_ = -1;  // technique_.receiverMesh
 };
 
@@ -207,7 +215,8 @@ void ShadowMapLight::createMomentTargets() {
         {shaders::alpha_test_glsl, shaders::shadow_moments_frag, technique_.glsl()});
     setFloat(momentsProg_.get(), "u_near", cam_.near);
     setFloat(momentsProg_.get(), "u_far", cam_.far);
-    if (technique_.blurRadius() == 0) {
+    const bool cube = cam_.kind == LightCamera::Kind::Cube;
+    if (technique_.blurRadius() == 0 || cube) {
         for (int f = 0; f < cam_.faces; ++f) {
             GlFramebuffer fbo = makeFramebuffer();
             if (cam_.kind != LightCamera::Kind::Ortho &&
@@ -218,6 +227,7 @@ void ShadowMapLight::createMomentTargets() {
             glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
             directFbos_.push_back(std::move(fbo));
         }
+        if (cube && technique_.blurRadius() > 0) createCubeBlur();
         return;
     }
     faceTex_ = makeTexture2D(GL_RGBA32F, res, res);
@@ -232,6 +242,57 @@ void ShadowMapLight::createMomentTargets() {
         shaders::fullscreen_vert, {shaders::blur_frag});
     setInt(blurProg_.get(), "u_radius", technique_.blurRadius());
     setInt(blurProg_.get(), "u_source", 0);
+}
+
+void ShadowMapLight::createCubeBlur() {
+    const int res = technique_.resolution(), radius = technique_.blurRadius();
+    cubeExt_ = makeTexture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(cubeExt_.get(), 1, GL_RGBA32F, res, res + 2 * radius, 6);
+    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+        glTextureParameteri(cubeExt_.get(), p, GL_NEAREST);
+    for (int f = 0; f < 6; ++f) {
+        GlFramebuffer fbo = makeFramebuffer();
+        glNamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, cubeExt_.get(), 0, f);
+        cubeExtFbos_.push_back(std::move(fbo));
+    }
+    const bool bilinear = technique_.bilinearMap();
+    const std::string bytes = "#define SOURCE_TEXEL_BYTES " +
+                              std::to_string(texelBytes(map_.get())) +
+                              "\n#define SOURCE_TAP_TEXELS " + (bilinear ? "4" : "1") + "\n";
+    cubeAcrossProg_ = buildProgram("#define ACROSS\n" + bytes, shaders::fullscreen_vert,
+                                   {shaders::cube_blur_frag});
+    cubeDownProg_ = buildProgram(bytes, shaders::fullscreen_vert, {shaders::cube_blur_frag});
+    for (GLuint p : {cubeAcrossProg_.get(), cubeDownProg_.get()}) {
+        setInt(p, "u_radius", radius);
+        setInt(p, "u_source", 0);
+    }
+    setInt(cubeAcrossProg_.get(), "u_size", res);
+}
+
+// Every face's moments are in the map: each face blurred along s from the whole cube into its
+// layer of cubeExt_, then along t from there into the map's face.
+void ShadowMapLight::blurCubeAcrossFaces() {
+    const int res = technique_.resolution(), radius = technique_.blurRadius();
+    glDisable(GL_DEPTH_TEST);
+    glViewport(0, 0, res, res + 2 * radius);
+    glUseProgram(cubeAcrossProg_.get());
+    glBindTextureUnit(0, map_.get());
+    const GLint acrossFace = glGetUniformLocation(cubeAcrossProg_.get(), "u_face"),
+                downFace = glGetUniformLocation(cubeDownProg_.get(), "u_face");
+    for (int f = 0; f < 6; ++f) {
+        glBindFramebuffer(GL_FRAMEBUFFER, cubeExtFbos_[size_t(f)].get());
+        glProgramUniform1i(cubeAcrossProg_.get(), acrossFace, f);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glViewport(0, 0, res, res);
+    glUseProgram(cubeDownProg_.get());
+    glBindTextureUnit(0, cubeExt_.get());
+    for (int f = 0; f < 6; ++f) {
+        glBindFramebuffer(GL_FRAMEBUFFER, mapFbos_[size_t(f)].get());
+        glProgramUniform1i(cubeDownProg_.get(), downFace, f);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glEnable(GL_DEPTH_TEST);
 }
 
 // Cascades are orthographic maps to the techniques' lookups.
@@ -306,6 +367,7 @@ void ShadowMapLight::renderLightPasses(PassClock& clock) {
         setMat4(depthProg_.get(), "u_clipFromLocal", cam_.clipFromLocal(f));
         scene_.draw(depthProg_.get(), false);
     }
+    if (!cubeExtFbos_.empty()) blurCubeAcrossFaces();
     technique_.endMapPass();
     clock.end();
 }
@@ -378,9 +440,13 @@ uint64_t ShadowMapLight::memoryBytes() const {
     if (technique_.storage() != MapStorage::Moments)
         return texels * depthBytes * uint64_t(cam_.faces);
     // The moment map (RGBA32F per face), and one face's depth buffer and, with a blur, its
-    // moments and blur target.
-    const uint64_t blurBytes = technique_.blurRadius() > 0 ? 16 + 16 : 0;
-    return texels * 16 * uint64_t(cam_.faces) + texels * (blurBytes + depthBytes);
+    // moments and blur target; a cube map's blur, six faces of side x (side + 2 radius) texels.
+    const uint64_t res = uint64_t(technique_.resolution());
+    const uint64_t blurBytes = technique_.blurRadius() == 0 ? 0
+                               : cubeExtFbos_.empty()
+                                   ? texels * (16 + 16)
+                                   : 6 * res * (res + 2 * uint64_t(technique_.blurRadius())) * 16;
+    return texels * 16 * uint64_t(cam_.faces) + texels * depthBytes + blurBytes;
 }
 
 }  // namespace
