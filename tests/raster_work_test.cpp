@@ -181,10 +181,11 @@ TEST(Work, LightsAndFrameAreSumsOfTheirPasses) {
     }
     EXPECT_EQ(frame, r.stats.frameWork->counts);
     EXPECT_EQ(r.stats.cameraWork->counts.drawCalls, s.meshes.size());
-    // The moment map's blur (blur 2: 5 taps a texel), a cube map's across its faces: per face
-    // along s over the face and 2 rows beyond either side, then along t over the face.
+    // The moment map's blur (blur 2: 5 taps a texel), a cube map's across its faces: per face one
+    // tap for each texel of the face padded by 2, then along s over the face and 2 rows beyond
+    // either side, then along t over the face.
     const PassWork& point = pass(r, "point", "shadow_map");
-    EXPECT_EQ(point.counts.textureTaps, uint64_t(6 * 5 * 256 * (260 + 256)));
+    EXPECT_EQ(point.counts.textureTaps, uint64_t(6 * (260 * 260 + 5 * 256 * (260 + 256))));
     const PassWork& spot = pass(r, "spot", "shadow_map");
     EXPECT_EQ(spot.counts.textureTaps, uint64_t(2 * 5 * 256 * 256));
 }

@@ -142,13 +142,18 @@ class ShadowMapLight final : public LightTechnique {
     GlFramebuffer faceFbo_, tempFbo_;
     // Without a blur (radius 0) the moments go straight into the map's faces, over faceDepth_:
     // the same values as the blur's one-tap copy, without the two copies. A cube map's go there
-    // too, to be blurred across its faces (cube_blur.frag): along each face's s axis into a layer
-    // of cubeExt_ (the face and `radius` rows beyond it on either side), then along t back into
-    // the face.
+    // too, to be blurred across its faces (cube_blur.frag): every face padded by `radius` texels
+    // of what the cube holds beyond it (padded), then each blurred along s into acrossTarget and
+    // along t back into the map's face.
     std::vector<GlFramebuffer> directFbos_;
-    GlProgram cubeAcrossProg_, cubeDownProg_;
-    GlTexture cubeExt_;
-    std::vector<GlFramebuffer> cubeExtFbos_;
+    struct CubeBlur {
+        GlProgram padInside, padBorder, across, down;
+        GlTexture faces;  // the map's faces as the layers of a 2D array (a view)
+        GlTexture padded, acrossTarget;
+        std::vector<GlFramebuffer> paddedFbos;
+        GlFramebuffer acrossFbo;
+    };
+    std::unique_ptr<CubeBlur> cubeBlur_;
     int receiver_ = -1;  // technique_.receiverMesh
 };
 
@@ -245,52 +250,84 @@ void ShadowMapLight::createMomentTargets() {
 }
 
 void ShadowMapLight::createCubeBlur() {
-    const int res = technique_.resolution(), radius = technique_.blurRadius();
-    cubeExt_ = makeTexture(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(cubeExt_.get(), 1, GL_RGBA32F, res, res + 2 * radius, 6);
-    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
-        glTextureParameteri(cubeExt_.get(), p, GL_NEAREST);
+    const int res = technique_.resolution(), radius = technique_.blurRadius(),
+              padded = res + 2 * radius;
+    cubeBlur_ = std::make_unique<CubeBlur>();
+    CubeBlur& b = *cubeBlur_;
+    // A view's name must come from glGenTextures, unbound.
+    GLuint view = 0;
+    glGenTextures(1, &view);
+    b.faces = GlTexture(view);
+    glTextureView(view, GL_TEXTURE_2D_ARRAY, map_.get(), GL_RGBA32F, 0, 1, 0, 6);
+    const auto makeLayers = [](int width, int height, int layers) {
+        GlTexture t = makeTexture(GL_TEXTURE_2D_ARRAY);
+        glTextureStorage3D(t.get(), 1, GL_RGBA32F, width, height, layers);
+        for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+            glTextureParameteri(t.get(), p, GL_NEAREST);
+        return t;
+    };
+    b.padded = makeLayers(padded, padded, 6);
+    b.acrossTarget = makeLayers(res, padded, 1);
     for (int f = 0; f < 6; ++f) {
         GlFramebuffer fbo = makeFramebuffer();
-        glNamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, cubeExt_.get(), 0, f);
-        cubeExtFbos_.push_back(std::move(fbo));
+        glNamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, b.padded.get(), 0, f);
+        b.paddedFbos.push_back(std::move(fbo));
     }
-    const bool bilinear = technique_.bilinearMap();
-    const std::string bytes = "#define SOURCE_TEXEL_BYTES " +
-                              std::to_string(texelBytes(map_.get())) +
-                              "\n#define SOURCE_TAP_TEXELS " + (bilinear ? "4" : "1") + "\n";
-    cubeAcrossProg_ = buildProgram("#define ACROSS\n" + bytes, shaders::fullscreen_vert,
-                                   {shaders::cube_blur_frag});
-    cubeDownProg_ = buildProgram(bytes, shaders::fullscreen_vert, {shaders::cube_blur_frag});
-    for (GLuint p : {cubeAcrossProg_.get(), cubeDownProg_.get()}) {
-        setInt(p, "u_radius", radius);
-        setInt(p, "u_source", 0);
-    }
-    setInt(cubeAcrossProg_.get(), "u_size", res);
+    b.acrossFbo = makeFramebuffer();
+    glNamedFramebufferTextureLayer(b.acrossFbo.get(), GL_COLOR_ATTACHMENT0, b.acrossTarget.get(), 0,
+                                   0);
+    const std::string bytes =
+        "#define SOURCE_TEXEL_BYTES " + std::to_string(texelBytes(map_.get())) +
+        "\n#define SOURCE_TAP_TEXELS " + (technique_.bilinearMap() ? "4" : "1") + "\n";
+    const auto program = [&](const std::string& defines) {
+        GlProgram p =
+            buildProgram(defines + bytes, shaders::fullscreen_vert, {shaders::cube_blur_frag});
+        setInt(p.get(), "u_radius", radius);
+        setInt(p.get(), "u_size", res);
+        setInt(p.get(), "u_source", 0);
+        return p;
+    };
+    b.padInside = program("#define PAD\n#define INSIDE\n");
+    b.padBorder = program("#define PAD\n");
+    b.across = program("#define ACROSS\n");
+    b.down = program("");
 }
 
-// Every face's moments are in the map: each face blurred along s from the whole cube into its
-// layer of cubeExt_, then along t from there into the map's face.
+// Every face's moments are in the map: each face padded from the whole cube, then blurred along s
+// and along t back into the map's face.
 void ShadowMapLight::blurCubeAcrossFaces() {
-    const int res = technique_.resolution(), radius = technique_.blurRadius();
+    const CubeBlur& b = *cubeBlur_;
+    const int res = technique_.resolution(), r = technique_.blurRadius(), padded = res + 2 * r;
+    const auto draw = [](GLuint program, int face) {
+        glUseProgram(program);
+        glProgramUniform1i(program, glGetUniformLocation(program, "u_face"), face);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    };
     glDisable(GL_DEPTH_TEST);
-    glViewport(0, 0, res, res + 2 * radius);
-    glUseProgram(cubeAcrossProg_.get());
-    glBindTextureUnit(0, map_.get());
-    const GLint acrossFace = glGetUniformLocation(cubeAcrossProg_.get(), "u_face"),
-                downFace = glGetUniformLocation(cubeDownProg_.get(), "u_face");
+    // The border reads the cube unblurred: every face is padded before any is blurred. The middle
+    // and the four strips of the border are drawn apart, so the cube is looked up only there.
+    const std::array<std::array<int, 4>, 4> strips = {
+        {{0, 0, padded, r}, {0, padded - r, padded, r}, {0, r, r, res}, {padded - r, r, r, res}}};
     for (int f = 0; f < 6; ++f) {
-        glBindFramebuffer(GL_FRAMEBUFFER, cubeExtFbos_[size_t(f)].get());
-        glProgramUniform1i(cubeAcrossProg_.get(), acrossFace, f);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindFramebuffer(GL_FRAMEBUFFER, b.paddedFbos[size_t(f)].get());
+        glViewport(r, r, res, res);
+        glBindTextureUnit(0, b.faces.get());
+        draw(b.padInside.get(), f);
+        glBindTextureUnit(0, map_.get());
+        for (const auto& [x, y, w, h] : strips) {
+            glViewport(x, y, w, h);
+            draw(b.padBorder.get(), f);
+        }
     }
-    glViewport(0, 0, res, res);
-    glUseProgram(cubeDownProg_.get());
-    glBindTextureUnit(0, cubeExt_.get());
     for (int f = 0; f < 6; ++f) {
+        glBindFramebuffer(GL_FRAMEBUFFER, b.acrossFbo.get());
+        glViewport(0, 0, res, padded);
+        glBindTextureUnit(0, b.padded.get());
+        draw(b.across.get(), f);
         glBindFramebuffer(GL_FRAMEBUFFER, mapFbos_[size_t(f)].get());
-        glProgramUniform1i(cubeDownProg_.get(), downFace, f);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glViewport(0, 0, res, res);
+        glBindTextureUnit(0, b.acrossTarget.get());
+        draw(b.down.get(), 0);
     }
     glEnable(GL_DEPTH_TEST);
 }
@@ -367,7 +404,7 @@ void ShadowMapLight::renderLightPasses(PassClock& clock) {
         setMat4(depthProg_.get(), "u_clipFromLocal", cam_.clipFromLocal(f));
         scene_.draw(depthProg_.get(), false);
     }
-    if (!cubeExtFbos_.empty()) blurCubeAcrossFaces();
+    if (cubeBlur_) blurCubeAcrossFaces();
     technique_.endMapPass();
     clock.end();
 }
@@ -440,12 +477,13 @@ uint64_t ShadowMapLight::memoryBytes() const {
     if (technique_.storage() != MapStorage::Moments)
         return texels * depthBytes * uint64_t(cam_.faces);
     // The moment map (RGBA32F per face), and one face's depth buffer and, with a blur, its
-    // moments and blur target; a cube map's blur, six faces of side x (side + 2 radius) texels.
-    const uint64_t res = uint64_t(technique_.resolution());
+    // moments and blur target; a cube map's blur, its six padded faces, (side + 2 radius)² texels,
+    // and one of side x (side + 2 radius).
+    const uint64_t res = uint64_t(technique_.resolution()),
+                   padded = res + 2 * uint64_t(technique_.blurRadius());
     const uint64_t blurBytes = technique_.blurRadius() == 0 ? 0
-                               : cubeExtFbos_.empty()
-                                   ? texels * (16 + 16)
-                                   : 6 * res * (res + 2 * uint64_t(technique_.blurRadius())) * 16;
+                               : cubeBlur_                  ? (6 * padded + res) * padded * 16
+                                                            : texels * (16 + 16);
     return texels * 16 * uint64_t(cam_.faces) + texels * depthBytes + blurBytes;
 }
 
