@@ -10,6 +10,9 @@ TECHNIQUES = ["basic", "slope-bias", "pcf:kernel=5", "hw-pcf", "pcss", "vsm", "e
 SIZE = (320, 240)
 FRAMES = 3
 COSTS = [("ms", "llvmpipe ms"), ("bytes", "bytes_moved"), ("fragments", "fragments")]
+# Pairs whose relative GPU cost has been published (docs/benchmarks.md, below the tables): their
+# ratio on each axis, per scene.
+PAIRS = [("hw-pcf", "slope-bias"), ("msm", "vsm"), ("vsm", "basic")]
 
 
 def compare(tool, scene, out):
@@ -21,19 +24,31 @@ def compare(tool, scene, out):
     return json.loads((out / "metrics.json").read_text())
 
 
-def points(metrics, light):
-    """Per technique: its error (penumbra_mae on area lights, else mae) and three costs: the
-    light's passes' llvmpipe milliseconds (shadow_map_ms + visibility_ms, medians), bytes_moved
-    and fragments of a frame."""
+def frame_costs(metrics):
+    """Per technique: the frame's llvmpipe milliseconds (cost.frame_ms, the wall time of a frame
+    with the GL finished: every light's passes and the camera pass, the figure to compare
+    techniques by on llvmpipe, docs/techniques.md) and the frame's bytes_moved and fragments, its
+    lights' work summed (the camera pass's, the same for every technique, left out)."""
+    out = {}
+    for r in metrics["results"]:
+        lights = r["lights"].values()
+        out[r["label"]] = {"ms": next(iter(lights))["cost"]["frame_ms"],
+                           "bytes": sum(m["cost"]["work"]["bytes_moved"] for m in lights),
+                           "fragments": sum(m["cost"]["work"]["fragments"] for m in lights),
+                           "taps": sum(m["cost"]["work"]["texture_taps"] for m in lights)}
+    return out
+
+
+def points(metrics, light, costs):
+    """Per technique: the light's error (penumbra_mae on area lights, else mae) and the frame's
+    three costs."""
     out = []
     for r in metrics["results"]:
         m = r["lights"][light]
-        c = m["cost"]
         area = m.get("penumbra_mae") is not None
-        out.append({"label": r["label"], "error": m["penumbra_mae"] if area else m["mae"],
-                    "error_name": "penumbra_mae" if area else "mae",
-                    "ms": c["shadow_map_ms"] + c["visibility_ms"],
-                    "bytes": c["work"]["bytes_moved"], "fragments": c["work"]["fragments"]})
+        out.append(dict(costs[r["label"]], label=r["label"],
+                        error=m["penumbra_mae"] if area else m["mae"],
+                        error_name="penumbra_mae" if area else "mae"))
     return out
 
 
@@ -56,12 +71,26 @@ def front(pts, key):
 
 
 def spearman(a, b):
+    """Spearman's rho of two rankings, ties at their average rank."""
     labels = list(a)
+    def average(r):
+        groups = {}
+        for l in labels:
+            groups.setdefault(r[l], []).append(l)
+        out, at = {}, 1
+        for k in sorted(groups):
+            n = len(groups[k])
+            for l in groups[k]:
+                out[l] = at + (n - 1) / 2
+            at += n
+        return out
+    ra, rb = average(a), average(b)
     n = len(labels)
-    if n < 2:
-        return float("nan")
-    d2 = sum((a[l] - b[l]) ** 2 for l in labels)
-    return 1 - 6 * d2 / (n * (n * n - 1))
+    ma, mb = sum(ra.values()) / n, sum(rb.values()) / n
+    cov = sum((ra[l] - ma) * (rb[l] - mb) for l in labels)
+    va = sum((ra[l] - ma) ** 2 for l in labels) ** 0.5
+    vb = sum((rb[l] - mb) ** 2 for l in labels) ** 0.5
+    return cov / (va * vb) if va and vb else float("nan")
 
 
 def si(v):
@@ -71,62 +100,85 @@ def si(v):
     return "%d" % v
 
 
-def light_section(scene, light, pts):
-    r = {key: ranks(pts, key) for key, _ in COSTS}
-    fronts = {key: front(pts, key) for key, _ in COSTS}
-    lines = [f"#### {scene}, {light} ({pts[0]['error_name']})", "",
-             "| technique | error | llvmpipe ms (rank) | bytes_moved (rank) | fragments (rank) |",
-             "|---|---|---|---|---|"]
-    for p in sorted(pts, key=lambda p: p["ms"]):
-        lines.append(f"| `{p['label']}` | {p['error']:.4f} | {p['ms']:.1f} ({r['ms'][p['label']]}) | "
-                     f"{si(p['bytes'])} ({r['bytes'][p['label']]}) | "
-                     f"{si(p['fragments'])} ({r['fragments'][p['label']]}) |")
-    lines.append("")
+def scene_section(scene, metrics):
+    costs = frame_costs(metrics)
+    lights = list(metrics["results"][0]["lights"])
+    cost_pts = [dict(c, label=l) for l, c in costs.items()]
+    r = {key: ranks(cost_pts, key) for key, _ in COSTS}
+    lines = [f"#### {scene}", "",
+             "| technique | llvmpipe frame ms (rank) | bytes_moved (rank) | fragments (rank) | " +
+             " | ".join(f"{l}: {points(metrics, l, costs)[0]['error_name']}" for l in lights) + " |",
+             "|---" * (4 + len(lights)) + "|"]
+    errors = {l: {p["label"]: p["error"] for p in points(metrics, l, costs)} for l in lights}
+    for label in sorted(costs, key=lambda l: costs[l]["ms"]):
+        c = costs[label]
+        lines.append(f"| `{label}` | {c['ms']:.1f} ({r['ms'][label]}) | {si(c['bytes'])} "
+                     f"({r['bytes'][label]}) | {si(c['fragments'])} ({r['fragments'][label]}) | " +
+                     " | ".join(f"{errors[l][label]:.4f}" for l in lights) + " |")
     rho_b, rho_f = spearman(r["ms"], r["bytes"]), spearman(r["ms"], r["fragments"])
-    lines.append(f"Rank correlation with llvmpipe ms (Spearman): bytes_moved {rho_b:+.2f}, "
-                 f"fragments {rho_f:+.2f}.")
-    lines.append("")
-    for key, name in COSTS:
-        lines.append(f"- Pareto front against {name}: " + ", ".join(f"`{l}`" for l in fronts[key]))
-    ms = set(fronts["ms"])
-    for key, name in COSTS[1:]:
-        other = set(fronts[key])
-        if other == ms:
-            lines.append(f"- against {name}: the same front as llvmpipe ms")
-        else:
-            gained = ", ".join(f"`{l}`" for l in fronts[key] if l not in ms) or "none"
-            lost = ", ".join(f"`{l}`" for l in fronts["ms"] if l not in other) or "none"
-            lines.append(f"- against {name}: joins the front {gained}; leaves it {lost}")
-    lines.append("")
+    lines += ["", f"Rank correlation with the llvmpipe milliseconds (Spearman, ties averaged): "
+                  f"bytes_moved {rho_b:+.2f}, fragments {rho_f:+.2f}.", ""]
+    for light in lights:
+        pts = points(metrics, light, costs)
+        fronts = {key: front(pts, key) for key, _ in COSTS}
+        lines.append(f"Pareto fronts of {light}'s {pts[0]['error_name']}:")
+        lines.append("")
+        for key, name in COSTS:
+            lines.append(f"- against {name}: " + ", ".join(f"`{l}`" for l in fronts[key]))
+        ms = set(fronts["ms"])
+        for key, name in COSTS[1:]:
+            other = set(fronts[key])
+            if other == ms:
+                lines.append(f"- {name}'s front is the milliseconds'")
+            else:
+                gained = ", ".join(f"`{l}`" for l in fronts[key] if l not in ms) or "none"
+                lost = ", ".join(f"`{l}`" for l in fronts["ms"] if l not in other) or "none"
+                lines.append(f"- {name}'s front gains {gained} and loses {lost}")
+        lines.append("")
     return lines, rho_b, rho_f
 
 
-def main(tool, out_dir, doc):
+def main(tool, out_dir, doc, reuse=False):
     out_dir = pathlib.Path(out_dir)
     scenes = sorted(pathlib.Path("scenes").glob("*.scene.json"))
-    body, rhos = [], []
+    body, rhos, ratios = [], [], []
     renderer = None
     for scene in scenes:
         name = scene.name.split(".")[0]
         print(f"== {name}", flush=True)
-        metrics = compare(tool, scene, out_dir / name)
+        if reuse and (out_dir / name / "metrics.json").exists():
+            metrics = json.loads((out_dir / name / "metrics.json").read_text())
+        else:
+            metrics = compare(tool, scene, out_dir / name)
         renderer = metrics["gl"]["renderer"]
-        lights = list(metrics["results"][0]["lights"])
-        for light in lights:
-            lines, rb, rf = light_section(name, light, points(metrics, light))
-            body += lines
-            rhos.append((name, light, rb, rf))
-    summary = ["| scene, light | Spearman ms ~ bytes_moved | Spearman ms ~ fragments |",
-               "|---|---|---|"]
-    summary += [f"| {s}, {l} | {rb:+.2f} | {rf:+.2f} |" for s, l, rb, rf in rhos]
+        lines, rb, rf = scene_section(name, metrics)
+        ratios.append((name, frame_costs(metrics)))
+        body += lines
+        rhos.append((name, rb, rf))
+    summary = ["| scene | Spearman ms ~ bytes_moved | Spearman ms ~ fragments |", "|---|---|---|"]
+    summary += [f"| {s} | {rb:+.2f} | {rf:+.2f} |" for s, rb, rf in rhos]
+    summary += ["", "Ratios of the frame's costs between techniques whose GPU cost has been "
+                "published (below), per scene: llvmpipe ms / bytes_moved / fragments / "
+                "texture_taps.", "",
+                "| scene | " + " | ".join(f"`{a}` / `{b}`" for a, b in PAIRS) + " |",
+                "|---" * (1 + len(PAIRS)) + "|"]
+    for name, costs in ratios:
+        cells = []
+        for a, b in PAIRS:
+            q = lambda k: costs[a][k] / costs[b][k] if costs[b][k] else float("inf")
+            cells.append(" / ".join("%.2f" % q(k) for k in ("ms", "bytes", "fragments", "taps")))
+        summary.append(f"| {name} | " + " | ".join(cells) + " |")
     text = "\n".join(
         [f"Made by `scripts/work-figures` ({SIZE[0]} x {SIZE[1]}, {FRAMES} timed frames, "
          f"techniques {', '.join('`%s`' % t for t in TECHNIQUES)} with their defaults; times on "
-         f"{renderer}). Per light: the error (penumbra_mae on area lights, else mae), the light's "
-         "passes' llvmpipe milliseconds (`cost.shadow_map_ms` + `cost.visibility_ms`) and its work "
-         "of a frame (`cost.work`), each cost with the techniques' rank (1: the cheapest); the "
-         "Pareto front of the error against each cost, and where the work's fronts differ from "
-         "the milliseconds'.", ""] + summary + [""] + body)
+         f"{renderer}). Per scene: the frame's llvmpipe milliseconds (`cost.frame_ms`, the wall "
+         "time of a frame with the GL finished, which docs/techniques.md says to compare by on "
+         "llvmpipe: its timer queries charge some passes' work to others) and the frame's work "
+         "(`cost.work` summed over the lights; the camera pass, the same for every technique, left "
+         "out), each with the techniques' rank (1: the cheapest; equal counts share one), and each "
+         "light's error (penumbra_mae on area lights, else mae); per light, the Pareto front of "
+         "its error against each cost, and where the work's fronts differ from the "
+         "milliseconds'.", ""] + summary + [""] + body)
     doc = pathlib.Path(doc)
     old = doc.read_text()
     new = re.sub(r"(<!-- BEGIN which-ranking[^\n]*-->\n).*?(<!-- END which-ranking -->)",
@@ -138,4 +190,5 @@ def main(tool, out_dir, doc):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    # --reuse: the runs already in OUT_DIR (their metrics.json), to rewrite the tables only.
+    main(*sys.argv[1:4], reuse="--reuse" in sys.argv[4:])
