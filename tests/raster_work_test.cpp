@@ -124,6 +124,23 @@ TEST(Work, PcfTakesKernelSquaredTapsPerLitReceiverFragment) {
     EXPECT_EQ(spot.counts.textureTaps % 25, 0u);
 }
 
+// An invocation's taps count though it discards after them: accumulate's weight pass reads every
+// pixel's position and discards the background; on a surface it reads the normal and the sample's
+// V too. The sun is its own single sample; the resolve reads the sums once a pixel.
+TEST(Work, TapsBeforeADiscardCount) {
+    REQUIRE_GL();
+    const int w = 64, h = 48;
+    const RasterResult r =
+        render(makeSquareOccluderScene(w, h).scene, "accumulate", {"samples=4", "method=volume"});
+    const uint64_t hit = visiblePixels(r.image);
+    ASSERT_GT(hit, 100u);
+    ASSERT_LT(hit, uint64_t(w * h)) << "the test needs background pixels";
+    const PassWork& acc = pass(r, "sun", "accumulate");
+    EXPECT_EQ(acc.counts.textureTaps, uint64_t(2 * w * h) + 2 * hit);
+    EXPECT_EQ(acc.counts.fragments, uint64_t(2 * w * h));
+    EXPECT_EQ(acc.counts.passes, 2u);
+}
+
 // A shadow volume pass's fragments are its occlusion query's: the fragments that pass the depth
 // test, which z-pass's stencil counts (the fill) and z-fail's leaves (it counts those behind).
 TEST(Work, ShadowVolumeFillEqualsItsOcclusionQuery) {

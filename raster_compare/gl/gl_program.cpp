@@ -14,20 +14,30 @@ namespace {
 thread_local int countingBuilds = 0;  // CountingBuild objects alive on this thread
 
 // The fragment stage's prelude (after the defines) and, in a counting build, its last source.
-// Every fragment shader's main becomes soMain, called by a main that first counts the invocation;
-// the counters add with a carry into the high half, so that no count wraps at 2^32.
+// Every fragment shader's main becomes soMain, called by a main that counts the invocation and
+// then adds the taps it made: an invocation sums its own taps and adds them once, as contended
+// atomics per tap made a blurred moment map's counted frame several times as slow. A discard ends
+// the invocation before that: `discard` adds them first. The counters add with a carry into the
+// high half, so that no count wraps at 2^32.
 constexpr const char* kTapPrelude = "#define SO_TAP(texels, texelBytes)\n";
 constexpr const char* kCountingPrelude = R"glsl(#define SO_COUNT_WORK
 layout(std430, binding = 7) buffer SoWorkCounters { uint so_work[6]; };
+uint so_taps = 0u, so_tapBytes = 0u;
 void soAdd(int i, uint v) {
+    if (v == 0u) return;
     uint before = atomicAdd(so_work[i], v);
     if (before > 0xffffffffu - v) atomicAdd(so_work[i + 1], 1u);
 }
+void soAddTaps() {
+    soAdd(2, so_taps);
+    soAdd(4, so_tapBytes);
+}
 void soTap(uint texels, uint texelBytes) {
-    soAdd(2, 1u);
-    soAdd(4, texels * texelBytes);
+    so_taps += 1u;
+    so_tapBytes += texels * texelBytes;
 }
 #define SO_TAP(texels, texelBytes) soTap(uint(texels), uint(texelBytes))
+#define discard { soAddTaps(); discard; }
 #define main soMain
 )glsl";
 static_assert(kWorkCounterBinding == 7, "kCountingPrelude's binding");
@@ -36,6 +46,7 @@ constexpr const char* kCountingEpilogue = R"glsl(
 void main() {
     soAdd(0, 1u);
     soMain();
+    soAddTaps();
 }
 )glsl";
 
