@@ -22,8 +22,9 @@ GlProgram buildProgram(const std::string& defines, const char* vertexSource,
 
 // While one lives (on this thread, where the GL context is current), buildProgram makes counting
 // builds (docs/metrics.md, "Work"): SO_COUNT_WORK defined; each fragment shader invocation and
-// each SO_TAP add to the work counters, a buffer at kWorkCounterBinding that the counted frame
-// binds (work_counter.h); and the depth and stencil tests run before the shader
+// its SO_TAPs (summed by the invocation, added at its end or before it discards) add to the work
+// counters, a buffer at kWorkCounterBinding that the counted frame binds (work_counter.h); main
+// and discard become macros for that; and the depth and stencil tests run before the shader
 // (layout(early_fragment_tests), as a GPU's early tests), except in a program whose alpha test may
 // discard (shaders/alpha_test.glsl without ALPHA_TEST_OFF), where a depth or stencil write must
 // wait for the shader. Early tests change nothing else in such a program's output: the shader
