@@ -20,8 +20,7 @@ const std::vector<BaselineMetric>& baselineMetricTable() {
     // replaces both); pixel distances a quarter pixel (the penumbra profiles' step) + 5%; costs,
     // compared only when asked, 0.5 ms + 50% (timings of one frame on a shared machine), and
     // memory and work, which are exact, 1%.
-    constexpr Tolerance kFine{0.001, 0.05}, kPixels{0.25, 0.05}, kTime{0.5, 0.5},
-        kExact{0.0, 0.01};
+    constexpr Tolerance kFine{0.001, 0.05}, kPixels{0.25, 0.05}, kTime{0.5, 0.5}, kExact{0.0, 0.01};
     using N = OracleNoise;
     // The metric table's entry of a name; a name missing there is a bug, found by any test.
     const auto m = [](const char* name) {

@@ -117,7 +117,8 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
     {"cost.work.bytes_moved", U::Bytes, B::Lower, S::All,
      "render-target bytes the light's passes write and read (each texel once per pass) and the "
      "bytes their taps fetch, in a frame"},
-    {"cost.work.draw_calls", U::Count, B::Lower, S::All, "draw calls of the light's passes in a frame"},
+    {"cost.work.draw_calls", U::Count, B::Lower, S::All,
+     "draw calls of the light's passes in a frame"},
     {"cost.work.passes", U::Count, B::Lower, S::All,
      "passes the light runs in a frame (a pass per sample counts per sample)"},
     {"cost.oracle_seconds", U::Seconds, B::None, S::All, "what the ground truth of the light cost"},
