@@ -2,9 +2,15 @@
 // as a ratio to `basic` at the same resolution (docs/benchmarks.md).
 //
 //   bench_raster [--scene scenes/spot_objects.scene.json] [--frames 9] [--width 640 --height 480]
+//                [--resolution R ...] [--work on|off]
+//
+// --work off renders without the counted frame (docs/metrics.md, Work); the last line of each
+// resolution gives the whole render's seconds (set-ups, counted frames, warm-up and timed
+// frames), so two runs show what counting adds to a run, and the timed passes that it adds none.
 //
 // On llvmpipe the GL timer queries measure CPU work; absolute times mean something on a GPU only,
 // the ratios on both. Prints a note and exits 0 where no OpenGL context can be had.
+#include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -31,6 +37,12 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1000));
     app.add_option("--width", options.width, "image width")->check(CLI::Range(16, 8192));
     app.add_option("--height", options.height, "image height")->check(CLI::Range(16, 8192));
+    std::vector<int> resolutions = {1024, 2048, 4096};
+    app.add_option("--resolution", resolutions, "shadow-map resolutions")
+        ->check(CLI::Range(16, 16384));
+    std::string work = "on";
+    app.add_option("--work", work, "count the work in a frame of its own first")
+        ->check(CLI::IsMember({"on", "off"}));
     CLI11_PARSE(app, argc, argv);
     std::unique_ptr<GlContext> gl;
     try {
@@ -47,7 +59,8 @@ int main(int argc, char** argv) {
         gl->renderer().c_str(), gl->version().c_str(), options.frames);
     std::printf("%-15s %5s %19s %11s %9s %9s   %s\n", "technique", "res", "shadow ms (p25-p75)",
                 "visib. ms", "camera ms", "wall ms", "ratios to basic (shadow, visibility, wall)");
-    for (int res : {1024, 2048, 4096}) {
+    options.countWork = work == "on";
+    for (int res : resolutions) {
         // basic first: it is the baseline of the ratios.
         std::vector<std::string> names = {"basic"};
         for (const TechniqueInfo* t : allTechniques())
@@ -64,6 +77,7 @@ int main(int argc, char** argv) {
             techniques.push_back(owned.back().get());
         }
         std::map<std::string, double> basicMs;
+        const auto t0 = std::chrono::steady_clock::now();
         renderInterleaved(
             scene, techniques, options, *gl,
             {nullptr, [&](size_t i, RasterResult&& r) {
@@ -82,6 +96,8 @@ int main(int argc, char** argv) {
                      wall, shadow.median / basicMs["shadow"], vis.median / basicMs["vis"],
                      wall / basicMs["wall"]);
              }});
+        std::printf("whole render at %d, work %s: %.2f s\n", res, work.c_str(),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     return 0;
 }

@@ -121,7 +121,7 @@ TEST(ExternalImage, TheOraclesOwnVisibilityScoresZero) {
                  " --out " + (d / "cmp_spot").string());
     ASSERT_EQ(r.exitCode, 0) << r.stderrText;
     json m = readJson(d / "cmp_spot" / "metrics.json");
-    EXPECT_EQ(m["schema_version"], 6);
+    EXPECT_EQ(m["schema_version"], so::kMetricsSchemaVersion);
     EXPECT_TRUE(m["gl"].is_null());  // images alone need no GL
     const json& row = rowOf(m, "oracle");
     EXPECT_EQ(row["source"], "external");

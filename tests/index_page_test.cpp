@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "raster_compare/compare/index_page.h"
+#include "raster_compare/compare/metrics.h"
 
 namespace so::test {
 namespace {
@@ -172,9 +173,9 @@ TEST(IndexPage, MalformedMetricsNameTheFileAndField) {
     json noResults = alphaMetrics();
     noResults.erase("results");
     expectInputError(noResults, "results");
-    json version7 = alphaMetrics();
-    version7["schema_version"] = 7;
-    expectInputError(version7, "schema_version");
+    json newer = alphaMetrics();
+    newer["schema_version"] = kMetricsSchemaVersion + 1;
+    expectInputError(newer, "schema_version");
     json noVersion = alphaMetrics();
     noVersion.erase("schema_version");
     expectInputError(noVersion, "schema_version");

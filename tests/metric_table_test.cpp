@@ -46,6 +46,7 @@ json fullRow(bool hard) {
     l.cost.shadowMapMs = l.cost.visibilityMs = l.cost.cameraMs = l.cost.frameMs = t;
     l.cost.memoryBytes = 1024;
     l.cost.bakeMs = 250.0;
+    l.cost.work = WorkCounts{100, 200, 300, 400, 5, 2};
     if (!hard) l.cost.oracleMsAtEqualError = 50.0;
     l.temporal = TemporalFlicker{};
     l.temporal->add({100, 3});

@@ -471,7 +471,10 @@ TEST(Compare, EndToEndOnTheContactScene) {
               "min=0.1 snap=1 split_lambda=0.5"),
         2u);
     EXPECT_EQ(count("\"quality\":512"), 1u);
-    EXPECT_EQ(count("<table class=\"budget\">"), 1u);
+    // A budget table per cost axis (times, memory, work), frame time's shown.
+    EXPECT_EQ(count("<table class=\"budget\">"), 10u);
+    EXPECT_EQ(count("<div class=\"budget-box\" data-cost=\"frame_ms\">"), 1u);
+    EXPECT_EQ(count("<div class=\"budget-box\" data-cost=\"work.bytes_moved\" hidden>"), 1u);
     EXPECT_NE(report.find("id=\"metrics\">"), std::string::npos);
     EXPECT_NE(report.find("Times were measured on <b>" + j["gl"]["renderer"].get<std::string>()),
               std::string::npos)

@@ -132,6 +132,35 @@ TEST(SweepReport, FrontTableListsExactlyTheUnbeatenSettings) {
     EXPECT_NE(key.find("<svg class=\"front-chart\""), std::string::npos);
 }
 
+// A work axis (docs/metrics.md, Work): the front and the budget table by bytes moved, where pcf 3
+// moves the least and slope-bias the most: the order of frame time turned round.
+TEST(SweepReport, FrontsAndBudgetsAgainstTheWorkOfAFrame) {
+    SweepReportInput in = sweep();
+    for (SweepRow& r : in.rows)
+        r.metrics["cost.work.bytes_moved"] = (r.technique == "pcf"     ? 1.0
+                                              : r.technique == "basic" ? 3.0
+                                                                       : 2.0) *
+                                             kMiB;
+    const std::string key = section(writeAndRead(in), 0);
+    const std::string front = between(
+        key, "<table class=\"front\" data-metric=\"mae\" data-cost=\"cost.work.bytes_moved\">",
+        "</table>");
+    // pcf 3 and 5 move 1 MiB alike: the front is pcf 5 (0.015) alone, shown in MiB.
+    EXPECT_EQ(matches(front, "<td class=\"text label\">([^<]*)</td>"),
+              (std::vector<std::string>{"pcf:kernel=5"}));
+    EXPECT_EQ(matches(front, "<td data-v=\"([^\"]*)\">")[0], "1");
+    EXPECT_NE(key.find("<option value=\"cost.work.bytes_moved\">bytes moved</option>"),
+              std::string::npos);
+    // Its budget table: slope-bias's cheapest within 0.1 by bytes (2 MiB each, ties by memory:
+    // (2,0) holds 2 MiB); a fragments table is absent, since no row has fragments.
+    const std::string budgets =
+        between(key, "<div class=\"budget-box\" data-cost=\"cost.work.bytes_moved\">", "</div>");
+    const std::string mae =
+        between(budgets, "data-technique=\"slope-bias\" data-metric=\"mae\">", "</tr>");
+    EXPECT_EQ(matches(mae, "<td class=\"text[^\"]*\"[^>]*>([^<]*)").back(), "alpha=2,min=0 ");
+    EXPECT_EQ(key.find("data-cost=\"cost.work.fragments\""), std::string::npos);
+}
+
 TEST(SweepReport, CheapestSettingAtEachBudget) {
     const std::string key = section(writeAndRead(sweep()), 0);
     const std::string mae =

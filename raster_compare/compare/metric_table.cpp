@@ -109,6 +109,20 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "GL memory the technique holds for the light"},
     {"cost.bake_ms", U::Ms, B::Lower, S::BakedTechniques,
      "the light's bake before the first frame (lightmap), wall time; not part of frame_ms"},
+    {"cost.work.fragments", U::Count, B::Lower, S::All,
+     "fragment shader invocations of the light's passes in a frame (depth tested first where the "
+     "shader cannot discard)"},
+    {"cost.work.texture_taps", U::Count, B::Lower, S::All,
+     "texture lookups of the light's passes in a frame (a filtered lookup is one)"},
+    {"cost.work.texels_written", U::Count, B::Lower, S::All,
+     "render-target texels the light's passes write in a frame, each once per pass"},
+    {"cost.work.bytes_moved", U::Bytes, B::Lower, S::All,
+     "render-target bytes the light's passes write and read (each texel once per pass) and the "
+     "bytes their taps fetch, in a frame"},
+    {"cost.work.draw_calls", U::Count, B::Lower, S::All,
+     "draw calls of the light's passes in a frame"},
+    {"cost.work.passes", U::Count, B::Lower, S::All,
+     "passes the light runs in a frame (a pass per sample counts per sample)"},
     {"cost.oracle_seconds", U::Seconds, B::None, S::All, "what the ground truth of the light cost"},
     {"cost.oracle_ms_at_equal_error", U::Ms, B::None, S::AreaLights,
      "the oracle's time until its penumbra's mean 95% half-width came down to this technique's "

@@ -473,7 +473,14 @@ nlohmann::json TechniqueCost::toJson() const {
         {"oracle_seconds", oracleSeconds},
         {"oracle_ms_at_equal_error",
          oracleMsAtEqualError ? nlohmann::json(*oracleMsAtEqualError) : nlohmann::json(nullptr)},
-        {"noisy", noisy()}};
+        {"noisy", noisy()},
+        {"work", work ? nlohmann::json{{"fragments", work->fragments},
+                                       {"texture_taps", work->textureTaps},
+                                       {"texels_written", work->texelsWritten},
+                                       {"bytes_moved", work->bytesMoved},
+                                       {"draw_calls", work->drawCalls},
+                                       {"passes", work->passes}}
+                      : nlohmann::json(nullptr)}};
     for (const auto& [key, t] :
          {std::pair{"shadow_map", shadowMapMs}, std::pair{"visibility", visibilityMs},
           std::pair{"camera", cameraMs}, std::pair{"frame", frameMs}}) {

@@ -12,16 +12,17 @@
 
 #include "core/image.h"
 #include "core/timing.h"
+#include "core/work_counts.h"
 #include "raster_compare/compare/artifacts.h"
 #include "raster_compare/compare/penumbra_width.h"
 #include "raster_compare/compare/temporal.h"
 
 namespace so {
 
-// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 6 adds
-// penumbra_spread_rate, and on area lights acne_rate and other_false_*_rate no longer count the
-// pixels of a penumbra too wide or shifted.
-inline constexpr int kMetricsSchemaVersion = 6;
+// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 7 adds
+// cost.work (6 added penumbra_spread_rate, and on area lights acne_rate and other_false_*_rate no
+// longer count the pixels of a penumbra too wide or shifted).
+inline constexpr int kMetricsSchemaVersion = 7;
 
 struct MetricOptions {
     int boundaryRadius = 2;  // r: pixels from an oracle shadow boundary
@@ -92,6 +93,8 @@ struct TechniqueCost {
     // A technique that precomputes (lightmaps): the light's bake before the first frame, wall
     // time; in no frame time. Null for every other technique.
     std::optional<double> bakeMs;
+    // The light's passes' work in one frame (docs/metrics.md, "Work"); none for an image.
+    std::optional<WorkCounts> work;
     // An external image's times are one figure each, not a median of frames: no quartiles.
     bool quartiles = true;
     double oracleSeconds = 0.0;  // what the ground truth of this light cost

@@ -37,7 +37,7 @@ std::string num(std::optional<double> v, int digits = 4) {
 }
 
 // One number format per column: how a value reads in the tables.
-enum class Format { Error, Percent, Pixels, Signed, Ms, MiB };
+enum class Format { Error, Percent, Pixels, Signed, Ms, MiB, Count };
 
 std::string formatted(double v, Format f) {
     char buf[32];
@@ -60,8 +60,23 @@ std::string formatted(double v, Format f) {
         case Format::MiB:
             std::snprintf(buf, sizeof buf, "%.2f", v / 1048576.0);
             break;
+        case Format::Count:  // 3 significant digits with k, M, G beyond a thousand
+            if (v < 1e3)
+                std::snprintf(buf, sizeof buf, "%.0f", v);
+            else if (v < 1e6)
+                std::snprintf(buf, sizeof buf, "%.3g k", v / 1e3);
+            else if (v < 1e9)
+                std::snprintf(buf, sizeof buf, "%.3g M", v / 1e6);
+            else
+                std::snprintf(buf, sizeof buf, "%.3g G", v / 1e9);
+            break;
     }
     return buf;
+}
+
+// The value with its unit, where the column's header would say it: "12.3 ms", "195.48 MiB".
+std::string withUnit(double v, Format f) {
+    return formatted(v, f) + (f == Format::Ms ? " ms" : f == Format::MiB ? " MiB" : "");
 }
 
 // A numeric column of the tables: its metric key (docs/metrics.md), header, tooltip, format and
@@ -75,6 +90,10 @@ struct Column {
 
 std::optional<double> median(const std::optional<TimingStats>& t) {
     return t ? std::optional(t->median) : std::nullopt;
+}
+
+std::optional<double> workCount(const LightComparison& l, uint64_t WorkCounts::*count) {
+    return l.cost.work ? std::optional(double((*l.cost.work).*count)) : std::nullopt;
 }
 
 const std::vector<Column>& columns() {
@@ -132,6 +151,21 @@ const std::vector<Column>& columns() {
          [](L l) {
              return l.cost.memoryBytes ? std::optional(double(*l.cost.memoryBytes)) : std::nullopt;
          }},
+        {"cost.work.fragments", "fragments",
+         "fragment shader invocations of the light's passes in a frame (docs/metrics.md, Work)",
+         Format::Count, [](L l) { return workCount(l, &WorkCounts::fragments); }},
+        {"cost.work.texture_taps", "taps", "texture lookups of the light's passes in a frame",
+         Format::Count, [](L l) { return workCount(l, &WorkCounts::textureTaps); }, false},
+        {"cost.work.texels_written", "texels written",
+         "render-target texels the light's passes write in a frame, each once per pass",
+         Format::Count, [](L l) { return workCount(l, &WorkCounts::texelsWritten); }, false},
+        {"cost.work.bytes_moved", "MiB moved",
+         "render-target bytes written and read and the bytes the taps fetch, in a frame",
+         Format::MiB, [](L l) { return workCount(l, &WorkCounts::bytesMoved); }},
+        {"cost.work.draw_calls", "draws", "draw calls of the light's passes in a frame",
+         Format::Count, [](L l) { return workCount(l, &WorkCounts::drawCalls); }, false},
+        {"cost.work.passes", "passes", "passes the light runs in a frame", Format::Count,
+         [](L l) { return workCount(l, &WorkCounts::passes); }, false},
         {"cost.oracle_ms_at_equal_error", "oracle ms at same error",
          "the oracle's time until its penumbra's 95% half-width came down to this penumbra mae",
          Format::Ms, [](L l) { return l.cost.oracleMsAtEqualError; }, false},
@@ -170,6 +204,8 @@ bool formatFits(Format f, MetricUnit u) {
             return u == MetricUnit::Ms;
         case Format::MiB:
             return u == MetricUnit::Bytes;
+        case Format::Count:
+            return u == MetricUnit::Count;
     }
     return false;
 }
@@ -219,48 +255,92 @@ std::vector<std::string> columnCells(const Column& c,
     }
     return cells;
 }
-// One light's techniques as points of error against cost (docs/metrics.md, "Error against
-// cost"): penumbra_mae on area lights (the oracle's curve beside them), mae on hard ones.
+// The error and cost a chart can plot: those with a value for some technique of the light, as
+// (key, name, column).
+struct ChartChoice {
+    std::string key, name;
+    const Column* column;
+};
+
+std::vector<ChartChoice> chartChoices(const ReportInput& in, size_t li, bool costs) {
+    static const std::vector<std::pair<std::string, std::string>> errors = {
+        {"penumbra_mae", "penumbra mae"},
+        {"mae", "mae"},
+        {"acne_rate", "acne rate"},
+        {"peter_panning_rate", "peter-panning rate"},
+        {"boundary_displacement_px.p95", "boundary displacement p95 (px)"},
+        {"light_bleeding_rate", "light bleeding rate"},
+        {"temporal_flicker_rate", "temporal flicker rate"}};
+    static const std::vector<std::pair<std::string, std::string>> cost = {
+        {"frame_ms", "frame time (ms)"},
+        {"shadow_map_ms", "shadow pass time (ms)"},
+        {"visibility_ms", "visibility pass time (ms)"},
+        {"memory_bytes", "memory (bytes)"},
+        {"work.fragments", "fragments"},
+        {"work.texture_taps", "texture taps"},
+        {"work.texels_written", "texels written"},
+        {"work.bytes_moved", "bytes moved"},
+        {"work.draw_calls", "draw calls"},
+        {"work.passes", "passes"}};
+    std::vector<ChartChoice> out;
+    for (const auto& [key, name] : costs ? cost : errors) {
+        const Column& c = findColumn(costs ? "cost." + key : key);
+        if (anyValue(in, li, c)) out.push_back({key, name, &c});
+    }
+    return out;
+}
+
+// One light's techniques as points of error against one cost (docs/metrics.md, "Error against
+// cost"): penumbra_mae on area lights (the oracle's curve beside them, against frame time), mae
+// on hard ones.
 struct ChartData {
     std::vector<TradeoffPoint> points;
     std::vector<std::pair<double, double>> oracle;  // (ms, penumbra mean stated half-width)
     std::optional<OracleExactPoint> exact;          // where the exact pass gave V
     std::string error;                              // the error's name, for the axis
+    ChartChoice cost;
 };
 
-ChartData chartData(const ReportInput& in, size_t light) {
+ChartData chartData(const ReportInput& in, size_t light, const ChartChoice& cost) {
     ChartData d;
+    d.cost = cost;
     const bool area = hasPenumbra(in, light);
     d.error = area ? "penumbra_mae" : "mae";
     for (const ReportTechnique& t : in.techniques) {
         const LightMetrics& m = t.lights[light].metrics;
         if (area && !m.penumbraMae) continue;
-        if (!t.lights[light].cost.frameMs) continue;  // an external image without its cost
-        d.points.push_back({t.label, t.curve, t.quality, t.lights[light].cost.frameMs->median,
-                            area ? *m.penumbraMae : m.mae});
+        // An external image without that cost (or a technique without a time) has no point.
+        const std::optional<double> c = cost.column->value(t.lights[light]);
+        if (!c) continue;
+        d.points.push_back({t.label, t.curve, t.quality, *c, area ? *m.penumbraMae : m.mae});
     }
-    if (area && light < in.oracleCurves.size())
+    // The oracle's times are times: beside frame times only.
+    if (!area || cost.key != "frame_ms") return d;
+    if (light < in.oracleCurves.size())
         for (const auto& [ms, e] : in.oracleCurves[light])
             if (ms > 0.0 && e > 0.0) d.oracle.emplace_back(ms, e);
-    if (area && light < in.oracleExact.size()) d.exact = in.oracleExact[light];
+    if (light < in.oracleExact.size()) d.exact = in.oracleExact[light];
     return d;
 }
 
-// The chart read off at error budgets: the cheapest setting within each, and (area lights) the
-// oracle's time to state intervals that small.
-std::string budgetTable(const ChartData& d) {
+// The chart read off at error budgets for one cost: the cheapest setting within each, and (area
+// lights, against frame time) the oracle's time to state intervals that small. The script shows
+// the table of the cost selected (data-cost); without it the first, frame time, shows.
+std::string budgetTable(const ChartData& d, bool shown) {
     if (d.points.empty()) return "";
     std::ostringstream s;
-    s << "<p class=\"caption\">Read off at error budgets (" << html(d.error)
-      << " against frame time):</p><table class=\"budget\"><tr><th>" << html(d.error)
-      << " at most</th><th>cheapest setting</th><th>its frame ms</th>"
+    s << "<div class=\"budget-box\" data-cost=\"" << html(d.cost.key) << "\""
+      << (shown ? "" : " hidden") << "><p class=\"caption\">Read off at error budgets ("
+      << html(d.error) << " against " << html(d.cost.name)
+      << "):</p><table class=\"budget\"><tr><th>" << html(d.error)
+      << " at most</th><th>cheapest setting</th><th>its cost</th>"
       << (d.oracle.empty() ? "" : "<th>oracle ms to state 95% intervals that small</th>")
       << "</tr>";
     for (double budget : {0.2, 0.1, 0.05, 0.02, 0.01, 0.005}) {
         const std::optional<size_t> best = cheapestWithin(d.points, budget);
         s << "<tr><td>" << num(budget, 3) << "</td><td>"
           << (best ? html(d.points[*best].label) : "none") << "</td><td>"
-          << (best ? num(d.points[*best].ms, 3) : "–") << "</td>";
+          << (best ? withUnit(d.points[*best].cost, d.cost.column->format) : "–") << "</td>";
         if (!d.oracle.empty()) {
             const std::optional<double> ms = oracleMsAtError(d.oracle, budget);
             s << "<td>" << (ms ? num(*ms, 3) : "not within its run") << "</td>";
@@ -273,6 +353,7 @@ std::string budgetTable(const ChartData& d) {
           << " pixels their V without sampling error (any budget) in " << num(d.exact->ms, 3)
           << " ms: the sampled pass that found them and " << num(d.exact->exactMs, 3)
           << " ms of clipping.</p>";
+    s << "</div>";
     return s.str();
 }
 
@@ -344,35 +425,6 @@ void writeSummary(std::ostream& o, const ReportInput& in, size_t li) {
     o << "</div></div>";
 }
 
-// The error and cost a chart can plot: those with a value for some technique of the light, as
-// (key, name, column).
-struct ChartChoice {
-    std::string key, name;
-    const Column* column;
-};
-
-std::vector<ChartChoice> chartChoices(const ReportInput& in, size_t li, bool costs) {
-    static const std::vector<std::pair<std::string, std::string>> errors = {
-        {"penumbra_mae", "penumbra mae"},
-        {"mae", "mae"},
-        {"acne_rate", "acne rate"},
-        {"peter_panning_rate", "peter-panning rate"},
-        {"boundary_displacement_px.p95", "boundary displacement p95 (px)"},
-        {"light_bleeding_rate", "light bleeding rate"},
-        {"temporal_flicker_rate", "temporal flicker rate"}};
-    static const std::vector<std::pair<std::string, std::string>> cost = {
-        {"frame_ms", "frame time (ms)"},
-        {"shadow_map_ms", "shadow pass time (ms)"},
-        {"visibility_ms", "visibility pass time (ms)"},
-        {"memory_bytes", "memory (bytes)"}};
-    std::vector<ChartChoice> out;
-    for (const auto& [key, name] : costs ? cost : errors) {
-        const Column& c = findColumn(costs ? "cost." + key : key);
-        if (anyValue(in, li, c)) out.push_back({key, name, &c});
-    }
-    return out;
-}
-
 // The data the script draws one light's chart from (report_assets.h).
 nlohmann::json lightData(const ReportInput& in, size_t li) {
     const std::vector<ChartChoice> errors = chartChoices(in, li, false),
@@ -432,8 +484,13 @@ void writeChartBox(std::ostream& o, const ReportInput& in, size_t li, const nloh
     o << "</select></label><br><svg class=\"chart\" viewBox=\"0 0 640 360\" width=\"640\" "
          "height=\"360\" role=\"img\" aria-label=\"error against cost\"></svg>"
       << "<p class=\"caption\"></p>";
-    const ChartData data = chartData(in, li);
-    o << budgetTable(data) << "</div>";
+    bool first = true;
+    for (const ChartChoice& c : chartChoices(in, li, true)) {
+        const std::string table = budgetTable(chartData(in, li, c), first);
+        first = first && table.empty();
+        o << table;
+    }
+    o << "</div>";
 }
 
 // The classes' colours, beside the error maps.

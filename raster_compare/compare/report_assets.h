@@ -125,6 +125,8 @@ function drawChart(box, L) {
     if (onCurve.has(q)) label(X(q.x), Y(q.y), q.p.curve.split(' ')[0] + ' ' + String(q.p.quality), 'label');
     else label(X(q.x), Y(q.y), q.p.label);
   }
+  // The budget table of the cost selected (report.cpp writes one per cost).
+  box.querySelectorAll('.budget-box').forEach(b => { b.hidden = b.dataset.cost !== ck; });
   box.querySelector('.caption').textContent = pts.length
     ? `${pts.length} settings. Orange dashed: the Pareto front (${front.map(q => q.p.label).join(', ')}): no other setting is both cheaper and more accurate. Grey lines join the settings of one technique that differ only in its quality parameter.` +
       (oracle.length ? ' Blue: the oracle, its penumbra\'s mean stated 95% half-width against its own time.' : '') +

@@ -72,9 +72,17 @@ struct Cost {
     double scale;
 };
 
-const std::array<Cost, 2>& costs() {
-    static const std::array<Cost, 2> c = {
-        {{kFrameMs, "frame time", "ms", 1.0}, {kMemory, "memory", "MiB", 1.0 / 1048576.0}}};
+// Frame time and memory, then the work of a frame (docs/metrics.md, Work).
+const std::array<Cost, 8>& costs() {
+    static const std::array<Cost, 8> c = {
+        {{kFrameMs, "frame time", "ms", 1.0},
+         {kMemory, "memory", "MiB", 1.0 / 1048576.0},
+         {"cost.work.fragments", "fragments", "count", 1.0},
+         {"cost.work.texture_taps", "texture taps", "count", 1.0},
+         {"cost.work.texels_written", "texels written", "count", 1.0},
+         {"cost.work.bytes_moved", "bytes moved", "MiB", 1.0 / 1048576.0},
+         {"cost.work.draw_calls", "draw calls", "count", 1.0},
+         {"cost.work.passes", "passes", "count", 1.0}}};
     return c;
 }
 
@@ -268,7 +276,7 @@ std::string pointSvg(const Points& p, size_t i, double cx, double cy, const std:
     s << "<circle cx=\"" << cx << "\" cy=\"" << cy << "\" r=\"" << (onFront ? 4.5 : 3)
       << "\" fill=\"" << colour << "\""
       << (onFront ? " stroke=\"#000\" stroke-width=\"1.3\"" : " fill-opacity=\"0.45\"")
-      << "><title>" << html(p.points[i].label) << ": " << num(p.points[i].ms) << " " << cost.unit
+      << "><title>" << html(p.points[i].label) << ": " << num(p.points[i].cost) << " " << cost.unit
       << ", error " << num(p.points[i].error) << "</title></circle>";
     return s.str();
 }
@@ -278,7 +286,7 @@ std::string frontSvg(const Points& p, const std::vector<size_t>& front, const Co
                      const std::string& metric, const ColourMap& colours) {
     std::vector<double> xs, ys;
     for (const TradeoffPoint& q : p.points) {
-        xs.push_back(q.ms);
+        xs.push_back(q.cost);
         ys.push_back(q.error);
     }
     const Axis x = axisOf(xs, kLeft + 6, kChartW - kRight - 6, true);
@@ -310,7 +318,7 @@ std::string frontTable(const Points& p, const std::vector<size_t>& front, const 
       << "</th></tr></thead><tbody>";
     for (size_t i : front)
         s << "<tr><td class=\"text label\">" << html(p.points[i].label) << "</td><td data-v=\""
-          << exact(p.points[i].ms) << "\">" << num(p.points[i].ms) << "</td><td data-v=\""
+          << exact(p.points[i].cost) << "\">" << num(p.points[i].cost) << "</td><td data-v=\""
           << exact(p.points[i].error) << "\">" << num(p.points[i].error) << "</td></tr>";
     s << "</tbody></table>";
     return s.str();
@@ -340,23 +348,32 @@ std::string frontCard(const Group& g, const std::string& metric, const Cost& cos
     const Points p = pointsOf(g.rows, metric, cost);
     if (p.points.empty()) return "";
     const std::vector<size_t> front = paretoFront(p.points);
-    return "<figure class=\"front-card\" data-metric=\"" + html(metric) + "\"><figcaption>" +
-           metricTitle(metric) + " against " + html(cost.name) + "</figcaption>" +
-           frontSvg(p, front, cost, metric, colours) + frontTable(p, front, cost, metric) +
-           "</figure>";
+    return "<figure class=\"front-card\" data-metric=\"" + html(metric) + "\" data-cost=\"" +
+           html(cost.key) + "\"><figcaption>" + metricTitle(metric) + " against " +
+           html(cost.name) + "</figcaption>" + frontSvg(p, front, cost, metric, colours) +
+           frontTable(p, front, cost, metric) + "</figure>";
 }
 
-// Without script every chart shows; with it, the box (mae first) narrows them to one artifact.
+// Without script every chart shows; with it, the boxes (mae first; frame time and memory first)
+// narrow them to one artifact and to some costs.
 void writeFrontsIntro(std::ostream& o, const std::vector<std::string>& metrics,
                       const SweepReportInput& in) {
     o << "<h3>Pareto fronts: error against cost</h3><p class=\"muted\">A setting is on the front "
          "when no other is both cheaper and more accurate. Times were measured on <b>"
       << html(in.timedOn.empty() ? "an unrecorded renderer" : in.timedOn)
-      << "</b>; memory is the GL memory the technique holds for the light.</p>"
+      << "</b>; memory is the GL memory the technique holds for the light; the work of a frame "
+         "(fragments, texture taps, texels written, bytes moved, draw calls, passes) is counted "
+         "exactly, what a GPU's time follows (docs/metrics.md, Work).</p>"
       << "<label class=\"js-only\" hidden>artifact <select class=\"front-select\">";
     for (const std::string& m : metrics)
         o << "<option value=\"" << html(m) << "\"" << (m == kMae ? " selected" : "") << ">"
           << html(metricName(m)) << "</option>";
+    o << "<option value=\"*\">all</option></select></label> <label class=\"js-only\" "
+         "hidden>cost <select class=\"cost-select\"><option value=\""
+      << kFrameMs << " " << kMemory << "\" selected>frame time and memory</option>";
+    for (const Cost& c : costs())
+        if (c.key != kFrameMs && c.key != kMemory)
+            o << "<option value=\"" << html(c.key) << "\">" << html(c.name) << "</option>";
     o << "<option value=\"*\">all</option></select></label>";
 }
 
@@ -381,23 +398,25 @@ void writeFronts(std::ostream& o, const Group& g, const SweepReportInput& in,
 
 // ---- the cheapest setting at error budgets ----
 
-// By frame time, then memory: cheapestWithin() keeps the first of equal times, so this order
-// lets memory break the ties. Settings without a time cannot be ranked and are left out.
-std::vector<const SweepRow*> byCost(std::vector<const SweepRow*> rows) {
+// By the cost, then memory (frame time, for memory itself): cheapestWithin() keeps the first of
+// equal costs, so this order breaks the ties. Settings without the cost cannot be ranked and are
+// left out.
+std::vector<const SweepRow*> byCost(std::vector<const SweepRow*> rows, const Cost& cost) {
     rows.erase(std::remove_if(rows.begin(), rows.end(),
-                              [](const SweepRow* r) { return !metricOf(*r, kFrameMs); }),
+                              [&](const SweepRow* r) { return !metricOf(*r, cost.key); }),
                rows.end());
-    const auto memory = [](const SweepRow* r) { return metricOf(*r, kMemory).value_or(HUGE_VAL); };
+    const std::string& tieKey = cost.key == kMemory ? kFrameMs : kMemory;
+    const auto tie = [&](const SweepRow* r) { return metricOf(*r, tieKey).value_or(HUGE_VAL); };
     std::stable_sort(rows.begin(), rows.end(), [&](const SweepRow* a, const SweepRow* b) {
-        const double ta = *metricOf(*a, kFrameMs), tb = *metricOf(*b, kFrameMs);
-        return ta < tb || (ta == tb && memory(a) < memory(b));
+        const double ca = *metricOf(*a, cost.key), cb = *metricOf(*b, cost.key);
+        return ca < cb || (ca == cb && tie(a) < tie(b));
     });
     return rows;
 }
 
 std::string budgetRow(const std::vector<const SweepRow*>& ranked, const std::string& metric,
-                      const std::vector<double>& budgets) {
-    const Points p = pointsOf(ranked, metric, costs()[0]);
+                      const std::vector<double>& budgets, const Cost& cost) {
+    const Points p = pointsOf(ranked, metric, cost);
     std::ostringstream s;
     for (double budget : budgets) {
         const std::optional<size_t> best = cheapestWithin(p.points, budget);
@@ -407,31 +426,40 @@ std::string budgetRow(const std::vector<const SweepRow*>& ranked, const std::str
         }
         s << "<td class=\"text\" title=\"" << html(p.points[*best].label) << "\">"
           << html(shortLabel(*p.rows[*best])) << " <span class=\"muted\">"
-          << num(p.points[*best].ms) << " ms</span></td>";
+          << num(p.points[*best].cost) << " " << cost.unit << "</span></td>";
     }
     return s.str();
 }
 
-void writeBudgets(std::ostream& o, const Group& g, const std::vector<double>& budgets) {
-    o << "<h3>Cheapest setting per technique at error budgets</h3><p class=\"muted\">The setting "
-         "with the least frame time (ties: the least memory) whose error is at most the budget; "
-         "\"none\" when no setting of the technique is that accurate.</p><table "
-         "class=\"budgets\"><thead><tr><th class=\"text\">technique</th><th "
-         "class=\"text\">error</th>";
+void writeBudgetTable(std::ostream& o, const Group& g, const std::vector<double>& budgets,
+                      const Cost& cost) {
+    o << "<div class=\"budget-box\" data-cost=\"" << html(cost.key) << "\"><p class=\"caption\">By "
+      << html(cost.name)
+      << ":</p><table class=\"budgets\"><thead><tr><th "
+         "class=\"text\">technique</th><th class=\"text\">error</th>";
     for (double b : budgets) o << "<th class=\"text\">&le; " << num(b) << "</th>";
     o << "</tr></thead><tbody>";
     for (const std::string& t : techniquesOf(g.rows)) {
-        const std::vector<const SweepRow*> ranked = byCost(rowsOf(g, t));
+        const std::vector<const SweepRow*> ranked = byCost(rowsOf(g, t), cost);
         bool first = true;
         for (const std::string& m : errorMetrics(ranked)) {
             o << "<tr" << (first ? " class=\"first\"" : "") << " data-technique=\"" << html(t)
               << "\" data-metric=\"" << html(m) << "\"><th class=\"text\">"
               << (first ? html(t) : "") << "</th><td class=\"text\">" << html(metricName(m))
-              << "</td>" << budgetRow(ranked, m, budgets) << "</tr>";
+              << "</td>" << budgetRow(ranked, m, budgets, cost) << "</tr>";
             first = false;
         }
     }
-    o << "</tbody></table>";
+    o << "</tbody></table></div>";
+}
+
+// One table per cost, frame time's first and the others hidden until the cost box names them.
+void writeBudgets(std::ostream& o, const Group& g, const std::vector<double>& budgets) {
+    o << "<h3>Cheapest setting per technique at error budgets</h3><p class=\"muted\">The setting "
+         "with the least cost (frame time by default, ties: the least memory) whose error is at "
+         "most the budget; \"none\" when no setting of the technique is that accurate.</p>";
+    for (const Cost& cost : costs())
+        if (anyHas(g.rows, cost.key)) writeBudgetTable(o, g, budgets, cost);
 }
 
 // ---- heat maps over the swept parameters ----
@@ -656,14 +684,22 @@ nav ol{columns:2;font-size:.95em}
 // every chart shows.
 constexpr const char* kScript = R"(<script>
 document.querySelectorAll('select.front-select').forEach(function (s) {
+  var section = s.closest('section'), cost = section.querySelector('select.cost-select');
   s.parentNode.hidden = false;
-  var section = s.closest('section');
+  cost.parentNode.hidden = false;
   function apply() {
+    var costs = cost.value.split(' ');
     section.querySelectorAll('.front-card').forEach(function (c) {
-      c.hidden = s.value !== '*' && c.dataset.metric !== s.value;
+      c.hidden = (s.value !== '*' && c.dataset.metric !== s.value) ||
+                 (cost.value !== '*' && costs.indexOf(c.dataset.cost) < 0);
+    });
+    // The budget tables of the first cost named (frame time for "frame time and memory").
+    section.querySelectorAll('.budget-box').forEach(function (b) {
+      b.hidden = cost.value !== '*' && b.dataset.cost !== costs[0];
     });
   }
   s.addEventListener('change', apply);
+  cost.addEventListener('change', apply);
   apply();
 });
 </script>)";

@@ -10,8 +10,8 @@ std::vector<size_t> paretoFront(const std::vector<TradeoffPoint>& points) {
     std::vector<size_t> order(points.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return points[a].ms < points[b].ms ||
-               (points[a].ms == points[b].ms && points[a].error < points[b].error);
+        return points[a].cost < points[b].cost ||
+               (points[a].cost == points[b].cost && points[a].error < points[b].error);
     });
     std::vector<size_t> front;
     for (size_t i : order)
@@ -42,7 +42,7 @@ std::vector<TradeoffCurve> qualityCurves(const std::vector<TradeoffPoint>& point
 std::optional<size_t> cheapestWithin(const std::vector<TradeoffPoint>& points, double budget) {
     std::optional<size_t> best;
     for (size_t i = 0; i < points.size(); ++i)
-        if (points[i].error <= budget && (!best || points[i].ms < points[*best].ms)) best = i;
+        if (points[i].error <= budget && (!best || points[i].cost < points[*best].cost)) best = i;
     return best;
 }
 

@@ -17,7 +17,7 @@ struct TradeoffPoint {
     // technique's name and its other parameters); `quality` is that parameter's value.
     std::string curve;
     std::optional<double> quality;
-    double ms = 0.0;     // the cost: median frame time
+    double cost = 0.0;   // the cost: median frame time, or another cost axis (bytes, fragments)
     double error = 0.0;  // mean error against the oracle (which one is the caller's choice)
 };
 

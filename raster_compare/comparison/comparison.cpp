@@ -88,6 +88,7 @@ TechniqueCost techniqueCost(const RasterStats& stats, size_t li, double oracleSe
     cost.memoryBytes = stats.lights[li].memoryBytes;
     // A bake (lightmaps) is not a frame: apart from frame_ms.
     cost.bakeMs = stats.lights[li].bakeMs;
+    if (stats.lights[li].work) cost.work = stats.lights[li].work->counts;
     cost.oracleSeconds = oracleSeconds;  // what the ground truth cost, so every row has both
     return cost;
 }

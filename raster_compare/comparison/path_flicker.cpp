@@ -44,6 +44,7 @@ PathFrame renderFrame(const Scene& scene, const std::vector<const Technique*>& t
     r.camera = pose;
     r.frames = 1;
     r.warmup = 0;
+    r.countWork = false;  // V only: the work is counted on the scene's own camera
     frame.rasters.resize(techniques.size());
     renderInterleaved(scene, techniques, r, gl, {nullptr, [&](size_t i, RasterResult&& result) {
                                                      frame.rasters[i] = std::move(result.image);

@@ -9,6 +9,7 @@
 #include "core/geometry_channels.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 
@@ -42,10 +43,7 @@ CameraPass::CameraPass(const GpuScene& scene, const CameraDesc& desc)
     clipFromLocal_ = cameraClipFromLocal(scene, camera_, lsEye_);
     pixelScale_ =
         2.0 * std::tan(0.5 * desc.vfovDeg * 3.14159265358979323846 / 180.0) / double(height());
-    program_ = buildProgram(scene.alphaDefines(), shaders::scene_vert,
-                            {shaders::alpha_test_glsl, shaders::geometry_frag});
-    setMat4(program_.get(), "u_clipFromLocal", clipFromLocal_);
-    setVec3(program_.get(), "u_lsEye", lsEye_);
+    program_ = buildGeometryProgram();
     const int W = width(), H = height();
     position_ = makeTarget(GL_RGBA32F, W, H);
     normal_ = makeTarget(GL_RGBA32F, W, H);
@@ -62,7 +60,20 @@ CameraPass::CameraPass(const GpuScene& scene, const CameraDesc& desc)
     glNamedFramebufferDrawBuffers(fbo_.get(), 3, buffers);
 }
 
-void CameraPass::render() const {
+GlProgram CameraPass::buildGeometryProgram() const {
+    GlProgram p = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
+                               {shaders::alpha_test_glsl, shaders::geometry_frag});
+    setMat4(p.get(), "u_clipFromLocal", clipFromLocal_);
+    setVec3(p.get(), "u_lsEye", lsEye_);
+    return p;
+}
+
+void CameraPass::render(bool countingBuild) const {
+    if (countingBuild && !countingProgram_.get()) {
+        const CountingBuild counting;
+        countingProgram_ = buildGeometryProgram();
+    }
+    const GLuint program = countingBuild ? countingProgram_.get() : program_.get();
     glViewport(0, 0, width(), height());
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
     const float zero4[4] = {0, 0, 0, 0}, normalClear[4] = {0, 0, 0, -1},
@@ -72,8 +83,13 @@ void CameraPass::render() const {
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 2, primClear);
     glClearNamedFramebufferfv(fbo_.get(), GL_DEPTH, 0, &zero);  // reversed depth: 0 is far
     glDepthFunc(GL_GREATER);
-    glUseProgram(program_.get());
-    scene_.draw(program_.get(), true);
+    glUseProgram(program);
+    scene_.draw(program, true);
+}
+
+std::string CameraPass::texelBytesDefines() const {
+    return "#define POSITION_TEXEL_BYTES " + std::to_string(texelBytes(position_.get())) +
+           "\n#define NORMAL_TEXEL_BYTES " + std::to_string(texelBytes(normal_.get())) + "\n";
 }
 
 Bounds3d CameraPass::receiverBounds() const {
@@ -128,6 +144,10 @@ void LightTarget::bindAndClear() const {
     const float zero4[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, zero4);
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 1, zero4);
+}
+
+std::string LightTarget::texelBytesDefines() const {
+    return "#define VISIBILITY_TEXEL_BYTES " + std::to_string(texelBytes(visibility_.get())) + "\n";
 }
 
 std::vector<float> LightTarget::readVisibility() const {

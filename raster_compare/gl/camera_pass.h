@@ -4,6 +4,7 @@
 // a technique shades exactly the surfaces the camera pass found.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -30,9 +31,13 @@ class CameraPass {
     // The last render's local position (w: 1 where a surface was hit) and camera-facing normal.
     GLuint positionTexture() const { return position_.get(); }
     GLuint normalTexture() const { return normal_.get(); }
+    // POSITION_TEXEL_BYTES and NORMAL_TEXEL_BYTES: for the SO_TAP of a pass that reads them.
+    std::string texelBytesDefines() const;
 
-    // Clears and draws; the caller has set the frame's state (depth test and writes on).
-    void render() const;
+    // Clears and draws; the caller has set the frame's state (depth test and writes on). With
+    // `countingBuild`, through a counting build of its program (the counted frame, work_counter.h),
+    // made on first use.
+    void render(bool countingBuild = false) const;
     // Renders once and returns the local-frame bounds of the surfaces seen (empty if none).
     Bounds3d receiverBounds() const;
     // The nearest and farthest view depth (local units, along the camera's forward axis) of a
@@ -46,12 +51,15 @@ class CameraPass {
     void readGeometry(ChannelImage& image) const;
 
   private:
+    GlProgram buildGeometryProgram() const;
+
     const GpuScene& scene_;
     Camera camera_;
     glm::dmat4 clipFromLocal_{1.0};
     glm::dvec3 lsEye_{0.0};
     double pixelScale_ = 0.0;
     GlProgram program_;
+    mutable GlProgram countingProgram_;
     GlTexture position_, normal_, prim_, depth_;
     GlFramebuffer fbo_;
     mutable DepthRange visibleDepths_;
@@ -64,6 +72,8 @@ class LightTarget {
     void bindAndClear() const;
     std::vector<float> readVisibility() const;  // top row first
     GLuint visibilityTexture() const { return visibility_.get(); }
+    // VISIBILITY_TEXEL_BYTES: for the SO_TAP of a pass that reads V.
+    std::string texelBytesDefines() const;
     std::vector<float> readAliasing() const;
 
   private:

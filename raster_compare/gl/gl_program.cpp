@@ -5,9 +5,57 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "raster_compare/gl/shaders.h"
+
 namespace so {
 
 namespace {
+
+thread_local int countingBuilds = 0;  // CountingBuild objects alive on this thread
+
+// The fragment stage's prelude (after the defines) and, in a counting build, its last source.
+// Every fragment shader's main becomes soMain, called by a main that counts the invocation and
+// then adds the taps it made: an invocation sums its own taps and adds them once, as contended
+// atomics per tap made a blurred moment map's counted frame several times as slow. A discard ends
+// the invocation before that: `discard` adds them first. The counters add with a carry into the
+// high half, so that no count wraps at 2^32.
+constexpr const char* kTapPrelude = "#define SO_TAP(texels, texelBytes)\n";
+constexpr const char* kCountingPrelude = R"glsl(#define SO_COUNT_WORK
+layout(std430, binding = 7) buffer SoWorkCounters { uint so_work[6]; };
+uint so_taps = 0u, so_tapBytes = 0u;
+void soAdd(int i, uint v) {
+    if (v == 0u) return;
+    uint before = atomicAdd(so_work[i], v);
+    if (before > 0xffffffffu - v) atomicAdd(so_work[i + 1], 1u);
+}
+void soAddTaps() {
+    soAdd(2, so_taps);
+    soAdd(4, so_tapBytes);
+}
+void soTap(uint texels, uint texelBytes) {
+    so_taps += 1u;
+    so_tapBytes += texels * texelBytes;
+}
+#define SO_TAP(texels, texelBytes) soTap(uint(texels), uint(texelBytes))
+#define discard { soAddTaps(); discard; }
+#define main soMain
+)glsl";
+static_assert(kWorkCounterBinding == 7, "kCountingPrelude's binding");
+constexpr const char* kCountingEpilogue = R"glsl(
+#undef main
+void main() {
+    soAdd(0, 1u);
+    soMain();
+    soAddTaps();
+}
+)glsl";
+
+// A program whose alpha test may discard keeps its depth and stencil tests after the shader.
+bool mayDiscard(const std::string& defines, const std::vector<const char*>& fragmentSources) {
+    return std::find(fragmentSources.begin(), fragmentSources.end(), shaders::alpha_test_glsl) !=
+               fragmentSources.end() &&
+           defines.find("#define ALPHA_TEST_OFF") == std::string::npos;
+}
 
 GlShader compileShader(GLenum stage, const std::vector<std::string>& sources) {
     GlShader s(glCreateShader(stage));
@@ -27,14 +75,27 @@ GlShader compileShader(GLenum stage, const std::vector<std::string>& sources) {
 
 }  // namespace
 
+CountingBuild::CountingBuild() {
+    ++countingBuilds;
+}
+CountingBuild::~CountingBuild() {
+    --countingBuilds;
+}
+
 GlProgram buildProgram(const std::string& defines, const char* vertexSource,
                        const std::vector<const char*>& fragmentSources) {
     // SO_VERTEX_SHADER or SO_FRAGMENT_SHADER tells a file that holds both stages which it is.
     const std::string header = "#version 450 core\n" + defines;
     GlShader vs = compileShader(GL_VERTEX_SHADER,
                                 {header + "#define SO_VERTEX_SHADER\n#line 1\n", vertexSource});
-    std::vector<std::string> fragment = {header + "#define SO_FRAGMENT_SHADER\n#line 1\n"};
+    const bool counting = countingBuilds > 0;
+    std::string prelude = header + "#define SO_FRAGMENT_SHADER\n";
+    if (counting && !mayDiscard(defines, fragmentSources))
+        prelude += "layout(early_fragment_tests) in;\n";
+    prelude += counting ? kCountingPrelude : kTapPrelude;
+    std::vector<std::string> fragment = {prelude + "#line 1\n"};
     for (const char* src : fragmentSources) fragment.emplace_back(src);
+    if (counting) fragment.emplace_back(kCountingEpilogue);
     GlShader fs = compileShader(GL_FRAGMENT_SHADER, fragment);
     GlProgram p(glCreateProgram());
     glAttachShader(p.get(), vs.get());

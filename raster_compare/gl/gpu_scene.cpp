@@ -114,8 +114,8 @@ void GpuScene::uploadAlphaMasks() {
                                         std::to_string(mask.texture) + " of " +
                                         std::to_string(scene_.alphaTextures.size()));
         const size_t texture = mask.texture >= 0 ? size_t(mask.texture) : alphaTextures_.size() - 1;
-        alpha_[m] =
-            MeshAlpha{alphaTextures_[texture].get(), samplerFor(mask), mask.cutoff, mask.factor};
+        alpha_[m] = MeshAlpha{alphaTextures_[texture].get(), samplerFor(mask), mask.cutoff,
+                              mask.factor, mask.filter == TextureFilter::Bilinear ? 4 : 1};
     }
 }
 
@@ -160,6 +160,7 @@ void GpuScene::setAlphaTest(GLuint program, size_t mesh) const {
     if (!a) return;
     setFloat(program, "u_alphaCutoff", double(a->cutoff));
     setFloat(program, "u_alphaFactor", double(a->factor));
+    setInt(program, "u_alphaTapTexels", a->tapTexels);  // a counting build's only
     glBindTextureUnit(kAlphaTextureUnit, a->texture);
     glBindSampler(kAlphaTextureUnit, a->sampler);
 }

@@ -59,6 +59,7 @@ class GpuScene {
     struct MeshAlpha {
         GLuint texture = 0, sampler = 0;
         float cutoff = 0.5f, factor = 1.0f;
+        int tapTexels = 1;  // what one lookup reads: 4 bilinear, 1 nearest (the work counts)
     };
     void uploadVertices(const std::vector<float>& vertices);
     void uploadAlphaMasks();

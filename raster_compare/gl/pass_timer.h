@@ -1,5 +1,7 @@
-// GL time per pass with GL_TIME_ELAPSED queries, read after the frame so the GPU never stalls
-// mid-frame; medians over the timed frames. (On llvmpipe the queries measure CPU work.)
+// What a frame's passes are recorded with: GL time per pass in the timed frames (PassTimer, with
+// GL_TIME_ELAPSED queries read after the frame, so the GPU never stalls mid-frame; medians over
+// the timed frames; on llvmpipe the queries measure CPU work), their work in the counted frame
+// (WorkCounter, work_counter.h). A technique sees neither: it names its passes to a PassClock.
 #pragma once
 
 #include <map>
@@ -12,10 +14,18 @@
 
 namespace so {
 
-class PassTimer {
+// One pass at a time: begin(pass) ... end().
+class PassRecorder {
   public:
-    void begin(const std::string& pass);
-    void end();
+    virtual ~PassRecorder() = default;
+    virtual void begin(const std::string& pass) = 0;
+    virtual void end() = 0;
+};
+
+class PassTimer final : public PassRecorder {
+  public:
+    void begin(const std::string& pass) override;
+    void end() override;
     // Reads this frame's queries, summing a pass that ran several times; kept only when `keep`
     // (warm-up frames are dropped).
     void endFrame(bool keep);
@@ -31,16 +41,17 @@ class PassTimer {
     std::map<std::string, std::vector<double>> msByPass_;
 };
 
-// What a technique times its passes with: begin("shadow_map") ... end(), one pass at a time (GL
-// timer queries do not nest), recorded as "<light>.<pass>".
+// What a technique names its passes with: begin("shadow_map") ... end(), one pass at a time (GL
+// timer queries do not nest), recorded as "<light>.<pass>": timed, or counted (work_counter.h).
 class PassClock {
   public:
-    PassClock(PassTimer& timer, std::string light) : timer_(timer), light_(std::move(light)) {}
-    void begin(const std::string& pass) { timer_.begin(light_ + "." + pass); }
-    void end() { timer_.end(); }
+    PassClock(PassRecorder& recorder, std::string light)
+        : recorder_(recorder), light_(std::move(light)) {}
+    void begin(const std::string& pass) { recorder_.begin(light_ + "." + pass); }
+    void end() { recorder_.end(); }
 
   private:
-    PassTimer& timer_;
+    PassRecorder& recorder_;
     std::string light_;
 };
 

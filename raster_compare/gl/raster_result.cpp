@@ -10,6 +10,52 @@ void addTiming(nlohmann::json& j, const std::string& key, const TimingStats& t) 
 }
 }  // namespace
 
+PipelineCounts& PipelineCounts::operator+=(const PipelineCounts& o) {
+    verticesSubmitted += o.verticesSubmitted;
+    primitivesSubmitted += o.primitivesSubmitted;
+    vertexShaderInvocations += o.vertexShaderInvocations;
+    fragmentShaderInvocations += o.fragmentShaderInvocations;
+    clippingInputPrimitives += o.clippingInputPrimitives;
+    clippingOutputPrimitives += o.clippingOutputPrimitives;
+    return *this;
+}
+
+PassWork& PassWork::operator+=(const PassWork& o) {
+    counts += o.counts;
+    tapBytes += o.tapBytes;
+    targetBytesRead += o.targetBytesRead;
+    targetBytesWritten += o.targetBytesWritten;
+    if (o.pipeline) {
+        if (pipeline)
+            *pipeline += *o.pipeline;
+        else
+            pipeline = o.pipeline;
+    }
+    return *this;
+}
+
+nlohmann::json toJson(const PassWork& w) {
+    const WorkCounts& c = w.counts;
+    nlohmann::json pipeline;  // null without the queries
+    if (const auto& p = w.pipeline)
+        pipeline = {{"vertices_submitted", p->verticesSubmitted},
+                    {"primitives_submitted", p->primitivesSubmitted},
+                    {"vertex_shader_invocations", p->vertexShaderInvocations},
+                    {"fragment_shader_invocations", p->fragmentShaderInvocations},
+                    {"clipping_input_primitives", p->clippingInputPrimitives},
+                    {"clipping_output_primitives", p->clippingOutputPrimitives}};
+    return {{"fragments", c.fragments},
+            {"texture_taps", c.textureTaps},
+            {"texels_written", c.texelsWritten},
+            {"bytes_moved", c.bytesMoved},
+            {"draw_calls", c.drawCalls},
+            {"passes", c.passes},
+            {"tap_bytes", w.tapBytes},
+            {"target_bytes_read", w.targetBytesRead},
+            {"target_bytes_written", w.targetBytesWritten},
+            {"pipeline", pipeline}};
+}
+
 nlohmann::json toJson(const GlInfo& gl) {
     return {{"renderer", gl.renderer}, {"version", gl.version}, {"platform", gl.platform}};
 }
@@ -60,6 +106,12 @@ nlohmann::json toJson(const RasterLightStats& l) {
         j["bake_ms"] = *l.bakeMs;
         j["bake_passes_ms"] = l.bakePassMs;
     }
+    if (l.work) {
+        j["work"] = toJson(*l.work);
+        nlohmann::json byPass = nlohmann::json::object();
+        for (const auto& [pass, w] : l.workByPass) byPass[pass] = toJson(w);
+        j["work_by_pass"] = byPass;
+    }
     return j;
 }
 }  // namespace
@@ -67,12 +119,15 @@ nlohmann::json toJson(const RasterLightStats& l) {
 nlohmann::json toJson(const RasterStats& s) {
     nlohmann::json lights = nlohmann::json::array();
     for (const RasterLightStats& l : s.lights) lights.push_back(toJson(l));
-    return {{"technique", s.technique},
-            {"parameters", toJson(s.parameters)},
-            {"image", {{"width", s.width}, {"height", s.height}}},
-            {"gl", toJson(s.gl)},
-            {"lights", lights},
-            {"timings", toJson(s.timings)}};
+    nlohmann::json j = {{"technique", s.technique},
+                        {"parameters", toJson(s.parameters)},
+                        {"image", {{"width", s.width}, {"height", s.height}}},
+                        {"gl", toJson(s.gl)},
+                        {"lights", lights},
+                        {"timings", toJson(s.timings)}};
+    if (s.frameWork && s.cameraWork)
+        j["work"] = {{"frame", toJson(*s.frameWork)}, {"camera", toJson(*s.cameraWork)}};
+    return j;
 }
 
 }  // namespace so

@@ -13,12 +13,31 @@
 
 #include "core/image.h"
 #include "core/timing.h"
+#include "core/work_counts.h"
 #include "raster_compare/gl/params.h"
 
 namespace so {
 
 struct GlInfo {
     std::string renderer, version, platform;
+};
+
+// GL_ARB_pipeline_statistics_query's counts of a pass, as the driver reports them. llvmpipe counts
+// fragment shader invocations 16 to each 4 x 4 block of pixels a triangle touches, whatever the
+// depth test does (docs/metrics.md, "Work"): WorkCounts::fragments is the exact count.
+struct PipelineCounts {
+    uint64_t verticesSubmitted = 0, primitivesSubmitted = 0, vertexShaderInvocations = 0,
+             fragmentShaderInvocations = 0, clippingInputPrimitives = 0,
+             clippingOutputPrimitives = 0;
+    PipelineCounts& operator+=(const PipelineCounts& o);
+};
+
+// A pass's work in the counted frame: the counts, bytes_moved's three parts and the pipeline's.
+struct PassWork {
+    WorkCounts counts;
+    uint64_t tapBytes = 0, targetBytesRead = 0, targetBytesWritten = 0;
+    std::optional<PipelineCounts> pipeline;  // none where the driver lacks the queries
+    PassWork& operator+=(const PassWork& o);
 };
 
 // One light's family, camera and map, its passes and their times.
@@ -47,6 +66,9 @@ struct RasterLightStats {
     // ("bake.shadow_map", ...). Absent for every other technique.
     std::optional<double> bakeMs;
     std::map<std::string, double> bakePassMs;
+    // The counted frame's work by pass (empty when the render counted none), and its sum.
+    std::map<std::string, PassWork> workByPass;
+    std::optional<PassWork> work;
 };
 
 struct RasterTimings {
@@ -63,6 +85,9 @@ struct RasterStats {
     GlInfo gl;
     std::vector<RasterLightStats> lights;
     RasterTimings timings;
+    // The counted frame's camera pass (shared by the lights) and the whole frame: every light's
+    // passes and the camera pass. None when the render counted no work.
+    std::optional<PassWork> cameraWork, frameWork;
 };
 
 struct RasterResult {
@@ -74,6 +99,7 @@ nlohmann::json toJson(const GlInfo& gl);
 // Integers as integers: {"resolution": 2048, "alpha": 1.5}.
 nlohmann::json toJson(const std::map<std::string, ParamSetting>& parameters);
 nlohmann::json toJson(const RasterTimings& t);
+nlohmann::json toJson(const PassWork& w);     // {"fragments", ..., "pipeline": {...}}
 nlohmann::json toJson(const RasterStats& s);  // the body of raster.json (docs/cli.md)
 
 }  // namespace so

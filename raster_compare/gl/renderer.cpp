@@ -1,6 +1,7 @@
 #include "raster_compare/gl/renderer.h"
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,8 +12,10 @@
 #include "core/channels.h"
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
 #include "raster_compare/gl/pass_timer.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 
@@ -25,25 +28,27 @@ struct FrameLight {
     std::unique_ptr<LightTechnique> passes;
 };
 
-// The frame: every light's own passes, the camera pass, every light's visibility pass. Returns the
-// wall time in ms (GL finished).
-double renderFrame(const CameraPass& camera, std::vector<FrameLight>& lights, PassTimer& timer) {
+// The frame: every light's own passes, the camera pass, every light's visibility pass, recorded
+// by `recorder` (timed, or counted with the counting builds' programs). Returns the wall time in
+// ms (GL finished).
+double renderFrame(const CameraPass& camera, std::vector<FrameLight>& lights,
+                   PassRecorder& recorder, bool counted = false) {
     const auto t0 = std::chrono::steady_clock::now();
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     for (FrameLight& l : lights) {
-        PassClock clock(timer, l.light->name);
+        PassClock clock(recorder, l.light->name);
         l.passes->renderLightPasses(clock);
     }
-    timer.begin("camera");
-    camera.render();
-    timer.end();
+    recorder.begin("camera");
+    camera.render(counted);
+    recorder.end();
     // The visibility passes shade exactly the surfaces the camera pass found.
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
     for (FrameLight& l : lights) {
-        PassClock clock(timer, l.light->name);
+        PassClock clock(recorder, l.light->name);
         l.target.bindAndClear();
         l.passes->renderVisibility(clock);
     }
@@ -78,7 +83,26 @@ std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camer
     return lights;
 }
 
-// One technique's lights, timers and wall times while its group renders.
+// One frame of the technique's counting build (docs/metrics.md, "Work"), before its timed
+// instance is set up: an instance of its own, so that the timed frames run the very programs they
+// ran before counting existed. Its work by "<light>.<pass>" and "camera".
+std::map<std::string, PassWork> countWork(const GpuScene& gpu, const CameraPass& camera,
+                                          const Technique& technique,
+                                          const std::optional<Bounds3d>& lsReceivers,
+                                          const GlContext& gl) {
+    std::vector<FrameLight> lights;
+    {
+        const CountingBuild counting;
+        lights = setUpLights(gpu, camera, technique, lsReceivers);
+    }
+    gl.throwIfError("technique " + technique.name() + ", counting build set-up");
+    WorkCounter counter;
+    renderFrame(camera, lights, counter, true);
+    gl.throwIfError("technique " + technique.name() + ", counted frame");
+    return counter.byPass();
+}
+
+// One technique's lights, timers and wall times while its group renders, and its counted work.
 struct TechniqueFrames {
     size_t index;
     const Technique* technique;
@@ -86,7 +110,28 @@ struct TechniqueFrames {
     PassTimer timer;
     std::vector<double> wallMs;
     uint64_t memoryBytes = 0;
+    std::map<std::string, PassWork> work;  // empty when not counted
 };
+
+// The counted work of one light (its passes by name, and their sum), of the camera pass and of
+// the frame.
+void addWork(const TechniqueFrames& t, RasterStats& s) {
+    if (t.work.empty()) return;
+    const auto find = [&](const std::string& key) {
+        const auto it = t.work.find(key);
+        return it == t.work.end() ? PassWork{} : it->second;
+    };
+    s.cameraWork = find("camera");
+    s.frameWork = s.cameraWork;
+    for (RasterLightStats& ls : s.lights) {
+        ls.work = PassWork{};
+        for (const std::string& pass : ls.passes) {
+            ls.workByPass[pass] = find(ls.name + "." + pass);
+            *ls.work += ls.workByPass[pass];
+        }
+        *s.frameWork += *ls.work;
+    }
+}
 
 RasterStats collectStats(const TechniqueFrames& t, const CameraPass& camera,
                          const RasterOptions& options, const GlContext& gl, int interleavedWith) {
@@ -110,6 +155,7 @@ RasterStats collectStats(const TechniqueFrames& t, const CameraPass& camera,
     }
     s.timings = {options.frames, options.warmup, t.timer.stats("camera"), timingStats(t.wallMs),
                  interleavedWith};
+    addWork(t, s);
     return s;
 }
 
@@ -173,8 +219,11 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
     std::vector<TechniqueFrames> group;
     uint64_t groupBytes = 0;
     for (size_t i = 0; i < techniques.size(); ++i) {
+        std::map<std::string, PassWork> work;
+        if (options.countWork) work = countWork(gpu, camera, *techniques[i], lsReceivers, gl);
         TechniqueFrames t{
-            i, techniques[i], setUpLights(gpu, camera, *techniques[i], lsReceivers), {}, {}, 0};
+            i, techniques[i],  setUpLights(gpu, camera, *techniques[i], lsReceivers), {}, {},
+            0, std::move(work)};
         // The scene's upload and camera pass (first technique), then this technique's set-up.
         gl.throwIfError("technique " + techniques[i]->name() + ", set-up");
         for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();

@@ -24,6 +24,9 @@ struct RasterOptions {
     std::optional<CameraDesc> camera;
     int frames = 9;  // timed frames (median and quartiles reported)
     int warmup = 2;  // untimed frames first
+    // Before its timed frames, each technique's work is counted in one frame of its counting
+    // build (work_counter.h; docs/metrics.md, "Work"), which never runs in the timed frames.
+    bool countWork = true;
     // Techniques rendered together take turns frame by frame, so that background load falls on
     // all alike; a group holds at most this much estimated GL memory (the next starts after).
     uint64_t interleaveBudgetBytes = uint64_t(2) << 30;

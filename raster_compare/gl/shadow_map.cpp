@@ -8,6 +8,7 @@
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 
@@ -125,6 +126,8 @@ class ShadowMapLight final : public LightTechnique {
   private:
     void createMap();
     void createMomentTargets();
+    void createCubeBlur();
+    void blurCubeAcrossFaces();
     void createVisibilityProgram(const CameraPass& camera);
     void setCascadeUniforms(GLuint program, const CameraPass& camera) const;
     void renderMomentFace(int face);
@@ -142,8 +145,19 @@ class ShadowMapLight final : public LightTechnique {
     GlTexture faceTex_, tempTex_, faceDepth_;
     GlFramebuffer faceFbo_, tempFbo_;
     // Without a blur (radius 0) the moments go straight into the map's faces, over faceDepth_:
-    // the same values as the blur's one-tap copy, without the two copies.
+    // the same values as the blur's one-tap copy, without the two copies. A cube map's go there
+    // too, to be blurred across its faces (cube_blur.frag): every face padded by `radius` texels
+    // of what the cube holds beyond it (padded), then each blurred along s into acrossTarget and
+    // along t back into the map's face.
     std::vector<GlFramebuffer> directFbos_;
+    struct CubeBlur {
+        GlProgram padInside, padBorder, across, down;
+        GlTexture faces;  // the map's faces as the layers of a 2D array (a view)
+        GlTexture padded, acrossTarget;
+        std::vector<GlFramebuffer> paddedFbos;
+        GlFramebuffer acrossFbo;
+    };
+    std::unique_ptr<CubeBlur> cubeBlur_;
     int receiver_ = -1;  // technique_.receiverMesh
 };
 
@@ -210,7 +224,8 @@ void ShadowMapLight::createMomentTargets() {
         {shaders::alpha_test_glsl, shaders::shadow_moments_frag, technique_.glsl()});
     setFloat(momentsProg_.get(), "u_near", cam_.near);
     setFloat(momentsProg_.get(), "u_far", cam_.far);
-    if (technique_.blurRadius() == 0) {
+    const bool cube = cam_.kind == LightCamera::Kind::Cube;
+    if (technique_.blurRadius() == 0 || cube) {
         for (int f = 0; f < cam_.faces; ++f) {
             GlFramebuffer fbo = makeFramebuffer();
             if (cam_.kind != LightCamera::Kind::Ortho &&
@@ -221,6 +236,7 @@ void ShadowMapLight::createMomentTargets() {
             glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
             directFbos_.push_back(std::move(fbo));
         }
+        if (cube && technique_.blurRadius() > 0) createCubeBlur();
         return;
     }
     faceTex_ = makeTexture2D(GL_RGBA32F, res, res);
@@ -230,9 +246,94 @@ void ShadowMapLight::createMomentTargets() {
     glNamedFramebufferTexture(faceFbo_.get(), GL_DEPTH_ATTACHMENT, faceDepth_.get(), 0);
     tempFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(tempFbo_.get(), GL_COLOR_ATTACHMENT0, tempTex_.get(), 0);
-    blurProg_ = buildProgram("", shaders::fullscreen_vert, {shaders::blur_frag});
+    blurProg_ = buildProgram(
+        "#define SOURCE_TEXEL_BYTES " + std::to_string(texelBytes(faceTex_.get())) + "\n",
+        shaders::fullscreen_vert, {shaders::blur_frag});
     setInt(blurProg_.get(), "u_radius", technique_.blurRadius());
     setInt(blurProg_.get(), "u_source", 0);
+}
+
+void ShadowMapLight::createCubeBlur() {
+    const int res = technique_.resolution(), radius = technique_.blurRadius(),
+              padded = res + 2 * radius;
+    cubeBlur_ = std::make_unique<CubeBlur>();
+    CubeBlur& b = *cubeBlur_;
+    // A view's name must come from glGenTextures, unbound.
+    GLuint view = 0;
+    glGenTextures(1, &view);
+    b.faces = GlTexture(view);
+    glTextureView(view, GL_TEXTURE_2D_ARRAY, map_.get(), GL_RGBA32F, 0, 1, 0, 6);
+    const auto makeLayers = [](int width, int height, int layers) {
+        GlTexture t = makeTexture(GL_TEXTURE_2D_ARRAY);
+        glTextureStorage3D(t.get(), 1, GL_RGBA32F, width, height, layers);
+        for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+            glTextureParameteri(t.get(), p, GL_NEAREST);
+        return t;
+    };
+    b.padded = makeLayers(padded, padded, 6);
+    b.acrossTarget = makeLayers(res, padded, 1);
+    for (int f = 0; f < 6; ++f) {
+        GlFramebuffer fbo = makeFramebuffer();
+        glNamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, b.padded.get(), 0, f);
+        b.paddedFbos.push_back(std::move(fbo));
+    }
+    b.acrossFbo = makeFramebuffer();
+    glNamedFramebufferTextureLayer(b.acrossFbo.get(), GL_COLOR_ATTACHMENT0, b.acrossTarget.get(), 0,
+                                   0);
+    const std::string bytes =
+        "#define SOURCE_TEXEL_BYTES " + std::to_string(texelBytes(map_.get())) +
+        "\n#define SOURCE_TAP_TEXELS " + (technique_.bilinearMap() ? "4" : "1") + "\n";
+    const auto program = [&](const std::string& defines) {
+        GlProgram p =
+            buildProgram(defines + bytes, shaders::fullscreen_vert, {shaders::cube_blur_frag});
+        setInt(p.get(), "u_radius", radius);
+        setInt(p.get(), "u_size", res);
+        setInt(p.get(), "u_source", 0);
+        return p;
+    };
+    b.padInside = program("#define PAD\n#define INSIDE\n");
+    b.padBorder = program("#define PAD\n");
+    b.across = program("#define ACROSS\n");
+    b.down = program("");
+}
+
+// Every face's moments are in the map: each face padded from the whole cube, then blurred along s
+// and along t back into the map's face.
+void ShadowMapLight::blurCubeAcrossFaces() {
+    const CubeBlur& b = *cubeBlur_;
+    const int res = technique_.resolution(), r = technique_.blurRadius(), padded = res + 2 * r;
+    const auto draw = [](GLuint program, int face) {
+        glUseProgram(program);
+        glProgramUniform1i(program, glGetUniformLocation(program, "u_face"), face);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    };
+    glDisable(GL_DEPTH_TEST);
+    // The border reads the cube unblurred: every face is padded before any is blurred. The middle
+    // and the four strips of the border are drawn apart, so the cube is looked up only there.
+    const std::array<std::array<int, 4>, 4> strips = {
+        {{0, 0, padded, r}, {0, padded - r, padded, r}, {0, r, r, res}, {padded - r, r, r, res}}};
+    for (int f = 0; f < 6; ++f) {
+        glBindFramebuffer(GL_FRAMEBUFFER, b.paddedFbos[size_t(f)].get());
+        glViewport(r, r, res, res);
+        glBindTextureUnit(0, b.faces.get());
+        draw(b.padInside.get(), f);
+        glBindTextureUnit(0, map_.get());
+        for (const auto& [x, y, w, h] : strips) {
+            glViewport(x, y, w, h);
+            draw(b.padBorder.get(), f);
+        }
+    }
+    for (int f = 0; f < 6; ++f) {
+        glBindFramebuffer(GL_FRAMEBUFFER, b.acrossFbo.get());
+        glViewport(0, 0, res, padded);
+        glBindTextureUnit(0, b.padded.get());
+        draw(b.across.get(), f);
+        glBindFramebuffer(GL_FRAMEBUFFER, mapFbos_[size_t(f)].get());
+        glViewport(0, 0, res, res);
+        glBindTextureUnit(0, b.acrossTarget.get());
+        draw(b.down.get(), 0);
+    }
+    glEnable(GL_DEPTH_TEST);
 }
 
 // Cascades are orthographic maps to the techniques' lookups.
@@ -249,16 +350,23 @@ std::string lightDefine(const LightCamera& cam) {
     }
 }
 
-std::string mapDefine(MapStorage storage) {
-    return storage == MapStorage::Depth                  ? "#define MAP_DEPTH\n"
-           : storage == MapStorage::DepthHardwareCompare ? "#define MAP_HW_COMPARE\n"
-                                                         : "#define MAP_MOMENTS\n";
+// The map's kind, and what one lookup reads of it (the work counts' SO_TAP): a filtered lookup
+// (the hardware compare, bilinear moments) reads 2 x 2 texels.
+std::string mapDefines(const ShadowMapTechnique& technique, GLuint map) {
+    const MapStorage storage = technique.storage();
+    const bool filtered = storage == MapStorage::DepthHardwareCompare ||
+                          (storage == MapStorage::Moments && technique.bilinearMap());
+    return std::string(storage == MapStorage::Depth                  ? "#define MAP_DEPTH\n"
+                       : storage == MapStorage::DepthHardwareCompare ? "#define MAP_HW_COMPARE\n"
+                                                                     : "#define MAP_MOMENTS\n") +
+           "#define MAP_TEXEL_BYTES " + std::to_string(texelBytes(map)) +
+           "\n#define MAP_FILTER_TEXELS " + (filtered ? "4" : "1") + "\n";
 }
 
 void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
     const std::string defines =
         scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightDefine(cam_) +
-                                 mapDefine(technique_.storage()) + technique_.shaderDefines());
+                                 mapDefines(technique_, map_.get()) + technique_.shaderDefines());
     visibilityProg_ =
         buildProgram(defines, shaders::scene_vert,
                      {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});
@@ -300,6 +408,7 @@ void ShadowMapLight::renderLightPasses(PassClock& clock) {
         setMat4(depthProg_.get(), "u_clipFromLocal", cam_.clipFromLocal(f));
         scene_.draw(depthProg_.get(), false);
     }
+    if (cubeBlur_) blurCubeAcrossFaces();
     technique_.endMapPass();
     clock.end();
 }
@@ -372,9 +481,14 @@ uint64_t ShadowMapLight::memoryBytes() const {
     if (technique_.storage() != MapStorage::Moments)
         return texels * depthBytes * uint64_t(cam_.faces);
     // The moment map (RGBA32F per face), and one face's depth buffer and, with a blur, its
-    // moments and blur target.
-    const uint64_t blurBytes = technique_.blurRadius() > 0 ? 16 + 16 : 0;
-    return texels * 16 * uint64_t(cam_.faces) + texels * (blurBytes + depthBytes);
+    // moments and blur target; a cube map's blur, its six padded faces, (side + 2 radius)² texels,
+    // and one of side x (side + 2 radius).
+    const uint64_t res = uint64_t(technique_.resolution()),
+                   padded = res + 2 * uint64_t(technique_.blurRadius());
+    const uint64_t blurBytes = technique_.blurRadius() == 0 ? 0
+                               : cubeBlur_                  ? (6 * padded + res) * padded * 16
+                                                            : texels * (16 + 16);
+    return texels * 16 * uint64_t(cam_.faces) + texels * depthBytes + blurBytes;
 }
 
 }  // namespace

@@ -193,7 +193,10 @@ void ShadowVolumeLight::measureOnce() {
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    // The stencil passes every fragment: the state and the stencil an earlier light's visibility
+    // pass left (GL_EQUAL 0 over its own count) would hide some from the queries.
     glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
     glStencilMask(0);
     GlQuery passed = makeQuery(GL_SAMPLES_PASSED), total = makeQuery(GL_SAMPLES_PASSED);
     glDepthFunc(volumeDepthTest());

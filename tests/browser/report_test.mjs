@@ -262,6 +262,39 @@ async function checkChart(page, section, where) {
   check(false, where, `no other option of select.error-select changes the circle.pt cy values or count (from "${current}": ${tried.join('; ')})`);
 }
 
+// A work axis (docs/metrics.md, Work): select.cost-select offers work.* costs; choosing one redraws
+// the points at new x positions, keeps the Pareto front (where the chart draws one) and shows that
+// cost's budget table (.budget-box[data-cost]) alone. A screenshot of the box is kept.
+async function chartXs(box) {
+  return box.evaluate(b => [...b.querySelectorAll('svg.chart circle.pt')].map(c => c.getAttribute('cx')));
+}
+
+async function checkWorkAxis(box, where, shotFile) {
+  const cost = await box.$('select.cost-select');
+  if (!check(!!cost, where, '.chart-box has select.cost-select')) return;
+  const {options, current} = await cost.evaluate(s => ({options: [...s.options].map(o => o.value), current: s.value}));
+  const work = options.filter(o => o.startsWith('work.'));
+  if (!check(work.length > 0, where, `select.cost-select offers work axes (${work.join(', ') || 'none of: ' + options.join(', ')})`)) return;
+  const axis = work.includes('work.bytes_moved') ? 'work.bytes_moved' : work[0];
+  const before = await chartXs(box);
+  const hadFront = await box.evaluate(b => !!b.querySelector('svg.chart polyline.pareto'));
+  await cost.select(axis);
+  const r = await poll(() => chartXs(box), xs => xs.length > 0 && xs.join() !== before.join(), 1500);
+  check(r.ok && r.value.every(x => Number.isFinite(parseFloat(x))), where,
+        `cost-select "${current}" -> "${axis}" redraws ${r.value.length} circle.pt at new x positions`);
+  if (hadFront)
+    check(await box.evaluate(b => !!b.querySelector('svg.chart polyline.pareto')), where, `the Pareto front is drawn against "${axis}"`);
+  const budgets = await box.evaluate(b => [...b.querySelectorAll('.budget-box')].map(d => ({cost: d.dataset.cost, hidden: d.hidden})));
+  if (budgets.length > 0) {
+    const shown = budgets.filter(b => !b.hidden).map(b => b.cost);
+    check(shown.length === 1 && shown[0] === axis, where,
+          `the budget table shown is "${axis}"'s alone (shown: ${shown.join(', ') || 'none'} of ${budgets.length})`);
+  }
+  note(where, `screenshot ${shotFile}`);
+  await box.screenshot({path: shotFile});
+  await cost.select(current);
+}
+
 // --- report: the zoom view -----------------------------------------------------------------------
 
 const zoomState = page => page.evaluate(() => {
@@ -388,6 +421,8 @@ async function checkReport(browser, file, shotBase) {
       const w = `${where}#${ids[i] || `section-${i + 1}`}`;
       await checkSort(page, sections[i], w);
       await checkChart(page, sections[i], w);
+      const box = await sections[i].$('.chart-box');
+      if (box) await checkWorkAxis(box, w, `${shotBase}-work-axis-${i + 1}.png`);
     }
     await checkZoom(page, where, shotBase);
   } catch (e) {

@@ -15,7 +15,11 @@ uniform bool u_alphaTested;  // false: an opaque mesh, which reads nothing
 uniform float u_alphaCutoff;
 uniform float u_alphaFactor;
 layout(binding = 8) uniform sampler2D u_alphaTexture;  // GpuScene::kAlphaTextureUnit
+#ifdef SO_COUNT_WORK
+uniform int u_alphaTapTexels;  // what one lookup reads: 4 bilinear, 1 nearest (R32F texels)
+#endif
 void alphaTest() {
+    if (u_alphaTested) SO_TAP(u_alphaTapTexels, 4);
     // Level 0 explicitly: no derivatives, no mipmaps.
     if (u_alphaTested && u_alphaFactor * textureLod(u_alphaTexture, v_uv, 0.0).r < u_alphaCutoff)
         discard;

@@ -4,7 +4,9 @@
 //   CASCADES n with LIGHT_ORTHO: n orthographic maps, the layers of a 2D array, each covering a
 //   slice of the camera's view depth; the lookups below read the cascade g_cascade;
 //   map: MAP_DEPTH (point-sampled depth), MAP_HW_COMPARE (the sampler's depth compare),
-//        MAP_MOMENTS (filtered moments); VISIBILITY_PASS.
+//        MAP_MOMENTS (filtered moments); VISIBILITY_PASS;
+//   MAP_TEXEL_BYTES (a map texel's bytes) and MAP_FILTER_TEXELS (the texels a filtered lookup
+//   reads: 4 bilinear, 1 point-sampled), for the work counts' SO_TAP (gl_program.h).
 // Depths are compared as linear distances along the map's view axis, so biases are lengths:
 // in texels, the world size of one shadow-map texel at the receiver.
 in vec3 v_lsPosition;
@@ -138,6 +140,7 @@ float receiverDepth(vec3 q) {
 // 1 where a receiver at linear depth dRef is lit by the map's texel k texels (an integer offset)
 // from the point's own, 0 where that texel holds something nearer.
 float depthTap(MapPoint m, ivec2 k, float dRef) {
+    SO_TAP(1, MAP_TEXEL_BYTES);
 #ifdef LIGHT_CUBE
     float z = texture(u_map, m.v + m.step * (float(k.x) * m.t1 + float(k.y) * m.t2)).r;
 #else
@@ -149,6 +152,7 @@ float depthTap(MapPoint m, ivec2 k, float dRef) {
 }
 // The linear depth stored at an offset o in texels (need not be whole) from the point's texel.
 float storedDepthAt(MapPoint m, vec2 o) {
+    SO_TAP(1, MAP_TEXEL_BYTES);
 #ifdef LIGHT_CUBE
     float z = texture(u_map, m.v + m.step * (o.x * m.t1 + o.y * m.t2)).r;
 #else
@@ -171,6 +175,7 @@ float depthTest(vec3 q, float bias) {
 float hardwareTest(vec3 q, float bias) {
     MapPoint m = mapPoint(q);
     if (m.outside) return 1.0;
+    SO_TAP(MAP_FILTER_TEXELS, MAP_TEXEL_BYTES);
 #ifdef LIGHT_CUBE
     return texture(u_map, vec4(m.v, windowDepth(m.d - bias)));
 #elif defined(CASCADES)
@@ -182,6 +187,7 @@ float hardwareTest(vec3 q, float bias) {
 #elif defined(MAP_MOMENTS)
 // The moments at the point, bilinearly filtered (and blurred).
 vec4 momentsAt(MapPoint m) {
+    SO_TAP(MAP_FILTER_TEXELS, MAP_TEXEL_BYTES);
 #ifdef LIGHT_CUBE
     return texture(u_map, m.v);
 #elif defined(CASCADES)

@@ -19,6 +19,7 @@
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/technique.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 namespace {
@@ -93,15 +94,18 @@ AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& 
     const std::string kind = light_.type == LightType::Sphere ? "#define EMITTER_SPHERE\n"
                              : isAreaLight(light_.type)       ? "#define EMITTER_ONE_SIDED\n"
                                                               : "#define EMITTER_POINT\n";
-    weightProg_ = buildProgram("#define WEIGHT_PASS\n" + kind, shaders::fullscreen_vert,
-                               {shaders::accumulate_glsl});
+    weightProg_ = buildProgram("#define WEIGHT_PASS\n" + kind + camera_.texelBytesDefines() +
+                                   sampleTarget_.texelBytesDefines(),
+                               shaders::fullscreen_vert, {shaders::accumulate_glsl});
     const GLuint wp = weightProg_.get();
     setVec3(wp, "u_lsLightCenter", frame.lsFromWs(light_.wsPosition));
     if (isAreaLight(light_.type) && light_.type != LightType::Sphere)
         setVec3(wp, "u_lsEmitNormal", light_.wsEmitNormal());
     for (const char* name : {"u_visibility", "u_position", "u_normal"})
         setInt(wp, name, name[2] == 'v' ? 0 : name[2] == 'p' ? 1 : 2);
-    resolveProg_ = buildProgram("", shaders::fullscreen_vert, {shaders::accumulate_glsl});
+    resolveProg_ =
+        buildProgram("#define SUMS_TEXEL_BYTES " + std::to_string(texelBytes(sums_.get())) + "\n",
+                     shaders::fullscreen_vert, {shaders::accumulate_glsl});
     setInt(resolveProg_.get(), "u_sums", 0);
 }
 

@@ -34,6 +34,7 @@
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
 #include "raster_compare/gl/virtual_shadow_map.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 namespace {
@@ -210,7 +211,9 @@ void AdaptiveLight::createPrograms() {
         std::to_string(t_.layout.pageSize) + "\n#define LEVELS " +
         std::to_string(t_.layout.levels()) + "\n#define POOL_COLUMNS " +
         std::to_string(t_.pool.columns) + "\n" + glslDefine("DENSITY", t_.density) +
-        t_.bias.defines();
+        t_.bias.defines() + "#define TABLE_TEXEL_BYTES " +
+        std::to_string(texelBytes(pageTable_.get())) + "\n#define POOL_TEXEL_BYTES " +
+        std::to_string(texelBytes(pool_.get())) + "\n";
     markProg_ = buildProgram(
         defines, shaders::scene_vert,
         {shaders::alpha_test_glsl, shaders::adaptive_glsl, shaders::adaptive_mark_frag});

@@ -3,7 +3,8 @@
 // as shadow_map.frag's main sees it, the level of the virtual map its footprint needs, the level's
 // texel and page, the resident page that serves it and the slope-scaled depth test. Defines:
 // LIGHT_ORTHO or LIGHT_SPOT; VIRTUAL_SIZE, PAGE_SIZE, LEVELS, DENSITY (texels wanted across the
-// pixel's footprint, at n.l), POOL_COLUMNS; SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX (slope-bias's).
+// pixel's footprint, at n.l), POOL_COLUMNS; SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX (slope-bias's);
+// TABLE_TEXEL_BYTES, POOL_TEXEL_BYTES (the work counts' SO_TAP).
 in vec3 v_lsPosition;
 flat in vec3 v_lsFaceNormal;
 uniform vec3 u_lsEye;
@@ -91,7 +92,10 @@ ivec2 tableCell(ivec2 texel, int level) {
 }
 
 // The pool slot of the page holding a texel of `level`, or -1.
-int slotOf(ivec2 texel, int level) { return texelFetch(u_pageTable, tableCell(texel, level), 0).r; }
+int slotOf(ivec2 texel, int level) {
+    SO_TAP(1, TABLE_TEXEL_BYTES);
+    return texelFetch(u_pageTable, tableCell(texel, level), 0).r;
+}
 
 // The page that serves a point: the finest resident at or coarser than its level (the coarsest
 // level is always resident), and the point's texel there.
@@ -122,6 +126,7 @@ float linearDepth(float z) {
 // The linear depth stored for a texel of a resident page.
 float storedDepth(int slot, ivec2 texel) {
     ivec2 origin = ivec2(slot % POOL_COLUMNS, slot / POOL_COLUMNS) * PAGE_SIZE;
+    SO_TAP(1, POOL_TEXEL_BYTES);
     return linearDepth(texelFetch(u_pool, origin + texel % PAGE_SIZE, 0).r);
 }
 

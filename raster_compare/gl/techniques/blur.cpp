@@ -70,7 +70,8 @@ BlurLight::BlurLight(const Blur& technique, const LightSetup& setup)
     glTextureStorage2D(across_.get(), 1, GL_R32F, camera_.width(), camera_.height());
     acrossFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(acrossFbo_.get(), GL_COLOR_ATTACHMENT0, across_.get(), 0);
-    blurProg_ = buildProgram(technique.bilateral ? "#define BILATERAL\n" : "",
+    blurProg_ = buildProgram(std::string(technique.bilateral ? "#define BILATERAL\n" : "") +
+                                 camera_.texelBytesDefines() + hardTarget_.texelBytesDefines(),
                              shaders::fullscreen_vert, {shaders::blur_glsl});
     const GLuint p = blurProg_.get();
     setInt(p, "u_radius", technique.radius);

@@ -3,7 +3,9 @@
 // filtering). Defines: FILTER_NEAREST (the texel holding the point), FILTER_BILINEAR (the four
 // nearest centres), FILTER_BICUBIC (the uniform cubic B-spline over the 4 x 4 nearest: smooth,
 // weights >= 0, so no ringing, but wider than bilinear).
+// Each fetch is a tap of the work counts (SO_TAP): one R8 texel, one byte.
 float atlasTexel(ivec2 ij) {
+    SO_TAP(1, 1);
     return texelFetch(u_atlas, clamp(ij, ivec2(0), textureSize(u_atlas, 0) - 1), 0).r;
 }
 
