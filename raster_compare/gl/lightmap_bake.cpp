@@ -14,6 +14,7 @@
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 
@@ -189,15 +190,24 @@ void Baker::buildPrograms() {
         isAreaLight(light_.type) ? lightDefine(LightType::Point) : lightDefine(light_.type);
     const SlopeBias bias(parseParams("lightmap", SlopeBias::params(), {}));
     visibilityProg_ = buildProgram(
-        "#define ALPHA_TEST_OFF\n#define VISIBILITY_PASS\n#define MAP_DEPTH\n" + pointKind +
-            bias.defines(),
+        "#define ALPHA_TEST_OFF\n#define VISIBILITY_PASS\n#define MAP_DEPTH\n"
+        // What one lookup of the 32-bit float depth map reads (the work counts' SO_TAP).
+        "#define MAP_TEXEL_BYTES 4\n#define MAP_FILTER_TEXELS 1\n" +
+            pointKind + bias.defines(),
         shaders::lightmap_bake_vert,
         {shaders::alpha_test_glsl, shaders::shadow_map_frag, shaders::slope_bias_glsl});
     const std::string emitter = !areaSampled_                      ? "#define EMITTER_POINT\n"
                                 : light_.type == LightType::Sphere ? "#define EMITTER_SPHERE\n"
                                                                    : "#define EMITTER_ONE_SIDED\n";
-    weightProg_ = buildProgram("#define WEIGHT_PASS\n" + emitter, shaders::fullscreen_vert,
-                               {shaders::accumulate_glsl});
+    // What its fetches read (the work counts' SO_TAP): the texels' positions and normals and the
+    // sample's V.
+    const std::string tapBytes =
+        "#define POSITION_TEXEL_BYTES " + std::to_string(texelBytes(texels_.textures[0].get())) +
+        "\n#define NORMAL_TEXEL_BYTES " + std::to_string(texelBytes(texels_.textures[1].get())) +
+        "\n#define VISIBILITY_TEXEL_BYTES " +
+        std::to_string(texelBytes(sampleV_.textures[0].get())) + "\n";
+    weightProg_ = buildProgram("#define WEIGHT_PASS\n" + emitter + tapBytes,
+                               shaders::fullscreen_vert, {shaders::accumulate_glsl});
     const LocalFrame& frame = gpu_.frame();
     for (GLuint p : {texelsProg_.get(), visibilityProg_.get()})
         glProgramUniform2f(p, glGetUniformLocation(p, "u_atlasSize"), float(atlas_.width),
