@@ -34,38 +34,19 @@
 
 #include "cli_run.h"
 #include "core/image.h"
+#include "shell_run.h"
 
 namespace so {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using test::quote;
+using test::shell;
+using test::Shell;
 
 constexpr int kWidth = 96, kHeight = 72;
 constexpr int kCyclesHardSpp = 16, kCyclesAreaSpp = 64, kEeveeSamples = 16;
-
-struct Shell {
-    int rc = -1;
-    std::string out;  // stdout and stderr together
-};
-
-Shell shell(const std::string& command) {
-    Shell r;
-    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buffer[4096];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
-    const int status = ::pclose(pipe);
-    r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    return r;
-}
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
 
 std::string lastLine(const std::string& text) {
     std::istringstream in(text);

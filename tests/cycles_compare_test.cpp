@@ -33,40 +33,21 @@
 
 #include "core/image.h"
 #include "lambert.h"
+#include "shell_run.h"
 
 namespace so {
 namespace {
 
 namespace fs = std::filesystem;
+using test::quote;
+using test::shell;
+using test::Shell;
 
 constexpr int kSize = 64;
 constexpr int kSpp[] = {16, 64, 256};
 // penumbra_square (scenes/make_scenes.py): the rect light, and the square occluder above the floor.
 const test::AxisRect kLight{4.0, -0.5, 1.5, -0.5, 1.0};
 const test::AxisRect kOccluder{1.5, -1.0, 1.0, -1.0, 1.0};
-
-struct Shell {
-    int rc = -1;
-    std::string out;
-};
-
-Shell shell(const std::string& command) {
-    Shell r;
-    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buffer[4096];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
-    const int status = ::pclose(pipe);
-    r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    return r;
-}
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
 
 std::string script() {
     return quote(std::string(SO_SOURCE_DIR) + "/scripts/cycles-compare");

@@ -7,7 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/technique.h"
 
 namespace so::test {
 
@@ -25,6 +29,19 @@ inline GlContext* glContext(std::string& why) {
     }
     why = reason;
     return gl.get();
+}
+
+// One untimed frame of `technique` with `settings` on the shared context (the test must have
+// passed REQUIRE_GL), its work counted unless countWork is false.
+inline RasterResult renderOneFrame(const Scene& scene, const std::string& technique,
+                                   const std::vector<std::string>& settings,
+                                   bool countWork = true) {
+    std::string why;
+    RasterOptions o;
+    o.frames = 1;
+    o.warmup = 0;
+    o.countWork = countWork;
+    return renderRaster(scene, *createTechnique(technique, settings), o, *glContext(why));
 }
 
 }  // namespace so::test

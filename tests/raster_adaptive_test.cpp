@@ -94,15 +94,6 @@ TEST(AdaptivePages, TheLargestDeficitGoesFirst) {
     EXPECT_EQ(b.table[layout.cell(0, 0, 0)], -1);
 }
 
-RasterResult render(const Scene& scene, const std::string& technique,
-                    const std::vector<std::string>& settings) {
-    std::string why;
-    RasterOptions o;
-    o.frames = 1;
-    o.warmup = 0;
-    return renderRaster(scene, *createTechnique(technique, settings), o, *glContext(why));
-}
-
 const RasterLightStats& lightStats(const RasterResult& r, const std::string& light) {
     for (const RasterLightStats& l : r.stats.lights)
         if (l.name == light) return l;
@@ -153,9 +144,9 @@ TEST(Adaptive, ReproducesSlopeBiasWhenEveryPageIsAtLevelZero) {
     REQUIRE_GL();
     Scene s = makeSquareOccluderScene(320, 240).scene;
     s.lights = {s.lights[1], s.lights[2]};  // spot and sun (the point light has no virtual map)
-    RasterResult a =
-        render(s, "adaptive", {"virtual_size=1024", "page_size=128", "pool_mb=64", "density=1024"});
-    RasterResult b = render(s, "slope-bias", {"resolution=1024", "depth_format=32"});
+    RasterResult a = renderOneFrame(
+        s, "adaptive", {"virtual_size=1024", "page_size=128", "pool_mb=64", "density=1024"});
+    RasterResult b = renderOneFrame(s, "slope-bias", {"resolution=1024", "depth_format=32"});
     for (const Light& l : s.lights) {
         const RasterLightStats& st = lightStats(a, l.name);
         EXPECT_EQ(st.counts.at("pages_dropped"), 0) << l.name;
@@ -206,8 +197,8 @@ Scene grazingScene(int width, int height) {
 TEST(Adaptive, TexelsFollowTheFootprintAtAGrazingView) {
     REQUIRE_GL();
     Scene s = grazingScene(320, 240);
-    RasterResult a = render(s, "adaptive", {"virtual_size=65536", "pool_mb=256"});
-    RasterResult b = render(s, "slope-bias", {"resolution=4096"});
+    RasterResult a = renderOneFrame(s, "adaptive", {"virtual_size=65536", "pool_mb=256"});
+    RasterResult b = renderOneFrame(s, "slope-bias", {"resolution=4096"});
     const RasterLightStats& st = lightStats(a, "sun");
     std::printf("[ adaptive ] grazing: %lld marked, %lld requested, %lld rendered, %lld dropped\n",
                 (long long)st.counts.at("pages_marked"), (long long)st.counts.at("pages_requested"),
@@ -240,7 +231,7 @@ TEST(Adaptive, TexelsFollowTheFootprintAtAGrazingView) {
 TEST(Adaptive, ASmallPoolDropsPagesAndFallsBackToCoarserOnes) {
     REQUIRE_GL();
     Scene s = grazingScene(320, 240);
-    RasterResult a = render(s, "adaptive", {"virtual_size=65536", "pool_mb=1", "refine=0"});
+    RasterResult a = renderOneFrame(s, "adaptive", {"virtual_size=65536", "pool_mb=1", "refine=0"});
     const RasterLightStats& st = lightStats(a, "sun");
     EXPECT_EQ(st.counts.at("pool_pages"), 16);
     EXPECT_EQ(st.counts.at("pages_rendered"), 16);
@@ -248,7 +239,7 @@ TEST(Adaptive, ASmallPoolDropsPagesAndFallsBackToCoarserOnes) {
     EXPECT_EQ(st.counts.at("pages_requested"),
               st.counts.at("pages_rendered") + st.counts.at("pages_dropped"));
     ChannelImage oracle = runQuiet(s);
-    RasterResult coarse = render(s, "slope-bias", {"resolution=512"});
+    RasterResult coarse = renderOneFrame(s, "slope-bias", {"resolution=512"});
     const double ag = agreement(oracle, a.image, "sun", 3),
                  ac = agreement(oracle, coarse.image, "sun", 3);
     std::printf("[ adaptive ] 16 pages: agreement %.4f (slope-bias 512: %.4f)\n", ag, ac);
@@ -261,8 +252,8 @@ TEST(Adaptive, ASmallPoolDropsPagesAndFallsBackToCoarserOnes) {
 TEST(Adaptive, EdgeRefinementAsksOnlyNearShadowEdges) {
     REQUIRE_GL();
     Scene s = grazingScene(320, 240);
-    RasterResult plain = render(s, "adaptive", {"pool_mb=1", "refine=0"});
-    RasterResult refined = render(s, "adaptive", {"pool_mb=1", "refine=1"});
+    RasterResult plain = renderOneFrame(s, "adaptive", {"pool_mb=1", "refine=0"});
+    RasterResult refined = renderOneFrame(s, "adaptive", {"pool_mb=1", "refine=1"});
     const RasterLightStats& st = lightStats(refined, "sun");
     std::printf("[ adaptive ] refine: %lld requested (%lld by footprint), %lld rendered\n",
                 (long long)st.counts.at("pages_requested"),
@@ -283,14 +274,15 @@ TEST(Adaptive, PointLightsFallBackToACubeMapOfThePoolsMemory) {
     REQUIRE_GL();
     Scene s = makeSquareOccluderScene(200, 150).scene;
     s.lights = {s.lights[0]};
-    RasterResult a = render(s, "adaptive", {"pool_mb=6", "alpha=2"});
+    RasterResult a = renderOneFrame(s, "adaptive", {"pool_mb=6", "alpha=2"});
     const RasterLightStats& st = lightStats(a, "point");
     // sqrt(6 MiB / 24) = 512 texels a face.
     EXPECT_EQ(st.counts.at("cube_fallback"), 1);
     EXPECT_EQ(st.counts.at("cube_resolution"), 512);
     EXPECT_EQ(st.map, "cube");
     EXPECT_EQ(st.passes, (std::vector<std::string>{"shadow_map", "visibility"}));
-    RasterResult b = render(s, "slope-bias", {"resolution=512", "depth_format=32", "alpha=2"});
+    RasterResult b =
+        renderOneFrame(s, "slope-bias", {"resolution=512", "depth_format=32", "alpha=2"});
     EXPECT_EQ(differing(a.image, b.image, "point"), 0u);
 }
 
@@ -302,7 +294,7 @@ TEST(Adaptive, MemoryIsThePoolTablesAndMarkTarget) {
              {{"virtual_size=16384", "page_size=128", "pool_mb=16"}, 256},
              {{"virtual_size=16384", "page_size=128", "pool_mb=3"}, 48},    // 6 x 8 pages
              {{"virtual_size=4096", "page_size=256", "pool_mb=5"}, 20}}) {  // 4 x 5
-        RasterResult r = render(s, "adaptive", settings);
+        RasterResult r = renderOneFrame(s, "adaptive", settings);
         const RasterLightStats& st = lightStats(r, "sun");
         const std::string page = settings[1].substr(10), virt = settings[0].substr(13);
         const uint64_t ps = std::stoull(page), pages0 = std::stoull(virt) / ps;

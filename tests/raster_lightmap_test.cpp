@@ -31,15 +31,6 @@ namespace {
 namespace ch = channels;
 namespace fs = std::filesystem;
 
-RasterResult renderLightmap(const Scene& scene, const std::string& technique,
-                            const std::vector<std::string>& settings) {
-    std::string why;
-    RasterOptions o;
-    o.frames = 1;
-    o.warmup = 0;
-    return renderRaster(scene, *createTechnique(technique, settings), o, *glContext(why));
-}
-
 // A 4 x 4 plane at y = 0 (one quad, or two side by side meeting at x = 0: two meshes, so two
 // charts), a square of side 1 at height 1 turned by `turnDeg` about y, a directional light, and a
 // camera looking down on it.
@@ -82,7 +73,7 @@ TEST(Lightmap, ErrorFallsAsDensityRisesAndMemoryGrowsAsItsSquare) {
     const ChannelImage oracle = runQuiet(s);
     std::vector<double> errors;
     for (int d : {16, 32, 64, 128, 256}) {
-        const RasterResult r = renderLightmap(
+        const RasterResult r = renderOneFrame(
             s, "lightmap", {"texels_per_unit=" + std::to_string(d), "bake_resolution=4096"});
         errors.push_back(maeOf(oracle, r.image, "sun"));
         const uint64_t texels = uint64_t(count(r, "atlas_width") * count(r, "atlas_height"));
@@ -103,7 +94,7 @@ TEST(Lightmap, ErrorFallsAsDensityRisesAndMemoryGrowsAsItsSquare) {
     alone.meshes[1].dynamic = true;
     uint64_t first = 0;
     for (int d : {16, 32, 64, 128, 256}) {
-        const RasterResult r = renderLightmap(
+        const RasterResult r = renderOneFrame(
             alone, "lightmap", {"texels_per_unit=" + std::to_string(d), "padding=0", "dilate=0"});
         EXPECT_EQ(count(r, "atlas_bytes"), 16 * d * d);
         const uint64_t bytes = r.stats.lights[0].memoryBytes;
@@ -130,7 +121,7 @@ TEST(Lightmap, NoSeamAtAChartBorderBeyondOneTexelWithDilation) {
     const double texel = 1.0 / 16;
     auto worstNearBorder = [&](int dilate, size_t& pixels) {
         const RasterResult r =
-            renderLightmap(s, "lightmap",
+            renderOneFrame(s, "lightmap",
                            {"texels_per_unit=16", "padding=2", "dilate=" + std::to_string(dilate),
                             "bake_resolution=4096"});
         const float* Vr = r.image.channel(ch::lightChannel("sun", ch::kVisibility));
@@ -168,8 +159,8 @@ TEST(Lightmap, ADynamicCastersShadowIsAbsentAndCounted) {
     Scene moving = s;
     moving.meshes[1].dynamic = true;
     const ChannelImage oracle = runQuiet(s);
-    const RasterResult still = renderLightmap(s, "lightmap", {});
-    const RasterResult gone = renderLightmap(moving, "lightmap", {});
+    const RasterResult still = renderOneFrame(s, "lightmap", {});
+    const RasterResult gone = renderOneFrame(moving, "lightmap", {});
     EXPECT_EQ(count(still, "dynamic_casters_left_out"), 0);
     EXPECT_EQ(count(gone, "dynamic_casters_left_out"), 1);
     EXPECT_EQ(count(gone, "dynamic_triangles_left_out"), 2);
@@ -191,8 +182,8 @@ TEST(Lightmap, ADynamicCastersShadowIsAbsentAndCounted) {
     EXPECT_GT(m.falseLitRate, 0.9 * double(shadowed) / double(m.counted));
 
     const ChannelImage oracleMoving = runQuiet(moving);
-    const RasterResult pcf = renderLightmap(s, "pcf", {"resolution=512"}),
-                       pcfMoving = renderLightmap(moving, "pcf", {"resolution=512"});
+    const RasterResult pcf = renderOneFrame(s, "pcf", {"resolution=512"}),
+                       pcfMoving = renderOneFrame(moving, "pcf", {"resolution=512"});
     for (const std::string& name : oracle.names()) {
         EXPECT_EQ(std::memcmp(oracle.channel(name), oracleMoving.channel(name),
                               oracle.pixelCount() * sizeof(float)),
@@ -216,8 +207,8 @@ TEST(Lightmap, Texcoord1DoesWhatGeneratedChartsDo) {
     for (const glm::dvec3& p : own.meshes[0].wsPositions)
         own.meshes[0].lightmapUvs.push_back({(p.z + 2.0) / 4.0, (p.x + 2.0) / 4.0});
     const ChannelImage oracle = runQuiet(s);
-    const RasterResult generated = renderLightmap(s, "lightmap", {"texels_per_unit=48"});
-    const RasterResult uv1 = renderLightmap(own, "lightmap", {"texels_per_unit=48"});
+    const RasterResult generated = renderOneFrame(s, "lightmap", {"texels_per_unit=48"});
+    const RasterResult uv1 = renderOneFrame(own, "lightmap", {"texels_per_unit=48"});
     EXPECT_EQ(count(uv1, "texcoord1_meshes"), 1);
     EXPECT_EQ(count(generated, "texcoord1_meshes"), 0);
     EXPECT_EQ(count(uv1, "texels_covered"), count(generated, "texels_covered"));
@@ -233,10 +224,10 @@ TEST(Lightmap, AnAreaLightsBakeConvergesLikeAccumulate) {
     REQUIRE_GL();
     const Scene s = makePenumbraScene(160, 120).scene;
     const ChannelImage oracle = runQuiet(s);
-    const RasterResult lm = renderLightmap(
+    const RasterResult lm = renderOneFrame(
         s, "lightmap", {"texels_per_unit=24", "bake_samples=64", "bake_resolution=1024"});
     const RasterResult acc =
-        renderLightmap(s, "accumulate", {"samples=64", "method=map", "resolution=1024"});
+        renderOneFrame(s, "accumulate", {"samples=64", "method=map", "resolution=1024"});
     const LightMetrics ml = computeLightMetrics(oracle, lm.image, "panel", {}),
                        ma = computeLightMetrics(oracle, acc.image, "panel", {});
     std::printf("[ lightmap ] penumbra mae: lightmap %.4f, accumulate %.4f (64 samples)\n",
@@ -262,7 +253,7 @@ TEST(Lightmap, EveryTriangleGetsATexelEvenSmallerThanOne) {
     s.lights = {{"sun", LightType::Directional, {0, 0, 0}, {0, -1, 0}, 0, 0}};
     s.effects = {"hard"};
     finalizeScene(s);
-    const RasterResult r = renderLightmap(s, "lightmap", {"texels_per_unit=4"});
+    const RasterResult r = renderOneFrame(s, "lightmap", {"texels_per_unit=4"});
     EXPECT_GT(count(r, "charts"), 3000) << "nearly every triangle a chart of its own";
     EXPECT_GT(count(r, "texels_from_centroids"), 1600);
     const float* V = r.image.channel(ch::lightChannel("sun", ch::kVisibility));
@@ -281,7 +272,7 @@ TEST(Lightmap, AnAtlasOverTheLimitNamesTheParameter) {
     REQUIRE_GL();
     const Scene s = planeUnderSquare(0.0, {0.0, -1.0, 0.0}, false, 32);
     try {
-        renderLightmap(s, "lightmap", {"texels_per_unit=2048"});
+        renderOneFrame(s, "lightmap", {"texels_per_unit=2048"});
         ADD_FAILURE() << "an atlas of 17 x 2048^2 texels was made";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("technique lightmap: texels_per_unit:"),

@@ -15,16 +15,6 @@
 namespace so::test {
 namespace {
 
-RasterResult render(const Scene& scene, const std::string& technique,
-                    const std::vector<std::string>& settings, bool countWork = true) {
-    std::string why;
-    RasterOptions o;
-    o.frames = 1;
-    o.warmup = 0;
-    o.countWork = countWork;
-    return renderRaster(scene, *createTechnique(technique, settings), o, *glContext(why));
-}
-
 const RasterLightStats& light(const RasterResult& r, const std::string& name) {
     for (const RasterLightStats& l : r.stats.lights)
         if (l.name == name) return l;
@@ -53,7 +43,7 @@ TEST(Work, FullScreenPassShadesWidthTimesHeightFragments) {
     REQUIRE_GL();
     const int w = 37, h = 23;
     const RasterResult r =
-        render(makeSquareOccluderScene(w, h).scene, "blur", {"radius=2", "resolution=256"});
+        renderOneFrame(makeSquareOccluderScene(w, h).scene, "blur", {"radius=2", "resolution=256"});
     const PassWork& blur = pass(r, "sun", "blur");
     EXPECT_EQ(blur.counts.fragments, uint64_t(2 * w * h));
     EXPECT_EQ(blur.counts.texelsWritten, uint64_t(2 * w * h));
@@ -84,7 +74,7 @@ TEST(Work, DepthMapPassWritesItsTexels) {
     const Scene s = makeSquareOccluderScene(64, 48).scene;
     for (int bits : {24, 16}) {
         const RasterResult r =
-            render(s, "basic", {"resolution=1024", "depth_format=" + std::to_string(bits)});
+            renderOneFrame(s, "basic", {"resolution=1024", "depth_format=" + std::to_string(bits)});
         const uint64_t texelBytes = bits == 16 ? 2 : 4;
         for (const char* l : {"sun", "spot", "point"}) {
             const uint64_t faces = std::string(l) == "point" ? 6 : 1;
@@ -103,8 +93,8 @@ TEST(Work, DepthMapPassWritesItsTexels) {
 TEST(Work, PcfTakesKernelSquaredTapsPerLitReceiverFragment) {
     REQUIRE_GL();
     const Scene s = makeSquareOccluderScene(96, 72).scene;
-    const RasterResult pcf = render(s, "pcf", {"kernel=5", "resolution=512"});
-    const RasterResult hw = render(s, "hw-pcf", {"resolution=512"});
+    const RasterResult pcf = renderOneFrame(s, "pcf", {"kernel=5", "resolution=512"});
+    const RasterResult hw = renderOneFrame(s, "hw-pcf", {"resolution=512"});
     const uint64_t pixels = visiblePixels(pcf.image);
     ASSERT_GT(pixels, 1000u);
     for (const char* l : {"sun", "point"}) {
@@ -130,8 +120,8 @@ TEST(Work, PcfTakesKernelSquaredTapsPerLitReceiverFragment) {
 TEST(Work, TapsBeforeADiscardCount) {
     REQUIRE_GL();
     const int w = 64, h = 48;
-    const RasterResult r =
-        render(makeSquareOccluderScene(w, h).scene, "accumulate", {"samples=4", "method=volume"});
+    const RasterResult r = renderOneFrame(makeSquareOccluderScene(w, h).scene, "accumulate",
+                                          {"samples=4", "method=volume"});
     const uint64_t hit = visiblePixels(r.image);
     ASSERT_GT(hit, 100u);
     ASSERT_LT(hit, uint64_t(w * h)) << "the test needs background pixels";
@@ -147,7 +137,7 @@ TEST(Work, ShadowVolumeFillEqualsItsOcclusionQuery) {
     REQUIRE_GL();
     const Scene s = makeSquareOccluderScene(96, 72).scene;
     for (const char* technique : {"volume-zpass", "volume-zfail"}) {
-        const RasterResult r = render(s, technique, {});
+        const RasterResult r = renderOneFrame(s, technique, {});
         for (const RasterLightStats& l : r.stats.lights) {
             const int64_t fill = l.counts.at("volume_fill_px"),
                           all = l.counts.at("volume_fragments");
@@ -170,8 +160,8 @@ TEST(Work, VolumeCountsDoNotDependOnTheLightsBefore) {
         Scene alone = all;
         alone.lights = {all.lights[k]};
         finalizeScene(alone);
-        const RasterResult a = render(all, "volume-zfail", {}, false),
-                           b = render(alone, "volume-zfail", {}, false);
+        const RasterResult a = renderOneFrame(all, "volume-zfail", {}, false),
+                           b = renderOneFrame(alone, "volume-zfail", {}, false);
         const std::string& name = all.lights[k].name;
         EXPECT_EQ(light(a, name).counts, light(b, name).counts) << name;
     }
@@ -182,7 +172,7 @@ TEST(Work, VolumeCountsDoNotDependOnTheLightsBefore) {
 TEST(Work, LightsAndFrameAreSumsOfTheirPasses) {
     REQUIRE_GL();
     const Scene s = makeSquareOccluderScene(64, 48).scene;
-    const RasterResult r = render(s, "vsm", {"resolution=256"});
+    const RasterResult r = renderOneFrame(s, "vsm", {"resolution=256"});
     ASSERT_TRUE(r.stats.frameWork && r.stats.cameraWork);
     WorkCounts frame = r.stats.cameraWork->counts;
     for (const RasterLightStats& l : r.stats.lights) {
@@ -216,8 +206,8 @@ TEST(Work, CountingLeavesTheImageAlone) {
         const std::vector<std::string> settings = std::string(technique) == "volume-zfail"
                                                       ? std::vector<std::string>{}
                                                       : std::vector<std::string>{"resolution=512"};
-        const RasterResult counted = render(s, technique, settings, true),
-                           uncounted = render(s, technique, settings, false);
+        const RasterResult counted = renderOneFrame(s, technique, settings, true),
+                           uncounted = renderOneFrame(s, technique, settings, false);
         EXPECT_FALSE(uncounted.stats.frameWork.has_value());
         for (const Light& l : s.lights) {
             const std::string v = channels::lightChannel(l.name, channels::kVisibility);
@@ -238,7 +228,7 @@ TEST(Work, EveryTechniqueIsCounted) {
         std::vector<std::string> settings;
         for (const ParamSpec& p : t->params)
             if (p.name == "resolution") settings.push_back("resolution=256");
-        const RasterResult r = render(s, t->name, settings);
+        const RasterResult r = renderOneFrame(s, t->name, settings);
         const PassWork& sun = *light(r, "sun").work;
         EXPECT_GT(sun.counts.drawCalls, 0u) << t->name;
         EXPECT_GT(sun.counts.fragments, 0u) << t->name;
