@@ -28,13 +28,12 @@ import statistics
 import subprocess
 import sys
 import time
+from doc_markers import write_between_markers
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCENE = ROOT / "scenes" / "penumbra_square.scene.json"
 RENDER = ROOT / "examples" / "blender" / "render_shadows.py"
 DOCS = ROOT / "docs" / "benchmarks.md"
-BEGIN = "<!-- BEGIN cycles-compare (generated: scripts/cycles-compare) -->"
-END = "<!-- END cycles-compare -->"
 LADDER_START = 0.08
 LADDER_FLOOR = 1e-4  # trace's smallest --target-error
 GOAL = 100.0  # issue 32: the oracle at Cycles' 1,024-spp error at least this many times faster
@@ -453,11 +452,7 @@ def tables(summary):
 
 
 def write_docs(text, docs):
-    body = docs.read_text()
-    b, e = body.find(BEGIN), body.find(END)
-    if b < 0 or e < b:
-        fail("%s has no %s ... %s markers" % (docs, BEGIN, END))
-    docs.write_text(body[:b + len(BEGIN)] + "\n\n" + text + "\n" + body[e:])
+    write_between_markers(docs, "cycles-compare", text)
 
 
 def machine(load_start):

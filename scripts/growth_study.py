@@ -32,6 +32,7 @@ import argparse, datetime, filecmp, json, math, os, re, shutil, struct, subproce
 import tempfile, threading, time
 
 import numpy as np
+from doc_markers import write_between_markers
 
 # --- the generated scene (bench/bench_scene.h) -------------------------------------------------
 
@@ -716,12 +717,7 @@ def markdown(data):
 
 
 def replace_between(doc_path, body):
-    doc = open(doc_path).read()
-    new, n = re.subn(r"(<!-- BEGIN growth study[^\n]*-->\n).*?(<!-- END growth study -->)",
-                     lambda g: g.group(1) + "\n" + body + "\n" + g.group(2), doc, flags=re.S)
-    if n != 1:
-        fail(f"{doc_path}: no BEGIN/END growth study markers")
-    open(doc_path, "w").write(new)
+    write_between_markers(doc_path, "growth study", body)
 
 
 def machine_info(tool, embree):

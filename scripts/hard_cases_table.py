@@ -2,8 +2,8 @@
 """Writes docs/hard-cases.md's raster table from scripts/hard-cases-table's runs."""
 import json
 import pathlib
-import re
 import sys
+from doc_markers import write_between_markers
 
 ORDER = ["grazing_1e-1", "grazing_1e-2", "grazing_1e-3",
          "contact_resting", "contact_hover_1e-3", "contact_hover_1e-5"]
@@ -42,13 +42,7 @@ def main(runs, doc):
     gl = next(iter(scenes.values()))["gl"]["renderer"]
     table = ("Each cell: `acne_rate` / `peter_panning_rate` (docs/metrics.md) at 320 x 240, default "
              "parameters, rendered on %s.\n\n" % gl) + "\n".join(lines)
-    text = pathlib.Path(doc).read_text()
-    new, n = re.subn(r"(<!-- BEGIN raster table[^>]*-->\n).*?(<!-- END raster table -->)",
-                     lambda m: m.group(1) + "\n" + table + "\n\n" + m.group(2), text, flags=re.S)
-    if n != 1:
-        sys.exit("error: %s has no <!-- BEGIN raster table --> ... <!-- END raster table --> markers"
-                 % doc)
-    pathlib.Path(doc).write_text(new)
+    write_between_markers(doc, "raster table", table + "\n")
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 """Writes the lightmap tables (scripts/lightmap-table) from the sweep's merged metrics.json
 (scenes/sweeps/lightmap.json) and bench_lightmap's JSON into a markdown file between its
 "BEGIN lightmap tables" and "END lightmap tables" markers."""
-import json, re, sys
+import json, sys
+from doc_markers import write_between_markers
 
 FILTERS = ["nearest", "bilinear", "bicubic"]
 
@@ -172,12 +173,7 @@ def main(sweep_path, bench_path, doc_path):
             "\n**Per frame, against the shadow map a bake is made from** (`bench_lightmap`: "
             "bilinear, every setting of a scene and the baseline taking turns frame by frame; the "
             "frame's wall time covers all the scene's lights):\n\n" + frame_table(b))
-    doc = open(doc_path).read()
-    new, n = re.subn(r"(<!-- BEGIN lightmap tables[^\n]*-->\n).*?(<!-- END lightmap tables -->)",
-                     lambda g: g.group(1) + "\n" + text + "\n" + g.group(2), doc, flags=re.S)
-    if n != 1:
-        sys.exit(f"{doc_path}: no BEGIN/END lightmap tables markers")
-    open(doc_path, "w").write(new)
+    write_between_markers(doc_path, "lightmap tables", text)
 
 
 if __name__ == "__main__":

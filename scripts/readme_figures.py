@@ -2,8 +2,8 @@
 """Writes the README's figures table from scripts/demo's metrics.json files (see readme-figures)."""
 import json
 import pathlib
-import re
 import sys
+from doc_markers import write_between_markers
 
 # (scene, light, metric, column header): what each column shows.
 COLUMNS = [
@@ -58,13 +58,7 @@ def main(demo, readme):
     if bakes and bakes[0] is not None:
         note += (" A lightmap's frame leaves out its bake, paid once before the frames: %.1f s for "
                  "soft_chair's window." % (bakes[0] / 1000))
-    text = pathlib.Path(readme).read_text()
-    new = re.sub(r"(<!-- BEGIN figures[^>]*-->\n).*?(<!-- END figures -->)",
-                 lambda m: m.group(1) + "\n" + table + "\n\n" + note + "\n\n" + m.group(2),
-                 text, flags=re.S)
-    if new == text and "<!-- BEGIN figures" not in text:
-        sys.exit("error: %s has no <!-- BEGIN figures --> marker" % readme)
-    pathlib.Path(readme).write_text(new)
+    write_between_markers(readme, "figures", table + "\n\n" + note + "\n")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the aliasing-against-memory table (scripts/resolution-table) from a compare run's
 metrics.json into a markdown file between its BEGIN/END resolution table markers."""
-import json, re, sys
+import json, sys
+from doc_markers import write_between_markers
 
 
 def fmt(v, digits):
@@ -25,12 +26,7 @@ def main(metrics_path, doc_path):
               f"{gl}; flicker over {m['options'].get('frames_path', 0)} frames of its camera path; "
               "frame time the median of 5 frames.")
     table = header + "\n\n" + "\n".join(rows) + "\n"
-    doc = open(doc_path).read()
-    new, n = re.subn(r"(<!-- BEGIN resolution table[^\n]*-->\n).*?(<!-- END resolution table -->)",
-                     lambda g: g.group(1) + "\n" + table + "\n" + g.group(2), doc, flags=re.S)
-    if n != 1:
-        sys.exit(f"{doc_path}: no BEGIN/END resolution table markers")
-    open(doc_path, "w").write(new)
+    write_between_markers(doc_path, "resolution table", table)
 
 
 if __name__ == "__main__":

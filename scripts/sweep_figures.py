@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """scripts/sweep-figures: measures the sweep's overhead per task against plain compare runs and
 runs the shipped bias sweep, and writes both tables into a markdown file between its markers."""
-import csv, json, os, re, shutil, subprocess, sys, time
+import csv, json, os, shutil, subprocess, sys, time
+from doc_markers import replace_between_markers
 
 OVERHEAD_SETTINGS = [f"slope-bias:alpha={a},min={m}" for a in (0.5, 1, 2) for m in (0.1, 0.5)]
 SIZE = (320, 180)
@@ -104,11 +105,7 @@ def bias(tool, out):
 
 
 def replace(doc, marker, body):
-    new, n = re.subn(r"(<!-- BEGIN " + marker + r"[^\n]*-->\n).*?(<!-- END " + marker + " -->)",
-                     lambda g: g.group(1) + "\n" + body + "\n" + g.group(2), doc, flags=re.S)
-    if n != 1:
-        sys.exit(f"no BEGIN/END {marker} markers")
-    return new
+    return replace_between_markers(doc, marker, body)
 
 
 def main(tool, out, doc_path):

@@ -3,7 +3,8 @@
 scene and light, the techniques ranked by llvmpipe's milliseconds, by bytes_moved and by
 fragments, and the three Pareto fronts of error against them, between the "BEGIN which-ranking"
 and "END which-ranking" markers of a markdown file (docs/benchmarks.md). Measured, not asserted."""
-import json, pathlib, re, subprocess, sys
+import json, pathlib, subprocess, sys
+from doc_markers import write_between_markers
 
 TECHNIQUES = ["basic", "slope-bias", "pcf:kernel=5", "hw-pcf", "pcss", "vsm", "esm", "evsm",
               "msm", "volume-zfail", "blur:radius=8,bilateral=on", "accumulate:samples=16"]
@@ -179,13 +180,7 @@ def main(tool, out_dir, doc, reuse=False):
          "light's error (penumbra_mae on area lights, else mae); per light, the Pareto front of "
          "its error against each cost, and where the work's fronts differ from the "
          "milliseconds'.", ""] + summary + [""] + body)
-    doc = pathlib.Path(doc)
-    old = doc.read_text()
-    new = re.sub(r"(<!-- BEGIN which-ranking[^\n]*-->\n).*?(<!-- END which-ranking -->)",
-                 lambda m: m.group(1) + "\n" + text + "\n" + m.group(2), old, flags=re.S)
-    if new == old and "BEGIN which-ranking" not in old:
-        sys.exit(f"error: {doc} lacks the which-ranking markers")
-    doc.write_text(new)
+    write_between_markers(doc, "which-ranking", text)
     print(f"updated {doc}")
 
 
