@@ -70,6 +70,9 @@ int main(int argc, char** argv) {
     app.add_option("--reps", reps, "repetitions (median reported)")->check(CLI::Range(1, 100));
     app.add_option("--adaptive-size", adaptiveSize, "image side for adaptive vs uniform")
         ->check(CLI::Range(8, 1024));
+    bool noNearField = false;
+    app.add_flag("--no-near-field", noNearField,
+                 "leave the near fields out (their price: the oracle's time with and without)");
     CLI11_PARSE(app, argc, argv);
     Scene scene = makeBenchScene(256, size);
     const int threads = int(std::thread::hardware_concurrency());
@@ -82,6 +85,14 @@ int main(int argc, char** argv) {
     tbb::task_arena arena(threads);
     SurfaceBuffer sb;
     arena.execute([&] { sb = tracePrimary(accel, camera, nullptr); });
+    // The near fields (near_field.h), built once per image as the oracle builds them after its
+    // primary pass: the passes below decide them in double, so their price is in the oracle's time.
+    const auto tNear = std::chrono::steady_clock::now();
+    if (!noNearField) arena.execute([&] { buildNearFields(accel, sb); });
+    std::printf(
+        "near fields: %.1f ms for the image, %llu of %d pixels have one (%zu triangles)\n",
+        1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - tNear).count(),
+        (unsigned long long)sb.nearFields.pixels, sb.width * sb.height, sb.nearFields.ids.size());
     const size_t n = size_t(sb.width) * size_t(sb.height);
     AreaSampling sampling;
     sampling.fixedSpp = spp;

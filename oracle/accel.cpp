@@ -1,5 +1,6 @@
 #include "oracle/accel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -25,12 +26,15 @@ thread_local uint64_t tAlphaTests = 0;
 // during a query: noexcept (nothing here may throw, and no SO_CHECK belongs here), so that a slip
 // ends in std::terminate rather than undefined behaviour.
 void skipOriginTriangle(const RTCFilterFunctionNArguments* args) noexcept {
-    const unsigned* meshBase = reinterpret_cast<const ShadowContext*>(args->context)->meshBase;
+    const auto* ctx = reinterpret_cast<const ShadowContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
         const unsigned origin = RTCRayN_id(args->ray, args->N, i);
         const unsigned mesh = RTCHitN_geomID(args->hit, args->N, i);
-        if (origin == meshBase[mesh] + RTCHitN_primID(args->hit, args->N, i)) args->valid[i] = 0;
+        const unsigned hit = ctx->meshBase[mesh] + RTCHitN_primID(args->hit, args->N, i);
+        if (origin == hit || std::find(ctx->skipIds, ctx->skipIds + ctx->skipCount, hit) !=
+                                 ctx->skipIds + ctx->skipCount)
+            args->valid[i] = 0;
     }
 }
 
@@ -86,7 +90,7 @@ void checkFinite(const std::vector<glm::dvec3>& lsPositions, size_t mesh) {
 }  // namespace
 
 Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
-    : frame_(LocalFrame::fit(scene.wsBounds)), rtcScene_(device) {
+    : frame_(LocalFrame::fit(scene.wsBounds)), rtcScene_(device), filters_(originFilter) {
     RTCScene s = rtcScene_.get();
     // Robust: watertight along shared edges, which is what a ground truth needs (contact lines,
     // closed meshes). High build quality: built once, traced many times. The origin filter is a
@@ -104,6 +108,7 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
         if (base + mesh.triangleCount() >= uint64_t(kNoOriginTriangle))
             throw std::invalid_argument("scene: more than 2^32 - 2 triangles");
         meshBase_.push_back(unsigned(base));
+        alphaMesh_.push_back(scene.alphaTested(id) ? 1 : 0);
         MeshData data{{}, mesh.wsPositions, mesh.indices};
         data.lsPositions.reserve(mesh.wsPositions.size());
         for (const glm::dvec3& ws : mesh.wsPositions)

@@ -31,6 +31,10 @@ inline constexpr unsigned kNoOriginTriangle = 0xFFFFFFFFu;
 struct ShadowContext {
     RTCIntersectContext rtc;
     const unsigned* meshBase = nullptr;  // global index of each mesh's first triangle
+    // Triangles the filter also skips (global indices; near_field.h): the pass decides them in
+    // double. Set per pixel; the filter must then be on for every query.
+    const uint32_t* skipIds = nullptr;
+    size_t skipCount = 0;
     // The filter on (true) or off for the next queries: a hit on the ray's origin triangle is
     // then no hit.
     void originFilter(bool on);
@@ -74,6 +78,11 @@ class Accel {
     // The ray id that makes a shadow ray skip triangle `prim` of mesh `mesh` (< 2^28 by the
     // loader's limits, so it never equals kNoOriginTriangle).
     unsigned originId(unsigned mesh, unsigned prim) const { return meshBase_[mesh] + prim; }
+    // Whether its queries may run the origin filter (and with it the near field's skips): false
+    // for the benchmarks' plain scene, whose passes then trace bare.
+    bool filters() const { return filters_; }
+    // Whether mesh `mesh` is alpha-tested (its filter tests the mask).
+    bool alphaTested(unsigned mesh) const { return alphaMesh_[mesh] != 0; }
 
     // Alpha tests (core/alpha_mask.h) run by this thread's filter calls so far, over all Accels:
     // a pass reads it before and after its work on each thread (alpha_tests in oracle.json).
@@ -99,6 +108,8 @@ class Accel {
     EmbreeScene rtcScene_;
     std::vector<MeshData> meshes_;
     std::vector<unsigned> meshBase_;  // global index of each mesh's first triangle
+    std::vector<uint8_t> alphaMesh_;  // 1 for alpha-tested meshes
+    bool filters_ = true;
     std::vector<std::unique_ptr<AlphaGeometry>> alphaGeometries_;
 };
 

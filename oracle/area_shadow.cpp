@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include <tbb/combinable.h>
@@ -11,6 +12,7 @@
 
 #include "core/progress.h"
 #include "core/sobol.h"
+#include "oracle/near_field.h"
 #include "oracle/sse_lanes.h"
 #include "oracle/tile_rows.h"
 
@@ -164,6 +166,11 @@ struct PacketState {
     std::vector<double> history;
     std::vector<float> halfWidths;
     FacingCache facingCache;  // the last exact decision (classifyAreaPixel)
+    // The current pixel's near field (near_field.h): its range in the buffer, and the point in
+    // double where its true segments start.
+    std::vector<uint32_t> nearIds;
+    std::vector<NearTriangle> nearTriangles;
+    NearOrigin nearOrigin{};
 };
 
 struct PixelResult {
@@ -225,6 +232,22 @@ void addToCurve(const std::vector<int>& rounds, const std::vector<float>& halfWi
     }
 }
 
+// The lanes Embree left lit, against the pixel's near field in double: the true segment from the
+// surface point, which the origin offset does not move (near_field.h).
+void decideNearField(PacketState& p, AreaShadowStats& st) {
+    for (int k = 0; k < 16; ++k) {
+        if (!p.valid[k] || !(p.ray.tfar[k] >= 0.0f)) continue;
+        const glm::dvec3 dir(p.batch.dirX[k], p.batch.dirY[k], p.batch.dirZ[k]);
+        ++st.nearFieldRays;
+        const double tMax = double(p.batch.tfar[k]);
+        if (nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(), p.nearOrigin,
+                         dir, tMax) < tMax) {
+            p.ray.tfar[k] = -std::numeric_limits<float>::infinity();
+            ++st.nearFieldOccluded;
+        }
+    }
+}
+
 // One round: two points of each replica's own scrambled Sobol sequence (lanes 2j, 2j + 1 are
 // replica j's points first, first + 1), traced as one packet, added to the replicas' sums.
 // `tangentCos`: the pixel's tangency bound (offset.h); a round holding a ray below it runs the
@@ -245,7 +268,8 @@ void traceRound(const Accel& accel, const AreaLight& light, const AreaPixel& px,
         nearLanes = _mm_or_ps(nearLanes, _mm_andnot_ps(clear, on));
         active += setBits4(_mm_movemask_ps(on));
     }
-    const bool near = _mm_movemask_ps(nearLanes) != 0;
+    // A near field (near_field.h) needs the filter on every query: it skips those triangles.
+    const bool near = _mm_movemask_ps(nearLanes) != 0 || !p.nearIds.empty();
     std::memcpy(p.ray.dir_x, p.batch.dirX, sizeof p.batch.dirX);
     std::memcpy(p.ray.dir_y, p.batch.dirY, sizeof p.batch.dirY);
     std::memcpy(p.ray.dir_z, p.batch.dirZ, sizeof p.batch.dirZ);
@@ -254,6 +278,7 @@ void traceRound(const Accel& accel, const AreaLight& light, const AreaPixel& px,
         p.ctx.originFilter(near);
         st.raysFiltered += near ? uint64_t(active) : 0;
         rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.ray);
+        if (!p.nearIds.empty()) decideNearField(p, st);
     }
     const int lit = addRound(sums, p.batch.weight, p.valid, p.ray.tfar);
     st.raysOccluded += uint64_t(active - lit);
@@ -338,11 +363,49 @@ struct AreaRun {
     std::vector<float> perSampleVar, halfWidth;  // per slot
     std::vector<double> efficiency;              // per slot
     std::vector<CurveRow> curveRows;             // per tile row
+    NearTarget target;                           // the light for near-field relevance
 
     void pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st);
     void reduceSlots(AreaShadowStats& total) const;
     void reduceCurve(AreaShadowStats& total) const;
 };
+
+// The part of the pixel's near field that segments to the light can reach (near_field.h): the
+// packet's filter skips it and decideNearField tests it.
+void setNearField(const Accel& accel, const SurfaceBuffer& sb, size_t s, const NearTarget& target,
+                  PacketState& packet) {
+    const NearFields& f = sb.nearFields;
+    packet.nearIds.clear();
+    packet.nearTriangles.clear();
+    if (accel.filters() && f.from(s) != f.to(s + 1)) {
+        packet.nearOrigin = nearOrigin(accel, sb, s);
+        appendRelevant(f, f.from(s), f.to(s + 1), packet.nearOrigin, target, packet.nearIds,
+                       packet.nearTriangles);
+    }
+    packet.ctx.skipIds = packet.nearIds.data();
+    packet.ctx.skipCount = packet.nearIds.size();
+}
+
+// The light as near_field.h's relevance test sees it: points whose convex hull holds it.
+NearTarget nearTarget(const AreaLight& light) {
+    NearTarget t;
+    const glm::dvec3 c = light.dCenter;
+    if (light.type == LightType::Sphere) {
+        for (int k = 0; k < 8; ++k)
+            t.points[k] =
+                c + light.dRadius * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+        t.count = 8;
+        return t;
+    }
+    // A rect's corners; a disk's circumscribed square in its plane.
+    const glm::dvec3 u = light.type == LightType::Rect ? 0.5 * light.dU
+                                                       : light.dRadius * glm::dvec3(light.lsE1),
+                     v = light.type == LightType::Rect ? 0.5 * light.dV
+                                                       : light.dRadius * glm::dvec3(light.lsE2);
+    for (int k = 0; k < 4; ++k) t.points[k] = c + (k & 1 ? u : -u) + (k & 2 ? v : -v);
+    t.count = 4;
+    return t;
+}
 
 void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) {
     const size_t px = sb.pixelOfSlot(s);
@@ -369,6 +432,8 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
             break;
     }
     ++st.pixelsSampled;
+    setNearField(accel, sb, s, target, packet);
+    st.nearFieldPixels += !packet.nearIds.empty();
     const PixelResult r =
         samplePixel(accel, light, prepareAreaPixel(light, p, n), sampling,
                     areaPixelSeed(sampling.seed, stream, uint32_t(sb.fullImagePixel(px))),
@@ -472,7 +537,8 @@ AreaShadowStats traceAreaShadows(const Accel& accel, const SurfaceBuffer& sb,
         std::vector<double>(sb.slotCount(), 0.0),
         std::vector<CurveRow>(size_t(sb.tilesY), {std::vector<uint64_t>(rounds.size(), 0),
                                                   std::vector<double>(rounds.size(), 0.0),
-                                                  std::vector<double>(rounds.size(), 0.0), 0})};
+                                                  std::vector<double>(rounds.size(), 0.0), 0}),
+        nearTarget(light)};
     tbb::combinable<AreaShadowStats> partial;
     // A chunk of rows: the thread's counts and the chunk's packet state.
     struct Scratch {

@@ -252,6 +252,9 @@ struct HardPacket {
     PacketSetup ps;
     uint64_t counts[int(ShadowRayKind::Count)] = {};
     uint64_t raysFiltered = 0;
+    // The tile's near-field triangles that its segments can reach (near_field.h).
+    std::vector<uint32_t> nearIds;
+    std::vector<NearTriangle> nearTriangles;
 
     explicit HardPacket(const Accel& accel) : ctx(accel.shadowContext(/*coherent=*/true)) {
         RTCRay16& ray = rayHit.ray;
@@ -377,9 +380,74 @@ uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, si
     return uint64_t(occluded);
 }
 
+// The light as near_field.h's relevance test sees it.
+NearTarget nearTarget(const HardLight& light) {
+    NearTarget t;
+    if (light.type == LightType::Directional) {
+        t.atInfinity = true;
+        t.direction = -light.lsDirection;
+    } else {
+        t.points[0] = light.lsPosition;
+        t.count = 1;
+    }
+    return t;
+}
+
+// The near-field triangles that the tile's segments can reach (near_field.h), gathered into the
+// packet's list: Embree skips them for every lane of the tile.
+// Returns the lanes that added some.
+uint64_t gatherNearField(const Accel& accel, const SurfaceBuffer& sb, size_t base,
+                         const NearTarget& target, HardPacket& p) {
+    uint64_t lanes = 0;
+    p.nearIds.clear();
+    p.nearTriangles.clear();
+    const NearFields& f = sb.nearFields;
+    if (accel.filters() && f.from(base) != f.to(base + 16))
+        for (int k = 0; k < 16; ++k) {
+            const size_t s = base + size_t(k);
+            if (!p.valid[k] || f.from(s) == f.to(s + 1)) continue;
+            const size_t before = p.nearIds.size();
+            appendRelevant(f, f.from(s), f.to(s + 1), nearOrigin(accel, sb, s), target, p.nearIds,
+                           p.nearTriangles);
+            lanes += p.nearIds.size() > before;
+        }
+    p.ctx.skipIds = p.nearIds.data();
+    p.ctx.skipCount = p.nearIds.size();
+    return lanes;
+}
+
+// The packet's near-field list against each traced lane's true segment from its surface point, in
+// double; Embree skipped those triangles. A crossing before the lane's end (or, closest-hit,
+// before Embree's hit) occludes it. Returns the lanes it changed.
+uint64_t decideNearField(const Accel& accel, const SurfaceBuffer& sb, size_t base, bool closest,
+                         HardPacket& p) {
+    uint64_t changed = 0;
+    RTCRay16& ray = p.rayHit.ray;
+    for (int k = 0; k < 16; ++k) {
+        if (!p.valid[k]) continue;
+        const bool hit =
+            closest ? p.rayHit.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID : !(ray.tfar[k] >= 0.0f);
+        if (hit && !closest) continue;
+        const double tEnd = hit ? double(ray.tfar[k]) : double(p.ps.tfar[k]);
+        const glm::dvec3 dir(p.ps.dirX[k], p.ps.dirY[k], p.ps.dirZ[k]);
+        const double t = nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(),
+                                      nearOrigin(accel, sb, base + size_t(k)), dir, tEnd);
+        if (!(t < tEnd)) continue;
+        ++changed;
+        if (closest) {
+            p.rayHit.hit.geomID[k] = 0;  // any valid id: writeTile reads only whether and where
+            ray.tfar[k] = float(t);
+        } else {
+            ray.tfar[k] = -std::numeric_limits<float>::infinity();
+        }
+    }
+    return changed;
+}
+
 // One tile: setup, trace (any hit, or the closest with the contact effect), write.
-void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light, int tx, int ty,
-               HardPacket& p, const HardShadowPlanes& out, HardShadowStats& st) {
+void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light,
+               const NearTarget& target, int tx, int ty, HardPacket& p, const HardShadowPlanes& out,
+               HardShadowStats& st) {
     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
     const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
     setupPacket(accel, sb, base, light, p.ps);
@@ -388,7 +456,8 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
     const int active = classifyLanes(p, cols, rows);
     if (active) {
         fillRays(sb, base, p);
-        const bool filter = needsOriginFilter(sb, base, p);
+        st.nearFieldPixels += gatherNearField(accel, sb, base, target, p);
+        const bool filter = needsOriginFilter(sb, base, p) || !p.nearIds.empty();
         p.ctx.originFilter(filter);
         p.raysFiltered += filter ? uint64_t(active) : 0;
         if (out.occDist) {
@@ -398,6 +467,8 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
         } else {
             rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.rayHit.ray);
         }
+        if (!p.nearIds.empty())
+            st.nearFieldOccluded += decideNearField(accel, sb, base, out.occDist != nullptr, p);
     }
     st.raysOccluded += writeTile(p, accel.frame(), size_t(y0) * size_t(sb.width) + size_t(x0),
                                  size_t(sb.width), cols, rows, out);
@@ -416,6 +487,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         HardPacket packet;
     };
     const bool spot = light.type == LightType::Spot;
+    const NearTarget target = nearTarget(light);
     forEachTileRow(
         sb.tilesY,
         [&] {
@@ -423,7 +495,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         },
         [&](int ty, Scratch& c) {
             for (int tx = 0; tx < sb.tilesX; ++tx)
-                traceTile(accel, sb, light, tx, ty, c.packet, out, c.st);
+                traceTile(accel, sb, light, target, tx, ty, c.packet, out, c.st);
             if (progress) progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
         },
         [&](Scratch& c, uint64_t alphaTestsRun) {

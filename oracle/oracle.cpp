@@ -383,6 +383,7 @@ OracleResult runOracle(const Scene& scene, const OracleOptions& options) {
         Progress progress("primary rays", pixels, options.progress);
         setup.arena.execute([&] {
             sb = tracePrimary(accel, camera, &progress, options.offsetPolicy, rows.begin, rows.end);
+            buildNearFields(accel, sb);
         });
     }
     stats.primarySeconds = secondsSince(t0);
@@ -413,8 +414,10 @@ OracleResult runOracleAtPoints(const Scene& scene, const GBuffer& gbuffer,
 
     t0 = Clock::now();
     PointsSurface ps;
-    setup.arena.execute(
-        [&] { ps = surfaceFromPoints(scene, setup.accel, gbuffer, options.offsetPolicy); });
+    setup.arena.execute([&] {
+        ps = surfaceFromPoints(scene, setup.accel, gbuffer, options.offsetPolicy);
+        buildNearFields(setup.accel, ps.sb);
+    });
     stats.primarySeconds = secondsSince(t0);
     stats.primaryAlphaTests = ps.sb.alphaTests;
     result.image = ChannelImage(gbuffer.width, gbuffer.height);

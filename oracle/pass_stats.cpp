@@ -20,6 +20,8 @@ std::span<const StatField<HardShadowStats>> HardShadowStats::fields() {
         {"exact_decisions", &S::exactDecisions},
         {"alpha_tests", &S::alphaTests},
         {"rays_filtered", &S::raysFiltered},
+        {"near_field.pixels", &S::nearFieldPixels},
+        {"near_field.rays_occluded", &S::nearFieldOccluded},
         {"seconds", &S::seconds},
     };
     return kFields;
@@ -37,6 +39,9 @@ std::span<const StatField<AreaShadowStats>> AreaShadowStats::fields() {
         {"exact_decisions", &S::exactDecisions},
         {"alpha_tests", &S::alphaTests},
         {"rays_filtered", &S::raysFiltered},
+        {"near_field.pixels", &S::nearFieldPixels},
+        {"near_field.rays_tested", &S::nearFieldRays},
+        {"near_field.rays_occluded", &S::nearFieldOccluded},
         {"samples", &S::samples},
         {"pixels_sampled", &S::pixelsSampled},
         {"pixels_without_usable_samples", &S::pixelsWithoutUsableSamples},

@@ -29,6 +29,9 @@ struct HardShadowStats {
     // Rays in packets that ran the origin-triangle filter: those holding a ray within its
     // triangle's tangency bound (offset.h, accel.h).
     uint64_t raysFiltered = 0;
+    // The near field (near_field.h): pixels with near-field triangles their segment can reach, and
+    // the rays those then blocked.
+    uint64_t nearFieldPixels = 0, nearFieldOccluded = 0;
     double seconds = 0.0;
 
     double raysPerSecond() const;
@@ -62,6 +65,10 @@ struct AreaShadowStats {
     uint64_t exactDecisions = 0;  // pixels whose horizon or emitter side was decided exactly
     uint64_t alphaTests = 0;      // candidate hits on alpha-tested geometry, tested
     uint64_t raysFiltered = 0;    // rays in packets that ran the origin-triangle filter
+    // The near field (near_field.h): pixels with near-field triangles their segments to the light
+    // can reach, rays Embree left lit that were then tested against them in double, and those
+    // they blocked.
+    uint64_t nearFieldPixels = 0, nearFieldRays = 0, nearFieldOccluded = 0;
     uint64_t samples = 0, pixelsSampled = 0, sppMax = 0;
     // Pixels where the light is above the horizon only by a sliver no sample found: reported as
     // V = 0 with the widest interval, and left out of worstHalfWidth (they carry no estimate).

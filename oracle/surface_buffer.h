@@ -13,6 +13,7 @@
 
 #include "core/camera.h"
 #include "oracle/accel.h"
+#include "oracle/near_field.h"
 #include "oracle/offset.h"
 
 namespace so {
@@ -53,6 +54,9 @@ struct SurfaceBuffer {
     std::vector<float> baryU, baryV;
     double lsMaxOffset = 0.0;  // the largest |origin - hit point|: the oracle's blind distance
     uint64_t alphaTests = 0;   // candidate hits on alpha-tested geometry, tested
+    // The triangles each slot's shadow rays decide in double (near_field.h); built after the
+    // primary pass by buildNearFields, empty before (no slot has any then).
+    NearFields nearFields;
 
     // An empty buffer of width x height pixels from image row rowBegin: every slot a miss, at
     // infinite depth, with no origin triangle.
