@@ -973,6 +973,33 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
                                " primitive(s) with alphaMode BLEND read as MASK at cutoff 0.5");
 }
 
+// tinygltf's reading of the (checked, possibly rewritten) file; its warnings go to the content.
+tinygltf::Model parseWithTinygltf(Context& ctx, const std::vector<unsigned char>& data, bool glb) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, &ctx);
+    loader.SetFsCallbacks(
+        {fsFileExists, fsExpandFilePath, fsReadWholeFile, fsWriteWholeFile, &ctx});
+    tinygltf::Model model;
+    std::string warn, err;
+    bool ok =
+        glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data.data(),
+                                          static_cast<unsigned int>(data.size()), ctx.folderPrefix)
+            : loader.LoadASCIIFromString(&model, &err, &warn,
+                                         reinterpret_cast<const char*>(data.data()),
+                                         static_cast<unsigned int>(data.size()), ctx.folderPrefix);
+    if (!ok) {
+        if (!ctx.fsError.empty()) fail(ctx, ctx.fsField, ctx.fsError);
+        if (err.find("Spot light description not found") != std::string::npos)
+            fail(ctx, "KHR_lights_punctual.lights", oneLine(err));
+        fail(ctx, "",
+             "invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
+    }
+    // tinygltf also reports some problems without failing (e.g. a misaligned GLB chunk).
+    for (const std::string* text : {&warn, &err})
+        for (const std::string& w : lines(*text)) ctx.out->warnings.push_back(w);
+    return model;
+}
+
 }  // namespace
 
 GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
@@ -1038,29 +1065,7 @@ GltfContent loadGltf(const std::filesystem::path& path, const std::string& displ
         fail(ctx, "", "file is 4 GiB or more (tinygltf limit)");
     tinyDoc = Json();
 
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keepImageBytes, &ctx);
-    loader.SetFsCallbacks(
-        {fsFileExists, fsExpandFilePath, fsReadWholeFile, fsWriteWholeFile, &ctx});
-    tinygltf::Model model;
-    std::string warn;
-    err.clear();
-    bool ok =
-        glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data.data(),
-                                          static_cast<unsigned int>(data.size()), ctx.folderPrefix)
-            : loader.LoadASCIIFromString(&model, &err, &warn,
-                                         reinterpret_cast<const char*>(data.data()),
-                                         static_cast<unsigned int>(data.size()), ctx.folderPrefix);
-    if (!ok) {
-        if (!ctx.fsError.empty()) fail(ctx, ctx.fsField, ctx.fsError);
-        if (err.find("Spot light description not found") != std::string::npos)
-            fail(ctx, "KHR_lights_punctual.lights", oneLine(err));
-        fail(ctx, "",
-             "invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
-    }
-    // tinygltf also reports some problems without failing (e.g. a misaligned GLB chunk).
-    for (const std::string* text : {&warn, &err})
-        for (const std::string& w : lines(*text)) content.warnings.push_back(w);
+    tinygltf::Model model = parseWithTinygltf(ctx, data, glb);
     decodeMeshopt(ctx, model, doc);
     decodeDraco(ctx, model, doc);
     convert(ctx, model, doc, wsFromFile);
