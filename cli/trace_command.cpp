@@ -25,7 +25,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
                           const CameraDesc& cam, const OracleStats& stats, double loadSeconds,
                           double writeSeconds) {
     nlohmann::json j = {
-        {"format_version", 10},
+        {"format_version", 11},
         {"tool", toolJson()},
         {"scene",
          {{"file", options.scenePath},
@@ -34,6 +34,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
           {"triangles", scene.stats.triangles},
           {"degenerate_triangles", scene.stats.degenerateTriangles},
           {"skipped_primitives", scene.stats.skippedPrimitives},
+          {"gltf_extensions_ignored", scene.stats.gltfExtensionsIgnored},
           {"warnings", scene.stats.warnings},
           {"effects", scene.effects},
           {"bounds",

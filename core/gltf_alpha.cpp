@@ -96,14 +96,7 @@ void GltfAlpha::parseTexture(size_t i, const tinygltf::TextureInfo& info, Materi
                  std::to_string(model_.textures.size()) + " textures)");
     const tinygltf::Texture& tex = model_.textures[size_t(info.index)];
     const std::string texField = idx("textures", size_t(info.index));
-    if (tex.source < 0)
-        fail(ctx_, texField + ".source",
-             "missing (textures given only through extensions, such as KHR_texture_basisu, are "
-             "not supported)");
-    if (size_t(tex.source) >= model_.images.size())
-        fail(ctx_, texField + ".source",
-             std::to_string(tex.source) + " out of range (" + std::to_string(model_.images.size()) +
-                 " images)");
+    const int source = textureSource(size_t(info.index));
     if (info.texCoord < 0) fail(ctx_, field + ".texCoord", "must be >= 0");
     m.texCoord = info.texCoord;
     m.uvFromFile = textureTransform(i, m.texCoord);
@@ -126,11 +119,42 @@ void GltfAlpha::parseTexture(size_t i, const tinygltf::TextureInfo& info, Materi
                  std::to_string(s.magFilter) + " is not 9728 NEAREST or 9729 LINEAR");
     }
     if (ctx_.readAlphaTextures) {
-        mask.texture = decodedTexture(size_t(tex.source));
+        mask.texture = decodedTexture(size_t(source));
     } else {
-        imagesNotRead_.insert(size_t(tex.source));  // the mask is not tested: no texture needed
+        imagesNotRead_.insert(size_t(source));  // the mask is not tested: no texture needed
         mask.texture = -1;
     }
+}
+
+// The image a texture shows: EXT_texture_webp's `source` where the texture has one (the WebP
+// image; `source` is then the fallback for viewers without WebP, and may be absent), else
+// `source`.
+int GltfAlpha::textureSource(size_t texture) const {
+    const std::string texField = idx("textures", texture);
+    const Json* textures = member(doc_, "textures");
+    const Json* webp = textures && textures->is_array() && texture < textures->size()
+                           ? path((*textures)[texture], {"extensions", "EXT_texture_webp"})
+                           : nullptr;
+    int source = model_.textures[texture].source;
+    std::string field = texField + ".source";
+    if (webp) {
+        field = texField + ".extensions.EXT_texture_webp.source";
+        const Json* s = member(*webp, "source");
+        if (!s || !s->is_number_unsigned() || s->get<uint64_t>() >= model_.images.size())
+            fail(ctx_, field,
+                 "missing, or not an index of images (" + std::to_string(model_.images.size()) +
+                     ")");
+        source = s->get<int>();
+    }
+    if (source < 0)
+        fail(ctx_, field,
+             "missing (textures given only through other extensions, such as KHR_texture_basisu, "
+             "are not supported)");
+    if (size_t(source) >= model_.images.size())
+        fail(ctx_, field,
+             std::to_string(source) + " out of range (" + std::to_string(model_.images.size()) +
+                 " images)");
+    return source;
 }
 
 // KHR_texture_transform on the base colour texture: uv' = T(offset) R(rotation) S(scale) uv, the

@@ -45,6 +45,7 @@ class GltfAlpha {
     Material parseMaterial(size_t index);
     void parseTexture(size_t material, const tinygltf::TextureInfo& info, Material& m);
     glm::dmat3 textureTransform(size_t material, int& texCoord) const;
+    int textureSource(size_t texture) const;
     int decodedTexture(size_t image);
     std::vector<unsigned char> imageBytes(size_t image);
     std::vector<glm::vec2> readUvs(const tinygltf::Primitive& prim, const Material& m,

@@ -1,5 +1,6 @@
 #include "core/gltf_detail.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -152,17 +153,25 @@ uint64_t componentCount(int type) {
     }
 }
 
-namespace {
-
-float readUvComponent(const AccessorData& a, uint64_t i, int c) {
+float readComponent(const AccessorData& a, uint64_t i, int c) {
     const unsigned char* p = a.base + i * a.stride;
+    // glTF 2.0, "Animations" / KHR_mesh_quantization: the normalized integer to float formulas.
     switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const int8_t v = static_cast<int8_t>(p[c]);
+            return a.normalized ? std::max(float(v) / 127.0f, -1.0f) : float(v);
+        }
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return float(p[c]) / 255.0f;
+            return a.normalized ? float(p[c]) / 255.0f : float(p[c]);
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            int16_t v;
+            std::memcpy(&v, p + 2 * c, 2);
+            return a.normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v);
+        }
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
             uint16_t v;
             std::memcpy(&v, p + 2 * c, 2);
-            return float(v) / 65535.0f;
+            return a.normalized ? float(v) / 65535.0f : float(v);
         }
         default: {
             float v;
@@ -172,8 +181,6 @@ float readUvComponent(const AccessorData& a, uint64_t i, int c) {
     }
 }
 
-}  // namespace
-
 std::vector<glm::vec2> readTexCoords(const Context& ctx, const tinygltf::Model& model,
                                      const Json& doc, int accessor, const std::string& name,
                                      uint64_t vertexCount, const std::string& field,
@@ -181,13 +188,18 @@ std::vector<glm::vec2> readTexCoords(const Context& ctx, const tinygltf::Model& 
     const std::string aField = field + ".attributes." + name;
     const AccessorData a =
         checkedAccessor(ctx, model, doc, accessor, aField, [&](const tinygltf::Accessor& acc) {
-            const bool normalized =
-                acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                   acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-            if (acc.type != TINYGLTF_TYPE_VEC2 ||
-                !(acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || normalized))
+            const int t = acc.componentType;
+            const bool unsignedInt = t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                     t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+            const bool signedInt =
+                t == TINYGLTF_COMPONENT_TYPE_BYTE || t == TINYGLTF_COMPONENT_TYPE_SHORT;
+            const bool core = t == TINYGLTF_COMPONENT_TYPE_FLOAT || (unsignedInt && acc.normalized);
+            const bool quantized = ctx.meshQuantization && (unsignedInt || signedInt);
+            if (acc.type != TINYGLTF_TYPE_VEC2 || !(core || quantized))
                 fail(ctx, idx("accessors", size_t(accessor)),
-                     name + " must be VEC2 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT");
+                     name +
+                         " must be VEC2 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT "
+                         "(other BYTE and SHORT forms need KHR_mesh_quantization)");
         });
     if (a.count != vertexCount)
         fail(ctx, aField,
@@ -195,7 +207,7 @@ std::vector<glm::vec2> readTexCoords(const Context& ctx, const tinygltf::Model& 
                  " vertices");
     std::vector<glm::vec2> uvs(size_t(a.count));
     for (uint64_t i = 0; i < a.count; ++i) {
-        const glm::dvec3 uv(readUvComponent(a, i, 0), readUvComponent(a, i, 1), 1.0);
+        const glm::dvec3 uv(readComponent(a, i, 0), readComponent(a, i, 1), 1.0);
         const glm::dvec3 t = uvFromFile * uv;
         if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || !std::isfinite(float(t.x)) ||
             !std::isfinite(float(t.y)))

@@ -41,6 +41,8 @@ struct Context {
     // Whether alpha-tested materials' textures are read and decoded: only when the scene's
     // effects include "alpha" (a scene that draws them opaque needs no image, nor its files).
     bool readAlphaTextures = true;
+    // KHR_mesh_quantization is used: POSITION and TEXCOORD_n may be integers (normalized or not).
+    bool meshQuantization = false;
 };
 
 [[noreturn]] void fail(const Context& ctx, const std::string& field, const std::string& message);
@@ -64,10 +66,15 @@ struct AccessorData {
     uint64_t stride = 0;
     uint64_t count = 0;
     int componentType = 0;
+    bool normalized = false;
 };
 
 uint64_t componentSize(int componentType);
 uint64_t componentCount(int type);
+// Component `c` of element `i` as a float: a FLOAT as stored; a normalized integer by glTF's
+// formulas (unsigned c / (2^n - 1), signed max(c / (2^(n-1) - 1), -1)); any other integer as its
+// value (KHR_mesh_quantization's non-normalized attributes, which the node transform scales).
+float readComponent(const AccessorData& a, uint64_t i, int c);
 
 // `usedAs` names the reference (e.g. "meshes[0].primitives[1].indices") for range errors.
 // `checkType` runs before the byte range is checked, so a wrong type is reported as such rather
@@ -119,11 +126,13 @@ AccessorData checkedAccessor(const Context& ctx, const tinygltf::Model& model, c
     d.stride = stride;
     d.count = a.count;
     d.componentType = a.componentType;
+    d.normalized = a.normalized;
     return d;
 }
 
 // The primitive's TEXCOORD_n (`name`, at accessor `accessor`): VEC2 FLOAT, or normalized
-// UNSIGNED_BYTE or UNSIGNED_SHORT, one per vertex, each finite after `uvFromFile` (the texture's
+// UNSIGNED_BYTE or UNSIGNED_SHORT (with KHR_mesh_quantization also normalized BYTE or SHORT and
+// the four non-normalized), one per vertex, each finite after `uvFromFile` (the texture's
 // KHR_texture_transform; the identity for a lightmap's). `field` names the primitive in errors
 // ("meshes[i].primitives[k]").
 std::vector<glm::vec2> readTexCoords(const Context& ctx, const tinygltf::Model& model,

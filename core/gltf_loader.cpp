@@ -39,6 +39,9 @@
 #include "core/error.h"
 #include "core/gltf_alpha.h"
 #include "core/gltf_detail.h"
+#include "core/gltf_draco.h"
+#include "core/gltf_extensions.h"
+#include "core/gltf_meshopt.h"
 
 namespace so {
 namespace {
@@ -204,6 +207,21 @@ void checkBuffers(Context& ctx, const Json& doc, bool glb, std::optional<uint64_
         if (!b.is_object()) fail(ctx, field, "not a JSON object");
         const Json* uri = member(b, "uri");
         const Json* len = member(b, "byteLength");
+        if (!uri && isMeshoptFallback(b)) {
+            // No data: EXT_meshopt_compression decodes into it, so its byteLength is allocated.
+            if (!len || !len->is_number_unsigned())
+                fail(ctx, field + ".byteLength", "missing (a fallback buffer's size)");
+            if (len->get<uint64_t>() > ctx.limits.maxFileBytes)
+                fail(ctx, field + ".byteLength",
+                     std::to_string(len->get<uint64_t>()) + " bytes, over the limit of " +
+                         std::to_string(ctx.limits.maxFileBytes));
+            planned += len->get<uint64_t>();
+            if (planned > ctx.limits.maxTotalBytes)
+                fail(ctx, field + ".byteLength",
+                     "buffers total " + std::to_string(planned) + " bytes, over the limit of " +
+                         std::to_string(ctx.limits.maxTotalBytes));
+            continue;
+        }
         if (!uri) {
             // tinygltf would hand the BIN chunk to every buffer without a URI.
             if (!glb || i != 0) fail(ctx, field + ".uri", "missing");
@@ -352,6 +370,7 @@ struct GlbChunks {
     const unsigned char* json = nullptr;
     size_t jsonSize = 0;
     std::optional<uint64_t> binSize;
+    uint64_t binOffset = 0;  // where the BIN chunk's data starts in the file
 };
 
 // Checks the layout more strictly than tinygltf, with messages that say which length is wrong.
@@ -391,8 +410,38 @@ GlbChunks glbChunks(const Context& ctx, const std::vector<unsigned char>& d) {
         if (readU32(&d[pos + 4]) != 0x004E4942u)
             fail(ctx, "GLB chunk 1", "second chunk is not BIN");
         c.binSize = binLength;
+        c.binOffset = pos + 8;
     }
     return c;
+}
+
+// The file as tinygltf is to read it after the extensions rewrote its JSON: the JSON itself for a
+// .gltf, a GLB with the new JSON chunk and the file's BIN chunk for a .glb.
+std::vector<unsigned char> rewrittenFile(const Json& doc, bool glb, const GlbChunks& chunks,
+                                         const std::vector<unsigned char>& file) {
+    std::string json = doc.dump(-1, ' ', false, Json::error_handler_t::replace);
+    if (!glb) return std::vector<unsigned char>(json.begin(), json.end());
+    while (json.size() % 4 != 0) json += ' ';
+    auto put32 = [](std::vector<unsigned char>& out, uint64_t v) {
+        for (int k = 0; k < 4; ++k) out.push_back(static_cast<unsigned char>(v >> (8 * k)));
+    };
+    // The BIN chunk is copied as the file has it, with its own length.
+    const uint64_t binSize = chunks.binSize.value_or(0);
+    const uint64_t total = 12 + 8 + json.size() + (chunks.binSize ? 8 + binSize : 0);
+    std::vector<unsigned char> out;
+    out.reserve(size_t(total));
+    out.insert(out.end(), file.begin(), file.begin() + 8);  // magic and version
+    put32(out, total);
+    put32(out, json.size());
+    put32(out, 0x4E4F534Au);
+    out.insert(out.end(), json.begin(), json.end());
+    if (chunks.binSize) {
+        put32(out, binSize);
+        put32(out, 0x004E4942u);
+        const auto bin = file.begin() + std::ptrdiff_t(chunks.binOffset);
+        out.insert(out.end(), bin, bin + std::ptrdiff_t(binSize));
+    }
+    return out;
 }
 
 // ---- Validated access to the loaded model ----------------------------------------------------
@@ -710,6 +759,23 @@ uint32_t readIndex(const AccessorData& a, uint64_t i) {
     }
 }
 
+// POSITION: VEC3 FLOAT, or with KHR_mesh_quantization VEC3 of (normalized or not) BYTE,
+// UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT (the extension's table; the node transform scales them).
+void checkPositionType(const Context& ctx, const tinygltf::Accessor& a, size_t index) {
+    const bool quantizedType = a.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                               a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                               a.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+                               a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (a.type == TINYGLTF_TYPE_VEC3 && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
+    if (a.type == TINYGLTF_TYPE_VEC3 && quantizedType && ctx.meshQuantization) return;
+    fail(ctx, idx("accessors", index),
+         a.type == TINYGLTF_TYPE_VEC3 && quantizedType
+             ? "POSITION must be VEC3 FLOAT (integer positions need KHR_mesh_quantization in "
+               "extensionsUsed)"
+             : "POSITION must be VEC3 FLOAT, or with KHR_mesh_quantization VEC3 BYTE, "
+               "UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT");
+}
+
 MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Json& doc,
                     const PlannedPrimitive& pp, GltfAlpha& alpha) {
     const Instance& inst = pp.instance;
@@ -727,7 +793,7 @@ MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Json
     out.wsPositions.resize(size_t(pp.positions.count));
     for (uint64_t i = 0; i < pp.positions.count; ++i) {
         float f[3];
-        std::memcpy(f, pp.positions.base + i * pp.positions.stride, sizeof f);
+        for (int c = 0; c < 3; ++c) f[c] = readComponent(pp.positions, i, c);
         if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
             fail(ctx, posField, "POSITION " + std::to_string(i) + " is not finite");
         glm::dvec3 p = glm::dvec3(inst.world * glm::dvec4(f[0], f[1], f[2], 1.0));
@@ -813,14 +879,11 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
             PlannedPrimitive pp{inst, size_t(node.mesh), k, {}, std::nullopt, prim.mode, 0, 0};
             auto pos = prim.attributes.find("POSITION");
             if (pos == prim.attributes.end()) fail(ctx, field + ".attributes", "no POSITION");
-            pp.positions = checkedAccessor(
-                ctx, model, doc, pos->second, field + ".attributes.POSITION",
-                [&](const tinygltf::Accessor& a) {
-                    if (a.type != TINYGLTF_TYPE_VEC3 ||
-                        a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-                        fail(ctx, idx("accessors", size_t(pos->second)),
-                             "POSITION must be VEC3 FLOAT (quantized positions are not supported)");
-                });
+            pp.positions =
+                checkedAccessor(ctx, model, doc, pos->second, field + ".attributes.POSITION",
+                                [&](const tinygltf::Accessor& a) {
+                                    checkPositionType(ctx, a, size_t(pos->second));
+                                });
             if (pp.positions.count > 3 * ctx.limits.maxTrianglesPerMesh)
                 fail(
                     ctx, idx("accessors", size_t(pos->second)) + ".count",
@@ -910,6 +973,33 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
                                " primitive(s) with alphaMode BLEND read as MASK at cutoff 0.5");
 }
 
+// tinygltf's reading of the (checked, possibly rewritten) file; its warnings go to the content.
+tinygltf::Model parseWithTinygltf(Context& ctx, const std::vector<unsigned char>& data, bool glb) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, &ctx);
+    loader.SetFsCallbacks(
+        {fsFileExists, fsExpandFilePath, fsReadWholeFile, fsWriteWholeFile, &ctx});
+    tinygltf::Model model;
+    std::string warn, err;
+    bool ok =
+        glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data.data(),
+                                          static_cast<unsigned int>(data.size()), ctx.folderPrefix)
+            : loader.LoadASCIIFromString(&model, &err, &warn,
+                                         reinterpret_cast<const char*>(data.data()),
+                                         static_cast<unsigned int>(data.size()), ctx.folderPrefix);
+    if (!ok) {
+        if (!ctx.fsError.empty()) fail(ctx, ctx.fsField, ctx.fsError);
+        if (err.find("Spot light description not found") != std::string::npos)
+            fail(ctx, "KHR_lights_punctual.lights", oneLine(err));
+        fail(ctx, "",
+             "invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
+    }
+    // tinygltf also reports some problems without failing (e.g. a misaligned GLB chunk).
+    for (const std::string* text : {&warn, &err})
+        for (const std::string& w : lines(*text)) ctx.out->warnings.push_back(w);
+    return model;
+}
+
 }  // namespace
 
 GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
@@ -961,30 +1051,23 @@ GltfContent loadGltf(const std::filesystem::path& path, const std::string& displ
     checkImageBufferViews(ctx, doc);
     checkLights(ctx, doc);
     checkPrimitivesParse(ctx, doc);
+    const GltfExtensions extensions = checkExtensions(ctx, doc);
+    ctx.meshQuantization = extensions.meshQuantization;
+    content.gltfExtensionsIgnored = extensions.ignored;
 
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keepImageBytes, &ctx);
-    loader.SetFsCallbacks(
-        {fsFileExists, fsExpandFilePath, fsReadWholeFile, fsWriteWholeFile, &ctx});
-    tinygltf::Model model;
-    std::string warn;
-    err.clear();
-    bool ok =
-        glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data.data(),
-                                          static_cast<unsigned int>(data.size()), ctx.folderPrefix)
-            : loader.LoadASCIIFromString(&model, &err, &warn,
-                                         reinterpret_cast<const char*>(data.data()),
-                                         static_cast<unsigned int>(data.size()), ctx.folderPrefix);
-    if (!ok) {
-        if (!ctx.fsError.empty()) fail(ctx, ctx.fsField, ctx.fsError);
-        if (err.find("Spot light description not found") != std::string::npos)
-            fail(ctx, "KHR_lights_punctual.lights", oneLine(err));
-        fail(ctx, "",
-             "invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
-    }
-    // tinygltf also reports some problems without failing (e.g. a misaligned GLB chunk).
-    for (const std::string* text : {&warn, &err})
-        for (const std::string& w : lines(*text)) content.warnings.push_back(w);
+    // Draco and meshopt files hold what tinygltf 2.7 refuses (an indices accessor without a
+    // bufferView, a buffer without data): it reads a copy of the JSON with those filled in, and
+    // the extensions are decoded from the file's own JSON afterwards.
+    Json tinyDoc = doc;
+    const bool rewritten = prepareDracoJson(ctx, tinyDoc) | prepareMeshoptJson(tinyDoc);
+    if (rewritten) data = rewrittenFile(tinyDoc, glb, chunks, data);
+    if (data.size() > std::numeric_limits<uint32_t>::max())
+        fail(ctx, "", "file is 4 GiB or more (tinygltf limit)");
+    tinyDoc = Json();
+
+    tinygltf::Model model = parseWithTinygltf(ctx, data, glb);
+    decodeMeshopt(ctx, model, doc);
+    decodeDraco(ctx, model, doc);
     convert(ctx, model, doc, wsFromFile);
     return content;
 }

@@ -21,6 +21,9 @@ struct GltfContent {
     std::vector<Light> lights;          // KHR_lights_punctual, named and made unique
     std::vector<AlphaTexture> alphaTextures;  // AlphaMask::texture indexes this list
     size_t skippedPrimitives = 0;
+    // Extensions the file uses that the loader does not read (docs/scene-format.md, "glTF
+    // extensions"), sorted.
+    std::vector<std::string> gltfExtensionsIgnored;
     std::vector<std::string> warnings;
     std::vector<std::filesystem::path> filesRead;  // for the content hash
     uint64_t bytesRead = 0;

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/image_module.h"
+#include "core/webp_decode.h"
 
 namespace so {
 
@@ -116,6 +117,7 @@ TextureRgba readTextureRgba(const std::string& path, int maxWidth, int maxHeight
 
 TextureRgba decodeTextureRgba(const std::vector<unsigned char>& bytes, int maxWidth, int maxHeight,
                               uint64_t maxPixels) {
+    if (isWebp(bytes)) return decodeWebpRgba(bytes, maxWidth, maxHeight, maxPixels);
     const SoImageModule& m = imageModule();
     TextureRgba texture;
     char error[512] = "";

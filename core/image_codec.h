@@ -43,8 +43,9 @@ struct TextureRgba {
 // naming the file for a missing, broken, unsupported or oversized file.
 TextureRgba readTextureRgba(const std::string& path, int maxWidth = 8192, int maxHeight = 8192,
                             uint64_t maxPixels = uint64_t(1) << 26);
-// The same from a PNG or JPEG file's bytes in memory (glTF images in buffers or data: URIs); the
-// InputError names "(memory)" as the file, for the caller to name its own.
+// The same from a PNG, JPEG or WebP file's bytes in memory (glTF images in buffers or data: URIs;
+// WebP through libwebp, core/webp_decode.h, within the same limits); the InputError names
+// "(memory)" as the file, for the caller to name its own.
 TextureRgba decodeTextureRgba(const std::vector<unsigned char>& bytes, int maxWidth = 8192,
                               int maxHeight = 8192, uint64_t maxPixels = uint64_t(1) << 26);
 

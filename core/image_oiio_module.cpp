@@ -159,7 +159,7 @@ int readPixelsFromMemory(const unsigned char* bytes, size_t size, int maxWidth, 
     const char* name = size >= 4 && std::equal(kPng, kPng + 4, bytes)     ? "memory.png"
                        : size >= 3 && std::equal(kJpeg, kJpeg + 3, bytes) ? "memory.jpg"
                                                                           : nullptr;
-    if (!name) return fail(error, errorSize, "neither a PNG nor a JPEG file");
+    if (!name) return fail(error, errorSize, "not a PNG, JPEG or WebP file");
     OIIO::Filesystem::IOMemReader memory(bytes, size);
     return readFrom(name, &memory, maxWidth, maxHeight, maxPixels, allocate, allocatorData,
                     channels, error, errorSize);

@@ -129,6 +129,9 @@ struct SceneStats {
     size_t triangles = 0;
     size_t degenerateTriangles = 0;
     size_t skippedPrimitives = 0;  // non-triangle glTF primitives (points, lines), counted
+    // glTF extensions used by a geometry file that no loader step reads, sorted, each once
+    // (docs/scene-format.md, "glTF extensions").
+    std::vector<std::string> gltfExtensionsIgnored;
     std::vector<std::string> warnings;
     bool totalTrianglesExceeded(const struct LoadLimits& limits) const;
 };

@@ -429,6 +429,10 @@ void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const Loa
         throwInputError(display, "",
                         "more than " + std::to_string(limits.maxMeshes) + " drawn meshes");
     scene.stats.skippedPrimitives += g.skippedPrimitives;
+    std::vector<std::string>& ignored = scene.stats.gltfExtensionsIgnored;
+    for (const std::string& e : g.gltfExtensionsIgnored)
+        if (std::find(ignored.begin(), ignored.end(), e) == ignored.end()) ignored.push_back(e);
+    std::sort(ignored.begin(), ignored.end());
     for (const std::string& w : g.warnings) scene.stats.warnings.push_back(w);
 }
 
