@@ -129,13 +129,19 @@ Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_
     }
     // Different surfaces: ambiguous if the ray passes within the tolerance of an edge or a
     // surface on the way to the farther of the two hits, or both hits lie at the same depth
-    // (coplanar duplicates: which one is "first" is a tie).
+    // (coplanar duplicates: which one is "first" is a tie). The farther hit's own triangle is
+    // left out: the segment ends just past it, so it would always be within the tolerance of the
+    // end, and whether the nearer hit is robust (crossed well inside its triangle, its alpha test
+    // clear) or robustly missed is the question.
     const double tOracle = sb.hit[slot] ? glm::length(glm::dvec3(sb.lsPoint(slot)) - lsEye) : kInf;
     const double tRef = h.found ? h.t : kInf;
     const double tFar = std::max(tOracle, tRef);
     const double tEnd = std::isfinite(tFar) ? tFar * (1.0 + 1e-6) : kInf;
+    const TriangleId farId = !std::isfinite(tFar) ? TriangleId{}
+                             : tOracle >= tRef    ? oracleId
+                                                  : h.id;
     const ExactTracer::SegmentQuery q =
-        exact_.tracer().segment(lsEye, dir, tEnd, TriangleId{}, kTolAbs, kTolPerT);
+        exact_.tracer().segment(lsEye, dir, tEnd, farId, kTolAbs, kTolPerT);
     alphaAmbiguous = alphaAmbiguous || h.alphaAmbiguous || q.alphaAmbiguous;
     const bool ambiguous = q.ambiguous || h.alphaAmbiguous || q.alphaAmbiguous ||
                            std::fabs(tOracle - tRef) <= kTolAbs + kTolPerT * tRef;

@@ -400,11 +400,13 @@ TEST(AlphaVerify, TexelBoundaryCrossingIsAmbiguousNotADisagreement) {
     std::vector<float> V(img.channel("sun.V"), img.channel("sun.V") + img.pixelCount());
     const LightVerification clean = verifyEveryPixel(s, s, V.data());
     EXPECT_EQ(clean.disagree, 0u);
-    // The centre column's floor pixels under the square, and as many elsewhere under it.
+    // The centre column's floor pixels under the square, and as many elsewhere under it (not in
+    // the centre row: the camera looks at z = 0, another texel boundary).
     std::set<std::pair<int, int>> onBoundary, elsewhere;
     for (int y = 0; y < 81; ++y)
         for (int x : {40, 20}) {
             const size_t i = size_t(y) * 81 + size_t(x);
+            if (x == 20 && y == 40) continue;
             const glm::dvec3 p = pixelPoint(img, i);
             if (A[i] == 0.0f || std::fabs(p.y) > 1e-3 || std::fabs(p.z) > 0.95) continue;
             V[i] = 1.0f - V[i];
