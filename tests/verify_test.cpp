@@ -318,7 +318,7 @@ TEST(Verify, SharedFlightHelmetWithAlphaAgrees) {
     }
     std::ofstream(tmp / "helmet.scene.json") << R"({"scene_format": 1,
         "geometry": [{"file": "FlightHelmet.gltf"}],
-        "camera": {"eye": [0.3, 0.6, 0.75], "target": [0, 0.38, 0], "vfov_deg": 45,
+        "camera": {"eye": [0.12, 0.6, 0.42], "target": [0, 0.52, 0.1], "vfov_deg": 45,
                    "width": 96, "height": 96},
         "lights": [{"name": "sun", "type": "directional", "direction": [-0.3, -0.6, -0.7]},
                    {"name": "lamp", "type": "point", "position": [0.3, 0.9, 0.6]}],
