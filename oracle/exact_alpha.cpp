@@ -25,12 +25,14 @@ AlphaAnswer nearest(const AlphaTexture& t, const AlphaMask& m, dvec2 x, dvec2 to
     const double factor = double(m.factor);
     AlphaAnswer out = decide(
         factor * exact_alpha::texel(t, m, int64_t(std::floor(x.x)), int64_t(std::floor(x.y))), m);
-    // Every texel the float path could have read: the same decision, or ambiguous.
+    // Every texel the float path could have read: the same decision, clear of the cutoff, or
+    // ambiguous.
     for (int64_t j = int64_t(std::floor(x.y - tol.y)); j <= int64_t(std::floor(x.y + tol.y)); ++j)
         for (int64_t i = int64_t(std::floor(x.x - tol.x)); i <= int64_t(std::floor(x.x + tol.x));
-             ++i)
-            if (!(factor * exact_alpha::texel(t, m, i, j) < double(m.cutoff)) != out.present)
-                out.ambiguous = true;
+             ++i) {
+            const AlphaAnswer a = decide(factor * exact_alpha::texel(t, m, i, j), m);
+            if (a.present != out.present || a.ambiguous) out.ambiguous = true;
+        }
     return out;
 }
 

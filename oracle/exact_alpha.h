@@ -39,8 +39,6 @@ class ExactAlpha final : public ExactTracer::AlphaTest {
   public:
     // The scene must outlive it: the meshes' indices, coordinates and textures are read in place.
     explicit ExactAlpha(const Scene& scene);
-    // Whether mesh m is alpha-tested (Scene::alphaTested).
-    bool tested(size_t mesh) const { return mesh < meshes_.size() && meshes_[mesh].mask; }
     AlphaAnswer at(TriangleId id, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                    double b1, double b2, const glm::dvec3& d, double lsTol) const override;
 
