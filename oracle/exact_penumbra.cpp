@@ -45,6 +45,7 @@ std::span<const StatField<ExactPenumbraStats>> ExactPenumbraStats::fields() {
     static constexpr StatField<S> kFields[] = {
         {"pixels_exact", &S::pixelsExact},
         {"pixels_kept_sampled.too_many_occluders", &S::pixelsTooManyOccluders},
+        {"pixels_kept_sampled.alpha_tested", &S::pixelsAlphaTested},
         {"occluders.total", &S::occludersTotal},
         {"occluders.max", &S::occludersMax, Combine::Max},
         {"candidates_total", &S::candidatesTotal},
@@ -83,7 +84,8 @@ RectLightShape shapeOf(const AreaLight& light) {
     return {light.dCenter - 0.5 * light.dU - 0.5 * light.dV, light.dU, light.dV, light.dEmitNormal};
 }
 
-// What one pixel's exact V came to (status Exact or TooManyOccluders), or nothing asked.
+// What one pixel's exact V came to (status Exact, TooManyOccluders or AlphaTested), or nothing
+// asked.
 struct PixelAnswer {
     bool asked = false;
     PolygonVisibility result;
@@ -121,6 +123,10 @@ void apply(const PolygonVisibility& a, size_t i, const ExactPenumbraOptions& opt
            const ExactPenumbraPlanes& planes, ExactPenumbraStats& st) {
     if (a.status == PolygonVisibilityStatus::TooManyOccluders) {
         ++st.pixelsTooManyOccluders;
+        return;
+    }
+    if (a.status == PolygonVisibilityStatus::AlphaTested) {
+        ++st.pixelsAlphaTested;
         return;
     }
     ++st.pixelsExact;

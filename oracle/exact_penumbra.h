@@ -53,10 +53,11 @@ struct ExactPenumbraStats {
     PenumbraMethod method = PenumbraMethod::Exact;
     bool allPixels = false;
     // Set when the light kept its sampled V everywhere: "disk light", "sphere light" (not
-    // polygons), "alpha-tested meshes" (the exact pass does not test alpha masks).
+    // polygons).
     std::string notApplied;
     uint64_t pixelsExact = 0;
-    uint64_t pixelsTooManyOccluders = 0;            // kept sampled
+    uint64_t pixelsTooManyOccluders = 0;  // kept sampled
+    uint64_t pixelsAlphaTested = 0;       // kept sampled: an alpha-tested triangle in the pyramid
     uint64_t occludersTotal = 0, occludersMax = 0;  // over the exact pixels
     OccluderHistogram occluders{};
     uint64_t candidatesTotal = 0;  // triangles the BVH query returned

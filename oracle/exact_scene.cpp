@@ -19,14 +19,17 @@ std::vector<std::vector<glm::dvec3>> toLocal(const Scene& scene, const LocalFram
 std::vector<ExactTracer::MeshView> views(const std::vector<std::vector<glm::dvec3>>& ls,
                                          const Scene& scene) {
     std::vector<ExactTracer::MeshView> v;
-    for (size_t m = 0; m < ls.size(); ++m) v.push_back({&ls[m], &scene.meshes[m].indices});
+    for (size_t m = 0; m < ls.size(); ++m)
+        v.push_back({&ls[m], &scene.meshes[m].indices, scene.alphaTested(m)});
     return v;
 }
 
 }  // namespace
 
 ExactScene::ExactScene(const Scene& scene, const LocalFrame& frame)
-    : lsPositions_(toLocal(scene, frame)), tracer_(views(lsPositions_, scene)) {
+    : lsPositions_(toLocal(scene, frame)),
+      alpha_(scene),
+      tracer_(views(lsPositions_, scene), &alpha_) {
     for (const MeshPrimitive& m : scene.meshes) indices_.push_back(&m.indices);
 }
 

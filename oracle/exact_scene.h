@@ -1,6 +1,8 @@
 // The scene's triangles in double precision in the oracle's local frame, with the exact tracer
 // over them: what `--verify` (verify.h) and the exact penumbra pass (exact_penumbra.h) share. Holds
 // about 200 bytes per triangle (the double vertices, the tracer's triangles and nodes).
+// Alpha-tested meshes are tested by exact_alpha.h, which reads the scene's coordinates and textures
+// in place: the scene must outlive this.
 #pragma once
 
 #include <array>
@@ -10,6 +12,7 @@
 
 #include "core/local_frame.h"
 #include "core/scene.h"
+#include "oracle/exact_alpha.h"
 #include "oracle/exact_tracer.h"
 
 namespace so {
@@ -28,6 +31,7 @@ class ExactScene {
   private:
     std::vector<std::vector<glm::dvec3>> lsPositions_;
     std::vector<const std::vector<uint32_t>*> indices_;
+    ExactAlpha alpha_;  // before tracer_, which holds a pointer to it
     ExactTracer tracer_;
 };
 

@@ -302,12 +302,17 @@ bool slab(const dvec3& lo, const dvec3& hi, const Ray& r, double e, double t0, d
 
 }  // namespace
 
-ExactTracer::ExactTracer(const std::vector<MeshView>& meshes) {
+ExactTracer::ExactTracer(const std::vector<MeshView>& meshes, const AlphaTest* alpha)
+    : alpha_(alpha) {
     std::vector<Tri> src;
     for (size_t m = 0; m < meshes.size(); ++m) {
         const MeshView& mv = meshes[m];
         if (!mv.positions || !mv.indices)
             throw std::invalid_argument("ExactTracer: mesh " + std::to_string(m) + " is null");
+        if (mv.alphaTested && !alpha)
+            throw std::invalid_argument("ExactTracer: mesh " + std::to_string(m) +
+                                        " is alpha-tested but no alpha test was given");
+        alphaMesh_.push_back(mv.alphaTested ? 1 : 0);
         const std::vector<glm::dvec3>& pos = *mv.positions;
         const std::vector<uint32_t>& idx = *mv.indices;
         if (idx.size() % 3 != 0)
@@ -456,12 +461,20 @@ double ExactTracer::pad(const dvec3& o, const dvec3& end) const {
     return kPadRel * (m + sceneMaxAbs_) + std::numeric_limits<double>::min();
 }
 
+AlphaAnswer ExactTracer::alphaAt(const Tri& tr, double b1, double b2, const dvec3& d,
+                                 double lsTol) const {
+    if (!alphaTested(tr.id)) return {};
+    return alpha_->at(tr.id, tr.v0, tr.v1, tr.v2, b1, b2, d, lsTol);
+}
+
 ExactTracer::Hit ExactTracer::closestHit(const dvec3& o, const dvec3& d, double tMin, double tMax,
-                                         TriangleId skip) const {
+                                         TriangleId skip, double alphaTolAbs,
+                                         double alphaTolPerT) const {
     Hit hit;
     const RayPre r(o, d);
     if (nodes_.empty() || !r.valid || !r.shear.valid || !(tMax > tMin)) return hit;
-    double upper = tMax;  // t < upper; after a hit, t <= hit.t (equal t: the smaller id wins)
+    double upper = tMax;       // t < upper; after a hit, t <= hit.t (equal t: the smaller id wins)
+    double ambiguousT = kInf;  // the nearest crossing whose alpha test was ambiguous
     const auto visit = [&](const Node& leaf) {
         for (uint32_t i = leaf.index; i < leaf.index + leaf.count; ++i) {
             const Tri& tr = tris_[i];
@@ -469,14 +482,18 @@ ExactTracer::Hit ExactTracer::closestHit(const dvec3& o, const dvec3& d, double 
             if (tr.id == skip ||
                 !crossTriangle(r.shear, o, d, tr.v0, tr.v1, tr.v2, tMin, upper, t, b1, b2))
                 continue;
+            const AlphaAnswer a = alphaAt(tr, b1, b2, d, alphaTolAbs + alphaTolPerT * t);
+            if (a.ambiguous) ambiguousT = std::min(ambiguousT, t);
+            if (!a.present) continue;  // a hole: the ray goes on
             if (hit.found && t == hit.t && !idLess(tr.id, hit.id)) continue;
-            hit = {true, t, tr.id, b1, b2};
+            hit = {true, t, tr.id, b1, b2, false};
             upper = std::nextafter(t, kInf);
         }
         return true;
     };
     const auto bound = [&] { return hit.found ? hit.t : tMax; };
     walk<true>(r, pad(o, o), tMin, bound, visit);
+    hit.alphaAmbiguous = ambiguousT <= (hit.found ? hit.t : tMax);
     return hit;
 }
 
@@ -490,7 +507,8 @@ bool ExactTracer::occluded(const dvec3& o, const dvec3& d, double tMin, double t
             const Tri& tr = tris_[i];
             double t, b1, b2;
             if (tr.id != skip &&
-                crossTriangle(r.shear, o, d, tr.v0, tr.v1, tr.v2, tMin, tMax, t, b1, b2)) {
+                crossTriangle(r.shear, o, d, tr.v0, tr.v1, tr.v2, tMin, tMax, t, b1, b2) &&
+                alphaAt(tr, b1, b2, d, 0.0).present) {
                 found = true;
                 return false;
             }
@@ -533,6 +551,11 @@ void ExactTracer::segmentLeaf(const Node& leaf, SegmentCtx& ctx, SegmentQuery& q
         double tHit = kInf, b1, b2;
         const bool crossed = r.shear.valid && crossTriangle(r.shear, r.o, r.d, tr.v0, tr.v1, tr.v2,
                                                             0.0, ctx.tEnd, tHit, b1, b2);
+        if (crossed && alphaTested(tr.id)) {
+            const AlphaAnswer a = alphaAt(tr, b1, b2, r.d, ctx.tolAbs + ctx.tolPerT * tHit);
+            q.alphaAmbiguous = q.alphaAmbiguous || a.ambiguous;
+            if (!a.present) continue;  // through a hole: no occlusion, no margin (header)
+        }
         if (crossed && (tHit < q.firstHitT || (tHit == q.firstHitT && idLess(tr.id, q.firstHit))))
             q.firstHitT = tHit, q.firstHit = tr.id;
         if (!crossed) {

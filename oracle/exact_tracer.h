@@ -31,33 +31,60 @@ struct TriangleId {
     bool operator==(const TriangleId&) const = default;
 };
 
+// What an alpha-tested triangle says at a crossing (oracle/exact_alpha.h answers it).
+struct AlphaAnswer {
+    bool present = true;     // alpha >= cutoff: the crossing counts
+    bool ambiguous = false;  // the float path may decide the other way (within its rounding)
+};
+
 class ExactTracer {
   public:
     // meshes[i] = {positions (double, already in the frame the caller traces in), indices (3 per
-    // triangle)}.
+    // triangle), whether its triangles are alpha-tested}.
     struct MeshView {
         const std::vector<glm::dvec3>* positions;
         const std::vector<uint32_t>* indices;
+        bool alphaTested = false;
     };
-    // Copies what it needs, so the views need not outlive the tracer. Degenerate (zero-area)
-    // triangles are kept but can never be hit; triangles with a non-finite vertex are dropped.
-    // Throws std::invalid_argument on an index out of range or an index count not a multiple of 3.
-    explicit ExactTracer(const std::vector<MeshView>& meshes);
+    // The alpha test of alpha-tested meshes, at a crossing of the ray with direction d of
+    // triangle id (vertices a, b, c) at barycentrics b1, b2 (of b and c). lsTol: how far, in
+    // position units perpendicular to the ray, the float path's ray may pass from this one there.
+    class AlphaTest {
+      public:
+        virtual ~AlphaTest() = default;
+        virtual AlphaAnswer at(TriangleId id, const glm::dvec3& a, const glm::dvec3& b,
+                               const glm::dvec3& c, double b1, double b2, const glm::dvec3& d,
+                               double lsTol) const = 0;
+    };
+    // Copies what it needs, so the views need not outlive the tracer (`alpha` must). Degenerate
+    // (zero-area) triangles are kept but can never be hit; triangles with a non-finite vertex are
+    // dropped. Throws std::invalid_argument on an index out of range, an index count not a
+    // multiple of 3, or an alpha-tested mesh without `alpha`.
+    explicit ExactTracer(const std::vector<MeshView>& meshes, const AlphaTest* alpha = nullptr);
     size_t triangleCount() const { return tris_.size(); }
+    // Whether triangle id's mesh is alpha-tested: its crossings count only where alpha passes.
+    bool alphaTested(TriangleId id) const {
+        return id.mesh < alphaMesh_.size() && alphaMesh_[id.mesh] != 0;
+    }
 
     struct Hit {
         bool found = false;
         double t = 0;
         TriangleId id;
         double b1 = 0, b2 = 0;  // barycentrics of vertex 1 and 2
+        // An alpha test at t <= this hit's t (a hole passed through, or the hit itself) was
+        // ambiguous: the float path may have seen another surface.
+        bool alphaAmbiguous = false;
     };
     // Closest crossing of o + t d (d need not be unit) with t in (tMin, tMax), skipping triangle
-    // `skip`. A crossing is a point of the closed triangle (edges and vertices included); a ray
-    // lying in a triangle's plane never crosses it. Equal t: the smaller (mesh, prim) wins, so the
-    // answer does not depend on the BVH.
+    // `skip` and the holes of alpha-tested triangles. A crossing is a point of the closed triangle
+    // (edges and vertices included); a ray lying in a triangle's plane never crosses it. Equal t:
+    // the smaller (mesh, prim) wins, so the answer does not depend on the BVH. alphaTolAbs +
+    // alphaTolPerT * t: the alpha tests' lsTol (AlphaTest) at t.
     Hit closestHit(const glm::dvec3& o, const glm::dvec3& d, double tMin, double tMax,
-                   TriangleId skip = {}) const;
-    // Any crossing with t in (tMin, tMax), skipping `skip`. Faster than closestHit.
+                   TriangleId skip = {}, double alphaTolAbs = 0.0, double alphaTolPerT = 0.0) const;
+    // Any crossing with t in (tMin, tMax), skipping `skip` and alpha holes (decided in double,
+    // ambiguity not asked). Faster than closestHit.
     bool occluded(const glm::dvec3& o, const glm::dvec3& d, double tMin, double tMax,
                   TriangleId skip = {}) const;
 
@@ -79,6 +106,11 @@ class ExactTracer {
     // reach count: crossed ones and those with margin_T <= tolAbs + tolPerT * tMax. T is ambiguous
     // when margin_T < tolAbs + tolPerT * t_T. Degenerate triangles are never crossed but their
     // edges count (harmless: a zero-area triangle near S can only make the answer more cautious).
+    //
+    // Alpha-tested triangles: a crossing counts only where the alpha test passes (lsTol at t_hit:
+    // tolAbs + tolPerT * t_hit); a crossing of a hole adds no margin (S moving off the triangle
+    // or within the hole leaves the answer as it is; a neighbour it could reach has its own
+    // margin), and any crossing whose alpha test is ambiguous sets alphaAmbiguous.
     struct SegmentQuery {
         bool occluded = false;   // S crosses some triangle other than `skip` at t in (0, tMax)
         bool ambiguous = false;  // some triangle within reach is ambiguous
@@ -91,6 +123,7 @@ class ExactTracer {
         TriangleId nearest;  // the triangle that set `margin`
         double firstHitT = std::numeric_limits<double>::infinity();  // closest crossing t, or inf
         TriangleId firstHit;
+        bool alphaAmbiguous = false;  // some crossing's alpha test was ambiguous
     };
     // tolAbs is in position units, tolPerT in position units per unit of t (so with a unit d, per
     // unit of distance along the segment).
@@ -134,8 +167,13 @@ class ExactTracer {
     double clipToBounds(const RayPre& r, double tolAbs, double tolPerT) const;
     void segmentLeaf(const Node& leaf, SegmentCtx& ctx, SegmentQuery& q) const;
 
+    AlphaAnswer alphaAt(const Tri& tr, double b1, double b2, const glm::dvec3& d,
+                        double lsTol) const;
+
     std::vector<Tri> tris_;
     std::vector<Node> nodes_;
+    std::vector<uint8_t> alphaMesh_;  // per mesh: alpha-tested
+    const AlphaTest* alpha_ = nullptr;
     double sceneMaxAbs_ = 0;  // the largest |coordinate| of any vertex
 };
 

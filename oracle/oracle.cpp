@@ -91,10 +91,9 @@ AreaShadowStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
 }
 
 // Why the exact pass does not apply to a light, or "" where it does.
-std::string exactNotApplied(const LightPass& p, const Light& light) {
+std::string exactNotApplied(const Light& light) {
     if (light.type != LightType::Rect)
         return std::string(lightTypeName(light.type)) + " light (not a polygon)";
-    if (!p.exact) return "alpha-tested meshes (the exact pass does not test alpha masks)";
     return "";
 }
 
@@ -114,7 +113,7 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
     ExactPenumbraStats st;
     st.method = options.method;
     st.allPixels = options.allPixels;
-    st.notApplied = exactNotApplied(p, light);
+    st.notApplied = exactNotApplied(light);
     if (!st.notApplied.empty()) {
         // Every pixel sampled: the mask stays 0 (a new channel's fill), V_exact is V.
         if (planes.Vexact) std::copy(V, V + p.pixels, planes.Vexact);
@@ -200,11 +199,6 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
                                        const LocalFrame& frame, const Camera* camera,
                                        OracleStats& stats) {
     if (options.verify.pixels <= 0) return nullptr;
-    for (size_t m = 0; m < scene.meshes.size(); ++m)
-        if (scene.alphaTested(m))
-            throwInputError(scene.path.string(), "verify",
-                            "the exact re-trace does not test alpha masks (mesh " +
-                                scene.meshes[m].name + " is alpha-tested); trace unverified");
     // The reference keeps about 200 bytes per triangle (triangles, nodes, the double vertices):
     // refuse rather than exhaust memory on a huge scene.
     if (scene.stats.triangles > kVerifyMaxTriangles)
@@ -223,16 +217,14 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
     return verifier;
 }
 
-// The exact penumbra pass's scene: with --penumbra exact or both, a rect light and "penumbra";
-// none on a scene with alpha-tested meshes (their lights keep the sampled V, and say why).
+// The exact penumbra pass's scene: with --penumbra exact or both, a rect light and "penumbra".
+// Alpha-tested meshes are in it: the pixels whose pyramid holds one keep their sampled V.
 std::unique_ptr<ExactScene> makeExactScene(const Scene& scene, const OracleOptions& options,
                                            const LocalFrame& frame) {
     if (options.penumbra.method == PenumbraMethod::Sampled || !scene.hasEffect("penumbra"))
         return nullptr;
     const bool rect = std::any_of(scene.lights.begin(), scene.lights.end(),
                                   [](const Light& l) { return l.type == LightType::Rect; });
-    for (size_t m = 0; m < scene.meshes.size(); ++m)
-        if (scene.alphaTested(m)) return nullptr;
     return rect ? std::make_unique<ExactScene>(scene, frame) : nullptr;
 }
 

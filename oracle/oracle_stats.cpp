@@ -195,6 +195,7 @@ json lightVerificationJson(const LightVerification& l) {
               {"agree", l.agree},
               {"ambiguous", l.ambiguous},
               {"primary_differs_within_tolerance", l.primaryDiffers},
+              {"ambiguous_alpha", l.alphaAmbiguous},
               {"disagreements", l.disagree},
               {"pixels", pixels},
               {"seconds", l.seconds}};
@@ -510,6 +511,7 @@ LightVerification readLightVerification(const Fields& f) {
     l.agree = f.u64("agree");
     l.ambiguous = f.u64("ambiguous");
     l.primaryDiffers = f.u64("primary_differs_within_tolerance");
+    l.alphaAmbiguous = f.u64("ambiguous_alpha");
     l.disagree = f.u64("disagreements");
     for (const Fields& p : f.objects("pixels")) l.disagreements.push_back(readDisagreement(p));
     l.seconds = f.number("seconds");

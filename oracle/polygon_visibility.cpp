@@ -173,7 +173,7 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
 
     const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, light);
     ClipperLib::Paths shadows;
-    bool capped = false;
+    bool capped = false, alpha = false;
     const auto visit = [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
         if (++result.candidates > maxCandidates) {
             capped = true;
@@ -181,6 +181,10 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
         }
         if (id == self || inPlaneOf(p, a, b, c)) return true;
         ClipperLib::Path shadow = shadowOf(a, b, c, p, height, planes, frame);
+        if (!shadow.empty() && tracer.alphaTested(id)) {
+            alpha = true;
+            return false;
+        }
         if (!shadow.empty()) {
             shadows.push_back(std::move(shadow));
             ++result.occluders;
@@ -188,8 +192,9 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
         return true;
     };
     tracer.forEachTriangleIn(planes, visit);
-    if (capped) {
-        result.status = PolygonVisibilityStatus::TooManyOccluders;
+    if (capped || alpha) {
+        result.status = capped ? PolygonVisibilityStatus::TooManyOccluders
+                               : PolygonVisibilityStatus::AlphaTested;
         return result;
     }
     result.status = PolygonVisibilityStatus::Exact;

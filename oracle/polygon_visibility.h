@@ -33,6 +33,7 @@ enum class PolygonVisibilityStatus : uint8_t {
     Exact,             // V is exact
     NoLight,           // no part of the light is above p's horizon on its emitting side: V = 0
     TooManyOccluders,  // more than the cap cut the pyramid: no answer (the caller samples)
+    AlphaTested,       // an alpha-tested triangle cuts the pyramid: no answer (the caller samples)
 };
 
 struct PolygonVisibility {
@@ -43,7 +44,9 @@ struct PolygonVisibility {
 };
 
 // V at p (unit normal n, the receiver's triangle `self` left out: it can only touch p's own
-// plane) from every triangle of `tracer`. maxCandidates bounds the work per point.
+// plane) from every triangle of `tracer`. maxCandidates bounds the work per point. An
+// alpha-tested triangle (ExactTracer::alphaTested) with a part inside the pyramid from p to the
+// light ends the query with AlphaTested: its shadow is the mask's, which this does not clip.
 PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLightShape& light,
                                       const glm::dvec3& p, const glm::dvec3& n, TriangleId self,
                                       uint32_t maxCandidates);

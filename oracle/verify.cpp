@@ -100,7 +100,8 @@ std::vector<size_t> Verifier::choosePixels(const Light& light, uint32_t lightInd
 // Re-traces the primary ray. Anything but Agree ends the pixel's check: the reference sees a
 // different surface (a disagreement unless within the tolerance).
 Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_t slot,
-                                    PixelRef& ref, VerifyDisagreement& d) const {
+                                    PixelRef& ref, VerifyDisagreement& d,
+                                    bool& alphaAmbiguous) const {
     if (!camera_) {
         // Points mode: no primary ray. The oracle's triangle and barycentrics on the reference's
         // own double vertices, the normal oriented as the oracle's (which agrees with the
@@ -115,7 +116,9 @@ Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_
     SO_CHECK(sb.lsEye.has_value());
     const glm::dvec3 lsEye = *sb.lsEye;
     const glm::dvec3 dir = camera_->generateRay(x, y).direction;
-    const ExactTracer::Hit h = exact_.tracer().closestHit(lsEye, dir, 0.0, kInf);
+    // Alpha tests along the primary ray: the float ray may pass the tolerance from this one.
+    const ExactTracer::Hit h =
+        exact_.tracer().closestHit(lsEye, dir, 0.0, kInf, {}, kTolAbs, kTolPerT);
     const TriangleId oracleId{sb.meshId[slot], sb.primId[slot]};
     if (h.found && sb.hit[slot] && h.id == oracleId) {
         ref.p = exact_.point(h.id, h.b1, h.b2);
@@ -126,14 +129,22 @@ Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_
     }
     // Different surfaces: ambiguous if the ray passes within the tolerance of an edge or a
     // surface on the way to the farther of the two hits, or both hits lie at the same depth
-    // (coplanar duplicates: which one is "first" is a tie).
+    // (coplanar duplicates: which one is "first" is a tie). The farther hit's own triangle is
+    // left out: the segment ends just past it, so it would always be within the tolerance of the
+    // end, and whether the nearer hit is robust (crossed well inside its triangle, its alpha test
+    // clear) or robustly missed is the question.
     const double tOracle = sb.hit[slot] ? glm::length(glm::dvec3(sb.lsPoint(slot)) - lsEye) : kInf;
     const double tRef = h.found ? h.t : kInf;
     const double tFar = std::max(tOracle, tRef);
     const double tEnd = std::isfinite(tFar) ? tFar * (1.0 + 1e-6) : kInf;
+    const TriangleId farId = !std::isfinite(tFar) ? TriangleId{}
+                             : tOracle >= tRef    ? oracleId
+                                                  : h.id;
     const ExactTracer::SegmentQuery q =
-        exact_.tracer().segment(lsEye, dir, tEnd, TriangleId{}, kTolAbs, kTolPerT);
-    const bool ambiguous = q.ambiguous || std::fabs(tOracle - tRef) <= kTolAbs + kTolPerT * tRef;
+        exact_.tracer().segment(lsEye, dir, tEnd, farId, kTolAbs, kTolPerT);
+    alphaAmbiguous = alphaAmbiguous || h.alphaAmbiguous || q.alphaAmbiguous;
+    const bool ambiguous = q.ambiguous || h.alphaAmbiguous || q.alphaAmbiguous ||
+                           std::fabs(tOracle - tRef) <= kTolAbs + kTolPerT * tRef;
     d.kind = "primary";
     d.oracleV = sb.hit[slot] ? 1.0 : 0.0;
     d.referenceV = h.found ? 1.0 : 0.0;
@@ -143,7 +154,7 @@ Verifier::Verdict Verifier::primary(int x, int y, const SurfaceBuffer& sb, size_
 }
 
 Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, float oracleV,
-                                      VerifyDisagreement& d) const {
+                                      VerifyDisagreement& d, bool& alphaAmbiguous) const {
     HardTarget tgt;
     bool reaches = true;  // faces the light, inside its cone, on its emitting side
     const glm::dvec3 lsPos = frame_.lsFromWs(light.wsPosition);
@@ -180,7 +191,8 @@ Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, f
         const ExactTracer::SegmentQuery q = exact_.tracer().segment(
             ref.p, tgt.dir, tgt.tMax, ref.id, kTolAbs + ref.lsPointGap, kTolPerT);
         refV = q.occluded ? 0.0 : 1.0;
-        ambiguous = ambiguous || q.ambiguous;
+        ambiguous = ambiguous || q.ambiguous || q.alphaAmbiguous;
+        alphaAmbiguous = alphaAmbiguous || q.alphaAmbiguous;
         d.wsMargin = frame_.wsLength(q.margin);
         d.wsOccluderDist = frame_.wsLength(q.firstHitT);
     }
@@ -248,7 +260,7 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
         normalQuantileTwoSided(options_.familyAlpha / double(std::max<size_t>(1, slots.size())));
     std::vector<Verdict> verdicts(slots.size(), Verdict::Agree);
     std::vector<VerifyDisagreement> found(slots.size());
-    std::vector<uint8_t> primaryDiffers(slots.size(), 0);
+    std::vector<uint8_t> primaryDiffers(slots.size(), 0), alphaAmbiguous(slots.size(), 0);
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t i) {
         const size_t slot = slots[i];
         const size_t pixel = sb.pixelOfSlot(slot);
@@ -257,20 +269,25 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
         d.y = int(pixel / size_t(sb.width));
         d.nearHorizon = i >= out.random;
         PixelRef ref;
-        const Verdict seen = primary(d.x, d.y, sb, slot, ref, d);
+        bool alpha = false;
+        const Verdict seen = primary(d.x, d.y, sb, slot, ref, d, alpha);
         if (seen != Verdict::Agree) {
             primaryDiffers[i] = seen == Verdict::Ambiguous;
             verdicts[i] = seen;
-            return;
+        } else {
+            // Area lights: the samples' alpha tests are decided in double, not judged (a sample
+            // the float path decides otherwise is one of thousands, inside the intervals).
+            verdicts[i] = sampled ? areaPixel(light, lightIndex, pixel, ref, V[pixel],
+                                              stderr_[pixel], spp[pixel], out.zThreshold, d)
+                                  : hardPixel(light, ref, V[pixel], d, alpha);
         }
-        verdicts[i] = sampled ? areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel],
-                                          spp[pixel], out.zThreshold, d)
-                              : hardPixel(light, ref, V[pixel], d);
+        alphaAmbiguous[i] = alpha && verdicts[i] == Verdict::Ambiguous;
     });
     for (size_t i = 0; i < slots.size(); ++i) {
         out.agree += verdicts[i] == Verdict::Agree;
         out.ambiguous += verdicts[i] == Verdict::Ambiguous;
         out.primaryDiffers += primaryDiffers[i];
+        out.alphaAmbiguous += alphaAmbiguous[i];
         if (verdicts[i] == Verdict::Disagree) {
             ++out.disagree;
             out.disagreements.push_back(found[i]);

@@ -5,7 +5,8 @@
 //
 //   hard lights (and area lights without "penumbra"): the reference's V is 0 or 1; any difference
 //     is a disagreement unless the reference ray passes within the tolerance of changing its answer
-//     (an edge, a surface it starts on, the attached-shadow or cone boundary): then "ambiguous".
+//     (an edge, a surface it starts on, the attached-shadow or cone boundary, an alpha test within
+//     its margins: exact_alpha.h): then "ambiguous".
 //   sampled area lights: the reference estimates V from independent uniform samples of the light
 //     (its own sampler and random numbers); a disagreement is |V - V_ref| above z times the
 //     combined standard error, z Bonferroni-corrected over the pixels checked (family-wise false
@@ -51,7 +52,10 @@ struct LightVerification {
     uint64_t checked = 0, random = 0, nearHorizon = 0;
     uint64_t agree = 0, ambiguous = 0, disagree = 0;
     uint64_t primaryDiffers = 0;  // a different triangle seen, within the tolerance (ambiguous)
-    double zThreshold = 0.0;      // area: the Bonferroni z used
+    // Of the ambiguous pixels, those where an alpha test was within its margins (exact_alpha.h):
+    // the float path's texel or alpha rounding could decide it either way.
+    uint64_t alphaAmbiguous = 0;
+    double zThreshold = 0.0;                        // area: the Bonferroni z used
     std::vector<VerifyDisagreement> disagreements;  // all of them
     double seconds = 0.0;
 };
@@ -88,10 +92,11 @@ class Verifier {
                                      const SurfaceBuffer& sb, uint64_t& random,
                                      uint64_t& nearHorizon) const;
     // Agree: the reference sees the oracle's triangle (ref is set); otherwise the pixel stops here.
+    // alphaAmbiguous: an alpha test on the way was within its margins (set, never cleared).
     Verdict primary(int x, int y, const SurfaceBuffer& sb, size_t slot, PixelRef& ref,
-                    VerifyDisagreement& d) const;
-    Verdict hardPixel(const Light& light, const PixelRef& ref, float oracleV,
-                      VerifyDisagreement& d) const;
+                    VerifyDisagreement& d, bool& alphaAmbiguous) const;
+    Verdict hardPixel(const Light& light, const PixelRef& ref, float oracleV, VerifyDisagreement& d,
+                      bool& alphaAmbiguous) const;
     Verdict areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
                       float oracleV, float oracleStderr, float oracleSpp, double z,
                       VerifyDisagreement& d) const;

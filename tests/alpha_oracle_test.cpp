@@ -2,11 +2,16 @@
 // geometry"): a checker-masked square under a point light casts an exact checker shadow and shows
 // the floor through its holes; a grate of bars under a rect light gives Lambert's exact V per
 // pixel (the light minus the bars' shadows on it); without the "alpha" effect the mask is ignored.
+// The independent re-trace of `--verify` tests the masks in double (oracle/exact_alpha.h): it
+// agrees with the oracle, finds a wrong cutoff, and calls a texel-boundary crossing ambiguous;
+// the exact penumbra pass answers where no alpha-tested triangle cuts a pixel's pyramid.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <optional>
+#include <set>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -15,6 +20,11 @@
 #include "core/alpha_mask.h"
 #include "core/channels.h"
 #include "lambert.h"
+#include "oracle/accel.h"
+#include "oracle/exact_alpha.h"
+#include "oracle/exact_scene.h"
+#include "oracle/surface_buffer.h"
+#include "oracle/verify.h"
 #include "test_scenes.h"
 
 namespace so::test {
@@ -310,6 +320,231 @@ TEST(AlphaOracle, BitIdenticalAtAnyThreadCount) {
         ASSERT_EQ(
             0, std::memcmp(one.channel(name), four.channel(name), one.pixelCount() * sizeof(float)))
             << name;
+}
+
+// ---- --verify with alpha masks (oracle/exact_alpha.h) -----------------------------------------
+
+// The oracle's V of a light, verified at every pixel against `truth` (the scene the reference
+// tests); the oracle ran on `traced`, which may differ from it on purpose.
+LightVerification verifyEveryPixel(const Scene& traced, const Scene& truth, const float* V,
+                                   size_t light = 0) {
+    EmbreeDevice device;
+    const Accel accel(traced, device);
+    OracleOptions o;
+    const Camera camera(effectiveCamera(traced, o));
+    const SurfaceBuffer sb = tracePrimary(accel, camera, nullptr);
+    VerifyOptions vo;
+    vo.pixels = camera.width() * camera.height();
+    const Verifier verifier(truth, accel.frame(), &camera, vo, 0);
+    return verifier.verifyLight(truth.lights[light], uint32_t(light), false, sb, V, nullptr,
+                                nullptr);
+}
+
+// A checker of alpha 0.75 (cells the oracle keeps at cutoff 0.5) and 0.25 (holes).
+CheckerScene makeGreyCheckerScene() {
+    CheckerScene c = makeCheckerScene(true);
+    for (float& a : c.scene.alphaTextures[0].alpha) a = a > 0.5f ? 0.75f : 0.25f;
+    return c;
+}
+
+// The checker square under a point light: every pixel re-traced, with the masks, agrees; the
+// oracle run with a wrong cutoff (0.8: the square all holes) is caught at every pixel whose shadow
+// ray or primary ray meets an opaque cell.
+TEST(AlphaVerify, CheckerAgreesAndAWrongCutoffIsCaught) {
+    const CheckerScene c = makeGreyCheckerScene();
+    const ChannelImage good = runQuiet(c.scene);
+    const LightVerification ok = verifyEveryPixel(c.scene, c.scene, good.channel("key.V"));
+    std::printf(
+        "[ alpha ] verify, checker: %llu checked, %llu agree, %llu ambiguous (%llu alpha), "
+        "%llu disagree\n",
+        (unsigned long long)ok.checked, (unsigned long long)ok.agree,
+        (unsigned long long)ok.ambiguous, (unsigned long long)ok.alphaAmbiguous,
+        (unsigned long long)ok.disagree);
+    EXPECT_GT(ok.checked, 15000u);
+    EXPECT_EQ(ok.disagree, 0u);
+    EXPECT_LT(ok.ambiguous, ok.checked / 1000);
+
+    Scene broken = c.scene;
+    broken.meshes[1].alpha->cutoff = 0.8f;
+    const ChannelImage bad = runQuiet(broken);
+    const LightVerification caught = verifyEveryPixel(broken, c.scene, bad.channel("key.V"));
+    size_t shadow = 0, primary = 0;
+    for (const VerifyDisagreement& d : caught.disagreements) {
+        shadow += d.kind == "shadow" && d.oracleV == 1.0 && d.referenceV == 0.0;
+        primary += d.kind == "primary";
+    }
+    std::printf(
+        "[ alpha ] verify, checker traced at cutoff 0.8: %llu disagreements (%zu shadow "
+        "rays lit through opaque cells, %zu primary rays through them)\n",
+        (unsigned long long)caught.disagree, shadow, primary);
+    EXPECT_GT(shadow, 500u);
+    EXPECT_GT(primary, 300u);
+    EXPECT_EQ(shadow + primary, caught.disagree);
+}
+
+// Straight down through a texel boundary of the checker (x = 0.25, between cells 4 and 5, one
+// opaque and one a hole in every row): the centre column of an odd-width camera above x = 0.25
+// has its floor points there, so their shadow rays cross the square on the boundary. Flipped V
+// there is ambiguous (an alpha test within its margins), never a disagreement; flipped V
+// elsewhere is a disagreement.
+TEST(AlphaVerify, TexelBoundaryCrossingIsAmbiguousNotADisagreement) {
+    CheckerScene c = makeGreyCheckerScene();
+    Scene& s = c.scene;
+    s.lights = {{"sun", LightType::Directional, {0, 0, 0}, {0, -1, 0}, 0, 0}};
+    s.camera.wsEye = {0.25, 7.0, 3.0};
+    s.camera.wsTarget = {0.25, 0.0, 0.0};
+    s.camera.width = s.camera.height = 81;
+    finalizeScene(s);
+    const ChannelImage img = runQuiet(s);
+    const float* A = img.channel(ch::kHit);
+    std::vector<float> V(img.channel("sun.V"), img.channel("sun.V") + img.pixelCount());
+    const LightVerification clean = verifyEveryPixel(s, s, V.data());
+    EXPECT_EQ(clean.disagree, 0u);
+    // The centre column's floor pixels under the square, and as many elsewhere under it (not in
+    // the centre row: the camera looks at z = 0, another texel boundary).
+    std::set<std::pair<int, int>> onBoundary, elsewhere;
+    for (int y = 0; y < 81; ++y)
+        for (int x : {40, 20}) {
+            const size_t i = size_t(y) * 81 + size_t(x);
+            if (x == 20 && y == 40) continue;
+            const glm::dvec3 p = pixelPoint(img, i);
+            if (A[i] == 0.0f || std::fabs(p.y) > 1e-3 || std::fabs(p.z) > 0.95) continue;
+            V[i] = 1.0f - V[i];
+            (x == 40 ? onBoundary : elsewhere).insert({x, y});
+        }
+    ASSERT_GT(onBoundary.size(), 5u);
+    ASSERT_GT(elsewhere.size(), 5u);
+    const LightVerification l = verifyEveryPixel(s, s, V.data());
+    std::set<std::pair<int, int>> found;
+    for (const VerifyDisagreement& d : l.disagreements) found.insert({d.x, d.y});
+    std::printf(
+        "[ alpha ] texel boundary: %zu flipped on it, %llu alpha-ambiguous; %zu flipped "
+        "elsewhere, %zu disagreements\n",
+        onBoundary.size(), (unsigned long long)l.alphaAmbiguous, elsewhere.size(), found.size());
+    EXPECT_EQ(found, elsewhere);
+    EXPECT_GE(l.alphaAmbiguous, onBoundary.size());
+}
+
+// The lookup itself: nearest at and off a texel boundary, bilinear near the cutoff, and the wraps.
+TEST(AlphaVerify, LookupMarginsAndWraps) {
+    AlphaTexture t = checker(8);
+    AlphaMask m;
+    m.texture = 0;
+    const glm::dvec2 tiny(1e-6);
+    // Texel coordinate 5.0: texels 4 (a hole in row 0) and 5 (opaque) meet.
+    EXPECT_TRUE(exact_alpha::lookup(t, m, {5.0, 0.5}, tiny).ambiguous);
+    EXPECT_TRUE(exact_alpha::lookup(t, m, {5.0 - 1e-7, 0.5}, tiny).ambiguous);
+    const AlphaAnswer inside = exact_alpha::lookup(t, m, {4.5, 0.5}, tiny);
+    EXPECT_TRUE(inside.present);
+    EXPECT_FALSE(inside.ambiguous);
+    EXPECT_FALSE(exact_alpha::lookup(t, m, {5.5, 0.5}, tiny).present);
+    EXPECT_FALSE(exact_alpha::lookup(t, m, {5.5, 0.5}, tiny).ambiguous);
+    // Stripes (columns 0-3 opaque, 4-7 holes): a boundary between two texels that decide alike
+    // is not ambiguous; one between an opaque and a hole texel is.
+    AlphaTexture stripes = t;
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) stripes.alpha[size_t(j * 8 + i)] = i < 4 ? 1.0f : 0.0f;
+    EXPECT_FALSE(exact_alpha::lookup(stripes, m, {2.0, 3.0}, tiny).ambiguous);
+    EXPECT_TRUE(exact_alpha::lookup(stripes, m, {4.0, 3.0}, tiny).ambiguous);
+    // Bilinear: alpha 0.5 halfway between the centres of texels 3 (1) and 4 (0) of the stripes.
+    m.filter = TextureFilter::Bilinear;
+    EXPECT_TRUE(exact_alpha::lookup(stripes, m, {4.0, 3.5}, tiny).ambiguous);
+    EXPECT_FALSE(exact_alpha::lookup(stripes, m, {3.9, 3.5}, tiny).ambiguous);
+    EXPECT_TRUE(exact_alpha::lookup(stripes, m, {3.9, 3.5}, tiny).present);
+    EXPECT_FALSE(exact_alpha::lookup(stripes, m, {4.1, 3.5}, tiny).present);
+    // Too uncertain to know the texel: ambiguous outright.
+    m.filter = TextureFilter::Nearest;
+    EXPECT_TRUE(exact_alpha::lookup(stripes, m, {2.0, 3.0}, glm::dvec2(3.0)).ambiguous);
+    // Wraps, in integers, as OpenGL: repeat, clamp, mirrored repeat.
+    EXPECT_EQ(exact_alpha::wrapIndex(-1, 8, TextureWrap::Repeat), 7);
+    EXPECT_EQ(exact_alpha::wrapIndex(17, 8, TextureWrap::Repeat), 1);
+    EXPECT_EQ(exact_alpha::wrapIndex(-3, 8, TextureWrap::ClampToEdge), 0);
+    EXPECT_EQ(exact_alpha::wrapIndex(9, 8, TextureWrap::ClampToEdge), 7);
+    EXPECT_EQ(exact_alpha::wrapIndex(8, 8, TextureWrap::MirroredRepeat), 7);
+    EXPECT_EQ(exact_alpha::wrapIndex(-1, 8, TextureWrap::MirroredRepeat), 0);
+    EXPECT_EQ(exact_alpha::wrapIndex(16, 8, TextureWrap::MirroredRepeat), 0);
+    for (TextureWrap w :
+         {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat})
+        for (int i = -40; i < 40; ++i)
+            EXPECT_EQ(exact_alpha::wrapIndex(i, 8, w), wrapTexel(double(i), 8, w)) << i;
+}
+
+// The shipped grate through the library at a small size: both lights (the sun hard, the panel
+// sampled) verified at every pixel with a hit, no disagreement.
+TEST(AlphaVerify, ShippedGrateAgreesAtEveryPixel) {
+    const Scene scene = loadScene(std::string(SO_SCENES_DIR) + "/alpha_grate.scene.json");
+    OracleOptions o;
+    o.width = 80;
+    o.height = 60;
+    o.verify.pixels = 80 * 60;
+    o.verify.areaSamples = 1024;
+    const OracleResult r = runOracle(scene, o);
+    ASSERT_TRUE(r.stats.verify.has_value());
+    ASSERT_EQ(r.stats.verify->lights.size(), 2u);
+    for (const LightVerification& l : r.stats.verify->lights) {
+        std::printf(
+            "[ alpha ] verify, alpha_grate %s: %llu checked, %llu agree, %llu ambiguous "
+            "(%llu alpha), %llu disagree (%.2f s)\n",
+            l.light.c_str(), (unsigned long long)l.checked, (unsigned long long)l.agree,
+            (unsigned long long)l.ambiguous, (unsigned long long)l.alphaAmbiguous,
+            (unsigned long long)l.disagree, l.seconds);
+        EXPECT_GT(l.checked, 2000u) << l.light;
+        EXPECT_EQ(l.disagree, 0u) << l.light;
+    }
+    EXPECT_GT(r.stats.shadowAlphaTests, 0u);
+}
+
+// ---- the exact penumbra pass with alpha ------------------------------------------------------
+
+// The grate under the rect light with --penumbra both --exact-pixels all: pixels whose pyramid
+// holds a grate triangle keep their sampled V (counted as alpha_tested); the others are exact,
+// and bit for bit what the same pass gives with the grate opaque (same triangles in the pyramid).
+TEST(AlphaExactPenumbra, PixelsClearOfTheGrateAreExactTheOthersKeepSampledV) {
+    GrateScene g = makeGrateScene(64);
+    g.scene.camera.wsEye = {0.0, 1.2, 6.0};  // wider: floor beyond the grate's shadow too
+    finalizeScene(g.scene);
+    OracleOptions o;
+    o.penumbra.method = PenumbraMethod::Both;
+    o.penumbra.allPixels = true;
+    const OracleResult r = runOracle(g.scene, o);
+    Scene opaque = g.scene;
+    opaque.effects = {"hard", "penumbra"};
+    const OracleResult ro = runOracle(opaque, o);
+    const ExactPenumbraStats& e = *r.stats.lights.at(0).area->exact;
+    const ExactPenumbraStats& eo = *ro.stats.lights.at(0).area->exact;
+    EXPECT_TRUE(e.notApplied.empty()) << e.notApplied;
+    const float* mask = r.image.channel("panel.exact");
+    const float* Vx = r.image.channel("panel.V_exact");
+    const float* V = r.image.channel("panel.V");
+    const float* maskO = ro.image.channel("panel.exact");
+    const float* VxO = ro.image.channel("panel.V_exact");
+    const float* spp = r.image.channel("panel.spp");
+    uint64_t exact = 0, kept = 0, lit = 0, mismatched = 0;
+    for (size_t i = 0; i < r.image.pixelCount(); ++i) {
+        if (!(spp[i] > 0.0f)) continue;
+        if (mask[i] == 1.0f) {
+            ++exact;
+            mismatched += maskO[i] != 1.0f || Vx[i] != VxO[i];
+            lit += Vx[i] == 1.0f;  // nothing but the floor: the whole light seen
+        } else {
+            ++kept;
+            mismatched += Vx[i] != V[i];
+        }
+    }
+    std::printf(
+        "[ alpha ] exact pass on the grate: %llu px exact (%llu fully lit), %llu kept "
+        "sampled (alpha_tested %llu); opaque grate: %llu exact\n",
+        (unsigned long long)exact, (unsigned long long)lit, (unsigned long long)kept,
+        (unsigned long long)e.pixelsAlphaTested, (unsigned long long)eo.pixelsExact);
+    EXPECT_EQ(mismatched, 0u);
+    EXPECT_EQ(e.pixelsExact, exact);
+    EXPECT_EQ(e.pixelsAlphaTested, kept);
+    EXPECT_EQ(e.pixelsTooManyOccluders, 0u);
+    EXPECT_GT(exact, 200u);
+    EXPECT_GT(kept, 200u);
+    EXPECT_EQ(lit, exact);  // the only occluder is the grate
+    EXPECT_EQ(eo.pixelsAlphaTested, 0u);
+    EXPECT_EQ(eo.pixelsExact, exact + kept);
 }
 
 }  // namespace
