@@ -1,5 +1,6 @@
-// pcss at real-scene scale (issue 42): its bounds follow the light, not the map's texels, and its
-// bias does not grow with its filter. Label "gl".
+// The shadow-map family at real-scene scale (issue 42): pcss's bounds follow the light, not the
+// map's texels, and its bias does not grow with its filter; a light inside a room lights nothing
+// behind its emitting side. Label "gl".
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -75,6 +76,41 @@ TEST(Pcss, KeepsAWallInAnUmbraDark) {
     ASSERT_TRUE(pcss.umbraMae.has_value());
     std::printf("[ pcss ] wall in an umbra: umbra mae %.4f\n", *pcss.umbraMae);
     EXPECT_LT(*pcss.umbraMae, 0.01);
+}
+
+// A rect light inside a room, as in a real map: 2 x 2, 2 up, emitting down, under a ceiling at 3
+// that faces it (n.l > 0) but lies behind its emitting side, where the oracle's V is 0
+// (`behind_light`). The maps, rendered from the light's centre, saw nothing between the two and
+// lit the ceiling.
+TEST(ShadowMaps, NothingIsLitBehindAOneSidedLight) {
+    REQUIRE_GL();
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 0, -12}, 4, "floor"));
+    s.meshes.push_back(makeGrid({0, 3, 0}, {12, 0, 0}, {0, 0, 12}, 4, "ceiling"));
+    Light l;
+    l.name = "panel";
+    l.type = LightType::Rect;
+    l.wsPosition = {0.0, 2.0, 0.0};
+    l.wsU = {2, 0, 0};
+    l.wsV = {0, 0, 2};  // cross(u, v) points down
+    s.lights = {l};
+    s.effects = {"hard", "penumbra"};
+    s.camera.wsEye = {4.0, 1.0, 4.0};
+    s.camera.wsTarget = {0.0, 1.6, 0.0};
+    s.camera.vfovDeg = 70;
+    s.camera.width = 160;
+    s.camera.height = 120;
+    finalizeScene(s);
+    const ChannelImage o = runQuiet(s);
+    for (const char* technique : {"slope-bias", "pcss"}) {
+        const LightMetrics m =
+            computeLightMetrics(o, renderOneFrame(s, technique, {}, false).image, "panel", {});
+        ASSERT_TRUE(m.umbraMae.has_value()) << technique;
+        std::printf("[ one-sided ] %s: counted %zu, umbra mae %.4f, mae %.4f\n", technique,
+                    m.counted, *m.umbraMae, m.mae);
+        EXPECT_GT(m.counted, 5000u) << technique;
+        EXPECT_LT(*m.umbraMae, 0.01) << technique;
+    }
 }
 
 }  // namespace
