@@ -81,8 +81,8 @@ TEST(Pcss, KeepsAWallInAnUmbraDark) {
 // A rect light inside a room, as in a real map: 2 x 2, 2 up, emitting down, under a ceiling at 3
 // that faces it (n.l > 0) but lies behind its emitting side, where the oracle's V is 0
 // (`behind_light`). The maps, rendered from the light's centre, saw nothing between the two and
-// lit the ceiling.
-TEST(ShadowMaps, NothingIsLitBehindAOneSidedLight) {
+// lit the ceiling; so did the families without a map (light_facing.frag).
+TEST(Raster, NothingIsLitBehindAOneSidedLight) {
     REQUIRE_GL();
     Scene s;
     s.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 0, -12}, 4, "floor"));
@@ -102,7 +102,7 @@ TEST(ShadowMaps, NothingIsLitBehindAOneSidedLight) {
     s.camera.height = 120;
     finalizeScene(s);
     const ChannelImage o = runQuiet(s);
-    for (const char* technique : {"slope-bias", "pcss"}) {
+    for (const char* technique : {"slope-bias", "pcss", "volume-zfail", "planar"}) {
         const LightMetrics m =
             computeLightMetrics(o, renderOneFrame(s, technique, {}, false).image, "panel", {});
         ASSERT_TRUE(m.umbraMae.has_value()) << technique;
