@@ -76,6 +76,7 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
     LightCamera lc;
     lc.lsPosition = frame.lsFromWs(light.wsPosition);
     lc.lsDirection = glm::normalize(light.wsDirection);
+    lc.lsEmitNormal = light.wsEmitNormal();  // the local frame only scales and translates
     if (light.type == LightType::Directional) {
         glm::dvec3 lo, hi;
         directionalView(lc, b, lo, hi);

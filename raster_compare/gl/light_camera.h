@@ -37,6 +37,9 @@ struct LightCamera {
     double fovYDeg = 0.0;
     glm::dvec3 lsPosition{0.0}, lsDirection{0.0, -1.0, 0.0};
     double cosOuter = -1.0;  // spot
+    // Rect and disk lights: the unit normal of the side they emit on; behind it nothing is lit
+    // (the oracle's V = 0). Zero for lights that emit every way.
+    glm::dvec3 lsEmitNormal{0.0};
     glm::dmat4 clipFromLocal(int face) const {
         return clipFromView[size_t(face)] * viewFromLocal[size_t(face)];
     }

@@ -24,6 +24,7 @@ GlProgram buildLightFacingProgram(const Light& light, const GpuScene& scene,
     setVec3(id, "u_lsEye", camera.lsEye());
     setVec3(id, "u_lsLightPosition", scene.frame().lsFromWs(light.wsPosition));
     setVec3(id, "u_lsLightDirection", glm::normalize(light.wsDirection));
+    setVec3(id, "u_lsEmitNormal", light.wsEmitNormal());  // the local frame only scales, moves
     setFloat(id, "u_cosOuter", std::cos(light.outerConeDeg * 3.14159265358979323846 / 180.0));
     return p;
 }

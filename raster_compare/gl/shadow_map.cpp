@@ -80,6 +80,7 @@ void setLightMapUniforms(GLuint program, const LightCamera& lc) {
     setVec3(program, "u_lsLightPosition", lc.lsPosition);
     setVec3(program, "u_lsLightDirection", lc.lsDirection);
     setFloat(program, "u_cosOuter", lc.cosOuter);
+    setVec3(program, "u_lsEmitNormal", lc.lsEmitNormal);
     setMat4(program, "u_lightClipFromLocal", lc.clipFromLocal(0));
     setMat4(program, "u_lightViewFromLocal", lc.viewFromLocal[0]);
     setFloat(program, "u_near", lc.near);

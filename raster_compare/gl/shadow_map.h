@@ -101,7 +101,7 @@ struct SlopeBias {
 // u_pixelScale, u_lsLight*, u_cosOuter, u_lightClipFromLocal, u_lightViewFromLocal, u_near, u_far,
 // u_texelScale.
 void setLightCameraUniforms(GLuint program, const CameraPass& camera, const LightCamera& lc);
-// The light's part of those: u_lsLightPosition, u_lsLightDirection, u_cosOuter,
+// The light's part of those: u_lsLightPosition, u_lsLightDirection, u_cosOuter, u_lsEmitNormal,
 // u_lightClipFromLocal, u_lightViewFromLocal, u_near, u_far, u_texelScale (the lightmap's bake
 // sets the camera's own).
 void setLightMapUniforms(GLuint program, const LightCamera& lc);

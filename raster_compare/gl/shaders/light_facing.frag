@@ -1,5 +1,6 @@
-// Families without a map (light_facing.h): V = 1 where the light faces the surface and a spot's
-// cone holds it, 0 elsewhere, as in the oracle; no texels, so no predicted aliasing (0).
+// Families without a map (light_facing.h): V = 1 where the light faces the surface, the surface is
+// in front of a one-sided emitter (rect, disk) and a spot's cone holds it, 0 elsewhere, as in the
+// oracle; no texels, so no predicted aliasing (0).
 // Defines: LIGHT_ORTHO (directional), LIGHT_SPOT.
 in vec3 v_lsPosition;
 flat in vec3 v_lsFaceNormal;
@@ -7,6 +8,7 @@ uniform vec3 u_lsEye;
 uniform vec3 u_lsLightPosition;
 uniform vec3 u_lsLightDirection;  // the way light travels
 uniform float u_cosOuter;
+uniform vec3 u_lsEmitNormal;  // rect, disk: the side they emit on; zero: every side
 layout(location = 0) out float o_visibility;
 layout(location = 1) out float o_aliasing;  // no map, no texels: 0
 void main() {
@@ -21,6 +23,8 @@ void main() {
 #endif
     o_aliasing = 0.0;
     o_visibility = dot(n, l) > 0.0 ? 1.0 : 0.0;
+    if (u_lsEmitNormal != vec3(0.0) && dot(u_lsEmitNormal, p - u_lsLightPosition) <= 0.0)
+        o_visibility = 0.0;
 #ifdef LIGHT_SPOT
     if (dot(-l, u_lsLightDirection) < u_cosOuter) o_visibility = 0.0;
 #endif

@@ -15,6 +15,7 @@ uniform vec3 u_lsEye;
 uniform vec3 u_lsLightPosition;
 uniform vec3 u_lsLightDirection;  // the way light travels
 uniform float u_cosOuter;
+uniform vec3 u_lsEmitNormal;  // rect, disk: the side they emit on; zero: every side
 uniform mat4 u_lightClipFromLocal;
 uniform mat4 u_lightViewFromLocal;
 uniform float u_near;
@@ -248,8 +249,14 @@ void main() {
     vec3 toEye = u_lsEye - p;
     float pixel = length(toEye) * u_pixelScale / max(abs(dot(n, normalize(toEye))), 1e-3);
     o_aliasing = 0.0;
-    // The oracle's conventions: facing away, or outside a spot's cone, is unlit.
+    // The oracle's conventions: facing away, behind a one-sided emitter, or outside a spot's
+    // cone, is unlit.
     if (ndotl <= 0.0) {
+        o_visibility = 0.0;
+        return;
+    }
+    // Behind a one-sided emitter (rect, disk: a light inside a room with surfaces above it).
+    if (u_lsEmitNormal != vec3(0.0) && dot(u_lsEmitNormal, p - u_lsLightPosition) <= 0.0) {
         o_visibility = 0.0;
         return;
     }

@@ -1,11 +1,17 @@
 // pcss: percentage-closer soft shadows (Fernando, "Percentage-Closer Soft Shadows", 2005). Three
 // steps per pixel on a plain depth map rendered from the light's centre: a blocker search over the
-// region of the map the light's cone through the receiver can cover (capped at `search_max`
-// texels), the penumbra's width from the average blocker depth by similar triangles,
-// w = light size (d_receiver - d_blocker) / d_blocker, then PCF over that width (capped at
-// `filter_max` texels). Taps on a golden-angle spiral (`blocker_samples`, `filter_samples`), the
-// same for every pixel (no noise) or turned per pixel (`pattern`); the slope bias spread over the
-// filter. The light's size is the side of a square of its area (rect: sqrt(|u x v|), disk and
+// region of the map the light's cone through the receiver can cover, the penumbra's width from
+// the average blocker depth by similar triangles, w = light size (d_receiver - d_blocker) /
+// d_blocker, then PCF over that width. Both are bounded in the light's terms, not the map's:
+// blockers are looked for, and taken, no nearer the light than d_receiver / (1 + `penumbra_max`),
+// so the penumbra's half-width at the receiver is at most `penumbra_max` half-widths of the light
+// at any resolution and scene size (directional lights: down to the scene's top); texel caps made
+// the result depend on both (issues 29 and 42, docs/techniques.md "At real-scene scale"). Each tap
+// is tested against the receiver's plane where the tap's ray meets it (Isidoro's receiver-plane
+// depth) with the slope bias of one texel, so the bias does not grow with the filter's width (a
+// bias spread over the filter lit walls in an umbra). Taps on a golden-angle spiral
+// (`blocker_samples`, `filter_samples`), the same for every pixel (no noise) or turned per pixel
+// (`pattern`). The light's size is the side of a square of its area (rect: sqrt(|u x v|), disk and
 // sphere: r sqrt(pi)), or `light_size` world units when >= 0 (for directional lights: the tangent
 // of its angular diameter); point, spot and directional lights have none, which makes pcss a hard
 // test. Assumes what Fernando's derivation does: blockers, receiver and light in parallel planes.
@@ -35,8 +41,10 @@ class Pcss final : public ShadowMapTechnique {
                         "taps: spiral, one golden-angle spiral for every pixel (smooth; may band "
                         "at few taps); rotated, the spiral turned per pixel by interleaved "
                         "gradient noise (banding traded for noise)"),
-            {"search_max", 128, 1, 1024, false, "largest blocker-search radius, texels"},
-            {"filter_max", 128, 0, 1024, false, "largest filter radius, texels"}};
+            {"penumbra_max", 2, 0, 1000, false,
+             "largest penumbra half-width at the receiver, in half-widths of the light: blockers "
+             "count no nearer the light than d_receiver / (1 + penumbra_max); directional lights "
+             "ignore it"}};
         for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
         return shadowMapParams(own);
     }
@@ -46,14 +54,13 @@ class Pcss final : public ShadowMapTechnique {
           blockerSamples_(v.integer("blocker_samples")),
           filterSamples_(v.integer("filter_samples")),
           rotated_(v.integer("pattern") == 1),
-          searchMax_(v.real("search_max")),
-          filterMax_(v.real("filter_max")),
+          penumbraMax_(v.real("penumbra_max")),
           bias_(v) {}
     const char* glsl() const override { return shaders::pcss_glsl; }
     std::string shaderDefines() const override {
         return "#define BLOCKER_SAMPLES " + std::to_string(blockerSamples_) +
                "\n#define FILTER_SAMPLES " + std::to_string(filterSamples_) + "\n" +
-               glslDefine("SEARCH_MAX", searchMax_) + glslDefine("FILTER_MAX", filterMax_) +
+               glslDefine("PENUMBRA_MAX", penumbraMax_) +
                (rotated_ ? "#define PATTERN_ROTATED\n" : "") + bias_.defines();
     }
     void setLightUniforms(GLuint program, const Light& light,
@@ -68,7 +75,7 @@ class Pcss final : public ShadowMapTechnique {
     double lightSize_;
     int blockerSamples_, filterSamples_;
     bool rotated_;
-    double searchMax_, filterMax_;
+    double penumbraMax_;
     SlopeBias bias_;
 };
 
