@@ -67,14 +67,7 @@ int main(int argc, char** argv) {
     tbb::task_arena arena(threads);
     SurfaceBuffer sb;
     arena.execute([&] { sb = tracePrimary(accel, camera, nullptr); });
-    // The near fields (near_field.h), built once per image as the oracle builds them after its
-    // primary pass: the passes below decide them in double, so their price is in the oracle's time.
-    const auto tNear = std::chrono::steady_clock::now();
-    if (!noNearField) arena.execute([&] { buildNearFields(accel, sb); });
-    std::printf(
-        "near fields: %.1f ms for the image, %llu of %d pixels have one (%zu triangles)\n",
-        1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - tNear).count(),
-        (unsigned long long)sb.nearFields.pixels, sb.width * sb.height, sb.nearFields.ids.size());
+    buildNearFieldsTimed(arena, accel, sb, noNearField);
 
     const size_t n = size_t(sb.width) * size_t(sb.height);
     std::vector<float> V(n), C(n);

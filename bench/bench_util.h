@@ -1,8 +1,9 @@
-// Small helpers shared by the benchmarks: timing and medians.
+// Small helpers shared by the benchmarks: timing, medians, the near fields.
 #pragma once
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <string>
@@ -14,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include "oracle/embree_handles.h"
+#include "oracle/surface_buffer.h"
 
 namespace so::bench {
 
@@ -74,6 +76,18 @@ void forEachWithContext(tbb::task_arena& arena, size_t n, size_t grain, bool coh
                               for (size_t i = r.begin(); i != r.end(); ++i) body(ctx, i);
                           });
     });
+}
+
+// The near fields (oracle/near_field.h), built once per image as the oracle builds them after its
+// primary pass, unless `skip`: the passes then decide them in double, so their price is in the
+// oracle's time. Prints what they took.
+inline void buildNearFieldsTimed(tbb::task_arena& arena, const Accel& accel, SurfaceBuffer& sb,
+                                 bool skip) {
+    const auto t0 = Clock::now();
+    if (!skip) arena.execute([&] { buildNearFields(accel, sb); });
+    std::printf("near fields: %.1f ms for the image, %llu of %d pixels have one (%zu triangles)\n",
+                1e3 * secondsSince(t0), (unsigned long long)sb.nearFields.pixels,
+                sb.width * sb.height, sb.nearFields.ids.size());
 }
 
 }  // namespace so::bench
