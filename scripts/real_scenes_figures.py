@@ -21,7 +21,9 @@ def trace(cli, scene, out):
     seconds = time.monotonic() - start
     if r.returncode != 0:
         lines = [l for l in r.stderr.splitlines() if not l.startswith("warning:")]
-        return None, seconds, (lines[-1] if lines else "exit %d" % r.returncode)
+        error = lines[-1] if lines else "exit %d" % r.returncode
+        # Paths relative to the checkout, so the table does not depend on where it lies.
+        return None, seconds, error.replace(str(scene.parent.parent.parent.parent) + "/", "")
     return json.loads((out / "oracle.json").read_text()), seconds, None
 
 
