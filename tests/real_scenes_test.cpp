@@ -1,0 +1,102 @@
+// The real scenes (scenes/real/*/*.scene.json: models nobody on this project made) through the
+// command line as a user meets them: each loads, traces at a small size and the oracle's
+// independent re-trace (`--verify`) finds no disagreement on any light. Label "real".
+//
+// 96x72 pixels and 3000 verified pixels per light (plus as many near the horizon) keep all the
+// scenes within about two minutes on two cores while still checking nearly every pixel of the
+// small image.
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_run.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Every scene file one folder below scenes/real/, sorted so the test names are stable.
+std::vector<std::string> realScenes() {
+    std::vector<std::string> scenes;
+    const fs::path root = fs::path(SO_SCENES_DIR) / "real";
+    if (!fs::is_directory(root)) return scenes;
+    for (const auto& dir : fs::directory_iterator(root)) {
+        if (!dir.is_directory()) continue;
+        for (const auto& f : fs::directory_iterator(dir.path())) {
+            const std::string name = f.path().filename().string();
+            if (name.size() > 11 && name.substr(name.size() - 11) == ".scene.json")
+                scenes.push_back(fs::relative(f.path(), root).generic_string());
+        }
+    }
+    std::sort(scenes.begin(), scenes.end());
+    return scenes;
+}
+
+// One line per light from oracle.json's verify block: what a person reads when the test fails.
+std::string describeLights(const nlohmann::json& verify) {
+    std::ostringstream s;
+    for (const auto& l : verify["lights"]) {
+        s << "  " << l["name"].get<std::string>() << " (" << l["test"].get<std::string>()
+          << "): checked " << l["pixels_checked"] << ", agree " << l["agree"] << ", ambiguous "
+          << l["ambiguous"] << ", disagreements " << l["disagreements"] << ", " << l["seconds"]
+          << " s\n";
+    }
+    return s.str();
+}
+
+class RealScene : public testing::TestWithParam<std::string> {};
+
+TEST_P(RealScene, TracesAndVerifiesWithoutDisagreement) {
+    const fs::path scene = fs::path(SO_SCENES_DIR) / "real" / GetParam();
+    const fs::path out = fs::temp_directory_path() / ("so-real-" + scene.stem().stem().string());
+    fs::remove_all(out);
+    const auto start = std::chrono::steady_clock::now();
+    const so::test::RunResult r =
+        so::test::run("trace '" + scene.string() + "' --out '" + out.string() +
+                      "' --width 96 --height 72 --verify 3000 --quiet");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::ifstream in(out / "oracle.json");
+    const nlohmann::json oracle = in ? nlohmann::json::parse(in, nullptr, false) : nlohmann::json();
+    const std::string lights =
+        oracle.contains("verify") ? describeLights(oracle["verify"]) : std::string();
+    // Printed whether it passes or not: the per-light times are the test's cost in CI.
+    std::cout << GetParam() << ": exit " << r.exitCode << " in " << seconds << " s\n" << lights;
+    EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+    ASSERT_TRUE(oracle.contains("verify")) << "no verify block in " << (out / "oracle.json");
+    EXPECT_EQ(oracle["verify"]["disagreements"].get<int>(), 0) << lights;
+    for (const auto& l : oracle["verify"]["lights"])
+        EXPECT_GT(l["pixels_checked"].get<int>(), 0) << l["name"];
+    if (HasFailure())
+        std::cout << "kept for a look: " << out << "\n";
+    else
+        fs::remove_all(out);
+}
+
+// The test's name: the scene's folder (dutch_ship, truck_town, ...).
+std::string sceneFolderName(const testing::TestParamInfo<std::string>& param) {
+    std::string name = fs::path(param.param).parent_path().string();
+    std::replace_if(
+        name.begin(), name.end(),
+        [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+    return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, RealScene, testing::ValuesIn(realScenes()), sceneFolderName);
+
+// The list above is read from the folder: an empty or moved folder must fail, not pass with no
+// test instantiated.
+TEST(RealScenes, AreShipped) {
+    EXPECT_GE(realScenes().size(), 5u) << SO_SCENES_DIR "/real";
+}
+
+}  // namespace
