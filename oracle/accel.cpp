@@ -109,6 +109,7 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
             throw std::invalid_argument("scene: more than 2^32 - 2 triangles");
         meshBase_.push_back(unsigned(base));
         alphaMesh_.push_back(scene.alphaTested(id) ? 1 : 0);
+        alphaByMesh_.push_back(nullptr);
         MeshData data{{}, mesh.wsPositions, mesh.indices};
         data.lsPositions.reserve(mesh.wsPositions.size());
         for (const glm::dvec3& ws : mesh.wsPositions)
@@ -142,6 +143,7 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
             rtcSetGeometryUserData(g.get(), a.get());
             rtcSetGeometryOccludedFilterFunction(g.get(), alphaTestHit);
             rtcSetGeometryIntersectFilterFunction(g.get(), alphaTestHit);
+            alphaByMesh_.back() = a.get();
             alphaGeometries_.push_back(std::move(a));
         }
         g.commit();

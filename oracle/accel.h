@@ -98,6 +98,9 @@ class Accel {
         const uint32_t* indices = nullptr;      // 3 per triangle
     };
 
+    // What an alpha-tested mesh's filter reads; null for other meshes.
+    const AlphaGeometry* alphaGeometry(unsigned mesh) const { return alphaByMesh_[mesh]; }
+
   private:
     struct MeshData {
         std::vector<glm::dvec3> lsPositions;
@@ -109,6 +112,7 @@ class Accel {
     std::vector<MeshData> meshes_;
     std::vector<unsigned> meshBase_;  // global index of each mesh's first triangle
     std::vector<uint8_t> alphaMesh_;  // 1 for alpha-tested meshes
+    std::vector<const AlphaGeometry*> alphaByMesh_;
     bool filters_ = true;
     std::vector<std::unique_ptr<AlphaGeometry>> alphaGeometries_;
 };

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "core/alpha_mask.h"
 #include "oracle/exact_tracer.h"
 #include "oracle/surface_buffer.h"
 
@@ -34,12 +35,28 @@ bool inOriginPlane(const NearTriangle& t, const glm::dvec3& m0, const glm::dvec3
     return glm::length(glm::cross(m, m0)) == 0.0 && glm::dot(m, p - t.a) == 0.0;
 }
 
+// Whether an alpha-tested triangle's mask keeps the crossing at barycentrics (b1, b2): the
+// coordinates interpolated in float as the mesh's Embree filter interpolates them.
+bool keeps(const NearTriangle& t, double b1, double b2) {
+    if (!t.alpha) return true;
+    const Accel::AlphaGeometry& a = *t.alpha;
+    glm::vec2 uv(0.0f);
+    if (a.texture) {
+        const uint32_t* i = &a.indices[3 * size_t(t.prim)];
+        const float u = float(b1), v = float(b2);
+        uv = (1.0f - u - v) * a.uvs[i[0]] + u * a.uvs[i[1]] + v * a.uvs[i[2]];
+    }
+    return alphaKeeps(*a.mask, a.texture, uv);
+}
+
 // Embree calls this for every triangle whose bounds meet the ball; the tests are in double.
 bool visitCandidate(RTCPointQueryFunctionArguments* args) noexcept {
     auto& q = *static_cast<Query*>(args->userPtr);
     const unsigned mesh = args->geomID, prim = args->primID;
-    if ((mesh == q.originMesh && prim == q.originPrim) || q.accel->alphaTested(mesh)) return false;
+    if (mesh == q.originMesh && prim == q.originPrim) return false;
     NearTriangle t;
+    t.alpha = q.accel->alphaGeometry(mesh);
+    t.prim = prim;
     q.accel->triangle(mesh, prim, t.a, t.b, t.c);
     const glm::dvec3 m = glm::cross(t.b - t.a, t.c - t.a);
     if (!(glm::length(m) > 0.0)) return false;  // degenerate: never hit (accel.cpp leaves it out)
@@ -180,7 +197,8 @@ double nearFirstHit(const uint32_t* ids, const NearTriangle* triangles, size_t n
         if (ids[i] == origin.id || inOriginPlane(t, origin.normal, origin.p)) continue;
         double tHit, b1, b2;
         if (exact::rayTriangle(origin.p, dir, 0.0, std::min(tMax, best), t.a, t.b, t.c, tHit, b1,
-                               b2))
+                               b2) &&
+            keeps(t, b1, b2))
             best = tHit;
     }
     return best;

