@@ -56,19 +56,9 @@ TEST(Pcss, KeepsAWallInAnUmbraDark) {
     s.meshes.push_back(makeGrid({0, 0, 0}, {20, 0, 0}, {0, 0, -20}, 4, "floor"));
     s.meshes.push_back(makeBox({-1.5, 2.5, -1.5}, {1.5, 2.6, 1.5}, "roof"));
     s.meshes.push_back(makeBox({-0.25, 0.0, -0.25}, {0.25, 2.5, 0.25}, "pillar"));
-    Light l;
-    l.name = "panel";
-    l.type = LightType::Rect;
-    l.wsPosition = {1.0, 4.0, 0.0};
-    l.wsU = {1, 0, 0};
-    l.wsV = {0, 0, 1};  // cross(u, v) points down
-    s.lights = {l};
+    s.lights = {makeRectLight("panel", {1.0, 4.0, 0.0}, {1, 0, 0}, {0, 0, 1})};  // emits down
     s.effects = {"hard", "penumbra"};
-    s.camera.wsEye = {4.0, 1.6, 2.5};
-    s.camera.wsTarget = {0.0, 1.2, 0.0};
-    s.camera.vfovDeg = 45;
-    s.camera.width = 160;
-    s.camera.height = 120;
+    aimCamera(s, {4.0, 1.6, 2.5}, {0.0, 1.2, 0.0}, 45, 160, 120);
     finalizeScene(s);
     const ChannelImage o = runQuiet(s);
     const LightMetrics pcss =
@@ -87,19 +77,9 @@ TEST(Raster, NothingIsLitBehindAOneSidedLight) {
     Scene s;
     s.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 0, -12}, 4, "floor"));
     s.meshes.push_back(makeGrid({0, 3, 0}, {12, 0, 0}, {0, 0, 12}, 4, "ceiling"));
-    Light l;
-    l.name = "panel";
-    l.type = LightType::Rect;
-    l.wsPosition = {0.0, 2.0, 0.0};
-    l.wsU = {2, 0, 0};
-    l.wsV = {0, 0, 2};  // cross(u, v) points down
-    s.lights = {l};
+    s.lights = {makeRectLight("panel", {0.0, 2.0, 0.0}, {2, 0, 0}, {0, 0, 2})};  // emits down
     s.effects = {"hard", "penumbra"};
-    s.camera.wsEye = {4.0, 1.0, 4.0};
-    s.camera.wsTarget = {0.0, 1.6, 0.0};
-    s.camera.vfovDeg = 70;
-    s.camera.width = 160;
-    s.camera.height = 120;
+    aimCamera(s, {4.0, 1.0, 4.0}, {0.0, 1.6, 0.0}, 70, 160, 120);
     finalizeScene(s);
     const ChannelImage o = runQuiet(s);
     for (const char* technique : {"slope-bias", "pcss", "volume-zfail", "planar"}) {

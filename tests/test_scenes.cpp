@@ -84,6 +84,26 @@ ChannelImage runQuiet(const Scene& scene, int threads) {
     return runOracle(scene, o).image;
 }
 
+Light makeRectLight(const std::string& name, const glm::dvec3& center, const glm::dvec3& u,
+                    const glm::dvec3& v) {
+    Light l;
+    l.name = name;
+    l.type = LightType::Rect;
+    l.wsPosition = center;
+    l.wsU = u;
+    l.wsV = v;
+    return l;
+}
+
+void aimCamera(Scene& scene, const glm::dvec3& eye, const glm::dvec3& target, double vfovDeg,
+               int width, int height) {
+    scene.camera.wsEye = eye;
+    scene.camera.wsTarget = target;
+    scene.camera.vfovDeg = vfovDeg;
+    scene.camera.width = width;
+    scene.camera.height = height;
+}
+
 PenumbraScene makePenumbraScene(int w, int h) {
     PenumbraScene s;
     Scene& sc = s.scene;

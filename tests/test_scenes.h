@@ -44,4 +44,11 @@ Scene transformScene(const Scene& scene, double scale, const glm::dvec3& transla
 // Runs the oracle quietly.
 ChannelImage runQuiet(const Scene& scene, int threads = 0);
 
+// A rect light: centre, full edges u and v (it emits towards cross(u, v)).
+Light makeRectLight(const std::string& name, const glm::dvec3& center, const glm::dvec3& u,
+                    const glm::dvec3& v);
+// The scene's camera from eye to target, vfov degrees, width x height pixels.
+void aimCamera(Scene& scene, const glm::dvec3& eye, const glm::dvec3& target, double vfovDeg,
+               int width, int height);
+
 }  // namespace so::test

@@ -16,6 +16,7 @@
 #include "core/channels.h"
 #include "hard_scenes.h"
 #include "oracle/oracle.h"
+#include "test_scenes.h"
 
 namespace so::test::hard {
 namespace {
@@ -108,18 +109,8 @@ Scene creaseScene() {
     addTriangle(specks, lo, lo + glm::dvec3(1e-3, 0, 0), lo + glm::dvec3(0, 0, 1e-3));
     addTriangle(specks, hi, hi - glm::dvec3(1e-3, 0, 0), hi - glm::dvec3(0, 0, 1e-3));
     s.meshes = {patch, specks};
-    Light lamp;
-    lamp.name = "lamp";
-    lamp.type = LightType::Rect;
-    lamp.wsPosition = {1, 6, 1};
-    lamp.wsU = {0, 0, -1.5};
-    lamp.wsV = {1.5, 0, 0};
-    s.lights = {lamp};
-    s.camera.wsEye = {-4, 5, 5};
-    s.camera.wsTarget = {0, 0, 0};
-    s.camera.vfovDeg = 45;
-    s.camera.width = 480;
-    s.camera.height = 360;
+    s.lights = {makeRectLight("lamp", {1, 6, 1}, {0, 0, -1.5}, {1.5, 0, 0})};
+    aimCamera(s, {-4, 5, 5}, {0, 0, 0}, 45, 480, 360);
     s.effects = {"penumbra"};
     finalizeScene(s);
     return s;
