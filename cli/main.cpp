@@ -336,7 +336,7 @@ static Runner addTechniques(CLI::App& app) {
     auto json = std::make_shared<bool>(false), markdown = std::make_shared<bool>(false);
     CLI::App* techniquesCmd = app.add_subcommand(
         "techniques", "list the techniques with their parameters, defaults and ranges");
-    auto* jsonFlag = techniquesCmd->add_flag("--json", *json, "as JSON (format_version 1)");
+    auto* jsonFlag = techniquesCmd->add_flag("--json", *json, "as JSON (format_version 3)");
     techniquesCmd->add_flag("--markdown", *markdown, "as the Markdown of docs/techniques.md")
         ->excludes(jsonFlag);
 

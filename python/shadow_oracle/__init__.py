@@ -1,7 +1,7 @@
 """shadow-oracle: ground-truth shadows, and the techniques people ship graded against them.
 
     import shadow_oracle as so
-    scene = so.load_scene("scenes/contact_box.json")
+    scene = so.load_scene("scenes/contact_box.scene.json")
     oracle = so.trace(scene, width=256, height=256)
     pcf = so.render(scene, "pcf", kernel=5, width=256, height=256)
     metrics = so.compare(scene, oracle, techniques=["pcf:kernel=5"])
