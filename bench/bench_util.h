@@ -85,9 +85,11 @@ inline void buildNearFieldsTimed(tbb::task_arena& arena, const Accel& accel, Sur
                                  bool skip) {
     const auto t0 = Clock::now();
     if (!skip) arena.execute([&] { buildNearFields(accel, sb); });
-    std::printf("near fields: %.1f ms for the image, %llu of %d pixels have one (%zu triangles)\n",
-                1e3 * secondsSince(t0), (unsigned long long)sb.nearFields.pixels,
-                sb.width * sb.height, sb.nearFields.ids.size());
+    std::printf(
+        "near fields: %.1f ms for the image, %llu of %d pixels have one (%zu triangles, %llu "
+        "balls shrunk)\n",
+        1e3 * secondsSince(t0), (unsigned long long)sb.nearFields.pixels, sb.width * sb.height,
+        sb.nearFields.ids.size(), (unsigned long long)sb.nearFields.pixelsShrunk);
 }
 
 }  // namespace so::bench

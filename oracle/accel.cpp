@@ -108,7 +108,6 @@ Accel::Accel(const Scene& scene, const EmbreeDevice& device, bool originFilter)
         if (base + mesh.triangleCount() >= uint64_t(kNoOriginTriangle))
             throw std::invalid_argument("scene: more than 2^32 - 2 triangles");
         meshBase_.push_back(unsigned(base));
-        alphaMesh_.push_back(scene.alphaTested(id) ? 1 : 0);
         alphaByMesh_.push_back(nullptr);
         MeshData data{{}, mesh.wsPositions, mesh.indices};
         data.lsPositions.reserve(mesh.wsPositions.size());

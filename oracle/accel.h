@@ -81,8 +81,6 @@ class Accel {
     // Whether its queries may run the origin filter (and with it the near field's skips): false
     // for the benchmarks' plain scene, whose passes then trace bare.
     bool filters() const { return filters_; }
-    // Whether mesh `mesh` is alpha-tested (its filter tests the mask).
-    bool alphaTested(unsigned mesh) const { return alphaMesh_[mesh] != 0; }
 
     // Alpha tests (core/alpha_mask.h) run by this thread's filter calls so far, over all Accels:
     // a pass reads it before and after its work on each thread (alpha_tests in oracle.json).
@@ -111,7 +109,6 @@ class Accel {
     EmbreeScene rtcScene_;
     std::vector<MeshData> meshes_;
     std::vector<unsigned> meshBase_;  // global index of each mesh's first triangle
-    std::vector<uint8_t> alphaMesh_;  // 1 for alpha-tested meshes
     std::vector<const AlphaGeometry*> alphaByMesh_;
     bool filters_ = true;
     std::vector<std::unique_ptr<AlphaGeometry>> alphaGeometries_;

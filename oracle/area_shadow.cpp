@@ -240,8 +240,8 @@ void decideNearField(PacketState& p, AreaShadowStats& st) {
         const glm::dvec3 dir(p.batch.dirX[k], p.batch.dirY[k], p.batch.dirZ[k]);
         ++st.nearFieldRays;
         const double tMax = double(p.batch.tfar[k]);
-        if (nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(), p.nearOrigin,
-                         dir, tMax) < tMax) {
+        if (nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(), NearList::Own,
+                         p.nearOrigin, dir, tMax) < tMax) {
             p.ray.tfar[k] = -std::numeric_limits<float>::infinity();
             ++st.nearFieldOccluded;
         }

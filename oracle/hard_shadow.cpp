@@ -430,8 +430,9 @@ uint64_t decideNearField(const Accel& accel, const SurfaceBuffer& sb, size_t bas
         if (hit && !closest) continue;
         const double tEnd = hit ? double(ray.tfar[k]) : double(p.ps.tfar[k]);
         const glm::dvec3 dir(p.ps.dirX[k], p.ps.dirY[k], p.ps.dirZ[k]);
-        const double t = nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(),
-                                      nearOrigin(accel, sb, base + size_t(k)), dir, tEnd);
+        const double t =
+            nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(), NearList::Tile,
+                         nearOrigin(accel, sb, base + size_t(k)), dir, tEnd);
         if (!(t < tEnd)) continue;
         ++changed;
         if (closest) {

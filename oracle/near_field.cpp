@@ -189,12 +189,14 @@ void appendRelevant(const NearFields& fields, uint32_t first, uint32_t last,
     }
 }
 
-double nearFirstHit(const uint32_t* ids, const NearTriangle* triangles, size_t n,
+double nearFirstHit(const uint32_t* ids, const NearTriangle* triangles, size_t n, NearList list,
                     const NearOrigin& origin, const glm::dvec3& dir, double tMax) {
     double best = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < n; ++i) {
         const NearTriangle& t = triangles[i];
-        if (ids[i] == origin.id || inOriginPlane(t, origin.normal, origin.p)) continue;
+        if (list == NearList::Tile &&
+            (ids[i] == origin.id || inOriginPlane(t, origin.normal, origin.p)))
+            continue;
         double tHit, b1, b2;
         if (exact::rayTriangle(origin.p, dir, 0.0, std::min(tMax, best), t.a, t.b, t.c, tHit, b1,
                                b2) &&

@@ -49,7 +49,7 @@ struct NearFields {
     std::vector<uint32_t> ids;
     std::vector<NearTriangle> triangles;
     uint64_t pixels = 0;        // slots with a non-empty near field
-    uint64_t pixelsShrunk = 0;  // slots whose ball was shrunk to keep at most 64 triangles
+    uint64_t pixelsShrunk = 0;  // slots whose ball shrank to hold at most 64 (the benches print it)
 
     bool built() const { return !begin.empty(); }
     // Slots [first, last): the range of their near fields.
@@ -94,10 +94,13 @@ void appendRelevant(const NearFields& fields, uint32_t first, uint32_t last,
                     const NearOrigin& origin, const NearTarget& target, std::vector<uint32_t>& ids,
                     std::vector<NearTriangle>& triangles);
 
-// The first crossing of origin.p + t dir, t in (0, tMax), with the n triangles, or +inf. The
-// origin's own triangle, and triangles exactly in its plane, are skipped (a packet's list may
-// hold them for another lane).
-double nearFirstHit(const uint32_t* ids, const NearTriangle* triangles, size_t n,
+// Whose near field a list holds: the origin's own (appendNearField left out its triangle and
+// those in its plane already), or a tile's, which may hold them for another lane.
+enum class NearList { Own, Tile };
+
+// The first crossing of origin.p + t dir, t in (0, tMax), with the n triangles, or +inf. From a
+// tile's list, the origin's own triangle and triangles exactly in its plane are skipped.
+double nearFirstHit(const uint32_t* ids, const NearTriangle* triangles, size_t n, NearList list,
                     const NearOrigin& origin, const glm::dvec3& dir, double tMax);
 
 }  // namespace so
