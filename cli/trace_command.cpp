@@ -11,6 +11,8 @@
 #include "core/error.h"
 #include "core/gbuffer.h"
 #include "core/image_codec.h"
+#include "core/png_encode.h"
+#include "core/process_clock.h"
 #include "core/progress.h"
 #include "oracle/embree_handles.h"
 #include "oracle/oracle_cache.h"
@@ -25,7 +27,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
                           const CameraDesc& cam, const OracleStats& stats, double loadSeconds,
                           double writeSeconds) {
     nlohmann::json j = {
-        {"format_version", 11},
+        {"format_version", 12},
         {"tool", toolJson()},
         {"scene",
          {{"file", options.scenePath},
@@ -48,10 +50,13 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
         {"libraries",
          {{"embree", EmbreeDevice::version()},
           {"openexr", OPENEXR_VERSION_STRING},
-          // The PNG previews' library; null without previews: nothing went through it, and asking
-          // its version would load it.
-          {"openimageio",
-           options.previews ? nlohmann::json(imageLibraryVersion()) : nlohmann::json()}}},
+          // The PNG previews' library; null without previews.
+          {"png", options.previews ? nlohmann::json(pngLibraryVersion()) : nlohmann::json()},
+          // OpenImageIO reads textures (alpha masks); null where none was read, so it never
+          // loaded.
+          {"openimageio", loadedImageLibraryVersion().empty()
+                              ? nlohmann::json()
+                              : nlohmann::json(loadedImageLibraryVersion())}}},
     };
     j.update(toJson(stats));
     j["phases_seconds"]["load"] = loadSeconds;
@@ -166,6 +171,15 @@ nlohmann::json tracedOptionsJson(const OracleOptions& o, const CameraDesc& cam) 
 
 namespace {
 
+// The write phase in its parts, and the whole process so far: what the user waits for beyond the
+// passes (issue 45: start-up, the previews and the EXR were most of a small exact trace).
+void addWritePhases(nlohmann::json& j, double exrSeconds, double writeSeconds) {
+    j["phases_seconds"]["write_exr"] = exrSeconds;
+    j["phases_seconds"]["write_previews"] = writeSeconds - exrSeconds;
+    const double process = processSeconds();
+    j["phases_seconds"]["process"] = process >= 0.0 ? nlohmann::json(process) : nlohmann::json();
+}
+
 // trace --points: the oracle at a G-buffer's points (docs/external.md, "Points in"). Everything is
 // read and checked before the output folder is made.
 int runTracePoints(const TraceCommandOptions& options) {
@@ -197,6 +211,7 @@ int runTracePoints(const TraceCommandOptions& options) {
         Progress progress("writing " + exrPath, result.image.pixelCount(), oracle.progress);
         writeExr(exrPath, result.image, attributes, result.stats.threads, &progress);
     }
+    const double exrSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const std::vector<std::string> previews = options.previews
                                                   ? writePreviews(out, result.image, scene.lights)
                                                   : std::vector<std::string>();
@@ -207,6 +222,7 @@ int runTracePoints(const TraceCommandOptions& options) {
                                   result.stats, loadSeconds, writeSeconds);
     j["camera"] = nullptr;  // no camera: the points are the G-buffer's
     j["points"] = toJson(points);
+    addWritePhases(j, exrSeconds, writeSeconds);
     writeJsonFile(jsonPath, j);
 
     std::cout << "traced " << options.scenePath << " at the points of " << options.pointsPath
@@ -270,6 +286,7 @@ int runTraceCommand(const TraceCommandOptions& options) {
         writeExr(exrPath, result.image, attributes, result.stats.threads, &progress,
                  {rows.begin, cam.height});
     }
+    const double exrSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const std::vector<std::string> previews = options.previews
                                                   ? writePreviews(out, result.image, scene.lights)
                                                   : std::vector<std::string>();
@@ -278,6 +295,7 @@ int runTraceCommand(const TraceCommandOptions& options) {
     const std::filesystem::path jsonPath = out / "oracle.json";
     nlohmann::json j = oracleJson(options, scene, cam, result.stats, loadSeconds, writeSeconds);
     if (tile) j["tile"] = tileJson(*tile, rows, oracle, cam);
+    addWritePhases(j, exrSeconds, writeSeconds);
     writeJsonFile(jsonPath, j);
 
     std::cout << "traced " << options.scenePath << " (" << scene.stats.triangles << " triangles, "

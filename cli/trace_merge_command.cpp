@@ -17,6 +17,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/image_codec.h"
+#include "core/png_encode.h"
 #include "core/progress.h"
 #include "oracle/oracle.h"
 
@@ -194,9 +195,12 @@ json mergedJson(const std::vector<Tile>& tiles, const OracleStats& stats, double
     j.update(toJson(stats));
     j["phases_seconds"]["load"] = load;
     j["phases_seconds"]["write"] = write;
+    // One process's parts and wall time; the bands ran as separate processes.
+    for (const char* key : {"write_exr", "write_previews", "process"})
+        j["phases_seconds"].erase(key);
     j["libraries"]["tbb"] = j["tbb"]["version"];
     // The merge writes previews even where the bands had none (trace --no-previews: null).
-    j["libraries"]["openimageio"] = imageLibraryVersion();
+    j["libraries"]["png"] = pngLibraryVersion();
     j.erase("tbb");
     j["merged_tiles"] = {{"count", tiles.size()}, {"folders", folders}};
     return j;

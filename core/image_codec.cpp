@@ -3,30 +3,23 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <stdexcept>
 
 #include "core/error.h"
 #include "core/image_module.h"
+#include "core/png_encode.h"
 #include "core/webp_decode.h"
 
 namespace so {
 
 namespace {
 
-// How the PNGs are compressed, chosen on the demo's report images (docs/benchmarks.md, "Report
-// image bytes"): zlib's best level; libpng's SUB filter for grey images (the shaded renders,
-// smooth), no filter for RGB ones (class maps and ramps, flat areas of few colours: libpng's
-// choice for the palette images these used to be).
-constexpr int kPngCompressionLevel = 9;
-constexpr int kPngFilterSub = 0x10, kPngFilterNone = 0x08;  // png.h's PNG_FILTER_SUB, _NONE
-
 // The bytes of a PNG: grey, a third the size of RGB, where every pixel is grey (the shaded renders
-// and previews), else RGB. OpenImageIO writes no palette PNGs, so images of few colours (class
-// maps, ramps) are RGB too.
+// and previews), else RGB (class maps, ramps).
 struct Png8 {
     int channels = 3;
     std::vector<uint8_t> pixels;
-    int filter() const { return channels == 1 ? kPngFilterSub : kPngFilterNone; }
 };
 
 Png8 png8(int width, int height, const std::vector<float>& linearRgb) {
@@ -46,11 +39,6 @@ Png8 png8(int width, int height, const std::vector<float>& linearRgb) {
         png.channels = 1;
     }
     return png;
-}
-
-void appendBytes(void* sinkData, const unsigned char* bytes, size_t size) {
-    auto* out = static_cast<std::vector<unsigned char>*>(sinkData);
-    out->insert(out->end(), bytes, bytes + size);
 }
 
 float* allocateRgba(void* allocatorData, int width, int height) {
@@ -84,23 +72,18 @@ uint8_t toSrgb8(float linear) {
 void writePngRgb(const std::string& path, int width, int height,
                  const std::vector<float>& linearRgb) {
     const Png8 png = png8(width, height, linearRgb);
-    const SoImageModule& m = imageModule();
-    char error[512] = "";
-    if (m.writePng8(path.c_str(), nullptr, nullptr, width, height, png.channels, png.pixels.data(),
-                    kPngCompressionLevel, png.filter(), error, sizeof error) != 0)
-        throwInputError(path, "", std::string("cannot write the PNG: ") + error);
+    const std::vector<uint8_t> bytes =
+        encodePng8(width, height, png.channels, png.pixels, PngEffort::Fast);
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    out.close();
+    if (!out) throwInputError(path, "", "cannot write the PNG");
 }
 
 std::vector<unsigned char> encodePngRgb(int width, int height,
                                         const std::vector<float>& linearRgb) {
     const Png8 png = png8(width, height, linearRgb);
-    const SoImageModule& m = imageModule();
-    std::vector<unsigned char> out;
-    char error[512] = "";
-    if (m.writePng8(nullptr, appendBytes, &out, width, height, png.channels, png.pixels.data(),
-                    kPngCompressionLevel, png.filter(), error, sizeof error) != 0)
-        throwInputError("(memory)", "", std::string("cannot encode the PNG: ") + error);
-    return out;
+    return encodePng8(width, height, png.channels, png.pixels, PngEffort::Small);
 }
 
 TextureRgba readTextureRgba(const std::string& path, int maxWidth, int maxHeight,
@@ -131,6 +114,11 @@ TextureRgba decodeTextureRgba(const std::vector<unsigned char>& bytes, int maxWi
 
 std::string imageLibraryVersion() {
     return imageModule().version;
+}
+
+std::string loadedImageLibraryVersion() {
+    const SoImageModule* m = imageModuleIfLoaded();
+    return m ? m->version : std::string();
 }
 
 std::string base64(const std::vector<unsigned char>& b) {

@@ -1,7 +1,7 @@
-// Image files in and out: PNG previews and report images, and textures (alpha masks). The work is
-// done by OpenImageIO in a module loaded on the first call (core/image_module.h), so a process that
-// never calls these never loads it. Each throws InputError naming the file (or the module) on
-// failure.
+// Image files in and out: PNG previews and report images, and textures (alpha masks). PNGs are
+// written with zlib alone (core/png_encode.h); reading is done by OpenImageIO in a module loaded on
+// the first read (core/image_module.h), so a process that never reads an image never loads it.
+// Each throws InputError naming the file (or the module) on failure.
 #pragma once
 
 #include <cstdint>
@@ -22,8 +22,10 @@ void writePngRgb(const std::string& path, int width, int height,
 std::vector<unsigned char> encodePngRgb(int width, int height, const std::vector<float>& linearRgb);
 // For data: URIs.
 std::string base64(const std::vector<unsigned char>& bytes);
-// The version of OpenImageIO that reads and writes them (loads the module).
+// The version of OpenImageIO that reads them (loads the module).
 std::string imageLibraryVersion();
+// The same if this process has loaded the module (it read an image), else empty; loads nothing.
+std::string loadedImageLibraryVersion();
 
 // A decoded texture: interleaved RGBA, row 0 at the top, every value in [0,1]. The values are the
 // file's encoded ones: an sRGB-encoded colour stays sRGB-encoded (no linearisation; the caller

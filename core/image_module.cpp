@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -118,11 +119,20 @@ std::vector<std::string> imageModuleCandidates() {
     return unique;
 }
 
+namespace {
+std::atomic<const SoImageModule*> loadedTable{nullptr};
+}  // namespace
+
 const SoImageModule& imageModule() {
     // A function-local static is initialised once, thread-safely; if loading throws, the next
     // call tries again.
     static const LoadedModule module = loadModule();
+    loadedTable.store(module.table, std::memory_order_release);
     return *module.table;
+}
+
+const SoImageModule* imageModuleIfLoaded() {
+    return loadedTable.load(std::memory_order_acquire);
 }
 
 }  // namespace so

@@ -14,7 +14,7 @@ SO_PACKAGES=(
   googletest libgtest-dev
   clang-format
   python3-dev pybind11-dev python3-numpy
-  libdraco-dev libmeshoptimizer-dev libwebp-dev
+  libdraco-dev libmeshoptimizer-dev libwebp-dev zlib1g-dev
 )
 
 # Only the tests need these: libcgal-demo ships the Stanford bunny (in its data.tar.gz) that the

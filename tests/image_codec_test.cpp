@@ -104,6 +104,28 @@ TEST(ImageCodec, EncodedPngDecodesToTheSamePixels) {
     }
 }
 
+// The SUB filter wraps modulo 256 (0 after 255 and back); one-pixel rows have nothing to its left.
+TEST(ImageCodec, PngEdgeValuesAndSizesRoundTripAndAreDeterministic) {
+    for (const bool grey : {true, false}) {
+        for (const auto& [width, height] : {std::pair{1, 1}, std::pair{1, 7}, std::pair{9, 1}}) {
+            std::vector<float> rgb(size_t(width) * size_t(height) * 3);
+            for (size_t i = 0; i < rgb.size(); ++i)
+                rgb[i] = grey ? ((i / 3) % 2 == 0 ? 1.0f : 0.0f)
+                              : (i % 3 == 0 ? 1.0f : 0.3f * float(i % 3));
+            if (grey)
+                for (size_t i = 0; i < rgb.size(); i += 3) rgb[i + 1] = rgb[i + 2] = rgb[i];
+            const std::vector<unsigned char> png = encodePngRgb(width, height, rgb);
+            EXPECT_EQ(png, encodePngRgb(width, height, rgb));
+            EXPECT_EQ(pngColourType(png), grey ? 0 : 2);
+            const fs::path path =
+                tempDir() / ("edge_" + std::to_string(grey) + "_" + std::to_string(width) + "x" +
+                             std::to_string(height) + ".png");
+            writeBytes(path, png);
+            expectSamePixels(readTextureRgba(path.string()), width, height, rgb);
+        }
+    }
+}
+
 TEST(ImageCodec, Srgb8MatchesTheTransferFunction) {
     EXPECT_EQ(toSrgb8(-1.0f), 0);
     EXPECT_EQ(toSrgb8(0.0f), 0);
@@ -268,20 +290,24 @@ bool mapsOpenImageIO() {
 
 // Death tests re-run this binary for the one test ("threadsafe" style), so the module is loaded,
 // or not, there afresh whatever other tests did here.
-TEST(ImageModuleDeathTest, LoadsOpenImageIOOnlyAtTheFirstImageCall) {
+TEST(ImageModuleDeathTest, WritingPngsLoadsNothingAndTheFirstReadLoadsOpenImageIO) {
     GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const std::string path = (tempDir() / "module_probe.png").string();
     EXPECT_EXIT(
         {
             const bool before = mapsOpenImageIO();
             base64({1, 2, 3});
             toSrgb8(0.5f);
-            const bool afterNonImage = mapsOpenImageIO();
             encodePngRgb(1, 1, {0.5f, 0.5f, 0.5f});
-            std::cerr << "before " << before << " non-image " << afterNonImage << " image "
-                      << mapsOpenImageIO() << std::endl;
+            writePngRgb(path, 2, 1, {0.5f, 0.5f, 0.5f, 1.0f, 0.0f, 0.0f});
+            const bool afterWrites = mapsOpenImageIO() || loadedImageLibraryVersion() != "";
+            readTextureRgba(path);
+            std::cerr << "before " << before << " writes " << afterWrites << " read "
+                      << mapsOpenImageIO() << " version " << !loadedImageLibraryVersion().empty()
+                      << std::endl;
             std::_Exit(0);
         },
-        ::testing::ExitedWithCode(0), "before 0 non-image 0 image 1");
+        ::testing::ExitedWithCode(0), "before 0 writes 0 read 1 version 1");
 }
 
 TEST(ImageModuleDeathTest, MissingModuleIsAOneLineErrorNamingThePath) {
@@ -289,7 +315,7 @@ TEST(ImageModuleDeathTest, MissingModuleIsAOneLineErrorNamingThePath) {
     EXPECT_EXIT(
         {
             ::setenv("SO_IMAGE_MODULE", "/nonexistent/so_image_oiio.so", 1);
-            std::cerr << inputError([] { encodePngRgb(1, 1, {0.f, 0.f, 0.f}); }) << std::endl;
+            std::cerr << inputError([] { decodeTextureRgba({0x89, 'P', 'N', 'G'}); }) << std::endl;
             std::_Exit(0);
         },
         ::testing::ExitedWithCode(0),
