@@ -7,8 +7,10 @@
 // Only standard C++ types cross this interface; the implementation (Embree, OpenGL, OpenEXR) stays
 // behind it. Every function either returns its result or throws shadow_oracle::Error (or Cancelled)
 // with a one-line message: nothing here ends the process or writes to the terminal. Functions are
-// safe to call from several threads at once; each call uses its own threads (TraceOptions::threads)
-// without changing process-wide state.
+// safe to call from several threads at once, and each gives what it gives alone: each call uses
+// its own threads (TraceOptions::threads) without changing process-wide state, and each render or
+// compare its own GL context (renders in several threads run at once; the frame times they
+// measure then include each other's load).
 //
 // find_package(ShadowOracle CONFIG REQUIRED)
 // target_link_libraries(app PRIVATE ShadowOracle::shadow_oracle)

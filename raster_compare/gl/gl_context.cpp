@@ -9,12 +9,16 @@
 #include <epoxy/gl.h>
 
 #include "core/error.h"
+#include "raster_compare/gl/work_counter.h"
 
 namespace so {
 
+// The context and its hold on the process's display (sharedDisplay), released when it goes, also
+// when the constructor throws after making it.
 struct GlContext::Egl {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
+    ~Egl();
 };
 
 // The callback's record: the first error's text and how many there were since throwIfError, and
@@ -92,7 +96,75 @@ EGLContext makeContext(EGLDisplay d) {
     return eglCreateContext(d, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attrs);
 }
 
+// The display every GlContext of the process uses. EGL hands every caller the same display for
+// the same platform and device, and eglTerminate ends it for all of them, contexts current in other
+// threads included: so the first GlContext opens it, later ones (in any thread) make their own
+// context on it, and the last one to go terminates it. `mutex` also orders the first opening.
+struct SharedDisplay {
+    std::mutex mutex;
+    EGLDisplay display = EGL_NO_DISPLAY;
+    std::string platform;  // "device" or "surfaceless"
+    int users = 0;         // GlContexts holding it
+};
+
+SharedDisplay& sharedDisplay() {
+    static SharedDisplay d;
+    return d;
+}
+
+// A GPU's EGL device with a context on it made current, or none: Mesa also lists a software
+// device, left to the surfaceless path.
+bool openDeviceDisplay(EGLDisplay& display, EGLContext& context) {
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration")) return false;
+    EGLint n = 0;
+    EGLDeviceEXT devices[16];
+    if (!eglQueryDevicesEXT(16, devices, &n)) return false;
+    for (EGLint i = 0; i < n; ++i) {
+        EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+        if (d == EGL_NO_DISPLAY || !eglInitialize(d, nullptr, nullptr)) continue;
+        EGLContext c = makeContext(d);
+        if (c != EGL_NO_CONTEXT && eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
+            const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+            if (r && std::string(r).find("llvmpipe") == std::string::npos) {
+                display = d;
+                context = c;
+                return true;
+            }
+            eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        }
+        if (c != EGL_NO_CONTEXT) eglDestroyContext(d, c);
+        eglTerminate(d);
+    }
+    return false;
+}
+
+// Mesa's surfaceless display, initialised; throws GlUnavailable.
+EGLDisplay openSurfacelessDisplay() {
+    EGLDisplay d =
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (d == EGL_NO_DISPLAY)
+        throw GlUnavailable(
+            "no EGL display could be opened (neither a GPU device nor Mesa surfaceless)");
+    if (!eglInitialize(d, nullptr, nullptr))
+        throw GlUnavailable("eglInitialize failed on the surfaceless platform");
+    return d;
+}
+
 }  // namespace
+
+GlContext::Egl::~Egl() {
+    if (display == EGL_NO_DISPLAY) return;
+    if (context != EGL_NO_CONTEXT) {
+        eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(display, context);
+    }
+    SharedDisplay& shared = sharedDisplay();
+    const std::lock_guard<std::mutex> lock(shared.mutex);
+    if (--shared.users == 0) {
+        eglTerminate(shared.display);
+        shared.display = EGL_NO_DISPLAY;
+    }
+}
 
 GlContext::GlContext() : egl_(std::make_unique<Egl>()), messages_(std::make_unique<Messages>()) {
     // Where no EGL driver is found (glvnd without a vendor) eglGetPlatformDisplayEXT has no
@@ -101,54 +173,33 @@ GlContext::GlContext() : egl_(std::make_unique<Egl>()), messages_(std::make_uniq
         throw GlUnavailable(
             "EGL has no EGL_EXT_platform_base: no EGL driver found (is Mesa's libegl-mesa0 "
             "installed?)");
-    // A GPU first (the EGL device platform), then Mesa's surfaceless platform.
-    if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration")) {
-        EGLint n = 0;
-        EGLDeviceEXT devices[16];
-        if (eglQueryDevicesEXT(16, devices, &n)) {
-            for (EGLint i = 0; i < n && egl_->context == EGL_NO_CONTEXT; ++i) {
-                EGLDisplay d =
-                    eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-                if (d == EGL_NO_DISPLAY || !eglInitialize(d, nullptr, nullptr)) continue;
-                EGLContext c = makeContext(d);
-                // Mesa also lists a software device; prefer it only through the surfaceless path.
-                if (c != EGL_NO_CONTEXT && eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
-                    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-                    if (r && std::string(r).find("llvmpipe") == std::string::npos) {
-                        egl_->display = d;
-                        egl_->context = c;
-                        platform_ = "device";
-                        break;
-                    }
-                    eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-                }
-                if (c != EGL_NO_CONTEXT) eglDestroyContext(d, c);
-                eglTerminate(d);
+    {
+        SharedDisplay& shared = sharedDisplay();
+        const std::lock_guard<std::mutex> lock(shared.mutex);
+        EGLContext c = EGL_NO_CONTEXT;
+        if (shared.users == 0) {
+            // A GPU first (the EGL device platform), then Mesa's surfaceless platform.
+            EGLDisplay d = EGL_NO_DISPLAY;
+            if (openDeviceDisplay(d, c)) {
+                shared.platform = "device";
+            } else {
+                d = openSurfacelessDisplay();
+                shared.platform = "surfaceless";
             }
+            shared.display = d;
         }
-    }
-    if (egl_->context == EGL_NO_CONTEXT) {
-        EGLDisplay d =
-            eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (d == EGL_NO_DISPLAY)
-            throw GlUnavailable(
-                "no EGL display could be opened (neither a GPU device nor Mesa surfaceless)");
-        if (!eglInitialize(d, nullptr, nullptr))
-            throw GlUnavailable("eglInitialize failed on the surfaceless platform");
-        EGLContext c = makeContext(d);
+        egl_->display = shared.display;
+        ++shared.users;  // from here ~Egl releases it
+        platform_ = shared.platform;
         if (c == EGL_NO_CONTEXT) {
-            eglTerminate(d);
-            throw GlUnavailable("no OpenGL 4.5 core context could be created");
+            c = makeContext(shared.display);
+            if (c == EGL_NO_CONTEXT)
+                throw GlUnavailable("no OpenGL 4.5 core context could be created");
         }
-        if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
-            eglDestroyContext(d, c);
-            eglTerminate(d);
-            throw GlUnavailable("eglMakeCurrent failed");
-        }
-        egl_->display = d;
         egl_->context = c;
-        platform_ = "surfaceless";
     }
+    if (!eglMakeCurrent(egl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, egl_->context))
+        throw GlUnavailable("eglMakeCurrent failed");
     renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     if (epoxy_gl_version() < 45)
@@ -156,15 +207,10 @@ GlContext::GlContext() : egl_(std::make_unique<Egl>()), messages_(std::make_uniq
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(onGlDebug, messages_.get());
+    installWorkCounterWrappers();
 }
 
-GlContext::~GlContext() {
-    if (egl_->display != EGL_NO_DISPLAY) {
-        eglMakeCurrent(egl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        if (egl_->context != EGL_NO_CONTEXT) eglDestroyContext(egl_->display, egl_->context);
-        eglTerminate(egl_->display);
-    }
-}
+GlContext::~GlContext() = default;  // ~Egl releases the context and the display
 
 void GlContext::throwIfError(const std::string& where) const {
     unsigned errors;

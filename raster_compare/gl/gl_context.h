@@ -1,6 +1,9 @@
 // A headless OpenGL 4.5 core context through EGL (docs/techniques.md): the EGL device
 // platform when a GPU exposes one, else Mesa's surfaceless platform (llvmpipe). RAII: the context
-// and display are released when the object goes.
+// is released when the object goes. Contexts made in several threads at once each render on their
+// own (the API's render and compare from several threads): they share the process's one EGL
+// display, which the first opens and the last to go terminates. A context is current in the
+// thread that made it and is used there only.
 //
 // GL reports errors through KHR_debug's callback, which runs inside the driver, where an exception
 // must not pass: the callback records them, and throwIfError() (called by the renderer after each

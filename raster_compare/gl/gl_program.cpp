@@ -82,6 +82,13 @@ CountingBuild::~CountingBuild() {
     --countingBuilds;
 }
 
+CountingPaused::CountingPaused() : paused_(countingBuilds) {
+    countingBuilds = 0;
+}
+CountingPaused::~CountingPaused() {
+    countingBuilds = paused_;
+}
+
 GlProgram buildProgram(const std::string& defines, const char* vertexSource,
                        const std::vector<const char*>& fragmentSources) {
     // SO_VERTEX_SHADER or SO_FRAGMENT_SHADER tells a file that holds both stages which it is.

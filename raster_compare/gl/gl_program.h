@@ -36,6 +36,20 @@ class CountingBuild {
     CountingBuild(const CountingBuild&) = delete;
     CountingBuild& operator=(const CountingBuild&) = delete;
 };
+// While one lives (on this thread), buildProgram makes ordinary programs even inside a
+// CountingBuild: for set-up work that no counted frame counts and whose result the timed instance
+// takes over (the lightmap's bake, SetUpShared), so that it is made by the very programs that made
+// it before counting existed.
+class CountingPaused {
+  public:
+    CountingPaused();
+    ~CountingPaused();
+    CountingPaused(const CountingPaused&) = delete;
+    CountingPaused& operator=(const CountingPaused&) = delete;
+
+  private:
+    int paused_;  // the CountingBuilds alive when it was made
+};
 // The shader storage binding of the work counters in a counting build: uint[6], the fragments,
 // the taps and the taps' bytes, each as two 32-bit halves (low, high).
 inline constexpr GLuint kWorkCounterBinding = 7;

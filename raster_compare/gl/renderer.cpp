@@ -71,29 +71,31 @@ std::optional<Bounds3d> receiverBounds(const CameraPass& camera,
 
 std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camera,
                                     const Technique& technique,
-                                    const std::optional<Bounds3d>& lsReceivers) {
+                                    const std::optional<Bounds3d>& lsReceivers,
+                                    SetUpShares& shared) {
     static const std::optional<Bounds3d> notAsked;
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     std::vector<FrameLight> lights;
     for (const Light& light : gpu.scene().lights)
         lights.push_back(
             {&light, LightTarget(camera),
-             technique.setUp(
-                 {light, gpu, camera, technique.needsReceiverBounds() ? lsReceivers : notAsked})});
+             technique.setUp({light, gpu, camera,
+                              technique.needsReceiverBounds() ? lsReceivers : notAsked, &shared})});
     return lights;
 }
 
 // One frame of the technique's counting build (docs/metrics.md, "Work"), before its timed
 // instance is set up: an instance of its own, so that the timed frames run the very programs they
-// ran before counting existed. Its work by "<light>.<pass>" and "camera".
+// ran before counting existed. What its set-up leaves in `shared` (a bake made by ordinary
+// programs) the timed instance takes over. Its work by "<light>.<pass>" and "camera".
 std::map<std::string, PassWork> countWork(const GpuScene& gpu, const CameraPass& camera,
                                           const Technique& technique,
                                           const std::optional<Bounds3d>& lsReceivers,
-                                          const GlContext& gl) {
+                                          SetUpShares& shared, const GlContext& gl) {
     std::vector<FrameLight> lights;
     {
         const CountingBuild counting;
-        lights = setUpLights(gpu, camera, technique, lsReceivers);
+        lights = setUpLights(gpu, camera, technique, lsReceivers, shared);
     }
     gl.throwIfError("technique " + technique.name() + ", counting build set-up");
     WorkCounter counter;
@@ -220,10 +222,16 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
     uint64_t groupBytes = 0;
     for (size_t i = 0; i < techniques.size(); ++i) {
         std::map<std::string, PassWork> work;
-        if (options.countWork) work = countWork(gpu, camera, *techniques[i], lsReceivers, gl);
-        TechniqueFrames t{
-            i, techniques[i],  setUpLights(gpu, camera, *techniques[i], lsReceivers), {}, {},
-            0, std::move(work)};
+        SetUpShares shared;  // the counted instance's set-up, for the timed one
+        if (options.countWork)
+            work = countWork(gpu, camera, *techniques[i], lsReceivers, shared, gl);
+        TechniqueFrames t{i,
+                          techniques[i],
+                          setUpLights(gpu, camera, *techniques[i], lsReceivers, shared),
+                          {},
+                          {},
+                          0,
+                          std::move(work)};
         // The scene's upload and camera pass (first technique), then this technique's set-up.
         gl.throwIfError("technique " + techniques[i]->name() + ", set-up");
         for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();

@@ -36,6 +36,14 @@ class GpuScene;
 class CameraPass;
 class PassClock;
 
+// What one light's set-up made that another instance of the same technique may take over in the
+// same render: the counted frame's instance and the timed one (renderer.cpp) share the lightmap's
+// bake this way. Keyed as the technique chooses (the light's name: names are unique in a scene).
+struct SetUpShared {
+    virtual ~SetUpShared() = default;
+};
+using SetUpShares = std::map<std::string, std::shared_ptr<const SetUpShared>>;
+
 // What a technique gets to set up one light.
 struct LightSetup {
     const Light& light;
@@ -44,6 +52,8 @@ struct LightSetup {
     // The local-frame bounds of the receivers the camera sees, when the technique asked for them
     // (Technique::needsReceiverBounds).
     const std::optional<Bounds3d>& lsReceivers;
+    // Where the set-ups of one technique in one render leave and find what they share; null: none.
+    SetUpShares* shared = nullptr;
 };
 
 // One light's GL objects and passes. Made by Technique::setUp with a current context. Each pass

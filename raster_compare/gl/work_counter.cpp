@@ -13,10 +13,15 @@ namespace so {
 
 namespace {
 
-WorkCounter* active = nullptr;  // the WorkCounter alive, whose wrappers are installed
+// This thread's counter. Each thread renders in its own context (an EGL context is current in one
+// thread), so a draw is reported to the counter of the thread that made it; a thread without one
+// (a timed frame, another caller's render) passes straight through.
+thread_local WorkCounter* active = nullptr;
 
 // The driver's own entry point (eglGetProcAddress gives core functions too, EGL 1.5): libepoxy's
-// slot may still hold its resolver, which would call the slot again, that is the wrapper.
+// slot may still hold its resolver, which would call the slot again, that is the wrapper. It
+// dispatches on the calling thread's current context (Mesa's and glvnd's do), so one entry point
+// serves every thread's context.
 template <typename Fn>
 Fn entryPoint(const char* name) {
     auto* f = reinterpret_cast<Fn>(eglGetProcAddress(name));
@@ -97,22 +102,19 @@ struct ClearHook {
     }
 };
 
-// One entry point's wrapper, installed in libepoxy's slot and restored.
+// One entry point's wrapper, installed in libepoxy's slot.
 struct Interposed {
     const char* name;
     void (*install)(const char* name);
-    void (*restore)();
 };
 
 template <template <auto&, typename> class Hook, auto& Slot>
 Interposed interpose(const char* name) {
     using H = Hook<Slot, std::remove_reference_t<decltype(Slot)>>;
-    return {name,
-            [](const char* n) {
+    return {name, [](const char* n) {
                 H::real = entryPoint<decltype(H::real)>(n);
                 Slot = &H::call;
-            },
-            [] { Slot = H::real; }};
+            }};
 }
 
 #define SO_INTERPOSE(Hook, fn) interpose<Hook, epoxy_##fn>(#fn)
@@ -190,8 +192,17 @@ uint64_t texelBytes(GLuint texture, GLint level) {
     return std::bit_ceil(uint64_t((bits + 7) / 8));
 }
 
+void installWorkCounterWrappers() {
+    // A function-local static: initialised once, and a second thread waits until it is done.
+    static const bool installed = [] {
+        for (const Interposed& i : interposed()) i.install(i.name);
+        return true;
+    }();
+    (void)installed;
+}
+
 WorkCounter::WorkCounter() {
-    SO_CHECK(active == nullptr);
+    SO_CHECK(active == nullptr);  // one per thread: a frame is counted once
     counters_ = makeBuffer();
     glNamedBufferStorage(counters_.get(), 6 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
     // glGenQueries: Mesa 22.3's glCreateQueries refuses these targets (GL_INVALID_ENUM).
@@ -201,13 +212,11 @@ WorkCounter::WorkCounter() {
             glGenQueries(1, &name);
             q = GlQuery(name);
         }
-    for (const Interposed& i : interposed()) i.install(i.name);
     active = this;
 }
 
 WorkCounter::~WorkCounter() {
     active = nullptr;
-    for (const Interposed& i : interposed()) i.restore();
 }
 
 void WorkCounter::begin(const std::string& pass) {

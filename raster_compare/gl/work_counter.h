@@ -4,9 +4,11 @@
 //   storage buffer at kWorkCounterBinding, read back after each pass);
 // - vertices, primitives, shader invocations and clipping by GL_ARB_pipeline_statistics_query;
 // - draw calls, and the render targets each pass reads and writes, by watching every draw and
-//   clear: while a WorkCounter lives, libepoxy's entry points for them (its dispatch table of
-//   function pointers, epoxy_glDrawArrays, ...) go through counting wrappers, as a tracer
-//   (apitrace) interposes on them; destroying it restores them.
+//   clear: libepoxy's entry points for them (its dispatch table of function pointers,
+//   epoxy_glDrawArrays, ...) go through counting wrappers, as a tracer (apitrace) interposes on
+//   them, which report to the calling thread's WorkCounter, if it has one.
+// Several threads may each count a frame in its own context at once (the API's render and compare
+// from several threads, docs/api.md).
 // A technique needs nothing for its passes to be counted but its PassClock, and SO_TAP before
 // each texture lookup in its GLSL (the family frames' lookups have it).
 #pragma once
@@ -28,9 +30,17 @@ namespace so {
 // stencil 8 in 8).
 uint64_t texelBytes(GLuint texture, GLint level = 0);
 
+// Puts the counting wrappers in libepoxy's slots, once per process; later calls return at once.
+// GlContext calls it before its constructor returns, so it runs before any thread of the process
+// draws through the raster path: libepoxy's table is one per process, and a slot rewritten while
+// another thread fills it lazily (libepoxy resolves an entry point on its first call) could lose
+// the wrapper. The wrappers stay: with no WorkCounter on the calling thread they only make the
+// call.
+void installWorkCounterWrappers();
+
 class WorkCounter final : public PassRecorder {
   public:
-    WorkCounter();  // needs the context current; one at a time
+    WorkCounter();  // needs the context current; one per thread at a time
     ~WorkCounter() override;
     WorkCounter(const WorkCounter&) = delete;
     WorkCounter& operator=(const WorkCounter&) = delete;

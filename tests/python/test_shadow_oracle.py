@@ -166,6 +166,30 @@ def test_two_traces_at_once_give_what_each_gives_alone():
             assert np.array_equal(plane, b.images[channel], equal_nan=True), channel
 
 
+def test_two_renders_at_once_give_what_each_gives_alone():
+    # Each render has a GL context of its own (docs/api.md); the work counts of the counted frame
+    # are exact, so they must agree too.
+    scenes = [so.load_scene(scene_path("contact_box")), so.load_scene(scene_path("spot_objects"))]
+    techniques = ["pcf", "pcss"]
+    args = dict(width=64, height=48, frames=1, warmup=0)
+    alone = [so.render(s, t, **args) for s, t in zip(scenes, techniques)]
+    together = [None, None]
+
+    def run(i):
+        together[i] = so.render(scenes[i], techniques[i], **args)
+
+    threads = [threading.Thread(target=run, args=(i,)) for i in (0, 1)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for a, b in zip(alone, together):
+        assert a.images.keys() == b.images.keys()
+        for channel, plane in a.images.items():
+            assert np.array_equal(plane, b.images[channel], equal_nan=True), channel
+        assert a.stats["work"] == b.stats["work"]
+
+
 def test_ctrl_c_interrupts_a_long_trace_quickly():
     scene = so.load_scene(scene_path("penumbra_square"))
     interrupted = []

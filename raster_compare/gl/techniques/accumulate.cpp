@@ -83,8 +83,8 @@ AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& 
         }
         points_.push_back(point);
         lsSamples_.push_back(glm::vec3(setup.scene.frame().lsFromWs(p)));
-        samples_.push_back(
-            technique.inner->setUp({points_.back(), setup.scene, setup.camera, setup.lsReceivers}));
+        samples_.push_back(technique.inner->setUp(
+            {points_.back(), setup.scene, setup.camera, setup.lsReceivers, nullptr}));
     }
     sums_ = makeTexture(GL_TEXTURE_2D);
     glTextureStorage2D(sums_.get(), 1, GL_RG32F, camera_.width(), camera_.height());
