@@ -174,8 +174,20 @@ TEST(Export, SoftChairRoundTrip) {  // rect and sphere area lights
     roundTrip(SO_SCENES_DIR "/soft_chair.scene.json", "soft_chair");
 }
 
-TEST(Export, RealFernRoundTrip) {  // a real alpha-tested model
+TEST(Export, RealFernRoundTrip) {  // a real model (its scene draws the fronds opaque)
     roundTrip(SO_SCENES_DIR "/real/fern/fern.scene.json", "fern");
+}
+
+TEST(Export, RealTruckTownRoundTrip) {  // a node tree, an alpha-tested (BLEND) texture, 2 km wide
+    roundTrip(SO_SCENES_DIR "/real/truck_town/truck_town.scene.json", "truck_town");
+}
+
+TEST(Export, WebpTextureRoundTrip) {  // a bare glTF whose mask is a WebP image
+    roundTrip(SO_TEST_DATA_DIR "/gltf/webp_alpha.gltf", "webp");
+    const json g = glbJson(fs::temp_directory_path() / "so_export_test_webp" / "scene.glb");
+    EXPECT_EQ(g["extensionsRequired"], json::array({"EXT_texture_webp"}));
+    EXPECT_EQ(g["images"][0]["mimeType"], "image/webp");
+    EXPECT_EQ(g["textures"][0]["extensions"]["EXT_texture_webp"]["source"], 0);
 }
 
 const json& nodeNamed(const json& gltf, const std::string& name) {
@@ -267,6 +279,17 @@ TEST(Export, UnwritableFolderIsOneLineError) {
     EXPECT_NE(r.stderrText.find((file / "out").string()), std::string::npos) << r.stderrText;
     EXPECT_NE(r.stderrText.find("cannot create the folder"), std::string::npos) << r.stderrText;
     fs::remove(file);
+
+    // A folder that exists but where scene.glb cannot be written (it is a folder itself).
+    const fs::path dir = fs::temp_directory_path() / "so_export_test_blocked";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "scene.glb");
+    const auto blocked =
+        run("export " SO_SCENES_DIR "/contact_box.scene.json --out " + dir.string() + " --quiet");
+    EXPECT_EQ(blocked.exitCode, 2);
+    EXPECT_EQ(blocked.stderrText,
+              (dir / "scene.glb").string() + ": cannot be written (Is a directory)\n");
+    fs::remove_all(dir);
 }
 
 }  // namespace
