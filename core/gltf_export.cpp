@@ -50,6 +50,13 @@ json vec3Json(const glm::dvec3& v) {
     return json::array({v.x, v.y, v.z});
 }
 
+// World-space bounds of every vertex as the scene holds them (in double), null without geometry:
+// what an engine fits a directional light's shadow camera to.
+json boundsJson(const Bounds3d& b) {
+    if (b.empty()) return nullptr;
+    return {{"min", vec3Json(b.lo)}, {"max", vec3Json(b.hi)}};
+}
+
 // The rotation (x, y, z, w) whose -Z is `wsDir` (unit), with +Y as close to world up as it can
 // be: a glTF camera and light look down their node's -Z.
 std::vector<double> rotationLookingAlong(const glm::dvec3& wsDir, const glm::dvec3& wsUpHint) {
@@ -422,7 +429,8 @@ void GlbBuilder::setAsset() {
                                      {"format_version", kGlbExportFormat},
                                      {"source_scene", opts_.sourcePath},
                                      {"scene_hash", scene_.contentHash},
-                                     {"effects", scene_.effects}}}});
+                                     {"effects", scene_.effects},
+                                     {"bounds", boundsJson(scene_.wsBounds)}}}});
 }
 
 std::vector<unsigned char> GlbBuilder::build() {

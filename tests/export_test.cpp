@@ -206,6 +206,7 @@ TEST(Export, GlbStructure) {
     EXPECT_EQ(g["asset"]["extras"]["shadow_oracle"]["format_version"], 1);
     EXPECT_EQ(g["asset"]["extras"]["shadow_oracle"]["source_scene"],
               SO_SCENES_DIR "/soft_chair.scene.json");
+    EXPECT_EQ(g["asset"]["extras"]["shadow_oracle"]["bounds"], view["scene"]["bounds"]);
     const json used = g["extensionsUsed"];
     EXPECT_NE(std::find(used.begin(), used.end(), "KHR_lights_punctual"), used.end());
 
