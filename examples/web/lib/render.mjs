@@ -95,6 +95,8 @@ async function render(o, log) {
   const exrPath = path.join(o.out, `${o.engine}-${modeName}.exr`);
   // A failed run leaves no image at all, not the last run's under this run's name.
   for (const stale of [exrPath, `${exrPath}.json`]) fs.rmSync(stale, { force: true });
+  const pageFile = path.join(kWebRoot, 'pages', `${o.engine}.html`);
+  if (!fs.existsSync(pageFile)) throw new Error(`no page ${pageFile} for this engine`);
   const chromium = findChromium(o.chromium);
   const exported = exportScene(o, log);
   const server = await serve({ web: kWebRoot, scene: exported.dir });
