@@ -138,7 +138,8 @@ export async function main(argv) {
     await render(o, log);
     return 0;
   } catch (e) {
-    process.stderr.write(`render: ${o.engine} ${o.mode || 'default'} ${o.scene}: ${e.message}\n`);
+    const message = String(e && e.message ? e.message : e).split('\n')[0]; // one line, whatever threw
+    process.stderr.write(`render: ${o.engine} ${o.mode || 'default'} ${o.scene}: ${message}\n`);
     return 1;
   }
 }
