@@ -15,6 +15,11 @@ ARTIFACTS = [("acne_rate", "acne"), ("peter_panning_rate", "peter-panning"),
              ("penumbra_spread_rate", "penumbra spread"), ("penumbra_mae", "penumbra mae")]
 
 
+# Every error class of a pixel (raster_compare/compare/artifacts.h), for the defaults' summary.
+CLASSES = ARTIFACTS[:5] + [("other_false_shadow_rate", "other false shadow"),
+                           ("other_false_lit_rate", "other false lit")]
+
+
 def num(text):
     return None if text in ("", None) else float(text)
 
@@ -77,36 +82,45 @@ def best_table(rows):
 
 def default_stats(rows):
     """Per engine with an ENGINE-default entry: (entry, its settings in words, mean mae, scene
-    lights, (mean rate, class, scene lights where it applies) of its largest artifact class)."""
+    lights, (mean rate, class, scene lights where it applies) of its two largest error classes, its
+    worst scene light in words)."""
     out = []
     for engine in ("three", "babylon", "playcanvas", "filament"):
         rs = [r for r in rows if r["technique"] == engine + "-default"]
         if not rs:
             continue
         means = []
-        for key, name in ARTIFACTS[:5]:
+        for key, name in CLASSES:
             vals = [num(r[key]) for r in rs if num(r[key]) is not None]
             if vals:
                 means.append((sum(vals) / len(vals), name, len(vals)))
         mae = sum(num(r["mae"]) for r in rs) / len(rs)
         params = ", ".join(f"{k[6:]} {v.strip(chr(34))}" for k, v in sorted(rs[0].items())
                            if k.startswith("param.") and v != "")
-        out.append((rs[0]["technique"], params, mae, len(rs), max(means)))
+        worst_row = max(rs, key=lambda r: num(r["mae"]))
+        worst_at = f"{scene_name(worst_row)} {worst_row['light']} (mae {num(worst_row['mae']):.3g}" + "".join(
+            f", {name} {num(worst_row[key]):.3g}" for key, name in
+            (("umbra_mae", "umbra mae"), ("penumbra_mae", "penumbra mae"), ("lit_mae", "lit mae"))
+            if num(worst_row[key]) is not None) + ")"
+        out.append((rs[0]["technique"], params, mae, len(rs), sorted(means, reverse=True)[:2], worst_at))
     return out
 
 
 def summary(rows):
     """One sentence per engine: its defaults' largest artifact rate, averaged over scene lights."""
+    def rate(c):
+        return f"{c[1]} (mean rate {c[0]:.3g} over the {c[2]} scene lights where it applies)"
     return "\n".join(
-        f"- **{entry}** ({params}): mean mae {mae:.4g} over {n} scene lights; its largest artifact "
-        f"is {worst[1]} (mean rate {worst[0]:.3g} over the {worst[2]} scene lights where it applies)."
-        for entry, params, mae, n, worst in default_stats(rows))
+        f"- **{entry}** ({params}): mean mae {mae:.4g} over {n} scene lights; its largest error "
+        f"classes are {' and '.join(rate(c) for c in worst)}; its worst scene light is {worst_at}."
+        for entry, params, mae, n, worst, worst_at in default_stats(rows))
 
 
 def readme_line(rows):
     """The README's line: each engine's defaults, mean mae and largest artifact, and the link."""
-    return "; ".join(f"{entry} mean mae {mae:.3g}, largest artifact {worst[1]} ({worst[0]:.3g})"
-                     for entry, _, mae, _, worst in default_stats(rows)) + \
+    return "; ".join(f"{entry} mean mae {mae:.3g}, most often wrong as {worst[0][1]} "
+                     f"(mean rate {worst[0][0]:.3g})"
+                     for entry, _, mae, _, worst, _ in default_stats(rows)) + \
         " ([docs/engines.md](docs/engines.md))."
 
 
