@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/compare_command.h"
+#include "cli/export_command.h"
 #include "cli/gate_command.h"
 #include "cli/index_command.h"
 #include "cli/metrics_command.h"
@@ -154,6 +155,21 @@ static Runner addView(CLI::App& app) {
         ->check(CLI::Range(1, 1024));
     addQuiet(viewCmd, o->progress);
     return [o] { return so::runViewCommand(*o); };
+}
+
+static Runner addExport(CLI::App& app) {
+    auto o = std::make_shared<so::ExportCommandOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "export",
+        "the scene for any engine: scene.glb (world-space meshes, camera, KHR_lights_punctual), "
+        "scene.scene.json, view.json, gbuffer.exr (docs/export.md)");
+    cmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
+    cmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
+    addImageSize(cmd, o->oracle.width, o->oracle.height);
+    cmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    addQuiet(cmd, o->progress);
+    return [o] { return so::runExportCommand(*o); };
 }
 
 static Runner addRaster(CLI::App& app) {
@@ -365,6 +381,7 @@ int main(int argc, char** argv) {
         {"trace", addTrace(app)},
         {"trace-merge", addTraceMerge(app)},
         {"view", addView(app)},
+        {"export", addExport(app)},
         {"raster", addRaster(app)},
         {"compare", addCompare(app)},
         {"sweep", addSweep(app)},

@@ -233,7 +233,7 @@ int GltfAlpha::decodedTexture(size_t image) {
     if (auto it = textureOfImage_.find(image); it != textureOfImage_.end()) return it->second;
     const std::string field = idx("images", image);
     const LoadLimits& limits = ctx_.limits;
-    const std::vector<unsigned char> bytes = imageBytes(image);
+    std::vector<unsigned char> bytes = imageBytes(image);
     TextureRgba rgba;
     try {
         rgba = decodeTextureRgba(bytes, limits.maxImageSide, limits.maxImageSide,
@@ -252,6 +252,7 @@ int GltfAlpha::decodedTexture(size_t image) {
     t.height = rgba.height;
     t.alpha.resize(size_t(rgba.width) * size_t(rgba.height));
     for (size_t k = 0; k < t.alpha.size(); ++k) t.alpha[k] = rgba.rgba[4 * k + 3];
+    t.encoded = std::move(bytes);
     textures_.push_back(std::move(t));
     return textureOfImage_[image] = int(textures_.size() - 1);
 }

@@ -90,6 +90,9 @@ struct AlphaTexture {
     std::string name;  // "FILE#images[i]", for people
     int width = 0, height = 0;
     std::vector<float> alpha;  // width * height, row by row from the top, each in [0, 1]
+    // The image file's bytes as read (PNG, JPEG or WebP), for `shadow-oracle export`
+    // (core/gltf_export.h), which embeds the source image; empty for a texture made in memory.
+    std::vector<unsigned char> encoded;
 };
 
 // An alpha-tested material: glTF alphaMode MASK, or BLEND read as MASK at cutoff 0.5
@@ -122,6 +125,9 @@ struct MeshPrimitive {
     // Its scene-file entry says "dynamic": true (scene_format 3): the object moves, so a lightmap
     // does not bake it (its shadows are left out). The oracle and every other technique ignore it.
     bool dynamic = false;
+    // The glTF material's doubleSided (false without a material, and for meshes made in memory).
+    // Nothing traced reads it: the oracle's rays meet both sides; `export` keeps it for engines.
+    bool doubleSided = false;
     size_t triangleCount() const { return indices.size() / 3; }
 };
 

@@ -271,6 +271,17 @@ void bindScene(py::module_& m) {
         py::arg("effects") = py::none(),
         "A scene from arrays: meshes as (vertices (N, 3), triangles (M, 3)) pairs in world "
         "space, lights and camera as the scene format's dicts, effects as its list.");
+    m.def(
+        "export_scene",
+        [](const so::Scene& scene, const std::string& outDir, int width, int height, int threads) {
+            py::gil_scoped_release release;
+            return so::exportScene(scene, outDir, width, height, threads);
+        },
+        py::arg("scene"), py::arg("out_dir"), py::arg("width") = 0, py::arg("height") = 0,
+        py::arg("threads") = 0,
+        "`shadow-oracle export` (docs/export.md): out_dir gets scene.glb, scene.scene.json, "
+        "view.json and gbuffer.exr for the view at width x height (0: the scene camera's). "
+        "Returns the glb's path.");
 }
 
 void bindTrace(py::module_& m) {

@@ -154,6 +154,13 @@ struct TraceResult {
 
 SHADOW_ORACLE_API TraceResult trace(const Scene& scene, const TraceOptions& options = {});
 
+// `shadow-oracle export` (docs/export.md): outDir (created if missing) gets scene.glb (the scene
+// in world space with its camera and KHR_lights_punctual lights), scene.scene.json (a scene file
+// loading it), view.json and gbuffer.exr, for the view at width x height (0: the scene camera's).
+// Returns the glb's path.
+SHADOW_ORACLE_API std::string exportScene(const Scene& scene, const std::string& outDir,
+                                          int width = 0, int height = 0, int threads = 0);
+
 // A technique's settings, as on the command line: "kernel" -> "5", "pattern" -> "poisson".
 using Parameters = std::vector<std::pair<std::string, std::string>>;
 

@@ -73,6 +73,9 @@ def make_scene(
     camera: Optional[Mapping[str, Any]] = None,
     effects: Optional[Sequence[str]] = None,
 ) -> Scene: ...
+def export_scene(
+    scene: Scene, out_dir: str, width: int = 0, height: int = 0, threads: int = 0
+) -> str: ...
 def trace(
     scene: Scene,
     *,

@@ -203,6 +203,28 @@ def test_exr_round_trip_is_exact(tmp_path):
         assert np.array_equal(back[k], v)
 
 
+def test_export_scene_writes_what_the_cli_writes(tmp_path):
+    scene = so.load_scene(scene_path("contact_box"))
+    glb = so.export_scene(scene, str(tmp_path / "py"), width=48, height=36, threads=2)
+    assert glb == str(tmp_path / "py" / "scene.glb")
+    run_cli("export", scene_path("contact_box"), "--out", str(tmp_path / "cli"),
+            "--width", "48", "--height", "36", "--threads", "2", "--quiet")
+    for f in ["scene.scene.json", "gbuffer.exr"]:
+        assert open(tmp_path / "py" / f, "rb").read() == open(tmp_path / "cli" / f, "rb").read(), f
+
+    def glb(folder):  # the JSON chunk without asset (the tool's revision) and the BIN chunk
+        b = open(tmp_path / folder / "scene.glb", "rb").read()
+        n = int.from_bytes(b[12:16], "little")
+        j = json.loads(b[20:20 + n])
+        del j["asset"]
+        return j, b[20 + n:]
+
+    assert glb("py") == glb("cli")
+    exported = so.load_scene(str(tmp_path / "py" / "scene.scene.json"))
+    assert exported.triangles == scene.triangles
+    assert [l["name"] for l in exported.lights] == [l["name"] for l in scene.lights]
+
+
 def test_the_stubs_name_everything_the_module_exports():
     stub = open(STUB).read()
     for name in so.__all__:
