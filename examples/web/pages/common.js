@@ -1,0 +1,62 @@
+// Helpers every engine page shares (README.md, "Page contract"). Plain ES module, no engine code.
+
+/** A Float32Array as base64 of its little-endian bytes (the driver's decodeFloats reads it). */
+export function floatsToBase64(floats) {
+  const bytes = new Uint8Array(floats.buffer, floats.byteOffset, floats.byteLength);
+  let s = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+  return btoa(s);
+}
+
+/**
+ * One channel of an RGBA float readback (OpenGL order: row 0 at the bottom) as width * height
+ * values with row 0 at the top, the order of the contract and of the oracle's images.
+ */
+export function channelTopDown(rgba, width, height, channel = 0) {
+  const out = new Float32Array(width * height);
+  for (let y = 0; y < height; ++y) {
+    const src = (height - 1 - y) * width;
+    for (let x = 0; x < width; ++x) out[y * width + x] = rgba[4 * (src + x) + channel];
+  }
+  return out;
+}
+
+/** Throws a clear Error where WebGL2 or float render targets are missing. */
+export function requireWebGL2() {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  if (!gl) throw new Error('WebGL2 is not available in this browser (chromium needs --enable-unsafe-swiftshader without a GPU)');
+  if (!gl.getExtension('EXT_color_buffer_float')) throw new Error('WebGL2 has no EXT_color_buffer_float: float render targets cannot be read back');
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+}
+
+/**
+ * The job's settings as typed values: `known` maps a name to its kind ('number', 'integer',
+ * 'boolean' or an array of allowed strings). An unknown name or a wrong value throws, naming it.
+ */
+export function readSettings(settings, known, engine) {
+  const out = {};
+  for (const [name, value] of Object.entries(settings || {})) {
+    const kind = known[name];
+    if (kind === undefined) throw new Error(`unknown setting "${name}" for ${engine} (known: ${Object.keys(known).join(', ')})`);
+    const ok = Array.isArray(kind) ? kind.includes(value)
+      : kind === 'integer' ? Number.isInteger(value)
+      : kind === 'number' ? typeof value === 'number' && Number.isFinite(value)
+      : typeof value === kind;
+    if (!ok) throw new Error(`setting ${name}=${value}: expected ${Array.isArray(kind) ? 'one of ' + kind.join(', ') : 'a ' + kind}`);
+    out[name] = value;
+  }
+  return out;
+}
+
+/** Milliseconds of `frame()` (which must finish its GPU work, e.g. by a readback): the median of n. */
+export function medianMs(frame, n = 5) {
+  const times = [];
+  for (let i = 0; i < n; ++i) {
+    const t0 = performance.now();
+    frame();
+    times.push(performance.now() - t0);
+  }
+  times.sort((a, b) => a - b);
+  return times[n >> 1];
+}
