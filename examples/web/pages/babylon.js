@@ -216,11 +216,15 @@ function texelBytes(t) {
   return channels === undefined ? 4 : channelBytes * channels; // depth formats: 24+8 or 32 bits
 }
 
-/** The bytes of every texture allocated since `before` (the generator's maps, blur targets, depth). */
+/**
+ * The bytes of every render texture allocated since `before`: the generator's map (an array of
+ * layers for cascades), its depth-stencil texture, its blur targets. Textures loaded from a URL
+ * (the BRDF lookup table the first frame creates) are not the shadows'.
+ */
 function newTextureBytes(engine, before) {
   let bytes = 0;
   for (const t of engine.getLoadedTexturesCache()) {
-    if (before.has(t)) continue;
+    if (before.has(t) || t.url) continue;
     bytes += t.width * t.height * (t.isCube ? 6 : Math.max(1, t.depth || 1)) * texelBytes(t);
   }
   return bytes;
