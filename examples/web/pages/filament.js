@@ -44,6 +44,11 @@ const kTexelBytes = {
 // corner (README.md, "Filament": at 1.01 no pixel was lit; from about 10 on the image is the same).
 const kFalloffScale = 10;
 
+// The GL formats of Filament's shadow maps (depth for PCF, DPCF, PCSS; RG for VSM): the other
+// textures a first frame allocates (its lookup tables) are not shadows.
+const kShadowFormats = new Set([kGL.DEPTH_COMPONENT16, kGL.DEPTH_COMPONENT24, kGL.DEPTH_COMPONENT32F,
+  kGL.DEPTH24_STENCIL8, kGL.DEPTH32F_STENCIL8, kGL.RG16F, kGL.RG32F]);
+
 // Modes: View.ShadowType values, and `contact` (PCF with the light's screenSpaceContactShadows).
 const kModes = { pcf: 'PCF', vsm: 'VSM', dpcf: 'DPCF', pcss: 'PCSS', contact: 'PCF' };
 const kDefaultMode = 'pcf'; // View's default shadowType
@@ -251,7 +256,7 @@ async function renderOneLight(fs, name, modeName, s) {
   // light the same texture again, which then counts as the last one allocated.
   const { width, height } = fs.job;
   let bytes = glAllocations.slice(before)
-    .filter((a) => a.width * a.height > 1 && !(a.width === width && a.height === height)) // not 1 x 1 dummies, not the target's
+    .filter((a) => kShadowFormats.has(a.format) && !(a.width === width && a.height === height)) // not the target's depth
 
     .reduce((sum, a) => sum + a.width * a.height * a.layers * (kTexelBytes[a.format] || 4), 0);
   if (bytes === 0) bytes = fs.lastShadowBytes || 0;
