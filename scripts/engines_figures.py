@@ -75,8 +75,9 @@ def best_table(rows):
     return head + "\n".join(lines)
 
 
-def summary(rows):
-    """One sentence per engine: its defaults' largest artifact rate, averaged over scene-lights."""
+def default_stats(rows):
+    """Per engine with an ENGINE-default entry: (entry, its settings in words, mean mae, scene
+    lights, (mean rate, class, scene lights where it applies) of its largest artifact class)."""
     out = []
     for engine in ("three", "babylon", "playcanvas", "filament"):
         rs = [r for r in rows if r["technique"] == engine + "-default"]
@@ -87,20 +88,32 @@ def summary(rows):
             vals = [num(r[key]) for r in rs if num(r[key]) is not None]
             if vals:
                 means.append((sum(vals) / len(vals), name, len(vals)))
-        worst = max(means)
         mae = sum(num(r["mae"]) for r in rs) / len(rs)
         params = ", ".join(f"{k[6:]} {v.strip(chr(34))}" for k, v in sorted(rs[0].items())
                            if k.startswith("param.") and v != "")
-        out.append(f"- **{rs[0]['technique']}** ({params}): mean mae "
-                   f"{mae:.4g} over {len(rs)} scene lights; its largest artifact is {worst[1]} "
-                   f"(mean rate {worst[0]:.3g} over the {worst[2]} scene lights where it applies).")
-    return "\n".join(out)
+        out.append((rs[0]["technique"], params, mae, len(rs), max(means)))
+    return out
+
+
+def summary(rows):
+    """One sentence per engine: its defaults' largest artifact rate, averaged over scene lights."""
+    return "\n".join(
+        f"- **{entry}** ({params}): mean mae {mae:.4g} over {n} scene lights; its largest artifact "
+        f"is {worst[1]} (mean rate {worst[0]:.3g} over the {worst[2]} scene lights where it applies)."
+        for entry, params, mae, n, worst in default_stats(rows))
+
+
+def readme_line(rows):
+    """The README's line: each engine's defaults, mean mae and largest artifact, and the link."""
+    return "; ".join(f"{entry} mean mae {mae:.3g}, largest artifact {worst[1]} ({worst[0]:.3g})"
+                     for entry, _, mae, _, worst in default_stats(rows)) + \
+        " ([docs/engines.md](docs/engines.md))."
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: engines_figures.py SWEEP_DIR DOC.md")
-    sweep, doc = pathlib.Path(sys.argv[1]), sys.argv[2]
+    if len(sys.argv) != 4:
+        sys.exit("usage: engines_figures.py SWEEP_DIR DOC.md README.md")
+    sweep, doc, readme = pathlib.Path(sys.argv[1]), sys.argv[2], sys.argv[3]
     rows = read_rows(sweep)
     meta = json.load(open(sweep / "metrics.json"))
     renderers = sorted({r.get("renderer", "") for r in meta["results"] if r.get("renderer")})
@@ -109,6 +122,7 @@ def main():
     write_between_markers(doc, "engines-summary", source + "\n\n" + summary(rows))
     write_between_markers(doc, "engines-defaults", defaults_table(rows))
     write_between_markers(doc, "engines-best", best_table(rows))
+    write_between_markers(readme, "engines-readme", readme_line(rows))
 
 
 if __name__ == "__main__":

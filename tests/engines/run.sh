@@ -37,6 +37,9 @@ for m in puppeteer-core three; do
 done
 [ -x "$CLI" ] || fail "no CLI at $CLI (build the shadow-oracle target)"
 [ -f "$SCENES/terrain_sun.scene.json" ] || fail "no $SCENES/terrain_sun.scene.json"
+# CLI11 lists the subcommands in the main help; a CLI built before `export` existed cannot run this.
+"$CLI" --help 2>/dev/null | grep -Eq '^[[:space:]]+export([[:space:]]|$)' ||
+  skip "$CLI has no export command"
 
 rm -rf "$WORK" && mkdir -p "$WORK/renders" || fail "cannot create $WORK"
 ln -s "$SCENES/meshes" "$WORK/meshes" || fail "cannot link $WORK/meshes"

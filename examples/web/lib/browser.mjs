@@ -33,14 +33,26 @@ function firstLine(message) {
   return String(message).split('\n')[0].replace(/^(Error|TypeError|ReferenceError): /, '');
 }
 
-/** Loads pageUrl, waits for window.renderVisibility, runs it on job. Rejects with one clear line. */
-export async function runPage({ chromium, pageUrl, job, timeoutS, log }) {
+/** Debian's chromium, headless, with WebGL2 on SwiftShader. */
+export async function launchBrowser(chromium) {
   const puppeteer = await loadPuppeteer();
-  const browser = await puppeteer.launch({ executablePath: chromium, headless: true, args: kChromiumArgs });
+  try {
+    return await puppeteer.launch({ executablePath: chromium, headless: true, args: kChromiumArgs });
+  } catch (e) {
+    throw new Error(`cannot start ${chromium}: ${firstLine(e.message)}`);
+  }
+}
+
+/**
+ * Loads pageUrl in a new page of `browser`, waits for window.renderVisibility, runs it on job
+ * and closes the page. Rejects with one clear line.
+ */
+export async function runPage({ browser, pageUrl, job, timeoutS, log }) {
   const pageErrors = [];
   let timer;
+  let page = null;
   try {
-    const page = await browser.newPage();
+    page = await browser.newPage();
     page.on('pageerror', (e) => pageErrors.push(firstLine(e.message)));
     page.on('console', (m) => {
       if (m.type() === 'error') pageErrors.push(firstLine(m.text()));
@@ -53,9 +65,8 @@ export async function runPage({ chromium, pageUrl, job, timeoutS, log }) {
       await page.waitForFunction(() => typeof window.renderVisibility === 'function', { timeout: 30000 }).catch(() => {
         throw new Error(`the page defines no window.renderVisibility${pageErrors.length ? ': ' + pageErrors[0] : ''}`);
       });
-      const version = await browser.version();
       const result = await page.evaluate((j) => window.renderVisibility(j), job);
-      return { result, browserVersion: version };
+      return { result, browserVersion: await browser.version() };
     })();
     const timeout = new Promise((_, reject) => {
       timer = setTimeout(() => reject(new Error(`timed out after ${timeoutS} s`)), timeoutS * 1000);
@@ -65,7 +76,7 @@ export async function runPage({ chromium, pageUrl, job, timeoutS, log }) {
     throw new Error(firstLine(e.message));
   } finally {
     clearTimeout(timer);
-    await browser.close().catch(() => {});
+    if (page) await Promise.race([page.close().catch(() => {}), new Promise((r) => setTimeout(r, 5000))]);
   }
 }
 

@@ -7,7 +7,7 @@ import path from 'node:path';
 import { execFileSync, spawnSync } from 'node:child_process';
 import { parseArgs, UsageError, kUsage } from './args.mjs';
 import { serve } from './server.mjs';
-import { findChromium, runPage, kWebRoot } from './browser.mjs';
+import { findChromium, launchBrowser, runPage, kWebRoot } from './browser.mjs';
 import { decodeFloats, visibility, checkParams } from './visibility.mjs';
 import { encodeExr } from './exr.mjs';
 
@@ -89,7 +89,8 @@ function writeAtomically(files) {
   for (const [tmp, file] of temps) fs.renameSync(tmp, file);
 }
 
-async function render(o, log) {
+/** One render; `shared.browser`, where given, is used and left open (a sweep's), else one is started. */
+async function render(o, log, shared) {
   const modeName = o.mode || 'default';
   fs.mkdirSync(o.out, { recursive: true });
   const exrPath = path.join(o.out, `${o.engine}-${modeName}.exr`);
@@ -97,17 +98,19 @@ async function render(o, log) {
   for (const stale of [exrPath, `${exrPath}.json`]) fs.rmSync(stale, { force: true });
   const pageFile = path.join(kWebRoot, 'pages', `${o.engine}.html`);
   if (!fs.existsSync(pageFile)) throw new Error(`no page ${pageFile} for this engine`);
-  const chromium = findChromium(o.chromium);
-  const exported = exportScene(o, log);
-  const server = await serve({ web: kWebRoot, scene: exported.dir });
+  const browser = shared && shared.browser ? shared.browser : await launchBrowser(findChromium(o.chromium));
+  let exported = null;
+  let server = null;
   try {
+    exported = exportScene(o, log);
+    server = await serve({ web: kWebRoot, scene: exported.dir });
     const view = readView(exported.dir, o);
     const job = {
       glbUrl: `${server.url}/scene/scene.glb`, view, width: view.camera.width, height: view.camera.height,
       mode: o.mode, settings: o.settings, lights: view.lights.map((l) => l.name),
     };
     const pageUrl = `${server.url}/web/pages/${o.engine}.html`;
-    const { result, browserVersion } = await runPage({ chromium, pageUrl, job, timeoutS: o.timeoutS, log });
+    const { result, browserVersion } = await runPage({ browser, pageUrl, job, timeoutS: o.timeoutS, log });
     const { channels, cost } = assemble(result, view, o, browserVersion);
     const exr = encodeExr(view.camera.width, view.camera.height, channels, {
       'shadowOracle/renderer': cost.renderer, 'shadowOracle/sceneHash': view.scene.hash || '',
@@ -115,12 +118,14 @@ async function render(o, log) {
     writeAtomically([[`${exrPath}.json`, JSON.stringify(cost, null, 2) + '\n'], [exrPath, exr]]);
     log(`${o.engine} ${modeName}: ${exrPath} (${Object.keys(channels).join(', ')}; frame ${cost.frame_ms.toFixed(1)} ms on SwiftShader)`);
   } finally {
-    await server.close();
-    if (exported.temporary) fs.rmSync(exported.dir, { recursive: true, force: true });
+    if (server) await server.close();
+    if (exported && exported.temporary) fs.rmSync(exported.dir, { recursive: true, force: true });
+    if (browser !== (shared && shared.browser)) await browser.close().catch(() => {});
   }
 }
 
-export async function main(argv) {
+/** The command: exit 0, 1 (a failed render, one line on stderr) or 2 (bad usage). */
+export async function main(argv, shared = null) {
   let o;
   try {
     o = parseArgs(argv);
@@ -135,10 +140,11 @@ export async function main(argv) {
   }
   const log = o.quiet ? () => {} : (s) => { if (s) process.stderr.write(s + '\n'); };
   try {
-    await render(o, log);
+    await render(o, log, shared);
     return 0;
   } catch (e) {
-    process.stderr.write(`render: ${o.engine} ${o.mode || 'default'} ${o.scene}: ${e.message}\n`);
+    const message = String(e && e.message ? e.message : e).split('\n')[0]; // one line, whatever threw
+    process.stderr.write(`render: ${o.engine} ${o.mode || 'default'} ${o.scene}: ${message}\n`);
     return 1;
   }
 }

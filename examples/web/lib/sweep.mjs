@@ -4,7 +4,8 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { kEngines } from './args.mjs';
-import { kWebRoot } from './browser.mjs';
+import { kWebRoot, findChromium, launchBrowser } from './browser.mjs';
+import { main as renderMain } from './render.mjs';
 import { readGrids, expandGrid, shortestNumber } from './grids.mjs';
 
 export const kSweepUsage = `usage: sweep OUT [--engines ${kEngines.join(',')}] [--width W --height H] [--grids FILE]
@@ -66,8 +67,12 @@ function covers(entry, view) {
   return !entry.lights || view.lights.every((l) => entry.lights.includes(l.type));
 }
 
-/** Renders one entry's grid on every scene it covers; returns the scenes where all of it rendered. */
-function renderEntry(o, engine, entry, views) {
+/**
+ * Renders one entry's grid on every scene it covers, in one browser (`shared.browser`, started
+ * again after a failed render, which may have left a page hanging); returns the scenes where all
+ * of it rendered.
+ */
+async function renderEntry(o, engine, entry, views, shared) {
   const done = [];
   for (const scene of o.scenes) {
     if (!covers(entry, views[scene])) continue;
@@ -77,9 +82,13 @@ function renderEntry(o, engine, entry, views) {
       if (!o.force && fs.existsSync(exr)) continue;
       const sets = Object.entries({ ...entry.set, ...settings }).flatMap(([k, v]) => ['--set', `${k}=${v}`]);
       const mode = entry.mode ? ['--mode', entry.mode] : [];
-      const r = spawnSync(path.join(kWebRoot, 'render'), [scene, '--engine', engine, ...mode, ...sets, '--quiet',
-        '--export-dir', path.join(o.out, 'exports', stem(scene)), '--out', path.dirname(exr)], { stdio: ['ignore', 'ignore', 'inherit'] });
-      if (r.status !== 0) ok = false; // render said why on stderr
+      const rc = await renderMain([scene, '--engine', engine, ...mode, ...sets, '--quiet',
+        '--export-dir', path.join(o.out, 'exports', stem(scene)), '--out', path.dirname(exr)], shared);
+      if (rc !== 0) { // render said why on stderr
+        ok = false;
+        await shared.browser.close().catch(() => {});
+        shared.browser = await launchBrowser(shared.chromium);
+      }
     }
     if (ok) done.push(scene);
     else process.stderr.write(`sweep: ${entry.name} left out on ${stem(scene)} (a setting failed to render)\n`);
@@ -122,11 +131,17 @@ export async function sweepMain(argv) {
     fs.mkdirSync(o.out, { recursive: true });
     const views = exportScenes(o);
     const images = [];
-    for (const engine of o.engines) {
-      for (const entry of readGrids(o.grids, engine)) {
-        const scenes = renderEntry(o, engine, entry, views);
-        if (scenes.length) images.push({ engine, entry, scenes });
+    const chromium = findChromium(process.env.CHROMIUM);
+    const shared = { chromium, browser: await launchBrowser(chromium) };
+    try {
+      for (const engine of o.engines) {
+        for (const entry of readGrids(o.grids, engine)) {
+          const scenes = await renderEntry(o, engine, entry, views, shared);
+          if (scenes.length) images.push({ engine, entry, scenes });
+        }
       }
+    } finally {
+      await shared.browser.close().catch(() => {});
     }
     if (!images.length) throw new Error('no engine rendered any scene');
     const spec = writeSpec(o, images);
