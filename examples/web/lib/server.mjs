@@ -35,7 +35,10 @@ export function serve(mounts) {
     server.once('error', reject);
     server.listen(0, '127.0.0.1', () => {
       const { port } = server.address();
-      resolve({ url: `http://127.0.0.1:${port}`, close: () => new Promise((r) => server.close(r)) });
+      // close() alone waits for the browser's keep-alive connections, which a browser kept open
+      // for the next render (a sweep's) never ends.
+      const close = () => new Promise((r) => { server.close(r); server.closeAllConnections(); });
+      resolve({ url: `http://127.0.0.1:${port}`, close });
     });
   });
 }
