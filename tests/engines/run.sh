@@ -9,7 +9,9 @@
 #   3. shadowSide=front with bias 0, and with bias=-0.0005 (three.js draws back faces into the map
 #      by default, which hides acne on closed and back-faced surfaces: the front faces show it);
 #   4. a bad mode: one line, exit 1, no EXR;
-#   5. shadow-oracle compare --image on all four, grade.mjs on its metrics.json.
+#   5. Babylon.js at its defaults, with bias=0.005 and with bias=0.05; PlayCanvas and Filament at
+#      their defaults (pages/babylon.js, playcanvas.js, filament.js);
+#   6. shadow-oracle compare --image on all nine, grade.mjs on its metrics.json.
 # Exit 0: passed; 1: failed; 77: skipped (no chromium, node or examples/web/node_modules), the
 # reason on one line of stdout.
 set -uo pipefail
@@ -32,7 +34,7 @@ fi
 command -v node >/dev/null || skip "no node found (apt-get install nodejs)"
 node -e 'process.exit(+process.versions.node.split(".")[0] >= 18 ? 0 : 1)' ||
   skip "node $(node --version) is too old for puppeteer-core (18 or newer)"
-for m in puppeteer-core three; do
+for m in puppeteer-core three @babylonjs/core playcanvas filament; do
   [ -d "$WEB/node_modules/$m" ] || skip "examples/web/node_modules/$m is missing (npm ci --prefix examples/web)"
 done
 [ -x "$CLI" ] || fail "no CLI at $CLI (build the shadow-oracle target)"
@@ -76,12 +78,29 @@ grep -q "^render: three nosuch $scene: unknown mode \"nosuch\"" "$WORK/bad.stder
 [ -z "$(ls -A "$WORK/renders/bad")" ] || fail "a bad mode left files: $(ls "$WORK/renders/bad")"
 echo "   $(cat "$WORK/bad.stderr")"
 
+others=() # NAME=ENGINE
+render_other() { # NAME ENGINE [render options...]
+  local name=$1 engine=$2; shift 2
+  echo "== render $name: $engine $*"
+  "$WEB/render" "$scene" --engine "$engine" "${size[@]}" "${ex[@]}" --chromium "$chromium" --quiet "$@" \
+    --out "$WORK/renders/$name" || fail "render $name exited $?"
+  others+=("$name=$engine")
+}
+render_other babylon_default babylon
+render_other babylon_bias_mid babylon --set bias=0.005
+render_other babylon_bias_large babylon --set bias=0.05
+render_other playcanvas_default playcanvas
+render_other filament_default filament
+
 echo "== compare --image"
 images=()
 for n in default bias_large front_bias0 front_bias_small; do
   images+=(--image "$n=$WORK/renders/$n/three-default.exr")
 done
+for o in "${others[@]}"; do
+  images+=(--image "${o%%=*}=$WORK/renders/${o%%=*}/${o#*=}-default.exr")
+done
 "$CLI" compare "$scene" "${size[@]}" "${images[@]}" --out "$WORK/report" > "$WORK/compare.log" 2>&1 ||
   { cat "$WORK/compare.log"; fail "shadow-oracle compare exited $?"; }
-node "$HERE/grade.mjs" "$WORK/report/metrics.json" || fail "the grades are not what three.js's settings cause (above)"
+node "$HERE/grade.mjs" "$WORK/report/metrics.json" || fail "the grades are not what the engines' settings cause (above)"
 echo "engines_three: passed in $((SECONDS - start)) s (report in $WORK/report)"

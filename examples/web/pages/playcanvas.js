@@ -1,0 +1,268 @@
+// PlayCanvas's shadows as a user ships them (README.md, "PlayCanvas"): the glb through its own
+// container (glTF) loader, every mesh instance a white StandardMaterial, no ambient, no skybox,
+// no tone mapping or gamma, one light at a time, rendered into an RGBA32F render target with the
+// light's castShadows on and off. The driver divides.
+import * as pc from 'playcanvas';
+import { floatsToBase64, requireWebGL2, readSettings, medianMs } from './common.js';
+
+// Modes: the light's shadowType (32-bit maps: PCF, PCSS; VSM at 16 and 32 bits); `cascades` is
+// PCF3 with PlayCanvas's largest cascade count, directional lights only.
+const kModes = {
+  pcf1: { shadowType: pc.SHADOW_PCF1_32F },
+  pcf3: { shadowType: pc.SHADOW_PCF3_32F },
+  pcf5: { shadowType: pc.SHADOW_PCF5_32F },
+  vsm16: { shadowType: pc.SHADOW_VSM_16F },
+  vsm32: { shadowType: pc.SHADOW_VSM_32F },
+  pcss: { shadowType: pc.SHADOW_PCSS_32F },
+  cascades: { shadowType: pc.SHADOW_PCF3_32F, numCascades: 4 },
+};
+const kDefaultMode = 'pcf3'; // the Light's shadowType default, SHADOW_PCF3_32F
+// `--set` names: the light component's own properties.
+const kSettingKinds = {
+  shadowBias: 'number', normalOffsetBias: 'number', shadowResolution: 'integer', numCascades: 'integer',
+  cascadeDistribution: 'number', shadowDistance: 'number', penumbraSize: 'number', penumbraFalloff: 'number',
+  shadowSamples: 'integer', shadowBlockerSamples: 'integer', vsmBlurSize: 'integer', vsmBias: 'number',
+};
+const kMaxResolution = 8192;
+
+function parseSettings(job, modeName) {
+  const s = readSettings(job.settings, kSettingKinds, `playcanvas mode ${modeName}`);
+  if (s.shadowResolution !== undefined && (s.shadowResolution < 16 || s.shadowResolution > kMaxResolution)) {
+    throw new Error(`setting shadowResolution=${s.shadowResolution}: outside 16..${kMaxResolution}`);
+  }
+  if (s.numCascades !== undefined && (s.numCascades < 1 || s.numCascades > 4)) throw new Error(`setting numCascades=${s.numCascades}: outside 1..4`);
+  if (s.vsmBlurSize !== undefined && (s.vsmBlurSize < 1 || s.vsmBlurSize > 25)) throw new Error(`setting vsmBlurSize=${s.vsmBlurSize}: outside 1..25`);
+  for (const k of ['shadowSamples', 'shadowBlockerSamples']) {
+    if (s[k] !== undefined && (s[k] < 1 || s[k] > 64)) throw new Error(`setting ${k}=${s[k]}: outside 1..64`);
+  }
+  if (s.shadowDistance !== undefined && !(s.shadowDistance > 0)) throw new Error(`setting shadowDistance=${s.shadowDistance}: not > 0`);
+  return s;
+}
+
+function createApp(width, height) {
+  const canvas = document.getElementById('canvas');
+  canvas.width = width;
+  canvas.height = height;
+  const app = new pc.Application(canvas, { graphicsDeviceOptions: { antialias: false, alpha: false, deviceTypes: [pc.DEVICETYPE_WEBGL2] } });
+  if (!app.graphicsDevice.isWebGL2) throw new Error('PlayCanvas did not get a WebGL2 device');
+  app.setCanvasResolution(pc.RESOLUTION_FIXED, width, height);
+  app.autoRender = false;
+  // Forward lighting, not PlayCanvas 2's default clustered lighting: clustered spot and omni
+  // shadows come from one shared atlas with the scene's lighting.shadowType, and each light's own
+  // shadowType, shadowResolution and biases would not apply.
+  app.scene.clusteredLightingEnabled = false;
+  app.scene.ambientLight = new pc.Color(0, 0, 0);
+  app.scene.skyboxIntensity = 0;
+  app.scene.exposure = 1;
+  app.start();
+  return app;
+}
+
+/**
+ * The camera of view.json's OpenGL matrices as they are, through PlayCanvas's custom-matrix
+ * hooks: pc.Mat4 is column-major, as view.json.
+ */
+function createCamera(app, c) {
+  const projection = new pc.Mat4().set(c.proj_gl);
+  const worldFromView = new pc.Mat4().set(c.view_gl).invert();
+  const entity = new pc.Entity('view.json');
+  entity.addComponent('camera', {
+    clearColor: new pc.Color(0, 0, 0, 0), nearClip: c.near, farClip: c.far,
+    toneMapping: pc.TONEMAP_NONE, gammaCorrection: pc.GAMMA_NONE,
+  });
+  entity.camera.calculateProjection = (m) => m.copy(projection);
+  entity.camera.calculateTransform = (m) => m.copy(worldFromView);
+  entity.setPosition(c.eye[0], c.eye[1], c.eye[2]);
+  app.root.addChild(entity);
+  return entity;
+}
+
+function loadContainer(app, url) {
+  return new Promise((resolve, reject) => {
+    const asset = new pc.Asset('scene.glb', 'container', { url });
+    asset.on('load', () => resolve(asset.resource));
+    asset.on('error', (err) => reject(new Error(`PlayCanvas's glTF loader cannot load ${url}: ${err}`)));
+    app.assets.add(asset);
+    app.assets.load(asset);
+  });
+}
+
+/** White Lambert in place of a glTF material, keeping what shapes the shadow: cull mode and alpha test. */
+function whiteMaterial(original) {
+  const m = new pc.StandardMaterial();
+  m.diffuse = new pc.Color(1, 1, 1);
+  m.specular = new pc.Color(0, 0, 0);
+  m.emissive = new pc.Color(0, 0, 0);
+  m.ambient = new pc.Color(0, 0, 0);
+  m.useSkybox = false;
+  m.useFog = false;
+  m.cull = original.cull;
+  if (original.alphaTest > 0 && original.opacityMap) {
+    m.opacityMap = original.opacityMap;
+    m.opacityMapChannel = original.opacityMapChannel;
+    m.opacityMapUv = original.opacityMapUv;
+    m.alphaTest = original.alphaTest;
+  }
+  m.update();
+  return m;
+}
+
+function whiteMeshes(root) {
+  const white = new Map();
+  for (const r of root.findComponents('render')) {
+    r.castShadows = true;
+    r.receiveShadows = true;
+    for (const mi of r.meshInstances) {
+      if (!white.has(mi.material)) white.set(mi.material, whiteMaterial(mi.material));
+      mi.material = white.get(mi.material);
+    }
+  }
+}
+
+/** The loader puts each KHR_lights_punctual light on an entity named after its node. */
+function findLight(root, name) {
+  const found = root.findComponents('light').filter((l) => l.entity.name === name);
+  if (found.length !== 1) throw new Error(`the glb has ${found.length} KHR_lights_punctual lights named "${name}", expected 1`);
+  return found[0];
+}
+
+function farthestCorner(p, bounds) {
+  let far = 0;
+  for (let i = 0; i < 8; ++i) {
+    const c = [i & 1 ? bounds.max[0] : bounds.min[0], i & 2 ? bounds.max[1] : bounds.min[1], i & 4 ? bounds.max[2] : bounds.min[2]];
+    far = Math.max(far, Math.hypot(c[0] - p.x, c[1] - p.y, c[2] - p.z));
+  }
+  return far;
+}
+
+/**
+ * The light set up as a user would: a directional light's shadowDistance reaches the scene's
+ * farthest corner from the camera (PlayCanvas fits a directional map to the camera's frustum up
+ * to shadowDistance, 40 units by default); a spot or omni whose glTF gave no range (the loader's
+ * 9999, its shadow camera's far plane) gets the scene's farthest corner from the light.
+ */
+function setUpLight(light, modeName, s, view) {
+  const mode = kModes[modeName];
+  if (modeName === 'cascades' && light.type !== 'directional') {
+    throw new Error(`cascades: PlayCanvas cascades shadow directional lights only; light "${light.entity.name}" is ${light.type}`);
+  }
+  if (light.type === 'directional') {
+    light.shadowDistance = view.camera.far;
+  } else if (light.range >= 9999) {
+    light.range = 1.01 * farthestCorner(light.entity.getPosition(), view.scene.bounds);
+  }
+  light.shadowType = mode.shadowType;
+  if (mode.numCascades) light.numCascades = mode.numCascades;
+  for (const [k, v] of Object.entries(s)) light[k] = v;
+  light.shadowUpdateMode = pc.SHADOWUPDATE_REALTIME;
+  light.intensity = 1;
+  light.enabled = true;
+}
+
+function effectiveParams(light) {
+  const p = { shadowType: pc.shadowTypeInfo.get(light.shadowType).name, shadowResolution: light.shadowResolution,
+    shadowBias: light.shadowBias, normalOffsetBias: light.normalOffsetBias };
+  if (light.type === 'directional') Object.assign(p, { shadowDistance: light.shadowDistance, numCascades: light.numCascades, cascadeDistribution: light.cascadeDistribution });
+  const kind = pc.shadowTypeInfo.get(light.shadowType);
+  if (kind.vsm) Object.assign(p, { vsmBlurSize: light.vsmBlurSize, vsmBias: light.vsmBias });
+  if (kind.pcss) Object.assign(p, { penumbraSize: light.penumbraSize, penumbraFalloff: light.penumbraFalloff, shadowSamples: light.shadowSamples, shadowBlockerSamples: light.shadowBlockerSamples });
+  return p;
+}
+
+/**
+ * Bytes of one light's shadow maps from its settings, as PlayCanvas 2.23 allocates them
+ * (ShadowMap.create2dMap / createCubemap, ShadowRenderer.renderVsm): a PCF map is a 32-bit depth
+ * texture; PCSS an R32F colour map with a 32-bit depth buffer; VSM an RGBA16F or RGBA32F map with
+ * a depth buffer, and a second map of the same kind for its blur. An omni light has six faces; a
+ * directional light's cascades share its one shadowResolution^2 map.
+ */
+function shadowBytes(light) {
+  const kind = pc.shadowTypeInfo.get(light.shadowType);
+  const perTexel = kind.pcf ? 4 : kind.pcss ? 8 : light.shadowType === pc.SHADOW_VSM_16F ? 2 * (8 + 4) : 2 * (16 + 4);
+  return light.shadowResolution ** 2 * perTexel * (light.type === 'omni' ? 6 : 1);
+}
+
+class LightRender {
+  constructor(app, camera, width, height) {
+    Object.assign(this, { app, width, height });
+    this.colour = new pc.Texture(app.graphicsDevice, {
+      name: 'visibility', width, height, format: pc.PIXELFORMAT_RGBA32F, mipmaps: false,
+      minFilter: pc.FILTER_NEAREST, magFilter: pc.FILTER_NEAREST,
+    });
+    this.target = new pc.RenderTarget({ colorBuffer: this.colour, depth: true, samples: 1 });
+    camera.camera.renderTarget = this.target;
+    this.gl = app.graphicsDevice.gl;
+  }
+
+  frame() {
+    this.app.render();
+  }
+
+  async read() {
+    this.frame(); // a first frame compiles the shaders: PlayCanvas compiles them synchronously
+    this.frame();
+    const rgba = await this.colour.read(0, 0, this.width, this.height, { renderTarget: this.target, immediate: true });
+    if (!(rgba instanceof Float32Array)) throw new Error(`the float target read back as ${rgba && rgba.constructor.name}`);
+    // A render target's row 0 is its bottom row (OpenGL), as the canvas's.
+    const out = new Float32Array(this.width * this.height);
+    for (let y = 0; y < this.height; ++y) {
+      const src = (this.height - 1 - y) * this.width;
+      for (let x = 0; x < this.width; ++x) out[y * this.width + x] = rgba[4 * (src + x)];
+    }
+    return out;
+  }
+
+  /** Shadowed and unshadowed radiance, and the shadowed frame's median time (compile excluded). */
+  async run(light) {
+    light.castShadows = true;
+    const shadowed = await this.read();
+    const frameMs = medianMs(() => { this.frame(); this.gl.finish(); });
+    light.castShadows = false;
+    return { shadowed, unshadowed: await this.read(), frameMs };
+  }
+}
+
+async function renderOneLight(ctx, name) {
+  const { app, root, view, modeName, s, target } = ctx;
+  const light = findLight(root, name);
+  setUpLight(light, modeName, s, view);
+  const r = await target.run(light);
+  const out = {
+    bytes: shadowBytes(light),
+    params: effectiveParams(light),
+    result: { shadowed: floatsToBase64(r.shadowed), unshadowed: floatsToBase64(r.unshadowed), frameMs: r.frameMs },
+  };
+  light.enabled = false;
+  return out;
+}
+
+window.renderVisibility = async (job) => {
+  const glRenderer = requireWebGL2();
+  const modeName = job.mode === null ? kDefaultMode : job.mode;
+  if (!Object.hasOwn(kModes, modeName)) throw new Error(`unknown mode "${job.mode}" for playcanvas (known: ${Object.keys(kModes).join(', ')})`);
+  const s = parseSettings(job, modeName);
+  if (!job.view.scene || !job.view.scene.bounds) throw new Error('view.json has no scene.bounds');
+  const app = createApp(job.width, job.height);
+  try {
+    const container = await loadContainer(app, job.glbUrl);
+    const root = container.instantiateRenderEntity();
+    app.root.addChild(root);
+    whiteMeshes(root);
+    for (const l of root.findComponents('light')) l.enabled = false;
+    for (const c of root.findComponents('camera')) c.enabled = false;
+    const camera = createCamera(app, job.view.camera);
+    const ctx = { app, root, view: job.view, modeName, s, target: new LightRender(app, camera, job.width, job.height) };
+    const lights = {};
+    let memoryBytes = 0;
+    let params = null;
+    for (const name of job.lights) {
+      const one = await renderOneLight(ctx, name);
+      lights[name] = one.result;
+      memoryBytes += one.bytes;
+      params = params || one.params;
+    }
+    return { renderer: `playcanvas ${pc.version}`, glRenderer, mode: modeName, params, memoryBytes, lights };
+  } finally {
+    app.destroy();
+  }
+};
