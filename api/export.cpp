@@ -1,6 +1,6 @@
 // The API's `export` (docs/export.md): the folder written by export/export_folder.h.
 #include "api/api_internal.h"
-#include "export/export_folder.h"
+#include "raster_compare/export/export_folder.h"
 
 namespace shadow_oracle {
 

@@ -4,7 +4,7 @@
 
 #include "cli/output.h"
 #include "cli/progress_bar.h"
-#include "export/export_folder.h"
+#include "raster_compare/export/export_folder.h"
 
 namespace so {
 

@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "cli/output.h"
-#include "export/view_files.h"
+#include "raster_compare/export/view_files.h"
 
 namespace so {
 

@@ -1,4 +1,4 @@
-#include "export/view_files.h"
+#include "raster_compare/export/view_files.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -1,4 +1,4 @@
-#include "export/export_folder.h"
+#include "raster_compare/export/export_folder.h"
 
 #include <system_error>
 
@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/gltf_export.h"
 #include "core/scene_writer.h"
-#include "export/view_files.h"
+#include "raster_compare/export/view_files.h"
 
 namespace so {
 
