@@ -65,20 +65,25 @@ class CameraPass {
     mutable DepthRange visibleDepths_;
 };
 
-// One light's visibility target: V and the predicted aliasing, sharing the camera pass's depth.
+// One light's visibility target: V and the predicted aliasing, sharing the camera pass's depth;
+// with `depthProbe`, also location 2: what a shadow map's own depth comparison saw (RGBA32F: the
+// map's depth at the receiver's texel, the receiver's depth, the map texel's size; cleared to
+// -1, -1, 0, 0 where nothing was compared; docs/exr-channels.md).
 class LightTarget {
   public:
-    LightTarget(const CameraPass& camera);
+    explicit LightTarget(const CameraPass& camera, bool depthProbe = false);
     void bindAndClear() const;
     std::vector<float> readVisibility() const;  // top row first
     GLuint visibilityTexture() const { return visibility_.get(); }
     // VISIBILITY_TEXEL_BYTES: for the SO_TAP of a pass that reads V.
     std::string texelBytesDefines() const;
     std::vector<float> readAliasing() const;
+    bool hasDepthProbe() const { return depthProbe_.get() != 0; }
+    std::vector<float> readDepthProbe() const;  // RGBA, top row first; empty without one
 
   private:
     int width_, height_;
-    GlTexture visibility_, aliasing_;
+    GlTexture visibility_, aliasing_, depthProbe_;
     GlFramebuffer fbo_;
 };
 

@@ -81,6 +81,9 @@ CountingBuild::CountingBuild() {
 CountingBuild::~CountingBuild() {
     --countingBuilds;
 }
+bool countingBuildActive() {
+    return countingBuilds > 0;
+}
 
 GlProgram buildProgram(const std::string& defines, const char* vertexSource,
                        const std::vector<const char*>& fragmentSources) {

@@ -123,6 +123,10 @@ class ShadowMapLight final : public LightTechnique {
     void renderVisibility(PassClock& clock) override;
     RasterLightStats describe() const override;
     uint64_t memoryBytes() const override;
+    std::optional<DepthComparison> readDepthComparison(const LightTarget& own) const override {
+        if (!probe_ || !own.hasDepthProbe()) return std::nullopt;
+        return DepthComparison{own.readDepthProbe(), {}};
+    }
 
   private:
     void createMap();
@@ -159,7 +163,8 @@ class ShadowMapLight final : public LightTechnique {
         GlFramebuffer acrossFbo;
     };
     std::unique_ptr<CubeBlur> cubeBlur_;
-    int receiver_ = -1;  // technique_.receiverMesh
+    int receiver_ = -1;   // technique_.receiverMesh
+    bool probe_ = false;  // the visibility pass writes the depth probe (LightSetup::depthProbe)
 };
 
 ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup)
@@ -171,6 +176,7 @@ ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightS
         cam_ = fitLightCamera(light_, scene_.frame(), scene_.lsBounds(), technique.resolution(),
                               setup.lsReceivers ? &*setup.lsReceivers : nullptr);
     receiver_ = technique.receiverMesh(scene_);
+    probe_ = setup.depthProbe && technique.probesDepth();
     depthProg_ = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
                               {shaders::alpha_test_glsl, shaders::depth_frag});
     createMap();
@@ -366,8 +372,9 @@ std::string mapDefines(const ShadowMapTechnique& technique, GLuint map) {
 
 void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
     const std::string defines =
-        scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightDefine(cam_) +
-                                 mapDefines(technique_, map_.get()) + technique_.shaderDefines());
+        scene_.alphaDefines() +
+        ("#define VISIBILITY_PASS\n" + lightDefine(cam_) + mapDefines(technique_, map_.get()) +
+         technique_.shaderDefines() + (probe_ ? "#define DEPTH_PROBE\n" : ""));
     visibilityProg_ =
         buildProgram(defines, shaders::scene_vert,
                      {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});
