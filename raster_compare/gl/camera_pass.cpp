@@ -138,8 +138,7 @@ LightTarget::LightTarget(const CameraPass& camera, bool depthProbe)
         depthProbe_ = makeTarget(GL_RGBA32F, width_, height_);
         glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT2, depthProbe_.get(), 0);
     }
-    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(fbo_.get(), depthProbe ? 3 : 2, buffers);
+    setProbing(false);
     glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, camera.depthTexture(), 0);
 }
 
@@ -149,7 +148,13 @@ void LightTarget::bindAndClear() const {
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, zero4);
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 1, zero4);
     const float nothingCompared[4] = {-1, -1, 0, 0};
-    if (hasDepthProbe()) glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 2, nothingCompared);
+    if (probing_) glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 2, nothingCompared);
+}
+
+void LightTarget::setProbing(bool on) {
+    probing_ = on && hasDepthProbe();
+    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(fbo_.get(), probing_ ? 3 : 2, buffers);
 }
 
 std::string LightTarget::texelBytesDefines() const {

@@ -198,8 +198,35 @@ RasterResult readResult(const TechniqueFrames& t, const ChannelImage& geometry,
     return result;
 }
 
-// Renders the group's frames, technique after technique within each frame, and hands each
-// result over.
+// Records nothing: the probed frame is neither timed nor counted.
+class NoRecorder final : public PassRecorder {
+  public:
+    void begin(const std::string&) override {}
+    void end() override {}
+};
+
+// One more frame of a technique whose lights can say what their depth comparison saw, with the
+// probe on (docs/exr-channels.md): after the timed frames, so it costs them nothing. It renders
+// V again with the probe's program, the same V bit for bit (checked on the shipped scenes).
+void renderProbedFrame(const CameraPass& camera, TechniqueFrames& t, const GlContext& gl) {
+    bool any = false;
+    for (FrameLight& l : t.lights)
+        if (l.passes->probeDepth(true)) {
+            l.target.setProbing(true);
+            any = true;
+        }
+    if (!any) return;
+    NoRecorder none;
+    renderFrame(camera, t.lights, none);
+    gl.throwIfError("technique " + t.technique->name() + ", probed frame");
+    for (FrameLight& l : t.lights) {
+        l.passes->probeDepth(false);
+        l.target.setProbing(false);
+    }
+}
+
+// Renders the group's frames, technique after technique within each frame, then each one's probed
+// frame, and hands each result over.
 void renderGroup(const CameraPass& camera, const LocalFrame& localFrame,
                  std::vector<TechniqueFrames>& group, const RasterOptions& options,
                  const GlContext& gl, const InterleavedCallbacks& callbacks) {
@@ -216,6 +243,7 @@ void renderGroup(const CameraPass& camera, const LocalFrame& localFrame,
             t.timer.endFrame(frame >= options.warmup);
             if (frame >= options.warmup) t.wallMs.push_back(ms);
         }
+    for (TechniqueFrames& t : group) renderProbedFrame(camera, t, gl);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     // Every technique's camera pass drew the same surfaces: one readback serves all.
     ChannelImage geometry(camera.width(), camera.height());

@@ -44,9 +44,9 @@ struct LightSetup {
     // The local-frame bounds of the receivers the camera sees, when the technique asked for them
     // (Technique::needsReceiverBounds).
     const std::optional<Bounds3d>& lsReceivers;
-    // The frame wants the depth probe (docs/exr-channels.md) where the technique can give it:
-    // outside the counted frame (the probe is a diagnostic, no part of a technique's work). The
-    // light's target then has one if the technique probesDepth().
+    // The depth probe (docs/exr-channels.md) is wanted where the technique can give it: outside
+    // the counted frame (the probe is a diagnostic, no part of a technique's work). The light's
+    // target then has one if the technique probesDepth().
     bool depthProbe = false;
 };
 
@@ -80,7 +80,11 @@ class LightTechnique {
     // aliasing, location 2 (where the target has a depth probe) what the comparison saw; any
     // other state it changes it restores.
     virtual void renderVisibility(PassClock& clock) = 0;
-    // After the frames: what its own depth comparison saw, read from the light's target `own`
+    // Switches its visibility pass to the program that also writes the depth probe (on) or back
+    // (off); returns whether it has one. The renderer probes in one untimed frame after the timed
+    // ones, so the probe costs no frame time.
+    virtual bool probeDepth(bool /*on*/) { return false; }
+    // After the probed frame: what its own depth comparison saw, read from the light's target `own`
     // (or a target of its own); none for techniques that compare no depth map.
     virtual std::optional<DepthComparison> readDepthComparison(const LightTarget& /*own*/) const {
         return std::nullopt;
@@ -106,8 +110,8 @@ class Technique {
     virtual bool filtered() const { return false; }
     // Asks the renderer for the receivers the camera sees before setUp.
     virtual bool needsReceiverBounds() const { return false; }
-    // Its visibility pass writes what its own depth comparison saw into the light's target
-    // (location 2), when LightSetup::depthProbe asks.
+    // Its visibility pass can write what its own depth comparison saw into the light's target
+    // (location 2), when LightSetup::depthProbe asks (LightTechnique::probeDepth).
     virtual bool probesDepth() const { return false; }
     virtual std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const = 0;
 

@@ -27,6 +27,10 @@ class BlurLight final : public LightTechnique {
     void renderLightPasses(PassClock& clock) override { hard_->renderLightPasses(clock); }
     void renderVisibility(PassClock& clock) override;
     RasterLightStats describe() const override { return hard_->describe(); }
+    bool probeDepth(bool on) override {
+        hardTarget_.setProbing(on);
+        return hard_->probeDepth(on);
+    }
     // The hard shadow's comparison, as its own target holds it, with its V before the blur.
     std::optional<DepthComparison> readDepthComparison(const LightTarget&) const override {
         std::optional<DepthComparison> c = hard_->readDepthComparison(hardTarget_);
