@@ -35,7 +35,7 @@ int runRasterCommand(const RasterCommandOptions& options) {
              {{"shadowOracle/sceneHash", scene.contentHash},
               {"shadowOracle/toolVersion", toolVersionString()},
               {"shadowOracle/technique", technique->name()}});
-    nlohmann::json j = {{"format_version", 5},
+    nlohmann::json j = {{"format_version", 6},
                         {"tool", toolJson()},
                         {"scene", {{"file", options.scenePath}, {"hash", scene.contentHash}}}};
     j.update(toJson(r.stats));

@@ -42,6 +42,14 @@ inline constexpr const char* kVisibilityExact = "V_exact";
 inline constexpr const char* kUnconverged = "unconverged";  // adaptive: budget spent, target missed
 inline constexpr const char* kOccluderDistance = "occ_dist";        // the contact effect
 inline constexpr const char* kPredictedAliasing = "aliasing_pred";  // raster.exr only
+// raster.exr, shadow-map techniques with a depth map (docs/exr-channels.md): what the pixel's own
+// depth comparison saw, in world units: the depth the map held at the receiver's own texel, the
+// receiver's own light-space depth, one map texel's size there; and, where a screen-space pass
+// filters V afterwards (blur), the V of the comparison itself.
+inline constexpr const char* kMapDepth = "map_depth";
+inline constexpr const char* kReceiverDepth = "receiver_depth";
+inline constexpr const char* kMapTexel = "map_texel";
+inline constexpr const char* kVisibilityUnfiltered = "V_unfiltered";
 
 std::string lightChannel(const std::string& lightName, const char* suffix);
 

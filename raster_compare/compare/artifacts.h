@@ -15,12 +15,13 @@ enum class Artifact {
     LightBleeding,
     PenumbraSpread,
     Acne,
+    ScreenBleed,
     Aliasing,
     Penumbra,
     OtherFalseShadow,
     OtherFalseLit
 };
-inline constexpr size_t kArtifactCount = 8;
+inline constexpr size_t kArtifactCount = 9;
 
 struct ArtifactClass {
     Artifact id;
@@ -29,7 +30,8 @@ struct ArtifactClass {
     const char* legend;  // the report's name for it
     // Its colour in the report's error maps: Okabe-Ito's seven (colour-blind safe), and white for
     // the eighth, which has no hue to confuse; Okabe-Ito's own eighth, black, would vanish on the
-    // dimmed truth the maps draw beneath.
+    // dimmed truth the maps draw beneath. The ninth, screen-space bleed, is magenta: far brighter
+    // than the reddish purple of peter-panning for every colour vision, and apart from white.
     float rgb[3];
 };
 
@@ -50,6 +52,11 @@ inline constexpr std::array<ArtifactClass, kArtifactCount> kArtifactClasses = {{
      "penumbra too wide/shifted",
      {1.0f, 1.0f, 1.0f}},
     {Artifact::Acne, "acne", "acne_rate", "acne", {0.84f, 0.37f, 0.0f}},
+    {Artifact::ScreenBleed,
+     "screen_bleed",
+     "screen_bleed_rate",
+     "screen-space bleed",
+     {1.0f, 0.0f, 1.0f}},
     {Artifact::Aliasing, "aliasing", "aliasing_rate", "aliasing", {0.94f, 0.89f, 0.26f}},
     {Artifact::Penumbra, "penumbra", "penumbra_mae", "penumbra", {0.0f, 0.45f, 0.70f}},
     {Artifact::OtherFalseShadow,

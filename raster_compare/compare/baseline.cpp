@@ -281,7 +281,8 @@ Run readRun(const json& metrics, const std::string& path) {
 
 // Versions whose metrics mean the same (docs/metrics.md, Versions): 4 and 5 (5 adds rows of
 // external images, not new definitions), 6 and 7 (7 adds cost.work); each other one only with
-// itself (6 moves an area light's over-wide penumbra out of acne_rate).
+// itself (6 moves an area light's over-wide penumbra out of acne_rate, 8 classes acne by its
+// cause).
 int64_t metricsEpoch(int64_t version) {
     return version == 5 ? 4 : version == 7 ? 6 : version;
 }

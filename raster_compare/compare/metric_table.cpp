@@ -35,7 +35,11 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "lights) or the oracle's interval (area lights)"},
     {"acne_rate", U::Share, B::Lower, S::All,
      "among fully lit pixels more than r pixels from an oracle shadow boundary, the share that "
-     "are false shadow (on area lights, not penumbra spread)"},
+     "are false shadow (on area lights, not penumbra spread; with the raster's depth channels, "
+     "only where its own depth comparison shadowed the pixel by its own surface)"},
+    {"screen_bleed_rate", U::Share, B::Lower, S::ScreenSpaceFilter,
+     "share of counted pixels, fully lit in the oracle, that are false shadow though their own "
+     "depth comparison lit them: a screen-space pass carried a neighbour's shadow over"},
     {"penumbra_spread_rate", U::Share, B::Lower, S::AreaLights,
      "share of counted pixels wrong just outside the oracle's penumbra where the technique's own "
      "penumbra, too wide or shifted, covers them"},
@@ -246,6 +250,8 @@ const char* scopeName(MetricScope s) {
             return "area lights";
         case S::FilteredTechniques:
             return "filtered techniques";
+        case S::ScreenSpaceFilter:
+            return "with `V_unfiltered`";
         case S::OccluderDistance:
             return "with `occ_dist`";
         case S::AliasingPrediction:

@@ -41,6 +41,7 @@ enum class MetricScope {
     HardLights,          // point, spot and directional lights (no penumbra)
     AreaLights,          // sampled area lights (the oracle has NAME.stderr)
     FilteredTechniques,  // vsm, esm, evsm
+    ScreenSpaceFilter,   // the raster has NAME.V_unfiltered (blur)
     OccluderDistance,    // the oracle has NAME.occ_dist (the contact effect)
     AliasingPrediction,  // the raster has NAME.aliasing_pred
     FramesPath,          // compare --frames-path; absent from the row otherwise

@@ -115,6 +115,14 @@ struct Planes {
         No[0] = normals ? oracle.channel(ch::kNX) : nullptr;
         No[1] = normals ? oracle.channel(ch::kNY) : nullptr;
         No[2] = normals ? oracle.channel(ch::kNZ) : nullptr;
+        const auto optional = [&](const char* suffix) {
+            const std::string name = ch::lightChannel(light, suffix);
+            return raster.has(name) ? raster.channel(name) : nullptr;
+        };
+        MD = optional(ch::kMapDepth), RD = optional(ch::kReceiverDepth);
+        MT = optional(ch::kMapTexel), VU = optional(ch::kVisibilityUnfiltered);
+        depthCause = MD && RD && MT;
+        if (!depthCause) VU = nullptr;
     }
     int w, h;
     size_t n;
@@ -122,8 +130,28 @@ struct Planes {
     const float* SE;     // the oracle's standard error: sampled area lights only
     const float* D;      // the oracle's occluder distance: the contact effect only
     const float* No[3];  // the oracle's normals, where its image has them (null otherwise)
+    // What the raster's own depth comparison saw (shadow-map techniques with a depth map; null
+    // for the others and for external images): the map's depth at the receiver's texel, the
+    // receiver's depth, the map texel's size (world units), and where a screen-space pass
+    // filtered V afterwards (blur), the comparison's own V.
+    const float *MD, *RD, *MT, *VU;
+    bool depthCause;  // MD, RD and MT: acne is classed by its cause
     bool area;
 };
+
+// Whether the map, at the receiver's own texel, holds the receiver's own surface: its depth within
+// texel (1 + tan theta) of the receiver's (docs/metrics.md, the self-shadow margin). The texel's
+// centre, where the map sampled the surface, lies within sqrt(2)/2 texel of the receiver's point
+// across the map, where a plane at angle theta to the light is up to sqrt(2)/2 tan theta texels
+// deeper or shallower; the rest is room for the depth buffer's rounding and the surface's
+// curvature within a texel. A separate occluder lies further in front: its shadow is not acne.
+bool ownSurfaceInMap(const Planes& p, size_t i) {
+    const double texel = p.MT[i], cosTheta = p.Co[i];
+    // Nothing compared (texel 0), or the receiver beyond the map (+inf: nothing can shadow it).
+    if (!(texel > 0.0) || !std::isfinite(p.MD[i]) || !(cosTheta > 0.0)) return false;
+    const double tanTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta)) / cosTheta;
+    return std::fabs(double(p.RD[i]) - double(p.MD[i])) <= texel * (1.0 + tanTheta);
+}
 
 // Which pixels count (docs/metrics.md): both see the same triangle, lit side of the light.
 std::vector<uint8_t> countedPixels(const Planes& p, LightMetrics& m) {
@@ -247,7 +275,7 @@ struct Tally {
     double sumAbs = 0, sumSq = 0;
     size_t falseShadow = 0, falseLit = 0;
     size_t acneEligible = 0, acne = 0, aliasEligible = 0, aliased = 0, ppEligible = 0, pp = 0,
-           umbra = 0, bleed = 0, pen = 0, spread = 0;
+           umbra = 0, bleed = 0, pen = 0, spread = 0, screenBleed = 0;
     double leak = 0.0, penAbs = 0.0, penSoft = 0.0;
     size_t umbraExact = 0, litExact = 0;
     double umbraAbs = 0.0, litAbs = 0.0;
@@ -283,11 +311,20 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, bool spread,
     const bool inUmbra = p.area ? o <= hw : o == 0.0;
     std::array<bool, kArtifactCount> is{};
     auto set = [&](Artifact a, bool v) { is[size_t(a)] = v; };
+    // Where the raster says what its own depth comparison saw: a false shadow that its comparison
+    // gave (the map at its texel holding its own surface) is acne; one its comparison did not
+    // give, but a screen-space pass carried over from a neighbour, is screen-space bleed.
+    const bool ownLit = p.VU && p.VU[i] > 0.5f;
     if (fullyLit && toOracleBoundary > float(options.boundaryRadius)) {
         ++t.acneEligible;
         // A penumbra reaching too far is not a surface shadowing itself.
-        t.acne += fs && !spread;
-        set(Artifact::Acne, fs && !spread);
+        const bool acne = fs && !spread && (!p.depthCause || (!ownLit && ownSurfaceInMap(p, i)));
+        t.acne += acne;
+        set(Artifact::Acne, acne);
+    }
+    if (fullyLit && fs && !spread && ownLit) {
+        ++t.screenBleed;
+        set(Artifact::ScreenBleed, true);
     }
     if (toOracleBoundary <= float(options.boundaryRadius)) {
         ++t.band;
@@ -351,6 +388,7 @@ void setRates(const Tally& t, const Planes& p, const MetricOptions& options, Lig
         m.lightLeakDistance = t.leak;
     }
     if (options.filteredTechnique) m.lightBleedingRate = share(t.bleed, t.umbra);
+    if (p.VU) m.screenBleedRate = share(t.screenBleed, m.counted);
     if (p.area) {
         m.penumbraSpreadRate = share(t.spread, m.counted);
         m.penumbraMae = t.pen ? t.penAbs / double(t.pen) : 0.0;
@@ -516,6 +554,7 @@ nlohmann::json LightMetrics::toJson() const {
             {"false_shadow_rate", falseShadowRate},
             {"false_lit_rate", falseLitRate},
             {artifactClass(Artifact::Acne).metric, acneRate},
+            {artifactClass(Artifact::ScreenBleed).metric, opt(screenBleedRate)},
             {artifactClass(Artifact::PenumbraSpread).metric, opt(penumbraSpreadRate)},
             {artifactClass(Artifact::PeterPanning).metric, opt(peterPanningRate)},
             {"light_leak_distance", opt(lightLeakDistance)},

@@ -19,10 +19,11 @@
 
 namespace so {
 
-// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 7 adds
-// cost.work (6 added penumbra_spread_rate, and on area lights acne_rate and other_false_*_rate no
-// longer count the pixels of a penumbra too wide or shifted).
-inline constexpr int kMetricsSchemaVersion = 7;
+// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 8 classes
+// acne by its cause where the raster says what its depth comparison saw, and adds
+// screen_bleed_rate (7 added cost.work; 6 added penumbra_spread_rate, and on area lights acne_rate
+// and other_false_*_rate no longer count the pixels of a penumbra too wide or shifted).
+inline constexpr int kMetricsSchemaVersion = 8;
 
 struct MetricOptions {
     int boundaryRadius = 2;  // r: pixels from an oracle shadow boundary
@@ -46,8 +47,13 @@ struct LightMetrics {
     double mae = 0.0, rmse = 0.0, maxAbs = 0.0;
     double falseShadowRate = 0.0, falseLitRate = 0.0;
     // False shadow on fully lit pixels away from an oracle boundary; on area lights, only where
-    // the technique's penumbra spreading past the oracle's does not explain it.
+    // the technique's penumbra spreading past the oracle's does not explain it; where the raster
+    // has its depth comparison's channels, only where that comparison shadowed the pixel by its
+    // own surface.
     double acneRate = 0.0;
+    // Where the raster has NAME.V_unfiltered (a screen-space pass after the comparison): false
+    // shadow on fully lit pixels that the pixel's own comparison lit, over counted pixels.
+    std::optional<double> screenBleedRate;
     std::optional<double> peterPanningRate, lightLeakDistance;  // need the oracle's occ_dist
     BoundaryDisplacement boundaryDisplacement;
     // Mean error within r pixels of an oracle boundary: credits a soft edge that the 0/1

@@ -127,15 +127,18 @@ void CameraPass::readGeometry(ChannelImage& image) const {
     }
 }
 
-LightTarget::LightTarget(const CameraPass& camera)
+LightTarget::LightTarget(const CameraPass& camera, bool depthProbe)
     : width_(camera.width()), height_(camera.height()) {
     visibility_ = makeTarget(GL_R32F, width_, height_);
     aliasing_ = makeTarget(GL_R32F, width_, height_);
     fbo_ = makeFramebuffer();
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, visibility_.get(), 0);
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT1, aliasing_.get(), 0);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo_.get(), 2, buffers);
+    if (depthProbe) {
+        depthProbe_ = makeTarget(GL_RGBA32F, width_, height_);
+        glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT2, depthProbe_.get(), 0);
+    }
+    setProbing(false);
     glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, camera.depthTexture(), 0);
 }
 
@@ -144,6 +147,14 @@ void LightTarget::bindAndClear() const {
     const float zero4[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, zero4);
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 1, zero4);
+    const float nothingCompared[4] = {-1, -1, 0, 0};
+    if (probing_) glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 2, nothingCompared);
+}
+
+void LightTarget::setProbing(bool on) {
+    probing_ = on && hasDepthProbe();
+    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(fbo_.get(), probing_ ? 3 : 2, buffers);
 }
 
 std::string LightTarget::texelBytesDefines() const {
@@ -156,6 +167,11 @@ std::vector<float> LightTarget::readVisibility() const {
 
 std::vector<float> LightTarget::readAliasing() const {
     return readTextureTopFirst(aliasing_.get(), GL_RED, 1, width_, height_);
+}
+
+std::vector<float> LightTarget::readDepthProbe() const {
+    if (!hasDepthProbe()) return {};
+    return readTextureTopFirst(depthProbe_.get(), GL_RGBA, 4, width_, height_);
 }
 
 }  // namespace so

@@ -65,21 +65,29 @@ class CameraPass {
     mutable DepthRange visibleDepths_;
 };
 
-// One light's visibility target: V and the predicted aliasing, sharing the camera pass's depth.
+// One light's visibility target: V and the predicted aliasing, sharing the camera pass's depth;
+// with `depthProbe`, also location 2: what a shadow map's own depth comparison saw (RGBA32F: the
+// map's depth at the receiver's texel, the receiver's depth, the map texel's size; cleared to
+// -1, -1, 0, 0 where nothing was compared; docs/exr-channels.md), drawn to only while
+// setProbing(true): the timed frames write V and the predicted aliasing alone.
 class LightTarget {
   public:
-    LightTarget(const CameraPass& camera);
+    explicit LightTarget(const CameraPass& camera, bool depthProbe = false);
     void bindAndClear() const;
     std::vector<float> readVisibility() const;  // top row first
     GLuint visibilityTexture() const { return visibility_.get(); }
     // VISIBILITY_TEXEL_BYTES: for the SO_TAP of a pass that reads V.
     std::string texelBytesDefines() const;
     std::vector<float> readAliasing() const;
+    bool hasDepthProbe() const { return depthProbe_.get() != 0; }
+    void setProbing(bool on);                   // location 2 drawn to (with a depth probe)
+    std::vector<float> readDepthProbe() const;  // RGBA, top row first; empty without one
 
   private:
     int width_, height_;
-    GlTexture visibility_, aliasing_;
+    GlTexture visibility_, aliasing_, depthProbe_;
     GlFramebuffer fbo_;
+    bool probing_ = false;
 };
 
 }  // namespace so

@@ -81,6 +81,9 @@ CountingBuild::CountingBuild() {
 CountingBuild::~CountingBuild() {
     --countingBuilds;
 }
+bool countingBuildActive() {
+    return countingBuilds > 0;
+}
 
 CountingPaused::CountingPaused() : paused_(countingBuilds) {
     countingBuilds = 0;

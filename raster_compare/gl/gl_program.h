@@ -50,6 +50,9 @@ class CountingPaused {
   private:
     int paused_;  // the CountingBuilds alive when it was made
 };
+// Whether a CountingBuild lives on this thread: what is set up now belongs to the counted frame
+// (the depth probe, a diagnostic that is no part of a technique's work, is left out of it).
+bool countingBuildActive();
 // The shader storage binding of the work counters in a counting build: uint[6], the fragments,
 // the taps and the taps' bytes, each as two 32-bit halves (low, high).
 inline constexpr GLuint kWorkCounterBinding = 7;

@@ -75,12 +75,15 @@ std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camer
                                     SetUpShares& shared) {
     static const std::optional<Bounds3d> notAsked;
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    // The depth probe is a diagnostic, no part of the technique's work: not in the counted frame.
+    const bool probe = !countingBuildActive();
     std::vector<FrameLight> lights;
     for (const Light& light : gpu.scene().lights)
         lights.push_back(
-            {&light, LightTarget(camera),
+            {&light, LightTarget(camera, probe && technique.probesDepth()),
              technique.setUp({light, gpu, camera,
-                              technique.needsReceiverBounds() ? lsReceivers : notAsked, &shared})});
+                              technique.needsReceiverBounds() ? lsReceivers : notAsked, &shared,
+                              probe})});
     return lights;
 }
 
@@ -161,7 +164,28 @@ RasterStats collectStats(const TechniqueFrames& t, const CameraPass& camera,
     return s;
 }
 
-RasterResult readResult(const TechniqueFrames& t, const ChannelImage& geometry) {
+// The depth comparison's channels of one light (docs/exr-channels.md), lengths in world units: the
+// local frame only scales by a power of two, so each value is exact and the order of the depths,
+// what the shader compared, is kept.
+void addDepthComparison(const DepthComparison& c, const std::string& light, const LocalFrame& frame,
+                        ChannelImage& image) {
+    namespace ch = channels;
+    float* planes[3] = {image.addChannel(ch::lightChannel(light, ch::kMapDepth)),
+                        image.addChannel(ch::lightChannel(light, ch::kReceiverDepth)),
+                        image.addChannel(ch::lightChannel(light, ch::kMapTexel))};
+    for (size_t i = 0; i < image.pixelCount(); ++i) {
+        const bool compared = c.probe[4 * i + 2] > 0.0f;  // else -1, -1, 0 as they are
+        for (size_t k = 0; k < 3; ++k)
+            planes[k][i] =
+                compared ? float(frame.wsLength(c.probe[4 * i + k])) : c.probe[4 * i + k];
+    }
+    if (!c.unfilteredVisibility.empty())
+        std::copy(c.unfilteredVisibility.begin(), c.unfilteredVisibility.end(),
+                  image.addChannel(ch::lightChannel(light, ch::kVisibilityUnfiltered)));
+}
+
+RasterResult readResult(const TechniqueFrames& t, const ChannelImage& geometry,
+                        const LocalFrame& frame) {
     RasterResult result;
     result.image = geometry;
     for (const FrameLight& l : t.lights) {
@@ -171,15 +195,44 @@ RasterResult readResult(const TechniqueFrames& t, const ChannelImage& geometry) 
                   result.image.addChannel(ch::lightChannel(l.light->name, ch::kVisibility)));
         std::copy(alias.begin(), alias.end(),
                   result.image.addChannel(ch::lightChannel(l.light->name, ch::kPredictedAliasing)));
+        if (const std::optional<DepthComparison> c = l.passes->readDepthComparison(l.target))
+            addDepthComparison(*c, l.light->name, frame, result.image);
     }
     return result;
 }
 
-// Renders the group's frames, technique after technique within each frame, and hands each
-// result over.
-void renderGroup(const CameraPass& camera, std::vector<TechniqueFrames>& group,
-                 const RasterOptions& options, const GlContext& gl,
-                 const InterleavedCallbacks& callbacks) {
+// Records nothing: the probed frame is neither timed nor counted.
+class NoRecorder final : public PassRecorder {
+  public:
+    void begin(const std::string&) override {}
+    void end() override {}
+};
+
+// One more frame of a technique whose lights can say what their depth comparison saw, with the
+// probe on (docs/exr-channels.md): after the timed frames, so it costs them nothing. It renders
+// V again with the probe's program, the same V bit for bit (checked on the shipped scenes).
+void renderProbedFrame(const CameraPass& camera, TechniqueFrames& t, const GlContext& gl) {
+    bool any = false;
+    for (FrameLight& l : t.lights)
+        if (l.passes->probeDepth(true)) {
+            l.target.setProbing(true);
+            any = true;
+        }
+    if (!any) return;
+    NoRecorder none;
+    renderFrame(camera, t.lights, none);
+    gl.throwIfError("technique " + t.technique->name() + ", probed frame");
+    for (FrameLight& l : t.lights) {
+        l.passes->probeDepth(false);
+        l.target.setProbing(false);
+    }
+}
+
+// Renders the group's frames, technique after technique within each frame, then each one's probed
+// frame, and hands each result over.
+void renderGroup(const CameraPass& camera, const LocalFrame& localFrame,
+                 std::vector<TechniqueFrames>& group, const RasterOptions& options,
+                 const GlContext& gl, const InterleavedCallbacks& callbacks) {
     if (group.empty()) return;
     std::vector<size_t> indices;
     for (const TechniqueFrames& t : group) indices.push_back(t.index);
@@ -193,12 +246,13 @@ void renderGroup(const CameraPass& camera, std::vector<TechniqueFrames>& group,
             t.timer.endFrame(frame >= options.warmup);
             if (frame >= options.warmup) t.wallMs.push_back(ms);
         }
+    for (TechniqueFrames& t : group) renderProbedFrame(camera, t, gl);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     // Every technique's camera pass drew the same surfaces: one readback serves all.
     ChannelImage geometry(camera.width(), camera.height());
     camera.readGeometry(geometry);
     for (TechniqueFrames& t : group) {
-        RasterResult r = readResult(t, geometry);
+        RasterResult r = readResult(t, geometry, localFrame);
         r.stats = collectStats(t, camera, options, gl, int(group.size()));
         gl.throwIfError("technique " + t.technique->name() + ", read back");
         if (callbacks.done) callbacks.done(t.index, std::move(r));
@@ -237,13 +291,13 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
         for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();
         // A full group renders first; this technique's objects exist already and start the next.
         if (!group.empty() && groupBytes + t.memoryBytes > options.interleaveBudgetBytes) {
-            renderGroup(camera, group, options, gl, callbacks);
+            renderGroup(camera, gpu.frame(), group, options, gl, callbacks);
             groupBytes = 0;
         }
         groupBytes += t.memoryBytes;
         group.push_back(std::move(t));
     }
-    renderGroup(camera, group, options, gl, callbacks);
+    renderGroup(camera, gpu.frame(), group, options, gl, callbacks);
 }
 
 RasterResult renderRaster(const Scene& scene, const Technique& technique,

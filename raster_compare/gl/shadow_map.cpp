@@ -123,13 +123,21 @@ class ShadowMapLight final : public LightTechnique {
     void renderVisibility(PassClock& clock) override;
     RasterLightStats describe() const override;
     uint64_t memoryBytes() const override;
+    bool probeDepth(bool on) override {
+        probing_ = on && probeProg_.get() != 0;
+        return probeProg_.get() != 0;
+    }
+    std::optional<DepthComparison> readDepthComparison(const LightTarget& own) const override {
+        if (probeProg_.get() == 0 || !own.hasDepthProbe()) return std::nullopt;
+        return DepthComparison{own.readDepthProbe(), {}};
+    }
 
   private:
     void createMap();
     void createMomentTargets();
     void createCubeBlur();
     void blurCubeAcrossFaces();
-    void createVisibilityProgram(const CameraPass& camera);
+    GlProgram createVisibilityProgram(const CameraPass& camera, bool probe) const;
     void setCascadeUniforms(GLuint program, const CameraPass& camera) const;
     void renderMomentFace(int face);
 
@@ -160,6 +168,10 @@ class ShadowMapLight final : public LightTechnique {
     };
     std::unique_ptr<CubeBlur> cubeBlur_;
     int receiver_ = -1;  // technique_.receiverMesh
+    // The visibility program that also writes the depth probe (LightSetup::depthProbe; none
+    // otherwise), run instead of visibilityProg_ while probing.
+    GlProgram probeProg_;
+    bool probing_ = false;
 };
 
 ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup)
@@ -175,7 +187,9 @@ ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightS
                               {shaders::alpha_test_glsl, shaders::depth_frag});
     createMap();
     if (technique.storage() == MapStorage::Moments) createMomentTargets();
-    createVisibilityProgram(setup.camera);
+    visibilityProg_ = createVisibilityProgram(setup.camera, false);
+    if (setup.depthProbe && technique.probesDepth())
+        probeProg_ = createVisibilityProgram(setup.camera, true);
 }
 
 void ShadowMapLight::createMap() {
@@ -364,19 +378,21 @@ std::string mapDefines(const ShadowMapTechnique& technique, GLuint map) {
            "\n#define MAP_FILTER_TEXELS " + (filtered ? "4" : "1") + "\n";
 }
 
-void ShadowMapLight::createVisibilityProgram(const CameraPass& camera) {
+GlProgram ShadowMapLight::createVisibilityProgram(const CameraPass& camera, bool probe) const {
     const std::string defines =
-        scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightDefine(cam_) +
-                                 mapDefines(technique_, map_.get()) + technique_.shaderDefines());
-    visibilityProg_ =
+        scene_.alphaDefines() +
+        ("#define VISIBILITY_PASS\n" + lightDefine(cam_) + mapDefines(technique_, map_.get()) +
+         technique_.shaderDefines() + (probe ? "#define DEPTH_PROBE\n" : ""));
+    GlProgram program =
         buildProgram(defines, shaders::scene_vert,
                      {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});
-    const GLuint vp = visibilityProg_.get();
+    const GLuint vp = program.get();
     setLightCameraUniforms(vp, camera, cam_);
     setInt(vp, "u_map", 0);
     setFloat(vp, "u_receiverMesh", receiver_);
     if (cam_.kind == LightCamera::Kind::Cascades) setCascadeUniforms(vp, camera);
     technique_.setLightUniforms(vp, light_, scene_.frame());
+    return program;
 }
 
 void ShadowMapLight::setCascadeUniforms(GLuint vp, const CameraPass& camera) const {
@@ -446,9 +462,10 @@ void ShadowMapLight::renderMomentFace(int f) {
 
 void ShadowMapLight::renderVisibility(PassClock& clock) {
     clock.begin("visibility");
-    glUseProgram(visibilityProg_.get());
+    const GLuint program = probing_ ? probeProg_.get() : visibilityProg_.get();
+    glUseProgram(program);
     glBindTextureUnit(0, map_.get());
-    scene_.draw(visibilityProg_.get(), receiver_ >= 0);
+    scene_.draw(program, receiver_ >= 0);
     clock.end();
 }
 

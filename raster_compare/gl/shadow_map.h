@@ -50,6 +50,9 @@ class ShadowMapTechnique : public Technique {
     bool filtered() const final { return storage() == MapStorage::Moments; }
     // Cascades fit their slices to the depth range the camera sees, read from the same render.
     bool needsReceiverBounds() const final { return fitToReceivers_ || cascades_.count > 1; }
+    // A depth map's visibility pass says what the pixel's own comparison saw
+    // (docs/exr-channels.md); moment maps compare no depth.
+    bool probesDepth() const final { return storage() == MapStorage::Depth; }
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const final;
 
     int resolution() const { return resolution_; }

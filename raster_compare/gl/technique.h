@@ -54,6 +54,24 @@ struct LightSetup {
     const std::optional<Bounds3d>& lsReceivers;
     // Where the set-ups of one technique in one render leave and find what they share; null: none.
     SetUpShares* shared = nullptr;
+    // The depth probe (docs/exr-channels.md) is wanted where the technique can give it: outside
+    // the counted frame (the probe is a diagnostic, no part of a technique's work). The light's
+    // target then has one if the technique probesDepth().
+    bool depthProbe = false;
+};
+
+class LightTarget;
+
+// What a shadow-map technique's own depth comparison saw per pixel (docs/exr-channels.md), top
+// row first, in the scene's local units, for classing acne by its cause (docs/metrics.md).
+struct DepthComparison {
+    // RGBA per pixel: the depth the map held at the receiver's own texel (+inf beyond the map),
+    // the receiver's own light-space depth, one map texel's size there, 0; -1, -1, 0, 0 where
+    // nothing was compared.
+    std::vector<float> probe;
+    // Where a screen-space pass filters V after the comparison (blur): the comparison's own V;
+    // empty otherwise (V is the comparison's).
+    std::vector<float> unfilteredVisibility;
 };
 
 // One light's GL objects and passes. Made by Technique::setUp with a current context. Each pass
@@ -69,8 +87,18 @@ class LightTechnique {
     // After the camera pass: the light's target is bound, its colours cleared, the camera pass's
     // depth and stencil attached (the stencil's content undefined), depth writes off and depth
     // test EQUAL. Ends with the scene drawn so: location 0 gets V, location 1 the predicted
-    // aliasing; any other state it changes it restores.
+    // aliasing, location 2 (where the target has a depth probe) what the comparison saw; any
+    // other state it changes it restores.
     virtual void renderVisibility(PassClock& clock) = 0;
+    // Switches its visibility pass to the program that also writes the depth probe (on) or back
+    // (off); returns whether it has one. The renderer probes in one untimed frame after the timed
+    // ones, so the probe costs no frame time.
+    virtual bool probeDepth(bool /*on*/) { return false; }
+    // After the probed frame: what its own depth comparison saw, read from the light's target `own`
+    // (or a target of its own); none for techniques that compare no depth map.
+    virtual std::optional<DepthComparison> readDepthComparison(const LightTarget& /*own*/) const {
+        return std::nullopt;
+    }
     // The light's camera and map, and the technique's own counts, for raster.json (the light's
     // name and type, the family, the passes, timings and memory are filled in by the renderer).
     virtual RasterLightStats describe() const = 0;
@@ -92,6 +120,9 @@ class Technique {
     virtual bool filtered() const { return false; }
     // Asks the renderer for the receivers the camera sees before setUp.
     virtual bool needsReceiverBounds() const { return false; }
+    // Its visibility pass can write what its own depth comparison saw into the light's target
+    // (location 2), when LightSetup::depthProbe asks (LightTechnique::probeDepth).
+    virtual bool probesDepth() const { return false; }
     virtual std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const = 0;
 
   private:

@@ -7,6 +7,7 @@
 //        MAP_MOMENTS (filtered moments); VISIBILITY_PASS;
 //   MAP_TEXEL_BYTES (a map texel's bytes) and MAP_FILTER_TEXELS (the texels a filtered lookup
 //   reads: 4 bilinear, 1 point-sampled), for the work counts' SO_TAP (gl_program.h).
+//   DEPTH_PROBE with MAP_DEPTH: location 2 says what the pixel's own comparison saw (below).
 // Depths are compared as linear distances along the map's view axis, so biases are lengths:
 // in texels, the world size of one shadow-map texel at the receiver.
 in vec3 v_lsPosition;
@@ -63,6 +64,16 @@ struct Receiver {
     float texel;
 };
 float techniqueVisibility(Receiver r);  // the technique's file
+
+#ifdef DEPTH_PROBE
+// What the pixel's own depth comparison saw (docs/exr-channels.md), so that compare can class a
+// false shadow by its cause (docs/metrics.md): the linear depth the map holds at the receiver's
+// own texel (the centre tap, whatever kernel the technique filters over; +inf beyond the map),
+// the receiver's own linear depth (before any bias or offset), and one map texel's size there,
+// all in local units; -1, -1, 0 where nothing is compared. A diagnostic: the counting build has
+// no probe, so its lookup is no tap of the technique's work.
+layout(location = 2) out vec4 o_depthProbe;
+#endif
 
 float linearDepth(float z) {
 #ifdef LIGHT_ORTHO
@@ -216,6 +227,14 @@ float slopeBias(Receiver r, float alpha, float minTexels, float maxTexels, float
     return clamp(alpha * tanTheta, minTexels, maxTexels) * r.texel * spread;
 }
 
+#ifdef DEPTH_PROBE
+void writeDepthProbe(vec3 p, float texel) {
+    MapPoint m = mapPoint(p);
+    float stored = m.outside ? uintBitsToFloat(0x7f800000u) : storedDepthAt(m, vec2(0.0));
+    o_depthProbe = vec4(stored, m.d, texel, 0.0);
+}
+#endif
+
 #ifdef CASCADES
 // The cascade whose slice holds the point's view depth (the last beyond it); in the last `blend`
 // of a slice, faded linearly into the next cascade's lookup so the seam does not show as a line.
@@ -237,6 +256,9 @@ float cascadedVisibility(vec3 p, vec3 n, float ndotl, float pixel) {
 
 void main() {
     alphaTest();
+#ifdef DEPTH_PROBE
+    o_depthProbe = vec4(-1.0, -1.0, 0.0, 0.0);
+#endif
     vec3 p = v_lsPosition;
     vec3 n = normalize(v_lsFaceNormal);
     if (dot(n, p - u_lsEye) > 0.0) n = -n;
@@ -268,9 +290,13 @@ void main() {
 #endif
 #ifdef CASCADES
     o_visibility = cascadedVisibility(p, n, ndotl, pixel);
+    float texel = u_cascadeTexel[g_cascade];  // the cascade looked up last
 #else
     float texel = texelWorld(receiverDepth(p));
     o_aliasing = (texel / max(ndotl, 1e-3)) / pixel;
     o_visibility = techniqueVisibility(Receiver(p, n, ndotl, texel));
+#endif
+#ifdef DEPTH_PROBE
+    writeDepthProbe(p, texel);
 #endif
 }

@@ -446,7 +446,8 @@ CubeFallbackLight::CubeFallbackLight(const Adaptive& t, const LightSetup& setup)
         "slope-bias",
         {setting("resolution", resolution_), "depth_format=32", setting("alpha", t.bias.alpha),
          setting("min", t.bias.minTexels), setting("max", t.bias.maxTexels)});
-    light_ = slopeBias_->setUp(setup);
+    // Without the depth probe: adaptive's target has none.
+    light_ = slopeBias_->setUp({setup.light, setup.scene, setup.camera, setup.lsReceivers});
 }
 
 RasterLightStats CubeFallbackLight::describe() const {

@@ -27,6 +27,16 @@ class BlurLight final : public LightTechnique {
     void renderLightPasses(PassClock& clock) override { hard_->renderLightPasses(clock); }
     void renderVisibility(PassClock& clock) override;
     RasterLightStats describe() const override { return hard_->describe(); }
+    bool probeDepth(bool on) override {
+        hardTarget_.setProbing(on);
+        return hard_->probeDepth(on);
+    }
+    // The hard shadow's comparison, as its own target holds it, with its V before the blur.
+    std::optional<DepthComparison> readDepthComparison(const LightTarget&) const override {
+        std::optional<DepthComparison> c = hard_->readDepthComparison(hardTarget_);
+        if (c) c->unfilteredVisibility = hardTarget_.readVisibility();
+        return c;
+    }
     uint64_t memoryBytes() const override {
         return hard_->memoryBytes() + uint64_t(camera_.width()) * uint64_t(camera_.height()) * 12;
     }
@@ -34,8 +44,10 @@ class BlurLight final : public LightTechnique {
   private:
     const CameraPass& camera_;
     std::unique_ptr<LightTechnique> hard_;
-    LightTarget hardTarget_;  // the hard V, with the camera pass's depth and stencil
-    GlTexture across_;        // blurred along x
+    // The hard V (and, where the frame wants it, the depth probe), with the camera pass's depth
+    // and stencil.
+    LightTarget hardTarget_;
+    GlTexture across_;  // blurred along x
     GlFramebuffer acrossFbo_;
     GlProgram blurProg_;
 };
@@ -65,7 +77,9 @@ class Blur final : public Technique {
 };
 
 BlurLight::BlurLight(const Blur& technique, const LightSetup& setup)
-    : camera_(setup.camera), hard_(technique.hard->setUp(setup)), hardTarget_(setup.camera) {
+    : camera_(setup.camera),
+      hard_(technique.hard->setUp(setup)),
+      hardTarget_(setup.camera, setup.depthProbe) {
     across_ = makeTexture(GL_TEXTURE_2D);
     glTextureStorage2D(across_.get(), 1, GL_R32F, camera_.width(), camera_.height());
     acrossFbo_ = makeFramebuffer();
