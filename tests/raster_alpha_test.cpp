@@ -73,7 +73,7 @@ Scene makeAlphaScene(Mask mask, bool alphaEffect, int width, int height) {
         m.factor = 0.3f;  // below the cutoff everywhere: the quad is not there
         return makeQuadScene(m, nullptr, 1.0, 0.0, alphaEffect, width, height);
     }
-    AlphaTexture t{"checker", kCells, kCells, {}};
+    AlphaTexture t{"checker", kCells, kCells, {}, {}};
     for (int y = 0; y < kCells; ++y)
         for (int x = 0; x < kCells; ++x) t.alpha.push_back((x + y) % 2 ? 0.0f : 1.0f);
     m.filter = TextureFilter::Nearest;
@@ -264,7 +264,7 @@ TEST(RasterAlpha, WrapModesAndFiltersMatchTheCpu) {
     // GL_LINEAR's weights may have as few as 8 bits (GPUs commonly), which moves a bilinear
     // alpha by up to 2 x 0.9 / 256 (two axes, the largest texel difference times the factor).
     const float kBilinearBand = 0.01f;
-    AlphaTexture t{"scattered", 5, 3, {}};
+    AlphaTexture t{"scattered", 5, 3, {}, {}};
     for (int i = 0; i < 15; ++i) t.alpha.push_back(float((i * 7) % 15) / 14.0f);
     const TextureWrap kWraps[3][2] = {{TextureWrap::Repeat, TextureWrap::MirroredRepeat},
                                       {TextureWrap::ClampToEdge, TextureWrap::Repeat},
