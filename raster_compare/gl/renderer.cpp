@@ -79,11 +79,10 @@ std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camer
     const bool probe = !countingBuildActive();
     std::vector<FrameLight> lights;
     for (const Light& light : gpu.scene().lights)
-        lights.push_back(
-            {&light, LightTarget(camera, probe && technique.probesDepth()),
-             technique.setUp({light, gpu, camera,
-                              technique.needsReceiverBounds() ? lsReceivers : notAsked, &shared,
-                              probe})});
+        lights.push_back({&light, LightTarget(camera, probe && technique.probesDepth()),
+                          technique.setUp({light, gpu, camera,
+                                           technique.needsReceiverBounds() ? lsReceivers : notAsked,
+                                           &shared, probe})});
     return lights;
 }
 
