@@ -10,8 +10,9 @@
 //    the shipped penumbra_square (200 x 200; its exact pass matches the closed form, part 1) and
 //    two scenes without a closed form: soft_chair's window (its sphere bulb left out: it has no
 //    exact pass) and the CGAL bunny under a low rect light. Each RQMC run's realised penumbra error
-//    and its intervals' coverage are measured against the exact pass over every pixel
-//    (--exact-pixels all).
+//    and its intervals' coverage are measured against the exact pass over every pixel (which
+//    finds its own pixels), run as it ships and as a plain union (no shortcuts, every back face),
+//    and what `auto` chooses at 0.01.
 //
 //   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W]
 #include <algorithm>
@@ -48,12 +49,14 @@ Scene tiledPenumbraScene(int size, int k) {
     return s.scene;
 }
 
-OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool allPixels) {
+// plain: the exact pass without its shortcuts and with every back face in the union (issue 45's
+// "before", on the pass's own pixels).
+OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool plain = false) {
     OracleOptions o;
     o.area.targetError = target;
     o.area.maxSpp = 1 << 20;
     o.penumbra.method = method;
-    o.penumbra.allPixels = allPixels;
+    o.penumbra.shortcuts = o.penumbra.backFaces = !plain;
     return runOracle(scene, o);
 }
 
@@ -89,9 +92,9 @@ void growth(int size, int maxK) {
     std::vector<std::pair<double, double>> fit;  // (log occluders, log us per pixel)
     for (int k = 1; k <= maxK; k *= 2) {
         const Scene scene = tiledPenumbraScene(size, k);
-        const OracleResult ex = run(scene, 0.01, PenumbraMethod::Exact, false);
+        const OracleResult ex = run(scene, 0.01, PenumbraMethod::Exact);
         const ExactPenumbraStats& e = *ex.stats.lights[0].area->exact;
-        const OracleResult rq = run(scene, 0.001, PenumbraMethod::Sampled, false);
+        const OracleResult rq = run(scene, 0.001, PenumbraMethod::Sampled);
         const AreaShadowStats& ra = *rq.stats.lights[0].area;
         const uint64_t rqPenumbra = ra.pixelsSampled - ra.pixelsAgreeing;
         const double usPerPixel = 1e6 * e.seconds / double(std::max<uint64_t>(e.pixelsExact, 1));
@@ -208,11 +211,12 @@ void againstRqmc(const std::string& name, const Scene& scene) {
     const std::string light = scene.lights[0].name;
     std::printf("\n%s (%d x %d, %llu triangles), light \"%s\":\n", name.c_str(), scene.camera.width,
                 scene.camera.height, (unsigned long long)scene.stats.triangles, light.c_str());
-    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact, true);
-    const OracleResult pen = run(scene, 0.01, PenumbraMethod::Exact, false);
+    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact);
+    const OracleResult plain = run(scene, 0.01, PenumbraMethod::Exact, true);
+    const OracleResult automatic = run(scene, 0.01, PenumbraMethod::Auto);
     const Reference ref(scene, all.image);
     for (double target : {0.01, 0.001, 0.0001}) {
-        const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false);
+        const OracleResult r = run(scene, target, PenumbraMethod::Sampled);
         const AreaShadowStats& a = *r.stats.lights[0].area;
         const Realised e = realisedError(ref, r.image);
         std::printf(
@@ -225,19 +229,30 @@ void againstRqmc(const std::string& name, const Scene& scene) {
             e.outside, e.farOutside, e.explainedByOffset);
         std::fflush(stdout);
     }
-    for (const OracleResult* r : {&pen, &all}) {
+    for (const OracleResult* r : {&plain, &all}) {
         const AreaShadowStats& a = *r->stats.lights[0].area;
         const ExactPenumbraStats& e = *a.exact;
         const Realised err = realisedError(ref, r->image);
         std::printf(
-            "  exact, %-8s %9.3f s (+ %.3f s sampled at 0.01)  %llu pixels, occluders mean %.1f, "
-            "p99 <= %llu, max %llu; kept sampled: %llu; penumbra mae %.2e\n",
-            e.allPixels ? "all" : "penumbra", e.seconds, a.seconds,
-            (unsigned long long)e.pixelsExact, meanOccluders(e),
+            "  exact, %-6s %9.3f s (+ %.3f s sampled where it gave no answer)  %llu pixels (lit "
+            "%llu, covered %llu without a union), occluders mean %.1f, p99 <= %llu, max %llu; "
+            "back faces left out %llu of %llu candidates; kept sampled: %llu; penumbra mae %.2e\n",
+            r == &plain ? "plain" : "fast", e.seconds, a.seconds, (unsigned long long)e.pixelsExact,
+            (unsigned long long)e.pixelsLit, (unsigned long long)e.pixelsCovered, meanOccluders(e),
             (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
-            (unsigned long long)e.occludersMax, (unsigned long long)e.pixelsTooManyOccluders,
-            err.mae);
+            (unsigned long long)e.occludersMax, (unsigned long long)e.backFacesTotal,
+            (unsigned long long)e.candidatesTotal,
+            (unsigned long long)(e.pixelsTooManyOccluders + e.pixelsAlphaTested), err.mae);
     }
+    const OracleLightStats& l = automatic.stats.lights[0];
+    if (l.choice)
+        std::printf(
+            "  auto at 0.01: %s (%s; probe %llu points, %llu rays, %llu candidates, %llu "
+            "occluders)\n",
+            penumbraMethodName(l.choice->chosen), l.choice->reason.c_str(),
+            (unsigned long long)l.choice->probePoints, (unsigned long long)l.choice->probeRays,
+            (unsigned long long)l.choice->probeCandidates,
+            (unsigned long long)l.choice->probeOccluders);
 }
 
 }  // namespace

@@ -58,11 +58,12 @@ static std::shared_ptr<PenumbraFlags> addPenumbraFlags(CLI::App* cmd) {
     auto flags = std::make_shared<PenumbraFlags>();
     cmd->add_option("--penumbra", flags->method,
                     "rect lights: sampled (RQMC with 95% intervals, default), exact (clipped "
-                    "polygons where the samples disagree; stderr 0 there) or both (V sampled, "
-                    "V_exact beside it); disk and sphere lights are always sampled");
+                    "polygons on every pixel; stderr 0 there), both (V sampled, V_exact beside "
+                    "it) or auto (per light, exact or sampled, whichever a probe estimates "
+                    "cheaper); disk and sphere lights are always sampled");
     cmd->add_option("--exact-pixels", flags->pixels,
-                    "with --penumbra exact or both: penumbra (pixels whose samples disagree, "
-                    "default) or all (every sampled pixel)");
+                    "with --penumbra both: penumbra (pixels whose samples disagree, default) or "
+                    "all (every sampled pixel); exact finds its own pixels");
     return flags;
 }
 

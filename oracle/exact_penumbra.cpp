@@ -8,6 +8,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include "core/channels.h"
 #include "core/error.h"
@@ -19,7 +20,7 @@ namespace so {
 namespace {
 
 // In the enum's order.
-constexpr std::array<const char*, 3> kMethodNames = {"sampled", "exact", "both"};
+constexpr std::array<const char*, 4> kMethodNames = {"sampled", "exact", "both", "auto"};
 
 }  // namespace
 
@@ -31,8 +32,9 @@ PenumbraMethod parsePenumbraMethod(const std::string& text, const std::string& f
                                    const std::string& field) {
     for (size_t k = 0; k < kMethodNames.size(); ++k)
         if (text == kMethodNames[k]) return PenumbraMethod(k);
-    throwInputError(file, field,
-                    "\"" + printable(text, 40) + "\" is not a method (sampled, exact or both)");
+    throwInputError(
+        file, field,
+        "\"" + printable(text, 40) + "\" is not a method (sampled, exact, both or auto)");
 }
 
 bool parseExactPixels(const std::string& text, const std::string& file, const std::string& field) {
@@ -44,11 +46,15 @@ std::span<const StatField<ExactPenumbraStats>> ExactPenumbraStats::fields() {
     using S = ExactPenumbraStats;
     static constexpr StatField<S> kFields[] = {
         {"pixels_exact", &S::pixelsExact},
+        {"pixels_found.lit", &S::pixelsLit},
+        {"pixels_found.covered", &S::pixelsCovered},
+        {"pixels_found.no_light", &S::pixelsNoLight},
         {"pixels_kept_sampled.too_many_occluders", &S::pixelsTooManyOccluders},
         {"pixels_kept_sampled.alpha_tested", &S::pixelsAlphaTested},
         {"occluders.total", &S::occludersTotal},
         {"occluders.max", &S::occludersMax, Combine::Max},
         {"candidates_total", &S::candidatesTotal},
+        {"back_faces_left_out", &S::backFacesTotal},
         {"disagreement.outside_interval", &S::outsideInterval},
         {"disagreement.max_abs", &S::maxAbsDifference, Combine::Max},
         {"disagreement.sum_abs", &S::sumAbsDifference},
@@ -84,6 +90,15 @@ RectLightShape shapeOf(const AreaLight& light) {
     return {light.dCenter - 0.5 * light.dU - 0.5 * light.dV, light.dU, light.dV, light.dEmitNormal};
 }
 
+// Without the sampled pass: the cosine towards the light's centre as it writes it
+// (area_shadow.cpp), and V and stderr 0 until an answer replaces them.
+void writeCosine(const AreaLight& light, const SurfaceBuffer& sb, size_t s, size_t i,
+                 const ExactPenumbraPlanes& planes) {
+    const glm::vec3 p = sb.lsPoint(s), n = sb.lsNormal(s);
+    planes.cosine[i] = glm::dot(n, glm::normalize(light.lsCenter - p));
+    planes.V[i] = planes.stderr_[i] = 0.0f;
+}
+
 // What one pixel's exact V came to (status Exact, TooManyOccluders or AlphaTested), or nothing
 // asked.
 struct PixelAnswer {
@@ -91,7 +106,11 @@ struct PixelAnswer {
     PolygonVisibility result;
 };
 
-bool selected(const ExactPenumbraOptions& options, const ExactPenumbraPlanes& planes, size_t i) {
+// Whether the pass answers slot s (pixel i).
+bool selected(const ExactPenumbraOptions& options, const ExactPenumbraPlanes& planes, size_t s,
+              size_t i) {
+    if (!planes.spp)  // the pass's own pixels: every one the camera hit (sb.hit, checked before)
+        return !planes.onlySlots || (*planes.onlySlots)[s] != 0;
     if (!(planes.spp[i] > 0.0f)) return false;  // skipped by the sampled pass: V = 0, exactly
     return options.allPixels || (planes.V[i] > 0.0f && planes.V[i] < 1.0f);
 }
@@ -99,19 +118,21 @@ bool selected(const ExactPenumbraOptions& options, const ExactPenumbraPlanes& pl
 // The answers per slot, in parallel; nothing shared is written.
 std::vector<PixelAnswer> answers(const ExactScene& exact, const SurfaceBuffer& sb,
                                  const RectLightShape& shape, const ExactPenumbraOptions& options,
-                                 const ExactPenumbraPlanes& planes, Progress* progress) {
+                                 const ExactPenumbraPlanes& planes, Progress* progress,
+                                 const MeshFacing* facing) {
+    const OccluderOptions more{options.shortcuts, options.backFaces ? facing : nullptr};
     std::vector<PixelAnswer> out(sb.slotCount());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, sb.slotCount(), 64),
                       [&](const tbb::blocked_range<size_t>& r) {
                           for (size_t s = r.begin(); s < r.end(); ++s) {
                               const size_t i = sb.pixelOfSlot(s);
-                              if (i == SIZE_MAX || !sb.hit[s] || !selected(options, planes, i))
+                              if (i == SIZE_MAX || !sb.hit[s] || !selected(options, planes, s, i))
                                   continue;
                               const TriangleId id{sb.meshId[s], sb.primId[s]};
                               const glm::dvec3 p = exact.point(id, sb.baryU[s], sb.baryV[s]);
                               const glm::dvec3 n = exact.normal(id, glm::dvec3(sb.lsNormal(s)));
                               out[s] = {true, rectLightVisibility(exact.tracer(), shape, p, n, id,
-                                                                  options.maxOccluders)};
+                                                                  options.maxOccluders, more)};
                           }
                           if (progress) progress->advance(r.size());
                       });
@@ -119,17 +140,19 @@ std::vector<PixelAnswer> answers(const ExactScene& exact, const SurfaceBuffer& s
 }
 
 // One exact answer into the planes and the counts.
-void apply(const PolygonVisibility& a, size_t i, const ExactPenumbraOptions& options,
+void apply(const PolygonVisibility& a, size_t s, size_t i, const ExactPenumbraOptions& options,
            const ExactPenumbraPlanes& planes, ExactPenumbraStats& st) {
-    if (a.status == PolygonVisibilityStatus::TooManyOccluders) {
-        ++st.pixelsTooManyOccluders;
-        return;
-    }
-    if (a.status == PolygonVisibilityStatus::AlphaTested) {
-        ++st.pixelsAlphaTested;
+    if (a.status == PolygonVisibilityStatus::TooManyOccluders ||
+        a.status == PolygonVisibilityStatus::AlphaTested) {
+        ++(a.status == PolygonVisibilityStatus::AlphaTested ? st.pixelsAlphaTested
+                                                            : st.pixelsTooManyOccluders);
+        if (planes.needsSampling) (*planes.needsSampling)[s] = 1;
         return;
     }
     ++st.pixelsExact;
+    st.pixelsNoLight += a.status == PolygonVisibilityStatus::NoLight;
+    st.pixelsLit += a.shortcut == VisibilityShortcut::Lit;
+    st.pixelsCovered += a.shortcut == VisibilityShortcut::Covered;
     st.occludersTotal += a.occluders;
     st.occludersMax = std::max<uint64_t>(st.occludersMax, a.occluders);
     ++st.occluders[size_t(bucketOf(a.occluders))];
@@ -151,9 +174,12 @@ void apply(const PolygonVisibility& a, size_t i, const ExactPenumbraOptions& opt
 
 ExactPenumbraStats exactPenumbraPass(const ExactScene& exact, const SurfaceBuffer& sb,
                                      const AreaLight& light, const ExactPenumbraOptions& options,
-                                     const ExactPenumbraPlanes& planes, Progress* progress) {
+                                     const ExactPenumbraPlanes& planes, Progress* progress,
+                                     const MeshFacing* facing) {
     SO_CHECK(options.method != PenumbraMethod::Sampled);
     SO_CHECK(light.type == LightType::Rect);
+    // Its own pixels only with Exact, which writes the planes the sampled pass would have.
+    SO_CHECK(planes.spp || (options.method == PenumbraMethod::Exact && planes.cosine));
     const auto t0 = Clock::now();
     ExactPenumbraStats st;
     st.method = options.method;
@@ -163,12 +189,16 @@ ExactPenumbraStats exactPenumbraPass(const ExactScene& exact, const SurfaceBuffe
     if (options.method == PenumbraMethod::Both)
         std::copy(planes.V, planes.V + pixels, planes.Vexact);
     const std::vector<PixelAnswer> all =
-        answers(exact, sb, shapeOf(light), options, planes, progress);
+        answers(exact, sb, shapeOf(light), options, planes, progress, facing);
     // Slot order, one thread: the sums are the same at any thread count.
+    if (planes.needsSampling) planes.needsSampling->assign(sb.slotCount(), 0);
     for (size_t s = 0; s < all.size(); ++s) {
         if (!all[s].asked) continue;
         st.candidatesTotal += all[s].result.candidates;
-        apply(all[s].result, sb.pixelOfSlot(s), options, planes, st);
+        st.backFacesTotal += all[s].result.backFaces;
+        const size_t i = sb.pixelOfSlot(s);
+        if (!planes.spp) writeCosine(light, sb, s, i, planes);
+        apply(all[s].result, s, i, options, planes, st);
     }
     st.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return st;

@@ -155,8 +155,21 @@ json areaJson(const AreaShadowStats& s) {
     return j;
 }
 
+json choiceJson(const PenumbraChoice& c) {
+    return {{"chosen", penumbraMethodName(c.chosen)},
+            {"reason", c.reason},
+            {"probe",
+             {{"points", c.probePoints},
+              {"rays", c.probeRays},
+              {"candidates", c.probeCandidates},
+              {"occluders", c.probeOccluders},
+              {"kept_sampled", c.probeKeptSampled}}},
+            {"estimate_seconds", {{"exact", c.exactSeconds}, {"sampled", c.sampledSeconds}}}};
+}
+
 json lightJson(const OracleLightStats& l) {
     json j = {{"name", l.name}, {"type", lightTypeName(l.type)}, {"method", l.method}};
+    if (l.choice) j["penumbra_choice"] = choiceJson(*l.choice);
     if (l.area) {
         j.update(areaJson(*l.area));
         if (l.hard) j["contact_rays"] = hardJson(*l.hard);
@@ -412,7 +425,8 @@ HardShadowStats readHard(const Fields& f) {
 ExactPenumbraStats readExactPenumbra(const Fields& f) {
     ExactPenumbraStats e;
     e.method = parsePenumbraMethod(f.str("method"), "oracle.json", f.name("method"));
-    if (e.method == PenumbraMethod::Sampled) f.fail(f.name("method"), "must be exact or both");
+    if (e.method == PenumbraMethod::Sampled || e.method == PenumbraMethod::Auto)
+        f.fail(f.name("method"), "must be exact or both");
     const std::string pixels = f.str("pixels");
     if (pixels != "all" && pixels != "penumbra")
         f.fail(f.name("pixels"), "must be all or penumbra");
@@ -463,12 +477,31 @@ LightType readLightType(const Fields& f) {
     f.fail(f.name("type"), "unknown light type \"" + printable(name, 40) + "\"");
 }
 
+PenumbraChoice readChoice(const Fields& f) {
+    PenumbraChoice c;
+    c.chosen = parsePenumbraMethod(f.str("chosen"), "oracle.json", f.name("chosen"));
+    if (c.chosen != PenumbraMethod::Exact && c.chosen != PenumbraMethod::Sampled)
+        f.fail(f.name("chosen"), "must be exact or sampled");
+    c.reason = f.str("reason");
+    const Fields probe = f.object("probe");
+    c.probePoints = probe.u64("points");
+    c.probeRays = probe.u64("rays");
+    c.probeCandidates = probe.u64("candidates");
+    c.probeOccluders = probe.u64("occluders");
+    c.probeKeptSampled = probe.u64("kept_sampled");
+    const Fields estimate = f.object("estimate_seconds");
+    c.exactSeconds = estimate.number("exact");
+    c.sampledSeconds = estimate.number("sampled");
+    return c;
+}
+
 // A sampled light is told by its "sampling" field; its hard pass (contact rays) is nested.
 OracleLightStats readLight(const Fields& f) {
     OracleLightStats l;
     l.name = f.str("name");
     l.type = readLightType(f);
     l.method = f.str("method");
+    if (f.has("penumbra_choice")) l.choice = readChoice(f.object("penumbra_choice"));
     if (f.has("sampling")) {
         l.area = readArea(f);
         if (f.has("contact_rays")) l.hard = readHard(f.object("contact_rays"));
@@ -664,6 +697,17 @@ OracleLightStats mergeLight(const std::vector<TileStats>& tiles, size_t li) {
     l.name = first.name;
     l.type = first.type;
     l.method = first.method;
+    // Every band probed the same coarse image of the whole view: the same choice; each estimated
+    // its own points' seconds, which add up.
+    l.choice = first.choice;
+    if (l.choice) {
+        l.choice->exactSeconds = l.choice->sampledSeconds = 0.0;
+        for (const TileStats& t : tiles)
+            if (const auto& c = t.stats.lights[li].choice) {
+                l.choice->exactSeconds += c->exactSeconds;
+                l.choice->sampledSeconds += c->sampledSeconds;
+            }
+    }
     std::vector<const AreaShadowStats*> areas;
     std::vector<uint64_t> penumbra;
     for (const TileStats& t : tiles) {

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <initializer_list>
 
 #include <glm/geometric.hpp>
 #include <polyclipping/clipper.hpp>
 
-#include "core/error.h"
+#include "oracle/occluder_union.h"
+#include "oracle/small_polygon.h"
 
 namespace so {
 
@@ -16,73 +16,7 @@ namespace {
 
 using glm::dvec3;
 
-// The light's (s, t) in [0, 1] as integers: below Clipper's 2^30 "low range", where its
-// arithmetic is plain 64-bit and exact.
-constexpr double kQuantum = double(1 << 29);
-
-// A convex polygon of a few vertices, on the stack: a triangle or the light's rectangle, clipped by
-// at most 6 half-spaces here (the pyramid's sides and the light's plane), each adding at most one
-// vertex. The pass clips every candidate triangle of every pixel, so no allocation per clip.
-struct SmallPolygon {
-    static constexpr size_t kCapacity = 16;
-    std::array<dvec3, kCapacity> v;
-    size_t n = 0;
-    SmallPolygon(std::initializer_list<dvec3> points) {
-        for (const dvec3& q : points) push(q);
-    }
-    void push(const dvec3& q) {
-        SO_CHECK_LT(n, kCapacity);
-        v[n++] = q;
-    }
-    const dvec3* begin() const { return v.data(); }
-    const dvec3* end() const { return v.data() + n; }
-    dvec3* begin() { return v.data(); }
-    dvec3* end() { return v.data() + n; }
-};
-
-// Sutherland-Hodgman: the part of the convex polygon where dot(normal, x) <= offset.
-SmallPolygon clipToHalfSpace(const SmallPolygon& poly, const ExactTracer::HalfSpace& h) {
-    SmallPolygon out{};
-    for (size_t i = 0; i < poly.n; ++i) {
-        const dvec3& a = poly.v[i];
-        const dvec3& b = poly.v[(i + 1) % poly.n];
-        const double da = glm::dot(h.normal, a) - h.offset, db = glm::dot(h.normal, b) - h.offset;
-        if (da <= 0.0) out.push(a);
-        if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
-            const double t = da / (da - db);
-            out.push(a + t * (b - a));
-        }
-    }
-    return out;
-}
-
-// The light's frame: (s, t) of a point of its plane, and back.
-struct LightFrame {
-    RectLightShape shape;
-    double invUU = 0.0, invVV = 0.0;
-    explicit LightFrame(const RectLightShape& l)
-        : shape(l),
-          invUU(1.0 / glm::dot(l.edgeU, l.edgeU)),
-          invVV(1.0 / glm::dot(l.edgeV, l.edgeV)) {}
-    ClipperLib::IntPoint quantised(const dvec3& y) const {
-        const dvec3 d = y - shape.corner;
-        return {ClipperLib::cInt(std::llround(glm::dot(d, shape.edgeU) * invUU * kQuantum)),
-                ClipperLib::cInt(std::llround(glm::dot(d, shape.edgeV) * invVV * kQuantum))};
-    }
-    dvec3 point(const ClipperLib::IntPoint& q) const {
-        return shape.corner + (double(q.X) / kQuantum) * shape.edgeU +
-               (double(q.Y) / kQuantum) * shape.edgeV;
-    }
-};
-
-ClipperLib::Path quantisedPath(const LightFrame& frame, const SmallPolygon& poly) {
-    ClipperLib::Path path;
-    for (const dvec3& y : poly) path.push_back(frame.quantised(y));
-    if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);  // all windings alike
-    return path;
-}
-
-double solidAngleOf(const LightFrame& frame, const dvec3& p, const dvec3& n,
+double solidAngleOf(const LightPlaneFrame& frame, const dvec3& p, const dvec3& n,
                     const ClipperLib::Path& path) {
     std::vector<dvec3> vertices;
     vertices.reserve(path.size());
@@ -108,34 +42,6 @@ std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const SmallPolygon& 
     return planes;
 }
 
-// Whether p lies in the plane of triangle abc (to rounding): its projection through p is then a
-// segment, of no area.
-bool inPlaneOf(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
-    const dvec3 normal = glm::cross(b - a, c - a);
-    const double scale =
-        glm::length(normal) * (glm::length(p - a) + glm::length(p - b) + glm::length(p - c));
-    return std::abs(glm::dot(normal, p - a)) <= 1e-13 * scale;
-}
-
-// The shadow triangle abc casts on the light from p: clipped to the pyramid, projected centrally
-// through p onto the light's plane (every point of the clipped part lies between p and the plane,
-// so dot(emitNormal, q - p) is in [-height, 0)), quantised. Empty where nothing is left.
-ClipperLib::Path shadowOf(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& p,
-                          double height, const std::vector<ExactTracer::HalfSpace>& planes,
-                          const LightFrame& frame) {
-    SmallPolygon part{a, b, c};
-    for (const ExactTracer::HalfSpace& h : planes) {
-        part = clipToHalfSpace(part, h);
-        if (part.n < 3) return {};
-    }
-    for (dvec3& q : part) {
-        const double along = glm::dot(frame.shape.emitNormal, q - p);
-        if (!(along < 0.0)) return {};  // at p itself: only a triangle through p
-        q = p + (q - p) * (-height / along);
-    }
-    return quantisedPath(frame, part);
-}
-
 }  // namespace
 
 double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n,
@@ -156,7 +62,7 @@ double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n,
 
 PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLightShape& light,
                                       const dvec3& p, const dvec3& n, TriangleId self,
-                                      uint32_t maxCandidates) {
+                                      uint32_t maxCandidates, const OccluderOptions& more) {
     PolygonVisibility result;
     const double height = glm::dot(light.emitNormal, p - light.corner);  // > 0 on the lit side
     if (!(height > 0.0)) return result;
@@ -166,50 +72,49 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
                          light.corner + light.edgeU + light.edgeV, light.corner + light.edgeV},
                         {-n, -glm::dot(n, p)});
     if (lit.n < 3) return result;
-    const LightFrame frame(light);
-    const ClipperLib::Path litPath = quantisedPath(frame, lit);
+    const LightPlaneFrame frame(light.corner, light.edgeU, light.edgeV, light.emitNormal);
+    const ClipperLib::Path litPath = frame.path(lit);
     const double whole = solidAngleOf(frame, p, n, litPath);
     if (!(std::abs(whole) > 0.0)) return result;
 
     const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, light);
-    ClipperLib::Paths shadows;
-    bool capped = false, alpha = false;
-    const auto visit = [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
-        if (++result.candidates > maxCandidates) {
-            capped = true;
-            return false;
-        }
-        if (id == self || inPlaneOf(p, a, b, c)) return true;
-        ClipperLib::Path shadow = shadowOf(a, b, c, p, height, planes, frame);
-        if (!shadow.empty() && tracer.alphaTested(id)) {
-            alpha = true;
-            return false;
-        }
-        if (!shadow.empty()) {
-            shadows.push_back(std::move(shadow));
-            ++result.occluders;
-        }
-        return true;
-    };
-    tracer.forEachTriangleIn(planes, visit);
-    if (capped || alpha) {
-        result.status = capped ? PolygonVisibilityStatus::TooManyOccluders
-                               : PolygonVisibilityStatus::AlphaTested;
-        return result;
+    OccluderQuery q;
+    q.p = p;
+    q.self = self;
+    q.height = height;
+    q.pyramid = &planes;
+    q.frame = &frame;
+    q.lit = &litPath;
+    q.maxCandidates = maxCandidates;
+    q.options = more;
+    const OccluderUnion u = visibleLight(tracer, q);
+    result.occluders = u.occluders;
+    result.candidates = u.candidates;
+    result.backFaces = u.backFaces;
+    result.shortcut = u.status == OccluderUnion::Status::Lit       ? VisibilityShortcut::Lit
+                      : u.status == OccluderUnion::Status::Covered ? VisibilityShortcut::Covered
+                                                                   : VisibilityShortcut::None;
+    switch (u.status) {
+        case OccluderUnion::Status::TooManyOccluders:
+            result.status = PolygonVisibilityStatus::TooManyOccluders;
+            return result;
+        case OccluderUnion::Status::AlphaTested:
+            result.status = PolygonVisibilityStatus::AlphaTested;
+            return result;
+        case OccluderUnion::Status::Lit:
+            result.status = PolygonVisibilityStatus::Exact;
+            result.V = 1.0;
+            return result;
+        case OccluderUnion::Status::Covered:
+            result.status = PolygonVisibilityStatus::Exact;
+            result.V = 0.0;
+            return result;
+        case OccluderUnion::Status::Partial:
+            break;
     }
     result.status = PolygonVisibilityStatus::Exact;
-    if (shadows.empty()) {
-        result.V = 1.0;
-        return result;
-    }
-    ClipperLib::Clipper clipper;
-    clipper.AddPath(litPath, ClipperLib::ptSubject, true);
-    clipper.AddPaths(shadows, ClipperLib::ptClip, true);
-    ClipperLib::Paths visible;
-    clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero,
-                    ClipperLib::pftNonZero);
     double seen = 0.0;
-    for (const ClipperLib::Path& path : visible) seen += solidAngleOf(frame, p, n, path);
+    for (const ClipperLib::Path& path : u.visible) seen += solidAngleOf(frame, p, n, path);
     result.V = std::clamp(seen / whole, 0.0, 1.0);
     return result;
 }

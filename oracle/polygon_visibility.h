@@ -20,6 +20,7 @@
 #include <glm/vec3.hpp>
 
 #include "oracle/exact_tracer.h"
+#include "oracle/occluder_union.h"
 
 namespace so {
 
@@ -36,20 +37,27 @@ enum class PolygonVisibilityStatus : uint8_t {
     AlphaTested,       // an alpha-tested triangle cuts the pyramid: no answer (the caller samples)
 };
 
+// How an Exact answer was reached without a union (occluder_union.h): none of the pyramid's
+// triangles cut it (V = 1), or their shadows were found to cover the light (V = 0).
+enum class VisibilityShortcut : uint8_t { None, Lit, Covered };
+
 struct PolygonVisibility {
     PolygonVisibilityStatus status = PolygonVisibilityStatus::NoLight;
     double V = 0.0;
+    VisibilityShortcut shortcut = VisibilityShortcut::None;
     uint32_t occluders = 0;   // triangles whose clipped projection reached the union
     uint32_t candidates = 0;  // triangles the BVH query returned (the pyramid's cost)
+    uint32_t backFaces = 0;   // of those, back faces left out (mesh_facing.h)
 };
 
 // V at p (unit normal n, the receiver's triangle `self` left out: it can only touch p's own
 // plane) from every triangle of `tracer`. maxCandidates bounds the work per point. An
 // alpha-tested triangle (ExactTracer::alphaTested) with a part inside the pyramid from p to the
 // light ends the query with AlphaTested: its shadow is the mask's, which this does not clip.
+// `more`: the union's shortcuts and back faces (occluder_union.h).
 PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLightShape& light,
                                       const glm::dvec3& p, const glm::dvec3& n, TriangleId self,
-                                      uint32_t maxCandidates);
+                                      uint32_t maxCandidates, const OccluderOptions& more = {});
 
 // Lambert's formula: the cosine-weighted solid angle int max(cos_p, 0) dw of the planar polygon
 // `vertices` seen from p, for a polygon wholly on the upper side of p's horizon. Signed by the
