@@ -48,22 +48,41 @@ Path shadowOf(const dvec3& a, const dvec3& b, const dvec3& c, const OccluderQuer
     return q.frame->path(part);
 }
 
-// Twice the signed area of the triangle abc: > 0 where c lies left of a -> b. Coordinates are in
-// [-2^30, 2^30] (the light's range and rounding), so the products fit in 64 bits exactly.
+// Twice the signed area of the triangle abc: > 0 where c lies left of a -> b. Every shadow lies in
+// the visible light, so coordinates are in [0, 2^29] up to rounding and the products fit in 64
+// bits exactly.
 cInt turn(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
     return (b.X - a.X) * (c.Y - a.Y) - (b.Y - a.Y) * (c.X - a.X);
 }
 
-// Whether the counter-clockwise `shadow` is convex (no right turn) and holds every vertex of
-// `lit` (inside or on its boundary): then it holds lit (lit is a polygon of those vertices).
+// Whether the counter-clockwise `shadow` is a convex polygon of positive area wound once, and
+// holds every vertex of `lit` (inside or on its boundary): then it holds lit, a polygon of those
+// vertices. Rounding may leave repeated vertices, collinear runs or, for a tiny shadow, no area or
+// a fold: those are refused (the union decides them).
 bool holds(const Path& shadow, const Path& lit) {
-    const size_t n = shadow.size();
+    Path v;
+    for (const IntPoint& q : shadow)
+        if (v.empty() || !(q == v.back())) v.push_back(q);
+    while (v.size() > 1 && v.front() == v.back()) v.pop_back();
+    const size_t n = v.size();
     if (n < 3) return false;
-    for (size_t i = 0; i < n; ++i)
-        if (turn(shadow[i], shadow[(i + 1) % n], shadow[(i + 2) % n]) < 0) return false;
+    int xChanges = 0, yChanges = 0, xSign = 0, ySign = 0;
+    bool turns = false;
+    for (size_t i = 0; i < n; ++i) {
+        const IntPoint &a = v[i], &b = v[(i + 1) % n], &c = v[(i + 2) % n];
+        const cInt t = turn(a, b, c);
+        const cInt along = (b.X - a.X) * (c.X - b.X) + (b.Y - a.Y) * (c.Y - b.Y);
+        if (t < 0 || (t == 0 && along < 0)) return false;  // a right turn, or a fold back
+        turns |= t > 0;
+        // A convex polygon wound once: its edges' x (and y) directions change sign twice.
+        const int sx = (b.X > a.X) - (b.X < a.X), sy = (b.Y > a.Y) - (b.Y < a.Y);
+        if (sx != 0) xChanges += xSign != 0 && sx != xSign, xSign = sx;
+        if (sy != 0) yChanges += ySign != 0 && sy != ySign, ySign = sy;
+    }
+    if (!turns || xChanges > 2 || yChanges > 2) return false;
     for (const IntPoint& y : lit)
         for (size_t i = 0; i < n; ++i)
-            if (turn(shadow[i], shadow[(i + 1) % n], y) < 0) return false;
+            if (turn(v[i], v[(i + 1) % n], y) < 0) return false;
     return true;
 }
 

@@ -159,8 +159,8 @@ TEST(ExactPenumbra, ShortcutsNeverDisagreeWithComputingThePixel) {
             const float* v = r.image.channel(scene.lights[0].name + ".V");
             planes.emplace_back(v, v + r.image.pixelCount());
         }
-        EXPECT_GT(lit, 100u);
-        EXPECT_GT(covered, 100u);
+        EXPECT_GT(lit, 1000u);
+        EXPECT_GT(covered, 0u);
         size_t differing = 0;
         for (size_t i = 0; i < planes[0].size(); ++i) {
             EXPECT_NEAR(planes[0][i], planes[1][i], 1e-12) << i;
