@@ -25,7 +25,7 @@ nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene
                           const CameraDesc& cam, const OracleStats& stats, double loadSeconds,
                           double writeSeconds) {
     nlohmann::json j = {
-        {"format_version", 11},
+        {"format_version", 12},
         {"tool", toolJson()},
         {"scene",
          {{"file", options.scenePath},

@@ -68,7 +68,7 @@ struct LightPass {
     ChannelImage& image;
     uint64_t pixels;
     bool penumbra, contact;
-    // The exact penumbra pass's scene (--penumbra exact or both, rect lights); null otherwise.
+    // The exact penumbra pass's scene (--penumbra exact or both, area lights); null otherwise.
     const ExactScene* exact;
 };
 
@@ -90,10 +90,14 @@ AreaShadowStats traceSampledLight(const LightPass& p, uint32_t li, float* V, flo
     return s;
 }
 
+bool exactPassTakes(LightType type) {
+    return type == LightType::Rect || type == LightType::Disk || type == LightType::Sphere;
+}
+
 // Why the exact pass does not apply to a light, or "" where it does.
 std::string exactNotApplied(const Light& light) {
-    if (light.type != LightType::Rect)
-        return std::string(lightTypeName(light.type)) + " light (not a polygon)";
+    if (!exactPassTakes(light.type))
+        return std::string(lightTypeName(light.type)) + " light (not an area light)";
     return "";
 }
 
@@ -110,6 +114,8 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
     planes.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
     if (options.method == PenumbraMethod::Both)
         planes.Vexact = p.image.addChannel(ch::lightChannel(light.name, ch::kVisibilityExact));
+    if (light.type == LightType::Disk || light.type == LightType::Sphere)
+        planes.bound = p.image.addChannel(ch::lightChannel(light.name, ch::kBound));
     ExactPenumbraStats st;
     st.method = options.method;
     st.allPixels = options.allPixels;
@@ -187,8 +193,14 @@ LightVerification verifyLight(const LightPass& p, const Verifier& verifier, uint
     const float* stderr_ =
         sampled ? p.image.channel(ch::lightChannel(light.name, ch::kStdErr)) : nullptr;
     const float* spp = sampled ? p.image.channel(ch::lightChannel(light.name, ch::kSpp)) : nullptr;
+    // --penumbra exact on a disk or sphere light: V is bounded where NAME.exact is 1.
+    const std::string boundName = ch::lightChannel(light.name, ch::kBound);
+    const bool bounded =
+        sampled && p.options.penumbra.method == PenumbraMethod::Exact && p.image.has(boundName);
+    const float* bound = bounded ? p.image.channel(boundName) : nullptr;
     LightVerification out;
-    p.arena.execute([&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp); });
+    p.arena.execute(
+        [&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp, bound); });
     return out;
 }
 
@@ -217,15 +229,15 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
     return verifier;
 }
 
-// The exact penumbra pass's scene: with --penumbra exact or both, a rect light and "penumbra".
+// The exact penumbra pass's scene: with --penumbra exact or both, an area light and "penumbra".
 // Alpha-tested meshes are in it: the pixels whose pyramid holds one keep their sampled V.
 std::unique_ptr<ExactScene> makeExactScene(const Scene& scene, const OracleOptions& options,
                                            const LocalFrame& frame) {
     if (options.penumbra.method == PenumbraMethod::Sampled || !scene.hasEffect("penumbra"))
         return nullptr;
-    const bool rect = std::any_of(scene.lights.begin(), scene.lights.end(),
-                                  [](const Light& l) { return l.type == LightType::Rect; });
-    return rect ? std::make_unique<ExactScene>(scene, frame) : nullptr;
+    const bool any = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                 [](const Light& l) { return exactPassTakes(l.type); });
+    return any ? std::make_unique<ExactScene>(scene, frame) : nullptr;
 }
 
 // Every light in scene order, each verified right after it is traced (with --verify).

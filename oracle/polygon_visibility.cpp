@@ -56,26 +56,47 @@ SmallPolygon clipToHalfSpace(const SmallPolygon& poly, const ExactTracer::HalfSp
     return out;
 }
 
+// The same for a polygon of any size (a light region: disk_bounds.h's n-gons).
+std::vector<dvec3> clipToHalfSpace(const std::vector<dvec3>& poly,
+                                   const ExactTracer::HalfSpace& h) {
+    std::vector<dvec3> out;
+    out.reserve(poly.size() + 1);
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const dvec3& a = poly[i];
+        const dvec3& b = poly[(i + 1) % poly.size()];
+        const double da = glm::dot(h.normal, a) - h.offset, db = glm::dot(h.normal, b) - h.offset;
+        if (da <= 0.0) out.push_back(a);
+        if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
+            const double t = da / (da - db);
+            out.push_back(a + t * (b - a));
+        }
+    }
+    return out;
+}
+
 // The light's frame: (s, t) of a point of its plane, and back.
 struct LightFrame {
-    RectLightShape shape;
+    dvec3 corner, edgeU, edgeV, emitNormal;
     double invUU = 0.0, invVV = 0.0;
-    explicit LightFrame(const RectLightShape& l)
-        : shape(l),
-          invUU(1.0 / glm::dot(l.edgeU, l.edgeU)),
-          invVV(1.0 / glm::dot(l.edgeV, l.edgeV)) {}
+    LightFrame(const dvec3& c, const dvec3& u, const dvec3& v, const dvec3& m)
+        : corner(c),
+          edgeU(u),
+          edgeV(v),
+          emitNormal(m),
+          invUU(1.0 / glm::dot(u, u)),
+          invVV(1.0 / glm::dot(v, v)) {}
     ClipperLib::IntPoint quantised(const dvec3& y) const {
-        const dvec3 d = y - shape.corner;
-        return {ClipperLib::cInt(std::llround(glm::dot(d, shape.edgeU) * invUU * kQuantum)),
-                ClipperLib::cInt(std::llround(glm::dot(d, shape.edgeV) * invVV * kQuantum))};
+        const dvec3 d = y - corner;
+        return {ClipperLib::cInt(std::llround(glm::dot(d, edgeU) * invUU * kQuantum)),
+                ClipperLib::cInt(std::llround(glm::dot(d, edgeV) * invVV * kQuantum))};
     }
     dvec3 point(const ClipperLib::IntPoint& q) const {
-        return shape.corner + (double(q.X) / kQuantum) * shape.edgeU +
-               (double(q.Y) / kQuantum) * shape.edgeV;
+        return corner + (double(q.X) / kQuantum) * edgeU + (double(q.Y) / kQuantum) * edgeV;
     }
 };
 
-ClipperLib::Path quantisedPath(const LightFrame& frame, const SmallPolygon& poly) {
+template <typename Polygon>
+ClipperLib::Path quantisedPath(const LightFrame& frame, const Polygon& poly) {
     ClipperLib::Path path;
     for (const dvec3& y : poly) path.push_back(frame.quantised(y));
     if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);  // all windings alike
@@ -93,7 +114,7 @@ double solidAngleOf(const LightFrame& frame, const dvec3& p, const dvec3& n,
 // The pyramid from p to the polygon `base` (convex, in the light's plane): a side half-space per
 // edge through p, and the light's plane on p's side.
 std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const SmallPolygon& base,
-                                            const RectLightShape& light) {
+                                            const LightFrame& light) {
     dvec3 centroid(0.0);
     for (const dvec3& b : base) centroid += b;
     centroid /= double(base.n);
@@ -129,7 +150,7 @@ ClipperLib::Path shadowOf(const dvec3& a, const dvec3& b, const dvec3& c, const 
         if (part.n < 3) return {};
     }
     for (dvec3& q : part) {
-        const double along = glm::dot(frame.shape.emitNormal, q - p);
+        const double along = glm::dot(frame.emitNormal, q - p);
         if (!(along < 0.0)) return {};  // at p itself: only a triangle through p
         q = p + (q - p) * (-height / along);
     }
@@ -154,39 +175,72 @@ double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n,
     return 0.5 * sum;
 }
 
+PolygonLightShape polygonOf(const RectLightShape& rect) {
+    PolygonLightShape shape{rect.corner, rect.edgeU, rect.edgeV, rect.emitNormal, {}};
+    shape.vertices = {rect.corner, rect.corner + rect.edgeU, rect.corner + rect.edgeU + rect.edgeV,
+                      rect.corner + rect.edgeV};
+    return shape;
+}
+
 PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLightShape& light,
                                       const dvec3& p, const dvec3& n, TriangleId self,
                                       uint32_t maxCandidates) {
-    PolygonVisibility result;
-    const double height = glm::dot(light.emitNormal, p - light.corner);  // > 0 on the lit side
-    if (!(height > 0.0)) return result;
-    // L+: the light above p's horizon.
-    const SmallPolygon lit =
-        clipToHalfSpace({light.corner, light.corner + light.edgeU,
-                         light.corner + light.edgeU + light.edgeV, light.corner + light.edgeV},
-                        {-n, -glm::dot(n, p)});
-    if (lit.n < 3) return result;
-    const LightFrame frame(light);
-    const ClipperLib::Path litPath = quantisedPath(frame, lit);
-    const double whole = solidAngleOf(frame, p, n, litPath);
-    if (!(std::abs(whole) > 0.0)) return result;
+    return polygonLightVisibility(tracer, polygonOf(light), p, n, self, maxCandidates);
+}
 
-    const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, light);
-    ClipperLib::Paths shadows;
+PolygonVisibility polygonLightVisibility(const ExactTracer& tracer, const PolygonLightShape& light,
+                                         const dvec3& p, const dvec3& n, TriangleId self,
+                                         uint32_t maxCandidates) {
+    const LightShadows shadows(tracer, light, p, n, self, maxCandidates);
+    PolygonVisibility result = shadows.counts();
+    if (result.status == PolygonVisibilityStatus::Exact) result.V = shadows.baseV();
+    return result;
+}
+
+LightShadows::LightShadows(const ExactTracer& tracer, const PolygonLightShape& base, const dvec3& p,
+                           const dvec3& n, TriangleId self, uint32_t maxCandidates)
+    : corner_(base.corner),
+      edgeU_(base.edgeU),
+      edgeV_(base.edgeV),
+      emitNormal_(base.emitNormal),
+      p_(p),
+      n_(n) {
+    SO_CHECK_LE(base.vertices.size(), PolygonLightShape::kMaxVertices);
+    height_ = glm::dot(base.emitNormal, p - base.corner);  // > 0 on the lit side
+    if (!(height_ > 0.0)) return;
+    // L+: the light above p's horizon.
+    SmallPolygon whole{};
+    for (const dvec3& v : base.vertices) whole.push(v);
+    const SmallPolygon lit = clipToHalfSpace(whole, {-n, -glm::dot(n, p)});
+    if (lit.n < 3) return;
+    const LightFrame frame(corner_, edgeU_, edgeV_, emitNormal_);
+    litPath_ = quantisedPath(frame, lit);
+    litWhole_ = solidAngleOf(frame, p, n, litPath_);
+    if (!(std::abs(litWhole_) > 0.0)) return;
+    lit_.assign(lit.begin(), lit.end());
+    gather(tracer, self, maxCandidates);
+}
+
+void LightShadows::gather(const ExactTracer& tracer, TriangleId self, uint32_t maxCandidates) {
+    const LightFrame frame(corner_, edgeU_, edgeV_, emitNormal_);
+    SmallPolygon lit{};
+    for (const dvec3& v : lit_) lit.push(v);
+    const std::vector<ExactTracer::HalfSpace> planes = pyramid(p_, lit, frame);
     bool capped = false, alpha = false;
+    PolygonVisibility& result = result_;
     const auto visit = [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
         if (++result.candidates > maxCandidates) {
             capped = true;
             return false;
         }
-        if (id == self || inPlaneOf(p, a, b, c)) return true;
-        ClipperLib::Path shadow = shadowOf(a, b, c, p, height, planes, frame);
+        if (id == self || inPlaneOf(p_, a, b, c)) return true;
+        ClipperLib::Path shadow = shadowOf(a, b, c, p_, height_, planes, frame);
         if (!shadow.empty() && tracer.alphaTested(id)) {
             alpha = true;
             return false;
         }
         if (!shadow.empty()) {
-            shadows.push_back(std::move(shadow));
+            shadows_.push_back(std::move(shadow));
             ++result.occluders;
         }
         return true;
@@ -195,23 +249,64 @@ PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLight
     if (capped || alpha) {
         result.status = capped ? PolygonVisibilityStatus::TooManyOccluders
                                : PolygonVisibilityStatus::AlphaTested;
-        return result;
+        return;
     }
     result.status = PolygonVisibilityStatus::Exact;
-    if (shadows.empty()) {
-        result.V = 1.0;
-        return result;
-    }
+}
+
+namespace {
+
+// Phi(subject minus the clips), >= 0.
+double visibleSolidAngle(const LightFrame& frame, const dvec3& p, const dvec3& n,
+                         const ClipperLib::Path& subject, const ClipperLib::Paths& clips) {
     ClipperLib::Clipper clipper;
-    clipper.AddPath(litPath, ClipperLib::ptSubject, true);
-    clipper.AddPaths(shadows, ClipperLib::ptClip, true);
+    clipper.AddPath(subject, ClipperLib::ptSubject, true);
+    clipper.AddPaths(clips, ClipperLib::ptClip, true);
     ClipperLib::Paths visible;
     clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero,
                     ClipperLib::pftNonZero);
     double seen = 0.0;
     for (const ClipperLib::Path& path : visible) seen += solidAngleOf(frame, p, n, path);
-    result.V = std::clamp(seen / whole, 0.0, 1.0);
-    return result;
+    return seen;
+}
+
+}  // namespace
+
+double LightShadows::baseV() const {
+    SO_CHECK(result_.status == PolygonVisibilityStatus::Exact);
+    if (shadows_.empty()) return 1.0;
+    const LightFrame frame(corner_, edgeU_, edgeV_, emitNormal_);
+    const double seen = visibleSolidAngle(frame, p_, n_, litPath_, shadows_);
+    return std::clamp(seen / litWhole_, 0.0, 1.0);
+}
+
+LightShadows::Integrals LightShadows::integrals(const std::vector<dvec3>& region) const {
+    Integrals out;
+    if (result_.status == PolygonVisibilityStatus::NoLight) return out;
+    SO_CHECK(result_.status == PolygonVisibilityStatus::Exact);
+    const std::vector<dvec3> lit = clipToHalfSpace(region, {-n_, -glm::dot(n_, p_)});
+    if (lit.size() < 3) return out;
+    const LightFrame frame(corner_, edgeU_, edgeV_, emitNormal_);
+    const ClipperLib::Path path = quantisedPath(frame, lit);
+    // Signed by the path's winding (quantisedPath makes it Clipper's positive one), as are the
+    // visible parts Clipper returns.
+    const double signedWhole = solidAngleOf(frame, p_, n_, path);
+    const double sign = signedWhole < 0.0 ? -1.0 : 1.0;
+    out.whole = sign * signedWhole;
+    if (shadows_.empty()) {
+        out.visible = out.whole;
+        return out;
+    }
+    if (!united_) {
+        // Once for every region: the regions differ only near the light's outline.
+        ClipperLib::Clipper clipper;
+        clipper.AddPaths(shadows_, ClipperLib::ptSubject, true);
+        clipper.Execute(ClipperLib::ctUnion, union_, ClipperLib::pftNonZero,
+                        ClipperLib::pftNonZero);
+        united_ = true;
+    }
+    out.visible = std::max(0.0, sign * visibleSolidAngle(frame, p_, n_, path, union_));
+    return out;
 }
 
 }  // namespace so
