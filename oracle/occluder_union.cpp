@@ -86,18 +86,26 @@ bool holds(const Path& shadow, const Path& lit) {
     return true;
 }
 
-// lit minus the union of the shadows (non-zero filling: every path is counter-clockwise).
-Paths difference(const Path& lit, const Paths& shadows) {
+template <typename Polygon>
+Path quantisedPath(const LightPlaneFrame& frame, const Polygon& poly) {
+    Path out;
+    out.reserve(poly.size());
+    for (const dvec3& y : poly) out.push_back(frame.quantised(y));
+    if (!ClipperLib::Orientation(out)) ClipperLib::ReversePath(out);  // all windings alike
+    return out;
+}
+
+}  // namespace
+
+Paths lightMinusShadows(const Path& light, const Paths& shadows) {
     ClipperLib::Clipper clipper;
-    clipper.AddPath(lit, ClipperLib::ptSubject, true);
+    clipper.AddPath(light, ClipperLib::ptSubject, true);
     clipper.AddPaths(shadows, ClipperLib::ptClip, true);
     Paths visible;
     clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero,
                     ClipperLib::pftNonZero);
     return visible;
 }
-
-}  // namespace
 
 LightPlaneFrame::LightPlaneFrame(const dvec3& origin_, const dvec3& edgeU_, const dvec3& edgeV_,
                                  const dvec3& emitNormal_)
@@ -119,14 +127,14 @@ dvec3 LightPlaneFrame::point(const IntPoint& q) const {
 }
 
 Path LightPlaneFrame::path(const SmallPolygon& poly) const {
-    Path out;
-    out.reserve(poly.n);
-    for (const dvec3& y : poly) out.push_back(quantised(y));
-    if (!ClipperLib::Orientation(out)) ClipperLib::ReversePath(out);  // all windings alike
-    return out;
+    return quantisedPath(*this, poly);
 }
 
-OccluderUnion visibleLight(const ExactTracer& tracer, const OccluderQuery& q) {
+Path LightPlaneFrame::path(const std::vector<dvec3>& poly) const {
+    return quantisedPath(*this, poly);
+}
+
+OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q) {
     OccluderUnion u;
     Paths shadows;
     uint32_t nextCheck = 4;
@@ -155,7 +163,7 @@ OccluderUnion visibleLight(const ExactTracer& tracer, const OccluderQuery& q) {
         if (q.options.shortcuts && !covered && u.occluders == nextCheck) {
             nextCheck *= 4;
             ++u.unions;
-            covered = difference(*q.lit, shadows).empty();
+            covered = lightMinusShadows(*q.lit, shadows).empty();
         }
         return !covered;
     };
@@ -173,8 +181,7 @@ OccluderUnion visibleLight(const ExactTracer& tracer, const OccluderQuery& q) {
         u.status = OccluderUnion::Status::Lit;
         return u;
     }
-    ++u.unions;
-    u.visible = difference(*q.lit, shadows);
+    u.shadows = std::move(shadows);
     return u;
 }
 

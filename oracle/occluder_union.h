@@ -2,12 +2,17 @@
 // of a polygonal light a point sees, as integer polygons in the light's plane. The triangles that
 // may cut the pyramid from the point to the light come from the exact tracer's BVH; each is clipped
 // to the pyramid, projected centrally through the point onto the light's plane and quantised; the
-// visible part is the light minus the union of those shadows, one Clipper call (integer
-// arithmetic: overlaps, shared edges and slivers cannot make it fail).
+// visible part of a region is the region minus the union of those shadows (lightMinusShadows, one
+// Clipper call: integer arithmetic, so overlaps, shared edges and slivers cannot make it fail).
+// The gathering is done once per point for the pyramid of a base polygon, and any region inside the
+// base is integrated against it (polygon_visibility.h's LightShadows: a rect, or a disk's
+// inscribed and circumscribed n-gons).
 //
 // With `facing` (mesh_facing.h), the back faces of closed meshes are left out: the union is the
 // same region (to the quantisation: a shared edge clipped from its two triangles may round to
-// neighbouring integers).
+// neighbouring integers). The rule is about segments from the point (mesh_facing.h): a segment to
+// any point of the light's plane that a closed part blocks is blocked by a kept triangle, at a
+// crossing on the segment, so inside the pyramid; it holds for every region inside the base.
 //
 // Shortcuts that give the same answer as the plain union:
 // - no triangle cuts the pyramid: the whole light is visible, without a union;
@@ -15,6 +20,7 @@
 //   shadows so far (checked when their count reaches 4, 16, 64, ...) leaves nothing, the query
 //   stops: more triangles can only cover more. The union at a check is the plain union of the
 //   shadows met so far, so a light found covered is empty in the plain union of all of them too.
+//   "The light" is the base above the horizon, so every region inside it is covered as well.
 #pragma once
 
 #include <cstdint>
@@ -31,7 +37,8 @@ namespace so {
 
 // The light's plane with integer coordinates: y = origin + s edgeU + t edgeV, (s, t) quantised to
 // 2^-29 (below Clipper's 2^30 "low range", where its arithmetic is plain 64-bit and exact). The
-// light's own (s, t) lie in [0, 1], so its polygons have coordinates in [0, 2^29].
+// light's own (s, t) lie in [0, 1], so its polygons have coordinates in [0, 2^29] (a disk's frame
+// is a square about its gathering polygon: disk_bounds.h).
 struct LightPlaneFrame {
     static constexpr double kQuantum = double(1 << 29);
     glm::dvec3 origin{0.0}, edgeU{0.0}, edgeV{0.0}, emitNormal{0.0};
@@ -42,6 +49,7 @@ struct LightPlaneFrame {
     glm::dvec3 point(const ClipperLib::IntPoint& q) const;
     // The polygon (in the plane) quantised, wound counter-clockwise like every path here.
     ClipperLib::Path path(const SmallPolygon& poly) const;
+    ClipperLib::Path path(const std::vector<glm::dvec3>& poly) const;
 };
 
 // What a caller chooses of the union's work.
@@ -59,27 +67,31 @@ struct OccluderQuery {
     // The pyramid from p to the visible light (its sides through p, and the light's plane).
     const std::vector<ExactTracer::HalfSpace>* pyramid = nullptr;
     const LightPlaneFrame* frame = nullptr;
-    const ClipperLib::Path* lit = nullptr;  // the visible light, quantised (frame.path)
+    const ClipperLib::Path* lit = nullptr;  // the base above the horizon, quantised (frame.path)
     uint32_t maxCandidates = 0;             // candidates beyond this: TooManyOccluders
     OccluderOptions options;
 };
 
 struct OccluderUnion {
     enum class Status : uint8_t {
-        Partial,           // `visible` holds the visible part (possibly empty)
+        Partial,           // `shadows` holds the shadows (possibly none)
         Lit,               // no triangle cut the pyramid: the whole light is visible, no union
         Covered,           // the shadows cover the light: nothing visible (found early)
         TooManyOccluders,  // more candidates than maxCandidates: no answer
         AlphaTested,       // an alpha-tested triangle cuts the pyramid: no answer
     };
     Status status = Status::Partial;
-    ClipperLib::Paths visible;  // Partial: the light minus the shadows
+    ClipperLib::Paths shadows;  // Partial: every shadow met, counter-clockwise
     uint32_t occluders = 0;     // shadows that reached the union (up to where it stopped)
     uint32_t candidates = 0;    // triangles the BVH query returned (the pyramid's cost)
     uint32_t backFaces = 0;     // candidates left out by `facing`
-    uint32_t unions = 0;        // Clipper calls made (the checks and the last)
+    uint32_t unions = 0;        // Clipper calls made by the covered checks
 };
 
-OccluderUnion visibleLight(const ExactTracer& tracer, const OccluderQuery& q);
+OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q);
+
+// `light` minus the union of `shadows` (non-zero filling: every path counter-clockwise).
+ClipperLib::Paths lightMinusShadows(const ClipperLib::Path& light,
+                                    const ClipperLib::Paths& shadows);
 
 }  // namespace so

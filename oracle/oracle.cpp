@@ -71,7 +71,7 @@ struct LightPass {
     ChannelImage& image;
     uint64_t pixels;
     bool penumbra, contact;
-    // The exact penumbra pass's scene (--penumbra exact, both or auto, rect lights); null
+    // The exact penumbra pass's scene (--penumbra exact, both or auto, area lights); null
     // otherwise.
     const ExactScene* exact;
     // --penumbra auto: the probe's points (penumbra_choice.h), and the points the camera hit.
@@ -103,10 +103,14 @@ AreaShadowStats traceSampledLight(const LightPass& p, uint32_t li, const AreaSha
     return s;
 }
 
+bool exactPassTakes(LightType type) {
+    return type == LightType::Rect || type == LightType::Disk || type == LightType::Sphere;
+}
+
 // Why the exact pass does not apply to a light, or "" where it does.
 std::string exactNotApplied(const Light& light) {
-    if (light.type != LightType::Rect)
-        return std::string(lightTypeName(light.type)) + " light (not a polygon)";
+    if (!exactPassTakes(light.type))
+        return std::string(lightTypeName(light.type)) + " light (not an area light)";
     return "";
 }
 
@@ -124,6 +128,8 @@ AreaShadowStats traceExactThenSampled(const LightPass& p, uint32_t li, AreaShado
     e.stderr_ = planes.stderr_;
     e.cosine = planes.cosine;
     e.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
+    if (light.type == LightType::Disk || light.type == LightType::Sphere)
+        e.bound = p.image.addChannel(ch::lightChannel(light.name, ch::kBound));
     std::vector<uint8_t> needsSampling;
     e.needsSampling = &needsSampling;
     ExactPenumbraStats st;
@@ -170,6 +176,8 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
     planes.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
     if (options.method == PenumbraMethod::Both)
         planes.Vexact = p.image.addChannel(ch::lightChannel(light.name, ch::kVisibilityExact));
+    if (light.type == LightType::Disk || light.type == LightType::Sphere)
+        planes.bound = p.image.addChannel(ch::lightChannel(light.name, ch::kBound));
     ExactPenumbraStats st;
     st.method = options.method;
     st.allPixels = options.allPixels;
@@ -259,8 +267,15 @@ LightVerification verifyLight(const LightPass& p, const Verifier& verifier, uint
     const float* stderr_ =
         sampled ? p.image.channel(ch::lightChannel(light.name, ch::kStdErr)) : nullptr;
     const float* spp = sampled ? p.image.channel(ch::lightChannel(light.name, ch::kSpp)) : nullptr;
+    // A disk or sphere light whose V the exact pass replaced (--penumbra exact, or auto where it
+    // chose exact): V is bounded where NAME.exact is 1. With both, V stays sampled.
+    const std::string boundName = ch::lightChannel(light.name, ch::kBound);
+    const bool bounded =
+        sampled && p.options.penumbra.method != PenumbraMethod::Both && p.image.has(boundName);
+    const float* bound = bounded ? p.image.channel(boundName) : nullptr;
     LightVerification out;
-    p.arena.execute([&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp); });
+    p.arena.execute(
+        [&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp, bound); });
     return out;
 }
 
@@ -289,16 +304,16 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
     return verifier;
 }
 
-// The exact penumbra pass's scene: with --penumbra exact, both or auto, a rect light and
+// The exact penumbra pass's scene: with --penumbra exact, both or auto, an area light and
 // "penumbra".
 // Alpha-tested meshes are in it: the pixels whose pyramid holds one keep their sampled V.
 std::unique_ptr<ExactScene> makeExactScene(const Scene& scene, const OracleOptions& options,
                                            const LocalFrame& frame) {
     if (options.penumbra.method == PenumbraMethod::Sampled || !scene.hasEffect("penumbra"))
         return nullptr;
-    const bool rect = std::any_of(scene.lights.begin(), scene.lights.end(),
-                                  [](const Light& l) { return l.type == LightType::Rect; });
-    return rect ? std::make_unique<ExactScene>(scene, frame) : nullptr;
+    const bool any = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                 [](const Light& l) { return exactPassTakes(l.type); });
+    return any ? std::make_unique<ExactScene>(scene, frame) : nullptr;
 }
 
 // --penumbra auto's probe (penumbra_choice.h): a coarse image of the same view (one pixel in 64),

@@ -112,10 +112,21 @@ bool isDisagreementKey(const char* key) {
     return std::strncmp(key, "disagreement.", 13) == 0;
 }
 
+bool isBoundKey(const char* key) {
+    return std::strncmp(key, "bound.", 6) == 0;
+}
+
+// The exact pass's counters a light's JSON holds: disagreement with both, bound for bounded lights.
+bool keepsExactKey(const ExactPenumbraStats& e, const char* key) {
+    if (isDisagreementKey(key)) return e.method == PenumbraMethod::Both;
+    if (isBoundKey(key)) return e.errorKind == "bound";
+    return true;
+}
+
 json exactPenumbraJson(const ExactPenumbraStats& e) {
     const bool both = e.method == PenumbraMethod::Both;
     json j;
-    writeFields(j, e, [&](const char* key) { return both || !isDisagreementKey(key); });
+    writeFields(j, e, [&](const char* key) { return keepsExactKey(e, key); });
     json histogram = json::array();
     for (uint64_t c : e.occluders) histogram.push_back(c);
     const auto mean = [&](double total) {
@@ -124,6 +135,13 @@ json exactPenumbraJson(const ExactPenumbraStats& e) {
     j["method"] = penumbraMethodName(e.method);
     j["pixels"] = e.allPixels ? "all" : "penumbra";
     j["not_applied"] = e.notApplied.empty() ? json(nullptr) : json(e.notApplied);
+    j["error_kind"] = e.errorKind;
+    if (e.errorKind == "bound") {
+        j["bound"]["target_half_width"] = e.bound.targetHalfWidth;
+        j["bound"]["min_sides"] = e.bound.minSides;
+        j["bound"]["max_sides"] = e.bound.maxSides;
+        j["bound"]["half_width_mean"] = mean(e.boundHalfWidthSum);
+    }
     j["occluders"]["mean"] = mean(double(e.occludersTotal));
     j["occluders"]["p99_at_most"] = occluderQuantileBound(e.occluders, 0.99);
     j["occluders"]["histogram_log2"] = histogram;
@@ -432,8 +450,16 @@ ExactPenumbraStats readExactPenumbra(const Fields& f) {
         f.fail(f.name("pixels"), "must be all or penumbra");
     e.allPixels = pixels == "all";
     if (!f.isNull("not_applied")) e.notApplied = f.str("not_applied");
-    const bool both = e.method == PenumbraMethod::Both;
-    readFields(f, e, [&](const char* key) { return both || !isDisagreementKey(key); });
+    e.errorKind = f.str("error_kind");
+    if (e.errorKind != "exact" && e.errorKind != "bound")
+        f.fail(f.name("error_kind"), "must be exact or bound");
+    if (e.errorKind == "bound") {
+        const Fields b = f.object("bound");
+        e.bound.targetHalfWidth = b.number("target_half_width");
+        e.bound.minSides = uint32_t(b.u64("min_sides"));
+        e.bound.maxSides = uint32_t(b.u64("max_sides"));
+    }
+    readFields(f, e, [&](const char* key) { return keepsExactKey(e, key); });
     const Fields occ = f.object("occluders");
     const std::vector<double> histogram = occ.numbers("histogram_log2");
     if (histogram.size() != e.occluders.size())
@@ -660,6 +686,8 @@ ExactPenumbraStats mergeExact(const std::vector<const AreaShadowStats*>& bands) 
     total.method = bands.front()->exact->method;
     total.allPixels = bands.front()->exact->allPixels;
     total.notApplied = bands.front()->exact->notApplied;
+    total.errorKind = bands.front()->exact->errorKind;
+    total.bound = bands.front()->exact->bound;
     for (const AreaShadowStats* b : bands) {
         const ExactPenumbraStats& e = *b->exact;
         combineStats(total, e);

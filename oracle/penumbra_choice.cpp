@@ -45,7 +45,8 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
     }
     const SurfaceBuffer& sb = *probe.sb;
     const size_t pixels = size_t(sb.width) * size_t(sb.height);
-    std::vector<float> V(pixels), stderr_(pixels), spp(pixels), cosine(pixels), mask(pixels);
+    std::vector<float> V(pixels), stderr_(pixels), spp(pixels), cosine(pixels), mask(pixels),
+        bound(light.type == LightType::Rect ? 0 : pixels);
     std::vector<uint8_t> slots =
         probe.slots ? *probe.slots : std::vector<uint8_t>(sb.hit.begin(), sb.hit.end());
     for (size_t s = 0; s < slots.size(); ++s)
@@ -62,6 +63,7 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
     planes.stderr_ = stderr_.data();
     planes.cosine = cosine.data();
     planes.exactMask = mask.data();
+    planes.bound = bound.empty() ? nullptr : bound.data();  // disk and sphere lights
     planes.onlySlots = &slots;
     std::vector<uint8_t> needsSampling;
     planes.needsSampling = &needsSampling;

@@ -1,13 +1,12 @@
 #include "oracle/polygon_visibility.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <polyclipping/clipper.hpp>
 
-#include "oracle/occluder_union.h"
+#include "core/error.h"
 #include "oracle/small_polygon.h"
 
 namespace so {
@@ -24,10 +23,19 @@ double solidAngleOf(const LightPlaneFrame& frame, const dvec3& p, const dvec3& n
     return cosineWeightedSolidAngle(p, n, vertices);
 }
 
+// Phi(subject minus the clips): signed as the subject's winding, as are the parts Clipper returns.
+double visibleSolidAngle(const LightPlaneFrame& frame, const dvec3& p, const dvec3& n,
+                         const ClipperLib::Path& subject, const ClipperLib::Paths& clips) {
+    double seen = 0.0;
+    for (const ClipperLib::Path& path : lightMinusShadows(subject, clips))
+        seen += solidAngleOf(frame, p, n, path);
+    return seen;
+}
+
 // The pyramid from p to the polygon `base` (convex, in the light's plane): a side half-space per
 // edge through p, and the light's plane on p's side.
 std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const SmallPolygon& base,
-                                            const RectLightShape& light) {
+                                            const LightPlaneFrame& light) {
     dvec3 centroid(0.0);
     for (const dvec3& b : base) centroid += b;
     centroid /= double(base.n);
@@ -38,7 +46,7 @@ std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const SmallPolygon& 
         if (glm::dot(m, centroid - p) > 0.0) m = -m;
         planes.push_back({m, glm::dot(m, p)});
     }
-    planes.push_back({-light.emitNormal, -glm::dot(light.emitNormal, light.corner)});
+    planes.push_back({-light.emitNormal, -glm::dot(light.emitNormal, light.origin)});
     return planes;
 }
 
@@ -60,63 +68,105 @@ double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n,
     return 0.5 * sum;
 }
 
+PolygonLightShape polygonOf(const RectLightShape& rect) {
+    PolygonLightShape shape{rect.corner, rect.edgeU, rect.edgeV, rect.emitNormal, {}};
+    shape.vertices = {rect.corner, rect.corner + rect.edgeU, rect.corner + rect.edgeU + rect.edgeV,
+                      rect.corner + rect.edgeV};
+    return shape;
+}
+
 PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLightShape& light,
                                       const dvec3& p, const dvec3& n, TriangleId self,
                                       uint32_t maxCandidates, const OccluderOptions& more) {
-    PolygonVisibility result;
-    const double height = glm::dot(light.emitNormal, p - light.corner);  // > 0 on the lit side
-    if (!(height > 0.0)) return result;
-    // L+: the light above p's horizon.
-    const SmallPolygon lit =
-        clipToHalfSpace({light.corner, light.corner + light.edgeU,
-                         light.corner + light.edgeU + light.edgeV, light.corner + light.edgeV},
-                        {-n, -glm::dot(n, p)});
-    if (lit.n < 3) return result;
-    const LightPlaneFrame frame(light.corner, light.edgeU, light.edgeV, light.emitNormal);
-    const ClipperLib::Path litPath = frame.path(lit);
-    const double whole = solidAngleOf(frame, p, n, litPath);
-    if (!(std::abs(whole) > 0.0)) return result;
+    return polygonLightVisibility(tracer, polygonOf(light), p, n, self, maxCandidates, more);
+}
 
-    const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, light);
+PolygonVisibility polygonLightVisibility(const ExactTracer& tracer, const PolygonLightShape& light,
+                                         const dvec3& p, const dvec3& n, TriangleId self,
+                                         uint32_t maxCandidates, const OccluderOptions& more) {
+    const LightShadows shadows(tracer, light, p, n, self, maxCandidates, more);
+    PolygonVisibility result = shadows.counts();
+    if (result.status == PolygonVisibilityStatus::Exact) result.V = shadows.baseV();
+    return result;
+}
+
+LightShadows::LightShadows(const ExactTracer& tracer, const PolygonLightShape& base, const dvec3& p,
+                           const dvec3& n, TriangleId self, uint32_t maxCandidates,
+                           const OccluderOptions& more)
+    : frame_(base.corner, base.edgeU, base.edgeV, base.emitNormal), p_(p), n_(n) {
+    SO_CHECK_LE(base.vertices.size(), PolygonLightShape::kMaxVertices);
+    const double height = glm::dot(base.emitNormal, p - base.corner);  // > 0 on the lit side
+    if (!(height > 0.0)) return;
+    // L+: the light above p's horizon.
+    SmallPolygon whole{};
+    for (const dvec3& v : base.vertices) whole.push(v);
+    const SmallPolygon lit = clipToHalfSpace(whole, {-n, -glm::dot(n, p)});
+    if (lit.n < 3) return;
+    litPath_ = frame_.path(lit);
+    litWhole_ = solidAngleOf(frame_, p, n, litPath_);
+    if (!(std::abs(litWhole_) > 0.0)) return;
+
+    const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, frame_);
     OccluderQuery q;
     q.p = p;
     q.self = self;
     q.height = height;
     q.pyramid = &planes;
-    q.frame = &frame;
-    q.lit = &litPath;
+    q.frame = &frame_;
+    q.lit = &litPath_;
     q.maxCandidates = maxCandidates;
     q.options = more;
-    const OccluderUnion u = visibleLight(tracer, q);
-    result.occluders = u.occluders;
-    result.candidates = u.candidates;
-    result.backFaces = u.backFaces;
-    result.shortcut = u.status == OccluderUnion::Status::Lit       ? VisibilityShortcut::Lit
-                      : u.status == OccluderUnion::Status::Covered ? VisibilityShortcut::Covered
-                                                                   : VisibilityShortcut::None;
-    switch (u.status) {
-        case OccluderUnion::Status::TooManyOccluders:
-            result.status = PolygonVisibilityStatus::TooManyOccluders;
-            return result;
-        case OccluderUnion::Status::AlphaTested:
-            result.status = PolygonVisibilityStatus::AlphaTested;
-            return result;
-        case OccluderUnion::Status::Lit:
-            result.status = PolygonVisibilityStatus::Exact;
-            result.V = 1.0;
-            return result;
-        case OccluderUnion::Status::Covered:
-            result.status = PolygonVisibilityStatus::Exact;
-            result.V = 0.0;
-            return result;
-        case OccluderUnion::Status::Partial:
-            break;
+    OccluderUnion u = gatherShadows(tracer, q);
+    result_.occluders = u.occluders;
+    result_.candidates = u.candidates;
+    result_.backFaces = u.backFaces;
+    result_.status = u.status == OccluderUnion::Status::TooManyOccluders
+                         ? PolygonVisibilityStatus::TooManyOccluders
+                     : u.status == OccluderUnion::Status::AlphaTested
+                         ? PolygonVisibilityStatus::AlphaTested
+                         : PolygonVisibilityStatus::Exact;
+    result_.shortcut = u.status == OccluderUnion::Status::Lit       ? VisibilityShortcut::Lit
+                       : u.status == OccluderUnion::Status::Covered ? VisibilityShortcut::Covered
+                                                                    : VisibilityShortcut::None;
+    shadows_ = std::move(u.shadows);
+}
+
+double LightShadows::baseV() const {
+    SO_CHECK(result_.status == PolygonVisibilityStatus::Exact);
+    if (result_.shortcut == VisibilityShortcut::Covered) return 0.0;
+    if (shadows_.empty()) return 1.0;
+    const double seen = visibleSolidAngle(frame_, p_, n_, litPath_, shadows_);
+    return std::clamp(seen / litWhole_, 0.0, 1.0);
+}
+
+LightShadows::Integrals LightShadows::integrals(const std::vector<dvec3>& region) const {
+    Integrals out;
+    if (result_.status == PolygonVisibilityStatus::NoLight) return out;
+    SO_CHECK(result_.status == PolygonVisibilityStatus::Exact);
+    const std::vector<dvec3> lit = clipToHalfSpace(region, {-n_, -glm::dot(n_, p_)});
+    if (lit.size() < 3) return out;
+    const ClipperLib::Path path = frame_.path(lit);
+    // Signed by the path's winding (frame_.path makes it Clipper's positive one), as are the
+    // visible parts Clipper returns.
+    const double signedWhole = solidAngleOf(frame_, p_, n_, path);
+    const double sign = signedWhole < 0.0 ? -1.0 : 1.0;
+    out.whole = sign * signedWhole;
+    // Covered: the shadows hold the base above the horizon, so every region inside it.
+    if (result_.shortcut == VisibilityShortcut::Covered) return out;
+    if (shadows_.empty()) {
+        out.visible = out.whole;
+        return out;
     }
-    result.status = PolygonVisibilityStatus::Exact;
-    double seen = 0.0;
-    for (const ClipperLib::Path& path : u.visible) seen += solidAngleOf(frame, p, n, path);
-    result.V = std::clamp(seen / whole, 0.0, 1.0);
-    return result;
+    if (!united_) {
+        // Once for every region: the regions differ only near the light's outline.
+        ClipperLib::Clipper clipper;
+        clipper.AddPaths(shadows_, ClipperLib::ptSubject, true);
+        clipper.Execute(ClipperLib::ctUnion, union_, ClipperLib::pftNonZero,
+                        ClipperLib::pftNonZero);
+        united_ = true;
+    }
+    out.visible = std::max(0.0, sign * visibleSolidAngle(frame_, p_, n_, path, union_));
+    return out;
 }
 
 }  // namespace so

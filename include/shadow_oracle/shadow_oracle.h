@@ -121,7 +121,7 @@ struct TraceOptions {
     int maxSpp = 16384, fixedSpp = 0;
     uint32_t seed = 0;
     int verify = 0;  // > 0: re-trace this many pixels per light independently (docs/oracle.md)
-    // Rect lights (docs/oracle.md, "Exact penumbrae"): "sampled", "exact" (every pixel), "both"
+    // Area lights (docs/oracle.md, "Exact penumbrae"): "sampled", "exact" (every pixel), "both"
     // or "auto" (per light, whichever a probe estimates cheaper); with "both", the exact pass at
     // "penumbra" pixels (their samples disagree) or "all" sampled ones.
     std::string penumbra = "sampled", exactPixels = "penumbra";
