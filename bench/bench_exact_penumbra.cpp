@@ -14,7 +14,7 @@
 //    finds its own pixels), run as it ships and as a plain union (no shortcuts, every back face),
 //    and what `auto` chooses at 0.01.
 //
-//   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W]
+//   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W] [--tightest T]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -207,7 +207,7 @@ Realised realisedError(const Reference& ref, const ChannelImage& sampled) {
 }
 
 // RQMC at three targets and the exact pass on one rect light (the scene's first light).
-void againstRqmc(const std::string& name, const Scene& scene) {
+void againstRqmc(const std::string& name, const Scene& scene, double tightest) {
     const std::string light = scene.lights[0].name;
     std::printf("\n%s (%d x %d, %llu triangles), light \"%s\":\n", name.c_str(), scene.camera.width,
                 scene.camera.height, (unsigned long long)scene.stats.triangles, light.c_str());
@@ -216,6 +216,7 @@ void againstRqmc(const std::string& name, const Scene& scene) {
     const OracleResult automatic = run(scene, 0.01, PenumbraMethod::Auto);
     const Reference ref(scene, all.image);
     for (double target : {0.01, 0.001, 0.0001}) {
+        if (target < tightest) break;
         const OracleResult r = run(scene, target, PenumbraMethod::Sampled);
         const AreaShadowStats& a = *r.stats.lights[0].area;
         const Realised e = realisedError(ref, r.image);
@@ -259,21 +260,24 @@ void againstRqmc(const std::string& name, const Scene& scene) {
 
 int main(int argc, char** argv) {
     int size = 64, maxK = 128, bunnyWidth = 160;
+    double tightest = 1e-4;
     CLI::App app{"the exact penumbra pass's cost: growth with occluders, against RQMC"};
     app.add_option("--size", size, "the growth study's image side")->check(CLI::Range(16, 1024));
     app.add_option("--max-k", maxK, "the finest split of the occluder")->check(CLI::Range(1, 1024));
     app.add_option("--bunny-size", bunnyWidth, "the bunny image's width (height 3/4 of it)")
         ->check(CLI::Range(16, 1024));
+    app.add_option("--tightest", tightest, "the tightest RQMC target run (0.01, 0.001 or 0.0001)")
+        ->check(CLI::Range(1e-4, 0.01));
     CLI11_PARSE(app, argc, argv);
     growth(size, maxK);
 
     Scene square = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");
     square.camera.width = square.camera.height = 200;
-    againstRqmc("penumbra_square", square);
+    againstRqmc("penumbra_square", square, tightest);
 
     Scene chair = loadScene(SO_SCENES_DIR "/soft_chair.scene.json");
     std::erase_if(chair.lights, [](const Light& l) { return l.type != LightType::Rect; });
-    againstRqmc("soft_chair", chair);
+    againstRqmc("soft_chair", chair, tightest);
 
     std::string why;
     const MeshPrimitive* bunny = test::cgalBunny(why);
@@ -283,6 +287,6 @@ int main(int argc, char** argv) {
     }
     Scene b = test::makeBunnyScene(*bunny, bunnyWidth, bunnyWidth * 3 / 4);
     test::useLowRectLight(b);
-    againstRqmc("bunny", b);
+    againstRqmc("bunny", b, tightest);
     return 0;
 }
