@@ -49,14 +49,14 @@ Scene tiledPenumbraScene(int size, int k) {
     return s.scene;
 }
 
-// plain: the exact pass without its shortcuts and with every back face in the union (issue 45's
-// "before", on the pass's own pixels).
+// plain: the exact pass without its shortcuts, with every back face in the union and no merging
+// (issue 45's "before", on the pass's own pixels).
 OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool plain = false) {
     OracleOptions o;
     o.area.targetError = target;
     o.area.maxSpp = 1 << 20;
     o.penumbra.method = method;
-    o.penumbra.shortcuts = o.penumbra.backFaces = !plain;
+    o.penumbra.shortcuts = o.penumbra.backFaces = o.penumbra.merge = !plain;
     return runOracle(scene, o);
 }
 

@@ -51,6 +51,9 @@ struct ExactPenumbraOptions {
     // Back faces of closed meshes left out of the union where the camera tells the side
     // (mesh_facing.h); tests turn it off to check that it changes nothing.
     bool backFaces = true;
+    // Whole triangles' shadows merged along their shared edges before the union
+    // (occluder_union.h); tests turn it off to check that it changes nothing.
+    bool merge = true;
     // Triangles the pyramid from a point to the light may hold before the pixel keeps its
     // sampled V (the pass's work per pixel grows with them).
     uint32_t maxOccluders = 100000;

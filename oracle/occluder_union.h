@@ -5,6 +5,9 @@
 // visible part is the light minus the union of those shadows, one Clipper call (integer
 // arithmetic: overlaps, shared edges and slivers cannot make it fail).
 //
+// Triangles the pyramid does not cut go to the union as the outline of their patch, not one by
+// one: their shared edges cancel (appendMergedLoops in the .cpp; the same filled region).
+//
 // With `facing` (mesh_facing.h), the back faces of closed meshes are left out: the union is the
 // same region (to the quantisation: a shared edge clipped from its two triangles may round to
 // neighbouring integers).
@@ -47,6 +50,7 @@ struct LightPlaneFrame {
 // What a caller chooses of the union's work.
 struct OccluderOptions {
     bool shortcuts = true;               // the lit and covered shortcuts (tests turn them off)
+    bool merge = true;                   // whole triangles' shared edges merged (above)
     const MeshFacing* facing = nullptr;  // back faces left out (mesh_facing.h), or null
 };
 
