@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -51,13 +52,19 @@ Scene tiledPenumbraScene(int size, int k) {
 
 // plain: the exact pass without its shortcuts, with every back face in the union and no merging
 // (issue 45's "before", on the pass's own pixels).
-OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool plain = false) {
+// cpu: the whole run's processor seconds, all threads (std::clock): on a loaded machine the work,
+// where wall seconds measure the other processes too.
+OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool plain = false,
+                 double* cpu = nullptr) {
+    const std::clock_t c0 = std::clock();
     OracleOptions o;
     o.area.targetError = target;
     o.area.maxSpp = 1 << 20;
     o.penumbra.method = method;
     o.penumbra.shortcuts = o.penumbra.backFaces = o.penumbra.merge = !plain;
-    return runOracle(scene, o);
+    OracleResult r = runOracle(scene, o);
+    if (cpu) *cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+    return r;
 }
 
 double meanOccluders(const ExactPenumbraStats& e) {
@@ -211,23 +218,25 @@ void againstRqmc(const std::string& name, const Scene& scene, double tightest) {
     const std::string light = scene.lights[0].name;
     std::printf("\n%s (%d x %d, %llu triangles), light \"%s\":\n", name.c_str(), scene.camera.width,
                 scene.camera.height, (unsigned long long)scene.stats.triangles, light.c_str());
-    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact);
-    const OracleResult plain = run(scene, 0.01, PenumbraMethod::Exact, true);
+    double cpuAll = 0.0, cpuPlain = 0.0, cpu = 0.0;
+    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact, false, &cpuAll);
+    const OracleResult plain = run(scene, 0.01, PenumbraMethod::Exact, true, &cpuPlain);
     const OracleResult automatic = run(scene, 0.01, PenumbraMethod::Auto);
     const Reference ref(scene, all.image);
     for (double target : {0.01, 0.001, 0.0001}) {
         if (target < tightest) break;
-        const OracleResult r = run(scene, target, PenumbraMethod::Sampled);
+        const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false, &cpu);
         const AreaShadowStats& a = *r.stats.lights[0].area;
         const Realised e = realisedError(ref, r.image);
         std::printf(
-            "  RQMC target %-7g %9.3f s  spp mean %8.0f  unconverged %6llu  penumbra mae %.2e  "
+            "  RQMC target %-7g %9.3f s (run %.2f cpu s)  spp mean %8.0f  unconverged %6llu  "
+            "penumbra mae %.2e  "
             "p99 %.2e  covered %.1f%% of %zu pixels (%zu agreeing, at 0 or 1)\n"
             "    disagreeing and outside: %zu (%zu beyond 10 half-widths); within their interval "
             "of the exact V at the rays' offset origin: %zu\n",
-            target, a.seconds, a.sppMean(), (unsigned long long)a.pixelsUnconverged, e.mae, e.p99,
-            100.0 * double(e.covered) / double(std::max<size_t>(e.pixels, 1)), e.pixels, e.agreeing,
-            e.outside, e.farOutside, e.explainedByOffset);
+            target, a.seconds, cpu, a.sppMean(), (unsigned long long)a.pixelsUnconverged, e.mae,
+            e.p99, 100.0 * double(e.covered) / double(std::max<size_t>(e.pixels, 1)), e.pixels,
+            e.agreeing, e.outside, e.farOutside, e.explainedByOffset);
         std::fflush(stdout);
     }
     for (const OracleResult* r : {&plain, &all}) {
@@ -235,11 +244,13 @@ void againstRqmc(const std::string& name, const Scene& scene, double tightest) {
         const ExactPenumbraStats& e = *a.exact;
         const Realised err = realisedError(ref, r->image);
         std::printf(
-            "  exact, %-6s %9.3f s (+ %.3f s sampled where it gave no answer)  %llu pixels (lit "
+            "  exact, %-6s %9.3f s (run %.2f cpu s; + %.3f s sampled where it gave no answer)  "
+            "%llu pixels (lit "
             "%llu, covered %llu without a union), occluders mean %.1f, p99 <= %llu, max %llu; "
             "back faces left out %llu of %llu candidates; kept sampled: %llu; penumbra mae %.2e\n",
-            r == &plain ? "plain" : "fast", e.seconds, a.seconds, (unsigned long long)e.pixelsExact,
-            (unsigned long long)e.pixelsLit, (unsigned long long)e.pixelsCovered, meanOccluders(e),
+            r == &plain ? "plain" : "fast", e.seconds, r == &plain ? cpuPlain : cpuAll, a.seconds,
+            (unsigned long long)e.pixelsExact, (unsigned long long)e.pixelsLit,
+            (unsigned long long)e.pixelsCovered, meanOccluders(e),
             (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
             (unsigned long long)e.occludersMax, (unsigned long long)e.backFacesTotal,
             (unsigned long long)e.candidatesTotal,
