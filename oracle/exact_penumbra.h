@@ -101,7 +101,7 @@ struct PenumbraChoice {
     // and occluders whose shadows reached the union) and its points it could not answer.
     uint64_t probePoints = 0, probeRays = 0, probeCandidates = 0, probeOccluders = 0,
              probeKeptSampled = 0;
-    // The estimates for this image (or band): the probe's counts in seconds, scaled by the
+    // The estimates for this image (or band): the probe's counts in processor seconds, scaled by the
     // image's points over the probe's.
     double exactSeconds = 0.0, sampledSeconds = 0.0;
 };
