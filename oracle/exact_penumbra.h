@@ -101,8 +101,8 @@ struct PenumbraChoice {
     // and occluders whose shadows reached the union) and its points it could not answer.
     uint64_t probePoints = 0, probeRays = 0, probeCandidates = 0, probeOccluders = 0,
              probeKeptSampled = 0;
-    // The estimates for this image (or band): the probe's counts in processor seconds, scaled by the
-    // image's points over the probe's.
+    // The estimates for this image (or band): the probe's counts in processor seconds, scaled by
+    // the image's points over the probe's.
     double exactSeconds = 0.0, sampledSeconds = 0.0;
 };
 
