@@ -448,6 +448,20 @@ TEST(ExactPenumbra, AutoChoosesPerLightAndSaysWhy) {
     EXPECT_FALSE(r.stats.lights[0].area->exact.has_value());
 }
 
+// --verify on --penumbra exact: the exact pixels (no samples, stderr 0) are compared with the
+// independent re-trace's own estimate like any measured pixel, not passed over as skipped.
+TEST(ExactPenumbra, VerifyChecksTheExactPixels) {
+    const PenumbraScene s = makePenumbraScene(64, 48);
+    OracleOptions o;
+    o.penumbra.method = PenumbraMethod::Exact;
+    o.verify.pixels = 100;
+    const OracleResult r = runOracle(s.scene, o);
+    ASSERT_TRUE(r.stats.verify.has_value());
+    const LightVerification& l = r.stats.verify->lights.at(0);
+    EXPECT_EQ(l.disagree, 0u);
+    EXPECT_GT(l.agree, l.checked * 9 / 10);
+}
+
 // The command line: the flags by name, a bad name one line naming its flag.
 TEST(ExactPenumbra, CommandLineFlags) {
     const std::string scene = std::string(SO_SCENES_DIR) + "/penumbra_square.scene.json";
