@@ -14,10 +14,11 @@
 //    finds its own pixels), run as it ships and as a plain union (no shortcuts, every back face),
 //    and what `auto` chooses at 0.01.
 //
-//   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W]
+//   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W] [--tightest T]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -49,15 +50,21 @@ Scene tiledPenumbraScene(int size, int k) {
     return s.scene;
 }
 
-// plain: the exact pass without its shortcuts and with every back face in the union (issue 45's
-// "before", on the pass's own pixels).
-OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool plain = false) {
+// plain: the exact pass without its shortcuts, with every back face in the union and no merging
+// (issue 45's "before", on the pass's own pixels).
+// cpu: the whole run's processor seconds, all threads (std::clock): on a loaded machine the work,
+// where wall seconds measure the other processes too.
+OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool plain = false,
+                 double* cpu = nullptr) {
+    const std::clock_t c0 = std::clock();
     OracleOptions o;
     o.area.targetError = target;
     o.area.maxSpp = 1 << 20;
     o.penumbra.method = method;
-    o.penumbra.shortcuts = o.penumbra.backFaces = !plain;
-    return runOracle(scene, o);
+    o.penumbra.shortcuts = o.penumbra.backFaces = o.penumbra.merge = !plain;
+    OracleResult r = runOracle(scene, o);
+    if (cpu) *cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+    return r;
 }
 
 double meanOccluders(const ExactPenumbraStats& e) {
@@ -207,26 +214,29 @@ Realised realisedError(const Reference& ref, const ChannelImage& sampled) {
 }
 
 // RQMC at three targets and the exact pass on one rect light (the scene's first light).
-void againstRqmc(const std::string& name, const Scene& scene) {
+void againstRqmc(const std::string& name, const Scene& scene, double tightest) {
     const std::string light = scene.lights[0].name;
     std::printf("\n%s (%d x %d, %llu triangles), light \"%s\":\n", name.c_str(), scene.camera.width,
                 scene.camera.height, (unsigned long long)scene.stats.triangles, light.c_str());
-    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact);
-    const OracleResult plain = run(scene, 0.01, PenumbraMethod::Exact, true);
+    double cpuAll = 0.0, cpuPlain = 0.0, cpu = 0.0;
+    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact, false, &cpuAll);
+    const OracleResult plain = run(scene, 0.01, PenumbraMethod::Exact, true, &cpuPlain);
     const OracleResult automatic = run(scene, 0.01, PenumbraMethod::Auto);
     const Reference ref(scene, all.image);
     for (double target : {0.01, 0.001, 0.0001}) {
-        const OracleResult r = run(scene, target, PenumbraMethod::Sampled);
+        if (target < tightest) break;
+        const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false, &cpu);
         const AreaShadowStats& a = *r.stats.lights[0].area;
         const Realised e = realisedError(ref, r.image);
         std::printf(
-            "  RQMC target %-7g %9.3f s  spp mean %8.0f  unconverged %6llu  penumbra mae %.2e  "
+            "  RQMC target %-7g %9.3f s (run %.2f cpu s)  spp mean %8.0f  unconverged %6llu  "
+            "penumbra mae %.2e  "
             "p99 %.2e  covered %.1f%% of %zu pixels (%zu agreeing, at 0 or 1)\n"
             "    disagreeing and outside: %zu (%zu beyond 10 half-widths); within their interval "
             "of the exact V at the rays' offset origin: %zu\n",
-            target, a.seconds, a.sppMean(), (unsigned long long)a.pixelsUnconverged, e.mae, e.p99,
-            100.0 * double(e.covered) / double(std::max<size_t>(e.pixels, 1)), e.pixels, e.agreeing,
-            e.outside, e.farOutside, e.explainedByOffset);
+            target, a.seconds, cpu, a.sppMean(), (unsigned long long)a.pixelsUnconverged, e.mae,
+            e.p99, 100.0 * double(e.covered) / double(std::max<size_t>(e.pixels, 1)), e.pixels,
+            e.agreeing, e.outside, e.farOutside, e.explainedByOffset);
         std::fflush(stdout);
     }
     for (const OracleResult* r : {&plain, &all}) {
@@ -234,11 +244,13 @@ void againstRqmc(const std::string& name, const Scene& scene) {
         const ExactPenumbraStats& e = *a.exact;
         const Realised err = realisedError(ref, r->image);
         std::printf(
-            "  exact, %-6s %9.3f s (+ %.3f s sampled where it gave no answer)  %llu pixels (lit "
+            "  exact, %-6s %9.3f s (run %.2f cpu s; + %.3f s sampled where it gave no answer)  "
+            "%llu pixels (lit "
             "%llu, covered %llu without a union), occluders mean %.1f, p99 <= %llu, max %llu; "
             "back faces left out %llu of %llu candidates; kept sampled: %llu; penumbra mae %.2e\n",
-            r == &plain ? "plain" : "fast", e.seconds, a.seconds, (unsigned long long)e.pixelsExact,
-            (unsigned long long)e.pixelsLit, (unsigned long long)e.pixelsCovered, meanOccluders(e),
+            r == &plain ? "plain" : "fast", e.seconds, r == &plain ? cpuPlain : cpuAll, a.seconds,
+            (unsigned long long)e.pixelsExact, (unsigned long long)e.pixelsLit,
+            (unsigned long long)e.pixelsCovered, meanOccluders(e),
             (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
             (unsigned long long)e.occludersMax, (unsigned long long)e.backFacesTotal,
             (unsigned long long)e.candidatesTotal,
@@ -259,21 +271,24 @@ void againstRqmc(const std::string& name, const Scene& scene) {
 
 int main(int argc, char** argv) {
     int size = 64, maxK = 128, bunnyWidth = 160;
+    double tightest = 1e-4;
     CLI::App app{"the exact penumbra pass's cost: growth with occluders, against RQMC"};
     app.add_option("--size", size, "the growth study's image side")->check(CLI::Range(16, 1024));
     app.add_option("--max-k", maxK, "the finest split of the occluder")->check(CLI::Range(1, 1024));
     app.add_option("--bunny-size", bunnyWidth, "the bunny image's width (height 3/4 of it)")
         ->check(CLI::Range(16, 1024));
+    app.add_option("--tightest", tightest, "the tightest RQMC target run (0.01, 0.001 or 0.0001)")
+        ->check(CLI::Range(1e-4, 0.01));
     CLI11_PARSE(app, argc, argv);
     growth(size, maxK);
 
     Scene square = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");
     square.camera.width = square.camera.height = 200;
-    againstRqmc("penumbra_square", square);
+    againstRqmc("penumbra_square", square, tightest);
 
     Scene chair = loadScene(SO_SCENES_DIR "/soft_chair.scene.json");
     std::erase_if(chair.lights, [](const Light& l) { return l.type != LightType::Rect; });
-    againstRqmc("soft_chair", chair);
+    againstRqmc("soft_chair", chair, tightest);
 
     std::string why;
     const MeshPrimitive* bunny = test::cgalBunny(why);
@@ -283,6 +298,6 @@ int main(int argc, char** argv) {
     }
     Scene b = test::makeBunnyScene(*bunny, bunnyWidth, bunnyWidth * 3 / 4);
     test::useLowRectLight(b);
-    againstRqmc("bunny", b);
+    againstRqmc("bunny", b, tightest);
     return 0;
 }

@@ -183,7 +183,8 @@ std::vector<PixelAnswer> answers(const ExactScene& exact, const SurfaceBuffer& s
                                  const AreaLight& light, const ExactPenumbraOptions& options,
                                  const ExactPenumbraPlanes& planes, Progress* progress,
                                  const MeshFacing* facing) {
-    const OccluderOptions more{options.shortcuts, options.backFaces ? facing : nullptr};
+    const OccluderOptions more{options.shortcuts, options.merge,
+                               options.backFaces ? facing : nullptr};
     std::vector<PixelAnswer> out(sb.slotCount());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, sb.slotCount(), 64),
                       [&](const tbb::blocked_range<size_t>& r) {

@@ -54,6 +54,9 @@ struct ExactPenumbraOptions {
     // Back faces of closed meshes left out of the union where the camera tells the side
     // (mesh_facing.h); tests turn it off to check that it changes nothing.
     bool backFaces = true;
+    // Whole triangles' shadows merged along their shared edges before the union
+    // (occluder_union.h); tests turn it off to check that it changes nothing.
+    bool merge = true;
     // Triangles the pyramid from a point to the light may hold before the pixel keeps its
     // sampled V (the pass's work per pixel grows with them).
     uint32_t maxOccluders = 100000;
@@ -118,8 +121,8 @@ struct PenumbraChoice {
     // and occluders whose shadows reached the union) and its points it could not answer.
     uint64_t probePoints = 0, probeRays = 0, probeCandidates = 0, probeOccluders = 0,
              probeKeptSampled = 0;
-    // The estimates for this image (or band): the probe's counts in seconds, scaled by the
-    // image's points over the probe's.
+    // The estimates for this image (or band): the probe's counts in processor seconds, scaled by
+    // the image's points over the probe's.
     double exactSeconds = 0.0, sampledSeconds = 0.0;
 };
 

@@ -1,6 +1,9 @@
 #include "oracle/occluder_union.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -33,19 +36,27 @@ bool backFace(const MeshFacing* facing, TriangleId id, int side) {
 
 // The shadow triangle abc casts on the light from p: clipped to the pyramid, projected centrally
 // through p onto the light's plane (every point of the clipped part lies between p and the plane,
-// so dot(emitNormal, q - p) is in [-height, 0)), quantised. Empty where nothing is left.
-Path shadowOf(const dvec3& a, const dvec3& b, const dvec3& c, const OccluderQuery& q) {
+// so dot(emitNormal, q - p) is in [-height, 0)). Empty where nothing is left. `whole`: no
+// half-space cut the triangle, so the shadow's vertices are the projections of a, b and c, in
+// that order.
+SmallPolygon shadowOf(const dvec3& a, const dvec3& b, const dvec3& c, const OccluderQuery& q,
+                      bool& whole) {
     SmallPolygon part{a, b, c};
+    whole = true;
     for (const ExactTracer::HalfSpace& h : *q.pyramid) {
+        if (glm::dot(h.normal, a) <= h.offset && glm::dot(h.normal, b) <= h.offset &&
+            glm::dot(h.normal, c) <= h.offset)
+            continue;  // clipToHalfSpace would keep the polygon as it is
+        whole = false;
         part = clipToHalfSpace(part, h);
-        if (part.n < 3) return {};
+        if (part.n < 3) return SmallPolygon{};
     }
     for (dvec3& y : part) {
         const double along = glm::dot(q.frame->emitNormal, y - q.p);
-        if (!(along < 0.0)) return {};  // at p itself: only a triangle through p
+        if (!(along < 0.0)) return SmallPolygon{};  // at p itself: only a triangle through p
         y = q.p + (y - q.p) * (-q.height / along);
     }
-    return q.frame->path(part);
+    return part;
 }
 
 // Twice the signed area of the triangle abc: > 0 where c lies left of a -> b. Every shadow lies in
@@ -59,12 +70,12 @@ cInt turn(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
 // holds every vertex of `lit` (inside or on its boundary): then it holds lit, a polygon of those
 // vertices. Rounding may leave repeated vertices, collinear runs or, for a tiny shadow, no area or
 // a fold: those are refused (the union decides them).
-bool holds(const Path& shadow, const Path& lit) {
-    Path v;
-    for (const IntPoint& q : shadow)
-        if (v.empty() || !(q == v.back())) v.push_back(q);
-    while (v.size() > 1 && v.front() == v.back()) v.pop_back();
-    const size_t n = v.size();
+bool holds(const IntPoint* shadow, size_t count, const Path& lit) {
+    std::array<IntPoint, SmallPolygon::kCapacity> v;
+    size_t n = 0;
+    for (size_t i = 0; i < count; ++i)
+        if (n == 0 || !(shadow[i] == v[n - 1])) v[n++] = shadow[i];
+    while (n > 1 && v[0] == v[n - 1]) --n;
     if (n < 3) return false;
     int xChanges = 0, yChanges = 0, xSign = 0, ySign = 0;
     bool turns = false;
@@ -86,6 +97,74 @@ bool holds(const Path& shadow, const Path& lit) {
     return true;
 }
 
+bool lessPoint(const IntPoint& a, const IntPoint& b) {
+    return a.X < b.X || (a.X == b.X && a.Y < b.Y);
+}
+
+// The union of counter-clockwise triangles as the loops of their edges that no neighbour cancels
+// (issue 45, "merge a mesh's adjacent projections"). Under non-zero filling a set of paths covers
+// the points its winding number is not 0 at, and the winding number of a sum of cycles is the sum
+// of theirs: the triangles' edges, less the pairs that run the same segment both ways, still form
+// cycles whose winding number at every point is the count of triangles over it, so they fill
+// exactly the triangles' union. Two neighbours' shared edge cancels where their vertices quantised
+// to the same integers (the same double vertices give the same ones), which leaves Clipper a
+// patch's outline instead of every triangle in it.
+void appendMergedLoops(const std::vector<std::array<IntPoint, 3>>& triangles, Paths& out) {
+    struct Edge {
+        IntPoint lo, hi;
+        bool forward;  // runs lo -> hi
+    };
+    std::vector<Edge> edges;
+    edges.reserve(3 * triangles.size());
+    for (const std::array<IntPoint, 3>& t : triangles)
+        for (size_t k = 0; k < 3; ++k) {
+            const IntPoint &a = t[k], &b = t[(k + 1) % 3];
+            const bool forward = lessPoint(a, b);
+            edges.push_back({forward ? a : b, forward ? b : a, forward});
+        }
+    std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
+        if (!(x.lo == y.lo)) return lessPoint(x.lo, y.lo);
+        if (!(x.hi == y.hi)) return lessPoint(x.hi, y.hi);
+        return x.forward < y.forward;
+    });
+    // Per segment: as many runs as one way exceeds the other, from -> to.
+    std::vector<std::pair<IntPoint, IntPoint>> kept;
+    for (size_t e = 0; e < edges.size();) {
+        size_t end = e, forward = 0;
+        while (end < edges.size() && edges[end].lo == edges[e].lo && edges[end].hi == edges[e].hi)
+            forward += edges[end++].forward;
+        const size_t backward = end - e - forward;
+        for (size_t k = std::min(forward, backward); k < std::max(forward, backward); ++k)
+            kept.push_back(forward > backward ? std::pair{edges[e].lo, edges[e].hi}
+                                              : std::pair{edges[e].hi, edges[e].lo});
+        e = end;
+    }
+    std::sort(kept.begin(), kept.end(), [](const auto& x, const auto& y) {
+        return lessPoint(x.first, y.first) || (x.first == y.first && lessPoint(x.second, y.second));
+    });
+    // Every point has as many kept runs in as out: walking from a run's start always returns.
+    std::vector<uint8_t> used(kept.size(), 0);
+    for (size_t i = 0; i < kept.size(); ++i) {
+        if (used[i]) continue;
+        Path loop;
+        const IntPoint start = kept[i].first;
+        for (size_t cur = i;;) {
+            used[cur] = 1;
+            loop.push_back(kept[cur].first);
+            const IntPoint next = kept[cur].second;
+            if (next == start) break;
+            auto it = std::lower_bound(
+                kept.begin(), kept.end(), next,
+                [](const auto& edge, const IntPoint& q) { return lessPoint(edge.first, q); });
+            size_t k = size_t(it - kept.begin());
+            while (k < kept.size() && kept[k].first == next && used[k]) ++k;
+            SO_CHECK(k < kept.size() && kept[k].first == next);
+            cur = k;
+        }
+        out.push_back(std::move(loop));
+    }
+}
+
 template <typename Polygon>
 Path quantisedPath(const LightPlaneFrame& frame, const Polygon& poly) {
     Path out;
@@ -96,16 +175,6 @@ Path quantisedPath(const LightPlaneFrame& frame, const Polygon& poly) {
 }
 
 }  // namespace
-
-Paths lightMinusShadows(const Path& light, const Paths& shadows) {
-    ClipperLib::Clipper clipper;
-    clipper.AddPath(light, ClipperLib::ptSubject, true);
-    clipper.AddPaths(shadows, ClipperLib::ptClip, true);
-    Paths visible;
-    clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero,
-                    ClipperLib::pftNonZero);
-    return visible;
-}
 
 LightPlaneFrame::LightPlaneFrame(const dvec3& origin_, const dvec3& edgeU_, const dvec3& edgeV_,
                                  const dvec3& emitNormal_)
@@ -134,9 +203,51 @@ Path LightPlaneFrame::path(const std::vector<dvec3>& poly) const {
     return quantisedPath(*this, poly);
 }
 
+Paths lightMinusShadows(const Path& light, const Paths& shadows) {
+    ClipperLib::Clipper clipper;
+    clipper.AddPath(light, ClipperLib::ptSubject, true);
+    clipper.AddPaths(shadows, ClipperLib::ptClip, true);
+    Paths visible;
+    clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero,
+                    ClipperLib::pftNonZero);
+    return visible;
+}
+
+namespace {
+
+// The shadows met so far: polygons, and whole triangles kept apart to be merged.
+struct Shadows {
+    Paths polygons;
+    std::vector<std::array<IntPoint, 3>> triangles;
+    bool empty() const { return polygons.empty() && triangles.empty(); }
+    Paths all() const {
+        Paths out = polygons;
+        appendMergedLoops(triangles, out);
+        return out;
+    }
+};
+
+// Adds one shadow (the projected part of a triangle); returns whether it alone holds lit.
+bool addShadow(const SmallPolygon& shadow, bool whole, const OccluderQuery& q, Shadows& into) {
+    if (whole && q.options.merge) {
+        std::array<IntPoint, 3> t{q.frame->quantised(shadow.v[0]), q.frame->quantised(shadow.v[1]),
+                                  q.frame->quantised(shadow.v[2])};
+        const cInt area = turn(t[0], t[1], t[2]);
+        if (area == 0) return false;  // no area: covers nothing
+        if (area < 0) std::swap(t[1], t[2]);
+        into.triangles.push_back(t);
+        return q.options.shortcuts && holds(t.data(), 3, *q.lit);
+    }
+    into.polygons.push_back(q.frame->path(shadow));
+    const Path& path = into.polygons.back();
+    return q.options.shortcuts && holds(path.data(), path.size(), *q.lit);
+}
+
+}  // namespace
+
 OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q) {
     OccluderUnion u;
-    Paths shadows;
+    Shadows shadows;
     uint32_t nextCheck = 4;
     bool capped = false, alpha = false, covered = false;
     const auto visit = [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
@@ -151,19 +262,19 @@ OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q) {
             ++u.backFaces;
             return true;
         }
-        Path shadow = shadowOf(a, b, c, q);
-        if (shadow.empty()) return true;
+        bool whole = false;
+        const SmallPolygon shadow = shadowOf(a, b, c, q, whole);
+        if (shadow.n < 3) return true;
         if (tracer.alphaTested(id)) {
             alpha = true;
             return false;
         }
         ++u.occluders;
-        if (q.options.shortcuts && holds(shadow, *q.lit)) covered = true;
-        shadows.push_back(std::move(shadow));
+        covered = addShadow(shadow, whole, q, shadows);
         if (q.options.shortcuts && !covered && u.occluders == nextCheck) {
             nextCheck *= 4;
             ++u.unions;
-            covered = lightMinusShadows(*q.lit, shadows).empty();
+            covered = lightMinusShadows(*q.lit, shadows.all()).empty();
         }
         return !covered;
     };
@@ -181,7 +292,7 @@ OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q) {
         u.status = OccluderUnion::Status::Lit;
         return u;
     }
-    u.shadows = std::move(shadows);
+    u.shadows = shadows.all();
     return u;
 }
 

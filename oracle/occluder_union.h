@@ -8,6 +8,9 @@
 // base is integrated against it (polygon_visibility.h's LightShadows: a rect, or a disk's
 // inscribed and circumscribed n-gons).
 //
+// Triangles the pyramid does not cut go to the union as the outline of their patch, not one by
+// one: their shared edges cancel (appendMergedLoops in the .cpp; the same filled region).
+//
 // With `facing` (mesh_facing.h), the back faces of closed meshes are left out: the union is the
 // same region (to the quantisation: a shared edge clipped from its two triangles may round to
 // neighbouring integers). The rule is about segments from the point (mesh_facing.h): a segment to
@@ -55,6 +58,7 @@ struct LightPlaneFrame {
 // What a caller chooses of the union's work.
 struct OccluderOptions {
     bool shortcuts = true;               // the lit and covered shortcuts (tests turn them off)
+    bool merge = true;                   // whole triangles' shared edges merged (above)
     const MeshFacing* facing = nullptr;  // back faces left out (mesh_facing.h), or null
 };
 
@@ -81,11 +85,13 @@ struct OccluderUnion {
         AlphaTested,       // an alpha-tested triangle cuts the pyramid: no answer
     };
     Status status = Status::Partial;
-    ClipperLib::Paths shadows;  // Partial: every shadow met, counter-clockwise
-    uint32_t occluders = 0;     // shadows that reached the union (up to where it stopped)
-    uint32_t candidates = 0;    // triangles the BVH query returned (the pyramid's cost)
-    uint32_t backFaces = 0;     // candidates left out by `facing`
-    uint32_t unions = 0;        // Clipper calls made by the covered checks
+    // Partial: the shadows met, as paths whose non-zero filling is their union (a merged patch's
+    // outline, or one counter-clockwise path per shadow).
+    ClipperLib::Paths shadows;
+    uint32_t occluders = 0;   // shadows that reached the union (up to where it stopped)
+    uint32_t candidates = 0;  // triangles the BVH query returned (the pyramid's cost)
+    uint32_t backFaces = 0;   // candidates left out by `facing`
+    uint32_t unions = 0;      // Clipper calls made by the covered checks
 };
 
 OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q);

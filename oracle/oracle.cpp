@@ -273,6 +273,18 @@ LightVerification verifyLight(const LightPass& p, const Verifier& verifier, uint
     const bool bounded =
         sampled && p.options.penumbra.method != PenumbraMethod::Both && p.image.has(boundName);
     const float* bound = bounded ? p.image.channel(boundName) : nullptr;
+    // A pixel the exact pass gave (--penumbra exact) took no samples, yet it is a measurement: the
+    // verifier, which reads spp 0 as a pixel skipped below the horizon, is given 1 there, so that
+    // it compares the exact V (stderr 0) with its own independent estimate.
+    std::vector<float> sppMeasured;
+    const std::string exactName = ch::lightChannel(light.name, ch::kExact);
+    if (sampled && p.image.has(exactName)) {
+        const float* mask = p.image.channel(exactName);
+        sppMeasured.assign(spp, spp + p.pixels);
+        for (size_t i = 0; i < sppMeasured.size(); ++i)
+            if (mask[i] == 1.0f && sppMeasured[i] == 0.0f) sppMeasured[i] = 1.0f;
+        spp = sppMeasured.data();
+    }
     LightVerification out;
     p.arena.execute(
         [&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp, bound); });
