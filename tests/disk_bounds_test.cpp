@@ -123,14 +123,19 @@ TEST(DiskBounds, SquareShadowInsideTheDiskMatchesTheClosedForm) {
         const double expected = 1.0 - shadow / diskSolidAngle(disk, p, n);
         const DiskVisibility v = diskLightVisibility(s.tracer, disk, p, n, {}, 1000, options);
         ASSERT_EQ(v.counts.status, PolygonVisibilityStatus::Exact);
-        EXPECT_LE(v.lower, expected + 1e-9);
-        EXPECT_GE(v.upper, expected - 1e-9);
-        EXPECT_LT(v.halfWidth(), 1e-12) << "no shadow crosses the disk's edge";
+        EXPECT_LE(v.lower, expected);
+        EXPECT_GE(v.upper, expected);
+        // The polygons' bound has no width where no shadow crosses the disk's edge: the stated
+        // one is the shadows' quantisation allowance alone.
+        const LightShadows shadows = diskShadows(s.tracer, disk, p, n, {}, 1000);
+        const DiskBound b = diskBoundAt(shadows, disk, p, n, 32);
+        EXPECT_LT(b.upper - b.lower, 1e-12);
+        EXPECT_NEAR(v.halfWidth(), 1e-8, 1e-12);
         EXPECT_EQ(v.sides, options.minSides);
         worst = std::max(worst, std::fabs(v.counts.V - expected));
     }
     std::printf("[ disk ] square shadow inside the disk: max |V - closed form| = %.3g\n", worst);
-    EXPECT_LT(worst, 1e-8);
+    EXPECT_LT(worst, 5e-9);
 }
 
 // Points whose view of the disk the square's shadow crosses at its edge, on the floor and on
@@ -148,13 +153,16 @@ TEST(DiskBounds, SquareShadowAcrossTheEdgeWithinTheTargetOfManySides) {
                 const dvec3 p(-2.0 + 0.375 * i, 0.0, -2.0 + 0.375 * j);
                 const DiskVisibility v =
                     diskLightVisibility(s.tracer, disk, p, n, {}, 1000, options);
+                // Tilted receivers may see none of the disk.
+                if (v.counts.status == PolygonVisibilityStatus::NoLight) continue;
                 ASSERT_EQ(v.counts.status, PolygonVisibilityStatus::Exact);
                 if (v.counts.occluders == 0) continue;
                 const LightShadows shadows = diskShadows(s.tracer, disk, p, n, {}, 1000);
                 const DiskBound fine = diskBoundAt(shadows, disk, p, n, kMaxDiskSides);
                 EXPECT_LE(v.halfWidth(), options.targetHalfWidth);
                 EXPECT_TRUE(v.reachedTarget);
-                // The two intervals are both sure: they overlap.
+                // The two intervals are both sure (the fine one up to the shadows' quantisation,
+                // which the adaptive one's allowance holds): they overlap.
                 EXPECT_LE(v.lower, fine.upper) << p.x << " " << p.z;
                 EXPECT_GE(v.upper, fine.lower) << p.x << " " << p.z;
                 worst = std::max(worst, std::fabs(v.counts.V - 0.5 * (fine.lower + fine.upper)));
