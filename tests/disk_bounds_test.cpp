@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "cli_run.h"
 #include "core/channels.h"
 #include "core/scene.h"
 #include "exact_penumbra_util.h"
@@ -270,6 +273,29 @@ TEST(ExactDiskSphere, SameImageAtAnyThreadCount) {
         EXPECT_GT(r.stats.lights[0].area->exact->pixelsExact, 1000u);
     }
     EXPECT_EQ(images[0], images[1]);
+}
+
+// The command line: the bound's flags, a bad value one line naming its flag, and the channel and
+// oracle.json's error_kind on a sphere light.
+TEST(ExactDiskSphere, CommandLineFlags) {
+    const std::string scene = std::string(SO_SCENES_DIR) + "/sphere_light.scene.json";
+    const std::string out = ::testing::TempDir() + "so_exact_sphere_cli";
+    const RunResult bad = run("trace " + scene + " --out " + out + " --bound-max-sides 100");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_EQ(bad.stderrText,
+              "command line: --bound-max-sides: 100 is not a power of two in [32, 16384]\n");
+    const RunResult ok =
+        run("trace " + scene + " --out " + out +
+            " --width 48 --height 36 --quiet --penumbra exact --bound-target 1e-5");
+    ASSERT_EQ(ok.exitCode, 0) << ok.stderrText;
+    const ChannelImage img = readExr(out + "/oracle.exr");
+    EXPECT_NE(img.channel("globe.bound"), nullptr);
+    std::ifstream in(out + "/oracle.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string json = text.str();
+    EXPECT_NE(json.find("\"error_kind\": \"bound\""), std::string::npos);
+    EXPECT_NE(json.find("\"target_half_width\": 1e-05"), std::string::npos);
 }
 
 }  // namespace
