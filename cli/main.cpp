@@ -70,7 +70,7 @@ static std::shared_ptr<PenumbraFlags> addPenumbraFlags(CLI::App* cmd) {
     cmd->add_option("--bound-target", flags->bound.targetHalfWidth,
                     "disk and sphere lights with --penumbra exact, both or auto: the half-width "
                     "of V's guaranteed interval to reach (default 1e-6)")
-        ->check(CLI::Range(1e-9, 0.5));
+        ->check(CLI::Range(1e-7, 0.5));
     cmd->add_option("--bound-max-sides", flags->bound.maxSides,
                     "the most sides of the polygons bounding a disk, a power of two in [32, " +
                         std::to_string(so::kMaxDiskSides) +

@@ -18,7 +18,8 @@
 // The polygons' vertices are quantised (polygon_visibility.h) by at most 2^-28.2 of the radius;
 // P_in is built on a circle 2^-27 smaller and P_out around one 2^-27 larger, so the quantised
 // polygons still enclose and are enclosed. The occluders' own quantisation (about 1e-9 of V, as
-// for rect lights) is not in the bound.
+// for rect lights) is not in the polygons' bound (diskBoundAt): diskLightVisibility adds 1e-8 to
+// both ends for it wherever a shadow reached the light.
 //
 // A sphere seen from p is the disk of its silhouette (sphereSilhouette): a uniformly emitting
 // sphere gives p the irradiance of that disk, and each ray from p to the visible cap ends on it.
@@ -62,6 +63,22 @@ inline constexpr uint32_t kMaxDiskSides = 16384;
 std::vector<glm::dvec3> inscribedPolygon(const DiskLightShape& disk, uint32_t sides, double scale);
 std::vector<glm::dvec3> circumscribedPolygon(const DiskLightShape& disk, uint32_t sides,
                                              double scale);
+
+// The arc of the disk's circle above p's horizon: angles (about e1 towards e2) within `half` of
+// `center`; half = pi where all of it is above, 0 where none is.
+struct DiskArc {
+    double center = 0.0, half = 0.0;
+};
+DiskArc diskArcAbove(const DiskLightShape& disk, const glm::dvec3& p, const glm::dvec3& n);
+// Polygons that put `sides` of their sides on the arc (equal steps, its ends included) and a few
+// (steps of at most a quarter turn) round the rest of the circle: still inscribed in, and
+// circumscribed about, the whole circle (any angles do, with gaps under half a turn), so the
+// bound holds whatever the arc; it is tight where the horizon cuts the disk to a sliver. With
+// half = pi, the regular polygons above.
+std::vector<glm::dvec3> inscribedPolygon(const DiskLightShape& disk, uint32_t sides, double scale,
+                                         const DiskArc& arc);
+std::vector<glm::dvec3> circumscribedPolygon(const DiskLightShape& disk, uint32_t sides,
+                                             double scale, const DiskArc& arc);
 
 struct DiskBoundOptions {
     double targetHalfWidth = 1e-6;  // `--bound-target`

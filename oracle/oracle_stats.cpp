@@ -47,7 +47,8 @@ constexpr const char* kVerifyMethod =
 constexpr const char* kToleranceNote =
     "a hard-light pixel is ambiguous where the reference ray passes closer than abs + "
     "per_unit_distance * t + |oracle origin - hit point| to changing its answer";
-constexpr const char* kAreaTest = "area: |V - V_ref| <= z * combined stderr";
+constexpr const char* kAreaTest =
+    "area: |V - V_ref| <= z * combined stderr (+ bound where NAME.bound bounds V)";
 constexpr const char* kHardTest = "hard: exact re-trace, V must match";
 
 json finiteOrNull(double v) {
