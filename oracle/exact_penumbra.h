@@ -118,9 +118,10 @@ struct PenumbraChoice {
     std::string reason;
     // The probe: its points that the camera hit, the shadow rays the sampled pass traced on them
     // to the target, and the exact pass's pyramids' triangles (candidates the BVH query returned,
-    // and occluders whose shadows reached the union) and its points it could not answer.
+    // and occluders whose shadows reached the union) and its points it could not answer; disk and
+    // sphere lights: the sides of the last polygons the points' bounds integrated (else 0).
     uint64_t probePoints = 0, probeRays = 0, probeCandidates = 0, probeOccluders = 0,
-             probeKeptSampled = 0;
+             probeKeptSampled = 0, probeBoundSides = 0;
     // The estimates for this image (or band): the probe's counts in processor seconds, scaled by
     // the image's points over the probe's.
     double exactSeconds = 0.0, sampledSeconds = 0.0;

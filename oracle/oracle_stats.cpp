@@ -182,7 +182,8 @@ json choiceJson(const PenumbraChoice& c) {
               {"rays", c.probeRays},
               {"candidates", c.probeCandidates},
               {"occluders", c.probeOccluders},
-              {"kept_sampled", c.probeKeptSampled}}},
+              {"kept_sampled", c.probeKeptSampled},
+              {"bound_sides", c.probeBoundSides}}},
             {"estimate_seconds", {{"exact", c.exactSeconds}, {"sampled", c.sampledSeconds}}}};
 }
 
@@ -516,6 +517,7 @@ PenumbraChoice readChoice(const Fields& f) {
     c.probeCandidates = probe.u64("candidates");
     c.probeOccluders = probe.u64("occluders");
     c.probeKeptSampled = probe.u64("kept_sampled");
+    c.probeBoundSides = probe.u64("bound_sides");
     const Fields estimate = f.object("estimate_seconds");
     c.exactSeconds = estimate.number("exact");
     c.sampledSeconds = estimate.number("sampled");

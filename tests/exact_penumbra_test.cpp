@@ -427,6 +427,8 @@ TEST(ExactPenumbra, AutoChoosesPerLightAndSaysWhy) {
         EXPECT_EQ(bulb.choice->reason.find("estimated"), 0u) << bulb.choice->reason;
         EXPECT_GT(bulb.choice->probePoints, 50u);
         EXPECT_GT(bulb.choice->probeCandidates, 0u);
+        EXPECT_GT(bulb.choice->probeBoundSides, 0u);  // the bound's cost is in the estimate
+        EXPECT_EQ(window.choice->probeBoundSides, 0u);
         EXPECT_EQ(bulb.area->exact.has_value(), bulb.choice->chosen == PenumbraMethod::Exact);
         if (bulb.area->exact) {
             EXPECT_EQ(bulb.area->exact->errorKind, "bound");
