@@ -93,12 +93,6 @@ DiskLightShape sphereSilhouette(const dvec3& center, double radius, const dvec3&
     return disk;
 }
 
-bool diskPartAboveHorizon(const DiskLightShape& disk, const dvec3& p, const dvec3& n) {
-    const double nm = glm::dot(n, disk.emitNormal);
-    return glm::dot(n, disk.center - p) + disk.radius * std::sqrt(std::max(0.0, 1.0 - nm * nm)) >
-           0.0;
-}
-
 bool diskAboveHorizon(const DiskLightShape& disk, const dvec3& p, const dvec3& n) {
     const double nm = glm::dot(n, disk.emitNormal);
     return glm::dot(n, disk.center - p) - disk.radius * std::sqrt(std::max(0.0, 1.0 - nm * nm)) >
@@ -231,7 +225,7 @@ DiskVisibility diskLightVisibility(const ExactTracer& tracer, const DiskLightSha
     DiskVisibility out;
     // The gathering polygon is larger than the disk: it may reach above the horizon where the disk
     // does not. Then no light (NoLight, V = 0), not the "nothing in the pyramid" below.
-    if (!diskPartAboveHorizon(disk, p, n)) return out;
+    if (!(diskArcAbove(disk, p, n).half > 0.0)) return out;
     const LightShadows shadows = diskShadows(tracer, disk, p, n, self, maxCandidates, more);
     out.counts = shadows.counts();
     if (out.counts.status != PolygonVisibilityStatus::Exact) return out;

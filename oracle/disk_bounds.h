@@ -48,8 +48,6 @@ void diskAxes(const glm::dvec3& m, glm::dvec3& e1, glm::dvec3& e2);
 // (d^2 - R^2)/d from p towards the centre, facing p.
 DiskLightShape sphereSilhouette(const glm::dvec3& center, double radius, const glm::dvec3& p);
 
-// Whether some part of the disk lies strictly above p's horizon (unit normal n).
-bool diskPartAboveHorizon(const DiskLightShape& disk, const glm::dvec3& p, const glm::dvec3& n);
 // Whether the whole disk lies strictly above p's horizon (unit normal n).
 bool diskAboveHorizon(const DiskLightShape& disk, const glm::dvec3& p, const glm::dvec3& n);
 // The cosine-weighted solid angle int cos_p dw of the disk seen from p, in closed form (the
