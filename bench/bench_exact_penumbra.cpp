@@ -10,13 +10,15 @@
 //    the shipped penumbra_square (200 x 200; its exact pass matches the closed form, part 1) and
 //    two scenes without a closed form: soft_chair's window (its sphere bulb left out: it has no
 //    exact pass) and the CGAL bunny under a low rect light. Each RQMC run's realised penumbra error
-//    and its intervals' coverage are measured against the exact pass over every pixel
-//    (--exact-pixels all).
+//    and its intervals' coverage are measured against the exact pass over every pixel (which
+//    finds its own pixels), run as it ships and as a plain union (no shortcuts, every back face),
+//    and what `auto` chooses at 0.01.
 //
-//   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W]
+//   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W] [--tightest T]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -48,13 +50,21 @@ Scene tiledPenumbraScene(int size, int k) {
     return s.scene;
 }
 
-OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool allPixels) {
+// plain: the exact pass without its shortcuts, with every back face in the union and no merging
+// (issue 45's "before", on the pass's own pixels).
+// cpu: the whole run's processor seconds, all threads (std::clock): on a loaded machine the work,
+// where wall seconds measure the other processes too.
+OracleResult run(const Scene& scene, double target, PenumbraMethod method, bool plain = false,
+                 double* cpu = nullptr) {
+    const std::clock_t c0 = std::clock();
     OracleOptions o;
     o.area.targetError = target;
     o.area.maxSpp = 1 << 20;
     o.penumbra.method = method;
-    o.penumbra.allPixels = allPixels;
-    return runOracle(scene, o);
+    o.penumbra.shortcuts = o.penumbra.backFaces = o.penumbra.merge = !plain;
+    OracleResult r = runOracle(scene, o);
+    if (cpu) *cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+    return r;
 }
 
 double meanOccluders(const ExactPenumbraStats& e) {
@@ -89,9 +99,9 @@ void growth(int size, int maxK) {
     std::vector<std::pair<double, double>> fit;  // (log occluders, log us per pixel)
     for (int k = 1; k <= maxK; k *= 2) {
         const Scene scene = tiledPenumbraScene(size, k);
-        const OracleResult ex = run(scene, 0.01, PenumbraMethod::Exact, false);
+        const OracleResult ex = run(scene, 0.01, PenumbraMethod::Exact);
         const ExactPenumbraStats& e = *ex.stats.lights[0].area->exact;
-        const OracleResult rq = run(scene, 0.001, PenumbraMethod::Sampled, false);
+        const OracleResult rq = run(scene, 0.001, PenumbraMethod::Sampled);
         const AreaShadowStats& ra = *rq.stats.lights[0].area;
         const uint64_t rqPenumbra = ra.pixelsSampled - ra.pixelsAgreeing;
         const double usPerPixel = 1e6 * e.seconds / double(std::max<uint64_t>(e.pixelsExact, 1));
@@ -204,61 +214,81 @@ Realised realisedError(const Reference& ref, const ChannelImage& sampled) {
 }
 
 // RQMC at three targets and the exact pass on one rect light (the scene's first light).
-void againstRqmc(const std::string& name, const Scene& scene) {
+void againstRqmc(const std::string& name, const Scene& scene, double tightest) {
     const std::string light = scene.lights[0].name;
     std::printf("\n%s (%d x %d, %llu triangles), light \"%s\":\n", name.c_str(), scene.camera.width,
                 scene.camera.height, (unsigned long long)scene.stats.triangles, light.c_str());
-    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact, true);
-    const OracleResult pen = run(scene, 0.01, PenumbraMethod::Exact, false);
+    double cpuAll = 0.0, cpuPlain = 0.0, cpu = 0.0;
+    const OracleResult all = run(scene, 0.01, PenumbraMethod::Exact, false, &cpuAll);
+    const OracleResult plain = run(scene, 0.01, PenumbraMethod::Exact, true, &cpuPlain);
+    const OracleResult automatic = run(scene, 0.01, PenumbraMethod::Auto);
     const Reference ref(scene, all.image);
     for (double target : {0.01, 0.001, 0.0001}) {
-        const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false);
+        if (target < tightest) break;
+        const OracleResult r = run(scene, target, PenumbraMethod::Sampled, false, &cpu);
         const AreaShadowStats& a = *r.stats.lights[0].area;
         const Realised e = realisedError(ref, r.image);
         std::printf(
-            "  RQMC target %-7g %9.3f s  spp mean %8.0f  unconverged %6llu  penumbra mae %.2e  "
+            "  RQMC target %-7g %9.3f s (run %.2f cpu s)  spp mean %8.0f  unconverged %6llu  "
+            "penumbra mae %.2e  "
             "p99 %.2e  covered %.1f%% of %zu pixels (%zu agreeing, at 0 or 1)\n"
             "    disagreeing and outside: %zu (%zu beyond 10 half-widths); within their interval "
             "of the exact V at the rays' offset origin: %zu\n",
-            target, a.seconds, a.sppMean(), (unsigned long long)a.pixelsUnconverged, e.mae, e.p99,
-            100.0 * double(e.covered) / double(std::max<size_t>(e.pixels, 1)), e.pixels, e.agreeing,
-            e.outside, e.farOutside, e.explainedByOffset);
+            target, a.seconds, cpu, a.sppMean(), (unsigned long long)a.pixelsUnconverged, e.mae,
+            e.p99, 100.0 * double(e.covered) / double(std::max<size_t>(e.pixels, 1)), e.pixels,
+            e.agreeing, e.outside, e.farOutside, e.explainedByOffset);
         std::fflush(stdout);
     }
-    for (const OracleResult* r : {&pen, &all}) {
+    for (const OracleResult* r : {&plain, &all}) {
         const AreaShadowStats& a = *r->stats.lights[0].area;
         const ExactPenumbraStats& e = *a.exact;
         const Realised err = realisedError(ref, r->image);
         std::printf(
-            "  exact, %-8s %9.3f s (+ %.3f s sampled at 0.01)  %llu pixels, occluders mean %.1f, "
-            "p99 <= %llu, max %llu; kept sampled: %llu; penumbra mae %.2e\n",
-            e.allPixels ? "all" : "penumbra", e.seconds, a.seconds,
-            (unsigned long long)e.pixelsExact, meanOccluders(e),
+            "  exact, %-6s %9.3f s (run %.2f cpu s; + %.3f s sampled where it gave no answer)  "
+            "%llu pixels (lit "
+            "%llu, covered %llu without a union), occluders mean %.1f, p99 <= %llu, max %llu; "
+            "back faces left out %llu of %llu candidates; kept sampled: %llu; penumbra mae %.2e\n",
+            r == &plain ? "plain" : "fast", e.seconds, r == &plain ? cpuPlain : cpuAll, a.seconds,
+            (unsigned long long)e.pixelsExact, (unsigned long long)e.pixelsLit,
+            (unsigned long long)e.pixelsCovered, meanOccluders(e),
             (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
-            (unsigned long long)e.occludersMax, (unsigned long long)e.pixelsTooManyOccluders,
-            err.mae);
+            (unsigned long long)e.occludersMax, (unsigned long long)e.backFacesTotal,
+            (unsigned long long)e.candidatesTotal,
+            (unsigned long long)(e.pixelsTooManyOccluders + e.pixelsAlphaTested), err.mae);
     }
+    const OracleLightStats& l = automatic.stats.lights[0];
+    if (l.choice)
+        std::printf(
+            "  auto at 0.01: %s (%s; probe %llu points, %llu rays, %llu candidates, %llu "
+            "occluders)\n",
+            penumbraMethodName(l.choice->chosen), l.choice->reason.c_str(),
+            (unsigned long long)l.choice->probePoints, (unsigned long long)l.choice->probeRays,
+            (unsigned long long)l.choice->probeCandidates,
+            (unsigned long long)l.choice->probeOccluders);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     int size = 64, maxK = 128, bunnyWidth = 160;
+    double tightest = 1e-4;
     CLI::App app{"the exact penumbra pass's cost: growth with occluders, against RQMC"};
     app.add_option("--size", size, "the growth study's image side")->check(CLI::Range(16, 1024));
     app.add_option("--max-k", maxK, "the finest split of the occluder")->check(CLI::Range(1, 1024));
     app.add_option("--bunny-size", bunnyWidth, "the bunny image's width (height 3/4 of it)")
         ->check(CLI::Range(16, 1024));
+    app.add_option("--tightest", tightest, "the tightest RQMC target run (0.01, 0.001 or 0.0001)")
+        ->check(CLI::Range(1e-4, 0.01));
     CLI11_PARSE(app, argc, argv);
     growth(size, maxK);
 
     Scene square = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");
     square.camera.width = square.camera.height = 200;
-    againstRqmc("penumbra_square", square);
+    againstRqmc("penumbra_square", square, tightest);
 
     Scene chair = loadScene(SO_SCENES_DIR "/soft_chair.scene.json");
     std::erase_if(chair.lights, [](const Light& l) { return l.type != LightType::Rect; });
-    againstRqmc("soft_chair", chair);
+    againstRqmc("soft_chair", chair, tightest);
 
     std::string why;
     const MeshPrimitive* bunny = test::cgalBunny(why);
@@ -268,6 +298,6 @@ int main(int argc, char** argv) {
     }
     Scene b = test::makeBunnyScene(*bunny, bunnyWidth, bunnyWidth * 3 / 4);
     test::useLowRectLight(b);
-    againstRqmc("bunny", b);
+    againstRqmc("bunny", b, tightest);
     return 0;
 }

@@ -50,20 +50,32 @@ static void addQuiet(CLI::App* cmd, bool& progress) {
 // command runs so that a bad one is the tool's one-line error.
 struct PenumbraFlags {
     std::string method = "sampled", pixels = "penumbra";
+    so::DiskBoundOptions bound;
     void applyTo(so::OracleOptions& o) const {
         o.penumbra.method = so::parsePenumbraMethod(method, "command line", "--penumbra");
         o.penumbra.allPixels = so::parseExactPixels(pixels, "command line", "--exact-pixels");
+        o.penumbra.bound = so::checkedBoundOptions(bound, "command line", "--bound-max-sides");
     }
 };
 static std::shared_ptr<PenumbraFlags> addPenumbraFlags(CLI::App* cmd) {
     auto flags = std::make_shared<PenumbraFlags>();
     cmd->add_option("--penumbra", flags->method,
                     "rect lights: sampled (RQMC with 95% intervals, default), exact (clipped "
-                    "polygons where the samples disagree; stderr 0 there) or both (V sampled, "
-                    "V_exact beside it); disk and sphere lights are always sampled");
+                    "polygons on every pixel; stderr 0 there), both (V sampled, V_exact beside "
+                    "it) or auto (per light, exact or sampled, whichever a probe estimates "
+                    "cheaper); disk and sphere lights: exact gives V in a guaranteed interval "
+                    "(NAME.bound)");
     cmd->add_option("--exact-pixels", flags->pixels,
-                    "with --penumbra exact or both: penumbra (pixels whose samples disagree, "
-                    "default) or all (every sampled pixel)");
+                    "with --penumbra both: penumbra (pixels whose samples disagree, default) or "
+                    "all (every sampled pixel); exact finds its own pixels");
+    cmd->add_option("--bound-target", flags->bound.targetHalfWidth,
+                    "disk and sphere lights with --penumbra exact, both or auto: the half-width "
+                    "of V's guaranteed interval to reach (default 1e-6)")
+        ->check(CLI::Range(1e-7, 0.5));
+    cmd->add_option("--bound-max-sides", flags->bound.maxSides,
+                    "the most sides of the polygons bounding a disk, a power of two in [32, " +
+                        std::to_string(so::kMaxDiskSides) +
+                        "] (default 4096); a pixel stopped by it states the half-width it reached");
     return flags;
 }
 

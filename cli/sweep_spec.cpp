@@ -79,7 +79,7 @@ void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& or
     // not linked here: the sweep task parses them with its functions).
     using Names = std::vector<std::string>;
     for (const auto& [key, target, allowed] :
-         {std::tuple{"penumbra", &oracle.penumbra, Names{"sampled", "exact", "both"}},
+         {std::tuple{"penumbra", &oracle.penumbra, Names{"sampled", "exact", "both", "auto"}},
           std::tuple{"exact_pixels", &oracle.exactPixels, Names{"penumbra", "all"}}}) {
         if (!o.contains(key)) continue;
         const std::string value = o[key].is_string() ? o[key].get<std::string>() : "";

@@ -48,7 +48,7 @@ struct SweepOracleSettings {
     std::optional<uint32_t> seed;
     std::optional<double> targetError, agreementTarget;
     std::optional<int> maxSpp, fixedSpp;
-    // "sampled", "exact" or "both"; "penumbra" or "all" (trace --penumbra, --exact-pixels).
+    // "sampled", "exact", "both" or "auto"; "penumbra" or "all" (trace --penumbra, --exact-pixels).
     std::optional<std::string> penumbra, exactPixels;
 };
 

@@ -15,6 +15,7 @@
 #include "core/process_clock.h"
 #include "core/progress.h"
 #include "oracle/embree_handles.h"
+#include "oracle/exact_penumbra.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/points.h"
 
@@ -71,6 +72,12 @@ void printOracleCost(const OracleStats& stats) {
     for (const OracleLightStats& l : stats.lights) {
         if (!l.area || !l.area->targetError) continue;
         const AreaShadowStats& a = *l.area;
+        // The exact pass gave the light's pixels (sampled only where it gave no answer).
+        if (a.exact && a.exact->method == PenumbraMethod::Exact && a.exact->notApplied.empty()) {
+            std::cout << "  " << l.name << ": exact, " << a.exact->pixelsExact << " pixels in "
+                      << a.exact->seconds << " s; " << a.pixelsSampled << " sampled\n";
+            continue;
+        }
         std::cout << "  " << l.name << ": target " << *a.targetError << " took " << a.seconds
                   << " s (mean " << a.sppMean() << " spp)";
         const double tighter = *a.targetError / 2.0;

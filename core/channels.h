@@ -39,6 +39,9 @@ inline constexpr const char* kSpp = "spp";  // sampled area lights
 // both, the exact V beside the sampled one (the sampled V where the exact pass did not apply).
 inline constexpr const char* kExact = "exact";
 inline constexpr const char* kVisibilityExact = "V_exact";
+// Disk and sphere lights with --penumbra exact or both: the half-width of the guaranteed interval
+// about the exact pass's V (V_exact with both) where `exact` is 1, else 0.
+inline constexpr const char* kBound = "bound";
 inline constexpr const char* kUnconverged = "unconverged";  // adaptive: budget spent, target missed
 inline constexpr const char* kOccluderDistance = "occ_dist";        // the contact effect
 inline constexpr const char* kPredictedAliasing = "aliasing_pred";  // raster.exr only

@@ -409,7 +409,7 @@ NearTarget nearTarget(const AreaLight& light) {
 
 void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) {
     const size_t px = sb.pixelOfSlot(s);
-    if (px == SIZE_MAX) return;
+    if (px == SIZE_MAX || (out.onlySlots && !(*out.onlySlots)[s])) return;
     out.V[px] = out.stderr_[px] = out.spp[px] = out.cosine[px] = 0.0f;
     if (!sb.hit[s]) {
         ++st.skippedBackground;

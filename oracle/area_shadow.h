@@ -115,6 +115,9 @@ struct AreaShadowPlanes {
     float* spp = nullptr;
     float* cosine = nullptr;       // towards the light's centre
     float* unconverged = nullptr;  // adaptive runs, else null: 1 where the budget ran out first
+    // Where given, only the slots it marks are sampled and written (the pixels the exact pass
+    // left, exact_penumbra.h); the others' planes are left as they are.
+    const std::vector<uint8_t>* onlySlots = nullptr;
 };
 
 // `stream` separates the sample sequences of different lights. Runs in parallel inside the

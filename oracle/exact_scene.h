@@ -27,6 +27,10 @@ class ExactScene {
     // the double vertices, and the triangle's unit normal turned to the side of `facing`.
     glm::dvec3 point(TriangleId id, double u, double v) const;
     glm::dvec3 normal(TriangleId id, const glm::dvec3& facing) const;
+    size_t meshCount() const { return lsPositions_.size(); }
+    const std::vector<glm::dvec3>& positions(uint32_t mesh) const { return lsPositions_.at(mesh); }
+    const std::vector<uint32_t>& indices(uint32_t mesh) const { return *indices_.at(mesh); }
+    bool alphaTested(uint32_t mesh) const { return tracer_.alphaTested({mesh, 0}); }
 
   private:
     std::vector<std::vector<glm::dvec3>> lsPositions_;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -24,6 +25,8 @@
 #include "oracle/exact_penumbra.h"
 #include "oracle/exact_scene.h"
 #include "oracle/hard_shadow.h"
+#include "oracle/mesh_facing.h"
+#include "oracle/penumbra_choice.h"
 #include "oracle/points.h"
 #include "oracle/primary_image.h"
 #include "oracle/surface_buffer.h"
@@ -68,37 +71,100 @@ struct LightPass {
     ChannelImage& image;
     uint64_t pixels;
     bool penumbra, contact;
-    // The exact penumbra pass's scene (--penumbra exact or both, rect lights); null otherwise.
+    // The exact penumbra pass's scene (--penumbra exact, both or auto, area lights); null
+    // otherwise.
     const ExactScene* exact;
+    // --penumbra auto: the probe's points (penumbra_choice.h), and the points the camera hit.
+    const PenumbraProbe* probe;
+    uint64_t hitPoints;
+    // The back faces the exact pass may leave out (mesh_facing.h); null without a camera.
+    const MeshFacing* facing;
 };
 
-// An area light with "penumbra": sampled, with V, stderr, spp and cos.
-AreaShadowStats traceSampledLight(const LightPass& p, uint32_t li, float* V, float* cosine,
-                                  Progress& progress) {
+// An area light with "penumbra": its V, stderr, spp and cos planes (and unconverged, adaptive).
+AreaShadowPlanes sampledPlanes(const LightPass& p, const Light& light, float* V, float* cosine) {
     namespace ch = channels;
-    const Light& light = p.scene.lights[li];
     AreaShadowPlanes out{V, p.image.addChannel(ch::lightChannel(light.name, ch::kStdErr)),
                          p.image.addChannel(ch::lightChannel(light.name, ch::kSpp)), cosine,
                          nullptr};
-    const AreaSampling& sampling = p.options.area;
     // Only adaptive runs have a target to miss.
-    if (sampling.fixedSpp <= 0)
+    if (p.options.area.fixedSpp <= 0)
         out.unconverged = p.image.addChannel(ch::lightChannel(light.name, ch::kUnconverged));
-    const AreaLight al = makeAreaLight(light, p.accel.frame());
+    return out;
+}
+
+// The sampled pass (on out.onlySlots where given).
+AreaShadowStats traceSampledLight(const LightPass& p, uint32_t li, const AreaShadowPlanes& out,
+                                  Progress& progress) {
+    const AreaLight al = makeAreaLight(p.scene.lights[li], p.accel.frame());
     AreaShadowStats s;
-    p.arena.execute([&] { s = traceAreaShadows(p.accel, p.sb, al, sampling, li, out, &progress); });
+    p.arena.execute(
+        [&] { s = traceAreaShadows(p.accel, p.sb, al, p.options.area, li, out, &progress); });
     return s;
+}
+
+bool exactPassTakes(LightType type) {
+    return type == LightType::Rect || type == LightType::Disk || type == LightType::Sphere;
 }
 
 // Why the exact pass does not apply to a light, or "" where it does.
 std::string exactNotApplied(const Light& light) {
-    if (light.type != LightType::Rect)
-        return std::string(lightTypeName(light.type)) + " light (not a polygon)";
+    if (!exactPassTakes(light.type))
+        return std::string(lightTypeName(light.type)) + " light (not an area light)";
     return "";
 }
 
-// --penumbra exact or both, after the sampled pass: NAME.exact (and NAME.V_exact with both), V
-// and stderr replaced with exact where it applies.
+// --penumbra exact on a light the exact pass applies to: the pass finds its own pixels (every
+// pixel the camera hit), and the sampled pass runs only on those it cannot answer (too many
+// occluders, alpha-tested), so no pixel keeps a sampled 0 or 1 because its samples agreed.
+AreaShadowStats traceExactThenSampled(const LightPass& p, uint32_t li, AreaShadowPlanes planes,
+                                      Progress& progress) {
+    namespace ch = channels;
+    const Light& light = p.scene.lights[li];
+    ExactPenumbraOptions options = p.options.penumbra;
+    options.method = PenumbraMethod::Exact;  // also where auto chose it
+    ExactPenumbraPlanes e;
+    e.V = planes.V;
+    e.stderr_ = planes.stderr_;
+    e.cosine = planes.cosine;
+    e.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
+    if (light.type == LightType::Disk || light.type == LightType::Sphere)
+        e.bound = p.image.addChannel(ch::lightChannel(light.name, ch::kBound));
+    std::vector<uint8_t> needsSampling;
+    e.needsSampling = &needsSampling;
+    ExactPenumbraStats st;
+    {
+        Progress exactProgress("exact penumbra " + light.name, p.sb.slotCount(),
+                               p.options.progress);
+        p.arena.execute([&] {
+            st = exactPenumbraPass(*p.exact, p.sb, makeAreaLight(light, p.accel.frame()), options,
+                                   e, &exactProgress, p.facing);
+        });
+    }
+    planes.onlySlots = &needsSampling;
+    AreaShadowStats s = traceSampledLight(p, li, planes, progress);
+    s.exact = std::move(st);
+    return s;
+}
+
+// --penumbra auto: the method for one light (penumbra_choice.h).
+PenumbraChoice choosePenumbra(const LightPass& p, uint32_t li) {
+    const Light& light = p.scene.lights[li];
+    PenumbraChoice c;
+    if (!p.probe) {  // no light the exact pass applies to
+        c.reason = "the exact pass does not apply: " + exactNotApplied(light);
+        return c;
+    }
+    p.arena.execute([&] {
+        c = choosePenumbraMethod(p.accel, p.exact, *p.probe, makeAreaLight(light, p.accel.frame()),
+                                 li, p.options.area, p.options.penumbra, p.hitPoints,
+                                 exactNotApplied(light));
+    });
+    return c;
+}
+
+// --penumbra both (or exact on a light the pass does not apply to), after the sampled pass:
+// NAME.exact (and NAME.V_exact with both), V and stderr replaced with exact where it applies.
 ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V) {
     namespace ch = channels;
     const Light& light = p.scene.lights[li];
@@ -110,6 +176,8 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
     planes.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
     if (options.method == PenumbraMethod::Both)
         planes.Vexact = p.image.addChannel(ch::lightChannel(light.name, ch::kVisibilityExact));
+    if (light.type == LightType::Disk || light.type == LightType::Sphere)
+        planes.bound = p.image.addChannel(ch::lightChannel(light.name, ch::kBound));
     ExactPenumbraStats st;
     st.method = options.method;
     st.allPixels = options.allPixels;
@@ -122,7 +190,7 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
     Progress progress("exact penumbra " + light.name, p.sb.slotCount(), p.options.progress);
     p.arena.execute([&] {
         st = exactPenumbraPass(*p.exact, p.sb, makeAreaLight(light, p.accel.frame()), options,
-                               planes, &progress);
+                               planes, &progress, p.facing);
     });
     return st;
 }
@@ -163,11 +231,23 @@ OracleLightStats traceLight(const LightPass& p, uint32_t li) {
     const bool sampled = p.penumbra && isAreaLight(light.type);
     Progress progress("shadow rays " + light.name, p.pixels, p.options.progress);
     if (sampled) {
-        l.area = traceSampledLight(p, li, V, cosine, progress);
-        if (p.options.penumbra.method != PenumbraMethod::Sampled)
-            l.area->exact = traceExactPenumbra(p, li, V);
-        l.method = p.options.area.fixedSpp > 0 ? "sampled (penumbra), fixed spp"
-                                               : "sampled (penumbra), adaptive";
+        PenumbraMethod method = p.options.penumbra.method;
+        if (method == PenumbraMethod::Auto) {
+            l.choice = choosePenumbra(p, li);
+            method = l.choice->chosen;
+        }
+        const AreaShadowPlanes planes = sampledPlanes(p, light, V, cosine);
+        const bool exactFirst = method == PenumbraMethod::Exact && exactNotApplied(light).empty();
+        if (exactFirst) {
+            l.area = traceExactThenSampled(p, li, planes, progress);
+        } else {
+            l.area = traceSampledLight(p, li, planes, progress);
+            if (method != PenumbraMethod::Sampled) l.area->exact = traceExactPenumbra(p, li, V);
+        }
+        const char* sampling = p.options.area.fixedSpp > 0 ? "fixed spp" : "adaptive";
+        l.method = exactFirst ? std::string("exact (every pixel; sampled, ") + sampling +
+                                    ", where the exact pass gives no answer)"
+                              : std::string("sampled (penumbra), ") + sampling;
     } else {
         l.method = isAreaLight(light.type)
                        ? "point at the centre (no \"penumbra\" effect): one shadow ray per pixel"
@@ -187,8 +267,27 @@ LightVerification verifyLight(const LightPass& p, const Verifier& verifier, uint
     const float* stderr_ =
         sampled ? p.image.channel(ch::lightChannel(light.name, ch::kStdErr)) : nullptr;
     const float* spp = sampled ? p.image.channel(ch::lightChannel(light.name, ch::kSpp)) : nullptr;
+    // A disk or sphere light whose V the exact pass replaced (--penumbra exact, or auto where it
+    // chose exact): V is bounded where NAME.exact is 1. With both, V stays sampled.
+    const std::string boundName = ch::lightChannel(light.name, ch::kBound);
+    const bool bounded =
+        sampled && p.options.penumbra.method != PenumbraMethod::Both && p.image.has(boundName);
+    const float* bound = bounded ? p.image.channel(boundName) : nullptr;
+    // A pixel the exact pass gave (--penumbra exact) took no samples, yet it is a measurement: the
+    // verifier, which reads spp 0 as a pixel skipped below the horizon, is given 1 there, so that
+    // it compares the exact V (stderr 0) with its own independent estimate.
+    std::vector<float> sppMeasured;
+    const std::string exactName = ch::lightChannel(light.name, ch::kExact);
+    if (sampled && p.image.has(exactName)) {
+        const float* mask = p.image.channel(exactName);
+        sppMeasured.assign(spp, spp + p.pixels);
+        for (size_t i = 0; i < sppMeasured.size(); ++i)
+            if (mask[i] == 1.0f && sppMeasured[i] == 0.0f) sppMeasured[i] = 1.0f;
+        spp = sppMeasured.data();
+    }
     LightVerification out;
-    p.arena.execute([&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp); });
+    p.arena.execute(
+        [&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp, bound); });
     return out;
 }
 
@@ -217,15 +316,50 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
     return verifier;
 }
 
-// The exact penumbra pass's scene: with --penumbra exact or both, a rect light and "penumbra".
+// The exact penumbra pass's scene: with --penumbra exact, both or auto, an area light and
+// "penumbra".
 // Alpha-tested meshes are in it: the pixels whose pyramid holds one keep their sampled V.
 std::unique_ptr<ExactScene> makeExactScene(const Scene& scene, const OracleOptions& options,
                                            const LocalFrame& frame) {
     if (options.penumbra.method == PenumbraMethod::Sampled || !scene.hasEffect("penumbra"))
         return nullptr;
-    const bool rect = std::any_of(scene.lights.begin(), scene.lights.end(),
-                                  [](const Light& l) { return l.type == LightType::Rect; });
-    return rect ? std::make_unique<ExactScene>(scene, frame) : nullptr;
+    const bool any = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                 [](const Light& l) { return exactPassTakes(l.type); });
+    return any ? std::make_unique<ExactScene>(scene, frame) : nullptr;
+}
+
+// --penumbra auto's probe (penumbra_choice.h): a coarse image of the same view (one pixel in 64),
+// whatever band is traced, or at a G-buffer's points one point in 64.
+struct ProbeBuffers {
+    SurfaceBuffer coarse;
+    std::vector<uint8_t> slots;
+    PenumbraProbe probe;
+};
+std::unique_ptr<ProbeBuffers> makeProbe(const Scene& scene, const OracleOptions& options,
+                                        const Accel& accel, tbb::task_arena& arena,
+                                        const SurfaceBuffer& sb, bool points) {
+    auto b = std::make_unique<ProbeBuffers>();
+    if (points) {
+        b->slots = sparseSlots(sb, 64);
+        b->probe = {&sb, &b->slots};
+        return b;
+    }
+    CameraDesc desc = effectiveCamera(scene, options);
+    desc.width = std::max(1, (desc.width + 4) / 8);
+    desc.height = std::max(1, (desc.height + 4) / 8);
+    const Camera coarse(desc);
+    arena.execute([&] {
+        b->coarse = tracePrimary(accel, coarse, nullptr, options.offsetPolicy);
+        buildNearFields(accel, b->coarse);
+    });
+    b->probe = {&b->coarse, nullptr};
+    return b;
+}
+
+uint64_t hitPoints(const SurfaceBuffer& sb) {
+    uint64_t n = 0;
+    for (size_t s = 0; s < sb.slotCount(); ++s) n += sb.pixelOfSlot(s) != SIZE_MAX && sb.hit[s];
+    return n;
 }
 
 // Every light in scene order, each verified right after it is traced (with --verify).
@@ -327,6 +461,14 @@ void traceShadowPasses(const Scene& scene, const OracleOptions& options, OracleS
     const std::unique_ptr<Verifier> verifier =
         makeVerifier(scene, options, setup.accel.frame(), camera, stats);
     const std::unique_ptr<ExactScene> exact = makeExactScene(scene, options, setup.accel.frame());
+    std::optional<MeshFacing> facing;
+    if (exact && camera && options.penumbra.backFaces)
+        facing = meshFacing(*exact, setup.accel.frame().lsFromWs(camera->wsEye()));
+    const std::unique_ptr<ProbeBuffers> probe =
+        options.penumbra.method == PenumbraMethod::Auto && exact
+            ? makeProbe(scene, options, setup.accel, setup.arena, sb, camera == nullptr)
+            : nullptr;
+    if (probe) probe->probe.facing = facing ? &*facing : nullptr;
     const LightPass pass{scene,
                          options,
                          setup.accel,
@@ -336,7 +478,10 @@ void traceShadowPasses(const Scene& scene, const OracleOptions& options, OracleS
                          result.image.pixelCount(),
                          scene.hasEffect("penumbra"),
                          scene.hasEffect("contact"),
-                         exact.get()};
+                         exact.get(),
+                         probe ? &probe->probe : nullptr,
+                         hitPoints(sb),
+                         facing ? &*facing : nullptr};
     traceLights(pass, verifier.get(), stats);
     describeSetup(scene, options, setup.accel, sb, stats);
     // Embree reports errors from its queries only through the device: one here (none is expected

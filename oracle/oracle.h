@@ -39,7 +39,7 @@ struct OracleOptions {
     // silent.
     ProgressCallback progress;
     AreaSampling area;  // area lights, when the scene asks for "penumbra"
-    // Rect lights with "penumbra": the exact pass after the sampled one (exact_penumbra.h).
+    // Area lights with "penumbra": the exact pass after the sampled one (exact_penumbra.h).
     ExactPenumbraOptions penumbra;
     // Not on the command line: Legacy256Ulp exists only for the tests that show the verifier
     // catches the occluders it missed (oracle/offset.h).

@@ -40,6 +40,8 @@ nlohmann::json oracleSamplingJson(const OracleOptions& o, const CameraDesc& cam)
         j["penumbra"] = penumbraMethodName(o.penumbra.method);
         j["exact_pixels"] = o.penumbra.allPixels ? "all" : "penumbra";
         j["exact_max_occluders"] = o.penumbra.maxOccluders;
+        j["bound_target"] = o.penumbra.bound.targetHalfWidth;
+        j["bound_max_sides"] = o.penumbra.bound.maxSides;
     }
     return j;
 }

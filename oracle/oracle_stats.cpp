@@ -47,7 +47,8 @@ constexpr const char* kVerifyMethod =
 constexpr const char* kToleranceNote =
     "a hard-light pixel is ambiguous where the reference ray passes closer than abs + "
     "per_unit_distance * t + |oracle origin - hit point| to changing its answer";
-constexpr const char* kAreaTest = "area: |V - V_ref| <= z * combined stderr";
+constexpr const char* kAreaTest =
+    "area: |V - V_ref| <= z * combined stderr (+ bound where NAME.bound bounds V)";
 constexpr const char* kHardTest = "hard: exact re-trace, V must match";
 
 json finiteOrNull(double v) {
@@ -112,10 +113,21 @@ bool isDisagreementKey(const char* key) {
     return std::strncmp(key, "disagreement.", 13) == 0;
 }
 
+bool isBoundKey(const char* key) {
+    return std::strncmp(key, "bound.", 6) == 0;
+}
+
+// The exact pass's counters a light's JSON holds: disagreement with both, bound for bounded lights.
+bool keepsExactKey(const ExactPenumbraStats& e, const char* key) {
+    if (isDisagreementKey(key)) return e.method == PenumbraMethod::Both;
+    if (isBoundKey(key)) return e.errorKind == "bound";
+    return true;
+}
+
 json exactPenumbraJson(const ExactPenumbraStats& e) {
     const bool both = e.method == PenumbraMethod::Both;
     json j;
-    writeFields(j, e, [&](const char* key) { return both || !isDisagreementKey(key); });
+    writeFields(j, e, [&](const char* key) { return keepsExactKey(e, key); });
     json histogram = json::array();
     for (uint64_t c : e.occluders) histogram.push_back(c);
     const auto mean = [&](double total) {
@@ -124,6 +136,13 @@ json exactPenumbraJson(const ExactPenumbraStats& e) {
     j["method"] = penumbraMethodName(e.method);
     j["pixels"] = e.allPixels ? "all" : "penumbra";
     j["not_applied"] = e.notApplied.empty() ? json(nullptr) : json(e.notApplied);
+    j["error_kind"] = e.errorKind;
+    if (e.errorKind == "bound") {
+        j["bound"]["target_half_width"] = e.bound.targetHalfWidth;
+        j["bound"]["min_sides"] = e.bound.minSides;
+        j["bound"]["max_sides"] = e.bound.maxSides;
+        j["bound"]["half_width_mean"] = mean(e.boundHalfWidthSum);
+    }
     j["occluders"]["mean"] = mean(double(e.occludersTotal));
     j["occluders"]["p99_at_most"] = occluderQuantileBound(e.occluders, 0.99);
     j["occluders"]["histogram_log2"] = histogram;
@@ -155,8 +174,22 @@ json areaJson(const AreaShadowStats& s) {
     return j;
 }
 
+json choiceJson(const PenumbraChoice& c) {
+    return {{"chosen", penumbraMethodName(c.chosen)},
+            {"reason", c.reason},
+            {"probe",
+             {{"points", c.probePoints},
+              {"rays", c.probeRays},
+              {"candidates", c.probeCandidates},
+              {"occluders", c.probeOccluders},
+              {"kept_sampled", c.probeKeptSampled},
+              {"bound_sides", c.probeBoundSides}}},
+            {"estimate_seconds", {{"exact", c.exactSeconds}, {"sampled", c.sampledSeconds}}}};
+}
+
 json lightJson(const OracleLightStats& l) {
     json j = {{"name", l.name}, {"type", lightTypeName(l.type)}, {"method", l.method}};
+    if (l.choice) j["penumbra_choice"] = choiceJson(*l.choice);
     if (l.area) {
         j.update(areaJson(*l.area));
         if (l.hard) j["contact_rays"] = hardJson(*l.hard);
@@ -412,14 +445,23 @@ HardShadowStats readHard(const Fields& f) {
 ExactPenumbraStats readExactPenumbra(const Fields& f) {
     ExactPenumbraStats e;
     e.method = parsePenumbraMethod(f.str("method"), "oracle.json", f.name("method"));
-    if (e.method == PenumbraMethod::Sampled) f.fail(f.name("method"), "must be exact or both");
+    if (e.method == PenumbraMethod::Sampled || e.method == PenumbraMethod::Auto)
+        f.fail(f.name("method"), "must be exact or both");
     const std::string pixels = f.str("pixels");
     if (pixels != "all" && pixels != "penumbra")
         f.fail(f.name("pixels"), "must be all or penumbra");
     e.allPixels = pixels == "all";
     if (!f.isNull("not_applied")) e.notApplied = f.str("not_applied");
-    const bool both = e.method == PenumbraMethod::Both;
-    readFields(f, e, [&](const char* key) { return both || !isDisagreementKey(key); });
+    e.errorKind = f.str("error_kind");
+    if (e.errorKind != "exact" && e.errorKind != "bound")
+        f.fail(f.name("error_kind"), "must be exact or bound");
+    if (e.errorKind == "bound") {
+        const Fields b = f.object("bound");
+        e.bound.targetHalfWidth = b.number("target_half_width");
+        e.bound.minSides = uint32_t(b.u64("min_sides"));
+        e.bound.maxSides = uint32_t(b.u64("max_sides"));
+    }
+    readFields(f, e, [&](const char* key) { return keepsExactKey(e, key); });
     const Fields occ = f.object("occluders");
     const std::vector<double> histogram = occ.numbers("histogram_log2");
     if (histogram.size() != e.occluders.size())
@@ -463,12 +505,32 @@ LightType readLightType(const Fields& f) {
     f.fail(f.name("type"), "unknown light type \"" + printable(name, 40) + "\"");
 }
 
+PenumbraChoice readChoice(const Fields& f) {
+    PenumbraChoice c;
+    c.chosen = parsePenumbraMethod(f.str("chosen"), "oracle.json", f.name("chosen"));
+    if (c.chosen != PenumbraMethod::Exact && c.chosen != PenumbraMethod::Sampled)
+        f.fail(f.name("chosen"), "must be exact or sampled");
+    c.reason = f.str("reason");
+    const Fields probe = f.object("probe");
+    c.probePoints = probe.u64("points");
+    c.probeRays = probe.u64("rays");
+    c.probeCandidates = probe.u64("candidates");
+    c.probeOccluders = probe.u64("occluders");
+    c.probeKeptSampled = probe.u64("kept_sampled");
+    c.probeBoundSides = probe.u64("bound_sides");
+    const Fields estimate = f.object("estimate_seconds");
+    c.exactSeconds = estimate.number("exact");
+    c.sampledSeconds = estimate.number("sampled");
+    return c;
+}
+
 // A sampled light is told by its "sampling" field; its hard pass (contact rays) is nested.
 OracleLightStats readLight(const Fields& f) {
     OracleLightStats l;
     l.name = f.str("name");
     l.type = readLightType(f);
     l.method = f.str("method");
+    if (f.has("penumbra_choice")) l.choice = readChoice(f.object("penumbra_choice"));
     if (f.has("sampling")) {
         l.area = readArea(f);
         if (f.has("contact_rays")) l.hard = readHard(f.object("contact_rays"));
@@ -627,6 +689,8 @@ ExactPenumbraStats mergeExact(const std::vector<const AreaShadowStats*>& bands) 
     total.method = bands.front()->exact->method;
     total.allPixels = bands.front()->exact->allPixels;
     total.notApplied = bands.front()->exact->notApplied;
+    total.errorKind = bands.front()->exact->errorKind;
+    total.bound = bands.front()->exact->bound;
     for (const AreaShadowStats* b : bands) {
         const ExactPenumbraStats& e = *b->exact;
         combineStats(total, e);
@@ -664,6 +728,17 @@ OracleLightStats mergeLight(const std::vector<TileStats>& tiles, size_t li) {
     l.name = first.name;
     l.type = first.type;
     l.method = first.method;
+    // Every band probed the same coarse image of the whole view: the same choice; each estimated
+    // its own points' seconds, which add up.
+    l.choice = first.choice;
+    if (l.choice) {
+        l.choice->exactSeconds = l.choice->sampledSeconds = 0.0;
+        for (const TileStats& t : tiles)
+            if (const auto& c = t.stats.lights[li].choice) {
+                l.choice->exactSeconds += c->exactSeconds;
+                l.choice->sampledSeconds += c->sampledSeconds;
+            }
+    }
     std::vector<const AreaShadowStats*> areas;
     std::vector<uint64_t> penumbra;
     for (const TileStats& t : tiles) {

@@ -22,8 +22,9 @@ namespace so {
 struct OracleLightStats {
     std::string name;
     LightType type = LightType::Point;
-    std::string method;                   // how the light was traced, for people
-    std::optional<AreaShadowStats> area;  // sampled (penumbra) area lights
+    std::string method;                    // how the light was traced, for people
+    std::optional<AreaShadowStats> area;   // sampled (penumbra) area lights
+    std::optional<PenumbraChoice> choice;  // --penumbra auto, area lights with "penumbra"
     // Every other light; for a sampled area light, its contact rays (with "contact" only).
     std::optional<HardShadowStats> hard;
 

@@ -1,14 +1,13 @@
 #include "oracle/polygon_visibility.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <initializer_list>
 
 #include <glm/geometric.hpp>
 #include <polyclipping/clipper.hpp>
 
 #include "core/error.h"
+#include "oracle/small_polygon.h"
 
 namespace so {
 
@@ -16,73 +15,7 @@ namespace {
 
 using glm::dvec3;
 
-// The light's (s, t) in [0, 1] as integers: below Clipper's 2^30 "low range", where its
-// arithmetic is plain 64-bit and exact.
-constexpr double kQuantum = double(1 << 29);
-
-// A convex polygon of a few vertices, on the stack: a triangle or the light's rectangle, clipped by
-// at most 6 half-spaces here (the pyramid's sides and the light's plane), each adding at most one
-// vertex. The pass clips every candidate triangle of every pixel, so no allocation per clip.
-struct SmallPolygon {
-    static constexpr size_t kCapacity = 16;
-    std::array<dvec3, kCapacity> v;
-    size_t n = 0;
-    SmallPolygon(std::initializer_list<dvec3> points) {
-        for (const dvec3& q : points) push(q);
-    }
-    void push(const dvec3& q) {
-        SO_CHECK_LT(n, kCapacity);
-        v[n++] = q;
-    }
-    const dvec3* begin() const { return v.data(); }
-    const dvec3* end() const { return v.data() + n; }
-    dvec3* begin() { return v.data(); }
-    dvec3* end() { return v.data() + n; }
-};
-
-// Sutherland-Hodgman: the part of the convex polygon where dot(normal, x) <= offset.
-SmallPolygon clipToHalfSpace(const SmallPolygon& poly, const ExactTracer::HalfSpace& h) {
-    SmallPolygon out{};
-    for (size_t i = 0; i < poly.n; ++i) {
-        const dvec3& a = poly.v[i];
-        const dvec3& b = poly.v[(i + 1) % poly.n];
-        const double da = glm::dot(h.normal, a) - h.offset, db = glm::dot(h.normal, b) - h.offset;
-        if (da <= 0.0) out.push(a);
-        if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
-            const double t = da / (da - db);
-            out.push(a + t * (b - a));
-        }
-    }
-    return out;
-}
-
-// The light's frame: (s, t) of a point of its plane, and back.
-struct LightFrame {
-    RectLightShape shape;
-    double invUU = 0.0, invVV = 0.0;
-    explicit LightFrame(const RectLightShape& l)
-        : shape(l),
-          invUU(1.0 / glm::dot(l.edgeU, l.edgeU)),
-          invVV(1.0 / glm::dot(l.edgeV, l.edgeV)) {}
-    ClipperLib::IntPoint quantised(const dvec3& y) const {
-        const dvec3 d = y - shape.corner;
-        return {ClipperLib::cInt(std::llround(glm::dot(d, shape.edgeU) * invUU * kQuantum)),
-                ClipperLib::cInt(std::llround(glm::dot(d, shape.edgeV) * invVV * kQuantum))};
-    }
-    dvec3 point(const ClipperLib::IntPoint& q) const {
-        return shape.corner + (double(q.X) / kQuantum) * shape.edgeU +
-               (double(q.Y) / kQuantum) * shape.edgeV;
-    }
-};
-
-ClipperLib::Path quantisedPath(const LightFrame& frame, const SmallPolygon& poly) {
-    ClipperLib::Path path;
-    for (const dvec3& y : poly) path.push_back(frame.quantised(y));
-    if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);  // all windings alike
-    return path;
-}
-
-double solidAngleOf(const LightFrame& frame, const dvec3& p, const dvec3& n,
+double solidAngleOf(const LightPlaneFrame& frame, const dvec3& p, const dvec3& n,
                     const ClipperLib::Path& path) {
     std::vector<dvec3> vertices;
     vertices.reserve(path.size());
@@ -90,10 +23,19 @@ double solidAngleOf(const LightFrame& frame, const dvec3& p, const dvec3& n,
     return cosineWeightedSolidAngle(p, n, vertices);
 }
 
+// Phi(subject minus the clips): signed as the subject's winding, as are the parts Clipper returns.
+double visibleSolidAngle(const LightPlaneFrame& frame, const dvec3& p, const dvec3& n,
+                         const ClipperLib::Path& subject, const ClipperLib::Paths& clips) {
+    double seen = 0.0;
+    for (const ClipperLib::Path& path : lightMinusShadows(subject, clips))
+        seen += solidAngleOf(frame, p, n, path);
+    return seen;
+}
+
 // The pyramid from p to the polygon `base` (convex, in the light's plane): a side half-space per
 // edge through p, and the light's plane on p's side.
 std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const SmallPolygon& base,
-                                            const RectLightShape& light) {
+                                            const LightPlaneFrame& light) {
     dvec3 centroid(0.0);
     for (const dvec3& b : base) centroid += b;
     centroid /= double(base.n);
@@ -104,36 +46,8 @@ std::vector<ExactTracer::HalfSpace> pyramid(const dvec3& p, const SmallPolygon& 
         if (glm::dot(m, centroid - p) > 0.0) m = -m;
         planes.push_back({m, glm::dot(m, p)});
     }
-    planes.push_back({-light.emitNormal, -glm::dot(light.emitNormal, light.corner)});
+    planes.push_back({-light.emitNormal, -glm::dot(light.emitNormal, light.origin)});
     return planes;
-}
-
-// Whether p lies in the plane of triangle abc (to rounding): its projection through p is then a
-// segment, of no area.
-bool inPlaneOf(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
-    const dvec3 normal = glm::cross(b - a, c - a);
-    const double scale =
-        glm::length(normal) * (glm::length(p - a) + glm::length(p - b) + glm::length(p - c));
-    return std::abs(glm::dot(normal, p - a)) <= 1e-13 * scale;
-}
-
-// The shadow triangle abc casts on the light from p: clipped to the pyramid, projected centrally
-// through p onto the light's plane (every point of the clipped part lies between p and the plane,
-// so dot(emitNormal, q - p) is in [-height, 0)), quantised. Empty where nothing is left.
-ClipperLib::Path shadowOf(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& p,
-                          double height, const std::vector<ExactTracer::HalfSpace>& planes,
-                          const LightFrame& frame) {
-    SmallPolygon part{a, b, c};
-    for (const ExactTracer::HalfSpace& h : planes) {
-        part = clipToHalfSpace(part, h);
-        if (part.n < 3) return {};
-    }
-    for (dvec3& q : part) {
-        const double along = glm::dot(frame.shape.emitNormal, q - p);
-        if (!(along < 0.0)) return {};  // at p itself: only a triangle through p
-        q = p + (q - p) * (-height / along);
-    }
-    return quantisedPath(frame, part);
 }
 
 }  // namespace
@@ -154,64 +68,105 @@ double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n,
     return 0.5 * sum;
 }
 
+PolygonLightShape polygonOf(const RectLightShape& rect) {
+    PolygonLightShape shape{rect.corner, rect.edgeU, rect.edgeV, rect.emitNormal, {}};
+    shape.vertices = {rect.corner, rect.corner + rect.edgeU, rect.corner + rect.edgeU + rect.edgeV,
+                      rect.corner + rect.edgeV};
+    return shape;
+}
+
 PolygonVisibility rectLightVisibility(const ExactTracer& tracer, const RectLightShape& light,
                                       const dvec3& p, const dvec3& n, TriangleId self,
-                                      uint32_t maxCandidates) {
-    PolygonVisibility result;
-    const double height = glm::dot(light.emitNormal, p - light.corner);  // > 0 on the lit side
-    if (!(height > 0.0)) return result;
-    // L+: the light above p's horizon.
-    const SmallPolygon lit =
-        clipToHalfSpace({light.corner, light.corner + light.edgeU,
-                         light.corner + light.edgeU + light.edgeV, light.corner + light.edgeV},
-                        {-n, -glm::dot(n, p)});
-    if (lit.n < 3) return result;
-    const LightFrame frame(light);
-    const ClipperLib::Path litPath = quantisedPath(frame, lit);
-    const double whole = solidAngleOf(frame, p, n, litPath);
-    if (!(std::abs(whole) > 0.0)) return result;
+                                      uint32_t maxCandidates, const OccluderOptions& more) {
+    return polygonLightVisibility(tracer, polygonOf(light), p, n, self, maxCandidates, more);
+}
 
-    const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, light);
-    ClipperLib::Paths shadows;
-    bool capped = false, alpha = false;
-    const auto visit = [&](const dvec3& a, const dvec3& b, const dvec3& c, TriangleId id) {
-        if (++result.candidates > maxCandidates) {
-            capped = true;
-            return false;
-        }
-        if (id == self || inPlaneOf(p, a, b, c)) return true;
-        ClipperLib::Path shadow = shadowOf(a, b, c, p, height, planes, frame);
-        if (!shadow.empty() && tracer.alphaTested(id)) {
-            alpha = true;
-            return false;
-        }
-        if (!shadow.empty()) {
-            shadows.push_back(std::move(shadow));
-            ++result.occluders;
-        }
-        return true;
-    };
-    tracer.forEachTriangleIn(planes, visit);
-    if (capped || alpha) {
-        result.status = capped ? PolygonVisibilityStatus::TooManyOccluders
-                               : PolygonVisibilityStatus::AlphaTested;
-        return result;
-    }
-    result.status = PolygonVisibilityStatus::Exact;
-    if (shadows.empty()) {
-        result.V = 1.0;
-        return result;
-    }
-    ClipperLib::Clipper clipper;
-    clipper.AddPath(litPath, ClipperLib::ptSubject, true);
-    clipper.AddPaths(shadows, ClipperLib::ptClip, true);
-    ClipperLib::Paths visible;
-    clipper.Execute(ClipperLib::ctDifference, visible, ClipperLib::pftNonZero,
-                    ClipperLib::pftNonZero);
-    double seen = 0.0;
-    for (const ClipperLib::Path& path : visible) seen += solidAngleOf(frame, p, n, path);
-    result.V = std::clamp(seen / whole, 0.0, 1.0);
+PolygonVisibility polygonLightVisibility(const ExactTracer& tracer, const PolygonLightShape& light,
+                                         const dvec3& p, const dvec3& n, TriangleId self,
+                                         uint32_t maxCandidates, const OccluderOptions& more) {
+    const LightShadows shadows(tracer, light, p, n, self, maxCandidates, more);
+    PolygonVisibility result = shadows.counts();
+    if (result.status == PolygonVisibilityStatus::Exact) result.V = shadows.baseV();
     return result;
+}
+
+LightShadows::LightShadows(const ExactTracer& tracer, const PolygonLightShape& base, const dvec3& p,
+                           const dvec3& n, TriangleId self, uint32_t maxCandidates,
+                           const OccluderOptions& more)
+    : frame_(base.corner, base.edgeU, base.edgeV, base.emitNormal), p_(p), n_(n) {
+    SO_CHECK_LE(base.vertices.size(), PolygonLightShape::kMaxVertices);
+    const double height = glm::dot(base.emitNormal, p - base.corner);  // > 0 on the lit side
+    if (!(height > 0.0)) return;
+    // L+: the light above p's horizon.
+    SmallPolygon whole{};
+    for (const dvec3& v : base.vertices) whole.push(v);
+    const SmallPolygon lit = clipToHalfSpace(whole, {-n, -glm::dot(n, p)});
+    if (lit.n < 3) return;
+    litPath_ = frame_.path(lit);
+    litWhole_ = solidAngleOf(frame_, p, n, litPath_);
+    if (!(std::abs(litWhole_) > 0.0)) return;
+
+    const std::vector<ExactTracer::HalfSpace> planes = pyramid(p, lit, frame_);
+    OccluderQuery q;
+    q.p = p;
+    q.self = self;
+    q.height = height;
+    q.pyramid = &planes;
+    q.frame = &frame_;
+    q.lit = &litPath_;
+    q.maxCandidates = maxCandidates;
+    q.options = more;
+    OccluderUnion u = gatherShadows(tracer, q);
+    result_.occluders = u.occluders;
+    result_.candidates = u.candidates;
+    result_.backFaces = u.backFaces;
+    result_.status = u.status == OccluderUnion::Status::TooManyOccluders
+                         ? PolygonVisibilityStatus::TooManyOccluders
+                     : u.status == OccluderUnion::Status::AlphaTested
+                         ? PolygonVisibilityStatus::AlphaTested
+                         : PolygonVisibilityStatus::Exact;
+    result_.shortcut = u.status == OccluderUnion::Status::Lit       ? VisibilityShortcut::Lit
+                       : u.status == OccluderUnion::Status::Covered ? VisibilityShortcut::Covered
+                                                                    : VisibilityShortcut::None;
+    shadows_ = std::move(u.shadows);
+}
+
+double LightShadows::baseV() const {
+    SO_CHECK(result_.status == PolygonVisibilityStatus::Exact);
+    if (result_.shortcut == VisibilityShortcut::Covered) return 0.0;
+    if (shadows_.empty()) return 1.0;
+    const double seen = visibleSolidAngle(frame_, p_, n_, litPath_, shadows_);
+    return std::clamp(seen / litWhole_, 0.0, 1.0);
+}
+
+LightShadows::Integrals LightShadows::integrals(const std::vector<dvec3>& region) const {
+    Integrals out;
+    if (result_.status == PolygonVisibilityStatus::NoLight) return out;
+    SO_CHECK(result_.status == PolygonVisibilityStatus::Exact);
+    const std::vector<dvec3> lit = clipToHalfSpace(region, {-n_, -glm::dot(n_, p_)});
+    if (lit.size() < 3) return out;
+    const ClipperLib::Path path = frame_.path(lit);
+    // Signed by the path's winding (frame_.path makes it Clipper's positive one), as are the
+    // visible parts Clipper returns.
+    const double signedWhole = solidAngleOf(frame_, p_, n_, path);
+    const double sign = signedWhole < 0.0 ? -1.0 : 1.0;
+    out.whole = sign * signedWhole;
+    // Covered: the shadows hold the base above the horizon, so every region inside it.
+    if (result_.shortcut == VisibilityShortcut::Covered) return out;
+    if (shadows_.empty()) {
+        out.visible = out.whole;
+        return out;
+    }
+    if (!united_) {
+        // Once for every region: the regions differ only near the light's outline.
+        ClipperLib::Clipper clipper;
+        clipper.AddPaths(shadows_, ClipperLib::ptSubject, true);
+        clipper.Execute(ClipperLib::ctUnion, union_, ClipperLib::pftNonZero,
+                        ClipperLib::pftNonZero);
+        united_ = true;
+    }
+    out.visible = std::max(0.0, sign * visibleSolidAngle(frame_, p_, n_, path, union_));
+    return out;
 }
 
 }  // namespace so

@@ -204,7 +204,8 @@ Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, f
 
 Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, size_t pixel,
                                       const PixelRef& ref, float oracleV, float oracleStderr,
-                                      float oracleSpp, double z, VerifyDisagreement& d) const {
+                                      float oracleSpp, float oracleBound, double z,
+                                      VerifyDisagreement& d) const {
     const ReferenceLight reference(light, frame_);
     const glm::dvec3 c = frame_.lsFromWs(light.wsPosition);
     SplitMix rng{mix(mix(mix(seed_, lightIndex), pixel), 0x61726561ull)};
@@ -228,7 +229,7 @@ Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, s
     }
     d.kind = "area";
     d.oracleV = oracleV;
-    d.oracleHalfWidth = kIntervalQuantile95 * double(oracleStderr);
+    d.oracleHalfWidth = kIntervalQuantile95 * double(oracleStderr) + double(oracleBound);
     d.cosine = glm::dot(ref.n, glm::normalize(c - ref.p));
     if (oracleSpp == 0.0f || nonZero == 0) {
         // The oracle skipped the pixel (light below the horizon, behind it) or the reference
@@ -243,12 +244,17 @@ Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, s
     d.referenceHalfWidth = kZ95 * est.stderr_;
     const double se =
         std::sqrt(double(oracleStderr) * double(oracleStderr) + est.stderr_ * est.stderr_);
-    return std::fabs(double(oracleV) - d.referenceV) <= z * se ? Verdict::Agree : Verdict::Disagree;
+    // A bounded V (stderr 0) is wrong only where the reference lies beyond the bound by more than
+    // its own error.
+    return std::fabs(double(oracleV) - d.referenceV) <= z * se + double(oracleBound)
+               ? Verdict::Agree
+               : Verdict::Disagree;
 }
 
 LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
                                         const SurfaceBuffer& sb, const float* V,
-                                        const float* stderr_, const float* spp) const {
+                                        const float* stderr_, const float* spp,
+                                        const float* bound) const {
     const auto t0 = Clock::now();
     LightVerification out;
     out.light = light.name;
@@ -277,9 +283,10 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
         } else {
             // Area lights: the samples' alpha tests are decided in double, not judged (a sample
             // the float path decides otherwise is one of thousands, inside the intervals).
-            verdicts[i] = sampled ? areaPixel(light, lightIndex, pixel, ref, V[pixel],
-                                              stderr_[pixel], spp[pixel], out.zThreshold, d)
-                                  : hardPixel(light, ref, V[pixel], d, alpha);
+            verdicts[i] =
+                sampled ? areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel],
+                                    spp[pixel], bound ? bound[pixel] : 0.0f, out.zThreshold, d)
+                        : hardPixel(light, ref, V[pixel], d, alpha);
         }
         alphaAmbiguous[i] = alpha && verdicts[i] == Verdict::Ambiguous;
     });

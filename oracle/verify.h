@@ -10,7 +10,9 @@
 //   sampled area lights: the reference estimates V from independent uniform samples of the light
 //     (its own sampler and random numbers); a disagreement is |V - V_ref| above z times the
 //     combined standard error, z Bonferroni-corrected over the pixels checked (family-wise false
-//     alarm rate 1%).
+//     alarm rate 1%); where the oracle's V is bounded (disk and sphere lights with --penumbra
+//     exact: NAME.bound), |V - V_ref| above the bound's half-width plus z times the reference's
+//     standard error.
 #pragma once
 
 #include <cstdint>
@@ -41,7 +43,8 @@ struct VerifyDisagreement {
     bool nearHorizon = false;
     double cosine = 0.0;  // towards the light (centre), at the reference's hit point
     double oracleV = 0.0, referenceV = 0.0;
-    double oracleHalfWidth = 0.0, referenceHalfWidth = 0.0;  // area: 95% half-widths
+    // area: 95% half-widths (a bounded pixel's: its bound's, the interval being sure)
+    double oracleHalfWidth = 0.0, referenceHalfWidth = 0.0;
     double wsMargin = 0.0;        // hard: how far the reference ray is from changing its answer
     double wsOccluderDist = 0.0;  // hard: the reference's first occluder (inf: none)
 };
@@ -71,10 +74,11 @@ class Verifier {
     Verifier(const Scene& scene, const LocalFrame& frame, const Camera* camera,
              const VerifyOptions& options, uint32_t seed);
 
-    // V, halfWidth (nullable for hard lights) and spp (nullable) are the oracle's channels.
+    // V, stderr_ (nullable for hard lights), spp (nullable) and bound (nullable: NAME.bound, the
+    // half-widths of bounded pixels, 0 elsewhere) are the oracle's channels.
     LightVerification verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
                                   const SurfaceBuffer& sb, const float* V, const float* stderr_,
-                                  const float* spp) const;
+                                  const float* spp, const float* bound = nullptr) const;
     const ExactTracer& tracer() const { return exact_.tracer(); }
 
     // The tolerance of the hard-light test, in local units (where the scene's half-extent is in
@@ -98,8 +102,8 @@ class Verifier {
     Verdict hardPixel(const Light& light, const PixelRef& ref, float oracleV, VerifyDisagreement& d,
                       bool& alphaAmbiguous) const;
     Verdict areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
-                      float oracleV, float oracleStderr, float oracleSpp, double z,
-                      VerifyDisagreement& d) const;
+                      float oracleV, float oracleStderr, float oracleSpp, float oracleBound,
+                      double z, VerifyDisagreement& d) const;
 
     ExactScene exact_;
     LocalFrame frame_;

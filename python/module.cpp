@@ -356,7 +356,9 @@ void bindTrace(py::module_& m) {
         py::arg("exact_pixels") = "penumbra", py::arg("points") = py::none(),
         py::arg("progress") = py::none(),
         "The oracle (`shadow-oracle trace`): exact hard shadows, sampled penumbrae with 95% "
-        "intervals; penumbra=\"exact\" or \"both\" computes rect lights' penumbrae exactly. "
+        "intervals; penumbra=\"exact\", \"both\" or \"auto\" computes rect lights' penumbrae "
+        "exactly and disk and sphere lights' in a guaranteed interval (auto: where a probe "
+        "estimates it cheaper than sampling). "
         "progress(stage, done, total) is called every 50 ms; return False to cancel.");
 }
 

@@ -332,6 +332,7 @@ TEST(StatFields, EveryCounterIsCombinedWrittenAndRead) {
     combineStats(stats.lights[1].area.emplace(areaA), areaB);
     stats.lights[1].area->exact.emplace(numbered<ExactPenumbraStats>(1.0));
     stats.lights[1].area->exact->method = PenumbraMethod::Both;  // writes every counter
+    stats.lights[1].area->exact->errorKind = "bound";            // and the bound's
     const json j = toJson(stats);
     const OracleStats back = oracleStatsFromJson(json::parse(j.dump()), "memory");
     ASSERT_TRUE(back.lights[0].hard && back.lights[1].area && back.lights[1].area->exact);

@@ -123,8 +123,10 @@ struct TraceOptions {
     int maxSpp = 16384, fixedSpp = 0;
     uint32_t seed = 0;
     int verify = 0;  // > 0: re-trace this many pixels per light independently (docs/oracle.md)
-    // Rect lights (docs/oracle.md, "Exact penumbrae"): "sampled", "exact" or "both"; the exact
-    // pass at "penumbra" pixels (their samples disagree) or "all" sampled ones.
+    // Area lights (docs/oracle.md, "Exact penumbrae"; disk and sphere lights bounded to 1e-6):
+    // "sampled", "exact" (every pixel), "both" or "auto" (per light, whichever a probe estimates
+    // cheaper); with "both", the exact pass at "penumbra" pixels (their samples disagree) or "all"
+    // sampled ones.
     std::string penumbra = "sampled", exactPixels = "penumbra";
     // A renderer's G-buffer EXR (docs/external.md, "Points in"): the oracle at its points, at its
     // size, instead of the camera's pixels.
