@@ -10,8 +10,23 @@ json vec3Json(const glm::dvec3& v) {
     return json::array({v.x, v.y, v.z});
 }
 
+json cameraPathJson(const CameraPath& path) {
+    json keys = json::array();
+    for (const CameraKeyframe& k : path.keyframes) {
+        json key = {{"t", k.t}, {"eye", vec3Json(k.wsEye)}, {"target", vec3Json(k.wsTarget)}};
+        if (k.wsUp) key["up"] = vec3Json(*k.wsUp);
+        if (k.vfovDeg) key["vfov_deg"] = *k.vfovDeg;
+        keys.push_back(key);
+    }
+    return {{"keyframes", keys},
+            {"interpolation",
+             path.interpolation == PathInterpolation::CatmullRom ? "catmull-rom" : "linear"}};
+}
+
+}  // namespace
+
 // The light as docs/scene-format.md spells it: only the keys its type takes.
-json lightJson(const Light& l) {
+json sceneLightJson(const Light& l) {
     json j = {{"name", l.name}, {"type", lightTypeName(l.type)}};
     switch (l.type) {
         case LightType::Point:
@@ -44,24 +59,9 @@ json lightJson(const Light& l) {
     return j;
 }
 
-json cameraPathJson(const CameraPath& path) {
-    json keys = json::array();
-    for (const CameraKeyframe& k : path.keyframes) {
-        json key = {{"t", k.t}, {"eye", vec3Json(k.wsEye)}, {"target", vec3Json(k.wsTarget)}};
-        if (k.wsUp) key["up"] = vec3Json(*k.wsUp);
-        if (k.vfovDeg) key["vfov_deg"] = *k.vfovDeg;
-        keys.push_back(key);
-    }
-    return {{"keyframes", keys},
-            {"interpolation",
-             path.interpolation == PathInterpolation::CatmullRom ? "catmull-rom" : "linear"}};
-}
-
-}  // namespace
-
 json sceneFileJson(const Scene& scene, const CameraDesc& camera, const std::string& geometryFile) {
     json lights = json::array();
-    for (const Light& l : scene.lights) lights.push_back(lightJson(l));
+    for (const Light& l : scene.lights) lights.push_back(sceneLightJson(l));
     json j = {{"scene_format", 3},
               {"geometry", json::array({{{"file", geometryFile}}})},
               {"camera",

@@ -11,6 +11,7 @@
 #include "core/camera.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/scene_writer.h"
 #include "core/tool_info.h"
 #include "oracle/primary_image.h"
 #include "raster_compare/gl/light_camera.h"
@@ -67,35 +68,7 @@ json cameraJson(const CameraDesc& desc, const Camera& camera, const Bounds3d& ws
 
 // The light's keys as the scene format names them (docs/scene-format.md), values as loaded.
 json lightJson(const Light& l, const Bounds3d& wsBounds, const Bounds3d& lsReceivers) {
-    json j = {{"name", l.name}, {"type", lightTypeName(l.type)}};
-    switch (l.type) {
-        case LightType::Point:
-            j["position"] = vec3Json(l.wsPosition);
-            break;
-        case LightType::Directional:
-            j["direction"] = vec3Json(l.wsDirection);
-            break;
-        case LightType::Spot:
-            j["position"] = vec3Json(l.wsPosition);
-            j["direction"] = vec3Json(l.wsDirection);
-            j["outer_cone_deg"] = l.outerConeDeg;
-            j["inner_cone_deg"] = l.innerConeDeg;
-            break;
-        case LightType::Rect:
-            j["center"] = vec3Json(l.wsPosition);
-            j["u"] = vec3Json(l.wsU);
-            j["v"] = vec3Json(l.wsV);
-            break;
-        case LightType::Disk:
-            j["center"] = vec3Json(l.wsPosition);
-            j["normal"] = vec3Json(l.wsNormal);
-            j["radius"] = l.radius;
-            break;
-        case LightType::Sphere:
-            j["center"] = vec3Json(l.wsPosition);
-            j["radius"] = l.radius;
-            break;
-    }
+    json j = sceneLightJson(l);
     json faces = json::array();
     for (const LightSpaceFace& f : lightSpaceFaces(l, wsBounds, &lsReceivers))
         faces.push_back({{"face", f.face},
