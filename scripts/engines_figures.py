@@ -125,14 +125,20 @@ def readme_line(rows):
 
 
 def main():
-    if len(sys.argv) != 4:
-        sys.exit("usage: engines_figures.py SWEEP_DIR DOC.md README.md")
-    sweep, doc, readme = pathlib.Path(sys.argv[1]), sys.argv[2], sys.argv[3]
-    rows = read_rows(sweep)
-    meta = json.load(open(sweep / "metrics.json"))
-    renderers = sorted({r.get("renderer", "") for r in meta["results"] if r.get("renderer")})
-    source = (f"From `{sweep.name}/metrics_wide.csv` ({meta.get('finished')} of {meta.get('tasks')} "
-              f"tasks finished); engines rendered by {'; '.join(renderers)}.")
+    if len(sys.argv) < 4:
+        sys.exit("usage: engines_figures.py SWEEP_DIR [SWEEP_DIR ...] DOC.md README.md")
+    # Several sweeps' rows join into one table (e.g. a scene swept later on its own).
+    sweeps = [pathlib.Path(a) for a in sys.argv[1:-2]]
+    doc, readme = sys.argv[-2], sys.argv[-1]
+    rows = [r for sweep in sweeps for r in read_rows(sweep)]
+    metas = [json.load(open(sweep / "metrics.json")) for sweep in sweeps]
+    renderers = sorted({r.get("renderer", "") for m in metas for r in m["results"]
+                        if r.get("renderer")})
+    names = " and ".join(f"`{sweep.parent.name}/{sweep.name}/metrics_wide.csv`" for sweep in sweeps)
+    finished = sum(m.get("finished", 0) for m in metas)
+    tasks = sum(m.get("tasks", 0) for m in metas)
+    source = (f"From {names} ({finished} of {tasks} tasks finished); engines rendered by "
+              f"{'; '.join(renderers)}.")
     write_between_markers(doc, "engines-summary", source + "\n\n" + summary(rows))
     write_between_markers(doc, "engines-defaults", defaults_table(rows))
     write_between_markers(doc, "engines-best", best_table(rows))
