@@ -80,6 +80,18 @@ def best_table(rows):
     return head + "\n".join(lines)
 
 
+def setting_in_words(name, values):
+    """One default setting over an engine's rows: its value where every scene light has the same,
+    else its range (a default fitted per scene, e.g. a shadow distance that follows the scene)."""
+    vals = sorted({v.strip('"') for v in values if v != ""})
+    if len(vals) == 1:
+        return f"{name} {vals[0]}"
+    nums = [num(v) for v in vals]
+    if all(n is not None for n in nums):
+        return f"{name} per scene, {min(nums):.4g} to {max(nums):.4g}"
+    return f"{name} per scene ({len(vals)} values)"
+
+
 def default_stats(rows):
     """Per engine with an ENGINE-default entry: (entry, its settings in words, mean mae, scene
     lights, (mean rate, class, scene lights where it applies) of its two largest error classes, its
@@ -95,8 +107,8 @@ def default_stats(rows):
             if vals:
                 means.append((sum(vals) / len(vals), name, len(vals)))
         mae = sum(num(r["mae"]) for r in rs) / len(rs)
-        params = ", ".join(f"{k[6:]} {v.strip(chr(34))}" for k, v in sorted(rs[0].items())
-                           if k.startswith("param.") and v != "")
+        params = ", ".join(setting_in_words(k[6:], [r[k] for r in rs])
+                           for k in sorted(rs[0]) if k.startswith("param.") and rs[0][k] != "")
         worst_row = max(rs, key=lambda r: num(r["mae"]))
         worst_at = f"{scene_name(worst_row)} {worst_row['light']} (mae {num(worst_row['mae']):.3g}" + "".join(
             f", {name} {num(worst_row[key]):.3g}" for key, name in
