@@ -17,16 +17,8 @@ fail() { echo "FAIL browser_reports: $*"; exit 1; }
 CLI=$1 SCENES=$2 WORK=$3
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 
-chromium=${CHROMIUM:-}
-if [ -z "$chromium" ]; then
-  for c in chromium chromium-browser google-chrome; do
-    if p=$(command -v "$c"); then chromium=$p; break; fi
-  done
-fi
-[ -n "$chromium" ] && [ -x "$chromium" ] || skip "no chromium binary found (apt-get install chromium, or set CHROMIUM=/path)"
-command -v node >/dev/null || skip "no node found (apt-get install nodejs)"
-node -e 'process.exit(+process.versions.node.split(".")[0] >= 18 ? 0 : 1)' ||
-  skip "node $(node --version) is too old for puppeteer-core (18 or newer)"
+source "$HERE/../lib/browser_checks.sh"
+find_chromium
 [ -d "$HERE/node_modules/puppeteer-core" ] ||
   skip "tests/browser/node_modules/puppeteer-core is missing (npm ci --prefix tests/browser)"
 [ -x "$CLI" ] || fail "no CLI at $CLI (build the shadow-oracle target)"

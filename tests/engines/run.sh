@@ -24,16 +24,8 @@ CLI=$1 SCENES=$2 WORK=$3
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 WEB=$(cd "$HERE/../../examples/web" && pwd)
 
-chromium=${CHROMIUM:-}
-if [ -z "$chromium" ]; then
-  for c in chromium chromium-browser google-chrome; do
-    if p=$(command -v "$c"); then chromium=$p; break; fi
-  done
-fi
-[ -n "$chromium" ] && [ -x "$chromium" ] || skip "no chromium binary found (apt-get install chromium, or set CHROMIUM=/path)"
-command -v node >/dev/null || skip "no node found (apt-get install nodejs)"
-node -e 'process.exit(+process.versions.node.split(".")[0] >= 18 ? 0 : 1)' ||
-  skip "node $(node --version) is too old for puppeteer-core (18 or newer)"
+source "$HERE/../lib/browser_checks.sh"
+find_chromium
 for m in puppeteer-core three @babylonjs/core playcanvas filament; do
   [ -d "$WEB/node_modules/$m" ] || skip "examples/web/node_modules/$m is missing (npm ci --prefix examples/web)"
 done
