@@ -5,7 +5,7 @@
 
 #include "api/api_internal.h"
 #include "core/visibility_image.h"
-#include "raster_compare/comparison/comparison.h"
+#include "raster_compare/pipeline/comparison.h"
 
 namespace shadow_oracle {
 
