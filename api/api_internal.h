@@ -10,16 +10,33 @@
 #include "core/scene.h"
 #include "oracle/oracle_cache.h"
 #include "raster_compare/gl/renderer.h"
+#include "raster_compare/pipeline/comparison.h"
 #include "shadow_oracle/shadow_oracle.h"
 
 namespace shadow_oracle {
 
 struct Scene::Data {
     so::Scene scene;
+    double loadSeconds = 0.0;  // oracle.json's phases_seconds.load (writeTraceOutput)
 };
 
 struct TraceResult::Data {
     so::CachedOracle oracle;  // the image again (compare's input) and the typed stats
+    // What oracle.json says beyond the stats (writeTraceOutput): the options traced with (their
+    // progress callback dropped) and, at a G-buffer's points, what was done with them.
+    so::OracleOptions options;
+    std::optional<so::OraclePointsStats> points;
+};
+
+struct RenderResult::Data {
+    std::string technique;   // raster.exr's technique attribute
+    so::ChannelImage image;  // raster.exr, as rendered (the result's image may be moved from)
+    so::RasterStats stats;   // raster.json
+};
+
+struct CompareResult::Data {
+    so::Comparison comparison;  // the rows as the library made them
+    int boundaryRadius = 2;
 };
 
 namespace detail {

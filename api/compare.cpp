@@ -5,7 +5,7 @@
 
 #include "api/api_internal.h"
 #include "core/visibility_image.h"
-#include "raster_compare/comparison/comparison.h"
+#include "raster_compare/pipeline/compare_output.h"
 
 namespace shadow_oracle {
 
@@ -14,7 +14,8 @@ namespace {
 // An image given in memory, checked as readVisibilityImage checks a file: a plane per light of
 // the oracle's size, every value finite and in [0, 1] up to the tolerance (then clamped).
 so::ImageInput imageInput(const ExternalImage& in, const so::Scene& scene, int width, int height) {
-    const std::string file = "image \"" + so::printable(in.label, 60) + "\"";
+    const std::string file =
+        in.path.empty() ? "image \"" + so::printable(in.label, 60) + "\"" : in.path;
     if (in.label.empty()) so::throwInputError("image", "label", "empty");
     if (in.visibility.size() != scene.lights.size())
         so::throwInputError(file, "visibility",
@@ -53,22 +54,6 @@ LightMetrics lightMetrics(const so::LightComparison& lc) {
     return out;
 }
 
-// The error EXR's channels: per light one per artifact class and the error.
-Image errorImage(const so::ReportTechnique& rt) {
-    Image out;
-    out.width = rt.image.width();
-    out.height = rt.image.height();
-    for (const so::LightComparison& lc : rt.lights) {
-        for (const so::ArtifactClass& c : so::kArtifactClasses) {
-            out.names.push_back(lc.light + "." + c.layer);
-            out.planes.push_back(lc.maps.of(c.id));
-        }
-        out.names.push_back(lc.light + "." + so::kErrorLayer);
-        out.planes.push_back(lc.maps.error);
-    }
-    return out;
-}
-
 }  // namespace
 
 std::optional<double> LightMetrics::get(const std::string& name) const {
@@ -85,6 +70,7 @@ ExternalImage readImage(const Scene& scene, const std::string& label, const std:
             path, s.lights, width, height, so::parseImageEncoding(encoding, "options", "encoding"));
         ExternalImage out;
         out.label = label;
+        out.path = path;
         out.visibility = std::move(v.v);
         if (v.cost) {
             out.renderer = v.cost->renderer;
@@ -123,21 +109,27 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
         c.boundaryRadius = options.boundaryRadius;
         c.contactThresholdRelative = options.contactThresholdRelative;
         c.progress = detail::toLibrary(options.progress);
-        const so::Comparison comparison = so::compareWithOracle(s, o, techniques, images, c);
+        so::Comparison comparison = so::compareWithOracle(s, o, techniques, images, c);
         CompareResult out;
         out.warnings = comparison.warnings;
         out.metricsJson =
             so::metricsJson(s, s.path.string(), o, comparison, options.boundaryRadius).dump();
         for (const so::ComparedRow& row : comparison.rows) {
-            ComparedRow r{row.report.label,      row.source, row.technique,
-                          row.report.family,     {},         {},
-                          errorImage(row.report)};
+            ComparedRow r{row.report.label,
+                          row.source,
+                          row.technique,
+                          row.report.family,
+                          {},
+                          {},
+                          detail::toApi(so::errorImage(row.report))};
             for (const so::LightComparison& lc : row.report.lights)
                 r.lights.push_back(lightMetrics(lc));
             so::ChannelImage image = row.report.image;
             r.image = detail::toApi(std::move(image));
             out.rows.push_back(std::move(r));
         }
+        out.data = std::make_shared<const CompareResult::Data>(
+            CompareResult::Data{std::move(comparison), options.boundaryRadius});
         return out;
     });
 }

@@ -42,6 +42,8 @@ RenderResult render(const Scene& scene, const std::string& technique, const Para
         out.frameMs = r.stats.timings.wallMs.median;
         out.statsJson = so::toJson(r.stats).dump();
         out.warnings = gl.takeWarnings();
+        out.data = std::make_shared<const RenderResult::Data>(
+            RenderResult::Data{t->name(), r.image, r.stats});  // writeRenderOutput's copy
         out.image = detail::toApi(std::move(r.image));
         return out;
     });

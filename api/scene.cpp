@@ -1,11 +1,18 @@
 // The API's scenes: a file, or meshes and a description in memory.
+#include <chrono>
+
 #include "api/api_internal.h"
 
 namespace shadow_oracle {
 
 Scene Scene::load(const std::string& path) {
-    return detail::translated(
-        [&] { return Scene(std::make_shared<const Data>(Data{so::loadScene(path)})); });
+    return detail::translated([&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        so::Scene scene = so::loadScene(path);
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return Scene(std::make_shared<const Data>(Data{std::move(scene), seconds}));
+    });
 }
 
 Scene Scene::fromMeshes(const std::vector<Mesh>& meshes, const std::string& description) {
@@ -26,8 +33,8 @@ Scene Scene::fromMeshes(const std::vector<Mesh>& meshes, const std::string& desc
             p.indices = in.triangles;
             prims.push_back(std::move(p));
         }
-        return Scene(
-            std::make_shared<const Data>(Data{so::sceneFromMemory(description, std::move(prims))}));
+        return Scene(std::make_shared<const Data>(
+            Data{so::sceneFromMemory(description, std::move(prims)), 0.0}));
     });
 }
 

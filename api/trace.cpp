@@ -76,6 +76,9 @@ TraceResult trace(const Scene& scene, const TraceOptions& options) {
         data->oracle.key = options.points.empty() ? "traced" : "points " + options.points;
         data->oracle.image = r.image;  // compare() measures against this copy
         data->oracle.stats = std::move(r.stats);
+        data->options = o;
+        data->options.progress = nullptr;  // the caller's callback is not the result's
+        data->points = std::move(r.points);
         out.image = detail::toApi(std::move(r.image));
         out.data = std::move(data);
         return out;

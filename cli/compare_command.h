@@ -10,7 +10,7 @@
 
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
-#include "raster_compare/comparison/comparison.h"
+#include "raster_compare/pipeline/comparison.h"
 #include "raster_compare/gl/renderer.h"
 
 namespace so {

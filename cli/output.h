@@ -1,5 +1,5 @@
 // What every command's output shares: the output folder, the provenance block of its JSON files,
-// the scene's warnings on stderr and the preview images (one grey scale: core/preview.h).
+// the scene's warnings on stderr; the JSON files and previews are core's (json_file.h, preview.h).
 #pragma once
 
 #include <filesystem>
@@ -10,6 +10,8 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/json_file.h"
+#include "core/preview.h"
 #include "core/scene.h"
 #include "core/tool_info.h"
 
@@ -47,18 +49,8 @@ void printSceneWarnings(const std::string& scenePath, const Scene& scene);
 // "warning: <text>" line each on stderr.
 void printWarnings(const std::vector<std::string>& warnings);
 
-// One PNG per light, "<dir>/<light>.png", in the grey scale of core/preview.h (with the light's
-// cosine channel when the image has one). Returns the paths written.
-std::vector<std::string> writePreviews(const std::filesystem::path& dir, const ChannelImage& image,
-                                       const std::vector<Light>& lights);
-
 // The absolute path of the running shadow-oracle (/proc/self/exe): what a sweep starts as child
 // processes and names in its Slurm scripts.
 std::filesystem::path thisExecutable();
-
-// The file's JSON, or an InputError naming it: "cannot be read (WHAT)" or "invalid JSON: ...".
-nlohmann::json readJsonFile(const std::string& path, const std::string& what);
-// Writes `j` (indented) to the file, or an InputError naming it.
-void writeJsonFile(const std::filesystem::path& path, const nlohmann::json& j);
 
 }  // namespace so

@@ -5,6 +5,7 @@
 #include "cli/output.h"
 #include "core/error.h"
 #include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/raster_output.h"
 
 namespace so {
 
@@ -31,20 +32,12 @@ int runRasterCommand(const RasterCommandOptions& options) {
         throw;
     }
     printWarnings(gl.takeWarnings());
-    writeExr((out / "raster.exr").string(), r.image,
-             {{"shadowOracle/sceneHash", scene.contentHash},
-              {"shadowOracle/toolVersion", toolVersionString()},
-              {"shadowOracle/technique", technique->name()}});
-    nlohmann::json j = {{"format_version", 6},
-                        {"tool", toolJson()},
-                        {"scene", {{"file", options.scenePath}, {"hash", scene.contentHash}}}};
-    j.update(toJson(r.stats));
-    writeJsonFile(out / "raster.json", j);
+    const RasterOutputFiles files =
+        writeRasterOutput(out, scene, options.scenePath, technique->name(), r);
     std::cout << "rendered " << options.scenePath << " with " << technique->name() << " on "
-              << gl.renderer() << "\n  " << (out / "raster.exr").string() << "\n  "
-              << (out / "raster.json").string() << "\n";
-    for (const std::string& png : writePreviews(out, r.image, scene.lights))
-        std::cout << "  " << png << "\n";
+              << gl.renderer() << "\n  " << files.exr.string() << "\n  " << files.json.string()
+              << "\n";
+    for (const std::string& png : files.previews) std::cout << "  " << png << "\n";
     return 0;
 }
 

@@ -5,12 +5,12 @@
 #include <set>
 #include <sstream>
 
-#include "cli/csv_table.h"
 #include "cli/output.h"
 #include "cli/sweep_spec.h"
 #include "core/error.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/compare/sweep_report.h"
+#include "raster_compare/pipeline/csv_table.h"
 
 namespace so {
 

@@ -4,17 +4,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include <OpenEXR/OpenEXRConfig.h>
-
 #include "cli/output.h"
 #include "cli/progress_bar.h"
 #include "core/error.h"
 #include "core/gbuffer.h"
-#include "core/image_codec.h"
-#include "core/png_encode.h"
-#include "core/process_clock.h"
-#include "core/progress.h"
-#include "oracle/embree_handles.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/points.h"
@@ -22,50 +15,6 @@
 namespace so {
 
 namespace {
-
-// oracle.json: what was traced (scene, camera, libraries) and the run's stats (docs/oracle.md).
-nlohmann::json oracleJson(const TraceCommandOptions& options, const Scene& scene,
-                          const CameraDesc& cam, const OracleStats& stats, double loadSeconds,
-                          double writeSeconds) {
-    nlohmann::json j = {
-        {"format_version", 12},
-        {"tool", toolJson()},
-        {"scene",
-         {{"file", options.scenePath},
-          {"hash", scene.contentHash},
-          {"meshes", scene.meshes.size()},
-          {"triangles", scene.stats.triangles},
-          {"degenerate_triangles", scene.stats.degenerateTriangles},
-          {"skipped_primitives", scene.stats.skippedPrimitives},
-          {"gltf_extensions_ignored", scene.stats.gltfExtensionsIgnored},
-          {"warnings", scene.stats.warnings},
-          {"effects", scene.effects},
-          {"bounds",
-           {{"min", {scene.wsBounds.lo.x, scene.wsBounds.lo.y, scene.wsBounds.lo.z}},
-            {"max", {scene.wsBounds.hi.x, scene.wsBounds.hi.y, scene.wsBounds.hi.z}}}}}},
-        {"camera",
-         {{"eye", {cam.wsEye.x, cam.wsEye.y, cam.wsEye.z}},
-          {"target", {cam.wsTarget.x, cam.wsTarget.y, cam.wsTarget.z}},
-          {"up", {cam.wsUp.x, cam.wsUp.y, cam.wsUp.z}},
-          {"vfov_deg", cam.vfovDeg}}},
-        {"libraries",
-         {{"embree", EmbreeDevice::version()},
-          {"openexr", OPENEXR_VERSION_STRING},
-          // The PNG previews' library; null without previews.
-          {"png", options.previews ? nlohmann::json(pngLibraryVersion()) : nlohmann::json()},
-          // OpenImageIO reads textures (alpha masks); null where none was read, so it never
-          // loaded.
-          {"openimageio", loadedImageLibraryVersion().empty()
-                              ? nlohmann::json()
-                              : nlohmann::json(loadedImageLibraryVersion())}}},
-    };
-    j.update(toJson(stats));
-    j["phases_seconds"]["load"] = loadSeconds;
-    j["phases_seconds"]["write"] = writeSeconds;
-    j["libraries"]["tbb"] = j["tbb"]["version"];
-    j.erase("tbb");
-    return j;
-}
 
 // What the penumbrae cost, and what a tighter target would (docs/oracle.md, cost curve).
 void printOracleCost(const OracleStats& stats) {
@@ -105,15 +54,6 @@ int reportVerification(const OracleStats& stats, const std::string& scenePath,
               << " pixels where the oracle disagrees with the exact re-trace (listed in "
               << jsonPath.string() << ", verify.lights[].pixels)\n";
     return 3;
-}
-
-// The "tile" block of a band's oracle.json (docs/oracle.md, "Tiles").
-nlohmann::json tileJson(const TileSpec& tile, const RowBand& rows, const OracleOptions& oracle,
-                        const CameraDesc& cam) {
-    return {{"index", tile.index},
-            {"count", tile.count},
-            {"rows", {rows.begin, rows.end}},
-            {"options", tracedOptionsJson(oracle, cam)}};
 }
 
 // --tile, checked before the scene is loaded.
@@ -164,28 +104,7 @@ TileSpec parseTileSpec(const std::string& text) {
     return t;
 }
 
-nlohmann::json tracedOptionsJson(const OracleOptions& o, const CameraDesc& cam) {
-    // Everything that changes a pixel: the sampling, the camera's pose, the offset policy.
-    nlohmann::json options = oracleSamplingJson(o, cam);
-    options["eye"] = {cam.wsEye.x, cam.wsEye.y, cam.wsEye.z};
-    options["target"] = {cam.wsTarget.x, cam.wsTarget.y, cam.wsTarget.z};
-    options["up"] = {cam.wsUp.x, cam.wsUp.y, cam.wsUp.z};
-    options["vfov_deg"] = cam.vfovDeg;
-    options["offset_policy"] =
-        o.offsetPolicy == OffsetPolicy::ErrorBound ? "error bound" : "legacy";
-    return options;
-}
-
 namespace {
-
-// The write phase in its parts, and the whole process so far: what the user waits for beyond the
-// passes (issue 45: start-up, the previews and the EXR were most of a small exact trace).
-void addWritePhases(nlohmann::json& j, double exrSeconds, double writeSeconds) {
-    j["phases_seconds"]["write_exr"] = exrSeconds;
-    j["phases_seconds"]["write_previews"] = writeSeconds - exrSeconds;
-    const double process = processSeconds();
-    j["phases_seconds"]["process"] = process >= 0.0 ? nlohmann::json(process) : nlohmann::json();
-}
 
 // trace --points: the oracle at a G-buffer's points (docs/external.md, "Points in"). Everything is
 // read and checked before the output folder is made.
@@ -210,40 +129,22 @@ int runTracePoints(const TraceCommandOptions& options) {
         namingFlag("verify", "--verify", [&] { return runOracleAtPoints(scene, gbuffer, oracle); });
     const OraclePointsStats& points = *result.points;
 
-    t0 = Clock::now();
-    const std::string exrPath = (out / "oracle.exr").string();
-    {
-        const ExrAttributes attributes = {{"shadowOracle/sceneHash", scene.contentHash},
-                                          {"shadowOracle/toolVersion", toolVersionString()}};
-        Progress progress("writing " + exrPath, result.image.pixelCount(), oracle.progress);
-        writeExr(exrPath, result.image, attributes, result.stats.threads, &progress);
-    }
-    const double exrSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    const std::vector<std::string> previews = options.previews
-                                                  ? writePreviews(out, result.image, scene.lights)
-                                                  : std::vector<std::string>();
-    const double writeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-
-    const std::filesystem::path jsonPath = out / "oracle.json";
-    nlohmann::json j = oracleJson(options, scene, effectiveCamera(scene, options.oracle),
-                                  result.stats, loadSeconds, writeSeconds);
-    j["camera"] = nullptr;  // no camera: the points are the G-buffer's
-    j["points"] = toJson(points);
-    addWritePhases(j, exrSeconds, writeSeconds);
-    writeJsonFile(jsonPath, j);
+    TraceOutputOptions output{options.scenePath, loadSeconds, options.previews, std::nullopt,
+                              oracle.progress};
+    const TraceOutputFiles files = writeTraceOutput(out, scene, oracle, result, output);
 
     std::cout << "traced " << options.scenePath << " at the points of " << options.pointsPath
               << " (" << gbuffer.width << "x" << gbuffer.height << ": " << points.replayed
               << " replayed exactly, " << points.snapped << " snapped, " << points.offSurface
               << " off surface, " << points.background << " background)\n"
-              << "  " << exrPath << "\n  " << jsonPath.string() << "\n";
-    for (const std::string& p : previews) std::cout << "  " << p << "\n";
+              << "  " << files.exr.string() << "\n  " << files.json.string() << "\n";
+    for (const std::string& p : files.previews) std::cout << "  " << p << "\n";
     if (points.offSurface)
         std::cerr << "warning: " << options.pointsPath << ": " << points.offSurface
                   << " covered pixels lie farther than the snap tolerance from every surface of "
                   << options.scenePath << " (no oracle result: A = 0, points.status = 3)\n";
     printOracleCost(result.stats);
-    return reportVerification(result.stats, options.scenePath, jsonPath);
+    return reportVerification(result.stats, options.scenePath, files.json);
 }
 
 }  // namespace
@@ -279,31 +180,9 @@ int runTraceCommand(const TraceCommandOptions& options) {
     OracleResult result =
         namingFlag("verify", "--verify", [&] { return runOracle(scene, oracle); });
 
-    t0 = Clock::now();
-    const std::string exrPath = (out / "oracle.exr").string();
-    {
-        // A band is a data window inside the full display window (core/image.h ExrRows);
-        // trace-merge drops the tile attribute, so the merged file's header is the whole run's.
-        ExrAttributes attributes = {{"shadowOracle/sceneHash", scene.contentHash},
-                                    {"shadowOracle/toolVersion", toolVersionString()}};
-        if (tile)
-            attributes.emplace_back(
-                kTileAttribute, std::to_string(tile->index) + "/" + std::to_string(tile->count));
-        Progress progress("writing " + exrPath, result.image.pixelCount(), oracle.progress);
-        writeExr(exrPath, result.image, attributes, result.stats.threads, &progress,
-                 {rows.begin, cam.height});
-    }
-    const double exrSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    const std::vector<std::string> previews = options.previews
-                                                  ? writePreviews(out, result.image, scene.lights)
-                                                  : std::vector<std::string>();
-    const double writeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-
-    const std::filesystem::path jsonPath = out / "oracle.json";
-    nlohmann::json j = oracleJson(options, scene, cam, result.stats, loadSeconds, writeSeconds);
-    if (tile) j["tile"] = tileJson(*tile, rows, oracle, cam);
-    addWritePhases(j, exrSeconds, writeSeconds);
-    writeJsonFile(jsonPath, j);
+    TraceOutputOptions output{options.scenePath, loadSeconds, options.previews, tile,
+                              oracle.progress};
+    const TraceOutputFiles files = writeTraceOutput(out, scene, oracle, result, output);
 
     std::cout << "traced " << options.scenePath << " (" << scene.stats.triangles << " triangles, "
               << cam.width << "x" << cam.height << ", " << scene.lights.size() << " lights"
@@ -311,10 +190,10 @@ int runTraceCommand(const TraceCommandOptions& options) {
                              std::to_string(rows.end - 1) + " (tile " + options.tile + ")"
                        : std::string())
               << ")\n"
-              << "  " << exrPath << "\n  " << jsonPath.string() << "\n";
-    for (const std::string& p : previews) std::cout << "  " << p << "\n";
+              << "  " << files.exr.string() << "\n  " << files.json.string() << "\n";
+    for (const std::string& p : files.previews) std::cout << "  " << p << "\n";
     printOracleCost(result.stats);
-    return reportVerification(result.stats, options.scenePath, jsonPath);
+    return reportVerification(result.stats, options.scenePath, files.json);
 }
 
 }  // namespace so

@@ -1,12 +1,11 @@
 // `shadow-oracle trace`: load, run the oracle, write oracle.exr, oracle.json and NAME.png
-// previews (docs/cli.md, docs/oracle.md).
+// previews (docs/cli.md, docs/oracle.md) through oracle/trace_output.h; this parses and prints.
 #pragma once
 
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "oracle/oracle.h"
+#include "oracle/trace_output.h"
 
 namespace so {
 
@@ -29,19 +28,7 @@ struct TraceCommandOptions {
 // Returns the process exit code; InputError propagates to main (exit 2).
 int runTraceCommand(const TraceCommandOptions& options);
 
-// "I/N" with 0 <= I < N <= kMaxTiles, or an InputError naming --tile.
-struct TileSpec {
-    int index = 0, count = 1;
-};
-inline constexpr int kMaxTiles = 4096;
-// The EXR attribute naming a band's tile ("I/N"); the merged file has none.
-inline constexpr const char* kTileAttribute = "shadowOracle/tile";
+// "I/N" with 0 <= I < N <= kMaxTiles (oracle/trace_output.h), or an InputError naming --tile.
 TileSpec parseTileSpec(const std::string& text);
 
-// The options that decide the pixels, as a tile's oracle.json records them ("tile.options"):
-// trace-merge joins only tiles whose options are equal.
-nlohmann::json tracedOptionsJson(const OracleOptions& options, const CameraDesc& camera);
-
-// Shaded preview of one light: grey Lambert with a little ambient, times V, so a person sees the
-// shadows (and the attached-shadow side) at a glance.
 }  // namespace so

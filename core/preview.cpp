@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/channels.h"
+#include "core/image_codec.h"
 
 namespace so {
 
@@ -15,6 +16,20 @@ std::vector<float> shadowGrey(const ChannelImage& image, const float* V, const f
         rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = g;
     }
     return rgb;
+}
+
+std::vector<std::string> writePreviews(const std::filesystem::path& dir, const ChannelImage& image,
+                                       const std::vector<Light>& lights) {
+    namespace ch = channels;
+    std::vector<std::string> paths;
+    for (const Light& light : lights) {
+        const std::string cosName = ch::lightChannel(light.name, ch::kCosine);
+        const float* V = image.channel(ch::lightChannel(light.name, ch::kVisibility));
+        const float* cosine = image.has(cosName) ? image.channel(cosName) : nullptr;
+        paths.push_back((dir / (light.name + ".png")).string());
+        writePngRgb(paths.back(), image.width(), image.height(), shadowGrey(image, V, cosine));
+    }
+    return paths;
 }
 
 }  // namespace so

@@ -360,6 +360,16 @@ void bindTrace(py::module_& m) {
         "exactly and disk and sphere lights' in a guaranteed interval (auto: where a probe "
         "estimates it cheaper than sampling). "
         "progress(stage, done, total) is called every 50 ms; return False to cancel.");
+    m.def(
+        "write_trace_output",
+        [](const so::Scene& scene, const PyTrace& trace, const std::string& outDir, bool previews) {
+            py::gil_scoped_release release;
+            return so::writeTraceOutput(scene, trace.result, outDir, previews);
+        },
+        py::arg("scene"), py::arg("trace"), py::arg("out_dir"), py::kw_only(),
+        py::arg("previews") = true,
+        "`shadow-oracle trace`'s folder from a trace() result: oracle.exr, oracle.json and a "
+        "NAME.png preview per light. Returns the paths written.");
 }
 
 // A technique's keyword settings as the command line writes them: numbers, names, booleans.
@@ -384,9 +394,8 @@ so::Parameters parametersFrom(const py::kwargs& kwargs) {
 }
 
 struct PyRender {
+    so::RenderResult result;  // its image moved out into `images`
     py::dict images;
-    double frameMs = 0.0;
-    std::string statsJson;
     std::vector<std::string> lights;
 };
 
@@ -396,10 +405,10 @@ void bindRender(py::module_& m) {
         .def_property_readonly(
             "V", [](const PyRender& r) { return lightPlanes(r.images, r.lights, "V"); })
         .def_property_readonly(
-            "frame_ms", [](const PyRender& r) { return r.frameMs; },
+            "frame_ms", [](const PyRender& r) { return r.result.frameMs; },
             "Median over the timed frames (llvmpipe's, where that is the GL).")
         .def_property_readonly(
-            "stats", [](const PyRender& r) { return jsonLoads(r.statsJson); },
+            "stats", [](const PyRender& r) { return jsonLoads(r.result.statsJson); },
             "raster.json as a dict.");
     m.def(
         "render",
@@ -407,22 +416,31 @@ void bindRender(py::module_& m) {
            int warmup, const py::kwargs& kwargs) {
             so::RenderOptions o{width, height, frames, warmup};
             const so::Parameters parameters = parametersFrom(kwargs);
-            so::RenderResult r = interruptible<so::RenderResult>(
+            PyRender out;
+            out.result = interruptible<so::RenderResult>(
                 [&](const so::ProgressCallback&) {
                     return so::render(scene, technique, parameters, o);
                 },
                 py::none());
-            PyRender out;
-            out.frameMs = r.frameMs;
-            out.statsJson = std::move(r.statsJson);
             out.lights = lightNames(scene);
-            out.images = imageDict(std::move(r.image));
+            out.images = imageDict(std::move(out.result.image));
             return out;
         },
         py::arg("scene"), py::arg("technique"), py::kw_only(), py::arg("width") = 0,
         py::arg("height") = 0, py::arg("frames") = 9, py::arg("warmup") = 2,
         "A built-in technique through the GL path, its parameters as keywords by the names of "
         "docs/techniques.md: render(scene, \"pcf\", kernel=5, pattern=\"poisson\").");
+    m.def(
+        "write_render_output",
+        [](const so::Scene& scene, const PyRender& render, const std::string& outDir,
+           bool previews) {
+            py::gil_scoped_release release;
+            return so::writeRenderOutput(scene, render.result, outDir, previews);
+        },
+        py::arg("scene"), py::arg("render"), py::arg("out_dir"), py::kw_only(),
+        py::arg("previews") = true,
+        "`shadow-oracle raster`'s folder from a render() result: raster.exr, raster.json and a "
+        "NAME.png preview per light. Returns the paths written.");
     m.def(
         "techniques", [] { return jsonLoads(so::techniquesJson()); },
         "Every technique, its family and its parameter table (techniques --json).");
@@ -461,7 +479,7 @@ void bindCompare(py::module_& m) {
         "compare",
         [](const so::Scene& scene, const PyTrace& oracle, const py::object& images,
            const std::vector<std::string>& techniques, int boundaryRadius, int frames, int warmup,
-           const py::object& progress) {
+           const py::object& progress, const std::optional<std::string>& outDir, bool report) {
             so::CompareOptions o;
             o.techniques = techniques;
             if (!images.is_none())
@@ -476,13 +494,20 @@ void bindCompare(py::module_& m) {
                     return so::compare(scene, oracle.result, withProgress);
                 },
                 progress);
+            if (outDir) {
+                py::gil_scoped_release release;
+                so::writeCompareOutput(scene, oracle.result, r, *outDir, report);
+            }
             return jsonLoads(r.metricsJson);
         },
         py::arg("scene"), py::arg("oracle"), py::arg("images") = py::none(), py::kw_only(),
         py::arg("techniques") = std::vector<std::string>{}, py::arg("boundary_radius") = 2,
         py::arg("frames") = 9, py::arg("warmup") = 2, py::arg("progress") = py::none(),
+        py::arg("out_dir") = py::none(), py::arg("report") = true,
         "Judges renderers' images ({label: V array, or {light: V array}}) and built-in techniques "
-        "(\"pcf:kernel=5\") against the oracle; returns metrics.json as a dict.");
+        "(\"pcf:kernel=5\") against the oracle; returns metrics.json as a dict. With out_dir, "
+        "also writes `shadow-oracle compare`'s folder there (metrics.json, the CSVs, a folder and "
+        "an error EXR per row, and with report, report.html and oracle.exr).");
 }
 
 }  // namespace

@@ -31,7 +31,7 @@
 namespace shadow_oracle {
 
 // This header's version: a change that breaks a caller raises it (docs/api.md).
-inline constexpr int kApiVersion = 1;
+inline constexpr int kApiVersion = 2;
 // "<tool version> <git revision>", as in every file the tool writes.
 SHADOW_ORACLE_API std::string version();
 
@@ -178,6 +178,9 @@ struct RenderResult {
     double frameMs = 0.0;               // median over the timed frames
     std::string statsJson;              // raster.json: passes, times, memory per light
     std::vector<std::string> warnings;  // the GL driver's, one line each
+
+    struct Data;  // what writeRenderOutput writes: the image as rendered, the typed stats
+    std::shared_ptr<const Data> data;
 };
 
 // Every technique and its parameters: `shadow-oracle techniques --json` (docs/techniques.md).
@@ -190,6 +193,9 @@ SHADOW_ORACLE_API RenderResult render(const Scene& scene, const std::string& tec
 // A renderer's shadow visibility judged like a technique (docs/external.md, "Images in").
 struct ExternalImage {
     std::string label;
+    // The file readImage read it from (what metrics.json and raster.json name); empty for an
+    // image made in memory, named `image "LABEL"` there.
+    std::string path;
     // Per light of the scene, in its order: V in [0, 1] (1e-3 beyond is clamped, farther is an
     // error), the oracle's width * height each, row 0 at the top.
     std::vector<std::vector<float>> visibility;
@@ -237,11 +243,39 @@ struct CompareResult {
     std::vector<ComparedRow> rows;      // the techniques in order, then the images
     std::string metricsJson;            // metrics.json, as the compare command writes it
     std::vector<std::string> warnings;  // the GL driver's, one line each
+
+    struct Data;  // what writeCompareOutput needs beyond the metrics
+    std::shared_ptr<const Data> data;
 };
 
 // Throws Error when a technique or parameter is unknown, a label is used twice, or an image does
 // not fit the scene's lights and the oracle's size.
 SHADOW_ORACLE_API CompareResult compare(const Scene& scene, const TraceResult& oracle,
                                         const CompareOptions& options);
+
+// The command line's output folders, written from the results above (docs/api.md, "Writing the
+// command's files"): the files `trace-merge`, `gate`, `index` and a sweep read. outDir is created
+// if missing. Each returns the paths it wrote. For the same inputs the bytes are the command's,
+// but for what the file says was measured (times, dates) and where the command names its
+// arguments differently.
+
+// `trace`'s folder: oracle.exr, oracle.json and (previews) NAME.png per light.
+SHADOW_ORACLE_API std::vector<std::string> writeTraceOutput(const Scene& scene,
+                                                            const TraceResult& result,
+                                                            const std::string& outDir,
+                                                            bool previews = true);
+// `raster`'s folder: raster.exr, raster.json and (previews) NAME.png per light.
+SHADOW_ORACLE_API std::vector<std::string> writeRenderOutput(const Scene& scene,
+                                                             const RenderResult& result,
+                                                             const std::string& outDir,
+                                                             bool previews = true);
+// `compare`'s folder: metrics.json, metrics.csv, metrics_wide.csv, a folder per row with
+// raster.json and raster.exr, error_LABEL.exr, and (report) report.html with oracle.exr.
+// `oracle` is the trace the comparison was made against.
+SHADOW_ORACLE_API std::vector<std::string> writeCompareOutput(const Scene& scene,
+                                                              const TraceResult& oracle,
+                                                              const CompareResult& result,
+                                                              const std::string& outDir,
+                                                              bool report = true);
 
 }  // namespace shadow_oracle

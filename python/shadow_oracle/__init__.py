@@ -27,6 +27,8 @@ from ._shadow_oracle import (  # noqa: F401
     techniques,
     trace,
     write_exr,
+    write_render_output,
+    write_trace_output,
 )
 
 __all__ = [
@@ -45,4 +47,6 @@ __all__ = [
     "techniques",
     "trace",
     "write_exr",
+    "write_render_output",
+    "write_trace_output",
 ]

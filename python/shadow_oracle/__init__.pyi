@@ -114,7 +114,15 @@ def compare(
     frames: int = 9,
     warmup: int = 2,
     progress: Optional[ProgressFn] = None,
+    out_dir: Optional[str] = None,
+    report: bool = True,
 ) -> dict[str, Any]: ...
+def write_trace_output(
+    scene: Scene, trace: Trace, out_dir: str, *, previews: bool = True
+) -> list[str]: ...
+def write_render_output(
+    scene: Scene, render: Render, out_dir: str, *, previews: bool = True
+) -> list[str]: ...
 def read_exr(path: str) -> dict[str, npt.NDArray[np.float32]]: ...
 def write_exr(
     path: str,

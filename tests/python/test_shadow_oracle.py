@@ -249,6 +249,54 @@ def test_export_scene_writes_what_the_cli_writes(tmp_path):
     assert [l["name"] for l in exported.lights] == [l["name"] for l in scene.lights]
 
 
+def without_times(j):
+    """A JSON file's content without the keys that measure the run (seconds, rates, ms)."""
+    if isinstance(j, list):
+        return [without_times(e) for e in j]
+    if not isinstance(j, dict):
+        return j
+    return {k: without_times(v) for k, v in j.items()
+            if "second" not in k and "_ms" not in k and k not in ("ms", "timings", "process")}
+
+
+def test_write_functions_write_what_the_cli_writes(tmp_path):
+    path = scene_path("contact_box")
+    scene = so.load_scene(path)
+    oracle = so.trace(scene, width=96, height=64)
+    written = so.write_trace_output(scene, oracle, str(tmp_path / "py"))
+    assert written[:2] == [str(tmp_path / "py" / "oracle.exr"), str(tmp_path / "py" / "oracle.json")]
+    run_cli("trace", path, "--out", str(tmp_path / "cli"), "--width", "96", "--height", "64",
+            "--quiet")
+    for f in ["oracle.exr", "key.png"]:
+        assert (tmp_path / "py" / f).read_bytes() == (tmp_path / "cli" / f).read_bytes(), f
+    py_json = json.loads((tmp_path / "py" / "oracle.json").read_text())
+    cli_json = json.loads((tmp_path / "cli" / "oracle.json").read_text())
+    assert without_times(py_json) == without_times(cli_json)
+
+    # compare(out_dir=...): the compare command's folder, which gate reads.
+    v = np.roll(oracle.V["key"], 2, axis=1)
+    metrics = so.compare(scene, oracle, {"mine": v}, out_dir=str(tmp_path / "cmp"), report=False)
+    on_disk = json.loads((tmp_path / "cmp" / "metrics.json").read_text())
+    assert on_disk == metrics
+    assert (tmp_path / "cmp" / "error_mine.exr").exists()
+    assert not (tmp_path / "cmp" / "report.html").exists()
+    gate = subprocess.run([CLI, "gate", str(tmp_path / "cmp" / "metrics.json"), "--limits",
+                           os.path.join(SCENES, "limits.json")], capture_output=True, text=True)
+    assert gate.returncode in (0, 1), gate.stderr  # 2 would be a refused file
+    assert " passed" in gate.stdout
+
+    try:
+        r = so.render(scene, "pcf", width=64, height=48, frames=1, warmup=0)
+    except so.Error as e:
+        if "EGL" in str(e) or "OpenGL 4.5" in str(e):
+            pytest.skip(str(e))
+        raise
+    so.write_render_output(scene, r, str(tmp_path / "raster"), previews=False)
+    assert json.loads((tmp_path / "raster" / "raster.json").read_text())["format_version"] >= 6
+    assert sorted(so.read_exr(str(tmp_path / "raster" / "raster.exr"))) == sorted(r.images)
+    assert not (tmp_path / "raster" / "key.png").exists()
+
+
 def test_the_stubs_name_everything_the_module_exports():
     stub = open(STUB).read()
     for name in so.__all__:

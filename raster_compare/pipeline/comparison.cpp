@@ -1,4 +1,4 @@
-#include "raster_compare/comparison/comparison.h"
+#include "raster_compare/pipeline/comparison.h"
 
 #include <algorithm>
 #include <cctype>

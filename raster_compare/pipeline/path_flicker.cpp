@@ -1,4 +1,4 @@
-#include "raster_compare/comparison/path_flicker.h"
+#include "raster_compare/pipeline/path_flicker.h"
 
 #include "core/camera_path.h"
 #include "core/channels.h"

@@ -1,4 +1,4 @@
-#include "cli/csv_table.h"
+#include "raster_compare/pipeline/csv_table.h"
 
 #include <fstream>
 #include <sstream>
