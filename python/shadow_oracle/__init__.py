@@ -26,6 +26,7 @@ from ._shadow_oracle import (  # noqa: F401
     render,
     techniques,
     trace,
+    trace_options,
     write_exr,
 )
 
@@ -44,5 +45,6 @@ __all__ = [
     "render",
     "techniques",
     "trace",
+    "trace_options",
     "write_exr",
 ]
