@@ -264,7 +264,7 @@ std::string traceOptionsMarkdown() {
         const char* separator = " ";
         for (const auto& [bit, n] : kSurfaceNames)
             if (s.surfaces & bit) {
-                out << separator << n;
+                out << separator << (bit == kSurfaceApi ? "API, Python" : n);
                 separator = ", ";
             }
         out << " |\n";

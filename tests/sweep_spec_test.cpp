@@ -333,11 +333,9 @@ TEST_F(SweepSpecImages, ARowIsStaleWhenItsImageOrCostFileChanges) {
     EXPECT_FALSE(imageRowIsStale(nlohmann::json::object(), technique));
 }
 
-}  // namespace
-}  // namespace so
-
 // The sweep spec's trace keys are the trace option table's sweep rows (core/trace_option_table.h):
-// each is accepted with its default and refused out of range, naming its field; no other key is.
+// each is accepted with a valid value and refused out of range, naming its field; the others are
+// unknown keys.
 TEST_F(SweepSpec, TraceOptionTableSweepKeysAreTheSpecsKeys) {
     const std::string head = R"({"sweep_format": 1, "scenes": ["scenes/a.scene.json"], )"
                              R"("techniques": [{"name": "shadow"}])";
@@ -373,3 +371,6 @@ TEST_F(SweepSpec, TraceOptionTableSweepKeysAreTheSpecsKeys) {
     }
     EXPECT_GE(offered, 10u);
 }
+
+}  // namespace
+}  // namespace so
