@@ -2,55 +2,33 @@
 #include <nlohmann/json.hpp>
 
 #include "api/api_internal.h"
+#include "api/trace_option_fields.h"
 #include "core/gbuffer.h"
 #include "oracle/oracle.h"
 #include "oracle/points.h"
+#include "oracle/trace_options.h"
 
 namespace shadow_oracle {
 
 namespace {
 
+// The options, each checked by the trace option table (one line naming its key: "trace options:
+// max_spp: must be an integer in [16, 1048576]"), as the oracle's.
 so::OracleOptions oracleOptions(const TraceOptions& o) {
+    if (!o.points.empty() && (o.width > 0 || o.height > 0))
+        so::throwInputError("trace options", "points",
+                            "the image is the G-buffer's size: no width or height with points");
     so::OracleOptions out;
-    out.width = o.width;
-    out.height = o.height;
-    out.threads = o.threads;
-    out.area.targetError = o.targetError;
-    out.area.agreementTarget = o.agreementTarget;
-    out.area.maxSpp = o.maxSpp;
-    out.area.fixedSpp = o.fixedSpp;
-    out.area.seed = o.seed;
-    out.verify.pixels = o.verify;
-    out.penumbra.method = so::parsePenumbraMethod(o.penumbra, "trace options", "penumbra");
-    out.penumbra.allPixels = so::parseExactPixels(o.exactPixels, "trace options", "exact_pixels");
+    so::applyTraceOptions(detail::traceOptionValues(o),
+                          {"trace options", /*cliNames=*/false, "", /*allowUnsetZero=*/true}, out);
     out.progress = detail::toLibrary(o.progress);
     return out;
-}
-
-// The checks the trace command's options get from its parser (cli/main.cpp), as errors here.
-void checkOptions(const TraceOptions& o) {
-    const auto fail = [](const std::string& field, const std::string& why) {
-        so::throwInputError("trace options", field, why);
-    };
-    if (o.width < 0 || o.width > 16384) fail("width", "must be in [0, 16384]");
-    if (o.height < 0 || o.height > 16384) fail("height", "must be in [0, 16384]");
-    if (o.threads < 0 || o.threads > 1024) fail("threads", "must be in [0, 1024]");
-    if (!(o.targetError >= 1e-4 && o.targetError <= 0.5))
-        fail("target_error", "must be in [1e-4, 0.5]");
-    if (!(o.agreementTarget >= 1e-4 && o.agreementTarget <= 0.5))
-        fail("agreement_target", "must be in [1e-4, 0.5]");
-    if (o.maxSpp < 16 || o.maxSpp > (1 << 20)) fail("max_spp", "must be in [16, 1048576]");
-    if (o.fixedSpp < 0 || o.fixedSpp > (1 << 20)) fail("spp", "must be in [0, 1048576]");
-    if (o.verify < 0 || o.verify > (1 << 20)) fail("verify", "must be in [0, 1048576]");
-    if (!o.points.empty() && (o.width > 0 || o.height > 0))
-        fail("points", "the image is the G-buffer's size: no width or height with points");
 }
 
 }  // namespace
 
 TraceResult trace(const Scene& scene, const TraceOptions& options) {
     return detail::translated([&] {
-        checkOptions(options);
         const so::Scene& s = scene.data().scene;
         const so::OracleOptions o = oracleOptions(options);
         so::OracleResult r;
@@ -83,6 +61,10 @@ TraceResult trace(const Scene& scene, const TraceOptions& options) {
         out.data = std::move(data);
         return out;
     });
+}
+
+std::string traceOptionsJson() {
+    return so::traceOptionsJson();
 }
 
 }  // namespace shadow_oracle

@@ -2,6 +2,7 @@
 // 2 bad input (one line on stderr naming the file and field), 1 anything else.
 #include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -23,16 +24,19 @@
 #include "cli/view_command.h"
 #include "core/error.h"
 #include "core/version.h"
-#include "oracle/exact_penumbra.h"
+#include "oracle/oracle.h"
+#include "oracle/trace_options.h"
 #include "raster_compare/gl/gl_context.h"
 #include "raster_compare/gl/technique.h"
+#include "raster_compare/gl/technique_listing.h"
 
-// --width and --height, the same for every subcommand that renders.
+// --width and --height of the commands that render without tracing: the trace options' ranges.
 static void addImageSize(CLI::App* cmd, int& width, int& height) {
-    cmd->add_option("--width", width, "image width (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", height, "image height (default: the scene camera's)")
-        ->check(CLI::Range(1, 16384));
+    for (const auto& [key, target] : {std::pair{"width", &width}, std::pair{"height", &height}}) {
+        const so::TraceOptionSpec& s = so::traceOption(key);
+        cmd->add_option(s.cli, *target, so::traceOptionHelp(s))
+            ->check(CLI::Range(int(s.min), int(s.max)));
+    }
 }
 
 // Each subcommand is added with its options; what is returned runs it once parsed. Options live
@@ -46,36 +50,53 @@ static void addQuiet(CLI::App* cmd, bool& progress) {
         "--quiet", [&progress] { progress = false; }, "no progress output");
 }
 
-// --penumbra and --exact-pixels (docs/oracle.md, "Exact penumbrae"): names, read when the
-// command runs so that a bad one is the tool's one-line error.
-struct PenumbraFlags {
-    std::string method = "sampled", pixels = "penumbra";
-    so::DiskBoundOptions bound;
+// The trace options a command offers (oracle/trace_option_table.h: names, ranges, help), read
+// into `values` as CLI11 parses them; the table checks what it alone can (a name, a power of two)
+// and writes them into the oracle's options when the command runs, so that a bad one is the tool's
+// one-line error.
+struct TraceOptionFlags {
+    so::TraceOptionValues values;
     void applyTo(so::OracleOptions& o) const {
-        o.penumbra.method = so::parsePenumbraMethod(method, "command line", "--penumbra");
-        o.penumbra.allPixels = so::parseExactPixels(pixels, "command line", "--exact-pixels");
-        o.penumbra.bound = so::checkedBoundOptions(bound, "command line", "--bound-max-sides");
+        so::applyTraceOptions(values, {"command line", /*cliNames=*/true, "", false}, o);
     }
 };
-static std::shared_ptr<PenumbraFlags> addPenumbraFlags(CLI::App* cmd) {
-    auto flags = std::make_shared<PenumbraFlags>();
-    cmd->add_option("--penumbra", flags->method,
-                    "rect lights: sampled (RQMC with 95% intervals, default), exact (clipped "
-                    "polygons on every pixel; stderr 0 there), both (V sampled, V_exact beside "
-                    "it) or auto (per light, exact or sampled, whichever a probe estimates "
-                    "cheaper); disk and sphere lights: exact gives V in a guaranteed interval "
-                    "(NAME.bound)");
-    cmd->add_option("--exact-pixels", flags->pixels,
-                    "with --penumbra both: penumbra (pixels whose samples disagree, default) or "
-                    "all (every sampled pixel); exact finds its own pixels");
-    cmd->add_option("--bound-target", flags->bound.targetHalfWidth,
-                    "disk and sphere lights with --penumbra exact, both or auto: the half-width "
-                    "of V's guaranteed interval to reach (default 1e-6)")
-        ->check(CLI::Range(1e-7, 0.5));
-    cmd->add_option("--bound-max-sides", flags->bound.maxSides,
-                    "the most sides of the polygons bounding a disk, a power of two in [32, " +
-                        std::to_string(so::kMaxDiskSides) +
-                        "] (default 4096); a pixel stopped by it states the half-width it reached");
+static std::shared_ptr<TraceOptionFlags> addTraceOptions(CLI::App* cmd, so::TraceSurface surface) {
+    auto flags = std::make_shared<TraceOptionFlags>();
+    TraceOptionFlags* f = flags.get();  // the command's Runner keeps it alive
+    std::map<std::string, CLI::Option*> added;
+    for (const so::TraceOptionSpec& s : so::traceOptionTable()) {
+        if (!(s.surfaces & surface)) continue;
+        const std::string key = s.key, help = so::traceOptionHelp(s);
+        CLI::Option* opt = nullptr;
+        if (s.type == so::TraceOptionType::Integer) {
+            opt = cmd->add_option_function<int64_t>(
+                s.cli,
+                [f, key](const int64_t& v) {
+                    f->values[key] = {double(v), ""};
+                },
+                help);
+            if (!s.powerOfTwo) opt->check(CLI::Range(int64_t(s.min), int64_t(s.max)));
+        } else if (s.type == so::TraceOptionType::Real) {
+            opt = cmd->add_option_function<double>(
+                s.cli,
+                [f, key](const double& v) {
+                    f->values[key] = {v, ""};
+                },
+                help);
+            opt->check(CLI::Range(s.min, s.max));
+        } else {
+            opt = cmd->add_option_function<std::string>(
+                s.cli,
+                [f, key](const std::string& v) {
+                    f->values[key] = {0.0, v};
+                },
+                help);
+        }
+        added[key] = opt;
+    }
+    for (const so::TraceOptionSpec& s : so::traceOptionTable())
+        for (const std::string& other : s.excludes)
+            if (added.count(s.key) && added.count(other)) added[s.key]->excludes(added[other]);
     return flags;
 }
 
@@ -85,46 +106,12 @@ static Runner addTrace(CLI::App& app) {
         "trace", "ground-truth shadows with Embree: oracle.exr, oracle.json, previews");
     traceCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     traceCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
-    addImageSize(traceCmd, o->oracle.width, o->oracle.height);
-    traceCmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
-    traceCmd->add_option("--seed", o->oracle.area.seed,
-                         "seed of the area-light sample sequences (default 0)");
-    traceCmd
-        ->add_option(
-            "--target-error", o->oracle.area.targetError,
-            "area lights: stop a pixel when its 95% half-width is below this (default 0.01)")
-        ->check(CLI::Range(1e-4, 0.5));
-    traceCmd
-        ->add_option("--agreement-target", o->oracle.area.agreementTarget,
-                     "area lights: a pixel whose samples all agree (lit, or umbra) stops at the "
-                     "larger of this and --target-error (default 0.01; docs/oracle.md)")
-        ->check(CLI::Range(1e-4, 0.5));
-    traceCmd
-        ->add_option("--max-spp", o->oracle.area.maxSpp,
-                     "area lights: most samples per pixel (default 16384)")
-        ->check(CLI::Range(16, 1 << 20));
-    auto* sppOpt =
-        traceCmd
-            ->add_option("--spp", o->oracle.area.fixedSpp,
-                         "area lights: exactly this many samples per pixel (no adaptivity)")
-            ->check(CLI::Range(1, 1 << 20));
-    sppOpt->excludes("--target-error");
-    sppOpt->excludes("--max-spp");
-    sppOpt->excludes("--agreement-target");
+    const std::shared_ptr<TraceOptionFlags> traceOptions =
+        addTraceOptions(traceCmd, so::kSurfaceTrace);
     addQuiet(traceCmd, o->progress);
     traceCmd->add_flag_callback(
         "--no-previews", [o] { o->previews = false; },
         "write no NAME.png previews (then OpenImageIO is not loaded)");
-    traceCmd
-        ->add_option("--verify", o->oracle.verify.pixels,
-                     "re-trace N random pixels per light (plus up to N near the horizon) with an "
-                     "independent exact tracer; exit 3 on any disagreement")
-        ->check(CLI::Range(0, 1 << 20));
-    traceCmd
-        ->add_option("--verify-samples", o->oracle.verify.areaSamples,
-                     "reference samples per area-light pixel checked (default 4096)")
-        ->check(CLI::Range(64, 1 << 20));
     // Checked by the command (one line naming --tile, exit 2), not by CLI11.
     traceCmd->add_option("--tile", o->tile,
                          "I/N: trace only band I of N bands of rows (0 <= I < N <= 4096), for "
@@ -134,10 +121,9 @@ static Runner addTrace(CLI::App& app) {
         "GBUFFER.exr: the oracle at a renderer's own surface points (P, N, A), one "
         "result per pixel of that image (docs/external.md); not with --tile, "
         "--width, --height");
-    const std::shared_ptr<PenumbraFlags> penumbra = addPenumbraFlags(traceCmd);
 
-    return [o, penumbra] {
-        penumbra->applyTo(o->oracle);
+    return [o, traceOptions] {
+        traceOptions->applyTo(o->oracle);
         return so::runTraceCommand(*o);
     };
 }
@@ -227,29 +213,13 @@ static Runner addCompare(CLI::App& app) {
     compareCmd->add_option("--points", o->pointsPath,
                            "GBUFFER.exr: the oracle at a renderer's own G-buffer points instead of "
                            "the scene camera's pixels (with --image only; trace --points)");
-    addImageSize(compareCmd, o->raster.width, o->raster.height);
+    const std::shared_ptr<TraceOptionFlags> traceOptions =
+        addTraceOptions(compareCmd, so::kSurfaceCompare);
     compareCmd
         ->add_option(
             "--frames", o->raster.frames,
             "timed frames per technique after 2 warm-up frames, techniques interleaved (default 9)")
         ->check(CLI::Range(1, 1000));
-    compareCmd->add_option("--threads", o->oracle.threads, "oracle threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
-    compareCmd->add_option("--seed", o->oracle.area.seed, "oracle area-light seed (default 0)");
-    compareCmd
-        ->add_option("--target-error", o->oracle.area.targetError,
-                     "oracle area-light target (default 0.01)")
-        ->check(CLI::Range(1e-4, 0.5));
-    compareCmd
-        ->add_option("--agreement-target", o->oracle.area.agreementTarget,
-                     "oracle: where an area light's samples all agree, the target "
-                     "(default 0.01)")
-        ->check(CLI::Range(1e-4, 0.5));
-    compareCmd
-        ->add_option("--verify", o->oracle.verify.pixels,
-                     "re-trace N random pixels per light (plus up to N near the horizon) of the "
-                     "oracle with an independent exact tracer; exit 3 on any disagreement")
-        ->check(CLI::Range(0, 1 << 20));
     compareCmd->add_option("--cache", o->cacheDir,
                            "oracle cache folder (default: $XDG_CACHE_HOME/shadow-oracle)");
     compareCmd->add_flag("--no-cache", *noCache, "always trace the oracle, and do not store it");
@@ -264,10 +234,12 @@ static Runner addCompare(CLI::App& app) {
                      "also render N frames along the scene's camera_path (oracle and every "
                      "technique) for temporal_flicker_rate (docs/metrics.md)")
         ->check(CLI::Range(2, 10000));
-    const std::shared_ptr<PenumbraFlags> penumbra = addPenumbraFlags(compareCmd);
 
-    return [o, noCache, encoding, images, penumbra] {
-        penumbra->applyTo(o->oracle);
+    return [o, noCache, encoding, images, traceOptions] {
+        traceOptions->applyTo(o->oracle);
+        // One size for the oracle and the renders.
+        o->raster.width = o->oracle.width;
+        o->raster.height = o->oracle.height;
         o->useCache = !*noCache;
         for (const std::string& text : *images) o->images.push_back(so::parseImageSpec(text));
         o->imageEncoding = so::parseImageEncoding(*encoding, "command line", "--image-encoding");
@@ -364,7 +336,9 @@ static Runner addTechniques(CLI::App& app) {
     auto json = std::make_shared<bool>(false), markdown = std::make_shared<bool>(false);
     CLI::App* techniquesCmd = app.add_subcommand(
         "techniques", "list the techniques with their parameters, defaults and ranges");
-    auto* jsonFlag = techniquesCmd->add_flag("--json", *json, "as JSON (format_version 3)");
+    auto* jsonFlag = techniquesCmd->add_flag(
+        "--json", *json,
+        "as JSON (format_version " + std::to_string(so::kTechniquesJsonFormat) + ")");
     techniquesCmd->add_flag("--markdown", *markdown, "as the Markdown of docs/techniques.md")
         ->excludes(jsonFlag);
 
@@ -372,6 +346,21 @@ static Runner addTechniques(CLI::App& app) {
         return so::runTechniquesCommand(*json       ? so::ListingFormat::Json
                                         : *markdown ? so::ListingFormat::Markdown
                                                     : so::ListingFormat::Text);
+    };
+}
+
+static Runner addTraceOptionsListing(CLI::App& app) {
+    auto json = std::make_shared<bool>(false), markdown = std::make_shared<bool>(false);
+    CLI::App* cmd = app.add_subcommand(
+        "trace-options",
+        "list the oracle's options with their API and sweep keys, defaults, ranges and the "
+        "commands that take them");
+    auto* jsonFlag = cmd->add_flag("--json", *json, "as JSON (format_version 1)");
+    cmd->add_flag("--markdown", *markdown, "as the Markdown table of docs/cli.md")
+        ->excludes(jsonFlag);
+    return [json, markdown] {
+        std::cout << (*json ? so::traceOptionsJson() : so::traceOptionsMarkdown());
+        return 0;
     };
 }
 
@@ -402,6 +391,7 @@ int main(int argc, char** argv) {
         {"gate", addGate(app)},
         {"index", addIndex(app)},
         {"techniques", addTechniques(app)},
+        {"trace-options", addTraceOptionsListing(app)},
         {"metrics", addMetrics(app)}};
     try {
         app.parse(argc, argv);

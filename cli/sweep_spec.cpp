@@ -12,11 +12,11 @@
 #include <limits>
 #include <set>
 #include <sstream>
-#include <tuple>
 
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/read_file.h"
+#include "core/trace_option_table.h"
 
 namespace so {
 
@@ -56,47 +56,45 @@ int integer(const Json& v, const std::string& file, const std::string& field, in
     return int(d);
 }
 
-// The spec's oracle block (the same meaning and ranges as compare's options).
+// One trace option of the spec (oracle/trace_option_table.h), checked by the table.
+TraceOptionValue traceOptionValue(const Json& v, const std::string& key, const std::string& file,
+                                  const std::string& field) {
+    const TraceOptionSpec& spec = traceOption(key);
+    TraceOptionValue out;
+    if (spec.type == TraceOptionType::Name) {
+        std::string list;
+        for (const std::string& n : spec.names) list += (list.empty() ? "" : ", ") + n;
+        if (!v.is_string()) throwInputError(file, field, "must be one of " + list);
+        out.text = v.get<std::string>();
+    } else {
+        out.number = number(v, file, field);
+    }
+    checkTraceOption(spec, out, file, field, /*allowUnsetZero=*/false);
+    return out;
+}
+
+// The image size lies at the spec's top level; the other trace options in its "oracle" block.
+bool topLevelTraceOption(const std::string& key) {
+    return key == "width" || key == "height";
+}
+
+// The spec's oracle block: the trace options the table offers to sweeps, with their ranges.
 void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& oracle) {
-    checkKeys(
-        o,
-        {"seed", "target_error", "agreement_target", "max_spp", "spp", "penumbra", "exact_pixels"},
-        file, "oracle");
-    if (o.contains("seed"))
-        oracle.seed = uint32_t(integer(o["seed"], file, "oracle.seed", 0, INT32_MAX));
-    for (const auto& [key, target] : {std::pair{"target_error", &oracle.targetError},
-                                      std::pair{"agreement_target", &oracle.agreementTarget}}) {
-        if (!o.contains(key)) continue;
-        const double v = number(o[key], file, std::string("oracle.") + key);
-        if (v < 1e-4 || v > 0.5)
-            throwInputError(file, std::string("oracle.") + key, "must be in [0.0001, 0.5]");
-        *target = v;
-    }
-    if (o.contains("max_spp"))
-        oracle.maxSpp = integer(o["max_spp"], file, "oracle.max_spp", 16, 1 << 20);
-    if (o.contains("spp")) oracle.fixedSpp = integer(o["spp"], file, "oracle.spp", 1, 1 << 20);
-    // Names as trace --penumbra and --exact-pixels take them (the oracle, which reads them, is
-    // not linked here: the sweep task parses them with its functions).
-    using Names = std::vector<std::string>;
-    for (const auto& [key, target, allowed] :
-         {std::tuple{"penumbra", &oracle.penumbra, Names{"sampled", "exact", "both", "auto"}},
-          std::tuple{"exact_pixels", &oracle.exactPixels, Names{"penumbra", "all"}}}) {
-        if (!o.contains(key)) continue;
-        const std::string value = o[key].is_string() ? o[key].get<std::string>() : "";
-        if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
-            std::string list;
-            for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-            throwInputError(file, std::string("oracle.") + key, "must be one of " + list);
-        }
-        *target = value;
-    }
+    std::set<std::string> keys;
+    for (const TraceOptionSpec& spec : traceOptionTable())
+        if ((spec.surfaces & kSurfaceSweep) && !topLevelTraceOption(spec.key))
+            keys.insert(spec.key);
+    checkKeys(o, keys, file, "oracle");
+    for (const auto& [key, value] : o.items())
+        oracle.values[key] = traceOptionValue(value, key, file, "oracle." + key);
 }
 
 SweepSettings parseSettings(const Json& spec, const std::string& file) {
     SweepSettings s;
-    if (spec.contains("width")) s.oracle.width = integer(spec["width"], file, "width", 1, 16384);
+    if (spec.contains("width"))
+        s.oracle.width = int(traceOptionValue(spec["width"], "width", file, "width").number);
     if (spec.contains("height"))
-        s.oracle.height = integer(spec["height"], file, "height", 1, 16384);
+        s.oracle.height = int(traceOptionValue(spec["height"], "height", file, "height").number);
     if (spec.contains("frames")) s.frames = integer(spec["frames"], file, "frames", 1, 1000);
     if (spec.contains("boundary_radius"))
         s.boundaryRadius = integer(spec["boundary_radius"], file, "boundary_radius", 0, 64);

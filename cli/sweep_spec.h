@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/trace_option_table.h"
+
 namespace so {
 
 inline constexpr int kSweepFormat = 1;
@@ -45,11 +47,9 @@ struct SweepTask {
 // default. Width and height are the raster's too.
 struct SweepOracleSettings {
     int width = 0, height = 0;  // 0: the scene camera's
-    std::optional<uint32_t> seed;
-    std::optional<double> targetError, agreementTarget;
-    std::optional<int> maxSpp, fixedSpp;
-    // "sampled", "exact", "both" or "auto"; "penumbra" or "all" (trace --penumbra, --exact-pixels).
-    std::optional<std::string> penumbra, exactPixels;
+    // The "oracle" block's trace options by key (oracle/trace_option_table.h), checked; the ones
+    // left out keep compare's defaults.
+    TraceOptionValues values;
 };
 
 // What every task of the sweep shares.

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
+#include "oracle/trace_options.h"
 
 namespace so {
 
@@ -22,16 +23,7 @@ OracleOptions oracleOptions(const SweepOracleSettings& s) {
     OracleOptions o;
     o.width = s.width;
     o.height = s.height;
-    if (s.seed) o.area.seed = *s.seed;
-    if (s.targetError) o.area.targetError = *s.targetError;
-    if (s.agreementTarget) o.area.agreementTarget = *s.agreementTarget;
-    if (s.maxSpp) o.area.maxSpp = *s.maxSpp;
-    if (s.fixedSpp) o.area.fixedSpp = *s.fixedSpp;
-    if (s.penumbra)
-        o.penumbra.method = parsePenumbraMethod(*s.penumbra, "sweep.json", "oracle.penumbra");
-    if (s.exactPixels)
-        o.penumbra.allPixels =
-            parseExactPixels(*s.exactPixels, "sweep.json", "oracle.exact_pixels");
+    applyTraceOptions(s.values, {"sweep.json", /*cliNames=*/false, "oracle.", false}, o);
     return o;
 }
 

@@ -316,12 +316,14 @@ void bindTrace(py::module_& m) {
             if (!t.images.contains(key)) throw py::key_error(name);
             return t.images[key];
         });
+    const so::TraceOptions kTrace;
     m.def(
         "trace",
         [](const so::Scene& scene, int width, int height, double targetError,
            double agreementTarget, int maxSpp, int spp, unsigned seed, int threads, int verify,
            const std::string& penumbra, const std::string& exactPixels,
-           const std::optional<std::string>& points, const py::object& progress) {
+           const std::optional<std::string>& points, const py::object& progress, double boundTarget,
+           int boundMaxSides) {
             so::TraceOptions o;
             o.width = width;
             o.height = height;
@@ -335,6 +337,8 @@ void bindTrace(py::module_& m) {
             o.penumbra = penumbra;
             o.exactPixels = exactPixels;
             o.points = points.value_or("");
+            o.boundTarget = boundTarget;
+            o.boundMaxSides = boundMaxSides;
             PyTrace out;
             out.result = interruptible<so::TraceResult>(
                 [&](const so::ProgressCallback& cb) {
@@ -349,12 +353,17 @@ void bindTrace(py::module_& m) {
             out.images = imageDict(std::move(out.result.image));
             return out;
         },
-        py::arg("scene"), py::kw_only(), py::arg("width") = 0, py::arg("height") = 0,
-        py::arg("target_error") = 0.01, py::arg("agreement_target") = 0.01,
-        py::arg("max_spp") = 16384, py::arg("spp") = 0, py::arg("seed") = 0u,
-        py::arg("threads") = 0, py::arg("verify") = 0, py::arg("penumbra") = "sampled",
-        py::arg("exact_pixels") = "penumbra", py::arg("points") = py::none(),
-        py::arg("progress") = py::none(),
+        // The keywords and defaults of TraceOptions (the trace option table's; tests/python
+        // checks this signature and the .pyi stub against trace_options()).
+        py::arg("scene"), py::kw_only(), py::arg("width") = kTrace.width,
+        py::arg("height") = kTrace.height, py::arg("target_error") = kTrace.targetError,
+        py::arg("agreement_target") = kTrace.agreementTarget, py::arg("max_spp") = kTrace.maxSpp,
+        py::arg("spp") = kTrace.fixedSpp, py::arg("seed") = kTrace.seed,
+        py::arg("threads") = kTrace.threads, py::arg("verify") = kTrace.verify,
+        py::arg("penumbra") = kTrace.penumbra, py::arg("exact_pixels") = kTrace.exactPixels,
+        py::arg("points") = py::none(), py::arg("progress") = py::none(),
+        py::arg("bound_target") = kTrace.boundTarget,
+        py::arg("bound_max_sides") = kTrace.boundMaxSides,
         "The oracle (`shadow-oracle trace`): exact hard shadows, sampled penumbrae with 95% "
         "intervals; penumbra=\"exact\", \"both\" or \"auto\" computes rect lights' penumbrae "
         "exactly and disk and sphere lights' in a guaranteed interval (auto: where a probe "
@@ -444,6 +453,10 @@ void bindRender(py::module_& m) {
     m.def(
         "techniques", [] { return jsonLoads(so::techniquesJson()); },
         "Every technique, its family and its parameter table (techniques --json).");
+    m.def(
+        "trace_options", [] { return jsonLoads(so::traceOptionsJson()); },
+        "Every trace option: its keyword, type, default, range and the surfaces that take it "
+        "(trace-options --json).");
 }
 
 // images: {label: array (one light) or {light name: array}}.

@@ -333,5 +333,44 @@ TEST_F(SweepSpecImages, ARowIsStaleWhenItsImageOrCostFileChanges) {
     EXPECT_FALSE(imageRowIsStale(nlohmann::json::object(), technique));
 }
 
+// The sweep spec's trace keys are the trace option table's sweep rows (core/trace_option_table.h):
+// each is accepted with a valid value and refused out of range, naming its field; the others are
+// unknown keys.
+TEST_F(SweepSpec, TraceOptionTableSweepKeysAreTheSpecsKeys) {
+    const std::string head = R"({"sweep_format": 1, "scenes": ["scenes/a.scene.json"], )"
+                             R"("techniques": [{"name": "shadow"}])";
+    size_t offered = 0;
+    for (const TraceOptionSpec& s : traceOptionTable()) {
+        const bool top = s.key == "width" || s.key == "height";
+        const std::string field = top ? s.key : "oracle." + s.key;
+        const auto spec = [&](const std::string& value) {
+            return head +
+                   (top ? ", \"" + s.key + "\": " + value
+                        : R"(, "oracle": {")" + s.key + "\": " + value + "}") +
+                   "}";
+        };
+        const std::string def = s.type == TraceOptionType::Name
+                                    ? "\"" + s.defaultValue.text + "\""
+                                    : (s.unsetZero ? std::to_string(int64_t(s.max))
+                                                   : nlohmann::json(s.defaultValue.number).dump());
+        const std::string bad = s.type == TraceOptionType::Name ? "\"nope\"" : "-1";
+        if (!(s.surfaces & kSurfaceSweep)) {
+            EXPECT_NE(error(spec(def)).find(field + ": unknown key"), std::string::npos) << s.key;
+            continue;
+        }
+        ++offered;
+        EXPECT_EQ(error(spec(def)), "") << s.key;
+        const std::string e = error(spec(bad));
+        EXPECT_NE(e.find(": " + field + ": "), std::string::npos) << s.key << " -> " << e;
+        if (!top) {
+            SweepOracleSettings o = plan(R"([{"name": "shadow"}])", R"(["scenes/a.scene.json"])",
+                                         R"(, "oracle": {")" + s.key + "\": " + def + "}")
+                                        .settings.oracle;
+            EXPECT_EQ(o.values.count(s.key), 1u) << s.key;
+        }
+    }
+    EXPECT_GE(offered, 10u);
+}
+
 }  // namespace
 }  // namespace so

@@ -113,7 +113,8 @@ class SHADOW_ORACLE_API Scene {
     std::shared_ptr<const Data> data_;
 };
 
-// The `trace` command's options (docs/cli.md).
+// The `trace` command's options (docs/cli.md, "Trace options": names, defaults and ranges, the
+// same as traceOptionsJson() lists). A value out of range is an Error naming the field.
 struct TraceOptions {
     int width = 0, height = 0;  // 0: the scene camera's
     int threads = 0;            // 0: all cores
@@ -132,7 +133,17 @@ struct TraceOptions {
     // size, instead of the camera's pixels.
     std::string points;
     ProgressCallback progress;
+    // Disk and sphere lights with penumbra "exact", "both" or "auto": the half-width of V's
+    // guaranteed interval to reach, and the most sides (a power of two) of the polygons that
+    // bound the disk (`trace --bound-target`, `--bound-max-sides`).
+    double boundTarget = 1e-6;
+    int boundMaxSides = 4096;
 };
+
+// Every trace option with its command-line name, its key here (the Python keyword, the sweep
+// spec's key), type, default, range and the surfaces that take it: `shadow-oracle trace-options
+// --json` (format_version 1).
+SHADOW_ORACLE_API std::string traceOptionsJson();
 
 struct LightStats {
     std::string name, type;

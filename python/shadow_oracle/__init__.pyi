@@ -92,6 +92,8 @@ def trace(
     exact_pixels: str = "penumbra",
     points: Optional[str] = None,
     progress: Optional[ProgressFn] = None,
+    bound_target: float = 1e-06,
+    bound_max_sides: int = 4096,
 ) -> Trace: ...
 def render(
     scene: Scene,
@@ -104,6 +106,7 @@ def render(
     **parameters: Union[float, int, str, bool],
 ) -> Render: ...
 def techniques() -> dict[str, Any]: ...
+def trace_options() -> dict[str, Any]: ...
 def compare(
     scene: Scene,
     oracle: Trace,

@@ -79,7 +79,9 @@ std::string json() {
                        {"summary", t->summary},
                        {"parameters", params}});
     }
-    return nlohmann::json({{"format_version", 3}, {"techniques", all}}).dump(2) + "\n";
+    return nlohmann::json({{"format_version", kTechniquesJsonFormat}, {"techniques", all}})
+               .dump(2) +
+           "\n";
 }
 
 }  // namespace

@@ -9,6 +9,9 @@ namespace so {
 
 enum class ListingFormat { Text, Json, Markdown };
 
+// `techniques --json`'s format_version (its --help says it from here).
+inline constexpr int kTechniquesJsonFormat = 3;
+
 std::string techniquesListing(ListingFormat format);
 
 }  // namespace so

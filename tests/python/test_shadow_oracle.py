@@ -301,3 +301,32 @@ def test_the_stubs_name_everything_the_module_exports():
     stub = open(STUB).read()
     for name in so.__all__:
         assert ("def " + name) in stub or ("class " + name) in stub or (name + ":") in stub, name
+
+
+def test_trace_keywords_are_the_trace_option_table():
+    """trace()'s keywords, their types and defaults are the table's API rows (trace_options(),
+    the table of docs/cli.md), beside scene, points and progress; a bad one names its key."""
+    table = so.trace_options()
+    assert table["format_version"] == 1
+    api = {o["key"]: o for o in table["options"] if "api" in o["surfaces"]}
+    # pybind11's signature line: trace(scene: ..., *, width: int = 0, ...) -> ...
+    signature = so.trace.__doc__.splitlines()[0]
+    params = {}
+    for part in signature[signature.index("*,") + 2:signature.rindex(") ->")].split(", "):
+        name, rest = part.strip().split(": ", 1)
+        kind, _, default = rest.partition(" = ")
+        params[name] = (kind, default)
+    assert set(params) - {"points", "progress"} == set(api)
+    types = {"integer": "int", "real": "float", "name": "str"}
+    for key, option in api.items():
+        kind, default = params[key]
+        assert kind == types[option["type"]], key
+        if option["type"] == "name":
+            assert default == repr(option["default"]), key
+        else:
+            assert float(default) == option["default"], key
+    scene = so.load_scene(scene_path("contact_box"))
+    with pytest.raises(so.Error, match="bound_max_sides: 100 is not a power of two"):
+        so.trace(scene, width=8, height=6, bound_max_sides=100)
+    with pytest.raises(so.Error, match="bound_target: must be in"):
+        so.trace(scene, width=8, height=6, bound_target=0.0)
