@@ -148,6 +148,25 @@ SO_SAMPLER_CLONES void finishAreaBatch(const AreaLight& light, const AreaPixel& 
     }
 }
 
+SO_SAMPLER_CLONES void fanAreaPoints(const glm::vec3* fan, const float* cdf, int triangles,
+                                     const float* su, const float* sv, LightPoints& q) {
+    float* yx = q.x;
+    float* yy = q.y;
+    float* yz = q.z;
+    for (int k = 0; k < 16; ++k) {
+        // Pick a triangle by area with u, reuse the rest of u inside it (keeps strata).
+        int t = 0;
+        while (t + 1 < triangles && su[k] >= cdf[t]) ++t;
+        const float lo = t ? cdf[t - 1] : 0.0f;
+        const float uu = std::min(0.99999994f, (su[k] - lo) / std::max(cdf[t] - lo, 1e-30f));
+        const float r = std::sqrt(uu);
+        const glm::vec3* tri = fan + 3 * t;
+        const glm::vec3 y =
+            (1.0f - r) * tri[0] + (r * (1.0f - sv[k])) * tri[1] + (r * sv[k]) * tri[2];
+        yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
+    }
+}
+
 void mapAreaBatch(const AreaLight& light, const AreaPixel& px, const float* su, const float* sv,
                   int count, AreaBatch& b) {
     light.kind->mapBatch(light, px, su, sv, count, 2.0f * light.lsEndMargin, b);

@@ -69,6 +69,12 @@ struct LightPoints {
 void finishAreaBatch(const AreaLight& light, const AreaPixel& px, const LightPoints& q, int count,
                      float margin, AreaBatch& b);
 
+// Points uniform by area over a fan of triangles (3 points each, `fan`) with cumulative area shares
+// `cdf`: u picks the triangle, the rest of u and v place the point in it (the rect clipped to the
+// horizon, the polygon).
+void fanAreaPoints(const glm::vec3* fan, const float* cdf, int triangles, const float* su,
+                   const float* sv, LightPoints& q);
+
 // classifyAreaPixel for a one-sided emitter (rect, disk, polygon): p must be in front of its
 // plane, and its highest point above p's tangent plane by `top` (`reach`: the distance that
 // margin's rounding scales with). Ties decided exactly with `ties` (area_light.h).

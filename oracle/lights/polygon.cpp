@@ -21,25 +21,6 @@ namespace so {
 
 namespace {
 
-SO_SAMPLER_CLONES void fanPoints(const glm::vec3* fan, const float* cdf, int triangles,
-                                 const float* su, const float* sv, LightPoints& q) {
-    float* yx = q.x;
-    float* yy = q.y;
-    float* yz = q.z;
-    for (int k = 0; k < 16; ++k) {
-        // Pick a triangle by area with u, reuse the rest of u inside it (keeps strata).
-        int t = 0;
-        while (t + 1 < triangles && su[k] >= cdf[t]) ++t;
-        const float lo = t ? cdf[t - 1] : 0.0f;
-        const float uu = std::min(0.99999994f, (su[k] - lo) / std::max(cdf[t] - lo, 1e-30f));
-        const float r = std::sqrt(uu);
-        const glm::vec3* tri = fan + 3 * t;
-        const glm::vec3 y =
-            (1.0f - r) * tri[0] + (r * (1.0f - sv[k])) * tri[1] + (r * sv[k]) * tri[2];
-        yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
-    }
-}
-
 class PolygonAreaLightKind final : public AreaLightKind {
   public:
     LightType type() const override { return LightType::Polygon; }
@@ -86,7 +67,7 @@ class PolygonAreaLightKind final : public AreaLightKind {
                   int count, float margin, AreaBatch& b) const override {
         LightPoints q;
         std::fill(q.share, q.share + 16, 1.0f);
-        fanPoints(light.lsFan.data(), light.fanCdf.data(), int(light.fanCdf.size()), su, sv, q);
+        fanAreaPoints(light.lsFan.data(), light.fanCdf.data(), int(light.fanCdf.size()), su, sv, q);
         finishAreaBatch(light, px, q, count, margin, b);
     }
     NearTarget nearTarget(const AreaLight& light) const override {

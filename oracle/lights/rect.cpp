@@ -72,24 +72,6 @@ SO_SAMPLER_CLONES void rectPoints(const AreaLight& light, const float* su, const
     }
 }
 
-SO_SAMPLER_CLONES void clippedRectPoints(const AreaPixel& px, const float* su, const float* sv,
-                                         LightPoints& q) {
-    float* yx = q.x;
-    float* yy = q.y;
-    float* yz = q.z;
-    for (int k = 0; k < 16; ++k) {
-        // Pick a triangle by area with u, reuse the rest of u inside it (keeps strata).
-        int t = 0;
-        while (t + 1 < px.clippedTriangles && su[k] >= px.triCdf[t]) ++t;
-        const float lo = t ? px.triCdf[t - 1] : 0.0f;
-        const float uu = std::min(0.99999994f, (su[k] - lo) / std::max(px.triCdf[t] - lo, 1e-30f));
-        const float r = std::sqrt(uu);
-        const glm::vec3 y = (1.0f - r) * px.tri[t][0] + (r * (1.0f - sv[k])) * px.tri[t][1] +
-                            (r * sv[k]) * px.tri[t][2];
-        yx[k] = y.x, yy[k] = y.y, yz[k] = y.z;
-    }
-}
-
 class RectAreaLightKind final : public AreaLightKind {
   public:
     LightType type() const override { return LightType::Rect; }
@@ -119,7 +101,7 @@ class RectAreaLightKind final : public AreaLightKind {
         if (px.clippedTriangles == 0)
             rectPoints(light, su, sv, q);
         else
-            clippedRectPoints(px, su, sv, q);
+            fanAreaPoints(&px.tri[0][0], px.triCdf, px.clippedTriangles, su, sv, q);
         finishAreaBatch(light, px, q, count, margin, b);
     }
     NearTarget nearTarget(const AreaLight& light) const override {
