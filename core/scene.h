@@ -77,7 +77,7 @@ struct Light {
     double radius = 0.0;            // disk, sphere
     // polygon: 3 to 64, planar, convex, counter-clockwise seen from the side it emits on; its
     // wsPosition is the area centroid (core/lights/polygon.cpp checks all of it).
-    std::vector<glm::dvec3> wsVertices;
+    std::vector<glm::dvec3> wsVertices{};
     // Rect, disk and polygon emit on one side only: the unit normal of that side (zero for other
     // types).
     glm::dvec3 wsEmitNormal() const;
