@@ -1,5 +1,7 @@
 #include "core/gltf_export.h"
 
+#include "core/lights/light_kind.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -46,15 +48,11 @@ tinygltf::Value toValue(const json& j) {
     return tinygltf::Value();
 }
 
-json vec3Json(const glm::dvec3& v) {
-    return json::array({v.x, v.y, v.z});
-}
-
 // World-space bounds of every vertex as the scene holds them (in double), null without geometry:
 // what an engine fits a directional light's shadow camera to.
 json boundsJson(const Bounds3d& b) {
     if (b.empty()) return nullptr;
-    return {{"min", vec3Json(b.lo)}, {"max", vec3Json(b.hi)}};
+    return {{"min", jsonVec3(b.lo)}, {"max", jsonVec3(b.hi)}};
 }
 
 // The rotation (x, y, z, w) whose -Z is `wsDir` (unit), with +Y as close to world up as it can
@@ -328,16 +326,10 @@ void GlbBuilder::addCamera() {
     addNode(node);
 }
 
-// glTF requires innerConeAngle < outerConeAngle; the scene allows them equal.
-double innerBelowOuter(double innerRad, double outerRad) {
-    return std::min(innerRad, std::nextafter(outerRad, 0.0));
-}
-
 // A light on its own node named as the scene names it. Punctual lights are themselves; a rect or
 // disk becomes a spot at its centre along its emitting normal, a sphere a point at its centre,
 // with the true shape in the light's extras (docs/export.md).
 void GlbBuilder::addLight(const Light& l) {
-    const double degToRad = glm::pi<double>() / 180.0;
     tinygltf::Light out;
     out.name = l.name;
     out.color = {1.0, 1.0, 1.0};  // the scene gives no colour or power: visibility is a ratio
@@ -345,37 +337,13 @@ void GlbBuilder::addLight(const Light& l) {
     out.extras = toValue(lightExtras(l));
     tinygltf::Node node;
     node.name = l.name;
-    glm::dvec3 wsAt = l.wsPosition, wsAlong(0.0);
-    switch (l.type) {
-        case LightType::Directional:
-            out.type = "directional";
-            wsAlong = l.wsDirection;
-            // No position in glTF's sense; engines whose directional shadow camera needs one get
-            // a point one bounds diagonal upstream of the bounds' centre.
-            wsAt = scene_.wsBounds.empty()
-                       ? glm::dvec3(0.0)
-                       : scene_.wsBounds.center() - l.wsDirection * scene_.wsBounds.extent();
-            break;
-        case LightType::Spot:
-            out.type = "spot";
-            wsAlong = l.wsDirection;
-            out.spot.outerConeAngle = l.outerConeDeg * degToRad;
-            out.spot.innerConeAngle =
-                innerBelowOuter(l.innerConeDeg * degToRad, out.spot.outerConeAngle);
-            break;
-        case LightType::Rect:
-        case LightType::Disk:
-            out.type = "spot";
-            wsAlong = l.wsEmitNormal();
-            out.spot.outerConeAngle = standInConeRad(l, scene_.wsBounds);
-            out.spot.innerConeAngle =
-                innerBelowOuter(out.spot.outerConeAngle, out.spot.outerConeAngle);
-            break;
-        case LightType::Point:
-        case LightType::Sphere:
-            out.type = "point";
-            break;
+    const GltfStandIn standIn = lightKind(l.type).gltfStandIn(l, scene_.wsBounds);
+    out.type = standIn.type;
+    if (out.type == "spot") {
+        out.spot.outerConeAngle = standIn.outerConeRad;
+        out.spot.innerConeAngle = standIn.innerConeRad;
     }
+    const glm::dvec3 wsAt = standIn.wsAt, wsAlong = standIn.wsAlong;
     model_.lights.push_back(out);
     node.translation = {wsAt.x, wsAt.y, wsAt.z};
     if (wsAlong != glm::dvec3(0.0))
@@ -388,35 +356,11 @@ void GlbBuilder::addLight(const Light& l) {
 // (a spot's cone in degrees as the scene gives it; an area light's shape and size).
 json GlbBuilder::lightExtras(const Light& l) const {
     json j = {{"type", lightTypeName(l.type)}};
-    switch (l.type) {
-        case LightType::Point:
-            break;
-        case LightType::Directional:
-            j["direction"] = vec3Json(l.wsDirection);
-            break;
-        case LightType::Spot:
-            j["outer_cone_deg"] = l.outerConeDeg;
-            j["inner_cone_deg"] = l.innerConeDeg;
-            break;
-        case LightType::Rect:
-            j["center"] = vec3Json(l.wsPosition);
-            j["edge_u"] = vec3Json(l.wsU);
-            j["edge_v"] = vec3Json(l.wsV);
-            j["normal"] = vec3Json(l.wsEmitNormal());
-            break;
-        case LightType::Disk:
-            j["center"] = vec3Json(l.wsPosition);
-            j["normal"] = vec3Json(l.wsNormal);
-            j["radius"] = l.radius;
-            break;
-        case LightType::Sphere:
-            j["center"] = vec3Json(l.wsPosition);
-            j["radius"] = l.radius;
-            break;
-    }
-    if (isAreaLight(l.type)) {
-        j["size"] = areaLightSize(l);
-        j["stand_in"] = l.type == LightType::Sphere ? "point" : "spot";
+    const LightKind& kind = lightKind(l.type);
+    kind.gltfExtras(l, j);
+    if (kind.isArea()) {
+        j["size"] = kind.equalAreaDiameter(l);
+        j["stand_in"] = kind.gltfStandIn(l, scene_.wsBounds).type;
     }
     return {{"shadow_oracle", j}};
 }
@@ -453,30 +397,6 @@ std::vector<unsigned char> GlbBuilder::build() {
 }
 
 }  // namespace
-
-double standInConeRad(const Light& light, const Bounds3d& wsBounds) {
-    const double minRad = glm::pi<double>() / 180.0, maxRad = 85.0 * minRad;
-    const glm::dvec3 n = light.wsEmitNormal();
-    double widest = minRad;
-    bool inFront = false;
-    for (int k = 0; k < 8 && !wsBounds.empty(); ++k) {
-        const glm::dvec3 corner((k & 1) ? wsBounds.hi.x : wsBounds.lo.x,
-                                (k & 2) ? wsBounds.hi.y : wsBounds.lo.y,
-                                (k & 4) ? wsBounds.hi.z : wsBounds.lo.z);
-        const glm::dvec3 d = corner - light.wsPosition;
-        const double len = glm::length(d);
-        if (!(len > 0.0) || glm::dot(d, n) <= 0.0) continue;
-        inFront = true;
-        widest = std::max(widest, std::acos(std::min(1.0, glm::dot(d, n) / len)));
-    }
-    return inFront ? std::min(widest, maxRad) : maxRad;
-}
-
-double areaLightSize(const Light& light) {
-    if (light.type == LightType::Rect)
-        return 2.0 * std::sqrt(glm::length(glm::cross(light.wsU, light.wsV)) / glm::pi<double>());
-    return 2.0 * light.radius;
-}
 
 std::vector<unsigned char> sceneToGlb(const Scene& scene, const GlbExportOptions& opts) {
     return GlbBuilder(scene, opts).build();

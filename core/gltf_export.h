@@ -25,13 +25,4 @@ struct GlbExportOptions {
 // texture without its source image bytes, more than 4 GiB of buffer data).
 std::vector<unsigned char> sceneToGlb(const Scene& scene, const GlbExportOptions& opts);
 
-// The outer half-angle (radians) of the spot stand-in for a rect or disk light: the narrowest cone
-// around its emitting normal that holds every corner of the scene's bounds in front of it, between
-// 1 and 85 degrees (a spot's shadow map is a perspective frustum, which cannot reach 90).
-double standInConeRad(const Light& light, const Bounds3d& wsBounds);
-
-// The diameter of the disk with the area light's emitting area seen face-on: rect
-// 2 sqrt(|u x v| / pi), disk and sphere 2 radius. The one size a PCSS-like mode takes.
-double areaLightSize(const Light& light);
-
 }  // namespace so

@@ -26,30 +26,6 @@ double Bounds3d::extent() const {
     return empty() ? 0.0 : glm::length(hi - lo);
 }
 
-const char* lightTypeName(LightType t) {
-    switch (t) {
-        case LightType::Point:
-            return "point";
-        case LightType::Directional:
-            return "directional";
-        case LightType::Spot:
-            return "spot";
-        case LightType::Rect:
-            return "rect";
-        case LightType::Disk:
-            return "disk";
-        case LightType::Sphere:
-            return "sphere";
-    }
-    return "?";
-}
-
-glm::dvec3 Light::wsEmitNormal() const {
-    if (type == LightType::Rect) return glm::normalize(glm::cross(wsU, wsV));
-    if (type == LightType::Disk) return wsNormal;
-    return glm::dvec3(0.0);
-}
-
 bool Scene::hasEffect(const std::string& e) const {
     for (const std::string& x : effects)
         if (x == e) return true;

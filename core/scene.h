@@ -58,11 +58,11 @@ struct CameraPath {
     PathInterpolation interpolation = PathInterpolation::Linear;
 };
 
-enum class LightType { Point, Directional, Spot, Rect, Disk, Sphere };
-const char* lightTypeName(LightType t);
-inline bool isAreaLight(LightType t) {
-    return t == LightType::Rect || t == LightType::Disk || t == LightType::Sphere;
-}
+// The light types, in the order of core/lights/light_kind.cpp's table: each is a plug-in with one
+// file per layer (core/lights/, oracle/lights/, raster_compare/gl/lights/; docs/architecture.md).
+enum class LightType { Point, Directional, Spot, Rect, Disk, Sphere, Polygon };
+const char* lightTypeName(LightType t);  // the scene format's name
+bool isAreaLight(LightType t);           // rect, disk, sphere, polygon
 
 struct Light {
     std::string name;  // unique in the scene, a valid EXR layer name (see channels.h)
@@ -73,9 +73,13 @@ struct Light {
     double innerConeDeg = 0.0;               // spot: half-angle of full intensity (raster only)
     // Area lights: wsPosition is the centre.
     glm::dvec3 wsU{0.0}, wsV{0.0};  // rect: full edge vectors; emits on the side of cross(u, v)
-    glm::dvec3 wsNormal{0.0};       // disk: unit, the side it emits on
+    glm::dvec3 wsNormal{0.0};       // disk, polygon: unit, the side it emits on
     double radius = 0.0;            // disk, sphere
-    // Rect and disk emit on one side only: the unit normal of that side (zero for other types).
+    // polygon: 3 to 64, planar, convex, counter-clockwise seen from the side it emits on; its
+    // wsPosition is the area centroid (core/lights/polygon.cpp checks all of it).
+    std::vector<glm::dvec3> wsVertices{};
+    // Rect, disk and polygon emit on one side only: the unit normal of that side (zero for other
+    // types).
     glm::dvec3 wsEmitNormal() const;
 };
 

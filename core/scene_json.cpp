@@ -1,4 +1,4 @@
-// The scene file parser (docs/scene-format.md, scene_format 1 and 2) and loadScene's dispatch.
+// The scene file parser (docs/scene-format.md, scene_format 1 to 4) and loadScene's dispatch.
 // Strict on purpose: an unknown key is almost always a typo that would otherwise silently change
 // what is measured, so every object lists the keys it accepts.
 #include <algorithm>
@@ -17,6 +17,8 @@
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "core/hash.h"
+#include "core/json_reader.h"
+#include "core/lights/light_kind.h"
 #include "core/read_file.h"
 #include "core/scene.h"
 
@@ -24,107 +26,11 @@ namespace so {
 
 namespace {
 
-using nlohmann::json;
+using Reader = JsonReader;
 
-// The newest version read; every older one still loads. 2 added camera_path, 3 geometry[i].dynamic.
-constexpr int kSceneFormat = 3;
-
-// Typed, path-tracking access to a JSON value, so every error names the field as a user wrote it.
-class Reader {
-  public:
-    explicit Reader(std::string file) : file_(std::move(file)) {}
-    const std::string& file() const { return file_; }
-
-    [[noreturn]] void fail(const std::string& field, const std::string& msg) const {
-        throwInputError(file_, field, msg);
-    }
-
-    void requireObject(const json& j, const std::string& field) const {
-        if (!j.is_object()) fail(field, "expected an object, got " + typeName(j));
-    }
-
-    void checkKeys(const json& j, const std::string& field,
-                   std::initializer_list<const char*> allowed,
-                   const std::string& context = "") const {
-        for (auto it = j.begin(); it != j.end(); ++it) {
-            bool ok = std::any_of(allowed.begin(), allowed.end(),
-                                  [&](const char* a) { return it.key() == a; });
-            if (!ok) {
-                std::string list;
-                for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-                fail(join(field, it.key()), "unknown key" + context + " (valid: " + list + ")");
-            }
-        }
-    }
-
-    double number(const json& j, const std::string& field) const {
-        if (!j.is_number()) fail(field, "expected a number, got " + typeName(j));
-        double v = j.get<double>();
-        if (!std::isfinite(v)) fail(field, "not a finite number");
-        return v;
-    }
-
-    int integer(const json& j, const std::string& field, int lo, int hi) const {
-        if (!j.is_number_integer() && !(j.is_number_float() && isIntegral(j.get<double>())))
-            fail(field, "expected an integer, got " + (j.is_number() ? dumpShort(j) : typeName(j)));
-        double v = j.get<double>();
-        if (v < lo || v > hi)
-            fail(field, dumpShort(j) + " is out of range [" + std::to_string(lo) + ", " +
-                            std::to_string(hi) + "]");
-        return int(v);
-    }
-
-    std::string string(const json& j, const std::string& field) const {
-        if (!j.is_string()) fail(field, "expected a string, got " + typeName(j));
-        return j.get<std::string>();
-    }
-
-    glm::dvec3 vec3(const json& j, const std::string& field) const {
-        if (!j.is_array() || j.size() != 3)
-            fail(field,
-                 "expected an array of 3 numbers, got " +
-                     (j.is_array() ? "an array of " + std::to_string(j.size()) : typeName(j)));
-        glm::dvec3 v;
-        for (int i = 0; i < 3; ++i) v[i] = number(j[i], field + "[" + std::to_string(i) + "]");
-        return v;
-    }
-
-    glm::dvec3 unitVec3(const json& j, const std::string& field) const {
-        glm::dvec3 v = vec3(j, field);
-        double len = glm::length(v);
-        if (!(len > 0.0) || !std::isfinite(len)) fail(field, "zero length");
-        return v / len;
-    }
-
-    static std::string join(const std::string& parent, const std::string& key) {
-        return parent.empty() ? key : parent + "." + key;
-    }
-    static std::string index(const std::string& parent, size_t i) {
-        return parent + "[" + std::to_string(i) + "]";
-    }
-
-    static std::string typeName(const json& j) {
-        switch (j.type()) {
-            case json::value_t::null:
-                return "null";
-            case json::value_t::object:
-                return "an object";
-            case json::value_t::array:
-                return "an array";
-            case json::value_t::string:
-                return "a string";
-            case json::value_t::boolean:
-                return "a boolean";
-            default:
-                return "a number";
-        }
-    }
-
-  private:
-    static bool isIntegral(double v) { return std::isfinite(v) && v == std::floor(v); }
-    static std::string dumpShort(const json& j) { return printable(j.dump(), 40); }
-    std::string file_;
-};
+// The newest version read; every older one still loads. 2 added camera_path, 3 geometry[i].dynamic,
+// 4 polygon lights.
+constexpr int kSceneFormat = 4;
 
 // Parses JSON and rejects duplicate keys in any object, which nlohmann would silently resolve to
 // the last one.
@@ -223,63 +129,15 @@ void parseLights(const json& jl, const Reader& r, const LoadLimits& limits, Scen
         if (!names.insert(light.name).second)
             r.fail(f + ".name", "duplicate light name \"" + light.name + "\"");
         std::string type = r.string(j["type"], f + ".type");
-        auto need = [&](const char* key) -> const json& {
-            if (!j.contains(key))
-                r.fail(f + "." + key, std::string("missing (required for a ") + type + " light)");
-            return j[key];
-        };
-        if (type == "point") {
-            r.checkKeys(j, f, {"name", "type", "position"}, " for a point light");
-            light.type = LightType::Point;
-            light.wsPosition = r.vec3(need("position"), f + ".position");
-        } else if (type == "directional") {
-            r.checkKeys(j, f, {"name", "type", "direction"}, " for a directional light");
-            light.type = LightType::Directional;
-            light.wsDirection = r.unitVec3(need("direction"), f + ".direction");
-        } else if (type == "spot") {
-            r.checkKeys(
-                j, f, {"name", "type", "position", "direction", "outer_cone_deg", "inner_cone_deg"},
-                " for a spot light");
-            light.type = LightType::Spot;
-            light.wsPosition = r.vec3(need("position"), f + ".position");
-            light.wsDirection = r.unitVec3(need("direction"), f + ".direction");
-            light.outerConeDeg = r.number(need("outer_cone_deg"), f + ".outer_cone_deg");
-            if (!(light.outerConeDeg > 0.0 && light.outerConeDeg <= 90.0))
-                r.fail(f + ".outer_cone_deg", "must be in (0, 90] degrees (a half-angle)");
-            light.innerConeDeg = 0.0;
-            if (j.contains("inner_cone_deg")) {
-                light.innerConeDeg = r.number(j["inner_cone_deg"], f + ".inner_cone_deg");
-                if (!(light.innerConeDeg >= 0.0 && light.innerConeDeg <= light.outerConeDeg))
-                    r.fail(f + ".inner_cone_deg", "must be in [0, outer_cone_deg]");
-            }
-        } else if (type == "rect") {
-            r.checkKeys(j, f, {"name", "type", "center", "u", "v"}, " for a rect light");
-            light.type = LightType::Rect;
-            light.wsPosition = r.vec3(need("center"), f + ".center");
-            light.wsU = r.vec3(need("u"), f + ".u");
-            light.wsV = r.vec3(need("v"), f + ".v");
-            const double lu = glm::length(light.wsU), lv = glm::length(light.wsV);
-            if (!(lu > 0.0)) r.fail(f + ".u", "zero length (zero area)");
-            if (!(lv > 0.0)) r.fail(f + ".v", "zero length (zero area)");
-            const double area = glm::length(glm::cross(light.wsU, light.wsV));
-            if (!(area > 1e-9 * lu * lv)) r.fail(f + ".v", "parallel to u (zero area)");
-        } else if (type == "disk") {
-            r.checkKeys(j, f, {"name", "type", "center", "normal", "radius"}, " for a disk light");
-            light.type = LightType::Disk;
-            light.wsPosition = r.vec3(need("center"), f + ".center");
-            light.wsNormal = r.unitVec3(need("normal"), f + ".normal");
-            light.radius = r.number(need("radius"), f + ".radius");
-            if (!(light.radius > 0.0)) r.fail(f + ".radius", "must be positive");
-        } else if (type == "sphere") {
-            r.checkKeys(j, f, {"name", "type", "center", "radius"}, " for a sphere light");
-            light.type = LightType::Sphere;
-            light.wsPosition = r.vec3(need("center"), f + ".center");
-            light.radius = r.number(need("radius"), f + ".radius");
-            if (!(light.radius > 0.0)) r.fail(f + ".radius", "must be positive");
-        } else {
+        const LightKind* kind = findLightKind(type);
+        if (!kind)
             r.fail(f + ".type", "unknown light type \"" + printable(type, 40) +
-                                    "\" (valid: point, directional, spot, rect, disk, sphere)");
-        }
+                                    "\" (valid: " + lightKindNames() + ")");
+        std::vector<std::string> keys = kind->keys();
+        keys.insert(keys.begin(), {"name", "type"});
+        r.checkKeys(j, f, keys, std::string(" for a ") + kind->name() + " light");
+        light.type = kind->type();
+        kind->parse(j, r, f, light);
         scene.lights.push_back(light);
     }
 }
@@ -453,7 +311,8 @@ void warnAboutEffects(Scene& scene) {
             " alpha-tested primitive(s) drawn opaque: effects lacks \"alpha\"");
     if (scene.hasEffect("penumbra") && !anyArea)
         scene.stats.warnings.push_back(
-            "effects: \"penumbra\" is listed but the scene has no area light (rect, disk, sphere): "
+            "effects: \"penumbra\" is listed but the scene has no area light (rect, disk, sphere, "
+            "polygon): "
             "nothing to sample");
     if (!scene.hasEffect("penumbra"))
         for (const Light& l : scene.lights)
@@ -482,6 +341,18 @@ std::vector<std::string> parseEffects(const json& root, const Reader& r) {
     }
     if (effects.empty()) r.fail("effects", "empty: nothing to simulate (omit it for [\"hard\"])");
     return effects;
+}
+
+// Polygon lights came with scene_format 4: an older file naming one is told so (a scene made in
+// memory has no version and takes every type).
+void checkPolygonFormat(const json& root, const Reader& r, int format) {
+    if (format >= 4 || !root.contains("lights") || !root["lights"].is_array()) return;
+    const json& jl = root["lights"];
+    for (size_t i = 0; i < jl.size(); ++i)
+        if (jl[i].is_object() && jl[i].contains("type") && jl[i]["type"] == "polygon")
+            r.fail(
+                Reader::index("lights", i) + ".type",
+                "\"polygon\" needs scene_format 4 (the file says " + std::to_string(format) + ")");
 }
 
 // What a scene file and a scene made in memory share once their meshes are in: the camera, the
@@ -529,6 +400,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     if (root.contains("camera_path") && format < 2)
         r.fail("camera_path",
                "needs scene_format 2 (the file says " + std::to_string(format) + ")");
+    checkPolygonFormat(root, r, format);
 
     Scene scene;
     scene.path = path;

@@ -5,6 +5,9 @@
 // the ratio estimator V = sum w_i v_i / sum w_i, which is exactly 1 where nothing blocks.
 //   rect, disk: uniform by area (disk: concentric map), w = max(cos_p,0) max(cos_y,0) / r^2;
 //               a rect partly below the receiver's horizon is clipped to it first
+//   polygon:    uniform by area over its fan of triangles from vertex 0 (a triangle picked by its
+//               area share, then uniform in it), w as for rect, not clipped to the horizon (a
+//               sample below it has weight 0)
 //   sphere:     in the solid angle of the visible cap only: the cone towards the sphere in rings of
 //               1 - cos(theta), and where the horizon cuts the cone, only the rings with a part
 //               above it, picked in proportion to (a bound of) that part, and the angle around
@@ -14,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -25,8 +29,11 @@
 
 namespace so {
 
+class AreaLightKind;
+
 struct AreaLight {
     LightType type = LightType::Rect;
+    const AreaLightKind* kind = nullptr;  // its type's oracle part (oracle/lights/)
     glm::vec3 lsCenter{0.0f};
     glm::vec3 lsU{0.0f}, lsV{0.0f};    // rect: full edges
     glm::vec3 lsEmitNormal{0.0f};      // rect, disk: unit
@@ -36,6 +43,13 @@ struct AreaLight {
     // Rect corners / disk extents, for the horizon test, in double.
     glm::dvec3 dCenter{0.0}, dU{0.0}, dV{0.0}, dEmitNormal{0.0};
     double dRadius = 0.0;
+    // polygon: its vertices; its fan from vertex 0 (3 float points a triangle) with the triangles'
+    // cumulative area shares; the rectangle in its plane that holds it (corner + s u + t v, s and
+    // t in [0, 1], u and v orthogonal along its first edge), the exact pass's frame.
+    std::vector<glm::dvec3> dVertices;
+    std::vector<glm::vec3> lsFan;
+    std::vector<float> fanCdf;
+    glm::dvec3 dBoxCorner{0.0}, dBoxU{0.0}, dBoxV{0.0};
     Light ws;  // the scene's light, for the exact decisions
 };
 AreaLight makeAreaLight(const Light& light, const LocalFrame& frame);

@@ -12,6 +12,7 @@
 
 #include "core/progress.h"
 #include "core/sobol.h"
+#include "oracle/lights/area_light_kind.h"
 #include "oracle/near_field.h"
 #include "oracle/sse_lanes.h"
 #include "oracle/tile_rows.h"
@@ -388,23 +389,7 @@ void setNearField(const Accel& accel, const SurfaceBuffer& sb, size_t s, const N
 
 // The light as near_field.h's relevance test sees it: points whose convex hull holds it.
 NearTarget nearTarget(const AreaLight& light) {
-    NearTarget t;
-    const glm::dvec3 c = light.dCenter;
-    if (light.type == LightType::Sphere) {
-        for (int k = 0; k < 8; ++k)
-            t.points[k] =
-                c + light.dRadius * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
-        t.count = 8;
-        return t;
-    }
-    // A rect's corners; a disk's circumscribed square in its plane.
-    const glm::dvec3 u = light.type == LightType::Rect ? 0.5 * light.dU
-                                                       : light.dRadius * glm::dvec3(light.lsE1),
-                     v = light.type == LightType::Rect ? 0.5 * light.dV
-                                                       : light.dRadius * glm::dvec3(light.lsE2);
-    for (int k = 0; k < 4; ++k) t.points[k] = c + (k & 1 ? u : -u) + (k & 2 ? v : -v);
-    t.count = 4;
-    return t;
+    return light.kind->nearTarget(light);
 }
 
 void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) {
@@ -506,8 +491,7 @@ void AreaRun::reduceCurve(AreaShadowStats& total) const {
 // The run's settings and the sampler's description, as oracle.json states them.
 AreaShadowStats settingsOf(const AreaLight& light, const AreaSampling& sampling) {
     AreaShadowStats s;
-    s.sampling =
-        light.type == LightType::Sphere ? "solid angle of the visible cap" : "uniform by area";
+    s.sampling = light.kind->sampling();
     if (sampling.fixedSpp <= 0) {
         s.targetError = sampling.targetError;
         s.agreementTarget = sampling.agreementTarget;

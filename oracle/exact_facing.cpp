@@ -32,12 +32,16 @@ int facingDirection(const PixelTriangle& t, const glm::dvec3& wsToLight) {
 }
 
 int emitterSide(const PixelTriangle& t, const Light& light) {
-    SO_CHECK(light.type == LightType::Rect || light.type == LightType::Disk);
+    SO_CHECK(light.type == LightType::Rect || light.type == LightType::Disk ||
+             light.type == LightType::Polygon);
     int front = 0;
     for (const glm::dvec3& v : {t.a, t.b, t.c}) {
         // A rect's plane is the span of its edges (its unit normal is rounded; the span is not).
+        // A polygon's is the plane through its first vertex with its (rounded) normal, as a disk's.
         const int s = light.type == LightType::Rect
                           ? exact::sideOfSpan(light.wsPosition, light.wsU, light.wsV, v)
+                      : light.type == LightType::Polygon
+                          ? exact::sideOfPlane(light.wsVertices[0], light.wsNormal, v)
                           : exact::sideOfPlane(light.wsPosition, light.wsNormal, v);
         front += s > 0;
     }
@@ -47,6 +51,11 @@ int emitterSide(const PixelTriangle& t, const Light& light) {
 bool areaLightAbovePlane(const PixelTriangle& t, const Light& light) {
     if (light.type == LightType::Disk)
         return exact::diskAbovePlane(t.a, t.b, t.c, light.wsPosition, light.wsNormal, light.radius);
+    if (light.type == LightType::Polygon) {
+        for (const glm::dvec3& v : light.wsVertices)
+            if (exact::orient(t.a, t.b, t.c, v) > 0) return true;
+        return false;
+    }
     SO_CHECK(light.type == LightType::Rect);
     // Corners centre +- u/2 +- v/2: halving a double is exact, the sum is taken exactly.
     for (int k = 0; k < 4; ++k) {

@@ -29,13 +29,13 @@ int facingPoint(const PixelTriangle& t, const glm::dvec3& wsLight);
 // The same for a direction towards the light (a directional light's -wsDirection).
 int facingDirection(const PixelTriangle& t, const glm::dvec3& wsToLight);
 
-// A one-sided emitter (rect, disk): +1 where every point of the triangle is strictly on the side
-// it emits to, -1 where every point is on its plane or behind it, 0 where the plane cuts the
-// triangle (then the point itself decides, in float).
+// A one-sided emitter (rect, disk, polygon): +1 where every point of the triangle is strictly on
+// the side it emits to, -1 where every point is on its plane or behind it, 0 where the plane cuts
+// the triangle (then the point itself decides, in float).
 int emitterSide(const PixelTriangle& t, const Light& light);
 
-// Whether some point of an area light (rect, disk) lies strictly on the normal's side of the
-// triangle's plane (false: the whole light is below the horizon or in the plane).
+// Whether some point of an area light (rect, disk, polygon) lies strictly on the normal's side of
+// the triangle's plane (false: the whole light is below the horizon or in the plane).
 bool areaLightAbovePlane(const PixelTriangle& t, const Light& light);
 
 // Decisions are the same for every pixel of one triangle: a one-entry cache per thread and light,

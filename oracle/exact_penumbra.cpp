@@ -13,6 +13,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "oracle/lights/area_light_kind.h"
 #include "oracle/polygon_visibility.h"
 
 namespace so {
@@ -82,7 +83,7 @@ DiskBoundOptions checkedBoundOptions(const DiskBoundOptions& options, const std:
 }
 
 const char* exactErrorKind(LightType type) {
-    return type == LightType::Rect ? "exact" : "bound";
+    return areaLightKind(type).bounded() ? "bound" : "exact";
 }
 
 uint64_t occluderQuantileBound(const OccluderHistogram& h, double q) {
@@ -108,10 +109,6 @@ int bucketOf(uint64_t occluders) {
     return k;
 }
 
-RectLightShape shapeOf(const AreaLight& light) {
-    return {light.dCenter - 0.5 * light.dU - 0.5 * light.dV, light.dU, light.dV, light.dEmitNormal};
-}
-
 // Without the sampled pass: the cosine towards the light's centre as it writes it
 // (area_shadow.cpp), and V and stderr 0 until an answer replaces them.
 void writeCosine(const AreaLight& light, const SurfaceBuffer& sb, size_t s, size_t i,
@@ -121,51 +118,21 @@ void writeCosine(const AreaLight& light, const SurfaceBuffer& sb, size_t s, size
     planes.V[i] = planes.stderr_[i] = 0.0f;
 }
 
-DiskLightShape diskShapeOf(const AreaLight& light) {
-    DiskLightShape disk;
-    disk.center = light.dCenter;
-    disk.radius = light.dRadius;
-    disk.emitNormal = light.dEmitNormal;
-    diskAxes(disk.emitNormal, disk.e1, disk.e2);
-    return disk;
-}
-
 // What one pixel's exact V came to (status Exact, TooManyOccluders or AlphaTested), or nothing
 // asked; disk and sphere lights: the bound's half-width and sides too.
-struct PixelAnswer {
+struct PixelAnswer : ExactLightAnswer {
     bool asked = false;
-    PolygonVisibility result;
-    double halfWidth = 0.0;
-    uint32_t sides = 0;
-    bool reachedTarget = true;
 };
 
-// The light seen from p, by its type; `more`: the union's shortcuts and back faces, which hold
-// for the disk's bound as for a polygon (occluder_union.h).
+// The light seen from p, as its type answers it (oracle/lights/); `more`: the union's shortcuts
+// and back faces, which hold for the disk's bound as for a polygon (occluder_union.h).
 PixelAnswer answerAt(const ExactScene& exact, const AreaLight& light,
                      const ExactPenumbraOptions& options, const OccluderOptions& more,
                      const glm::dvec3& p, const glm::dvec3& n, TriangleId id) {
     PixelAnswer a;
+    static_cast<ExactLightAnswer&>(a) =
+        light.kind->exactAt(exact.tracer(), light, options, more, p, n, id);
     a.asked = true;
-    if (light.type == LightType::Rect) {
-        a.result = rectLightVisibility(exact.tracer(), shapeOf(light), p, n, id,
-                                       options.maxOccluders, more);
-        return a;
-    }
-    DiskLightShape disk;
-    if (light.type == LightType::Sphere) {
-        const glm::dvec3 w = light.dCenter - p;
-        if (!(glm::dot(w, w) > light.dRadius * light.dRadius)) return a;  // inside: NoLight
-        disk = sphereSilhouette(light.dCenter, light.dRadius, p);
-    } else {
-        disk = diskShapeOf(light);
-    }
-    const DiskVisibility d = diskLightVisibility(exact.tracer(), disk, p, n, id,
-                                                 options.maxOccluders, options.bound, more);
-    a.result = d.counts;
-    a.halfWidth = d.halfWidth();
-    a.sides = d.sides;
-    a.reachedTarget = d.reachedTarget;
     return a;
 }
 
@@ -258,9 +225,8 @@ ExactPenumbraStats exactPenumbraPass(const ExactScene& exact, const SurfaceBuffe
                                      const ExactPenumbraPlanes& planes, Progress* progress,
                                      const MeshFacing* facing) {
     SO_CHECK(options.method != PenumbraMethod::Sampled);
-    SO_CHECK(light.type == LightType::Rect || light.type == LightType::Disk ||
-             light.type == LightType::Sphere);
-    SO_CHECK((planes.bound != nullptr) == (light.type != LightType::Rect));
+    SO_CHECK(light.kind != nullptr);
+    SO_CHECK((planes.bound != nullptr) == light.kind->bounded());
     // Its own pixels only with Exact, which writes the planes the sampled pass would have.
     SO_CHECK(planes.spp || (options.method == PenumbraMethod::Exact && planes.cosine));
     const auto t0 = Clock::now();

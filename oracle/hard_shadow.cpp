@@ -10,6 +10,7 @@
 #include <tbb/combinable.h>
 #include <glm/geometric.hpp>
 
+#include "core/lights/light_kind.h"
 #include "core/progress.h"
 #include "oracle/exact_facing.h"
 #include "oracle/offset.h"
@@ -33,10 +34,10 @@ constexpr float kTiePosition = 1.0f / 1048576.0f;  // 2^-20, times (1 + |l|)
 HardLight makeHardLight(const Light& light, const LocalFrame& frame) {
     HardLight h;
     h.ws = light;
-    // Without the penumbra effect an area light is traced as a point light at its centre; rect
-    // and disk lights still emit on one side only.
+    // Without the penumbra effect an area light is traced as a point light at its centre; rect,
+    // disk and polygon lights still emit on one side only.
     h.type = isAreaLight(light.type) ? LightType::Point : light.type;
-    h.oneSided = light.type == LightType::Rect || light.type == LightType::Disk;
+    h.oneSided = lightKind(light.type).oneSided();
     if (h.oneSided) h.lsEmitNormalF = glm::vec3(light.wsEmitNormal());
     h.lsPosition = frame.lsFromWs(light.wsPosition);
     h.lsDirection = glm::normalize(light.wsDirection);

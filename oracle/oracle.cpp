@@ -25,6 +25,7 @@
 #include "oracle/exact_penumbra.h"
 #include "oracle/exact_scene.h"
 #include "oracle/hard_shadow.h"
+#include "oracle/lights/area_light_kind.h"
 #include "oracle/mesh_facing.h"
 #include "oracle/penumbra_choice.h"
 #include "oracle/points.h"
@@ -103,8 +104,9 @@ AreaShadowStats traceSampledLight(const LightPass& p, uint32_t li, const AreaSha
     return s;
 }
 
+// Every area light type has an exact pass (oracle/lights/).
 bool exactPassTakes(LightType type) {
-    return type == LightType::Rect || type == LightType::Disk || type == LightType::Sphere;
+    return isAreaLight(type);
 }
 
 // Why the exact pass does not apply to a light, or "" where it does.
@@ -128,7 +130,7 @@ AreaShadowStats traceExactThenSampled(const LightPass& p, uint32_t li, AreaShado
     e.stderr_ = planes.stderr_;
     e.cosine = planes.cosine;
     e.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
-    if (light.type == LightType::Disk || light.type == LightType::Sphere)
+    if (areaLightKind(light.type).bounded())
         e.bound = p.image.addChannel(ch::lightChannel(light.name, ch::kBound));
     std::vector<uint8_t> needsSampling;
     e.needsSampling = &needsSampling;
@@ -176,7 +178,7 @@ ExactPenumbraStats traceExactPenumbra(const LightPass& p, uint32_t li, float* V)
     planes.exactMask = p.image.addChannel(ch::lightChannel(light.name, ch::kExact));
     if (options.method == PenumbraMethod::Both)
         planes.Vexact = p.image.addChannel(ch::lightChannel(light.name, ch::kVisibilityExact));
-    if (light.type == LightType::Disk || light.type == LightType::Sphere)
+    if (areaLightKind(light.type).bounded())
         planes.bound = p.image.addChannel(ch::lightChannel(light.name, ch::kBound));
     ExactPenumbraStats st;
     st.method = options.method;

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/lights/light_kind.h"
 
 namespace so {
 
@@ -499,9 +500,7 @@ AreaShadowStats readArea(const Fields& f) {
 
 LightType readLightType(const Fields& f) {
     const std::string name = f.str("type");
-    for (LightType t : {LightType::Point, LightType::Directional, LightType::Spot, LightType::Rect,
-                        LightType::Disk, LightType::Sphere})
-        if (name == lightTypeName(t)) return t;
+    if (const LightKind* kind = findLightKind(name)) return kind->type();
     f.fail(f.name("type"), "unknown light type \"" + printable(name, 40) + "\"");
 }
 

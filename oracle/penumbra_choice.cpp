@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "oracle/lights/area_light_kind.h"
 
 namespace so {
 
@@ -53,7 +54,7 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
     const SurfaceBuffer& sb = *probe.sb;
     const size_t pixels = size_t(sb.width) * size_t(sb.height);
     std::vector<float> V(pixels), stderr_(pixels), spp(pixels), cosine(pixels), mask(pixels),
-        bound(light.type == LightType::Rect ? 0 : pixels);
+        bound(light.kind->bounded() ? pixels : 0);
     std::vector<uint8_t> slots =
         probe.slots ? *probe.slots : std::vector<uint8_t>(sb.hit.begin(), sb.hit.end());
     for (size_t s = 0; s < slots.size(); ++s)

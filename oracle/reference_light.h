@@ -1,10 +1,12 @@
 // Independent random samples of an area light, for the references that judge the oracle (the
 // verifier, tests/rqmc_coverage_test.cpp): SplitMix64 numbers, unrelated to the oracle's Sobol
-// sequences, and points uniform by area on the rect, the disk or the whole sphere, in the local
-// frame. Deliberately simple: correctness over speed.
+// sequences, and points uniform by area on the rect, the disk, the polygon (a triangle of its fan
+// by area, then uniform in it) or the whole sphere, in the local frame. Deliberately simple:
+// correctness over speed.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -36,6 +38,8 @@ class ReferenceLight {
     LightType type_;
     glm::dvec3 c_, u_, v_, m_, e1_{0.0}, e2_{0.0};
     double radius_;
+    std::vector<glm::dvec3> vertices_;  // polygon, local frame
+    std::vector<double> fanCdf_;        // its fan from vertex 0: cumulative area shares
 };
 
 }  // namespace so

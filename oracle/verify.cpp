@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "core/lights/light_kind.h"
 #include "oracle/area_shadow.h"
 #include "oracle/offset.h"
 #include "oracle/reference_light.h"
@@ -173,7 +174,7 @@ Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, f
             reaches = reaches && !(cosCone < cosOuter);
             tie = std::min(tie, std::fabs(cosCone - cosOuter));
         }
-        if (light.type == LightType::Rect || light.type == LightType::Disk) {
+        if (lightKind(light.type).oneSided()) {
             const double behind = glm::dot(light.wsEmitNormal(), -w) / dist;
             reaches = reaches && behind > 0.0;
             tie = std::min(tie, std::fabs(behind));

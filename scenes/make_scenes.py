@@ -317,8 +317,8 @@ def terrain_height(x, z):
             + 0.18 * math.cos(2.1 * z - 0.9 * x) + 0.08 * math.sin(4.3 * x) * math.sin(3.7 * z))
 
 
-def scene(name, geometry, camera, lights, effects=("hard",)):
-    s = {"scene_format": 1, "geometry": geometry, "camera": camera, "lights": lights, "effects": list(effects)}
+def scene(name, geometry, camera, lights, effects=("hard",), scene_format=1):
+    s = {"scene_format": scene_format, "geometry": geometry, "camera": camera, "lights": lights, "effects": list(effects)}
     with open(os.path.join(HERE, name), "w") as f:
         json.dump(s, f, indent=2)
         f.write("\n")
@@ -393,6 +393,20 @@ def main():
           [{"name": "window", "type": "rect", "center": [1.2, 4.2, 0.8], "u": [2.0, 0, 0], "v": [0, 0, 1.2]},
            {"name": "bulb", "type": "sphere", "center": [-2.2, 3.2, -1.4], "radius": 0.35}],
           effects=("penumbra",))
+
+    # Polygon lights (scene_format 4): a hexagonal softbox over a small box on the floor, and a
+    # tilted triangle beside it. Each is counter-clockwise seen from below, so it lights the floor.
+    hexagon = [[round(1.2 * math.cos(math.pi * k / 3), 12), 4.0, round(1.2 * math.sin(math.pi * k / 3), 12)]
+               for k in range(6)]
+    scene("polygon_softbox.scene.json",
+          [{"file": "meshes/floor.gltf"},
+           {"file": "meshes/unit_box.gltf", "translate": [0, 0, 0], "scale": [0.8, 1.0, 0.8]}],
+          {"eye": [0.0, 6.5, 7.5], "target": [0.3, 0.3, 0.0], "up": [0, 1, 0], "vfov_deg": 42,
+           "width": 320, "height": 240},
+          [{"name": "softbox", "type": "polygon", "vertices": hexagon},
+           {"name": "wedge", "type": "polygon",
+            "vertices": [[2.5, 3.0, -1.0], [3.5, 2.6, -1.0], [3.0, 3.2, 0.0]]}],
+          effects=("penumbra",), scene_format=4)
 
     # Alpha-tested occluders (issue 17): a grate of square holes (a 64 x 64 RGBA texture, alphaMode
     # MASK, repeated 3 x 2 times by KHR_texture_transform) tilted 20 degrees, 1.6 above the floor,

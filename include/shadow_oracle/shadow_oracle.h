@@ -84,8 +84,8 @@ struct Mesh {
 };
 
 struct LightInfo {
-    std::string name, type;  // type: point, directional, spot, rect, disk, sphere
-    bool area = false;       // rect, disk, sphere: a penumbra (with the "penumbra" effect)
+    std::string name, type;  // type: point, directional, spot, rect, disk, sphere, polygon
+    bool area = false;       // rect, disk, sphere, polygon: a penumbra (with "penumbra")
 };
 
 // A loaded scene: immutable, cheap to copy (shared), usable from several threads at once.

@@ -8,6 +8,8 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
+#include "raster_compare/gl/lights/raster_light_kind.h"
+
 namespace so {
 
 namespace {
@@ -232,15 +234,8 @@ LightCamera fitCascades(const Light& light, const Bounds3d& lsBounds, int resolu
 }
 
 double lightWidth(const Light& light) {
-    switch (light.type) {
-        case LightType::Rect:
-            return std::sqrt(glm::length(glm::cross(light.wsU, light.wsV)));
-        case LightType::Disk:
-        case LightType::Sphere:
-            return light.radius * std::sqrt(std::numbers::pi);
-        default:
-            return 0.0;
-    }
+    const RasterAreaLightKind* kind = rasterAreaLightKind(light.type);
+    return kind ? kind->width(light) : 0.0;
 }
 
 }  // namespace so

@@ -1,0 +1,79 @@
+// Area light types as plug-ins, the oracle's layer (core/lights/light_kind.h is the scene
+// format's): one AreaLightKind per type in its own file here (rect.cpp, disk.cpp, sphere.cpp,
+// polygon.cpp) holds everything the oracle does differently by type: the light's local-frame data,
+// which pixels it cannot reach, the per-pixel set-up and the 16-sample batches of the sampled pass
+// (area_light.h), the points the near-field test needs (near_field.h), and the exact pass's answer
+// at a point (exact_penumbra.h). area_light.cpp and exact_penumbra.cpp call these through one
+// table, areaLightKind(); adding a type is a file here and one line in that table.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "core/local_frame.h"
+#include "core/scene.h"
+#include "oracle/polygon_visibility.h"
+
+namespace so {
+
+struct AreaLight;
+struct AreaPixel;
+struct AreaBatch;
+struct PixelTies;
+struct NearTarget;
+struct ExactPenumbraOptions;
+struct DiskVisibility;
+enum class AreaSkip : uint8_t;
+
+// The exact pass's answer at one point: V with its counts, and for a bounded light (disk,
+// sphere) the bound's half-width and the polygons' sides.
+struct ExactLightAnswer {
+    PolygonVisibility result;
+    double halfWidth = 0.0;
+    uint32_t sides = 0;
+    bool reachedTarget = true;
+};
+
+// A disk bound's result as an answer (disk.cpp; the sphere's is its silhouette disk's).
+ExactLightAnswer boundedAnswer(const DiskVisibility& d);
+
+class AreaLightKind {
+  public:
+    virtual ~AreaLightKind() = default;
+    virtual LightType type() const = 0;
+    // makeAreaLight's part for this type, after the common fields (centre, edges, normal, radius
+    // in the local frame) are set; and how far the light's points lie from its centre.
+    virtual void init(AreaLight&, const LocalFrame&) const {}
+    virtual double extent(const AreaLight& light) const = 0;
+    // classifyAreaPixel (area_light.h).
+    virtual AreaSkip classify(const AreaLight& light, const glm::dvec3& p, const glm::dvec3& n,
+                              const PixelTies* ties) const = 0;
+    // prepareAreaPixel's part for this type (px.p and px.n are set).
+    virtual void preparePixel(const AreaLight&, const glm::vec3&, const glm::vec3&,
+                              AreaPixel&) const {}
+    // mapAreaBatch; `margin`: how far short of the light each segment stops.
+    virtual void mapBatch(const AreaLight& light, const AreaPixel& px, const float* su,
+                          const float* sv, int count, float margin, AreaBatch& b) const = 0;
+    // Points whose convex hull holds the light (near_field.h).
+    virtual NearTarget nearTarget(const AreaLight& light) const = 0;
+    // How the sampled pass picks its points, as oracle.json says.
+    virtual const char* sampling() const { return "uniform by area"; }
+    // Whether the exact pass bounds V (disk, sphere: an interval, the `bound` channel) rather
+    // than giving it exactly (rect, polygon).
+    virtual bool bounded() const { return false; }
+    virtual ExactLightAnswer exactAt(const ExactTracer& tracer, const AreaLight& light,
+                                     const ExactPenumbraOptions& options,
+                                     const OccluderOptions& more, const glm::dvec3& p,
+                                     const glm::dvec3& n, TriangleId self) const = 0;
+};
+
+// The registered kind of an area light type (rect, disk, sphere, polygon).
+const AreaLightKind& areaLightKind(LightType type);
+
+const AreaLightKind& rectAreaLightKind();
+const AreaLightKind& diskAreaLightKind();
+const AreaLightKind& sphereAreaLightKind();
+const AreaLightKind& polygonAreaLightKind();
+
+}  // namespace so

@@ -1,0 +1,30 @@
+// The raster path's rect light: corners centre -+ u/2 -+ v/2.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "raster_compare/gl/lights/raster_light_kind.h"
+
+namespace so {
+
+namespace {
+
+class RectRasterLightKind final : public RasterAreaLightKind {
+  public:
+    LightType type() const override { return LightType::Rect; }
+    double width(const Light& l) const override {
+        return std::sqrt(glm::length(glm::cross(l.wsU, l.wsV)));
+    }
+    glm::dvec3 samplePoint(const Light& l, double u, double v) const override {
+        return l.wsPosition + (u - 0.5) * l.wsU + (v - 0.5) * l.wsV;
+    }
+};
+
+}  // namespace
+
+const RasterAreaLightKind& rectRasterLightKind() {
+    static const RectRasterLightKind kind;
+    return kind;
+}
+
+}  // namespace so
