@@ -267,6 +267,30 @@ void againstRqmc(const std::string& name, const Scene& scene, double tightest) {
             (unsigned long long)l.choice->probeOccluders);
 }
 
+// --exact-only: the bunny's exact pass alone, `runs` times, each run's processor seconds and the
+// pass's own wall seconds (a profiler then sees nothing else but the scene's set-up).
+int exactOnlyRuns(int width, int runs) {
+    std::string why;
+    const MeshPrimitive* bunny = test::cgalBunny(why);
+    if (!bunny) {
+        std::printf("bunny: skipped (%s)\n", why.c_str());
+        return 0;
+    }
+    Scene b = test::makeBunnyScene(*bunny, width, width * 3 / 4);
+    test::useLowRectLight(b);
+    for (int k = 0; k < runs; ++k) {
+        double cpu = 0.0;
+        const OracleResult r = run(b, 0.01, PenumbraMethod::Exact, false, &cpu);
+        const ExactPenumbraStats& e = *r.stats.lights[0].area->exact;
+        std::printf(
+            "bunny exact: run %.3f cpu s, pass %.3f s, occluders %llu, candidates %llu, covered "
+            "%llu\n",
+            cpu, e.seconds, (unsigned long long)e.occludersTotal,
+            (unsigned long long)e.candidatesTotal, (unsigned long long)e.pixelsCovered);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -279,7 +303,12 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(16, 1024));
     app.add_option("--tightest", tightest, "the tightest RQMC target run (0.01, 0.001 or 0.0001)")
         ->check(CLI::Range(1e-4, 0.01));
+    int exactOnly = 0;
+    app.add_option("--exact-only", exactOnly,
+                   "run only the bunny's exact pass this many times (for a profiler), nothing else")
+        ->check(CLI::Range(1, 1000));
     CLI11_PARSE(app, argc, argv);
+    if (exactOnly > 0) return exactOnlyRuns(bunnyWidth, exactOnly);
     growth(size, maxK);
 
     Scene square = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");
