@@ -218,51 +218,48 @@ uint64_t keyOf(const IntPoint& a) {
     return (uint64_t(a.X + kBias) << 32) | uint64_t(a.Y + kBias);
 }
 
+IntPoint pointOf(uint64_t key) {
+    constexpr cInt kBias = cInt(1) << 30;
+    return {cInt(key >> 32) - kBias, cInt(key & 0xffffffffu) - kBias};
+}
+
+// The segments met, in an open-addressing table (linear probing; its order, and so the kept
+// edges', depends only on the triangles and their order: the same at any thread count).
 void mergeEdges(const std::vector<std::array<IntPoint, 3>>& triangles,
                 std::vector<MergedEdge>& kept) {
-    struct Edge {
-        uint64_t lo, hi;  // keyOf its ends, lo < hi
-        uint32_t triangle;
-        bool forward;  // runs lo -> hi
+    struct Segment {
+        uint64_t lo = 0, hi = 0;  // keyOf its ends, lo < hi; hi 0: an empty slot (lo < hi)
+        int32_t net = 0;          // runs lo -> hi less runs hi -> lo
+        uint32_t triangle = 0;    // the first to run it
     };
-    std::vector<Edge> edges;
-    edges.reserve(3 * triangles.size());
+    size_t capacity = 16;
+    while (capacity < 6 * triangles.size()) capacity *= 2;
+    std::vector<Segment> table(capacity);
+    std::vector<uint32_t> parent(triangles.size());
+    for (uint32_t t = 0; t < parent.size(); ++t) parent[t] = t;
     for (size_t i = 0; i < triangles.size(); ++i)
         for (size_t k = 0; k < 3; ++k) {
             const uint64_t a = keyOf(triangles[i][k]), b = keyOf(triangles[i][(k + 1) % 3]);
-            edges.push_back({std::min(a, b), std::max(a, b), uint32_t(i), a < b});
+            const uint64_t lo = std::min(a, b), hi = std::max(a, b);
+            size_t slot = size_t((lo * 0x9E3779B97F4A7C15ull) ^ (hi * 0xC2B2AE3D27D4EB4Full)) >> 7;
+            for (slot &= capacity - 1;; slot = (slot + 1) & (capacity - 1)) {
+                Segment& seg = table[slot];
+                if (seg.hi == 0) seg = {lo, hi, 0, uint32_t(i)};
+                if (seg.lo != lo || seg.hi != hi) continue;
+                seg.net += a < b ? 1 : -1;
+                parent[root(parent, uint32_t(i))] = root(parent, seg.triangle);
+                break;
+            }
         }
-    std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
-        return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.forward < y.forward;
-    });
-    std::vector<uint32_t> parent(triangles.size());
-    for (uint32_t t = 0; t < parent.size(); ++t) parent[t] = t;
     kept.clear();
-    const auto point = [&](const Edge& e, bool hi) {
-        const std::array<IntPoint, 3>& t = triangles[e.triangle];
-        for (const IntPoint& y : t)
-            if (keyOf(y) == (hi ? e.hi : e.lo)) return y;
-        return t[0];  // not reached: the key is one of its triangle's vertices
-    };
     // Per segment: as many runs as one way exceeds the other, from -> to.
-    for (size_t e = 0; e < edges.size();) {
-        size_t end = e + 1, forward = edges[e].forward;
-        const uint32_t first = root(parent, edges[e].triangle);
-        for (; end < edges.size() && edges[end].lo == edges[e].lo && edges[end].hi == edges[e].hi;
-             ++end) {
-            forward += edges[end].forward;
-            parent[root(parent, edges[end].triangle)] = first;
-        }
-        const size_t backward = end - e - forward;
-        if (forward != backward) {
-            const IntPoint lo = point(edges[e], false), hi = point(edges[e], true);
-            for (size_t k = std::min(forward, backward); k < std::max(forward, backward); ++k)
-                kept.push_back(forward > backward ? MergedEdge{lo, hi, edges[e].triangle}
-                                                  : MergedEdge{hi, lo, edges[e].triangle});
-        }
-        e = end;
+    for (const Segment& seg : table) {
+        if (seg.net == 0) continue;
+        const IntPoint lo = pointOf(seg.lo), hi = pointOf(seg.hi);
+        const uint32_t part = root(parent, seg.triangle);
+        for (int32_t k = 0; k < std::abs(seg.net); ++k)
+            kept.push_back(seg.net > 0 ? MergedEdge{lo, hi, part} : MergedEdge{hi, lo, part});
     }
-    for (MergedEdge& m : kept) m.part = root(parent, m.part);
 }
 
 // The kept edges as closed loops, appended to `out`.
