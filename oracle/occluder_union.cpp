@@ -490,7 +490,7 @@ OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q) {
         if (checks && !covered && u.occluders == nextCheck) {
             nextCheck *= kCheckGrowth;
             lastCheck = u.occluders;
-            ++u.unions;
+            ++u.coverChecks;
             shadows.merge();
             covered = shadows.cover(*q.lit);
         }
