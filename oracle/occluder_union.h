@@ -77,7 +77,8 @@ struct OccluderQuery {
     TriangleId self;    // its triangle, left out: it can only touch p's own plane
     // dot(emitNormal, p - origin) > 0: p's height above the light's plane.
     double height = 0.0;
-    // The pyramid from p to the visible light (its sides through p, and the light's plane).
+    // The pyramid from p to the visible light: its sides through p, then the light's plane (p's
+    // side of it), last (the slab's test reads it there).
     const std::vector<ExactTracer::HalfSpace>* pyramid = nullptr;
     const LightPlaneFrame* frame = nullptr;
     const ClipperLib::Path* lit = nullptr;  // the base above the horizon, quantised (frame.path)
