@@ -3,9 +3,10 @@
 // 1. Growth: the closed-form scene (tests/test_scenes.h PenumbraScene) with its square occluder
 //    split into k x k squares, 2k^2 triangles tiling the same square, so that V and its closed
 //    form stay the same while the triangles in each pixel's pyramid grow as k^2. Per k: the exact
-//    pass's seconds per pixel, occluders per pixel (mean, p99 bound, max), the largest
-//    |V - closed form| over its pixels, and RQMC's seconds per penumbra pixel at a stated 0.001
-//    on the same scene; then the fitted growth of the time per pixel with the occluders.
+//    pass's seconds per pixel as it ships and as the plain union (two curves), occluders per
+//    pixel (mean, p99 bound, max), the largest |V - closed form| over its pixels, and RQMC's
+//    seconds per penumbra pixel at a stated 0.001 on the same scene; then the fitted growth of
+//    the time per pixel with the occluders, for each curve.
 // 2. RQMC at stated half-widths 0.01, 0.001 and 0.0001 (max spp 2^20) against the exact pass on
 //    the shipped penumbra_square (200 x 200; its exact pass matches the closed form, part 1) and
 //    two scenes without a closed form: soft_chair's window (its sphere bulb left out: it has no
@@ -15,6 +16,7 @@
 //    and what `auto` chooses at 0.01.
 //
 //   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W] [--tightest T]
+//   bench_exact_penumbra --exact-only N [--bunny-size W]   (the bunny's exact run alone, N times)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
