@@ -3,9 +3,10 @@
 // 1. Growth: the closed-form scene (tests/test_scenes.h PenumbraScene) with its square occluder
 //    split into k x k squares, 2k^2 triangles tiling the same square, so that V and its closed
 //    form stay the same while the triangles in each pixel's pyramid grow as k^2. Per k: the exact
-//    pass's seconds per pixel, occluders per pixel (mean, p99 bound, max), the largest
-//    |V - closed form| over its pixels, and RQMC's seconds per penumbra pixel at a stated 0.001
-//    on the same scene; then the fitted growth of the time per pixel with the occluders.
+//    pass's seconds per pixel as it ships and as the plain union (two curves), occluders per
+//    pixel (mean, p99 bound, max), the largest |V - closed form| over its pixels, and RQMC's
+//    seconds per penumbra pixel at a stated 0.001 on the same scene; then the fitted growth of
+//    the time per pixel with the occluders, for each curve.
 // 2. RQMC at stated half-widths 0.01, 0.001 and 0.0001 (max spp 2^20) against the exact pass on
 //    the shipped penumbra_square (200 x 200; its exact pass matches the closed form, part 1) and
 //    two scenes without a closed form: soft_chair's window (its sphere bulb left out: it has no
@@ -15,6 +16,7 @@
 //    and what `auto` chooses at 0.01.
 //
 //   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W] [--tightest T]
+//   bench_exact_penumbra --exact-only N [--bunny-size W]   (the bunny's exact run alone, N times)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -90,40 +92,59 @@ double maxClosedFormError(const ChannelImage& img, const std::string& light) {
     return worst;
 }
 
+// The least-squares slope of log y against log x.
+double logLogSlope(const std::vector<std::pair<double, double>>& xy) {
+    double mx = 0, my = 0;
+    for (const auto& [x, y] : xy) mx += std::log(x), my += std::log(y);
+    mx /= double(xy.size()), my /= double(xy.size());
+    double sxy = 0, sxx = 0;
+    for (const auto& [x, y] : xy)
+        sxy += (std::log(x) - mx) * (std::log(y) - my),
+            sxx += (std::log(x) - mx) * (std::log(x) - mx);
+    return sxy / sxx;
+}
+
+// Per k, the pass as it ships ("fast") and the plain union of issue 31 ("plain": no shortcuts,
+// every back face, each triangle clipped, no merging), both over every pixel; the occluders per
+// pixel are the plain union's (the triangles whose clipped shadow reaches the light: what the
+// pyramid holds), the x of both curves.
 void growth(int size, int maxK) {
     std::printf(
         "growth: the closed-form scene at %dx%d, its occluder as k x k squares\n"
-        "%6s %9s %8s %10s %9s %8s %11s %12s %14s %12s\n",
+        "%6s %9s %8s %10s %9s %8s %11s %12s %11s %12s %14s %12s\n",
         size, size, "k", "triangles", "pixels", "occ. mean", "p99 <=", "max", "exact s",
-        "exact us/px", "max |V - cf|", "RQMC us/px");
-    std::vector<std::pair<double, double>> fit;  // (log occluders, log us per pixel)
+        "exact us/px", "plain s", "plain us/px", "max |V - cf|", "RQMC us/px");
+    std::vector<std::pair<double, double>> fitFast, fitPlain;  // (occluders, us per pixel)
     for (int k = 1; k <= maxK; k *= 2) {
         const Scene scene = tiledPenumbraScene(size, k);
         const OracleResult ex = run(scene, 0.01, PenumbraMethod::Exact);
         const ExactPenumbraStats& e = *ex.stats.lights[0].area->exact;
+        const OracleResult pl = run(scene, 0.01, PenumbraMethod::Exact, true);
+        const ExactPenumbraStats& p = *pl.stats.lights[0].area->exact;
         const OracleResult rq = run(scene, 0.001, PenumbraMethod::Sampled);
         const AreaShadowStats& ra = *rq.stats.lights[0].area;
         const uint64_t rqPenumbra = ra.pixelsSampled - ra.pixelsAgreeing;
-        const double usPerPixel = 1e6 * e.seconds / double(std::max<uint64_t>(e.pixelsExact, 1));
-        std::printf("%6d %9llu %8llu %10.1f %9llu %8llu %11.3f %12.1f %14.2e %12.1f\n", k,
-                    (unsigned long long)scene.stats.triangles, (unsigned long long)e.pixelsExact,
-                    meanOccluders(e), (unsigned long long)occluderQuantileBound(e.occluders, 0.99),
-                    (unsigned long long)e.occludersMax, e.seconds, usPerPixel,
-                    maxClosedFormError(ex.image, scene.lights[0].name),
-                    1e6 * ra.seconds / double(std::max<uint64_t>(rqPenumbra, 1)));
+        const double usFast = 1e6 * e.seconds / double(std::max<uint64_t>(e.pixelsExact, 1));
+        const double usPlain = 1e6 * p.seconds / double(std::max<uint64_t>(p.pixelsExact, 1));
+        std::printf(
+            "%6d %9llu %8llu %10.1f %9llu %8llu %11.3f %12.1f %11.3f %12.1f %14.2e %12.1f\n", k,
+            (unsigned long long)scene.stats.triangles, (unsigned long long)p.pixelsExact,
+            meanOccluders(p), (unsigned long long)occluderQuantileBound(p.occluders, 0.99),
+            (unsigned long long)p.occludersMax, e.seconds, usFast, p.seconds, usPlain,
+            std::max(maxClosedFormError(ex.image, scene.lights[0].name),
+                     maxClosedFormError(pl.image, scene.lights[0].name)),
+            1e6 * ra.seconds / double(std::max<uint64_t>(rqPenumbra, 1)));
         std::fflush(stdout);
-        if (meanOccluders(e) >= 8.0)
-            fit.emplace_back(std::log(meanOccluders(e)), std::log(usPerPixel));
+        if (meanOccluders(p) >= 8.0) {
+            fitFast.emplace_back(meanOccluders(p), usFast);
+            fitPlain.emplace_back(meanOccluders(p), usPlain);
+        }
     }
-    if (fit.size() < 2) return;
-    double mx = 0, my = 0;
-    for (const auto& [x, y] : fit) mx += x, my += y;
-    mx /= double(fit.size()), my /= double(fit.size());
-    double sxy = 0, sxx = 0;
-    for (const auto& [x, y] : fit) sxy += (x - mx) * (y - my), sxx += (x - mx) * (x - mx);
+    if (fitFast.size() < 2) return;
     std::printf(
-        "  time per pixel ~ occluders^%.2f (least squares over the %zu rows with 8 or more)\n",
-        sxy / sxx, fit.size());
+        "  time per pixel ~ occluders^%.2f fast, ^%.2f plain (least squares over the %zu rows with "
+        "8 or more)\n",
+        logLogSlope(fitFast), logLogSlope(fitPlain), fitFast.size());
 }
 
 // Realised error of a sampled V against the exact one, over the pixels the exact pass gave with
@@ -267,6 +288,30 @@ void againstRqmc(const std::string& name, const Scene& scene, double tightest) {
             (unsigned long long)l.choice->probeOccluders);
 }
 
+// --exact-only: the bunny's exact pass alone, `runs` times, each run's processor seconds and the
+// pass's own wall seconds (a profiler then sees nothing else but the scene's set-up).
+int exactOnlyRuns(int width, int runs) {
+    std::string why;
+    const MeshPrimitive* bunny = test::cgalBunny(why);
+    if (!bunny) {
+        std::printf("bunny: skipped (%s)\n", why.c_str());
+        return 0;
+    }
+    Scene b = test::makeBunnyScene(*bunny, width, width * 3 / 4);
+    test::useLowRectLight(b);
+    for (int k = 0; k < runs; ++k) {
+        double cpu = 0.0;
+        const OracleResult r = run(b, 0.01, PenumbraMethod::Exact, false, &cpu);
+        const ExactPenumbraStats& e = *r.stats.lights[0].area->exact;
+        std::printf(
+            "bunny exact: run %.3f cpu s, pass %.3f s, occluders %llu, candidates %llu, covered "
+            "%llu\n",
+            cpu, e.seconds, (unsigned long long)e.occludersTotal,
+            (unsigned long long)e.candidatesTotal, (unsigned long long)e.pixelsCovered);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -279,7 +324,12 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(16, 1024));
     app.add_option("--tightest", tightest, "the tightest RQMC target run (0.01, 0.001 or 0.0001)")
         ->check(CLI::Range(1e-4, 0.01));
+    int exactOnly = 0;
+    app.add_option("--exact-only", exactOnly,
+                   "run only the bunny's exact pass this many times (for a profiler), nothing else")
+        ->check(CLI::Range(1, 1000));
     CLI11_PARSE(app, argc, argv);
+    if (exactOnly > 0) return exactOnlyRuns(bunnyWidth, exactOnly);
     growth(size, maxK);
 
     Scene square = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");

@@ -8,8 +8,13 @@
 // base is integrated against it (polygon_visibility.h's LightShadows: a rect, or a disk's
 // inscribed and circumscribed n-gons).
 //
-// Triangles the pyramid does not cut go to the union as the outline of their patch, not one by
-// one: their shared edges cancel (appendMergedLoops in the .cpp; the same filled region).
+// Whole triangles go to the union as their patch's outline, not one by one: their shared edges
+// cancel (mergeEdges in the .cpp; the same filled region). A triangle is whole where the pyramid
+// does not cut it, and also where it lies between p's level and the light's plane (the slab) with
+// its projection near the light: the projection of the whole triangle, unclipped, covers the
+// same part of the light as the projection of its part inside the pyramid, so the triangles of a
+// closed mesh's front faces leave only their silhouette loops (issue 45, "project only silhouette
+// loops").
 //
 // With `facing` (mesh_facing.h), the back faces of closed meshes are left out: the union is the
 // same region (to the quantisation: a shared edge clipped from its two triangles may round to
@@ -19,11 +24,14 @@
 //
 // Shortcuts that give the same answer as the plain union:
 // - no triangle cuts the pyramid: the whole light is visible, without a union;
-// - the light is covered: as soon as one shadow holds the whole light, or the union of the
-//   shadows so far (checked when their count reaches 4, 16, 64, ...) leaves nothing, the query
-//   stops: more triangles can only cover more. The union at a check is the plain union of the
-//   shadows met so far, so a light found covered is empty in the plain union of all of them too.
-//   "The light" is the base above the horizon, so every region inside it is covered as well.
+// - the light is covered: as soon as one shadow holds the whole light, or the shadows so far
+//   (checked when their count reaches 64, 512, 4,096, ..., and once at the end) are found to cover
+//   it, the query stops (or the union is skipped): more triangles can only cover more. The check
+//   needs no Clipper: each connected patch of whole triangles (and each clipped polygon) has a
+//   winding number >= 0 everywhere, constant over the light's interior where none of its edges
+//   crosses it; if those constants add up to 1 or more, the plain union (non-zero filling) holds
+//   the light. "The light" is the base above the horizon, so every region inside it is covered
+//   as well.
 #pragma once
 
 #include <cstdint>
@@ -41,7 +49,8 @@ namespace so {
 // The light's plane with integer coordinates: y = origin + s edgeU + t edgeV, (s, t) quantised to
 // 2^-29 (below Clipper's 2^30 "low range", where its arithmetic is plain 64-bit and exact). The
 // light's own (s, t) lie in [0, 1], so its polygons have coordinates in [0, 2^29] (a disk's frame
-// is a square about its gathering polygon: disk_bounds.h).
+// is a square about its gathering polygon: disk_bounds.h); the slab's unclipped triangles are
+// kept within half the square of it, [-2^28, 3 2^28], still in the low range.
 struct LightPlaneFrame {
     static constexpr double kQuantum = double(1 << 29);
     glm::dvec3 origin{0.0}, edgeU{0.0}, edgeV{0.0}, emitNormal{0.0};
@@ -68,7 +77,8 @@ struct OccluderQuery {
     TriangleId self;    // its triangle, left out: it can only touch p's own plane
     // dot(emitNormal, p - origin) > 0: p's height above the light's plane.
     double height = 0.0;
-    // The pyramid from p to the visible light (its sides through p, and the light's plane).
+    // The pyramid from p to the visible light: its sides through p, then the light's plane (p's
+    // side of it), last (the slab's test reads it there).
     const std::vector<ExactTracer::HalfSpace>* pyramid = nullptr;
     const LightPlaneFrame* frame = nullptr;
     const ClipperLib::Path* lit = nullptr;  // the base above the horizon, quantised (frame.path)
@@ -88,10 +98,10 @@ struct OccluderUnion {
     // Partial: the shadows met, as paths whose non-zero filling is their union (a merged patch's
     // outline, or one counter-clockwise path per shadow).
     ClipperLib::Paths shadows;
-    uint32_t occluders = 0;   // shadows that reached the union (up to where it stopped)
-    uint32_t candidates = 0;  // triangles the BVH query returned (the pyramid's cost)
-    uint32_t backFaces = 0;   // candidates left out by `facing`
-    uint32_t unions = 0;      // Clipper calls made by the covered checks
+    uint32_t occluders = 0;    // shadows that reached the union (up to where it stopped)
+    uint32_t candidates = 0;   // triangles the BVH query returned (the pyramid's cost)
+    uint32_t backFaces = 0;    // candidates left out by `facing`
+    uint32_t coverChecks = 0;  // covered checks made before the last (each merges the shadows)
 };
 
 OccluderUnion gatherShadows(const ExactTracer& tracer, const OccluderQuery& q);

@@ -274,6 +274,66 @@ TEST(ExactPenumbra, BackFacesAndMergingChangeNothing) {
     }
 }
 
+// Every speed-up at once (the shortcuts, the back faces, merging with the slab's whole
+// triangles, the covered check by winding numbers: occluder_union.h) against the plain per-pixel
+// union of issue 31 (each triangle clipped to the pyramid, every back face, no shortcut), on every
+// shipped scene with an area light and the bunny, every light, over the pixels exact in both runs:
+// a rect light's V within 1e-7, a disk's or a sphere's bounds overlapping (their midpoints within
+// the two half-widths, each about 1e-6, and 1e-7).
+TEST(ExactPenumbra, FastUnionAgreesWithThePlainUnionOnShippedScenes) {
+    std::vector<std::pair<std::string, Scene>> scenes;
+    for (const char* name : {"penumbra_square", "soft_chair", "sphere_light", "alpha_grate"}) {
+        Scene s = loadScene(std::string(SO_SCENES_DIR) + "/" + name + ".scene.json");
+        s.camera.width = 64;
+        s.camera.height = 48;
+        scenes.emplace_back(name, std::move(s));
+    }
+    std::string why;
+    if (const MeshPrimitive* bunny = cgalBunny(why)) {
+        scenes.emplace_back("bunny", makeBunnyScene(*bunny, 64, 48));
+        useLowRectLight(scenes.back().second);
+    }
+    for (const auto& [name, scene] : scenes) {
+        std::vector<OracleResult> runs;
+        for (bool fast : {true, false}) {
+            OracleOptions o;
+            o.penumbra.method = PenumbraMethod::Exact;
+            o.penumbra.shortcuts = o.penumbra.backFaces = o.penumbra.merge = fast;
+            runs.push_back(runOracle(scene, o));
+        }
+        for (size_t l = 0; l < scene.lights.size(); ++l) {
+            if (!runs[0].stats.lights[l].area || !runs[0].stats.lights[l].area->exact) continue;
+            const std::string light = scene.lights[l].name;
+            const bool bounded = scene.lights[l].type != LightType::Rect;
+            const float* v[2] = {runs[0].image.channel(light + ".V"),
+                                 runs[1].image.channel(light + ".V")};
+            const float* mask[2] = {runs[0].image.channel(light + "." + ch::kExact),
+                                    runs[1].image.channel(light + "." + ch::kExact)};
+            double worst = 0.0;
+            size_t both = 0;
+            for (size_t i = 0; i < runs[0].image.pixelCount(); ++i) {
+                if (mask[0][i] != 1.0f || mask[1][i] != 1.0f) continue;
+                ++both;
+                const double d = std::fabs(double(v[0][i]) - double(v[1][i]));
+                double allowed = 1e-7;
+                if (bounded)
+                    allowed += double(runs[0].image.channel(light + "." + ch::kBound)[i]) +
+                               double(runs[1].image.channel(light + "." + ch::kBound)[i]);
+                EXPECT_LE(d, allowed) << name << " " << light << " pixel " << i;
+                worst = std::max(worst, d);
+            }
+            const ExactPenumbraStats& fast = *runs[0].stats.lights[l].area->exact;
+            const ExactPenumbraStats& plain = *runs[1].stats.lights[l].area->exact;
+            EXPECT_GT(both, runs[0].image.pixelCount() / 4) << name << " " << light;
+            std::printf(
+                "[ exact ] %s, %s: %zu pixels exact in both, max |V_fast - V_plain| %.3g; "
+                "occluders %llu fast, %llu plain\n",
+                name.c_str(), light.c_str(), both, worst, (unsigned long long)fast.occludersTotal,
+                (unsigned long long)plain.occludersTotal);
+        }
+    }
+}
+
 // An independent float64 estimate with a standard error: `samples` i.i.d. uniform points of the
 // light (SplitMix64, nothing of the oracle's Sobol sequences), each tested with the exact tracer's
 // ray test from p, the ratio estimator's standard error by the delta method.
