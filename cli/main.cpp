@@ -49,7 +49,7 @@ static void addQuiet(CLI::App* cmd, bool& progress) {
 // --penumbra and --exact-pixels (docs/oracle.md, "Exact penumbrae"): names, read when the
 // command runs so that a bad one is the tool's one-line error.
 struct PenumbraFlags {
-    std::string method = "sampled", pixels = "penumbra";
+    std::string method = "auto", pixels = "penumbra";
     so::DiskBoundOptions bound;
     void applyTo(so::OracleOptions& o) const {
         o.penumbra.method = so::parsePenumbraMethod(method, "command line", "--penumbra");
@@ -60,11 +60,10 @@ struct PenumbraFlags {
 static std::shared_ptr<PenumbraFlags> addPenumbraFlags(CLI::App* cmd) {
     auto flags = std::make_shared<PenumbraFlags>();
     cmd->add_option("--penumbra", flags->method,
-                    "rect lights: sampled (RQMC with 95% intervals, default), exact (clipped "
-                    "polygons on every pixel; stderr 0 there), both (V sampled, V_exact beside "
-                    "it) or auto (per light, exact or sampled, whichever a probe estimates "
-                    "cheaper); disk and sphere lights: exact gives V in a guaranteed interval "
-                    "(NAME.bound)");
+                    "auto (default: per light, exact or sampled, whichever a probe estimates "
+                    "cheaper), sampled (RQMC with 95% intervals), exact (rect lights: clipped "
+                    "polygons on every pixel, stderr 0 there; disk and sphere lights: V in a "
+                    "guaranteed interval, NAME.bound) or both (V sampled, V_exact beside it)");
     cmd->add_option("--exact-pixels", flags->pixels,
                     "with --penumbra both: penumbra (pixels whose samples disagree, default) or "
                     "all (every sampled pixel); exact finds its own pixels");

@@ -8,21 +8,23 @@ namespace so {
 
 namespace {
 
-// The cost model, in processor seconds (all threads summed): a shadow ray of the sampled pass with
-// its share of the estimator, and the exact pass's cost per point, per triangle the pyramid query
-// returned and per shadow that reached the union. Fitted to bench_exact_penumbra's whole runs'
-// processor seconds (2026-11-26, this repository's shared 2-core machine; docs/benchmarks.md):
-// 1.5e-8 to 7.6e-8 s a ray (penumbra_square, soft_chair, the bunny, fixed costs included), and
-// the exact pass's three terms within 30% of all three scenes. Only their ratios matter.
-constexpr double kSecondsPerRay = 3.0e-8;
+// The cost model, in processor seconds (all threads summed): the sampled pass's cost per shadow
+// ray and per point, and the exact pass's per point, per triangle the pyramid query returned, per
+// shadow that reached the union and, for disk and sphere lights, per side of the last polygons
+// each point's bound integrated. Fitted by bench_penumbra_cost (scripts/penumbra-calibration: both
+// passes on every area light of the shipped scenes, the real ones and the bunny, one thread,
+// processor time, median of 3; least squares on relative residuals) on FIT_DATE; the fit, its
+// residuals and the choices it makes are in docs/benchmarks.md. Only ratios matter.
+constexpr double kSampledSecondsPerRay = 3.0e-8;
+constexpr double kSampledSecondsPerPoint = 0.0;
 constexpr double kExactSecondsPerPoint = 1.0e-6;
 constexpr double kExactSecondsPerCandidate = 0.1e-6;
 constexpr double kExactSecondsPerOccluder = 1.5e-6;
-// Disk and sphere lights: per side of the last polygons each point's bound integrated (their
-// doublings before it and the inscribed polygon's integral included). Measured on sphere_light at
-// 96 x 72, one thread, --bound-target 1e-6 against 1e-4 (931,392 against 72,352 sides): 0.19
-// processor seconds apart, 2.2e-7 s a side (2026-11-26, the shared 2-core machine).
 constexpr double kExactSecondsPerBoundSide = 2.2e-7;
+// Exact wins unless its estimate exceeds sampling's by more than this factor: the fit's
+// residuals reach MARGIN_WHY, so closer estimates cannot tell the two apart, and between two
+// methods of about the same cost the one without sampling error is the better answer.
+constexpr double kExactMargin = 1.0;
 
 std::string seconds(double s) {
     char text[32];
@@ -87,15 +89,20 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
     const double scale = double(imagePoints) / double(c.probePoints);
     // The points the exact pass leaves are sampled as well: their share of the sampled rays.
     const double keptShare = double(c.probeKeptSampled) / double(c.probePoints);
-    c.sampledSeconds = scale * double(c.probeRays) * kSecondsPerRay;
+    c.sampledSeconds = scale * (double(c.probeRays) * kSampledSecondsPerRay +
+                                double(c.probePoints) * kSampledSecondsPerPoint);
     c.exactSeconds = scale * (double(c.probePoints) * kExactSecondsPerPoint +
                               double(c.probeCandidates) * kExactSecondsPerCandidate +
                               double(c.probeOccluders) * kExactSecondsPerOccluder +
                               double(c.probeBoundSides) * kExactSecondsPerBoundSide) +
                      keptShare * c.sampledSeconds;
-    c.chosen = c.exactSeconds < c.sampledSeconds ? PenumbraMethod::Exact : PenumbraMethod::Sampled;
+    c.chosen = c.exactSeconds <= kExactMargin * c.sampledSeconds ? PenumbraMethod::Exact
+                                                                 : PenumbraMethod::Sampled;
+    char margin[16];
+    std::snprintf(margin, sizeof margin, "%g", kExactMargin);
     c.reason = "estimated " + seconds(c.exactSeconds) + " exact against " +
-               seconds(c.sampledSeconds) + " sampled to the target (processor seconds)";
+               seconds(c.sampledSeconds) + " sampled to the target (processor seconds; exact " +
+               "unless over " + margin + " times sampling)";
     return c;
 }
 

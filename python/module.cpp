@@ -352,13 +352,13 @@ void bindTrace(py::module_& m) {
         py::arg("scene"), py::kw_only(), py::arg("width") = 0, py::arg("height") = 0,
         py::arg("target_error") = 0.01, py::arg("agreement_target") = 0.01,
         py::arg("max_spp") = 16384, py::arg("spp") = 0, py::arg("seed") = 0u,
-        py::arg("threads") = 0, py::arg("verify") = 0, py::arg("penumbra") = "sampled",
+        py::arg("threads") = 0, py::arg("verify") = 0, py::arg("penumbra") = "auto",
         py::arg("exact_pixels") = "penumbra", py::arg("points") = py::none(),
         py::arg("progress") = py::none(),
-        "The oracle (`shadow-oracle trace`): exact hard shadows, sampled penumbrae with 95% "
-        "intervals; penumbra=\"exact\", \"both\" or \"auto\" computes rect lights' penumbrae "
-        "exactly and disk and sphere lights' in a guaranteed interval (auto: where a probe "
-        "estimates it cheaper than sampling). "
+        "The oracle (`shadow-oracle trace`): exact hard shadows; penumbrae by penumbra=\"auto\" "
+        "(default: per light, exact where a probe estimates it cheaper than sampling), "
+        "\"exact\" (rect lights exactly, disk and sphere lights in a guaranteed interval), "
+        "\"sampled\" (95% intervals) or \"both\". "
         "progress(stage, done, total) is called every 50 ms; return False to cancel.");
 }
 
