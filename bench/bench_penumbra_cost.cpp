@@ -60,6 +60,7 @@ struct Row {
     std::string name;
     bool bounded = false;  // disk or sphere
     double points = 0, rays = 0, candidates = 0, occluders = 0, sides = 0, kept = 0;
+    double triangles = 0, alphaTests = 0;  // the scene's; the sampled pass's
     double sampledSeconds = 0, exactSeconds = 0;
     double sampledSpread = 0, exactSpread = 0;  // (max - min) / median over the repeats
     // auto's choice in a whole run with the compiled constants, and its estimates.
@@ -110,6 +111,7 @@ Row measure(const Scene& scene, const Setup& s, uint32_t li, double target, int 
              lightTypeName(light.type) + ")";
     r.bounded = light.type != LightType::Rect;
     r.points = s.points;
+    r.triangles = double(scene.stats.triangles);
     std::vector<double> ts, te;
     tbb::task_arena& arena = const_cast<ThreadArena&>(s.threads).arena();
     for (int k = 0; k < repeats; ++k) {
@@ -120,6 +122,7 @@ Row measure(const Scene& scene, const Setup& s, uint32_t li, double target, int 
                                  {V.data(), se.data(), spp.data(), cosine.data()}, nullptr);
             ts.push_back(threadSeconds() - t0);
             r.rays = double(a.raysTraced);
+            r.alphaTests = double(a.alphaTests);
             ExactPenumbraPlanes e;
             e.V = V.data();
             e.stderr_ = se.data();
@@ -224,7 +227,7 @@ void report(const std::vector<Row>& rows) {
     std::vector<std::vector<double>> Xs, Xe;
     std::vector<double> ys, ye;
     for (const Row& r : rows) {
-        Xs.push_back({r.rays, r.points});
+        Xs.push_back({r.rays, r.rays * std::log2(std::max(r.triangles, 2.0)), r.alphaTests});
         ys.push_back(r.sampledSeconds);
         Xe.push_back({r.points, r.candidates, r.occluders, r.sides});
         ye.push_back(r.exactSeconds);
@@ -232,13 +235,14 @@ void report(const std::vector<Row>& rows) {
     const std::vector<double> cs = fitNonNegative(Xs, ys), ce = fitNonNegative(Xe, ye);
     std::printf(
         "\nfit (processor seconds, one thread, relative least squares, non-negative):\n"
-        "  sampled: %.3g s per ray + %.3g s per point\n"
+        "  sampled: %.3g s per ray + %.3g s per ray and log2(triangles) + %.3g s per alpha "
+        "test\n"
         "  exact:   %.3g s per point + %.3g s per candidate + %.3g s per occluder + "
         "%.3g s per bound side\n",
-        cs[0], cs[1], ce[0], ce[1], ce[2], ce[3]);
-    std::printf("\n%-36s %7s %9s %9s %9s %10s | %9s %6s %9s %6s | %8s %8s | %-7s %9s %9s %s\n",
-                "light", "points", "rays", "cand.", "occl.", "sides", "sampled s", "fit", "exact s",
-                "fit", "spread s", "spread e", "auto", "est. s", "est. e", "right?");
+        cs[0], cs[1], cs[2], ce[0], ce[1], ce[2], ce[3]);
+    std::printf("\n%-36s %8s %7s %9s %9s %9s %10s | %9s %6s %9s %6s | %8s %8s | %-7s %9s %9s %s\n",
+                "light", "tri.", "points", "rays", "cand.", "occl.", "sides", "sampled s", "fit",
+                "exact s", "fit", "spread s", "spread e", "auto", "est. s", "est. e", "right?");
     double worstS = 0, worstE = 0;
     for (size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
@@ -254,11 +258,11 @@ void report(const std::vector<Row>& rows) {
                           (r.chosen == "exact") == exactCheaper ? "yes" : "no",
                           exactCheaper ? "exact" : "sampled", ratio);
         std::printf(
-            "%-36s %7.0f %9.3g %9.3g %9.3g %10.3g | %9.4f %+5.0f%% %9.4f %+5.0f%% | %7.0f%% "
+            "%-36s %8.0f %7.0f %9.3g %9.3g %9.3g %10.3g | %9.4f %+5.0f%% %9.4f %+5.0f%% | %7.0f%% "
             "%7.0f%% | %-7s %9.4f %9.4f %s\n",
-            r.name.c_str(), r.points, r.rays, r.candidates, r.occluders, r.sides, r.sampledSeconds,
-            100 * fs, r.exactSeconds, 100 * fe, 100 * r.sampledSpread, 100 * r.exactSpread,
-            r.chosen.c_str(), r.estSampled, r.estExact, verdict);
+            r.name.c_str(), r.triangles, r.points, r.rays, r.candidates, r.occluders, r.sides,
+            r.sampledSeconds, 100 * fs, r.exactSeconds, 100 * fe, 100 * r.sampledSpread,
+            100 * r.exactSpread, r.chosen.c_str(), r.estSampled, r.estExact, verdict);
     }
     std::printf("largest |residual|: sampled %.0f%%, exact %.0f%%\n", 100 * worstS, 100 * worstE);
 }

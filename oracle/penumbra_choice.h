@@ -27,6 +27,8 @@ struct PenumbraProbe {
     const SurfaceBuffer* sb = nullptr;
     const std::vector<uint8_t>* slots = nullptr;
     const MeshFacing* facing = nullptr;  // as the exact pass takes it
+    // The scene's triangles: a shadow ray's cost grows with the log of them (the BVH's depth).
+    uint64_t sceneTriangles = 0;
 };
 
 // The slots of `sb` one in `every` of its points (by slot), for a probe of the buffer itself.
