@@ -27,14 +27,13 @@ constexpr double kExactSecondsPerPoint = 2.8e-7;
 constexpr double kExactSecondsPerCandidate = 8.7e-8;
 constexpr double kExactSecondsPerOccluder = 1.7e-6;
 constexpr double kExactSecondsPerBoundSide = 2.8e-7;
-// Exact wins unless its estimate exceeds sampling's by more than this factor: the two fits'
-// errors compound in the ratio (up to 2.6 times on the bunny), so nearer estimates do not tell
-// the two apart, and between two methods of about the same cost the one without sampling error is
-// the better answer. On the calibration's lights it picks the measured cheaper method, or exact
-// where that cost at most 1.26 times sampling (chess_board's lamp panel).
-constexpr double kExactMargin = 1.5;
 
 }  // namespace
+
+PenumbraMethod cheaperPenumbraMethod(double exactSeconds, double sampledSeconds) {
+    return exactSeconds <= kPenumbraExactMargin * sampledSeconds ? PenumbraMethod::Exact
+                                                                 : PenumbraMethod::Sampled;
+}
 
 std::vector<uint8_t> sparseSlots(const SurfaceBuffer& sb, size_t every) {
     std::vector<uint8_t> slots(sb.slotCount(), 0);
@@ -103,8 +102,7 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
                               double(c.probeOccluders) * kExactSecondsPerOccluder +
                               double(c.probeBoundSides) * kExactSecondsPerBoundSide +
                               keptShare * probeSampled;
-    c.chosen =
-        probeExact <= kExactMargin * probeSampled ? PenumbraMethod::Exact : PenumbraMethod::Sampled;
+    c.chosen = cheaperPenumbraMethod(probeExact, probeSampled);
     const double scale = double(imagePoints) / double(c.probePoints);
     c.sampledSeconds = scale * probeSampled;
     c.exactSeconds = scale * probeExact;
@@ -112,7 +110,7 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
     std::snprintf(text, sizeof text,
                   "exact estimated at %.3g times the cost of sampling to the target (exact "
                   "unless over %g times)",
-                  probeExact / probeSampled, kExactMargin);
+                  probeExact / probeSampled, kPenumbraExactMargin);
     c.reason = text;
     return c;
 }
