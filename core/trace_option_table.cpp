@@ -107,20 +107,21 @@ std::vector<TraceOptionSpec> makeTable() {
                         "reference samples per area-light pixel checked",
                         "reference samples per checked pixel of a sampled area light"));
     t.push_back(method(
-        "penumbra", "sampled", {"sampled", "exact", "both", "auto"}, kAll,
-        "rect lights: sampled (RQMC with 95% intervals), exact (clipped polygons on every pixel; "
-        "stderr 0 there), both (V sampled, V_exact beside it) or auto (per light, exact or "
-        "sampled, whichever a probe estimates cheaper); disk and sphere lights: exact gives V in "
-        "a guaranteed interval (NAME.bound)",
-        "area lights with the `penumbra` effect: `sampled` (RQMC with 95% intervals), `exact` "
-        "(every pixel without sampling, stderr 0, `NAME.exact` 1: rect lights exact by clipping, "
-        "disk and sphere lights the midpoint of a guaranteed interval whose half-width is "
-        "`NAME.bound`; the exact pass finds its own pixels and no sampled pass runs except on the "
-        "pixels it cannot answer, too many occluders or an alpha-tested triangle in the pyramid), "
-        "`both` (V stays sampled; `NAME.V_exact` beside it and their disagreement in "
-        "oracle.json), `auto` (per light, `exact` or `sampled`, whichever a probe of one pixel in "
-        "64 estimates cheaper at the requested target; oracle.json's `penumbra_choice` says which "
-        "and why); [oracle.md](oracle.md#exact-penumbrae). Part of the cache key (`compare`)"));
+        "penumbra", "auto", {"auto", "sampled", "exact", "both"}, kAll,
+        "auto (per light, exact or sampled, whichever a probe estimates cheaper), sampled (RQMC "
+        "with 95% intervals), exact (rect and polygon lights: clipped polygons on every pixel, "
+        "stderr 0 there; disk and sphere lights: V in a guaranteed interval, NAME.bound) or both "
+        "(V sampled, V_exact beside it)",
+        "area lights with the `penumbra` effect: `auto` (per light, `exact` or `sampled`, "
+        "whichever a probe of one pixel in 64 estimates cheaper at the requested target, exact "
+        "unless its estimate is over 1.5 times sampling's; oracle.json's `penumbra_choice` says "
+        "which and why), `sampled` (RQMC with 95% intervals), `exact` (every pixel without "
+        "sampling, stderr 0, `NAME.exact` 1: rect and polygon lights exact by clipping, disk and "
+        "sphere lights the midpoint of a guaranteed interval whose half-width is `NAME.bound`; the "
+        "exact pass finds its own pixels and no sampled pass runs except on the pixels it cannot "
+        "answer, too many occluders or an alpha-tested triangle in the pyramid) or `both` (V stays "
+        "sampled; `NAME.V_exact` beside it and their disagreement in oracle.json); "
+        "[oracle.md](oracle.md#exact-penumbrae). Part of the cache key (`compare`)"));
     t.push_back(method("exact_pixels", "penumbra", {"penumbra", "all"}, kAll,
                        "with --penumbra both: penumbra (pixels whose samples disagree) or all "
                        "(every sampled pixel); exact finds its own pixels",

@@ -44,7 +44,7 @@ PenumbraMethod parsePenumbraMethod(const std::string& text, const std::string& f
 bool parseExactPixels(const std::string& text, const std::string& file, const std::string& field);
 
 struct ExactPenumbraOptions {
-    PenumbraMethod method = PenumbraMethod::Sampled;
+    PenumbraMethod method = PenumbraMethod::Auto;  // the default of trace, compare and the API
     // Both: every sampled pixel, not only those whose samples disagreed. (Exact finds its own
     // pixels: every pixel the camera hit.)
     bool allPixels = false;

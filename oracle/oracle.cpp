@@ -470,7 +470,10 @@ void traceShadowPasses(const Scene& scene, const OracleOptions& options, OracleS
         options.penumbra.method == PenumbraMethod::Auto && exact
             ? makeProbe(scene, options, setup.accel, setup.arena, sb, camera == nullptr)
             : nullptr;
-    if (probe) probe->probe.facing = facing ? &*facing : nullptr;
+    if (probe) {
+        probe->probe.facing = facing ? &*facing : nullptr;
+        probe->probe.sceneTriangles = scene.stats.triangles;
+    }
     const LightPass pass{scene,
                          options,
                          setup.accel,

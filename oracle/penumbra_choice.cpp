@@ -1,5 +1,7 @@
 #include "oracle/penumbra_choice.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -9,29 +11,30 @@ namespace so {
 
 namespace {
 
-// The cost model, in processor seconds (all threads summed): a shadow ray of the sampled pass with
-// its share of the estimator, and the exact pass's cost per point, per triangle the pyramid query
-// returned and per shadow that reached the union. Fitted to bench_exact_penumbra's whole runs'
-// processor seconds (2026-11-26, this repository's shared 2-core machine; docs/benchmarks.md):
-// 1.5e-8 to 7.6e-8 s a ray (penumbra_square, soft_chair, the bunny, fixed costs included), and
-// the exact pass's three terms within 30% of all three scenes. Only their ratios matter.
-constexpr double kSecondsPerRay = 3.0e-8;
-constexpr double kExactSecondsPerPoint = 1.0e-6;
-constexpr double kExactSecondsPerCandidate = 0.1e-6;
-constexpr double kExactSecondsPerOccluder = 1.5e-6;
-// Disk and sphere lights: per side of the last polygons each point's bound integrated (their
-// doublings before it and the inscribed polygon's integral included). Measured on sphere_light at
-// 96 x 72, one thread, --bound-target 1e-6 against 1e-4 (931,392 against 72,352 sides): 0.19
-// processor seconds apart, 2.2e-7 s a side (2026-11-26, the shared 2-core machine).
-constexpr double kExactSecondsPerBoundSide = 2.2e-7;
-
-std::string seconds(double s) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g s", s);
-    return text;
-}
+// The cost model, in processor seconds (all threads summed): the sampled pass's cost per shadow
+// ray (a constant and a term in log2 of the scene's triangles, the BVH's depth) and per alpha
+// test, and the exact pass's per point, per triangle the pyramid query returned, per shadow that
+// reached the union and, for disk and sphere lights, per side of the last polygons each point's
+// bound integrated. Fitted by bench_penumbra_cost (scripts/penumbra-calibration: both passes on
+// all 16 area lights of the shipped scenes, the real ones and the bunny at 96 x 72, target 0.01,
+// one thread, processor time, median of 3; least squares on relative residuals, non-negative) on
+// 2026-11-26 on the shared 2-core machine. Residuals: the exact pass within 38% on every light,
+// the sampled pass within 65% (truck_town, the dutch ship and the bunny cost more a ray than the
+// model says); docs/benchmarks.md has the table. Only ratios matter.
+constexpr double kSampledSecondsPerRay = 0.0;
+constexpr double kSampledSecondsPerRayLevel = 2.2e-9;  // per ray and log2(scene triangles)
+constexpr double kSampledSecondsPerAlphaTest = 4.1e-8;
+constexpr double kExactSecondsPerPoint = 2.8e-7;
+constexpr double kExactSecondsPerCandidate = 8.7e-8;
+constexpr double kExactSecondsPerOccluder = 1.7e-6;
+constexpr double kExactSecondsPerBoundSide = 2.8e-7;
 
 }  // namespace
+
+PenumbraMethod cheaperPenumbraMethod(double exactSeconds, double sampledSeconds) {
+    return exactSeconds <= kPenumbraExactMargin * sampledSeconds ? PenumbraMethod::Exact
+                                                                 : PenumbraMethod::Sampled;
+}
 
 std::vector<uint8_t> sparseSlots(const SurfaceBuffer& sb, size_t every) {
     std::vector<uint8_t> slots(sb.slotCount(), 0);
@@ -62,7 +65,9 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
     // The sampled pass to the target on the probe's points: its rays.
     AreaShadowPlanes sampled{V.data(), stderr_.data(), spp.data(), cosine.data(), nullptr};
     sampled.onlySlots = &slots;
-    c.probeRays = traceAreaShadows(accel, sb, light, sampling, stream, sampled, nullptr).raysTraced;
+    const AreaShadowStats sampledStats =
+        traceAreaShadows(accel, sb, light, sampling, stream, sampled, nullptr);
+    c.probeRays = sampledStats.raysTraced;
     // The exact pass on the same points: its triangles.
     ExactPenumbraOptions exactOptions = options;
     exactOptions.method = PenumbraMethod::Exact;
@@ -85,18 +90,29 @@ PenumbraChoice choosePenumbraMethod(const Accel& accel, const ExactScene* exact,
         c.reason = "the probe's points saw nothing of the scene: sampling (nothing to compare)";
         return c;
     }
-    const double scale = double(imagePoints) / double(c.probePoints);
-    // The points the exact pass leaves are sampled as well: their share of the sampled rays.
+    // The probe's own estimates decide, so that every band of a tiled trace (the same probe, a
+    // different scale) makes the same choice and states the same reason.
+    const double depth = std::log2(std::max<double>(double(probe.sceneTriangles), 2.0));
+    const double probeSampled =
+        double(c.probeRays) * (kSampledSecondsPerRay + depth * kSampledSecondsPerRayLevel) +
+        double(sampledStats.alphaTests) * kSampledSecondsPerAlphaTest;
+    // The points the exact pass leaves are sampled as well: their share of the sampled cost.
     const double keptShare = double(c.probeKeptSampled) / double(c.probePoints);
-    c.sampledSeconds = scale * double(c.probeRays) * kSecondsPerRay;
-    c.exactSeconds = scale * (double(c.probePoints) * kExactSecondsPerPoint +
+    const double probeExact = double(c.probePoints) * kExactSecondsPerPoint +
                               double(c.probeCandidates) * kExactSecondsPerCandidate +
                               double(c.probeOccluders) * kExactSecondsPerOccluder +
-                              double(c.probeBoundSides) * kExactSecondsPerBoundSide) +
-                     keptShare * c.sampledSeconds;
-    c.chosen = c.exactSeconds < c.sampledSeconds ? PenumbraMethod::Exact : PenumbraMethod::Sampled;
-    c.reason = "estimated " + seconds(c.exactSeconds) + " exact against " +
-               seconds(c.sampledSeconds) + " sampled to the target (processor seconds)";
+                              double(c.probeBoundSides) * kExactSecondsPerBoundSide +
+                              keptShare * probeSampled;
+    c.chosen = cheaperPenumbraMethod(probeExact, probeSampled);
+    const double scale = double(imagePoints) / double(c.probePoints);
+    c.sampledSeconds = scale * probeSampled;
+    c.exactSeconds = scale * probeExact;
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "exact estimated at %.3g times the cost of sampling to the target (exact "
+                  "unless over %g times)",
+                  probeExact / probeSampled, kPenumbraExactMargin);
+    c.reason = text;
     return c;
 }
 

@@ -27,7 +27,18 @@ struct PenumbraProbe {
     const SurfaceBuffer* sb = nullptr;
     const std::vector<uint8_t>* slots = nullptr;
     const MeshFacing* facing = nullptr;  // as the exact pass takes it
+    // The scene's triangles: a shadow ray's cost grows with the log of them (the BVH's depth).
+    uint64_t sceneTriangles = 0;
 };
+
+// Exact wins unless its estimate exceeds sampling's by more than this factor: the two fits'
+// errors compound in the ratio (up to 2.6 times on the bunny), so nearer estimates do not tell
+// the two apart, and between two methods of about the same cost the one without sampling error is
+// the better answer. On the calibration's lights it picks the measured cheaper method, or exact
+// where that cost at most 1.26 times sampling (chess_board's lamp panel).
+inline constexpr double kPenumbraExactMargin = 1.5;
+// Exact where its estimate is at most kPenumbraExactMargin times sampling's (ties included).
+PenumbraMethod cheaperPenumbraMethod(double exactSeconds, double sampledSeconds);
 
 // The slots of `sb` one in `every` of its points (by slot), for a probe of the buffer itself.
 std::vector<uint8_t> sparseSlots(const SurfaceBuffer& sb, size_t every);

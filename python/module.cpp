@@ -364,10 +364,10 @@ void bindTrace(py::module_& m) {
         py::arg("points") = py::none(), py::arg("progress") = py::none(),
         py::arg("bound_target") = kTrace.boundTarget,
         py::arg("bound_max_sides") = kTrace.boundMaxSides,
-        "The oracle (`shadow-oracle trace`): exact hard shadows, sampled penumbrae with 95% "
-        "intervals; penumbra=\"exact\", \"both\" or \"auto\" computes rect lights' penumbrae "
-        "exactly and disk and sphere lights' in a guaranteed interval (auto: where a probe "
-        "estimates it cheaper than sampling). "
+        "The oracle (`shadow-oracle trace`): exact hard shadows; penumbrae by penumbra=\"auto\" "
+        "(default: per light, exact where a probe estimates it cheaper than sampling), "
+        "\"exact\" (rect lights exactly, disk and sphere lights in a guaranteed interval), "
+        "\"sampled\" (95% intervals) or \"both\". "
         "progress(stage, done, total) is called every 50 ms; return False to cancel.");
     m.def(
         "write_trace_output",

@@ -165,7 +165,7 @@ def evaluate(ctx, gbuffer, images):
 # (every area light), and the exact pass over the pixels the sampled pass finds in a penumbra
 # (polygonal lights). Each runs over a ladder of adaptive targets from LADDER_START down.
 METHODS = {
-    "sampled": {"flags": [], "step": 2.0 ** -0.5, "floor": 1e-4,
+    "sampled": {"flags": ["--penumbra", "sampled"], "step": 2.0 ** -0.5, "floor": 1e-4,
                 "name": "sampled (RQMC)"},
     "exact": {"flags": ["--penumbra", "exact"], "step": 0.5, "floor": 0.0025,
               "name": "exact (`--penumbra exact`)"},

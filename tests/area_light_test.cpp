@@ -30,6 +30,7 @@ OracleRun run(const Scene& scene, const AreaSampling& area, int threads = 0) {
     OracleOptions o;
     o.threads = threads;
     o.area = area;
+    o.penumbra.method = PenumbraMethod::Sampled;  // these tests are about the sampled pass
     OracleResult r = runOracle(scene, o);
     return {std::move(r.image), std::move(r.stats)};
 }

@@ -20,6 +20,7 @@
 #include "oracle/exact_penumbra.h"
 #include "oracle/mesh_facing.h"
 #include "oracle/oracle.h"
+#include "oracle/penumbra_choice.h"
 #include "oracle/polygon_visibility.h"
 #include "oracle/reference_light.h"
 #include "test_scenes.h"
@@ -460,6 +461,17 @@ TEST(ExactPenumbra, SameImageAtAnyThreadCount) {
 // is probed the same way (the exact pass bounds it) and runs the method chosen. The choice counts
 // work, so it is the same at any thread count; and where sampling is almost free (target 0.5, a
 // few samples a pixel) against a dense mesh's pyramids, the probe picks sampling.
+// auto is the default of the oracle and of the API; exact wins ties and estimates up to the margin
+// over sampling's (the cost model's errors), and only those.
+TEST(ExactPenumbra, AutoIsTheDefaultAndExactWinsWithinTheMargin) {
+    EXPECT_EQ(OracleOptions{}.penumbra.method, PenumbraMethod::Auto);
+    EXPECT_EQ(cheaperPenumbraMethod(1.0, 1.0), PenumbraMethod::Exact);
+    EXPECT_EQ(cheaperPenumbraMethod(1.4, 1.0), PenumbraMethod::Exact);
+    EXPECT_EQ(cheaperPenumbraMethod(kPenumbraExactMargin, 1.0), PenumbraMethod::Exact);
+    EXPECT_EQ(cheaperPenumbraMethod(1.6, 1.0), PenumbraMethod::Sampled);
+    EXPECT_EQ(cheaperPenumbraMethod(0.0, 0.0), PenumbraMethod::Exact);
+}
+
 TEST(ExactPenumbra, AutoChoosesPerLightAndSaysWhy) {
     Scene chair = loadScene(std::string(SO_SCENES_DIR) + "/soft_chair.scene.json");
     chair.camera.width = 96;
@@ -484,7 +496,7 @@ TEST(ExactPenumbra, AutoChoosesPerLightAndSaysWhy) {
         ASSERT_TRUE(window.area->exact.has_value());
         EXPECT_EQ(window.area->exact->method, PenumbraMethod::Exact);
         const OracleLightStats& bulb = r.stats.lights[1];
-        EXPECT_EQ(bulb.choice->reason.find("estimated"), 0u) << bulb.choice->reason;
+        EXPECT_EQ(bulb.choice->reason.find("exact estimated at"), 0u) << bulb.choice->reason;
         EXPECT_GT(bulb.choice->probePoints, 50u);
         EXPECT_GT(bulb.choice->probeCandidates, 0u);
         EXPECT_GT(bulb.choice->probeBoundSides, 0u);  // the bound's cost is in the estimate

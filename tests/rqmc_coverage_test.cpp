@@ -155,6 +155,7 @@ TEST(Rqmc, DiskAndSphereIntervalsCoverAnIndependentReference) {
         EmbreeDevice device;
         const Accel accel(scene, device);
         OracleOptions adaptive;
+        adaptive.penumbra.method = PenumbraMethod::Sampled;  // the sampled intervals' coverage
         const ChannelImage adaptiveImg = runOracle(scene, adaptive).image;
         std::vector<Pixel> pixels = penumbraPixels(accel, scene.lights[0], adaptiveImg);
         ASSERT_GE(pixels.size(), 250u) << what;

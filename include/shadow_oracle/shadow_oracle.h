@@ -125,10 +125,10 @@ struct TraceOptions {
     uint32_t seed = 0;
     int verify = 0;  // > 0: re-trace this many pixels per light independently (docs/oracle.md)
     // Area lights (docs/oracle.md, "Exact penumbrae"; disk and sphere lights bounded to 1e-6):
-    // "sampled", "exact" (every pixel), "both" or "auto" (per light, whichever a probe estimates
-    // cheaper); with "both", the exact pass at "penumbra" pixels (their samples disagree) or "all"
-    // sampled ones.
-    std::string penumbra = "sampled", exactPixels = "penumbra";
+    // "auto" (per light, exact or sampled, whichever a probe estimates cheaper), "sampled",
+    // "exact" (every pixel) or "both"; with "both", the exact pass at "penumbra" pixels (their
+    // samples disagree) or "all" sampled ones.
+    std::string penumbra = "auto", exactPixels = "penumbra";
     // A renderer's G-buffer EXR (docs/external.md, "Points in"): the oracle at its points, at its
     // size, instead of the camera's pixels.
     std::string points;

@@ -88,7 +88,7 @@ def trace(
     seed: int = 0,
     threads: int = 0,
     verify: int = 0,
-    penumbra: str = "sampled",
+    penumbra: str = "auto",
     exact_pixels: str = "penumbra",
     points: Optional[str] = None,
     progress: Optional[ProgressFn] = None,

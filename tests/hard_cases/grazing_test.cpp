@@ -82,7 +82,7 @@ void checkStats(const OracleLightStats& s, const GrazingLight& l, uint64_t hits)
 // Checks every light of the grazing scene on one plane.
 void runGrazing(bool tilted) {
     GrazingScene g = makeGrazingScene(tilted, 64);
-    OracleResult r = runHard(g.scene);
+    OracleResult r = runHard(g.scene, PenumbraMethod::Sampled);
     const float* A = r.image.channel(ch::kHit);
     uint64_t hits = 0;
     for (size_t i = 0; i < r.image.pixelCount(); ++i) hits += A[i] != 0.0f;
@@ -142,7 +142,7 @@ TEST(HardGrazing, LightsAHairOffThePlaneAreDecidedExactly) {
                                   0});
     }
     finalizeScene(g.scene);
-    const OracleResult r = runHard(g.scene);
+    const OracleResult r = runHard(g.scene, PenumbraMethod::Sampled);
     const uint64_t pixels = r.image.pixelCount();
     for (size_t li = 0; li < g.scene.lights.size(); ++li) {
         const Light& l = g.scene.lights[li];

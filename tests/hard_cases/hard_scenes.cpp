@@ -109,8 +109,9 @@ void rotateMesh(MeshPrimitive& mesh, const glm::dmat3& r, const glm::dvec3& cent
     for (glm::dvec3& p : mesh.wsPositions) p = center + r * (p - center);
 }
 
-OracleResult runHard(const Scene& scene) {
+OracleResult runHard(const Scene& scene, PenumbraMethod penumbra) {
     OracleOptions o;
+    o.penumbra.method = penumbra;
     return runOracle(scene, o);
 }
 

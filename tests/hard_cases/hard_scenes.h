@@ -33,7 +33,7 @@ glm::dmat3 randomRotation(uint64_t seed);
 void rotateMesh(MeshPrimitive& mesh, const glm::dmat3& r, const glm::dvec3& center);
 
 // Runs the oracle quietly (all threads), image and stats.
-OracleResult runHard(const Scene& scene);
+OracleResult runHard(const Scene& scene, PenumbraMethod penumbra = PenumbraMethod::Auto);
 
 // Channels that must not move when the scene moves: hit, ids, and per light V and cos.
 std::vector<std::string> invariantChannels(const Scene& scene);

@@ -34,7 +34,8 @@ def run_cli(*args):
     [
         ("contact_box", {}, []),
         # A sampled rect light: V, stderr and spp per pixel from the same sample sequences.
-        ("penumbra_square", {"spp": 64}, ["--spp", "64"]),
+        ("penumbra_square", {"spp": 64, "penumbra": "sampled"},
+         ["--spp", "64", "--penumbra", "sampled"]),
     ],
 )
 def test_trace_equals_the_cli_oracle_bit_for_bit(tmp_path, name, options, cli_options):
@@ -202,14 +203,16 @@ def test_ctrl_c_interrupts_a_long_trace_quickly():
     threading.Thread(target=interrupt).start()
     with pytest.raises(KeyboardInterrupt):
         # Minutes of work at this target on two cores.
-        so.trace(scene, width=1024, height=1024, target_error=0.0005, max_spp=1 << 20)
+        so.trace(scene, width=1024, height=1024, target_error=0.0005, max_spp=1 << 20,
+                 penumbra="sampled")
     assert interrupted and time.monotonic() - interrupted[0] < 0.5
 
 
 def test_progress_reports_stages_and_can_cancel():
     scene = so.load_scene(scene_path("penumbra_square"))
     seen = []
-    so.trace(scene, width=64, height=48, spp=16, progress=lambda s, d, t: seen.append((s, d, t)))
+    so.trace(scene, width=64, height=48, spp=16, penumbra="sampled",
+             progress=lambda s, d, t: seen.append((s, d, t)))
     assert any(s.startswith("shadow rays") and d == t for s, d, t in seen), seen
     with pytest.raises(so.Cancelled):
         so.trace(scene, width=512, height=512, target_error=0.001,
