@@ -119,8 +119,11 @@ int addRound(ReplicaSums& s, const float* weight, const int* valid, const float*
         s.sw2 += w[k] * w[k];
         s.sw2v += w[k] * wv[k];
     }
+    int tracedDecision = 0;
+    for (int k = 0; k < kDecisionReplicas * kPointsPerRound; ++k) tracedDecision += valid[k] != 0;
     s.lit += uint64_t(lit);
     s.nonZero += uint64_t(traced);
+    s.nonZeroDecision += uint64_t(tracedDecision);
     return lit;
 }
 
@@ -162,6 +165,21 @@ RatioEstimate replicaEstimate(const ReplicaSums& s, bool split) {
         const double ssBetween =
             kDecisionReplicas * meanA * meanA + kStatedReplicas * meanB * meanB;
         e.stderrDecision = seOf(ssA / (kDecisionReplicas - 1.0));
+        // Where every sample of the decision half agrees (no sample of its four replicas met a
+        // thin occluder that the others met, or the reverse), the prior's floor on its samples
+        // alone: the rule must not take the half's spread of 0 for certainty. (Sums of all-lit
+        // samples are x = y bit for bit.)
+        double xA = 0.0, yA = 0.0;
+        for (int j = 0; j < kDecisionReplicas; ++j) xA += s.x[size_t(j)], yA += s.y[size_t(j)];
+        const bool halfAgrees = xA == 0.0 || xA == yA;
+        if (!halfAgrees) {
+            e.decisionPriorHalfWidth = 0.0;
+        } else if (s.nonZeroDecision > 0 && yA > 0.0) {
+            const Prior prA = agrestiCoull(yA, xA, s.nonZeroDecision);
+            e.decisionPriorHalfWidth = kZ * std::sqrt(prA.share) / prA.W;
+        } else {
+            e.decisionPriorHalfWidth = 1.0;
+        }
         e.stderrSpread =
             seOf((ssB + ssBetween) / kAdaptiveDof) * kAdaptiveQuantile95 / kIntervalQuantile95;
     }
@@ -361,8 +379,13 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
         const int half = round / 2;
         const double decisionSe = std::max(
             r.est.stderrDecision, half >= 1 ? history[size_t(half - 1)] * guardScale(round) : 0.0);
-        r.decisionHalfWidth =
-            std::max(kAdaptiveQuantile95 * decisionSe, kIntervalQuantile95 * r.est.stderrPrior);
+        // The prior: where every sample agrees, the pixel's own (what it states); otherwise the
+        // decision half's.
+        r.decisionHalfWidth = std::max(
+            kAdaptiveQuantile95 * decisionSe,
+            r.agreeing
+                ? kIntervalQuantile95 * r.est.stderrPrior
+                : std::max(kIntervalQuantile95 * r.est.stderrPrior, r.est.decisionPriorHalfWidth));
         if (r.samples >= maxSpp) break;
         // The rule is read about eight times per doubling of the samples, not after every
         // packet: fewer looks waste fewer samples past the point the decision would pick anyway.

@@ -85,8 +85,9 @@ struct RatioEstimate {
     // prior's floor (as a standard error for the t quantile).
     double stderrSpread = 0.0, stderrPrior = 0.0;
     // split only: the decision half's estimate of the standard error of V (3 degrees of freedom),
-    // which the stopping rule reads and nothing states.
-    double stderrDecision = 0.0;
+    // and the prior's floor on its samples alone as a 95% half-width, which the stopping rule
+    // reads and nothing states.
+    double stderrDecision = 0.0, decisionPriorHalfWidth = 0.0;
 };
 RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint64_t nonZero);
 
@@ -96,7 +97,9 @@ struct ReplicaSums {
     std::array<double, kReplicas> x{}, y{};
     double sw2 = 0.0, sw2v = 0.0;
     uint64_t nonZero = 0;  // samples with weight > 0
-    uint64_t lit = 0;      // of those, the ones that reached the light
+    // of those, the decision half's (replicas below kDecisionReplicas: area_shadow.h's split)
+    uint64_t nonZeroDecision = 0;
+    uint64_t lit = 0;  // of those, the ones that reached the light
     bool agreeing() const { return lit == 0 || lit == nonZero; }
 };
 // V = sum x / sum y; stderr from the delta method over the replicas, at least the prior's share
