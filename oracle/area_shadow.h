@@ -9,11 +9,15 @@
 // so that a pixel whose samples all agree is not declared certain.
 //
 // Stopping rule (adaptive): after each packet, from kMinAdaptiveSpp samples on, stop when the
-// half-width <= the pixel's threshold or the pixel has max_spp samples. The threshold is the target
-// error, or where every sample so far agrees (all lit, or all shadowed) max(target error, agreement
-// target): there only the prior sets the half-width, about 2.7 / N, and what it bounds is the share
-// of the light an occluder (or a gap) that no sample met may have, which more samples shrink only
-// as 1 / N. With a fixed count (--spp N), exactly N samples, rounded up to whole packets.
+// half-width predicted from the decision half of the replicas (kDecisionReplicas below) <= the
+// pixel's threshold, or the pixel has max_spp samples; the stated interval comes from the other
+// half and the contrast between the halves, which the decision never reads, so stopping cannot
+// select it low (docs/oracle.md, "Stopping rule"). The threshold is the target error, or where
+// every sample so far agrees (all lit, or all shadowed) max(target error, agreement target): there
+// only the prior sets the half-width, about 2.7 / N, and what it bounds is the share of the light
+// an occluder (or a gap) that no sample met may have, which more samples shrink only as 1 / N.
+// With a fixed count (--spp N), exactly N samples, rounded up to whole packets, and all replicas'
+// spread stated.
 #pragma once
 
 #include <array>

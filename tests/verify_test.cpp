@@ -177,7 +177,7 @@ TEST(Verify, FlippedPixelsAreFoundAndNothingElse) {
 
 // The area threshold's distribution (issue 42): Student's t tails, and the thresholds a check of
 // 3,000 pixels at a 1% family-wise rate gives. The oracle's adaptive intervals have 4 degrees of
-// freedom: alone, its error needs 20 standard errors to be called at that rate (a normal z says
+// freedom: alone, its error needs 37 standard errors to be called at that rate (a normal z says
 // 4.65, which t_4 exceeds with probability 2e-3 per pixel: the false alarms of before), while
 // against a re-trace whose error is as large the Welch degrees of freedom are 16 (threshold 6.9)
 // and the chess board's 8-standard-error miss of issue 42 is still found.
