@@ -120,35 +120,75 @@ int addRound(ReplicaSums& s, const float* weight, const int* valid, const float*
         s.sw2 += w[k] * w[k];
         s.sw2v += w[k] * wv[k];
     }
+    int tracedDecision = 0;
+    for (int k = 0; k < kDecisionReplicas * kPointsPerRound; ++k) tracedDecision += valid[k] != 0;
     s.lit += uint64_t(lit);
     s.nonZero += uint64_t(traced);
+    s.nonZeroDecision += uint64_t(tracedDecision);
     return lit;
 }
 
-RatioEstimate replicaEstimate(const ReplicaSums& s) {
+RatioEstimate replicaEstimate(const ReplicaSums& s, bool split) {
     double x = 0.0, y = 0.0;
     for (int j = 0; j < kReplicas; ++j) x += s.x[size_t(j)], y += s.y[size_t(j)];
     RatioEstimate e;
     if (s.nonZero == 0 || !(y > 0.0)) {
         e.stderr_ = 0.5;  // nothing measured: as uncertain as a [0, 1] quantity can be
+        e.stderrDecision = 0.5;
         return e;
     }
     e.V = x / y;
     // Delta method over the replicas, which are independent: the ratio's variance from the
-    // spread of the residuals x_j - V y_j, K - 1 degrees of freedom.
-    double ss = 0.0;
-    for (int j = 0; j < kReplicas; ++j) {
-        const double r = s.x[size_t(j)] - e.V * s.y[size_t(j)];
-        ss += r * r;
-    }
+    // spread of the residuals r_j = x_j - V y_j (they sum to 0), K - 1 degrees of freedom.
+    std::array<double, kReplicas> r;
+    for (int j = 0; j < kReplicas; ++j) r[size_t(j)] = s.x[size_t(j)] - e.V * s.y[size_t(j)];
     const double yMean = y / kReplicas;
-    const double seReplicas = std::sqrt(ss / (kReplicas * (kReplicas - 1.0))) / yMean;
+    // The standard error of V from a per-replica variance estimate.
+    const auto seOf = [&](double replicaVariance) {
+        return std::sqrt(replicaVariance / kReplicas) / yMean;
+    };
+    if (!split) {
+        double ss = 0.0;
+        for (double rj : r) ss += rj * rj;
+        e.stderrSpread = seOf(ss / (kReplicas - 1.0));
+    } else {
+        // The sum of squares split in orthogonal parts, independent for normal replicas: within
+        // the first half (3 dof), within the second (3), between the halves' means (1).
+        double meanA = 0.0, meanB = 0.0;
+        for (int j = 0; j < kReplicas; ++j) (j < kDecisionReplicas ? meanA : meanB) += r[size_t(j)];
+        constexpr int kStatedReplicas = kReplicas - kDecisionReplicas;
+        meanA /= kDecisionReplicas, meanB /= kStatedReplicas;
+        double ssA = 0.0, ssB = 0.0;
+        for (int j = 0; j < kReplicas; ++j) {
+            const double d = r[size_t(j)] - (j < kDecisionReplicas ? meanA : meanB);
+            (j < kDecisionReplicas ? ssA : ssB) += d * d;
+        }
+        const double ssBetween =
+            kDecisionReplicas * meanA * meanA + kStatedReplicas * meanB * meanB;
+        e.stderrDecision = seOf(ssA / (kDecisionReplicas - 1.0));
+        // Where every sample of the decision half agrees (no sample of its four replicas met a
+        // thin occluder that the others met, or the reverse), the prior's floor on its samples
+        // alone: the rule must not take the half's spread of 0 for certainty. (Sums of all-lit
+        // samples are x = y bit for bit.)
+        double xA = 0.0, yA = 0.0;
+        for (int j = 0; j < kDecisionReplicas; ++j) xA += s.x[size_t(j)], yA += s.y[size_t(j)];
+        const bool halfAgrees = xA == 0.0 || xA == yA;
+        if (!halfAgrees) {
+            e.decisionPriorHalfWidth = 0.0;
+        } else if (s.nonZeroDecision > 0 && yA > 0.0) {
+            const Prior prA = agrestiCoull(yA, xA, s.nonZeroDecision);
+            e.decisionPriorHalfWidth = kZ * std::sqrt(prA.share) / prA.W;
+        } else {
+            e.decisionPriorHalfWidth = 1.0;
+        }
+        e.stderrSpread =
+            seOf((ssB + ssBetween) / kAdaptiveDof) * kAdaptiveQuantile95 / kIntervalQuantile95;
+    }
     // The prior's share of the iid estimate: it keeps "all samples agree" from meaning "certain",
     // and dominates only where the replicas barely differ.
     const Prior pr = agrestiCoull(y, x, s.nonZero);
     const double sePrior = std::sqrt(pr.share) / pr.W;
     // Stated as a standard error for the t quantile: half-width max(t se, z sePrior).
-    e.stderrSpread = seReplicas;
     e.stderrPrior = kZ * sePrior / kIntervalQuantile95;
     e.stderr_ = std::max(e.stderrSpread, e.stderrPrior);
     return e;
@@ -177,8 +217,11 @@ struct PacketState {
 struct PixelResult {
     RatioEstimate est;
     int samples = 0;
-    bool agreeing = false;    // every sample lit, or every sample shadowed
-    double threshold = 0.0;   // the half-width the stopping rule asked for
+    bool agreeing = false;   // every sample lit, or every sample shadowed
+    double threshold = 0.0;  // the half-width the stopping rule asked for
+    // Adaptive: the half-width the stopping rule predicted from the decision half (infinite
+    // where the budget ran out before it reached the threshold).
+    double decisionHalfWidth = std::numeric_limits<double>::infinity();
     double efficiency = 0.0;  // Kish's n_eff / n of the weights
 };
 
@@ -319,30 +362,38 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
             p.halfWidths.push_back(p.halfWidths.empty() ? 1.0f : p.halfWidths.back());
             continue;
         }
-        r.est = replicaEstimate(sums);
-        history.push_back(r.est.stderrSpread);
-        // Eight replicas estimate the spread roughly (27% relative error): an adaptive pixel must
-        // not stop on a lucky low estimate, so the spread of half as many samples, scaled by
-        // RQMC's N^-0.75 for edges, bounds it from below (a fixed count has no stopping to bias).
-        // The prior's floor is no estimate and needs no guard.
-        const int half = round / 2;
-        if (adaptive && half >= 1)
-            r.est.stderr_ = std::max({r.est.stderrSpread, r.est.stderrPrior,
-                                      history[size_t(half - 1)] * guardScale(round)});
+        r.est = replicaEstimate(sums, adaptive);
         p.halfWidths.push_back(float(kIntervalQuantile95 * r.est.stderr_));
         r.agreeing = sums.agreeing();
         r.threshold = r.agreeing ? std::max(sampling.targetError, sampling.agreementTarget)
                                  : sampling.targetError;
+        if (!adaptive) {
+            if (r.samples >= maxSpp) break;
+            continue;
+        }
+        // The stopping rule reads the decision half only (area_shadow.h: the stated estimate is
+        // independent of it). Four replicas estimate the spread roughly: a pixel should not stop
+        // on a lucky low estimate, which would leave the stated half-width above the target, so
+        // the decision spread of half as many samples, scaled by RQMC's N^-0.75 for edges, bounds
+        // it from below. The prior's floor is no estimate and needs no guard.
+        history.push_back(r.est.stderrDecision);
+        const int half = round / 2;
+        const double decisionSe = std::max(
+            r.est.stderrDecision, half >= 1 ? history[size_t(half - 1)] * guardScale(round) : 0.0);
+        // The prior: where every sample agrees, the pixel's own (what it states); otherwise the
+        // decision half's.
+        r.decisionHalfWidth = std::max(
+            kAdaptiveQuantile95 * decisionSe,
+            r.agreeing
+                ? kIntervalQuantile95 * r.est.stderrPrior
+                : std::max(kIntervalQuantile95 * r.est.stderrPrior, r.est.decisionPriorHalfWidth));
         if (r.samples >= maxSpp) break;
-        // The stopping rule is read about eight times per doubling of the samples, not after
-        // every packet: each look is a chance to stop on a low estimate of the spread, and
-        // fewer looks keep the intervals' coverage from sinking at tight targets (measured:
-        // 92.8% at target 0.0003 with a look per packet, 95.7% like this). Where all samples
-        // agree the half-width is the prior's, a function of N alone: read every packet.
+        // The rule is read about eight times per doubling of the samples, not after every
+        // packet: fewer looks waste fewer samples past the point the decision would pick anyway.
+        // Where all samples agree the half-width is the prior's, a function of N alone: read
+        // every packet.
         const bool look = r.agreeing || round % std::max(1, round / 8) == 0;
-        if (adaptive && r.samples >= kMinAdaptiveSpp && look &&
-            kIntervalQuantile95 * r.est.stderr_ <= r.threshold)
-            break;
+        if (r.samples >= kMinAdaptiveSpp && look && r.decisionHalfWidth <= r.threshold) break;
     }
     double sw = 0.0;
     for (double y : sums.y) sw += y;
@@ -436,7 +487,10 @@ void AreaRun::pixel(size_t s, int ty, PacketState& packet, AreaShadowStats& st) 
         ++st.pixelsAgreeing;
         st.samplesAgreeing += uint64_t(r.samples);
     }
-    if (sampling.fixedSpp == 0 && hw > r.threshold) {
+    // Unconverged: the budget ran out before the stopping rule was met. The stated half-width of
+    // a pixel that stopped can still exceed the threshold (the stated half is an independent
+    // estimate of the same spread): counted by pixelsReachedTarget, not marked.
+    if (sampling.fixedSpp == 0 && r.decisionHalfWidth > r.threshold) {
         ++st.pixelsUnconverged;
         if (out.unconverged) out.unconverged[px] = 1.0f;
     }

@@ -9,11 +9,15 @@
 // so that a pixel whose samples all agree is not declared certain.
 //
 // Stopping rule (adaptive): after each packet, from kMinAdaptiveSpp samples on, stop when the
-// half-width <= the pixel's threshold or the pixel has max_spp samples. The threshold is the target
-// error, or where every sample so far agrees (all lit, or all shadowed) max(target error, agreement
-// target): there only the prior sets the half-width, about 2.7 / N, and what it bounds is the share
-// of the light an occluder (or a gap) that no sample met may have, which more samples shrink only
-// as 1 / N. With a fixed count (--spp N), exactly N samples, rounded up to whole packets.
+// half-width predicted from the decision half of the replicas (kDecisionReplicas below) <= the
+// pixel's threshold, or the pixel has max_spp samples; the stated interval comes from the other
+// half and the contrast between the halves, which the decision never reads, so stopping cannot
+// select it low (docs/oracle.md, "Stopping rule"). The threshold is the target error, or where
+// every sample so far agrees (all lit, or all shadowed) max(target error, agreement target): there
+// only the prior sets the half-width, about 2.7 / N, and what it bounds is the share of the light
+// an occluder (or a gap) that no sample met may have, which more samples shrink only as 1 / N.
+// With a fixed count (--spp N), exactly N samples, rounded up to whole packets, and all replicas'
+// spread stated.
 #pragma once
 
 #include <array>
@@ -57,6 +61,18 @@ inline double uniformSppFor(float perSampleVariance, double halfWidth) {
 }
 static_assert(kReplicas == 8, "kIntervalQuantile95 is the t quantile for 7 degrees of freedom");
 
+// Adaptive runs split the replicas' spread in two independent parts (docs/oracle.md, "Stopping
+// rule"): the first half's spread within itself (3 degrees of freedom) decides when a pixel stops
+// and is never stated; the second half's spread within itself and the contrast between the halves
+// (4 degrees of freedom) give the stated interval, V +- kAdaptiveQuantile95 * se. Under the
+// replicas' normal model the stopping decision is independent of that estimate and of V, so
+// stopping cannot select it low. Fixed counts have no stopping and state all 7.
+inline constexpr int kDecisionReplicas = kReplicas / 2;
+inline constexpr int kAdaptiveDof = kReplicas - kDecisionReplicas;
+// The two-sided 95% Student-t quantile for kAdaptiveDof = 4 degrees of freedom.
+inline constexpr double kAdaptiveQuantile95 = 2.7764451051977987;
+static_assert(kAdaptiveDof == 4, "kAdaptiveQuantile95 is the t quantile for 4 degrees of freedom");
+
 struct AreaSampling {
     double targetError = 0.01;  // 95% half-width
     // Pixels whose samples all agree stop at max(targetError, agreementTarget) (above).
@@ -72,6 +88,10 @@ struct RatioEstimate {
     // replicaEstimate only: the two parts stderr_ is the larger of, the replicas' spread and the
     // prior's floor (as a standard error for the t quantile).
     double stderrSpread = 0.0, stderrPrior = 0.0;
+    // split only: the decision half's estimate of the standard error of V (3 degrees of freedom),
+    // and the prior's floor on its samples alone as a 95% half-width, which the stopping rule
+    // reads and nothing states.
+    double stderrDecision = 0.0, decisionPriorHalfWidth = 0.0;
 };
 RatioEstimate ratioEstimate(double sw, double swv, double sw2, double sw2v, uint64_t nonZero);
 
@@ -81,12 +101,17 @@ struct ReplicaSums {
     std::array<double, kReplicas> x{}, y{};
     double sw2 = 0.0, sw2v = 0.0;
     uint64_t nonZero = 0;  // samples with weight > 0
-    uint64_t lit = 0;      // of those, the ones that reached the light
+    // of those, the decision half's (replicas below kDecisionReplicas: area_shadow.h's split)
+    uint64_t nonZeroDecision = 0;
+    uint64_t lit = 0;  // of those, the ones that reached the light
     bool agreeing() const { return lit == 0 || lit == nonZero; }
 };
 // V = sum x / sum y; stderr from the delta method over the replicas, at least the prior's share
 // (docs/oracle.md): V +- kIntervalQuantile95 * stderr is the pixel's 95% interval.
-RatioEstimate replicaEstimate(const ReplicaSums& sums);
+// split: adaptive runs' estimate (kAdaptiveDof above): the same V; stderrSpread from the stated
+// half and the contrast between the halves, expressed as a standard error for kIntervalQuantile95
+// (kAdaptiveQuantile95 / kIntervalQuantile95 times the estimate); stderrDecision set.
+RatioEstimate replicaEstimate(const ReplicaSums& sums, bool split = false);
 
 // The scrambling seeds of a pixel's replicas (from areaPixelSeed), one per lane of a round:
 // lane k belongs to replica k / kPointsPerRound. Made once per pixel.

@@ -22,6 +22,7 @@
 #include "core/progress.h"
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
+#include "oracle/area_shadow.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/exact_scene.h"
 #include "oracle/hard_shadow.h"
@@ -308,8 +309,10 @@ std::unique_ptr<Verifier> makeVerifier(const Scene& scene, const OracleOptions& 
                             " triangles; the exact re-trace handles at most " +
                             std::to_string(kVerifyMaxTriangles));
     const auto t0 = Clock::now();
-    auto verifier =
-        std::make_unique<Verifier>(scene, frame, camera, options.verify, options.area.seed);
+    VerifyOptions verify = options.verify;
+    // The oracle's stated intervals (area_shadow.h), which the verifier's threshold follows.
+    verify.oracleDof = options.area.fixedSpp > 0 ? kReplicas - 1 : kAdaptiveDof;
+    auto verifier = std::make_unique<Verifier>(scene, frame, camera, verify, options.area.seed);
     OracleVerifyStats& v = stats.verify.emplace();
     v.buildSeconds = secondsSince(t0);
     v.options = options.verify;

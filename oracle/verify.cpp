@@ -40,6 +40,54 @@ double normalQuantileTwoSided(double alpha) {
     return 0.5 * (lo + hi);
 }
 
+// The regularized incomplete beta function I_x(a, b) by its continued fraction (Lentz), for x
+// below (a + 1) / (a + b + 2), where it converges quickly: the tails the verifier asks for.
+double incompleteBetaTail(double x, double a, double b) {
+    if (x <= 0.0) return 0.0;
+    const double front = std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) +
+                                  a * std::log(x) + b * std::log1p(-x)) /
+                         a;
+    constexpr double kTiny = 1e-300;
+    double c = 1.0, d = 1.0 - (a + b) * x / (a + 1.0);
+    d = 1.0 / (std::fabs(d) < kTiny ? kTiny : d);
+    double f = d;
+    for (int m = 1; m <= 500; ++m) {
+        for (int odd = 0; odd < 2; ++odd) {
+            const double num = odd ? -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1))
+                                   : m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m));
+            d = 1.0 + num * d;
+            d = 1.0 / (std::fabs(d) < kTiny ? kTiny : d);
+            c = 1.0 + num / c;
+            if (std::fabs(c) < kTiny) c = kTiny;
+            f *= c * d;
+        }
+        if (std::fabs(c * d - 1.0) < 1e-15) break;
+    }
+    return front * f;
+}
+
+}  // namespace
+
+double studentTwoSidedP(double t, double dof) {
+    if (!(dof < 1e7)) return std::erfc(std::fabs(t) / std::numbers::sqrt2);
+    const double x = dof / (dof + t * t);
+    // P(|T| > t) = I_x(dof / 2, 1 / 2); past the continued fraction's fast range use the
+    // complement (only for small t, where the tail is large and nothing cancels badly).
+    if (x < (dof / 2.0 + 1.0) / (dof / 2.0 + 2.5)) return incompleteBetaTail(x, dof / 2.0, 0.5);
+    return 1.0 - incompleteBetaTail(1.0 - x, 0.5, dof / 2.0);
+}
+
+double studentQuantileTwoSided(double alpha, double dof) {
+    double lo = 0.0, hi = 1e6;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (studentTwoSidedP(mid, dof) > alpha ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+namespace {
+
 // The light seen from p as the hard-shadow pass sees it (area lights: a point at the centre).
 struct HardTarget {
     glm::dvec3 dir{0.0};
@@ -61,7 +109,8 @@ Verifier::Verifier(const Scene& scene, const LocalFrame& frame, const Camera* ca
       frame_(frame),
       camera_(camera ? std::optional<Camera>(*camera) : std::nullopt),
       options_(options),
-      seed_(seed) {}
+      seed_(seed),
+      oracleQuantile95_(studentQuantileTwoSided(0.05, options.oracleDof)) {}
 
 std::vector<size_t> Verifier::choosePixels(const Light& light, uint32_t lightIndex,
                                            const SurfaceBuffer& sb, uint64_t& random,
@@ -243,11 +292,23 @@ Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, s
     const RatioEstimate est = ratioEstimate(sw, swv, sw2, sw2v, nonZero);
     d.referenceV = est.V;
     d.referenceHalfWidth = kZ95 * est.stderr_;
-    const double se =
-        std::sqrt(double(oracleStderr) * double(oracleStderr) + est.stderr_ * est.stderr_);
+    // The oracle states V +- kIntervalQuantile95 * stderr, a Student-t interval with
+    // options_.oracleDof degrees of freedom: its standard error is that half-width over the
+    // t quantile. The reference's (thousands of independent samples) is as good as known. Their
+    // difference over the combined standard error is t-distributed with Welch-Satterthwaite's
+    // degrees of freedom, judged at the same tail as the normal z (Bonferroni over the pixels).
+    const double seOracle = kIntervalQuantile95 * double(oracleStderr) / oracleQuantile95_;
+    const double seRef = est.stderr_;
+    const double var = seOracle * seOracle + seRef * seRef;
+    const double dofRef = double(nonZero) - 1.0;
+    const double welch =
+        var * var / (std::pow(seOracle, 4) / options_.oracleDof + std::pow(seRef, 4) / dofRef);
+    const double threshold =
+        seOracle > 0.0 ? studentQuantileTwoSided(std::erfc(z / std::numbers::sqrt2), welch) : z;
     // A bounded V (stderr 0) is wrong only where the reference lies beyond the bound by more than
     // its own error.
-    return std::fabs(double(oracleV) - d.referenceV) <= z * se + double(oracleBound)
+    return std::fabs(double(oracleV) - d.referenceV) <=
+                   threshold * std::sqrt(var) + double(oracleBound)
                ? Verdict::Agree
                : Verdict::Disagree;
 }

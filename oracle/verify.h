@@ -34,6 +34,9 @@ struct VerifyOptions {
         3.0;  // plus pixels whose light is this close to the horizon (up to `pixels`)
     int areaSamples = 4096;     // reference samples per area-light pixel
     double familyAlpha = 0.01;  // area lights: chance of any false alarm over a light's pixels
+    // The degrees of freedom of the oracle's stated sampled intervals (area_shadow.h):
+    // kAdaptiveDof for adaptive runs, kReplicas - 1 for a fixed count. Set by the oracle.
+    int oracleDof = 4;
 };
 
 // One pixel where the reference disagrees with the oracle.
@@ -58,7 +61,9 @@ struct LightVerification {
     // Of the ambiguous pixels, those where an alpha test was within its margins (exact_alpha.h):
     // the float path's texel or alpha rounding could decide it either way.
     uint64_t alphaAmbiguous = 0;
-    double zThreshold = 0.0;                        // area: the Bonferroni z used
+    // area: the Bonferroni-corrected two-sided normal quantile (a bounded pixel's threshold);
+    // a sampled pixel's is the Student-t quantile for the same tail (Welch's degrees of freedom)
+    double zThreshold = 0.0;
     std::vector<VerifyDisagreement> disagreements;  // all of them
     double seconds = 0.0;
 };
@@ -110,8 +115,14 @@ class Verifier {
     std::optional<Camera> camera_;  // none in points mode
     VerifyOptions options_;
     uint32_t seed_;
+    double oracleQuantile95_;  // the oracle's stated 95% Student-t quantile (options_.oracleDof)
 };
 
 uint64_t disagreementCount(const std::vector<LightVerification>& lights);
+
+// Student's t with `dof` (real, > 0) degrees of freedom: P(|T| > t), and the t at which that is
+// `alpha` (the verifier's thresholds; exposed for tests).
+double studentTwoSidedP(double t, double dof);
+double studentQuantileTwoSided(double alpha, double dof);
 
 }  // namespace so

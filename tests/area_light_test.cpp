@@ -296,11 +296,13 @@ TEST(AreaLight, AdaptiveSpendsWhatTheTargetNeeds) {
     const AreaShadowStats& la = *r.stats.lights[0].area;
     Exact exact = exactImage(s, r.img);
     const float* V = r.img.channel("panel.V");
-    double penAbs = 0.0;
+    const float* SE = r.img.channel("panel.stderr");
+    double penAbs = 0.0, penHalfWidth = 0.0;
     size_t pen = 0;
     for (size_t i = 0; i < r.img.pixelCount(); ++i)
         if (!std::isnan(exact.v[i]) && isPenumbra(exact.v[i])) {
             penAbs += std::fabs(V[i] - exact.v[i]);
+            penHalfWidth += kIntervalQuantile95 * SE[i];
             ++pen;
         }
     std::printf(
@@ -309,7 +311,12 @@ TEST(AreaLight, AdaptiveSpendsWhatTheTargetNeeds) {
         la.sppMean(), (unsigned long long)la.sppMax, (unsigned long long)la.raysTraced,
         penAbs / double(pen), pen, la.seconds);
     EXPECT_LE(la.sppMean(), 1800.0 / 5.0);
-    EXPECT_EQ(la.shareReachedTarget(), 1.0);
+    // Every pixel met the stopping rule (none ran out of budget). The stated half-width comes
+    // from the replicas the rule does not read (area_shadow.h), an independent estimate of the
+    // same spread, so some pixels state a little more than the target; the penumbra's mean stays
+    // within it.
+    EXPECT_EQ(la.pixelsUnconverged, 0u);
+    EXPECT_LE(penHalfWidth / double(pen), 0.01);
 }
 
 // A tight target buys penumbra accuracy; where every sample agrees, the pixel stops at the
@@ -327,13 +334,14 @@ TEST(AreaLight, AgreeingPixelsStopAtTheAgreementTarget) {
     const float* SE = r.img.channel("panel.stderr");
     const float* spp = r.img.channel("panel.spp");
     size_t agreeing = 0, penumbra = 0;
-    double agreeingSpp = 0.0, penumbraSpp = 0.0;
+    double agreeingSpp = 0.0, penumbraSpp = 0.0, penumbraHalfWidth = 0.0;
     for (size_t i = 0; i < r.img.pixelCount(); ++i) {
         if (std::isnan(exact.v[i])) continue;
         const double hw = kIntervalQuantile95 * SE[i];
         if (isPenumbra(exact.v[i])) {
             ++penumbra;
             penumbraSpp += spp[i];
+            penumbraHalfWidth += hw;
             continue;
         }
         ++agreeing;
@@ -348,8 +356,12 @@ TEST(AreaLight, AgreeingPixelsStopAtTheAgreementTarget) {
         "[ agreement ] target 0.002: mean spp %.0f in %zu agreeing pixels, %.0f in %zu "
         "penumbra pixels\n",
         agreeingSpp / double(agreeing), agreeing, penumbraSpp / double(penumbra), penumbra);
+    // As in AdaptiveSpendsWhatTheTargetNeeds: the rule was met everywhere. The stated
+    // half-widths, independent of it, scatter about the target (the rule stops where its own
+    // half's estimate, low as often as high, says so): their penumbra mean within 10% of it
+    // (measured 0.00207).
     EXPECT_EQ(la.pixelsUnconverged, 0u);
-    EXPECT_EQ(la.shareReachedTarget(), 1.0);
+    EXPECT_LE(penumbraHalfWidth / double(penumbra), 1.1 * tight.targetError);
     EXPECT_GE(la.pixelsAgreeing, agreeing);
     EXPECT_GT(penumbraSpp / double(penumbra), 3.0 * agreeingSpp / double(agreeing));
     // With the agreement target at the target, agreeing pixels pay for it as they did before.
@@ -368,12 +380,16 @@ TEST(AreaLight, CostCurvePredictsATighterTarget) {
     ASSERT_TRUE(r.stats.lights[0].area);
     const AreaShadowStats& a = *r.stats.lights[0].area;
     ASSERT_GE(a.costCurve.size(), 5u);
+    // A pixel's stated half-width is a fresh estimate at each packet and can rise a little from
+    // one packet to the next (area_shadow.h), so the means fall up to 0.1% noise once most
+    // pixels have stopped.
     for (size_t k = 1; k < a.costCurve.size(); ++k) {
         EXPECT_GE(a.costCurve[k].samples, a.costCurve[k - 1].samples);
-        EXPECT_LE(a.costCurve[k].meanHalfWidth, a.costCurve[k - 1].meanHalfWidth);
+        EXPECT_LE(a.costCurve[k].meanHalfWidth, 1.001 * a.costCurve[k - 1].meanHalfWidth);
         ASSERT_TRUE(a.costCurve[k].penumbraMeanHalfWidth &&
                     a.costCurve[k - 1].penumbraMeanHalfWidth);
-        EXPECT_LE(*a.costCurve[k].penumbraMeanHalfWidth, *a.costCurve[k - 1].penumbraMeanHalfWidth);
+        EXPECT_LE(*a.costCurve[k].penumbraMeanHalfWidth,
+                  1.001 * *a.costCurve[k - 1].penumbraMeanHalfWidth);
     }
     EXPECT_EQ(a.costCurve.back().samples, a.samples);
     // The penumbra's mean half-width, as the run ended, is the mean stated half-width of the

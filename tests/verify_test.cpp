@@ -175,6 +175,28 @@ TEST(Verify, FlippedPixelsAreFoundAndNothingElse) {
     for (const auto& p : found) EXPECT_TRUE(flipped.count(p)) << p.first << "," << p.second;
 }
 
+// The area threshold's distribution (issue 42): Student's t tails, and the thresholds a check of
+// 3,000 pixels at a 1% family-wise rate gives. The oracle's adaptive intervals have 4 degrees of
+// freedom: alone, its error needs 37 standard errors to be called at that rate (a normal z says
+// 4.65, which t_4 exceeds with probability 2e-3 per pixel: the false alarms of before), while
+// against a re-trace whose error is as large the Welch degrees of freedom are 16 (threshold 6.9)
+// and the chess board's 8-standard-error miss of issue 42 is still found.
+TEST(Verify, AreaThresholdFollowsTheStudentT) {
+    EXPECT_NEAR(studentTwoSidedP(2.3646242515927849, 7), 0.05, 1e-10);
+    EXPECT_NEAR(studentTwoSidedP(2.7764451051977987, 4), 0.05, 1e-10);
+    EXPECT_NEAR(studentTwoSidedP(1.959963984540054, 1e9), 0.05, 1e-10);
+    EXPECT_NEAR(studentTwoSidedP(4.7, 7), 0.0022, 1e-4);
+    EXPECT_NEAR(studentQuantileTwoSided(0.05, 4), 2.7764451051977987, 1e-9);
+    const double tail = 0.01 / 3000.0;
+    const double z = studentQuantileTwoSided(tail, 1e9);
+    EXPECT_NEAR(z, 4.65, 0.01);
+    EXPECT_GT(studentTwoSidedP(z, 4), 1e-3);
+    EXPECT_GT(studentQuantileTwoSided(tail, 4), 20.0);
+    // Equal standard errors, 4 and 4095 degrees of freedom: Welch's (2^2 / (1 / 4 + 1 / 4095)).
+    const double welch = 4.0 / (1.0 / 4.0 + 1.0 / 4095.0);
+    EXPECT_LT(studentQuantileTwoSided(tail, welch), 7.0);
+}
+
 // The same for a sampled rect light: an estimate moved by 0.2 is found, and no other pixel is.
 TEST(Verify, ShiftedPenumbraEstimatesAreFound) {
     SquareOccluderScene s = makeSquareOccluderScene(64, 48);
