@@ -6,11 +6,11 @@
 #include <sstream>
 
 #include "cli/output.h"
-#include "cli/sweep_spec.h"
 #include "core/error.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/compare/sweep_report.h"
 #include "raster_compare/pipeline/csv_table.h"
+#include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
 
