@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/sweep_spec.h"
+#include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
 

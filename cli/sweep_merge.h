@@ -1,6 +1,7 @@
 // `shadow-oracle sweep-merge DIR`: the rows of a sweep's finished tasks into one metrics.csv,
-// metrics_wide.csv and metrics.json, and the sweep report (report.html); the tasks that did not
-// finish are listed with their logs (docs/sweep.md).
+// metrics_wide.csv and metrics.json, and the sweep report (report.html), by the library's
+// mergeSweep (raster_compare/pipeline/sweep_merge.h); the tasks that did not finish are listed
+// with their logs (docs/sweep.md).
 #pragma once
 
 #include <string>

@@ -5,11 +5,11 @@
 
 #include "cli/compare_command.h"
 #include "cli/output.h"
-#include "cli/sweep_spec.h"
 #include "core/error.h"
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/trace_options.h"
+#include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
 

@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/sweep_spec.h"
 #include "core/error.h"
+#include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
 namespace {

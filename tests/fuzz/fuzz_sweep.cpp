@@ -1,7 +1,7 @@
-// Fuzzes the sweep spec reader (cli/sweep_spec.cpp, planSweepText): the spec a user writes for
-// `shadow-oracle sweep` (docs/sweep.md). The input is the spec's text; the spec is named
-// SCRATCH/spec/spec.json (never written: only its folder is used, to resolve the scenes), and that
-// folder holds a few empty scene files (a.scene.json, b.scene.json, sub/c.scene.json, and
+// Fuzzes the sweep spec reader (raster_compare/pipeline/sweep_spec.cpp, planSweepText): the spec a
+// user writes for `shadow-oracle sweep` (docs/sweep.md). The input is the spec's text; the spec is
+// named SCRATCH/spec/spec.json (never written: only its folder is used, to resolve the scenes), and
+// that folder holds a few empty scene files (a.scene.json, b.scene.json, sub/c.scene.json, and
 // ../outside.scene.json beside it), since scenes are only matched and checked to exist, not loaded,
 // and a few empty images for "images" entries (img/a_1.exr, a_2, b_1, b_2, c_1.png).
 // The technique table is a small stand-in for the tool's (which needs GL), with the same rules as
@@ -25,8 +25,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/sweep_spec.h"
 #include "core/error.h"
+#include "raster_compare/pipeline/sweep_spec.h"
 #include "tests/fuzz/fuzz_common.h"
 #include "tests/fuzz/fuzz_json_input.h"
 
@@ -161,8 +161,8 @@ void checkImage(const so::SweepTask& t) {
         finding("task " + t.id + ": encoding " + so::printable(t.encoding));
 }
 
-// What the plan promises (cli/sweep_spec.h), checked cheaply: a plan can have 10^6 tasks. Per
-// scene, in scene order: the same technique settings, then that scene's images.
+// What the plan promises (raster_compare/pipeline/sweep_spec.h), checked cheaply: a plan can have
+// 10^6 tasks. Per scene, in scene order: the same technique settings, then that scene's images.
 void checkPlan(const so::SweepPlan& plan) {
     if (plan.tasks.size() > so::kMaxSweepTasks) finding("more tasks than kMaxSweepTasks");
     if (plan.scenes.empty() || plan.tasks.empty()) finding("a plan without scenes or tasks");

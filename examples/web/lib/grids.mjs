@@ -11,7 +11,7 @@ function cFormatG(v, digits) {
   return strip(v.toFixed(Math.max(0, digits - 1 - exp)));
 }
 
-/** A number as the sweep prints it in a label (cli/sweep_spec.cpp, shortestNumber). */
+/** A number as the sweep prints it in a label (raster_compare/pipeline/sweep_spec.cpp, shortestNumber). */
 export function shortestNumber(v) {
   if (Number.isInteger(v) && Math.abs(v) < 1e15) return v.toFixed(0);
   for (let digits = 1; digits <= 17; ++digits) {

@@ -1,4 +1,4 @@
-#include "cli/sweep_spec.h"
+#include "raster_compare/pipeline/sweep_spec.h"
 
 #include <fnmatch.h>
 #include <glob.h>
