@@ -10,8 +10,8 @@
 
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
-#include "raster_compare/pipeline/comparison.h"
 #include "raster_compare/gl/renderer.h"
+#include "raster_compare/pipeline/comparison.h"
 
 namespace so {
 

@@ -107,7 +107,7 @@ std::vector<TraceOptionSpec> makeTable() {
                         "reference samples per area-light pixel checked",
                         "reference samples per checked pixel of a sampled area light"));
     t.push_back(method(
-        "penumbra", "auto", {"auto", "sampled", "exact", "both"}, kAll,
+        "penumbra", "auto", {"sampled", "exact", "both", "auto"}, kAll,
         "auto (per light, exact or sampled, whichever a probe estimates cheaper), sampled (RQMC "
         "with 95% intervals), exact (rect and polygon lights: clipped polygons on every pixel, "
         "stderr 0 there; disk and sphere lights: V in a guaranteed interval, NAME.bound) or both "

@@ -2,8 +2,8 @@
 // vectorizer drops the double -> float rounding of the first two of three coordinates rounded in
 // one expression. This file is compiled with the project's flags, so it fails on such a compiler
 // if the guard that adds -fno-tree-slp-vectorize goes missing.
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 
 namespace {
 

@@ -257,6 +257,8 @@ void expectNominalCoverage(const Coverage& c, const std::string& what) {
 TEST(Stopping, ClosedFormRectIntervalsCoverAtATightTarget) {
     const PenumbraScene s = makePenumbraScene(32, 24);
     OracleOptions o;
+    o.penumbra.method =
+        PenumbraMethod::Sampled;  // the sampled pass's intervals (auto is the default)
     o.area.targetError = 1e-3;
     std::vector<double> exact;
     std::vector<Interval> intervals;
@@ -322,6 +324,7 @@ TEST(Stopping, SphereCutByTheHorizonBehindARopeCovers) {
     std::vector<Interval> adaptive, fixed;
     for (uint32_t seed = 1; seed <= 40; ++seed) {
         OracleOptions o;
+        o.penumbra.method = PenumbraMethod::Sampled;
         o.area.seed = seed;
         addIntervals(runOracle(scene, o).image, "lantern", truth, adaptive);
         o.area.fixedSpp = 512;

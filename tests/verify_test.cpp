@@ -230,6 +230,47 @@ TEST(Verify, ShiftedPenumbraEstimatesAreFound) {
     EXPECT_EQ(found, shifted) << describe(l);
 }
 
+// An exact pixel (stderr 0) where every reference sample agreed: the check is how many uniform
+// samples could miss a part of that weight (verify.cpp), tight enough to find an umbra pixel
+// said to be 2% lit, loose enough to accept one said to be 0.35% lit (a sliver 4,096 samples can
+// all miss; the real chess board's V 0.0046 near the horizon was such a pixel). Before the rule,
+// all 20 pixels said to be 0.35% lit were flagged.
+TEST(Verify, ExactPixelsAgainstAgreeingSamplesUseTheirMissChance) {
+    SquareOccluderScene s = makeSquareOccluderScene(64, 48);
+    Light rect{"panel", LightType::Rect, {-0.25, 4.0, 0.125}, {0, -1, 0}, 45, 0};
+    rect.wsU = {1.5, 0.0, 0.0};
+    rect.wsV = {0.0, 0.0, 1.0};
+    s.scene.lights = {rect};
+    s.scene.effects = {"hard", "penumbra"};
+    finalizeScene(s.scene);
+    VerifierRig rig(s.scene);
+    const OracleResult& r = rig.result;
+    const float* V0 = r.image.channel(ch::lightChannel("panel", ch::kVisibility));
+    const float* SPP = r.image.channel(ch::lightChannel("panel", ch::kSpp));
+    const float* SE0 = r.image.channel(ch::lightChannel("panel", ch::kStdErr));
+    const size_t n = r.image.pixelCount();
+    for (float shift : {0.02f, 0.0035f}) {
+        std::vector<float> V(V0, V0 + n), SE(SE0, SE0 + n);  // the moved pixels made exact
+        std::set<std::pair<int, int>> moved;
+        for (size_t i = 0; i < n && moved.size() < 20; ++i)
+            if (SPP[i] > 0.0f && (V[i] == 0.0f || V[i] == 1.0f)) {
+                V[i] = V[i] == 0.0f ? shift : 1.0f - shift;
+                SE[i] = 0.0f;
+                moved.insert({int(i % 64), int(i / 64)});
+                i += 29;
+            }
+        ASSERT_EQ(moved.size(), 20u);
+        const LightVerification l =
+            rig.verifier.verifyLight(s.scene.lights[0], 0, true, rig.sb, V.data(), SE.data(), SPP);
+        std::set<std::pair<int, int>> found;
+        for (const VerifyDisagreement& d : l.disagreements) found.insert({d.x, d.y});
+        if (shift > 0.01f)
+            EXPECT_EQ(found, moved) << describe(l);
+        else
+            EXPECT_TRUE(found.empty()) << describe(l);
+    }
+}
+
 // Issue 45: a sphere light's bounded pixels (--penumbra exact: stderr 0, V within NAME.bound) are
 // checked against their bound: all agree, and a bounded V moved by 0.1 is found, each one.
 TEST(Verify, BoundedSpherePixelsAreCheckedAgainstTheBound) {
