@@ -108,7 +108,7 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     c.cacheDir = sweepOracleCacheDir(dir);
     c.boundaryRadius = plan.settings.boundaryRadius;
     c.writeReport = false;
-    CompareRun run = compareScene(c);
+    CompareRun run = compareScene(c, printingCallbacks());
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const nlohmann::json taskRowJson = taskRow(plan, t, index, c, run, seconds, imageHash);
