@@ -1,4 +1,4 @@
-#include "cli/sweep_task.h"
+#include "raster_compare/pipeline/sweep_task.h"
 
 #include <chrono>
 #include <iostream>
