@@ -50,8 +50,8 @@ CompareCallbacks printingCallbacks() {
     return c;
 }
 
-int writeCompareOutputs(const CompareOptions& options, CompareRun& run) {
-    const CompareOutputFiles files = writeCompareRun(options, run);
+int printCompareSummary(const CompareOptions& options, const CompareRun& run,
+                        const CompareOutputFiles& files) {
     std::cout << "compared " << options.scenePath << ": " << options.techniques.size()
               << " techniques, " << options.images.size() << " images, oracle "
               << (run.atPoints           ? "at the G-buffer's points"
@@ -64,7 +64,7 @@ int writeCompareOutputs(const CompareOptions& options, CompareRun& run) {
 
 int runCompareCommand(const CompareOptions& options) {
     CompareRun run = compareScene(options, printingCallbacks());
-    return writeCompareOutputs(options, run);
+    return printCompareSummary(options, run, writeCompareRun(options, run));
 }
 
 }  // namespace so

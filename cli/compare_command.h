@@ -19,11 +19,11 @@ ImageSpec parseImageSpec(const std::string& text);
 // groups of techniques a line each as they are done.
 CompareCallbacks printingCallbacks();
 
-// metrics.json, the CSVs, the rows' folders and (options.writeReport) oracle.exr and report.html
-// into run.out; a summary on stdout. Returns the exit code: 3 when --verify found disagreements.
-// The report takes the rows' images (run.comparison's reports are moved from).
-int writeCompareOutputs(const CompareOptions& options, CompareRun& run);
-// `shadow-oracle compare`: both.
+// What was compared and the files written (writeCompareRun), on stdout; the oracle's --verify
+// count. Returns the exit code: 3 when --verify found disagreements.
+int printCompareSummary(const CompareOptions& options, const CompareRun& run,
+                        const CompareOutputFiles& files);
+// `shadow-oracle compare`: compareScene, writeCompareRun and the summary.
 int runCompareCommand(const CompareOptions& options);
 
 }  // namespace so
