@@ -1,25 +1,23 @@
-#include "cli/trace_merge_command.h"
+#include "oracle/trace_merge.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
-#include "cli/output.h"
-#include "cli/progress_bar.h"
-#include "cli/trace_command.h"
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/image_codec.h"
+#include "core/json_file.h"
 #include "core/png_encode.h"
-#include "core/progress.h"
+#include "core/preview.h"
 #include "oracle/oracle.h"
+#include "oracle/oracle_stats.h"
+#include "oracle/trace_output.h"
 
 namespace so {
 
@@ -208,10 +206,12 @@ json mergedJson(const std::vector<Tile>& tiles, const OracleStats& stats, double
 
 }  // namespace
 
-int runTraceMergeCommand(const TraceMergeOptions& options) {
+TraceMergeFiles mergeTraceTiles(const std::vector<std::string>& tileDirs,
+                                const std::function<fs::path()>& makeOut,
+                                const ProgressCallback& progress) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
-    const std::vector<Tile> tiles = readTiles(options.tileDirs);
+    const std::vector<Tile> tiles = readTiles(tileDirs);
     const Tile& first = tiles.front();
     const int width = intAt(first.j, first.jsonPath, "/image/width");
     const int height = intAt(first.j, first.jsonPath, "/image/height");
@@ -221,28 +221,28 @@ int runTraceMergeCommand(const TraceMergeOptions& options) {
     const ChannelImage image = joinImages(tiles, width, height);
     recomputeUniformSpp(image, stats);
 
-    const fs::path out = makeOutputDir(options.outDir);
-    const std::string exrPath = (out / "oracle.exr").string();
+    const fs::path out = makeOut();
+    TraceMergeFiles files;
+    files.tiles = tiles.size();
+    files.width = width;
+    files.height = height;
+    files.exr = out / "oracle.exr";
     {
         // The bands' attributes less the tile's own: the whole run's header.
         ExrAttributes attributes;
         for (const auto& a : first.exr.attributes)
             if (a.first != kTileAttribute) attributes.push_back(a);
-        ProgressBar bar(options.progress);
-        Progress progress("writing " + exrPath, image.pixelCount(), bar.callback());
-        writeExr(exrPath, image, attributes, int(std::thread::hardware_concurrency()), &progress);
+        Progress writing("writing " + files.exr.string(), image.pixelCount(), progress);
+        writeExr(files.exr.string(), image, attributes, int(std::thread::hardware_concurrency()),
+                 &writing);
     }
     std::vector<Light> lights;
     for (const OracleLightStats& l : stats.lights) lights.push_back(Light{l.name, l.type});
-    const std::vector<std::string> previews = writePreviews(out, image, lights);
+    files.previews = writePreviews(out, image, lights);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    const fs::path jsonPath = out / "oracle.json";
-    writeJsonFile(jsonPath, mergedJson(tiles, stats, seconds));
-
-    std::cout << "merged " << tiles.size() << " tiles (" << width << "x" << height << ")\n  "
-              << exrPath << "\n  " << jsonPath.string() << "\n";
-    for (const std::string& p : previews) std::cout << "  " << p << "\n";
-    return 0;
+    files.json = out / "oracle.json";
+    writeJsonFile(files.json, mergedJson(tiles, stats, seconds));
+    return files;
 }
 
 }  // namespace so
