@@ -1,4 +1,4 @@
-#include "cli/slurm.h"
+#include "raster_compare/pipeline/slurm.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
