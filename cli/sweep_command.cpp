@@ -52,6 +52,38 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
     return runSweepMerge({dir.string(), false, true});
 }
 
+// What --slurm wrote and submitted (with --dry-run: the scripts and the sbatch commands).
+int submitToSlurm(const SweepPlan& plan, const fs::path& dir, const SweepOptions& options) {
+    SlurmOptions o = options.slurmOptions;
+    o.program = thisExecutable();
+    const SlurmSubmission r = submitSweepToSlurm(plan, dir, o);
+    if (r.nothingToSubmit) {
+        std::cout << "all " << plan.tasks.size() << " tasks of " << dir.string()
+                  << " are finished: nothing to submit (shadow-oracle sweep-merge " << dir.string()
+                  << " merges them)\n";
+        return 0;
+    }
+    if (o.dryRun) {
+        const char* deps[3] = {"", " --dependency=afterok:<oracles job>",
+                               " --dependency=afterany:<tasks job>"};
+        for (int k = 0; k < 3; ++k)
+            std::cout << "# sbatch --parsable" << deps[k] << " "
+                      << (dir / "slurm" / r.scripts[k].name).string() << "\n"
+                      << r.scripts[k].text << "\n";
+        std::cout << "# dry run: " << r.tasks << " tasks over " << r.scenes
+                  << " scenes, nothing submitted\n";
+        return 0;
+    }
+    const std::string limit = o.maxConcurrent > 0 ? std::to_string(o.maxConcurrent) : "";
+    std::cout << "submitted to Slurm: oracles job " << r.oraclesJob << " (" << r.scenes
+              << " scenes), tasks job " << r.tasksJob << " (" << r.tasks << " of "
+              << plan.tasks.size() << " tasks" << (limit.empty() ? "" : ", " + limit + " at once")
+              << "), merge job " << r.mergeJob << "\n  logs: " << (dir / "logs").string()
+              << "\n  when job " << r.mergeJob << " ends: " << (dir / "report.html").string()
+              << "\n";
+    return 0;
+}
+
 }  // namespace
 
 int runSweepCommand(const SweepOptions& options) {
@@ -65,7 +97,7 @@ int runSweepCommand(const SweepOptions& options) {
     SweepRunCallbacks notices;
     notices.notice = printNotice;
     dropStaleRows(plan, dir, notices);
-    if (options.slurm) return submitSweepToSlurm(plan, dir, options.slurmOptions);
+    if (options.slurm) return submitToSlurm(plan, dir, options);
     return runLocally(plan, dir, options);
 }
 
