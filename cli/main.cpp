@@ -17,7 +17,7 @@
 #include "cli/raster_command.h"
 #include "cli/sweep_command.h"
 #include "cli/sweep_merge.h"
-#include "cli/sweep_task.h"
+#include "cli/sweep_task_command.h"
 #include "cli/techniques_command.h"
 #include "cli/trace_command.h"
 #include "cli/trace_merge_command.h"

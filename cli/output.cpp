@@ -6,13 +6,6 @@
 
 namespace so {
 
-std::filesystem::path makeOutputDir(const std::string& dir) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throwInputError(dir, "--out", "cannot create the folder: " + ec.message());
-    return std::filesystem::path(dir);
-}
-
 void printWarnings(const std::vector<std::string>& warnings) {
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
 }

@@ -6,14 +6,9 @@
 #include "core/error.h"
 #include "raster_compare/gl/gl_context.h"
 #include "raster_compare/gl/raster_output.h"
+#include "raster_compare/pipeline/option_errors.h"
 
 namespace so {
-
-std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& flag, const std::string& name,
-                                                 const std::vector<std::string>& settings) {
-    asFlag(flag, [&] { findTechnique(name); });
-    return createTechnique(name, settings);
-}
 
 int runRasterCommand(const RasterCommandOptions& options) {
     // Every setting is validated before the scene is read or a context made.

@@ -2,7 +2,6 @@
 // raster.json and NAME.png previews (docs/cli.md).
 #pragma once
 
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,10 +19,5 @@ struct RasterCommandOptions {
 };
 
 int runRasterCommand(const RasterCommandOptions& options);
-
-// The technique a command-line flag names, created (so its settings validated): an unknown name
-// is an InputError naming the flag ("command line: --technique: unknown technique "nope" ...").
-std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& flag, const std::string& name,
-                                                 const std::vector<std::string>& settings);
 
 }  // namespace so

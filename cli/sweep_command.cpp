@@ -1,97 +1,19 @@
 #include "cli/sweep_command.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
-#include <fstream>
 #include <iostream>
-#include <map>
-#include <set>
 
 #include "cli/output.h"
 #include "cli/progress_bar.h"
 #include "cli/sweep_merge.h"
 #include "core/error.h"
-#include "core/scene.h"
 #include "raster_compare/gl/technique.h"
-
-extern char** environ;
+#include "raster_compare/pipeline/sweep_runner.h"
 
 namespace so {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// One child `shadow-oracle sweep-task ...`, its output into its log (truncated: the log is the
-// latest attempt's).
-pid_t spawnTask(const std::vector<std::string>& args, const fs::path& log) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    pid_t pid = -1;
-    const int rc = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(rc));
-    return pid;
-}
-
-struct Job {
-    std::vector<std::string> args;
-    fs::path log;
-};
-
-// "3/12, 1 failed, 2 running": the progress bar's note.
-std::string poolNote(size_t ended, size_t total, size_t failed, size_t running) {
-    return std::to_string(ended) + "/" + std::to_string(total) +
-           (failed ? ", " + std::to_string(failed) + " failed" : "") + ", " +
-           std::to_string(running) + " running";
-}
-
-// Runs the jobs, at most `parallel` at once; returns the indices of those that failed.
-std::set<size_t> runPool(const std::vector<Job>& jobs, int parallel, ProgressBar& bar,
-                         const std::string& stage) {
-    std::map<pid_t, size_t> running;
-    std::set<size_t> failed;
-    size_t next = 0, ended = 0;
-    // The bar moves once the ended tasks' successors run, so its note counts those running.
-    const auto report = [&] {
-        bar.setNote(poolNote(ended, jobs.size(), failed.size(), running.size()));
-        bar.update(stage, ended, jobs.size());
-    };
-    while (next < jobs.size() || !running.empty()) {
-        while (next < jobs.size() && running.size() < size_t(parallel)) {
-            running[spawnTask(jobs[next].args, jobs[next].log)] = next;
-            ++next;
-        }
-        report();
-        int status = 0;
-        const pid_t pid = ::waitpid(-1, &status, 0);
-        if (pid < 0) break;
-        const auto it = running.find(pid);
-        if (it == running.end()) continue;
-        const size_t k = it->second;
-        running.erase(it);
-        ++ended;
-        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-            failed.insert(k);
-            // A crash prints nothing of its own: the log says so, for sweep-merge's list.
-            std::ofstream(jobs[k].log, std::ios::app)
-                << (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
-                                        : "exit " + std::to_string(WEXITSTATUS(status)))
-                << "\n";
-        }
-    }
-    report();
-    return failed;
-}
 
 // DIR/sweep.json: written on the first run; a later run must be of the same spec.
 void keepPlan(const fs::path& dir, const SweepPlan& plan) {
@@ -106,99 +28,63 @@ void keepPlan(const fs::path& dir, const SweepPlan& plan) {
     writePlan(dir, plan);
 }
 
-// What killed tasks of an earlier local run left: their compare folders and temporary rows. Only
-// the local runner does this: on a cluster, tasks of another submission may be writing them.
-void removeLeftovers(const fs::path& dir) {
-    std::error_code ec;
-    fs::remove_all(dir / "work", ec);
-    if (!fs::is_directory(dir / "rows")) return;
-    std::vector<fs::path> temporary;
-    for (const auto& e : fs::directory_iterator(dir / "rows", ec))
-        if (e.path().filename().string().rfind('.', 0) == 0) temporary.push_back(e.path());
-    for (const fs::path& p : temporary) fs::remove(p, ec);
+void printNotice(const std::string& line) {
+    std::cerr << line << "\n";
 }
 
+// The tasks as child processes of this program (`sweep-task`), the pool's state on the bar; then
+// the merge.
 int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o) {
     const std::string exe = thisExecutable().string();
-    removeLeftovers(dir);
-    std::vector<Job> oracles, tasks;
-    const UnfinishedTasks left = unfinishedTasks(dir, plan);
-    const std::vector<size_t>& sceneList = left.scenes;
-    std::error_code ec;
-    fs::create_directories(dir / "logs", ec);
-    std::cerr << "sweep " << plan.name << ": " << plan.tasks.size() - left.tasks.size() << " of "
-              << plan.tasks.size() << " tasks already finished, " << left.tasks.size()
-              << " to run over " << sceneList.size() << " scenes, " << o.jobs << " at once\n";
-    for (size_t s : sceneList)
-        oracles.push_back({{exe, "sweep-task", dir.string(), "--oracle", std::to_string(s)},
-                           sweepOracleLogPath(dir, s)});
-    std::set<size_t> badScenes;
     ProgressBar bar(o.progress);
-    for (size_t k : runPool(oracles, o.jobs, bar, "oracles")) badScenes.insert(sceneList[k]);
-    for (size_t i : left.tasks)
-        if (!badScenes.count(plan.tasks[i].scene))  // its oracle's log says why
-            tasks.push_back({{exe, "sweep-task", dir.string(), "--index", std::to_string(i)},
-                             sweepTaskLogPath(dir, i)});
-        else
-            fs::remove(sweepTaskLogPath(dir, i), ec);
-    bar.setNote("");
-    runPool(tasks, o.jobs, bar, "tasks");
-    fs::remove(dir / "work", ec);  // empty now, unless a task failed half-way
+    SweepRunCallbacks callbacks;
+    callbacks.notice = printNotice;
+    callbacks.progress = [&](const std::string& stage, size_t ended, size_t total,
+                             const std::string& note) {
+        bar.setNote(note);
+        bar.update(stage, ended, total);
+    };
+    const SweepTaskCommand command = [&](bool oracle, size_t number) {
+        return std::vector<std::string>{exe, "sweep-task", dir.string(),
+                                        oracle ? "--oracle" : "--index", std::to_string(number)};
+    };
+    runSweepLocally(plan, dir, o.jobs, command, callbacks);
     return runSweepMerge({dir.string(), false, true});
 }
 
-// An image re-rendered since its row was made (another hash of the image and its cost file, or
-// gone) makes the row stale: removed, so that the task runs again (and fails, saying why, when
-// the image is gone).
-void dropStaleImageRows(const SweepPlan& plan, const fs::path& dir) {
-    size_t removed = 0;
-    for (const SweepTask& t : plan.tasks) {
-        if (t.image.empty()) continue;
-        const fs::path row = sweepRowPath(dir, t);
-        std::ifstream in(row);
-        if (!in) continue;
-        const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-        in.close();
-        if (imageRowIsStale(j, t)) removed += fs::remove(row);
+// What --slurm wrote and submitted (with --dry-run: the scripts and the sbatch commands).
+int submitToSlurm(const SweepPlan& plan, const fs::path& dir, const SweepOptions& options) {
+    SlurmOptions o = options.slurmOptions;
+    o.program = thisExecutable();
+    const SlurmSubmission r = submitSweepToSlurm(plan, dir, o);
+    if (r.nothingToSubmit) {
+        std::cout << "all " << plan.tasks.size() << " tasks of " << dir.string()
+                  << " are finished: nothing to submit (shadow-oracle sweep-merge " << dir.string()
+                  << " merges them)\n";
+        return 0;
     }
-    if (removed)
-        std::cerr << "sweep: " << removed
-                  << " images changed since their rows were made: those rows removed, their "
-                     "tasks run again\n";
+    if (o.dryRun) {
+        const char* deps[3] = {"", " --dependency=afterok:<oracles job>",
+                               " --dependency=afterany:<tasks job>"};
+        for (int k = 0; k < 3; ++k)
+            std::cout << "# sbatch --parsable" << deps[k] << " "
+                      << (dir / "slurm" / r.scripts[k].name).string() << "\n"
+                      << r.scripts[k].text << "\n";
+        std::cout << "# dry run: " << r.tasks << " tasks over " << r.scenes
+                  << " scenes, nothing submitted\n";
+        return 0;
+    }
+    const std::string limit = o.maxConcurrent > 0 ? std::to_string(o.maxConcurrent) : "";
+    std::cout << "submitted to Slurm: oracles job " << r.oraclesJob << " (" << r.scenes
+              << " scenes), tasks job " << r.tasksJob << " (" << r.tasks << " of "
+              << plan.tasks.size() << " tasks" << (limit.empty() ? "" : ", " + limit + " at once")
+              << "), merge job " << r.mergeJob << "\n  logs: " << (dir / "logs").string()
+              << "\n  when job " << r.mergeJob << " ends: " << (dir / "report.html").string()
+              << "\n";
+    return 0;
 }
 
 }  // namespace
-
-// A scene edited since its rows were made (same name, other content) makes them stale: they are
-// removed, so that its tasks run again, and the scene's hash is recorded for sweep-merge, which
-// counts a row of another hash as not finished. A scene that does not load keeps its rows (its
-// oracle task will fail and say why).
-void dropStaleRows(const SweepPlan& plan, const fs::path& dir) {
-    const fs::path path = sweepSceneHashesPath(dir);
-    nlohmann::json hashes = nlohmann::json::object();
-    if (std::ifstream in(path); in) hashes = nlohmann::json::parse(in, nullptr, false);
-    if (!hashes.is_object()) hashes = nlohmann::json::object();
-    for (size_t si = 0; si < plan.scenes.size(); ++si) {
-        std::string hash;
-        try {
-            hash = loadScene(plan.scenes[si].path.string()).contentHash;
-        } catch (const InputError&) {
-            continue;
-        }
-        const std::string key = std::to_string(si);
-        if (hashes.contains(key) && hashes[key] != hash) {
-            size_t removed = 0;
-            for (const SweepTask& t : plan.tasks)
-                if (t.scene == si) removed += fs::remove(sweepRowPath(dir, t));
-            std::cerr << "sweep: " << plan.scenes[si].name
-                      << " changed since its rows were made: " << removed
-                      << " rows removed, its tasks run again\n";
-        }
-        hashes[key] = hash;
-    }
-    writeFileAtomically(path, hashes.dump(1) + "\n");
-    dropStaleImageRows(plan, dir);
-}
 
 int runSweepCommand(const SweepOptions& options) {
     if (options.jobs < 1) throwInputError("command line", "--jobs", "must be at least 1");
@@ -208,8 +94,10 @@ int runSweepCommand(const SweepOptions& options) {
         });
     const fs::path dir = fs::absolute(makeOutputDir(options.outDir));
     keepPlan(dir, plan);
-    dropStaleRows(plan, dir);
-    if (options.slurm) return submitSweepToSlurm(plan, dir, options.slurmOptions);
+    SweepRunCallbacks notices;
+    notices.notice = printNotice;
+    dropStaleRows(plan, dir, notices);
+    if (options.slurm) return submitToSlurm(plan, dir, options);
     return runLocally(plan, dir, options);
 }
 

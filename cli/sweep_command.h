@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "cli/slurm.h"
+#include "raster_compare/pipeline/slurm.h"
 
 namespace so {
 

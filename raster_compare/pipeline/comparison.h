@@ -1,7 +1,8 @@
 // A comparison as a function: the built-in techniques rendered (raster_compare/gl) and renderers'
 // images, each measured against the oracle per light (raster_compare/compare), returned as typed
-// rows. No files, no terminal: `shadow-oracle compare` (cli/compare_command.h) writes what this
-// returns; the C++ package and the Python module return it. JSON only where a file is made
+// rows. No files, no terminal: compareScene (compare_scene.h, what `shadow-oracle compare` and a
+// sweep's task run) calls it and compare_output.h writes what it returns; the C++ package and the
+// Python module return it. JSON only where a file is made
 // (metricsJson, rowJson).
 #pragma once
 

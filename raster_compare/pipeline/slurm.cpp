@@ -1,16 +1,16 @@
-#include "cli/slurm.h"
+#include "raster_compare/pipeline/slurm.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
-#include <iostream>
 
-#include "cli/output.h"
 #include "core/error.h"
+#include "core/json_file.h"
 
 namespace so {
 
@@ -53,11 +53,6 @@ size_t maxArraySize() {
                                    : size_t(std::strtoull(out.c_str() + eq + 1, nullptr, 10));
 }
 
-struct BatchScript {
-    std::string name;  // file name in DIR/slurm
-    std::string text;
-};
-
 // A job name Slurm shows in squeue: the sweep's name, letters and digits kept.
 std::string jobName(const SweepPlan& plan, const std::string& what) {
     std::string name = "so-";
@@ -65,7 +60,7 @@ std::string jobName(const SweepPlan& plan, const std::string& what) {
     return name + "-" + what;
 }
 
-BatchScript script(const SweepPlan& plan, const fs::path& dir, const SlurmOptions& o,
+SlurmScript script(const SweepPlan& plan, const fs::path& dir, const SlurmOptions& o,
                    const std::string& what, const std::string& array, const std::string& log,
                    const std::string& command) {
     std::string s = "#!/bin/bash\n# shadow-oracle sweep \"" + plan.name + "\": " + what +
@@ -110,69 +105,54 @@ std::string slurmArrayList(const std::vector<size_t>& indices) {
     return list;
 }
 
-int submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir, const SlurmOptions& o) {
+SlurmSubmission submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir,
+                                   const SlurmOptions& o) {
     const UnfinishedTasks left = unfinishedTasks(dir, plan);
     const std::vector<size_t>&tasks = left.tasks, &scenes = left.scenes;
-    if (tasks.empty()) {
-        std::cout << "all " << plan.tasks.size() << " tasks of " << dir.string()
-                  << " are finished: nothing to submit (shadow-oracle sweep-merge " << dir.string()
-                  << " merges them)\n";
-        return 0;
-    }
+    SlurmSubmission r;
+    r.tasks = tasks.size();
+    r.scenes = scenes.size();
+    r.nothingToSubmit = tasks.empty();
+    if (r.nothingToSubmit) return r;
     // #SBATCH lines are split at white space: a log path there cannot hold any.
     if (dir.string().find_first_of(" \t\n") != std::string::npos)
-        throwInputError("command line", "--out",
-                        "--slurm needs a folder path without spaces (#SBATCH --output takes it)");
+        throwInputError(
+            "command line", o.outName,
+            o.slurmName + " needs a folder path without spaces (#SBATCH --output takes it)");
     if (!o.dryRun && !onPath("sbatch"))
-        throwInputError("command line", "--slurm",
-                        "sbatch is not on PATH: --slurm needs Slurm's client commands (--dry-run "
-                        "prints the scripts without them)");
+        throwInputError("command line", o.slurmName,
+                        "sbatch is not on PATH: " + o.slurmName +
+                            " needs Slurm's client commands (--dry-run prints the scripts without "
+                            "them)");
     if (const size_t limit = o.dryRun ? SIZE_MAX : maxArraySize(); tasks.back() >= limit)
-        throwInputError("command line", "--slurm",
+        throwInputError("command line", o.slurmName,
                         "task index " + std::to_string(tasks.back()) +
                             " is not below the cluster's MaxArraySize (" + std::to_string(limit) +
                             "): raise MaxArraySize in slurm.conf or split the sweep");
-    const std::string exe = shellQuote(thisExecutable().string()), qdir = shellQuote(dir.string());
+    const std::string exe = shellQuote(o.program.string()), qdir = shellQuote(dir.string());
     const std::string limit = o.maxConcurrent > 0 ? "%" + std::to_string(o.maxConcurrent) : "";
-    const BatchScript scripts[3] = {
-        script(plan, dir, o, "oracles", slurmArrayList(scenes) + limit, "oracle-%a.log",
-               exe + " sweep-task " + qdir + " --oracle \"$SLURM_ARRAY_TASK_ID\""),
-        script(plan, dir, o, "tasks", slurmArrayList(tasks) + limit, "task-%a.log",
-               exe + " sweep-task " + qdir + " --index \"$SLURM_ARRAY_TASK_ID\""),
-        script(plan, dir, o, "merge", "", "merge.log", exe + " sweep-merge " + qdir)};
+    r.scripts = {script(plan, dir, o, "oracles", slurmArrayList(scenes) + limit, "oracle-%a.log",
+                        exe + " sweep-task " + qdir + " --oracle \"$SLURM_ARRAY_TASK_ID\""),
+                 script(plan, dir, o, "tasks", slurmArrayList(tasks) + limit, "task-%a.log",
+                        exe + " sweep-task " + qdir + " --index \"$SLURM_ARRAY_TASK_ID\""),
+                 script(plan, dir, o, "merge", "", "merge.log", exe + " sweep-merge " + qdir)};
     std::error_code ec;
     fs::create_directories(dir / "slurm", ec);
     fs::create_directories(dir / "logs", ec);
-    for (const BatchScript& s : scripts) writeFileAtomically(dir / "slurm" / s.name, s.text);
-    if (o.dryRun) {
-        const char* deps[3] = {"", " --dependency=afterok:<oracles job>",
-                               " --dependency=afterany:<tasks job>"};
-        for (int k = 0; k < 3; ++k)
-            std::cout << "# sbatch --parsable" << deps[k] << " "
-                      << (dir / "slurm" / scripts[k].name).string() << "\n"
-                      << scripts[k].text << "\n";
-        std::cout << "# dry run: " << tasks.size() << " tasks over " << scenes.size()
-                  << " scenes, nothing submitted\n";
-        return 0;
-    }
-    const std::string oracles = submit(dir / "slurm" / scripts[0].name, "");
-    const std::string array = submit(dir / "slurm" / scripts[1].name, "afterok:" + oracles);
-    const std::string merge = submit(dir / "slurm" / scripts[2].name, "afterany:" + array);
+    for (const SlurmScript& s : r.scripts) writeFileAtomically(dir / "slurm" / s.name, s.text);
+    if (o.dryRun) return r;
+    r.oraclesJob = submit(dir / "slurm" / r.scripts[0].name, "");
+    r.tasksJob = submit(dir / "slurm" / r.scripts[1].name, "afterok:" + r.oraclesJob);
+    r.mergeJob = submit(dir / "slurm" / r.scripts[2].name, "afterany:" + r.tasksJob);
     std::ofstream history(dir / "slurm" / "submitted.jsonl", std::ios::app);
     history << nlohmann::json{{"time", std::time(nullptr)},
-                              {"oracles_job", oracles},
-                              {"tasks_job", array},
-                              {"merge_job", merge},
+                              {"oracles_job", r.oraclesJob},
+                              {"tasks_job", r.tasksJob},
+                              {"merge_job", r.mergeJob},
                               {"tasks", tasks}}
                    .dump()
             << "\n";
-    std::cout << "submitted to Slurm: oracles job " << oracles << " (" << scenes.size()
-              << " scenes), tasks job " << array << " (" << tasks.size() << " of "
-              << plan.tasks.size() << " tasks"
-              << (limit.empty() ? "" : ", " + limit.substr(1) + " at once") << "), merge job "
-              << merge << "\n  logs: " << (dir / "logs").string() << "\n  when job " << merge
-              << " ends: " << (dir / "report.html").string() << "\n";
-    return 0;
+    return r;
 }
 
 }  // namespace so

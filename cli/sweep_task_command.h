@@ -1,6 +1,6 @@
 // `shadow-oracle sweep-task DIR --index K` and `--oracle S`: one task of a sweep planned in
-// DIR/sweep.json (docs/sweep.md). What a local `sweep --jobs N` runs as child processes and what
-// each Slurm array task runs: the same code either way.
+// DIR/sweep.json (docs/sweep.md), run by raster_compare/pipeline/sweep_task.h. What a local
+// `sweep --jobs N` runs as child processes and what each Slurm array task runs.
 #pragma once
 
 #include <string>

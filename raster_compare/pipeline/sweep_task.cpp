@@ -1,15 +1,11 @@
-#include "cli/sweep_task.h"
+#include "raster_compare/pipeline/sweep_task.h"
 
 #include <chrono>
-#include <iostream>
 
-#include "cli/compare_command.h"
-#include "cli/output.h"
 #include "core/error.h"
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/trace_options.h"
-#include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
 
@@ -27,19 +23,10 @@ OracleOptions oracleOptions(const SweepOracleSettings& s) {
     return o;
 }
 
-// The oracle of scene S into DIR/oracles (oracle_cache.h: content-addressed by the scene's hash
-// and the oracle options, so a present and valid entry is loaded, never traced again).
-int runOracleTask(const fs::path& dir, const SweepPlan& plan, size_t si) {
-    const SweepScene& s = plan.scenes[si];
-    const Scene scene = loadScene(s.path.string());
-    printSceneWarnings(s.path.string(), scene);
-    const OracleOptions options = oracleOptions(plan.settings.oracle);
-    const CachedOracle oracle =
-        traceOrLoad(scene, options, {sweepOracleCacheDir(dir), /*use=*/true});
-    printWarnings(oracle.warnings);
-    std::cout << "oracle of " << s.name << ": " << (oracle.fromCache ? "present" : "traced") << " ("
-              << oracle.key << ")\n";
-    return 0;
+void warnAll(const SweepTaskCallbacks& callbacks, const std::vector<std::string>& warnings,
+             const std::string& prefix = "") {
+    if (!callbacks.compare.warning) return;
+    for (const std::string& w : warnings) callbacks.compare.warning(prefix + w);
 }
 
 // The row of a task (docs/sweep.md, "Rows"): the task, and its setting's entry of compare's
@@ -78,25 +65,18 @@ nlohmann::json taskRow(const SweepPlan& plan, const SweepTask& t, size_t index,
             {"result", result}};
 }
 
-int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask& t, size_t index) {
-    const fs::path row = sweepRowPath(dir, t);
-    if (fs::exists(row)) {
-        std::cout << "task " << index << " (" << t.id << ") already finished: " << row.string()
-                  << "\n";
-        return 0;
-    }
-    const auto t0 = std::chrono::steady_clock::now();
-    const fs::path work = dir / "work" / t.id;
-    std::error_code ec;
-    fs::remove_all(work, ec);  // what a killed run of this task left
+// compare's options for a task: the spec's oracle and frames, the sweep's oracle cache, its
+// folder in DIR/work when the spec keeps outputs.
+CompareOptions taskCompareOptions(const fs::path& dir, const SweepPlan& plan, const SweepTask& t,
+                                  std::string& imageHash) {
     CompareOptions c;
     c.scenePath = plan.scenes[t.scene].path.string();
-    if (plan.settings.keepOutputs) c.outDir = work.string();  // else no files but the row
-    // The image's hash before it is read: a renderer rewriting it meanwhile makes the row stale.
-    std::string imageHash;
+    if (plan.settings.keepOutputs) c.outDir = (dir / "work" / t.id).string();
     if (t.image.empty()) {
         c.techniques = {t.label};
     } else {
+        // The image's hash before it is read: a renderer rewriting it meanwhile makes the row
+        // stale.
         imageHash = imageInputsHash(t.image);
         c.images = {makeImageSpec(t.label, t.image)};
         c.imageEncoding = parseImageEncoding(t.encoding, "tasks.jsonl", "encoding");
@@ -108,44 +88,60 @@ int runTechniqueTask(const fs::path& dir, const SweepPlan& plan, const SweepTask
     c.cacheDir = sweepOracleCacheDir(dir);
     c.boundaryRadius = plan.settings.boundaryRadius;
     c.writeReport = false;
-    CompareRun run = compareScene(c);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const nlohmann::json taskRowJson = taskRow(plan, t, index, c, run, seconds, imageHash);
+    return c;
+}
+
+}  // namespace
+
+SweepOracleTaskResult runSweepOracleTask(const fs::path& dir, const SweepPlan& plan, size_t si,
+                                         const SweepTaskCallbacks& callbacks) {
+    SO_CHECK(si < plan.scenes.size());
+    const SweepScene& s = plan.scenes[si];
+    const Scene scene = loadScene(s.path.string());
+    warnAll(callbacks, scene.stats.warnings, s.path.string() + ": ");
+    const OracleOptions options = oracleOptions(plan.settings.oracle);
+    const CachedOracle oracle =
+        traceOrLoad(scene, options, {sweepOracleCacheDir(dir), /*use=*/true});
+    warnAll(callbacks, oracle.warnings);
+    return {s.name, oracle.fromCache, oracle.key};
+}
+
+SweepTechniqueTaskResult runSweepTechniqueTask(const fs::path& dir, const SweepPlan& plan,
+                                               size_t index, const SweepTaskCallbacks& callbacks) {
+    SO_CHECK(index < plan.taskCount);
+    const SweepTask t = readPlanTask(dir, plan, index);
+    SweepTechniqueTaskResult result;
+    result.id = t.id;
+    result.label = t.label;
+    result.scene = plan.scenes[t.scene].name;
+    result.row = sweepRowPath(dir, t);
+    if (fs::exists(result.row)) {
+        result.alreadyFinished = true;
+        return result;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const fs::path work = dir / "work" / t.id;
+    std::error_code ec;
+    fs::remove_all(work, ec);  // what a killed run of this task left
+    std::string imageHash;
+    const CompareOptions c = taskCompareOptions(dir, plan, t, imageHash);
+    CompareRun run = compareScene(c, callbacks.compare);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const nlohmann::json taskRowJson = taskRow(plan, t, index, c, run, result.seconds, imageHash);
     if (plan.settings.keepOutputs) {
-        const int rc = writeCompareOutputs(c, run);
-        if (rc != 0) return rc;
+        const CompareOutputFiles files = writeCompareRun(c, run);
+        if (callbacks.outputsWritten) callbacks.outputsWritten(c, run, files);
+        if (run.oracle.stats.verified() && run.oracle.stats.disagreements() > 0) {
+            result.exitCode = 3;
+            return result;
+        }
         fs::remove_all(dir / "outputs" / t.id, ec);
         fs::create_directories(dir / "outputs", ec);
         fs::rename(work, dir / "outputs" / t.id, ec);
     }
     // The row last, atomically: it is what marks the task done.
-    writeFileAtomically(row, taskRowJson.dump() + "\n");
-    std::cout << "task " << index << " (" << t.id << ", " << t.label << " on "
-              << plan.scenes[t.scene].name << ") finished in " << seconds << " s\n";
-    return 0;
-}
-
-}  // namespace
-
-int runSweepTask(const SweepTaskOptions& options) {
-    const fs::path dir = options.dir;
-    const SweepPlan plan = readPlan(dir, /*withTasks=*/false);
-    if ((options.index >= 0) == (options.oracle >= 0))
-        throwInputError("command line", "--index", "give exactly one of --index K and --oracle S");
-    if (options.oracle >= 0) {
-        if (size_t(options.oracle) >= plan.scenes.size())
-            throwInputError("command line", "--oracle",
-                            std::to_string(options.oracle) + " is out of range: the sweep has " +
-                                std::to_string(plan.scenes.size()) + " scenes");
-        return runOracleTask(dir, plan, size_t(options.oracle));
-    }
-    if (size_t(options.index) >= plan.taskCount)
-        throwInputError("command line", "--index",
-                        std::to_string(options.index) + " is out of range: the sweep has " +
-                            std::to_string(plan.taskCount) + " tasks");
-    const size_t index = size_t(options.index);
-    return runTechniqueTask(dir, plan, readPlanTask(dir, plan, index), index);
+    writeFileAtomically(result.row, taskRowJson.dump() + "\n");
+    return result;
 }
 
 }  // namespace so

@@ -1,0 +1,137 @@
+#include "raster_compare/pipeline/compare_scene.h"
+
+#include <optional>
+
+#include "core/error.h"
+#include "core/gbuffer.h"
+#include "oracle/points.h"
+#include "raster_compare/pipeline/option_errors.h"
+
+namespace so {
+
+namespace {
+
+// The techniques as the caller named them; a spec the library refuses is named with its option.
+std::vector<TechniqueSpec> parseTechniques(const CompareOptions& options) {
+    std::vector<TechniqueSpec> specs;
+    for (const std::string& s : options.techniques)
+        specs.push_back(asFlag(options.names.technique, [&] { return parseTechniqueSpec(s); }));
+    return specs;
+}
+
+// What the caller's options can get wrong, said with their names, before anything is read.
+void checkOptions(const CompareOptions& options, const std::vector<TechniqueSpec>& specs) {
+    const CompareOptionNames& n = options.names;
+    if (specs.empty() && options.images.empty())
+        throwInputError(
+            "command line", n.technique,
+            "nothing to compare: give " + n.technique + " NAME or " + n.image + " LABEL=PATH");
+    for (const TechniqueSpec& spec : specs)
+        createTechniqueOfFlag(n.technique, spec.name, spec.settings);
+    asFlag(n.image, [&] { checkRowLabels(specs, options.images); });
+    if (!options.pointsPath.empty()) {
+        if (!specs.empty())
+            throwInputError("command line", n.points,
+                            "judges images only: the built-in techniques render the scene's "
+                            "camera, not the G-buffer's pixels (drop " +
+                                n.technique + ")");
+        if (options.raster.width > 0 || options.raster.height > 0)
+            throwInputError("command line", n.points,
+                            "the image is the G-buffer's size: drop " + n.size);
+    }
+    if (options.pathFrames > 0 && !options.images.empty())
+        throwInputError(
+            "command line", n.framesPath,
+            "an image is one frame: " + n.framesPath + " works with " + n.technique + " only");
+}
+
+void warnAll(const CompareCallbacks& callbacks, const std::vector<std::string>& warnings,
+             const std::string& prefix = "") {
+    if (!callbacks.warning) return;
+    for (const std::string& w : warnings) callbacks.warning(prefix + w);
+}
+
+// The oracle: at the G-buffer's points (never cached: the cache is keyed by a camera), or from the
+// cache when the same scene content and options were traced before.
+CachedOracle oracleFor(const CompareOptions& options, const CompareCallbacks& callbacks,
+                       const Scene& scene, const OracleOptions& oracleOptions,
+                       const GBuffer* points) {
+    const std::string& verify = options.names.verify;
+    if (!points) {
+        CachedOracle oracle = namingFlag("verify", verify, [&] {
+            return traceOrLoad(scene, oracleOptions, {options.cacheDir, options.useCache});
+        });
+        warnAll(callbacks, oracle.warnings);
+        return oracle;
+    }
+    OracleResult r = namingFlag("verify", verify,
+                                [&] { return runOracleAtPoints(scene, *points, oracleOptions); });
+    return {std::move(r.image), std::move(r.stats), false, "points " + points->path};
+}
+
+ComparisonOptions comparisonOptions(const CompareOptions& options,
+                                    const CompareCallbacks& callbacks,
+                                    const OracleOptions& oracleOptions) {
+    ComparisonOptions c;
+    c.raster = options.raster;
+    c.boundaryRadius = options.boundaryRadius;
+    c.contactThresholdRelative = options.contactThresholdRelative;
+    c.pathFrames = options.pathFrames;
+    c.pathOracle = oracleOptions;
+    c.pathCache = {options.cacheDir, options.useCache};
+    c.progress = callbacks.progress;
+    c.renderingGroup = callbacks.renderingGroup;
+    return c;
+}
+
+}  // namespace
+
+CompareRun compareScene(const CompareOptions& options, const CompareCallbacks& callbacks) {
+    // Everything the caller can get wrong is checked before any work starts.
+    const std::vector<TechniqueSpec> techniques = parseTechniques(options);
+    checkOptions(options, techniques);
+    CompareRun run;
+    run.scene = loadScene(options.scenePath);
+    const Scene& scene = run.scene;
+    warnAll(callbacks, scene.stats.warnings, options.scenePath + ": ");
+    if (options.pathFrames > 0 && !scene.cameraPath)
+        throwInputError(options.scenePath, "camera_path",
+                        "missing: " + options.names.framesPath +
+                            " needs the scene's camera path (scene_format 2, "
+                            "docs/scene-format.md)");
+    run.oracleOptions = options.oracle;
+    if (options.raster.width > 0) run.oracleOptions.width = options.raster.width;
+    if (options.raster.height > 0) run.oracleOptions.height = options.raster.height;
+    std::optional<GBuffer> points;
+    if (!options.pointsPath.empty()) points = readGBuffer(options.pointsPath);
+    const CameraDesc camera = effectiveCamera(scene, run.oracleOptions);
+    const int width = points ? points->width : camera.width,
+              height = points ? points->height : camera.height;
+    std::vector<ImageInput> images;
+    for (const ImageSpec& spec : options.images)
+        images.push_back({spec, readVisibilityImage(spec.path, scene.lights, width, height,
+                                                    options.imageEncoding)});
+    if (!options.outDir.empty()) run.out = makeOutputDir(options.outDir);
+
+    run.atPoints = points.has_value();
+    run.oracle =
+        oracleFor(options, callbacks, scene, run.oracleOptions, points ? &*points : nullptr);
+    run.comparison = compareWithOracle(scene, run.oracle, techniques, images,
+                                       comparisonOptions(options, callbacks, run.oracleOptions));
+    warnAll(callbacks, run.comparison.warnings);
+    return run;
+}
+
+CompareOutputFiles writeCompareRun(const CompareOptions& options, CompareRun& run) {
+    SO_CHECK(!run.out.empty());
+    CompareOutputOptions output;
+    output.scenePath = options.scenePath;
+    output.boundaryRadius = options.boundaryRadius;
+    output.sampling = run.oracleOptions.area;
+    output.writeReport = options.writeReport;
+    output.embedImages = options.embedImages;
+    output.writeImages = options.writeImages;
+    return writeCompareOutput(run.out, run.scene, run.oracle, run.comparison, output);
+}
+
+}  // namespace so
