@@ -32,9 +32,7 @@ void skipOriginTriangle(const RTCFilterFunctionNArguments* args) noexcept {
         const unsigned origin = RTCRayN_id(args->ray, args->N, i);
         const unsigned mesh = RTCHitN_geomID(args->hit, args->N, i);
         const unsigned hit = ctx->meshBase[mesh] + RTCHitN_primID(args->hit, args->N, i);
-        if (origin == hit || std::find(ctx->skipIds, ctx->skipIds + ctx->skipCount, hit) !=
-                                 ctx->skipIds + ctx->skipCount)
-            args->valid[i] = 0;
+        if (origin == hit) args->valid[i] = 0;
     }
 }
 

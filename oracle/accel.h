@@ -31,10 +31,6 @@ inline constexpr unsigned kNoOriginTriangle = 0xFFFFFFFFu;
 struct ShadowContext {
     RTCIntersectContext rtc;
     const unsigned* meshBase = nullptr;  // global index of each mesh's first triangle
-    // Triangles the filter also skips (global indices; near_field.h): the pass decides them in
-    // double. Set per pixel; the filter must then be on for every query.
-    const uint32_t* skipIds = nullptr;
-    size_t skipCount = 0;
     // The filter on (true) or off for the next queries: a hit on the ray's origin triangle is
     // then no hit.
     void originFilter(bool on);
@@ -78,7 +74,7 @@ class Accel {
     // The ray id that makes a shadow ray skip triangle `prim` of mesh `mesh` (< 2^28 by the
     // loader's limits, so it never equals kNoOriginTriangle).
     unsigned originId(unsigned mesh, unsigned prim) const { return meshBase_[mesh] + prim; }
-    // Whether its queries may run the origin filter (and with it the near field's skips): false
+    // Whether its queries may run the origin filter (and the passes decide near fields): false
     // for the benchmarks' plain scene, whose passes then trace bare.
     bool filters() const { return filters_; }
 

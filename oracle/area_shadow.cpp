@@ -207,11 +207,12 @@ struct PacketState {
     std::vector<double> history;
     std::vector<float> halfWidths;
     FacingCache facingCache;  // the last exact decision (classifyAreaPixel)
-    // The current pixel's near field (near_field.h): its range in the buffer, and the point in
-    // double where its true segments start.
+    // The current pixel's near field (near_field.h), its triangles the segments to the light can
+    // reach (each holds the point in double where the pixel's true segments start), and where
+    // Embree starts the pixel's rays when there are some (nearTnear).
     std::vector<uint32_t> nearIds;
     std::vector<NearTriangle> nearTriangles;
-    NearOrigin nearOrigin{};
+    float nearTnear = 0.0f;
 };
 
 struct PixelResult {
@@ -284,8 +285,7 @@ void decideNearField(PacketState& p, AreaShadowStats& st) {
         const glm::dvec3 dir(p.batch.dirX[k], p.batch.dirY[k], p.batch.dirZ[k]);
         ++st.nearFieldRays;
         const double tMax = double(p.batch.tfar[k]);
-        if (nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(), NearList::Own,
-                         p.nearOrigin, dir, tMax) < tMax) {
+        if (nearFirstHit(p.nearTriangles.data(), p.nearTriangles.size(), dir, tMax) < tMax) {
             p.ray.tfar[k] = -std::numeric_limits<float>::infinity();
             ++st.nearFieldOccluded;
         }
@@ -312,8 +312,7 @@ void traceRound(const Accel& accel, const AreaLight& light, const AreaPixel& px,
         nearLanes = _mm_or_ps(nearLanes, _mm_andnot_ps(clear, on));
         active += setBits4(_mm_movemask_ps(on));
     }
-    // A near field (near_field.h) needs the filter on every query: it skips those triangles.
-    const bool near = _mm_movemask_ps(nearLanes) != 0 || !p.nearIds.empty();
+    const bool near = _mm_movemask_ps(nearLanes) != 0;
     std::memcpy(p.ray.dir_x, p.batch.dirX, sizeof p.batch.dirX);
     std::memcpy(p.ray.dir_y, p.batch.dirY, sizeof p.batch.dirY);
     std::memcpy(p.ray.dir_z, p.batch.dirZ, sizeof p.batch.dirZ);
@@ -339,7 +338,8 @@ PixelResult samplePixel(const Accel& accel, const AreaLight& light, const AreaPi
         p.ray.org_x[k] = org.x;
         p.ray.org_y[k] = org.y;
         p.ray.org_z[k] = org.z;
-        p.ray.tnear[k] = 0.0f;
+        // Beyond the near field where the pass decides it (decideNearField).
+        p.ray.tnear[k] = p.nearTriangles.empty() ? 0.0f : p.nearTnear;
         p.ray.time[k] = 0.0f;
         p.ray.mask[k] = 0xFFFFFFFFu;
         p.ray.flags[k] = 0;
@@ -422,20 +422,17 @@ struct AreaRun {
     void reduceCurve(AreaShadowStats& total) const;
 };
 
-// The part of the pixel's near field that segments to the light can reach (near_field.h): the
-// packet's filter skips it and decideNearField tests it.
+// The part of the pixel's near field that segments to the light can reach (near_field.h): Embree
+// starts the pixel's rays beyond the near field and decideNearField tests it.
 void setNearField(const Accel& accel, const SurfaceBuffer& sb, size_t s, const NearTarget& target,
                   PacketState& packet) {
     const NearFields& f = sb.nearFields;
     packet.nearIds.clear();
     packet.nearTriangles.clear();
     if (accel.filters() && f.from(s) != f.to(s + 1)) {
-        packet.nearOrigin = nearOrigin(accel, sb, s);
-        appendRelevant(f, f.from(s), f.to(s + 1), packet.nearOrigin, target, packet.nearIds,
-                       packet.nearTriangles);
+        appendRelevant(f, f.from(s), f.to(s + 1), target, packet.nearIds, packet.nearTriangles);
+        packet.nearTnear = f.tnear[s];
     }
-    packet.ctx.skipIds = packet.nearIds.data();
-    packet.ctx.skipCount = packet.nearIds.size();
 }
 
 // The light as near_field.h's relevance test sees it: points whose convex hull holds it.

@@ -253,9 +253,9 @@ struct HardPacket {
     PacketSetup ps;
     uint64_t counts[int(ShadowRayKind::Count)] = {};
     uint64_t raysFiltered = 0;
-    // The tile's near-field triangles that its segments can reach (near_field.h).
-    std::vector<uint32_t> nearIds;
-    std::vector<NearTriangle> nearTriangles;
+    // The lanes whose near field the pass decides (near_field.h): Embree starts them beyond it
+    // (nearTnear), decideNearField tests its triangles in double.
+    uint32_t nearLanes = 0;
 
     explicit HardPacket(const Accel& accel) : ctx(accel.shadowContext(/*coherent=*/true)) {
         RTCRay16& ray = rayHit.ray;
@@ -327,6 +327,7 @@ void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
         ray.dir_x[k] = p.ps.dirX[k];
         ray.dir_y[k] = p.ps.dirY[k];
         ray.dir_z[k] = p.ps.dirZ[k];
+        ray.tnear[k] = 0.0f;
         ray.tfar[k] = p.ps.tfar[k];
         ray.id[k] = sb.originId[base + size_t(k)];  // skipped by the filter
     }
@@ -381,59 +382,79 @@ uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, si
     return uint64_t(occluded);
 }
 
-// The light as near_field.h's relevance test sees it.
-NearTarget nearTarget(const HardLight& light) {
-    NearTarget t;
-    if (light.type == LightType::Directional) {
-        t.atInfinity = true;
-        t.direction = -light.lsDirection;
-    } else {
-        t.points[0] = light.lsPosition;
-        t.count = 1;
-    }
-    return t;
-}
-
-// The near-field triangles that the tile's segments can reach (near_field.h), gathered into the
-// packet's list: Embree skips them for every lane of the tile.
-// Returns the lanes that added some.
-uint64_t gatherNearField(const Accel& accel, const SurfaceBuffer& sb, size_t base,
-                         const NearTarget& target, HardPacket& p) {
-    uint64_t lanes = 0;
-    p.nearIds.clear();
-    p.nearTriangles.clear();
+// The traced lanes whose near field the pass decides (near_field.h): those whose cosine does not
+// rule it out at once against the slot's sine bound, both within their float errors: the cosine's
+// own is far under 1e-5 (kTieCos), the direction's a few ulp (1e-5 is far above) plus, for a
+// positional light, the rounding of the surface point and the light's position to float over the
+// distance (the tie test's bound, 4x wider; +inf at the light itself). Four lanes at a time
+// (sse_lanes.h). Embree starts the lanes beyond their near field; their triangles are fetched into
+// the cache meanwhile, for decideNearField after the trace. Sets nearLanes; returns their number.
+uint64_t markNearLanes(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light,
+                       size_t base, HardPacket& p) {
+    p.nearLanes = 0;
     const NearFields& f = sb.nearFields;
-    if (accel.filters() && f.from(base) != f.to(base + 16))
-        for (int k = 0; k < 16; ++k) {
-            const size_t s = base + size_t(k);
-            if (!p.valid[k] || f.from(s) == f.to(s + 1)) continue;
-            const size_t before = p.nearIds.size();
-            appendRelevant(f, f.from(s), f.to(s + 1), nearOrigin(accel, sb, s), target, p.nearIds,
-                           p.nearTriangles);
-            lanes += p.nearIds.size() > before;
+    if (!accel.filters() || !f.built()) return 0;
+    // Most tiles at once: the lowest cosine of a traced lane, less the largest error, against
+    // the largest bound of the tile's slots (-inf where none has a near field).
+    const float tileBound = f.tileSineBound[base / 16];
+    if (tileBound == -std::numeric_limits<float>::infinity()) return 0;
+    const bool directional = light.type == LightType::Directional;
+    const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    __m128 lowestCos = inf, nearestEnd = inf, unordered = _mm_setzero_ps();
+    for (int g = 0; g < 16; g += 4) {
+        const __m128 valid = laneMask4(p.valid, g), cos = _mm_load_ps(p.ps.cosine + g);
+        const __m128 end = _mm_load_ps(p.ps.tfar + g);
+        lowestCos =
+            _mm_min_ps(lowestCos, _mm_or_ps(_mm_and_ps(valid, cos), _mm_andnot_ps(valid, inf)));
+        nearestEnd =
+            _mm_min_ps(nearestEnd, _mm_or_ps(_mm_and_ps(valid, end), _mm_andnot_ps(valid, inf)));
+        unordered = _mm_or_ps(unordered, _mm_and_ps(valid, _mm_cmpunord_ps(cos, end)));
+    }
+    const float tileError =
+        directional ? 2e-5f : 2e-5f + 4.0f * light.lsTieScale / horizontalMin(nearestEnd);
+    if (_mm_movemask_ps(unordered) == 0 && horizontalMin(lowestCos) - tileError > tileBound)
+        return 0;
+    const __m128 fixedError = _mm_set1_ps(2e-5f), tie = _mm_set1_ps(4.0f * light.lsTieScale);
+    for (int g = 0; g < 16; g += 4) {
+        __m128 error = fixedError;
+        if (!directional) error = _mm_add_ps(error, _mm_div_ps(tie, _mm_load_ps(p.ps.tfar + g)));
+        const __m128 sine = _mm_sub_ps(_mm_load_ps(p.ps.cosine + g), error);
+        // Not ruled out: NaN compares false, so it stays.
+        const __m128 open = _mm_cmpngt_ps(sine, _mm_loadu_ps(&f.sineBound[base + size_t(g)]));
+        p.nearLanes |= uint32_t(_mm_movemask_ps(_mm_and_ps(open, laneMask4(p.valid, g)))) << g;
+    }
+    for (int k = 0; k < 16; ++k) {
+        if (!(p.nearLanes >> k & 1u)) continue;
+        const size_t s = base + size_t(k);
+        if (f.from(s) == f.to(s + 1)) {
+            p.nearLanes &= ~(1u << k);
+            continue;
         }
-    p.ctx.skipIds = p.nearIds.data();
-    p.ctx.skipCount = p.nearIds.size();
-    return lanes;
+        p.rayHit.ray.tnear[k] = f.tnear[s];
+        const char* first = reinterpret_cast<const char*>(&f.triangles[f.from(s)]);
+        for (size_t byte = 0; byte < 2 * sizeof(NearTriangle); byte += 64)
+            _mm_prefetch(first + byte, _MM_HINT_T0);
+    }
+    return uint64_t(setBits16(p.nearLanes));
 }
 
-// The packet's near-field list against each traced lane's true segment from its surface point, in
-// double; Embree skipped those triangles. A crossing before the lane's end (or, closest-hit,
-// before Embree's hit) occludes it. Returns the lanes it changed.
-uint64_t decideNearField(const Accel& accel, const SurfaceBuffer& sb, size_t base, bool closest,
-                         HardPacket& p) {
+// The lanes whose near field the pass decides, after Embree traced them from beyond it: all their
+// near-field triangles against the true segment from the surface point, in double. A crossing
+// before the lane's end (or, closest-hit, before Embree's hit) occludes it. Returns the lanes it
+// changed.
+uint64_t decideNearField(const SurfaceBuffer& sb, size_t base, bool closest, HardPacket& p) {
     uint64_t changed = 0;
     RTCRay16& ray = p.rayHit.ray;
+    const NearFields& f = sb.nearFields;
     for (int k = 0; k < 16; ++k) {
-        if (!p.valid[k]) continue;
+        if (!(p.nearLanes >> k & 1u)) continue;
         const bool hit =
             closest ? p.rayHit.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID : !(ray.tfar[k] >= 0.0f);
         if (hit && !closest) continue;
         const double tEnd = hit ? double(ray.tfar[k]) : double(p.ps.tfar[k]);
         const glm::dvec3 dir(p.ps.dirX[k], p.ps.dirY[k], p.ps.dirZ[k]);
-        const double t =
-            nearFirstHit(p.nearIds.data(), p.nearTriangles.data(), p.nearIds.size(), NearList::Tile,
-                         nearOrigin(accel, sb, base + size_t(k)), dir, tEnd);
+        const size_t s = base + size_t(k);
+        const double t = nearFirstHit(&f.triangles[f.from(s)], f.to(s + 1) - f.from(s), dir, tEnd);
         if (!(t < tEnd)) continue;
         ++changed;
         if (closest) {
@@ -447,9 +468,8 @@ uint64_t decideNearField(const Accel& accel, const SurfaceBuffer& sb, size_t bas
 }
 
 // One tile: setup, trace (any hit, or the closest with the contact effect), write.
-void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light,
-               const NearTarget& target, int tx, int ty, HardPacket& p, const HardShadowPlanes& out,
-               HardShadowStats& st) {
+void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light, int tx, int ty,
+               HardPacket& p, const HardShadowPlanes& out, HardShadowStats& st) {
     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
     const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
     setupPacket(accel, sb, base, light, p.ps);
@@ -458,8 +478,8 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
     const int active = classifyLanes(p, cols, rows);
     if (active) {
         fillRays(sb, base, p);
-        st.nearFieldPixels += gatherNearField(accel, sb, base, target, p);
-        const bool filter = needsOriginFilter(sb, base, p) || !p.nearIds.empty();
+        st.nearFieldPixels += markNearLanes(accel, sb, light, base, p);
+        const bool filter = needsOriginFilter(sb, base, p);
         p.ctx.originFilter(filter);
         p.raysFiltered += filter ? uint64_t(active) : 0;
         if (out.occDist) {
@@ -469,8 +489,8 @@ void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& lig
         } else {
             rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.rayHit.ray);
         }
-        if (!p.nearIds.empty())
-            st.nearFieldOccluded += decideNearField(accel, sb, base, out.occDist != nullptr, p);
+        if (p.nearLanes)
+            st.nearFieldOccluded += decideNearField(sb, base, out.occDist != nullptr, p);
     }
     st.raysOccluded += writeTile(p, accel.frame(), size_t(y0) * size_t(sb.width) + size_t(x0),
                                  size_t(sb.width), cols, rows, out);
@@ -489,7 +509,6 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         HardPacket packet;
     };
     const bool spot = light.type == LightType::Spot;
-    const NearTarget target = nearTarget(light);
     forEachTileRow(
         sb.tilesY,
         [&] {
@@ -497,7 +516,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         },
         [&](int ty, Scratch& c) {
             for (int tx = 0; tx < sb.tilesX; ++tx)
-                traceTile(accel, sb, light, target, tx, ty, c.packet, out, c.st);
+                traceTile(accel, sb, light, tx, ty, c.packet, out, c.st);
             if (progress) progress->advance(uint64_t(SurfaceBuffer::kTile) * uint64_t(sb.width));
         },
         [&](Scratch& c, uint64_t alphaTestsRun) {
