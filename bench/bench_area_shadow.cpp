@@ -101,6 +101,17 @@ int main(int argc, char** argv) {
                                       {V.data(), SE.data(), S.data(), C.data(), nullptr}, nullptr);
             });
         };
+        // The same pass without the near fields (moved aside for the run): their share of the time.
+        NearFields aside;
+        std::vector<float> V2(n), SE2(n), S2(n), C2(n);
+        auto runOracleFar = [&] {
+            std::swap(aside, sb.nearFields);
+            arena.execute([&] {
+                traceAreaShadows(accel, sb, al, sampling, 0,
+                                 {V2.data(), SE2.data(), S2.data(), C2.data(), nullptr}, nullptr);
+            });
+            std::swap(aside, sb.nearFields);
+        };
         // The oracle's rays, prepared beforehand in its own order and packets.
         struct alignas(64) Packet {
             RTCRay16 ray;
@@ -147,12 +158,15 @@ int main(int argc, char** argv) {
                     rtcOccluded16(work[i].valid, plain.rtcScene(), &ctx, &work[i].ray);
                 });
         };
-        std::vector<double> tO, tP, ratio;
+        std::vector<double> tO, tF, tP, ratio, ratioFar, share;
         for (int r = 0; r < reps; ++r) {
             tO.push_back(timeOnce(runOracle));
+            tF.push_back(timeOnce(runOracleFar));
             work = packets;  // outside the timing: Embree overwrites tfar
             tP.push_back(timeOnce(runPlain));
             ratio.push_back(tP.back() / tO.back());
+            ratioFar.push_back(tP.back() / tF.back());
+            share.push_back(1.0 - tF.back() / tO.back());
         }
         // The plain loop's hits, through the same estimator, give the oracle's V.
         uint64_t rays = 0;
@@ -172,8 +186,17 @@ int main(int argc, char** argv) {
         std::printf("  oracle        %7.2f Mrays/s\n", mO);
         std::printf(
             "  rtcOccluded16 %7.2f Mrays/s   oracle / occluded16 = %.2f (median of per-run ratios; "
-            "target >= 0.88)\n",
+            "target >= 0.85)\n",
             mP, median(ratio));
+        std::printf(
+            "  without the near fields:   oracle / occluded16 = %.2f (their share of the oracle's "
+            "time: %.1f%%)\n",
+            median(ratioFar), 100.0 * median(share));
+        std::printf(
+            "  near field: %llu pixels with triangles their segments may reach, %llu rays "
+            "decided in double there, %llu of them blocked\n",
+            (unsigned long long)st.nearFieldPixels, (unsigned long long)st.nearFieldRays,
+            (unsigned long long)st.nearFieldOccluded);
         std::printf(
             "  pixels whose V the origin filter changes: %zu; same rays: %s (%llu vs %llu)\n",
             mismatches, rays == st.raysTraced ? "yes" : "NO", (unsigned long long)rays,

@@ -87,9 +87,11 @@ inline void buildNearFieldsTimed(tbb::task_arena& arena, const Accel& accel, Sur
     if (!skip) arena.execute([&] { buildNearFields(accel, sb); });
     std::printf(
         "near fields: %.1f ms for the image, %llu of %d pixels have one (%zu triangles, %llu "
-        "balls shrunk)\n",
+        "balls shrunk; %llu pixels in %llu tiles unbounded, decided at every hard light)\n",
         1e3 * secondsSince(t0), (unsigned long long)sb.nearFields.pixels, sb.width * sb.height,
-        sb.nearFields.ids.size(), (unsigned long long)sb.nearFields.pixelsShrunk);
+        sb.nearFields.ids.size(), (unsigned long long)sb.nearFields.pixelsShrunk,
+        (unsigned long long)sb.nearFields.pixelsUnbounded,
+        (unsigned long long)sb.nearFields.tilesUnbounded);
 }
 
 }  // namespace so::bench

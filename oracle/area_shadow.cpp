@@ -430,7 +430,8 @@ void setNearField(const Accel& accel, const SurfaceBuffer& sb, size_t s, const N
     packet.nearIds.clear();
     packet.nearTriangles.clear();
     if (accel.filters() && f.from(s) != f.to(s + 1)) {
-        appendRelevant(f, f.from(s), f.to(s + 1), target, packet.nearIds, packet.nearTriangles);
+        appendRelevant(f, f.from(s), f.to(s + 1), target, glm::dvec3(sb.lsRayOrigin(s)),
+                       packet.nearIds, packet.nearTriangles);
         packet.nearTnear = f.tnear[s];
     }
 }

@@ -53,6 +53,37 @@ bool keeps(const NearTriangle& t, double b1, double b2) {
     return alphaKeeps(*a.mask, a.texture, uv);
 }
 
+// Whether no segment from p to a point of the target's hull can make the true and the moved
+// segment disagree about T (near_field.h, appendRelevant). The light's corners' heights over T's
+// plane tell: all on p's side, no true segment crosses it, and none from the ray's origin either
+// where that lies on the same side beyond Embree's rounding; all across, every segment crosses, at
+// a sine (|n . dir|) of at least the corners' smallest height difference over their largest
+// distance (the one is linear and the other convex over the hull), and such a crossing is too far
+// from T to matter above the triangle's minSine (nearSineBound's argument).
+bool nearRuledOut(const NearTriangle& t, const NearTarget& target, const glm::dvec3& origin,
+                  double reach, double floatBand) {
+    if (!(std::fabs(t.side) > 1e-12)) return false;
+    bool allSame = true, allAcross = true;
+    double lowestRise = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    for (int k = 0; k < target.count; ++k) {
+        const double h = glm::dot(t.n, target.points[k] - t.a);
+        allSame = allSame && h * t.side > 0.0;
+        allAcross = allAcross && h * t.side < 0.0;
+        lowestRise = std::min(lowestRise, std::fabs(h - t.side));
+        farthest = std::max(farthest, glm::length(target.points[k] - t.p));
+    }
+    if (allSame) {
+        const double ho = glm::dot(t.n, origin - t.a);
+        return ho * t.side > 0.0 && std::fabs(ho) > floatBand;
+    }
+    if (!allAcross) return false;
+    const double inPlane =
+        exact::pointTriangle(t.p - t.side * t.n, t.a, t.b, t.c) * (1.0 - 1e-9) - 4e-16;
+    if (!(inPlane > reach)) return false;
+    const double minSine = (std::fabs(t.side) + reach) / (inPlane - reach);
+    return lowestRise * (1.0 - 1e-9) > minSine * farthest * (1.0 + 1e-9);
+}
+
 // Embree calls this for every triangle whose bounds meet the ball; the tests are in double.
 bool visitCandidate(RTCPointQueryFunctionArguments* args) noexcept {
     auto& q = *static_cast<Query*>(args->userPtr);
@@ -131,7 +162,11 @@ float nearSineBound(const NearTriangle* triangles, size_t n, const glm::dvec3& m
         const double turn = glm::length(sign * t.n - m0);
         const double hp = sign * t.side, ho = sign * glm::dot(t.n, origin - t.a);
         double b = turn;  // both above the plane: a segment with m0 . dir > turn leaves it
-        if (!(hp > 0.0 && ho > kFloatBand)) {
+        if (!(hp > 0.0 && ho > kFloatBand) && std::fabs(hp) <= 1e-12 && ho > kFloatBand) {
+            // p on the plane to within rounding (a pixel on a shared edge): a segment leaving
+            // at a sine over 1e-3 meets it within 1e-9 of p, contact that nearFirstHit ignores.
+            b += 1e-3;
+        } else if (!(hp > 0.0 && ho > kFloatBand)) {
             // p below: the true segment crosses, and must do so steeply enough to matter.
             if (!(hp < -1e-12)) return kAny;
             const double inPlane =
@@ -201,23 +236,24 @@ void buildNearFields(const Accel& accel, SurfaceBuffer& sb) {
         f.pixelsShrunk += row.shrunk;
     }
     f.tileSineBound.assign(sb.slotCount() / 16, -std::numeric_limits<float>::infinity());
-    for (size_t s = 0; s < f.sineBound.size(); ++s)
+    for (size_t s = 0; s < f.sineBound.size(); ++s) {
         f.tileSineBound[s / 16] = std::max(f.tileSineBound[s / 16], f.sineBound[s]);
+        f.pixelsUnbounded += std::isinf(f.sineBound[s]) && f.sineBound[s] > 0.0f;
+    }
+    for (float b : f.tileSineBound) f.tilesUnbounded += std::isinf(b) && b > 0.0f;
 }
 
 void appendRelevant(const NearFields& fields, uint32_t first, uint32_t last,
-                    const NearTarget& target, std::vector<uint32_t>& ids,
+                    const NearTarget& target, const glm::dvec3& origin, std::vector<uint32_t>& ids,
                     std::vector<NearTriangle>& triangles) {
+    const double reach = kReach * (1.0 + 1e-6) + 1e-15;
+    constexpr double kFloatBand = (kReach - kLsOriginOffset) * (1.0 + 1e-6);
     for (uint32_t i = first; i < last; ++i) {
         const NearTriangle& t = fields.triangles[i];
-        // Segments to the light's points: none reaches T's plane where the whole light lies on
-        // p's side of it, with p beyond the offset.
-        bool relevant = !(std::fabs(t.side) > kReach);
-        for (int k = 0; k < target.count && !relevant; ++k)
-            relevant = !(t.side * glm::dot(t.n, target.points[k] - t.a) > 0.0);
-        if (!relevant) continue;
-        ids.push_back(fields.ids[i]);
-        triangles.push_back(t);
+        if (!nearRuledOut(t, target, origin, reach, kFloatBand)) {
+            ids.push_back(fields.ids[i]);
+            triangles.push_back(t);
+        }
     }
 }
 
@@ -242,13 +278,18 @@ double nearFirstHit(const NearTriangle* triangles, size_t n, const glm::dvec3& d
     double best = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < n; ++i) {
         const NearTriangle& t = triangles[i];
-        // A segment starting clearly off T's plane and heading away from it, or reaching it only
-        // beyond its end, crosses T nowhere: most near triangles, ruled out before the exact
-        // test. side and along carry rounding far under the margins (|p|, |n|, |dir| ~ 1).
+        // A segment heading away from T's plane, or reaching it only beyond its end, crosses T
+        // nowhere: most near triangles, ruled out before the exact test. side and along carry
+        // rounding far under the margins (|p|, |n|, |dir| ~ 1). Where p lies on the plane to
+        // within that rounding (a pixel on a shared edge), whether it starts above or below is
+        // the rounding's, and so is either answer; the sign computed here decides.
         const double along = glm::dot(t.n, dir);
+        // Meeting the plane within kNearContact of p: T touches the receiver at its point.
+        if (std::fabs(t.side) <= kNearContact * std::fabs(along)) continue;
         const double reach = std::min(tMax, best) * std::fabs(along) * (1.0 + 1e-9) + 1e-12;
+        if (t.side * along > 0.0 || (t.side == 0.0 && along != 0.0)) continue;
         if (std::fabs(t.side) > 1e-12) {
-            if (t.side * along >= 0.0 || std::fabs(t.side) > reach) continue;
+            if (along == 0.0 || std::fabs(t.side) > reach) continue;
             // It crosses the plane at x: outside an edge's line by far more than x's rounding
             // (its coordinates are ~1), it crosses T nowhere (the neighbour across a ridge).
             if (clearlyOutside(t, t.p - (t.side / along) * dir)) continue;

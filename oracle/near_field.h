@@ -59,6 +59,8 @@ struct NearFields {
     std::vector<float> tileSineBound;  // per 4 x 4 tile: the largest of its slots' sineBound
     uint64_t pixels = 0;               // slots with a non-empty near field
     uint64_t pixelsShrunk = 0;  // slots whose ball shrank to hold at most 64 (the benches print it)
+    uint64_t pixelsUnbounded = 0;  // slots whose sineBound is +inf: every hard-light lane decides
+    uint64_t tilesUnbounded = 0;   // tiles with such a slot
 
     bool built() const { return !begin.empty(); }
     // Slots [first, last): the range of their near fields.
@@ -90,7 +92,9 @@ float nearTnear(double radius);
 // most that far from p's projection p', so X is at least inPlane - |side| / s from T (inPlane: p'
 // to T); the moved segment differs from the true one only within kReach (1 + 1 / s) of X, so T
 // matters only where s <= (|side| + kReach) / (inPlane - kReach), and every segment with
-// m0 . dir above |n - m0| plus that is ruled out. The bound returned is the largest over the
+// m0 . dir above |n - m0| plus that is ruled out; where p lies on the plane to within 1e-12 (and
+// the origin above), a segment at a sine over 1e-3 meets it within kNearContact, and every one
+// with m0 . dir above |n - m0| + 1e-3 is ruled out. The bound returned is the largest over the
 // triangles: a lane whose true m0 . dir exceeds it needs none of them, and Embree's answer
 // stands. +inf where some triangle may matter at any direction; -inf for an empty field.
 // origin: the slot's ray origin (SurfaceBuffer::lsRayOrigin).
@@ -112,15 +116,24 @@ struct NearTarget {
 };
 
 // The triangles of [first, last) (one slot's) that a segment from the slot's point p to a point
-// of the target can reach: a triangle whose plane lies more than the offset from p, with the
-// whole target on p's side of it, is crossed by neither the true segment nor the moved one, and
-// Embree's answer for it stands. Appended to ids and triangles (a pixel's list).
+// of the target can reach: where the whole target lies on p's side of T's plane, neither the true
+// segment nor the moved one (from `origin`, the slot's ray origin) crosses T, if the origin lies
+// on that side too beyond Embree's rounding; where the whole target lies across, every segment
+// crosses the plane, at a sine that the target's corners bound from below, and above T's minSine
+// (nearSineBound) too far from T to matter. Those are Embree's to decide; the rest are appended
+// to ids and triangles (a pixel's list).
 void appendRelevant(const NearFields& fields, uint32_t first, uint32_t last,
-                    const NearTarget& target, std::vector<uint32_t>& ids,
+                    const NearTarget& target, const glm::dvec3& origin, std::vector<uint32_t>& ids,
                     std::vector<NearTriangle>& triangles);
 
-// The first crossing of p + t dir, t in (0, tMax), with the n triangles of one slot's list (p:
-// their point), or +inf.
+// A segment meeting a triangle's plane within this many local units of p meets it where it
+// touches the receiver at p itself (a pixel on an edge the two share, or contact): no occluder,
+// as the exact test's t > 0 already says of a meeting at p, and 300 times under the offset the
+// oracle's blind distance already admits (docs/oracle.md).
+inline constexpr double kNearContact = 1e-9;
+
+// The first crossing of p + t dir, t in (kNearContact, tMax) (see there), with the n triangles of
+// one slot's list (p: their point), or +inf.
 double nearFirstHit(const NearTriangle* triangles, size_t n, const glm::dvec3& dir, double tMax);
 
 }  // namespace so

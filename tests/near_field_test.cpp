@@ -3,7 +3,8 @@
 // never rule out a triangle that a segment can reach. Checked here against the criterion itself,
 // written out again from docs/oracle.md ("The near field"): a segment crossing T's plane matters
 // where its crossing comes within kReach (1 + 1 / sine) of T; one that does not cross matters
-// unless p and the ray's origin both lie above the plane, the origin beyond Embree's rounding.
+// unless p and the ray's origin both lie above the plane, the origin beyond Embree's rounding; a
+// meeting within kNearContact of p is contact at the receiver's own point, no occluder.
 // On creased height fields (ridges and valleys at random angles, steep and shallow), at points
 // next to edges and vertices, in directions from straight up to a hair above the horizon.
 #include <algorithm>
@@ -52,7 +53,8 @@ bool reaches(const NearTriangle& t, const glm::dvec3& origin, const glm::dvec3& 
              const glm::dvec3& dir) {
     const double kReach = kLsOriginOffset + 4.0 / 16777216.0;
     const double along = glm::dot(t.n, dir);
-    if (t.side * along < 0.0) {  // crosses the plane
+    if (std::fabs(t.side) <= kNearContact * std::fabs(along)) return false;  // contact at p
+    if (t.side * along < 0.0) {                                              // crosses the plane
         const glm::dvec3 x = t.p - (t.side / along) * dir;
         return exact::pointTriangle(x, t.a, t.b, t.c) <= kReach * (1.0 + 1.0 / std::fabs(along));
     }
@@ -118,6 +120,85 @@ TEST(NearField, SineBoundNeverRulesOutATriangleASegmentReaches) {
     EXPECT_GT(slots, 3000u);
     EXPECT_GT(bounded, slots / 2);
     EXPECT_GT(checked, 50000u);
+}
+
+// The criterion for the segment from p to the light's point q.
+bool reachesPoint(const NearTriangle& t, const glm::dvec3& origin, const glm::dvec3& q) {
+    const double kReach = kLsOriginOffset + 4.0 / 16777216.0;
+    const glm::dvec3 d = q - t.p;
+    const double along = glm::dot(t.n, d);
+    if (std::fabs(t.side) <= kNearContact * std::fabs(along) / glm::length(d)) return false;
+    if (t.side * along < 0.0 && std::fabs(t.side) < std::fabs(along)) {  // crosses before q
+        const glm::dvec3 x = t.p - (t.side / along) * d;
+        return exact::pointTriangle(x, t.a, t.b, t.c) <=
+               kReach * (1.0 + glm::length(d) / std::fabs(along));
+    }
+    const double ho = glm::dot(t.n, origin - t.a);
+    return !(ho * t.side > 0.0 && std::fabs(ho) > kReach - kLsOriginOffset);
+}
+
+// The same for an area light's pixel (appendRelevant): rect lights anywhere over the field, from
+// high above to cut by the surface's plane, and every triangle the test leaves to Embree checked
+// against segments to 64 points of the light.
+TEST(NearField, AreaRelevanceNeverDropsATriangleASegmentReaches) {
+    EmbreeDevice device("threads=1");
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    uint64_t kept = 0, dropped = 0, checked = 0;
+    for (uint32_t seed = 1; seed <= 3; ++seed) {
+        const Scene scene = creasedField(seed, 0.08 / std::pow(8.0, double(seed - 1)));
+        const Accel accel(scene, device);
+        const unsigned triangles = unsigned(scene.meshes[0].triangleCount());
+        for (int sample = 0; sample < 1500; ++sample) {
+            const unsigned prim = unsigned(unit(rng) * triangles) % triangles;
+            glm::dvec3 a, b, c;
+            accel.triangle(0, prim, a, b, c);
+            double u = 1e-4 * unit(rng), v = unit(rng) * (1.0 - u);
+            if (sample % 2) std::swap(u, v);
+            const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
+            glm::dvec3 m0 = glm::normalize(glm::cross(b - a, c - a));
+            if (m0.y < 0.0) m0 = -m0;
+            NearFields f;
+            f.begin = {0};
+            appendNearField(accel, p, 0, prim, f.ids, f.triangles);
+            f.begin.push_back(uint32_t(f.ids.size()));
+            if (f.ids.empty()) continue;
+            // A rect light: its centre up to 2 units away at elevations from -5 to 90 degrees.
+            const double elevation = (-5.0 + 95.0 * unit(rng) * unit(rng)) * 3.14159265 / 180.0;
+            const double azimuth = 6.283185307 * unit(rng), range = 0.05 + 2.0 * unit(rng);
+            const glm::dvec3 centre =
+                p + range * glm::dvec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+                                       std::cos(elevation) * std::sin(azimuth));
+            const glm::dvec3 eu = (0.02 + 0.3 * unit(rng)) * glm::dvec3(1, 0, 0),
+                             ev = (0.02 + 0.3 * unit(rng)) * glm::dvec3(0, 0.3, 1);
+            NearTarget target;
+            target.count = 4;
+            for (int k = 0; k < 4; ++k)
+                target.points[k] = centre + (k & 1 ? eu : -eu) + (k & 2 ? ev : -ev);
+            const glm::dvec3 origin(errorBoundOrigin(p, m0));
+            std::vector<uint32_t> ids;
+            std::vector<NearTriangle> relevant;
+            appendRelevant(f, 0, f.begin[1], target, origin, ids, relevant);
+            kept += relevant.size();
+            for (size_t i = 0; i < f.triangles.size(); ++i) {
+                if (std::find(ids.begin(), ids.end(), f.ids[i]) != ids.end()) continue;
+                ++dropped;
+                for (int k = 0; k < 64; ++k) {
+                    const glm::dvec3 q =
+                        centre + (2.0 * unit(rng) - 1.0) * eu + (2.0 * unit(rng) - 1.0) * ev;
+                    ++checked;
+                    EXPECT_FALSE(reachesPoint(f.triangles[i], origin, q))
+                        << "seed " << seed << " triangle " << prim;
+                }
+            }
+        }
+    }
+    std::printf(
+        "[ near ] area lights: %llu near triangles kept, %llu left to Embree, %llu "
+        "segments checked\n",
+        (unsigned long long)kept, (unsigned long long)dropped, (unsigned long long)checked);
+    EXPECT_GT(dropped, 1000u);
+    EXPECT_GT(kept, 100u);
 }
 
 }  // namespace
