@@ -108,6 +108,12 @@ class LightShadows {
     Integrals integrals(const std::vector<glm::dvec3>& region) const;
     // V of base itself, as rectLightVisibility gives it.
     double baseV() const;
+    // The visible part of base above the horizon, for regions that are not polygons (a disk's,
+    // disk_exact.h): base+ minus the shadows, as Clipper paths in frame()'s integers (outer
+    // boundaries counter-clockwise, holes clockwise; none where the shadows cover it). Exact
+    // status only.
+    ClipperLib::Paths visiblePaths() const;
+    const LightPlaneFrame& frame() const { return frame_; }
 
   private:
     LightPlaneFrame frame_;
@@ -127,5 +133,8 @@ class LightShadows {
 // polygon's winding (the two windings give opposite signs), so that holes subtract.
 double cosineWeightedSolidAngle(const glm::dvec3& p, const glm::dvec3& n,
                                 const std::vector<glm::dvec3>& vertices);
+// One edge's term of that sum: (1/2) int n . (r x dr) / |r|^2 along the segment from p + a to
+// p + b (a, b relative to p), so that curved boundaries can be added to it (disk_exact.h).
+double lambertEdge(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& n);
 
 }  // namespace so
