@@ -16,7 +16,8 @@
 //
 // LightShadows splits the two steps, so that several light regions of one plane (a disk's
 // inscribed and circumscribed polygons, disk_bounds.h) are integrated against one gathering of
-// the occluders.
+// the occluders, or the visible part of the gathering polygon is handed to a region that is not a
+// polygon (a disk's circle, disk_exact.h).
 #pragma once
 
 #include <cstdint>

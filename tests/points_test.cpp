@@ -227,7 +227,10 @@ TEST(Points, SnappedHardLightsAgreeButForAFewEdgePixels) {
 TEST(Points, SnappedAreaLightsWithinTheirIntervals) {
     for (const char* name : {"penumbra_square", "sphere_light", "alpha_grate"}) {
         const Scene scene = shippedScene(name);
-        const OracleOptions o = smallOptions();
+        OracleOptions o = smallOptions();
+        // The sphere's auto choice differs between the two runs (GivesThePlainTraceBitForBit):
+        // its sampled pass is the one compared.
+        if (std::string(name) == "sphere_light") o.penumbra.method = PenumbraMethod::Sampled;
         const PlainRun plain = plainRun(scene, o, false);
         const OracleResult pts = runOracleAtPoints(scene, plain.gbuffer, pointsOptions(o));
         EXPECT_EQ(pts.points->offSurface, 0u) << name;
