@@ -29,7 +29,7 @@ constexpr double kOctagonScale = 1.0 + 1.0 / 1048576.0;  // 1 + 2^-20
 constexpr double kFrameHalfSide = 1.25;
 // Arcs are cut to at most this before the adaptive rule, and halved where the two rules differ by
 // more than kArcTolerance of the scale, at most kMaxArcDepth times.
-constexpr double kMaxArc = kPi / 4.0;
+constexpr double kMaxArc = kPi / 2.0;
 constexpr double kArcTolerance = 1e-14;
 constexpr int kMaxArcDepth = 24;
 // The rounding allowance: ulps of the sum of the terms' magnitudes.

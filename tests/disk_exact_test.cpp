@@ -186,6 +186,7 @@ TEST(DiskExact, RandomOccludersInsideTheManySidedInterval) {
     EXPECT_GE(c.points, 100);
     EXPECT_GE(c.partial, 40);
     EXPECT_GE(c.cut, 5);
+    EXPECT_GE(c.cutPartial, 5);
 }
 
 TEST(DiskExact, SphereLightRandomOccludersInsideTheManySidedInterval) {
@@ -211,6 +212,7 @@ TEST(DiskExact, SphereLightRandomOccludersInsideTheManySidedInterval) {
         c.worstOutside);
     EXPECT_GE(c.points, 100);
     EXPECT_GE(c.partial, 40);
+    EXPECT_GE(c.cutPartial, 3);
 }
 
 // A square under the disk (y = 3): from points under it its shadow lies inside the disk, and
