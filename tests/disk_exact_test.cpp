@@ -2,7 +2,8 @@
 // the closed form and against 16,384-sided polygons (horizon-cut disks included), V inside the
 // polygons' interval (disk_bounds.h, the independent check) for random occluders under disk and
 // sphere lights, a square's shadow inside the disk against its closed form, and a disk half
-// covered by an edge through its centre (V = 1/2 by symmetry).
+// covered by an edge through its centre (V = 1/2 by symmetry), and a sphere light through the
+// oracle's pass at 1 and 2 threads.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,9 +14,12 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "core/scene.h"
 #include "exact_penumbra_util.h"
 #include "oracle/disk_bounds.h"
 #include "oracle/disk_exact.h"
+#include "oracle/exact_penumbra.h"
+#include "oracle/oracle.h"
 #include "oracle/small_polygon.h"
 
 namespace so::test {
@@ -266,6 +270,37 @@ TEST(DiskExact, EdgeThroughTheCentreHidesHalf) {
         std::printf("[ disk exact ] half covered (n.z %.2f): V - 1/2 = %.3g, stated error %.3g\n",
                     n.z, v.counts.V - 0.5, v.error);
     }
+}
+
+// The pass in the oracle (exact_penumbra.cpp) with a sphere light in the closed-form scene's
+// place, at 1 and 2 threads: the same V, bound and exact planes, bit for bit (nothing is shared
+// between points). The disk's is ExactDiskSphere.SameImageAtAnyThreadCount.
+TEST(DiskExact, SphereSameImageAtAnyThreadCount) {
+    PenumbraScene s = makePenumbraScene(64, 48);
+    Light& l = s.scene.lights[0];
+    l.type = LightType::Sphere;
+    l.radius = 0.75;
+    l.wsU = l.wsV = dvec3(0.0);
+    finalizeScene(s.scene);
+    std::vector<std::vector<float>> images;
+    for (int threads : {1, 2}) {
+        OracleOptions o;
+        o.threads = threads;
+        o.penumbra.method = PenumbraMethod::Exact;
+        const OracleResult r = runOracle(s.scene, o);
+        std::vector<float> planes;
+        for (const char* name : {"panel.V", "panel.bound", "panel.exact"}) {
+            const float* v = r.image.channel(name);
+            planes.insert(planes.end(), v, v + r.image.pixelCount());
+        }
+        images.push_back(planes);
+        const ExactPenumbraStats& e = *r.stats.lights[0].area->exact;
+        EXPECT_GT(e.pixelsExact, 1000u);
+        EXPECT_GT(e.boundSidesTotal, 0u);  // contours were integrated
+        EXPECT_LE(e.boundHalfWidthMax, 1e-7);
+        EXPECT_EQ(e.boundTargetMissed, 0u);
+    }
+    EXPECT_EQ(images[0], images[1]);
 }
 
 }  // namespace
