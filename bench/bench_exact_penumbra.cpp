@@ -17,14 +17,17 @@
 //
 //   bench_exact_penumbra [--size N] [--max-k K] [--bunny-size W] [--tightest T]
 //   bench_exact_penumbra --exact-only N [--bunny-size W]   (the bunny's exact run alone, N times)
+//   bench_exact_penumbra --light-kinds N [--repeats R]   (rect, disk and sphere on one geometry)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/geometric.hpp>
 
 #include "bunny_scene.h"
 #include "core/channels.h"
@@ -312,6 +315,62 @@ int exactOnlyRuns(int width, int runs) {
     return 0;
 }
 
+// Issue 55: the exact pass's cost per penumbra pixel by light type on one geometry. The shipped
+// penumbra_square (a square occluder over a floor) at size x size under its rect light, then
+// under a disk of the same area in the rect's place (emitting down) and a sphere of that radius
+// at its centre. The exact pass finds its own pixels (--penumbra exact), one thread; its seconds
+// (the shadow phase only), the best of `repeats`, per penumbra pixel (exact pixels with
+// 0 < V < 1), and each type's ratio to the rect's; for disk and sphere the stated errors too.
+int lightKinds(int size, int repeats) {
+    Scene base = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");
+    base.camera.width = base.camera.height = size;
+    const Light rect = base.lights[0];
+    const double area = glm::length(rect.wsU) * glm::length(rect.wsV);
+    std::printf(
+        "light kinds: penumbra_square at %dx%d, one thread, the exact pass's seconds (best of %d)\n"
+        "%8s %10s %10s %10s %12s %8s %12s %12s\n",
+        size, size, repeats, "light", "exact px", "penumbra", "pass s", "us/penumbra", "x rect",
+        "error mean", "error max");
+    double rectPerPixel = 0.0;
+    for (LightType type : {LightType::Rect, LightType::Disk, LightType::Sphere}) {
+        Scene scene = base;
+        Light& l = scene.lights[0];
+        if (type != LightType::Rect) {
+            l.type = type;
+            l.radius = std::sqrt(area / std::numbers::pi);
+            l.wsNormal = {0, -1, 0};
+            l.wsU = l.wsV = glm::dvec3(0.0);
+            finalizeScene(scene);
+        }
+        double best = 1e30;
+        uint64_t exactPixels = 0, penumbra = 0;
+        double errorMean = 0.0, errorMax = 0.0;
+        for (int k = 0; k < repeats; ++k) {
+            OracleOptions o;
+            o.threads = 1;
+            o.penumbra.method = PenumbraMethod::Exact;
+            const OracleResult r = runOracle(scene, o);
+            const ExactPenumbraStats& e = *r.stats.lights[0].area->exact;
+            best = std::min(best, e.seconds);
+            exactPixels = e.pixelsExact;
+            const float* V = r.image.channel(l.name + ".V");
+            const float* mask = r.image.channel(l.name + "." + channels::kExact);
+            penumbra = 0;
+            for (size_t i = 0; i < r.image.pixelCount(); ++i)
+                penumbra += mask[i] == 1.0f && V[i] > 0.0f && V[i] < 1.0f;
+            errorMean = e.boundHalfWidthSum / double(std::max<uint64_t>(e.pixelsExact, 1));
+            errorMax = e.boundHalfWidthMax;
+        }
+        const double perPixel = best / double(std::max<uint64_t>(penumbra, 1));
+        if (type == LightType::Rect) rectPerPixel = perPixel;
+        std::printf("%8s %10llu %10llu %10.4f %12.2f %8.2f %12.3g %12.3g\n", lightTypeName(type),
+                    (unsigned long long)exactPixels, (unsigned long long)penumbra, best,
+                    1e6 * perPixel, perPixel / rectPerPixel, errorMean, errorMax);
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -328,8 +387,16 @@ int main(int argc, char** argv) {
     app.add_option("--exact-only", exactOnly,
                    "run only the bunny's exact pass this many times (for a profiler), nothing else")
         ->check(CLI::Range(1, 1000));
+    int kindsSize = 0, kindsRepeats = 3;
+    app.add_option("--light-kinds", kindsSize,
+                   "only the exact pass's cost per penumbra pixel of rect, disk and sphere lights "
+                   "on penumbra_square at this side (issue 55), nothing else")
+        ->check(CLI::Range(16, 1024));
+    app.add_option("--repeats", kindsRepeats, "--light-kinds: runs per light, the best kept")
+        ->check(CLI::Range(1, 100));
     CLI11_PARSE(app, argc, argv);
     if (exactOnly > 0) return exactOnlyRuns(bunnyWidth, exactOnly);
+    if (kindsSize > 0) return lightKinds(kindsSize, kindsRepeats);
     growth(size, maxK);
 
     Scene square = loadScene(SO_SCENES_DIR "/penumbra_square.scene.json");

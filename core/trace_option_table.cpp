@@ -110,14 +110,14 @@ std::vector<TraceOptionSpec> makeTable() {
         "penumbra", "auto", {"sampled", "exact", "both", "auto"}, kAll,
         "auto (per light, exact or sampled, whichever a probe estimates cheaper), sampled (RQMC "
         "with 95% intervals), exact (rect and polygon lights: clipped polygons on every pixel, "
-        "stderr 0 there; disk and sphere lights: V in a guaranteed interval, NAME.bound) or both "
+        "stderr 0 there; disk and sphere lights: with a stated error, NAME.bound) or both "
         "(V sampled, V_exact beside it)",
         "area lights with the `penumbra` effect: `auto` (per light, `exact` or `sampled`, "
         "whichever a probe of one pixel in 64 estimates cheaper at the requested target, exact "
         "unless its estimate is over 1.5 times sampling's; oracle.json's `penumbra_choice` says "
         "which and why), `sampled` (RQMC with 95% intervals), `exact` (every pixel without "
         "sampling, stderr 0, `NAME.exact` 1: rect and polygon lights exact by clipping, disk and "
-        "sphere lights the midpoint of a guaranteed interval whose half-width is `NAME.bound`; the "
+        "sphere lights by clipping and integrating arcs, their stated error in `NAME.bound`; the "
         "exact pass finds its own pixels and no sampled pass runs except on the pixels it cannot "
         "answer, too many occluders or an alpha-tested triangle in the pyramid) or `both` (V stays "
         "sampled; `NAME.V_exact` beside it and their disagreement in oracle.json); "
@@ -129,20 +129,20 @@ std::vector<TraceOptionSpec> makeTable() {
                        "`all` (every sampled pixel: a small occluder no sample met is found too). "
                        "`exact` needs no choice: it computes every pixel"));
     t.push_back(real("bound_target", 1e-6, 1e-7, 0.5, kAll,
-                     "disk and sphere lights with --penumbra exact, both or auto: the half-width "
-                     "of V's guaranteed interval to reach",
+                     "disk and sphere lights with --penumbra exact, both or auto: the stated "
+                     "error above which a pixel counts as missing its target",
                      "disk and sphere lights with `--penumbra exact`, `both` or `auto` (where it "
-                     "chose exact): the half-width of V's guaranteed interval each pixel's "
-                     "polygons are refined to "
-                     "([oracle.md](oracle.md#disk-and-sphere-lights-bounded))"));
+                     "chose exact): a pixel whose stated error (`NAME.bound`, about 1e-8) is above "
+                     "it counts in `exact_penumbra.bound.pixels_target_missed` "
+                     "([oracle.md](oracle.md#disk-and-sphere-lights))"));
     // The range is oracle/disk_bounds.h's (DiskBoundOptions::minSides, kMaxDiskSides), which
     // TraceOptionTable.* holds to this.
     t.push_back(integer("bound_max_sides", 4096, 32, 16384, kAll,
-                        "the most sides of the polygons bounding a disk, a power of two in [32, "
-                        "16384]; a pixel stopped by it states the half-width it reached",
-                        "the most sides of the polygons that bound a disk; a pixel it stops "
-                        "states the half-width it reached (`NAME.bound`, "
-                        "`exact_penumbra.bound.pixels_target_missed`)"));
+                        "the most sides of the polygons bounding a disk (the independent check, "
+                        "not the exact pass), a power of two in [32, 16384]",
+                        "the most sides of the polygons that bound a disk "
+                        "(`oracle/disk_bounds.h`: the exact pass's independent check in the "
+                        "tests; the exact pass itself does not use it)"));
     t.back().powerOfTwo = true;
     return t;
 }

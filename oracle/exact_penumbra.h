@@ -1,6 +1,6 @@
 // The exact penumbra pass (docs/oracle.md, "Exact penumbrae"): V without sampling, exact for
-// rect lights (polygon_visibility.h), in a guaranteed interval of a requested half-width for disk
-// and sphere lights (disk_bounds.h), where the sampled pass gives a statistical one. With
+// rect lights (polygon_visibility.h), with a stated error (about 1e-8) for disk and sphere lights
+// (disk_exact.h), where the sampled pass gives a statistical one. With
 // `--penumbra exact` the pass finds its own pixels: every pixel the camera hit, before any
 // sampling (a pixel whose pyramid holds no occluder is lit without a union, one whose shadows
 // cover the light is dark as soon as they do); the sampled pass then runs only on the pixels the
@@ -31,7 +31,7 @@ class Progress;
 enum class PenumbraMethod : uint8_t {
     Sampled,  // RQMC with 95% intervals (area_shadow.h)
     Exact,    // the exact pass gives V on every pixel it applies to (stderr 0 there; disk and
-              // sphere lights: V the bound's midpoint, its half-width in NAME.bound)
+              // sphere lights: V with its stated error in NAME.bound)
     Both,     // V stays sampled; V_exact beside it, and their disagreement in oracle.json
     Auto,  // per light, Exact or Sampled, whichever a probe estimates cheaper (penumbra_choice.h)
 };
@@ -60,7 +60,8 @@ struct ExactPenumbraOptions {
     // Triangles the pyramid from a point to the light may hold before the pixel keeps its
     // sampled V (the pass's work per pixel grows with them).
     uint32_t maxOccluders = 100000;
-    // Disk and sphere lights: the half-width to reach, and the polygons' sides that may be spent.
+    // Disk and sphere lights: the stated error beyond which a pixel counts as missing the target
+    // (disk_exact.h); maxSides is the polygons' bound's (disk_bounds.h, the independent check).
     DiskBoundOptions bound;
 };
 
@@ -70,7 +71,8 @@ DiskBoundOptions checkedBoundOptions(const DiskBoundOptions& options, const std:
                                      const std::string& field);
 
 // What a light's exact pixels state as their error (oracle.json's `error_kind`): "exact" (rect
-// lights: none beyond rounding) or "bound" (disk and sphere lights: V +- NAME.bound, guaranteed).
+// lights: none beyond rounding) or "bound" (disk and sphere lights: V +- NAME.bound, the stated
+// error).
 const char* exactErrorKind(LightType type);
 
 // Occluder counts in powers of two: bucket 0 holds 0, bucket k holds [2^(k-1), 2^k). Bands of a
@@ -101,8 +103,9 @@ struct ExactPenumbraStats {
     // largest and summed |V_exact - V|.
     uint64_t outsideInterval = 0;
     double maxAbsDifference = 0.0, sumAbsDifference = 0.0;
-    // errorKind "bound": the exact pixels' half-widths, the polygons' sides of their last bounds,
-    // and the pixels where the sides' cap stopped the doubling before the target.
+    // errorKind "bound": the exact pixels' stated errors (disk_exact.h), the gathering polygon's
+    // sides where the contour was integrated (0 where a shortcut answered), and the pixels whose
+    // stated error is above --bound-target.
     double boundHalfWidthMax = 0.0, boundHalfWidthSum = 0.0;
     uint64_t boundSidesMax = 0, boundSidesTotal = 0, boundTargetMissed = 0;
     double seconds = 0.0;
@@ -119,7 +122,8 @@ struct PenumbraChoice {
     // The probe: its points that the camera hit, the shadow rays the sampled pass traced on them
     // to the target, and the exact pass's pyramids' triangles (candidates the BVH query returned,
     // and occluders whose shadows reached the union) and its points it could not answer; disk and
-    // sphere lights: the sides of the last polygons the points' bounds integrated (else 0).
+    // sphere lights: the gathering polygon's sides summed over the points whose contour was
+    // integrated (disk_exact.h; else 0).
     uint64_t probePoints = 0, probeRays = 0, probeCandidates = 0, probeOccluders = 0,
              probeKeptSampled = 0, probeBoundSides = 0;
     // The estimates for this image (or band): the probe's counts in processor seconds, scaled by

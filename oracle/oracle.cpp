@@ -281,6 +281,8 @@ LightVerification verifyLight(const LightPass& p, const Verifier& verifier, uint
     // it compares the exact V (stderr 0) with its own independent estimate.
     std::vector<float> sppMeasured;
     const std::string exactName = ch::lightChannel(light.name, ch::kExact);
+    // With bound: the exact pixels are checked against the polygons' bound as well (verify.h).
+    const float* exact = bound && p.image.has(exactName) ? p.image.channel(exactName) : nullptr;
     if (sampled && p.image.has(exactName)) {
         const float* mask = p.image.channel(exactName);
         sppMeasured.assign(spp, spp + p.pixels);
@@ -289,8 +291,9 @@ LightVerification verifyLight(const LightPass& p, const Verifier& verifier, uint
         spp = sppMeasured.data();
     }
     LightVerification out;
-    p.arena.execute(
-        [&] { out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp, bound); });
+    p.arena.execute([&] {
+        out = verifier.verifyLight(light, li, sampled, p.sb, V, stderr_, spp, bound, exact);
+    });
     return out;
 }
 

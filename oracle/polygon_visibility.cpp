@@ -56,16 +56,18 @@ double cosineWeightedSolidAngle(const dvec3& p, const dvec3& n,
                                 const std::vector<dvec3>& vertices) {
     double sum = 0.0;
     const size_t count = vertices.size();
-    for (size_t i = 0; i < count; ++i) {
-        const dvec3 a = glm::normalize(vertices[i] - p);
-        const dvec3 b = glm::normalize(vertices[(i + 1) % count] - p);
-        const dvec3 c = glm::cross(a, b);
-        const double sinAngle = glm::length(c);
-        if (!(sinAngle > 0.0)) continue;  // a zero-length edge, or one pointing at p
-        // atan2, not acos: acos loses digits where the edge subtends a small angle.
-        sum += std::atan2(sinAngle, glm::dot(a, b)) * glm::dot(n, c) / sinAngle;
-    }
-    return 0.5 * sum;
+    for (size_t i = 0; i < count; ++i)
+        sum += lambertEdge(vertices[i] - p, vertices[(i + 1) % count] - p, n);
+    return sum;
+}
+
+double lambertEdge(const dvec3& a, const dvec3& b, const dvec3& n) {
+    const dvec3 ua = glm::normalize(a), ub = glm::normalize(b);
+    const dvec3 c = glm::cross(ua, ub);
+    const double sinAngle = glm::length(c);
+    if (!(sinAngle > 0.0)) return 0.0;  // a zero-length edge, or one pointing at p
+    // atan2, not acos: acos loses digits where the edge subtends a small angle.
+    return 0.5 * (std::atan2(sinAngle, glm::dot(ua, ub)) * glm::dot(n, c) / sinAngle);
 }
 
 PolygonLightShape polygonOf(const RectLightShape& rect) {
@@ -137,6 +139,13 @@ double LightShadows::baseV() const {
     if (shadows_.empty()) return 1.0;
     const double seen = visibleSolidAngle(frame_, p_, n_, litPath_, shadows_);
     return std::clamp(seen / litWhole_, 0.0, 1.0);
+}
+
+ClipperLib::Paths LightShadows::visiblePaths() const {
+    SO_CHECK(result_.status == PolygonVisibilityStatus::Exact);
+    if (result_.shortcut == VisibilityShortcut::Covered) return {};
+    if (shadows_.empty()) return {litPath_};
+    return lightMinusShadows(litPath_, shadows_);
 }
 
 LightShadows::Integrals LightShadows::integrals(const std::vector<dvec3>& region) const {

@@ -16,7 +16,8 @@
 //
 // LightShadows splits the two steps, so that several light regions of one plane (a disk's
 // inscribed and circumscribed polygons, disk_bounds.h) are integrated against one gathering of
-// the occluders.
+// the occluders, or the visible part of the gathering polygon is handed to a region that is not a
+// polygon (a disk's circle, disk_exact.h).
 #pragma once
 
 #include <cstdint>
@@ -108,6 +109,12 @@ class LightShadows {
     Integrals integrals(const std::vector<glm::dvec3>& region) const;
     // V of base itself, as rectLightVisibility gives it.
     double baseV() const;
+    // The visible part of base above the horizon, for regions that are not polygons (a disk's,
+    // disk_exact.h): base+ minus the shadows, as Clipper paths in frame()'s integers (outer
+    // boundaries counter-clockwise, holes clockwise; none where the shadows cover it). Exact
+    // status only.
+    ClipperLib::Paths visiblePaths() const;
+    const LightPlaneFrame& frame() const { return frame_; }
 
   private:
     LightPlaneFrame frame_;
@@ -127,5 +134,8 @@ class LightShadows {
 // polygon's winding (the two windings give opposite signs), so that holes subtract.
 double cosineWeightedSolidAngle(const glm::dvec3& p, const glm::dvec3& n,
                                 const std::vector<glm::dvec3>& vertices);
+// One edge's term of that sum: (1/2) int n . (r x dr) / |r|^2 along the segment from p + a to
+// p + b (a, b relative to p), so that curved boundaries can be added to it (disk_exact.h).
+double lambertEdge(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& n);
 
 }  // namespace so

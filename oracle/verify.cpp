@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/lights/light_kind.h"
 #include "oracle/area_shadow.h"
+#include "oracle/disk_bounds.h"
 #include "oracle/offset.h"
 #include "oracle/reference_light.h"
 
@@ -327,10 +328,55 @@ Verifier::Verdict Verifier::areaPixel(const Light& light, uint32_t lightIndex, s
                : Verdict::Disagree;
 }
 
+// The polygons' bound (disk_bounds.h) as the verifier runs it: a modest target, and the sides
+// it may take (a pixel that stops first keeps the wider interval it reached: still sure).
+constexpr DiskBoundOptions kVerifyBound{1e-5, 32, 4096};
+constexpr uint32_t kVerifyBoundMaxOccluders = 100000;
+
+Verifier::Verdict Verifier::polygonBoundPixel(const Light& light, const SurfaceBuffer& sb,
+                                              size_t slot, float oracleV, float oracleBound,
+                                              VerifyDisagreement& d) const {
+    // The exact pass's own point and normal (exact_penumbra.cpp), not the re-traced ones: the
+    // two methods answer the same question.
+    const TriangleId id{sb.meshId[slot], sb.primId[slot]};
+    const glm::dvec3 p = exact_.point(id, sb.baryU[slot], sb.baryV[slot]);
+    const glm::dvec3 n = exact_.normal(id, glm::dvec3(sb.lsNormal(slot)));
+    const glm::dvec3 center = frame_.lsFromWs(light.wsPosition);
+    const double radius = frame_.lsLength(light.radius);
+    DiskLightShape disk;
+    if (light.type == LightType::Sphere) {
+        const glm::dvec3 w = center - p;
+        if (!(glm::dot(w, w) > radius * radius)) return Verdict::Agree;  // inside: no light
+        disk = sphereSilhouette(center, radius, p);
+    } else {
+        disk.center = center;
+        disk.radius = radius;
+        disk.emitNormal = light.wsEmitNormal();
+        diskAxes(disk.emitNormal, disk.e1, disk.e2);
+    }
+    const DiskVisibility b = diskLightVisibility(exact_.tracer(), disk, p, n, id,
+                                                 kVerifyBoundMaxOccluders, kVerifyBound);
+    if (b.counts.status == PolygonVisibilityStatus::TooManyOccluders ||
+        b.counts.status == PolygonVisibilityStatus::AlphaTested)
+        return Verdict::Agree;  // no answer to compare (the exact pass gave none there either)
+    const bool none = b.counts.status == PolygonVisibilityStatus::NoLight;
+    const double lower = none ? 0.0 : b.lower, upper = none ? 0.0 : b.upper;
+    // NAME.bound holds the stated error and V's rounding to float, rounded up.
+    if (double(oracleV) + double(oracleBound) >= lower &&
+        double(oracleV) - double(oracleBound) <= upper)
+        return Verdict::Agree;
+    d.kind = "area";
+    d.oracleV = oracleV;
+    d.oracleHalfWidth = oracleBound;
+    d.referenceV = 0.5 * (lower + upper);
+    d.referenceHalfWidth = 0.5 * (upper - lower);
+    return Verdict::Disagree;
+}
+
 LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
                                         const SurfaceBuffer& sb, const float* V,
-                                        const float* stderr_, const float* spp,
-                                        const float* bound) const {
+                                        const float* stderr_, const float* spp, const float* bound,
+                                        const float* exact) const {
     const auto t0 = Clock::now();
     LightVerification out;
     out.light = light.name;
@@ -363,6 +409,11 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
                 sampled ? areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel],
                                     spp[pixel], bound ? bound[pixel] : 0.0f, out.zThreshold, d)
                         : hardPixel(light, ref, V[pixel], d, alpha);
+            // An exact disk or sphere pixel: also against the polygons' bound.
+            if (verdicts[i] == Verdict::Agree && sampled && bound && exact &&
+                exact[pixel] == 1.0f &&
+                (light.type == LightType::Disk || light.type == LightType::Sphere))
+                verdicts[i] = polygonBoundPixel(light, sb, slot, V[pixel], bound[pixel], d);
         }
         alphaAmbiguous[i] = alpha && verdicts[i] == Verdict::Ambiguous;
     });

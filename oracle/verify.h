@@ -12,7 +12,9 @@
 //     combined standard error, z Bonferroni-corrected over the pixels checked (family-wise false
 //     alarm rate 1%); where the oracle's V is bounded (disk and sphere lights with --penumbra
 //     exact: NAME.bound), |V - V_ref| above the bound's half-width plus z times the reference's
-//     standard error.
+//     standard error. Such a pixel is also checked against the polygons' bound (disk_bounds.h, an
+//     independent method: inscribed and circumscribed polygons where the exact pass integrates
+//     the circle's arcs) at the oracle's own point: V +- NAME.bound must meet that interval.
 #pragma once
 
 #include <cstdint>
@@ -79,11 +81,14 @@ class Verifier {
     Verifier(const Scene& scene, const LocalFrame& frame, const Camera* camera,
              const VerifyOptions& options, uint32_t seed);
 
-    // V, stderr_ (nullable for hard lights), spp (nullable) and bound (nullable: NAME.bound, the
-    // half-widths of bounded pixels, 0 elsewhere) are the oracle's channels.
+    // V, stderr_ (nullable for hard lights), spp (nullable), bound (nullable: NAME.bound, the
+    // half-widths of bounded pixels, 0 elsewhere) and exact (nullable: NAME.exact, 1 where the
+    // exact pass gave V; with bound, those pixels are checked against the polygons' bound too)
+    // are the oracle's channels.
     LightVerification verifyLight(const Light& light, uint32_t lightIndex, bool sampled,
                                   const SurfaceBuffer& sb, const float* V, const float* stderr_,
-                                  const float* spp, const float* bound = nullptr) const;
+                                  const float* spp, const float* bound = nullptr,
+                                  const float* exact = nullptr) const;
     const ExactTracer& tracer() const { return exact_.tracer(); }
 
     // The tolerance of the hard-light test, in local units (where the scene's half-extent is in
@@ -109,6 +114,9 @@ class Verifier {
     Verdict areaPixel(const Light& light, uint32_t lightIndex, size_t pixel, const PixelRef& ref,
                       float oracleV, float oracleStderr, float oracleSpp, float oracleBound,
                       double z, VerifyDisagreement& d) const;
+    // A disk or sphere light's exact pixel against the polygons' bound at the exact pass's point.
+    Verdict polygonBoundPixel(const Light& light, const SurfaceBuffer& sb, size_t slot,
+                              float oracleV, float oracleBound, VerifyDisagreement& d) const;
 
     ExactScene exact_;
     LocalFrame frame_;

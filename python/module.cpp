@@ -366,7 +366,7 @@ void bindTrace(py::module_& m) {
         py::arg("bound_max_sides") = kTrace.boundMaxSides,
         "The oracle (`shadow-oracle trace`): exact hard shadows; penumbrae by penumbra=\"auto\" "
         "(default: per light, exact where a probe estimates it cheaper than sampling), "
-        "\"exact\" (rect lights exactly, disk and sphere lights in a guaranteed interval), "
+        "\"exact\" (rect lights exactly, disk and sphere lights with a stated error), "
         "\"sampled\" (95% intervals) or \"both\". "
         "progress(stage, done, total) is called every 50 ms; return False to cancel.");
     m.def(

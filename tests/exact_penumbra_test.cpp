@@ -499,7 +499,8 @@ TEST(ExactPenumbra, AutoChoosesPerLightAndSaysWhy) {
         EXPECT_EQ(bulb.choice->reason.find("exact estimated at"), 0u) << bulb.choice->reason;
         EXPECT_GT(bulb.choice->probePoints, 50u);
         EXPECT_GT(bulb.choice->probeCandidates, 0u);
-        EXPECT_GT(bulb.choice->probeBoundSides, 0u);  // the bound's cost is in the estimate
+        // The gathering octagon's sides (disk_exact.h): the contour's cost is in the estimate.
+        EXPECT_GT(bulb.choice->probeBoundSides, 0u);
         EXPECT_EQ(window.choice->probeBoundSides, 0u);
         EXPECT_EQ(bulb.area->exact.has_value(), bulb.choice->chosen == PenumbraMethod::Exact);
         if (bulb.area->exact) {

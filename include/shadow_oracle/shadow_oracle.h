@@ -133,9 +133,9 @@ struct TraceOptions {
     // size, instead of the camera's pixels.
     std::string points;
     ProgressCallback progress;
-    // Disk and sphere lights with penumbra "exact", "both" or "auto": the half-width of V's
-    // guaranteed interval to reach, and the most sides (a power of two) of the polygons that
-    // bound the disk (`trace --bound-target`, `--bound-max-sides`).
+    // Disk and sphere lights with penumbra "exact", "both" or "auto": the stated error above which
+    // a pixel counts as missing its target, and the most sides (a power of two) of the polygons
+    // that bound the disk in the independent check (`trace --bound-target`, `--bound-max-sides`).
     double boundTarget = 1e-6;
     int boundMaxSides = 4096;
 };

@@ -23,11 +23,14 @@ struct AreaBatch;
 struct PixelTies;
 struct NearTarget;
 struct ExactPenumbraOptions;
-struct DiskVisibility;
+struct DiskExactVisibility;
+struct DiskBoundOptions;
 enum class AreaSkip : uint8_t;
 
 // The exact pass's answer at one point: V with its counts, and for a bounded light (disk,
-// sphere) the bound's half-width and the polygons' sides.
+// sphere) the stated error (disk_exact.h), the gathering polygon's sides where the shadows were
+// clipped against it (0 where a shortcut answered) and whether the error is within
+// --bound-target.
 struct ExactLightAnswer {
     PolygonVisibility result;
     double halfWidth = 0.0;
@@ -35,8 +38,8 @@ struct ExactLightAnswer {
     bool reachedTarget = true;
 };
 
-// A disk bound's result as an answer (disk.cpp; the sphere's is its silhouette disk's).
-ExactLightAnswer boundedAnswer(const DiskVisibility& d);
+// A disk's exact V as an answer (disk.cpp; the sphere's is its silhouette disk's).
+ExactLightAnswer diskAnswer(const DiskExactVisibility& d, const DiskBoundOptions& options);
 
 class AreaLightKind {
   public:

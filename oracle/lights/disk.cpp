@@ -1,6 +1,6 @@
 // The oracle's disk light (docs/oracle.md): sampled uniformly by area (Shirley-Chiu's concentric
 // map; where the horizon crosses it, each circle over its arc above the horizon); the exact pass
-// bounds it between its inscribed and circumscribed polygons (disk_bounds.h).
+// clips the shadows against its circle and integrates the arcs (disk_exact.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,6 +10,7 @@
 
 #include "oracle/area_light.h"
 #include "oracle/disk_bounds.h"
+#include "oracle/disk_exact.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/lights/area_light_kind.h"
 #include "oracle/lights/area_sampling.h"
@@ -131,19 +132,19 @@ class DiskAreaLightKind final : public AreaLightKind {
         disk.radius = light.dRadius;
         disk.emitNormal = light.dEmitNormal;
         diskAxes(disk.emitNormal, disk.e1, disk.e2);
-        return boundedAnswer(diskLightVisibility(tracer, disk, p, n, self, options.maxOccluders,
-                                                 options.bound, more));
+        return diskAnswer(diskLightExact(tracer, disk, p, n, self, options.maxOccluders, more),
+                          options.bound);
     }
 };
 
 }  // namespace
 
-ExactLightAnswer boundedAnswer(const DiskVisibility& d) {
+ExactLightAnswer diskAnswer(const DiskExactVisibility& d, const DiskBoundOptions& options) {
     ExactLightAnswer a;
     a.result = d.counts;
-    a.halfWidth = d.halfWidth();
-    a.sides = d.sides;
-    a.reachedTarget = d.reachedTarget;
+    a.halfWidth = d.error;
+    a.sides = d.sides;  // the gathering octagon's, where the contour was integrated
+    a.reachedTarget = d.error <= options.targetHalfWidth;
     return a;
 }
 

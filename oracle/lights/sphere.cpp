@@ -1,6 +1,6 @@
 // The oracle's sphere light (docs/oracle.md): sampled in the solid angle of its visible cap
-// (where the horizon cuts the cone, only the rings with a part above it); the exact pass bounds it
-// as the disk of its silhouette (disk_bounds.h).
+// (where the horizon cuts the cone, only the rings with a part above it); the exact pass takes it
+// as the disk of its silhouette (disk_bounds.h) and integrates that exactly (disk_exact.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,6 +10,7 @@
 
 #include "oracle/area_light.h"
 #include "oracle/disk_bounds.h"
+#include "oracle/disk_exact.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/lights/area_light_kind.h"
 #include "oracle/lights/area_sampling.h"
@@ -184,8 +185,8 @@ class SphereAreaLightKind final : public AreaLightKind {
         const glm::dvec3 w = light.dCenter - p;
         if (!(glm::dot(w, w) > light.dRadius * light.dRadius)) return {};  // inside: NoLight
         const DiskLightShape disk = sphereSilhouette(light.dCenter, light.dRadius, p);
-        return boundedAnswer(diskLightVisibility(tracer, disk, p, n, self, options.maxOccluders,
-                                                 options.bound, more));
+        return diskAnswer(diskLightExact(tracer, disk, p, n, self, options.maxOccluders, more),
+                          options.bound);
     }
 };
 
