@@ -1,7 +1,7 @@
 // Area-light throughput of the oracle against a plain Embree loop over the same rays, and the
 // rays adaptive sampling saves against a uniform run at the same worst-pixel half-width.
 //
-//   bench_area_shadow [--size N] [--spp S] [--reps R] [--adaptive-size M]
+//   bench_area_shadow [--size N] [--spp S] [--reps R] [--adaptive-size M] [--no-adaptive]
 //
 // On the generated scene of bench_scene.h (167,936 triangles), per light (rect, disk, sphere):
 //   oracle    traceAreaShadows at a fixed S spp: per-pixel classification, Sobol sampling of the
@@ -70,6 +70,9 @@ int main(int argc, char** argv) {
     app.add_option("--reps", reps, "repetitions (median reported)")->check(CLI::Range(1, 100));
     app.add_option("--adaptive-size", adaptiveSize, "image side for adaptive vs uniform")
         ->check(CLI::Range(8, 1024));
+    bool noAdaptive = false;
+    app.add_flag("--no-adaptive", noAdaptive,
+                 "leave out adaptive vs uniform (scripts/oracle-ratios reads the ratios only)");
     bool noNearField = false;
     app.add_flag("--no-near-field", noNearField,
                  "leave the near fields out (their price: the oracle's time with and without)");
@@ -204,6 +207,7 @@ int main(int argc, char** argv) {
         failures += rays != st.raysTraced;
     }
 
+    if (noAdaptive) return failures == 0 ? 0 : 1;
     // Adaptive against uniform at the same worst-pixel half-width, on a smaller image.
     Scene small = makeBenchScene(256, adaptiveSize);
     small.effects = {"penumbra"};

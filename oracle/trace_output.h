@@ -17,7 +17,7 @@
 namespace so {
 
 // oracle.json's format_version (docs/oracle.md lists what each version added).
-inline constexpr int kOracleJsonFormatVersion = 12;
+inline constexpr int kOracleJsonFormatVersion = 13;
 
 // `trace --tile I/N`: band I of N bands of rows (tileRows).
 struct TileSpec {

@@ -27,6 +27,7 @@
 #include "oracle/oracle.h"
 #include "oracle/points.h"
 #include "oracle/surface_buffer.h"
+#include "oracle/trace_output.h"
 #include "oracle/verify.h"
 
 using namespace so;
@@ -344,7 +345,7 @@ TEST(PointsCli, ThreadCountInvariantAndCounted) {
         bytes[t - 1] = test::readBytes(out / "oracle.exr");
         std::ifstream in(out / "oracle.json");
         const nlohmann::json j = nlohmann::json::parse(in);
-        EXPECT_EQ(j["format_version"], 12);
+        EXPECT_EQ(j["format_version"], kOracleJsonFormatVersion);
         EXPECT_TRUE(j["camera"].is_null());
         EXPECT_EQ(j["points"]["pixels_snapped"], coveredCount(plain.gbuffer));
         EXPECT_EQ(j["points"]["pixels_background"], size_t(kW * kH) - coveredCount(plain.gbuffer));
