@@ -432,8 +432,8 @@ uint64_t markNearLanes(const Accel& accel, const SurfaceBuffer& sb, const HardLi
         }
         p.rayHit.ray.tnear[k] = f.tnear[s];
         const char* first = reinterpret_cast<const char*>(&f.triangles[f.from(s)]);
-        for (size_t byte = 0; byte < 2 * sizeof(NearTriangle); byte += 64)
-            _mm_prefetch(first + byte, _MM_HINT_T0);
+        const size_t bytes = std::min<size_t>(f.to(s + 1) - f.from(s), 2) * sizeof(NearTriangle);
+        for (size_t byte = 0; byte < bytes; byte += 64) _mm_prefetch(first + byte, _MM_HINT_T0);
     }
     return uint64_t(setBits16(p.nearLanes));
 }

@@ -80,6 +80,12 @@ def measure(build, runs):
     return result, header
 
 
+def machine(header):
+    """'N cores, Embree V' from the bench's first line."""
+    m = re.search(r"Embree ([0-9.]+)", header)
+    return f"{os.cpu_count()} cores, Embree {m.group(1) if m else 'unknown'}"
+
+
 def table(figures):
     rows = ["| pass, light | oracle / rtcOccluded16 (median, range) | without the near fields | "
             "the near field's share of the oracle's time |", "|---|---|---|---|"]
@@ -139,7 +145,7 @@ def main():
         return 1
     figures = {
         "date": datetime.date.today().isoformat(),
-        "machine": f"{os.cpu_count()} cores, {header.split(', ', 1)[1] if ', ' in header else header}",
+        "machine": machine(header),
         "runs": args.runs,
         "lights": measured,
     }
