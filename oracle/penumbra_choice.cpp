@@ -14,21 +14,22 @@ namespace {
 // The cost model, in processor seconds (all threads summed): the sampled pass's cost per shadow
 // ray (a constant and a term in log2 of the scene's triangles, the BVH's depth) and per alpha
 // test, and the exact pass's per point, per triangle the pyramid query returned, per shadow that
-// reached the union and, for disk and sphere lights, per side of the last polygons each point's
-// bound integrated. Fitted by bench_penumbra_cost (scripts/penumbra-calibration: both passes on
-// all 16 area lights of the shipped scenes, the real ones and the bunny at 96 x 72, target 0.01,
-// one thread, processor time, median of 3; least squares on relative residuals, non-negative) on
-// 2026-11-26 on the shared 2-core machine, refitted after the dense-mesh union (issue 45) and the
-// split stopping rule (issue 42). Residuals: the exact pass within 53% on every light, the sampled
-// pass within 65% (truck_town, the dutch ship and the bunny cost more a ray than the model says);
-// docs/benchmarks.md has the table. Only ratios matter.
+// reached the union and, for disk and sphere lights, per side of the gathering octagon of each
+// point whose contour was integrated (8 a point: the arcs' quadrature is most of its cost).
+// Fitted by bench_penumbra_cost (scripts/penumbra-calibration: both passes on all 16 area lights
+// of the shipped scenes, the real ones and the bunny at 96 x 72, target 0.01, one thread,
+// processor time, median of 3; least squares on relative residuals, non-negative) on 2026-11-28
+// on the 2-core machine, refitted after the exact disk pass (issue 55). Residuals: the exact
+// pass within 51% on every light, the sampled pass within 64% (truck_town, the dutch ship and the
+// bunny cost more a ray than the model says); docs/benchmarks.md has the table. Only ratios
+// matter.
 constexpr double kSampledSecondsPerRay = 0.0;
-constexpr double kSampledSecondsPerRayLevel = 1.96e-9;  // per ray and log2(scene triangles)
-constexpr double kSampledSecondsPerAlphaTest = 4.32e-8;
-constexpr double kExactSecondsPerPoint = 6.55e-7;
+constexpr double kSampledSecondsPerRayLevel = 2.73e-9;  // per ray and log2(scene triangles)
+constexpr double kSampledSecondsPerAlphaTest = 4.89e-8;
+constexpr double kExactSecondsPerPoint = 8.66e-7;
 constexpr double kExactSecondsPerCandidate = 0.0;
-constexpr double kExactSecondsPerOccluder = 5.72e-7;
-constexpr double kExactSecondsPerBoundSide = 2.77e-7;
+constexpr double kExactSecondsPerOccluder = 7.28e-7;
+constexpr double kExactSecondsPerBoundSide = 1.98e-6;
 
 }  // namespace
 

@@ -9,8 +9,9 @@ time from a baseline of 718,976 triangles, 1024 x 1024 pixels and one point ligh
   pixels     512^2 to 4096^2 (0.26 to 16.8 Mpixels)
   lights     1 to 64, point lights and, as a second series, directional lights
 
-and one area-light configuration (the benches' rect light with `penumbra`, adaptive) at the
-baseline. Each run is a child process: its wall time, its CPU time and its peak resident memory
+and the area lights at the baseline: the benches' rect light with `penumbra`, and a disk of the
+same area and place beside it (issue 55: a disk's exact pass at a rect's cost). Each run is a
+child process: its wall time, its CPU time and its peak resident memory
 (GNU time's %M; measure() says why not wait4) are measured, and oracle.json's phases_seconds
 says where the time went.
 Per axis it fits the growth (least squares on log-log: time ~ size^k) and, for memory, a straight
@@ -163,6 +164,12 @@ def rect_light():
     """bench_area_shadow's rect light (4 x 3, 12 above the terrain, emitting downwards)."""
     return [{"name": "rect", "type": "rect", "center": [1, 12, 2], "u": [4, 0, 0],
              "v": [0, 0, 3]}]
+
+
+def disk_light():
+    """A disk of the rect's area (radius sqrt(12 / pi)) at its centre, emitting downwards."""
+    return [{"name": "disk", "type": "disk", "center": [1, 12, 2], "normal": [0, -1, 0],
+             "radius": round(math.sqrt(12.0 / math.pi), 6)}]
 
 
 def scene_file(scenes_dir, grid, lights, tag, effects=("hard",)):
@@ -330,9 +337,11 @@ def run_axes(runner, scenes, axes, base):
             scene = scene_file(scenes, base["grid"], make(k), f"{kind}{k}")
             r = runner.trace(f"lights-{kind}-{k}", scene, base["side"])
             results[f"{kind} lights"].append((k, r))
-    scene = scene_file(scenes, base["grid"], rect_light(), "rect1", effects=("penumbra",))
-    area = runner.trace("area-rect", scene, base["side"])
-    return results, area
+    areas = {}
+    for kind, make in (("rect", rect_light), ("disk", disk_light)):
+        scene = scene_file(scenes, base["grid"], make(), f"{kind}1", effects=("penumbra",))
+        areas[kind] = runner.trace(f"area-{kind}", scene, base["side"])
+    return results, areas
 
 
 # --- Slurm ------------------------------------------------------------------------------------
@@ -670,8 +679,8 @@ def machine_line(info, reps):
             f"min) {info['load_before']} before and {info['load_after']} after.")
 
 
-def largest_table(results, area):
-    """Where the time goes in the largest run of each axis, and the area light's."""
+def largest_table(results, areas):
+    """Where the time goes in the largest run of each axis, and the area lights'."""
     rows = ["| run | wall s | load | build_bvh | primary | shadow | write (of which oracle.exr) "
             "| not in a phase (start-up, exit) |", "|---|---|---|---|---|---|---|---|"]
     named = [(f"{fmt_count(pts[-1][0])} {AXIS_UNITS[name][0]}" if name != "pixels" else
@@ -679,7 +688,7 @@ def largest_table(results, area):
              for name, pts in results.items() if pts]
     named[2:] = [(f"{label} ({name.split()[0]})", r) for (label, r), name in
                  zip(named[2:], list(results)[2:])]
-    for label, r in named + [("the rect light (area)", area)]:
+    for label, r in named + [(f"the {kind} light (area)", r) for kind, r in areas.items()]:
         share = lambda sec: f"{sec:.2f} ({100 * sec / r['wall']:.0f}%)"
         exr = "" if exr_estimate(r) is None else f"; {exr_estimate(r):.1f}"
         rest = r["wall"] - sum(phase(r, p) for p in PHASES)
@@ -690,7 +699,9 @@ def largest_table(results, area):
 
 
 def markdown(data):
-    info, results, area, slurm = data["info"], data["results"], data["area"], data["slurm"]
+    info, results, slurm = data["info"], data["results"], data["slurm"]
+    # Before issue 55 a study ran the rect light alone ("area").
+    areas = data.get("areas") or {"rect": data["area"]}
     parts = [f"`{data['cmdline']}`: {machine_line(info, data['reps'])}", ""]
     parts += ["**Fitted growth** (time ~ size^k by least squares on log-log, over every point and "
               "between the two largest; the memory: a straight line through the peak RSS by least "
@@ -701,17 +712,26 @@ def markdown(data):
               "light; the EXR's part is estimated from trace's progress line (which starts after "
               "the first of its 256-row blocks: scaled by B / (B - 1) for B blocks; no line, so "
               "no estimate, under 2 s); the rest of `write` is the previews:", "",
-              largest_table(results, area), ""]
+              largest_table(results, areas), ""]
     for name, points in results.items():
         parts += [f"**{name[0].upper() + name[1:]}** (the others at the baseline):", "",
                   axis_table(name, points), ""]
-    light = area["json"]["lights"][0]
-    parts += [f"**One area light** at the baseline: the benches' rect light (4 x 3, 12 above the "
-              f"terrain) with `penumbra`, adaptive (target 0.01): {area['wall']:.2f} s wall, "
-              f"{area['cpu']:.2f} s CPU, peak RSS {mib(area['rss']):.0f} MiB; "
-              f"{light['rays_traced']:,} rays, mean {light['spp_mean']:.1f} spp (max "
-              f"{light['spp_max']}), shadow {phase(area, 'shadow'):.2f} s, write "
-              f"{phase(area, 'write'):.2f} s.", ""]
+    shapes = {"rect": "the benches' rect light (4 x 3, 12 above the terrain)",
+              "disk": "a disk of the same area at the same place"}
+    for kind, area in areas.items():
+        light = area["json"]["lights"][0]
+        method = light.get("penumbra_choice", {}).get("chosen", "sampled")
+        exact = light.get("exact_penumbra") or {}
+        parts += [f"**An area light** at the baseline: {shapes.get(kind, kind)}, with `penumbra` "
+                  f"(`--penumbra auto`: {method}{'' if method != 'sampled' else ', adaptive, target 0.01'}): "
+                  f"{area['wall']:.2f} s wall, {area['cpu']:.2f} s CPU, peak RSS "
+                  f"{mib(area['rss']):.0f} MiB; {light.get('rays_traced', 0):,} rays"
+                  + (f", mean {light['spp_mean']:.1f} spp (max {light['spp_max']})"
+                     if light.get("spp_mean") is not None else "")
+                  + (f", {exact['pixels_exact']:,} pixels exact" if exact.get("pixels_exact")
+                     else "")
+                  + f", shadow {phase(area, 'shadow'):.2f} s, write {phase(area, 'write'):.2f} s.",
+                  ""]
     parts += ["**trace --tile over Slurm array tasks**:", "", slurm_section(slurm)]
     return "\n".join(parts)
 
@@ -755,9 +775,10 @@ def study(args):
         mesh_file(scenes, grid)
         print(f"    terrain grid {grid}: {triangles_of(grid):,} triangles "
               f"({time.perf_counter() - t0:.1f} s)", file=sys.stderr, flush=True)
-    total = len(axes["grids"]) + len(axes["sides"]) + 2 * len(axes["lights"]) + 1
+    total = len(axes["grids"]) + len(axes["sides"]) + 2 * len(axes["lights"]) + 2
     runner = Runner(tool, work, args.reps, total)
-    results, area = run_axes(runner, scenes, axes, base)
+    results, areas = run_axes(runner, scenes, axes, base)
+    area = areas["rect"]
     for x, r in results["pixels"]:
         r["side"] = int(round(math.sqrt(x)))
     slurm = ({"skipped": "--no-slurm"} if args.no_slurm
@@ -767,8 +788,8 @@ def study(args):
     cmdline = "scripts/growth-study" + (" --quick" if args.quick else "") + (
         f" --reps {args.reps}" if args.reps != (1 if args.quick else 2) else "") + (
         " --no-slurm" if args.no_slurm else "")
-    data = {"info": info, "results": results, "area": area, "slurm": slurm, "reps": args.reps,
-            "cmdline": cmdline}
+    data = {"info": info, "results": results, "area": area, "areas": areas, "slurm": slurm,
+            "reps": args.reps, "cmdline": cmdline}
     saved = os.path.join(root, "out", "growth-study-quick.json" if args.quick
                          else "growth-study.json")
     with open(saved, "w") as f:
