@@ -26,8 +26,6 @@ constexpr double kQuantisationAllowance = 1e-8;
 // The gathering's base polygon: the octagon circumscribed about 1.09 radii, which holds every
 // P_out from 8 sides on (their vertices are at most (1 + kSlack) / cos(pi/8) = 1.0824 radii out).
 constexpr double kBaseScale = 1.09;
-// The frame's square: half-side 1.25 radii, about the base's vertices (1.09 / cos(pi/8) = 1.18).
-constexpr double kFrameHalfSide = 1.25;
 
 // cos and sin of 2 pi k / (2 kMaxDiskSides), computed once: the polygons of every pixel share them.
 const std::vector<std::array<double, 2>>& unitCircle() {
@@ -59,17 +57,6 @@ std::vector<dvec3> regularPolygon(const DiskLightShape& disk, uint32_t sides, do
         out[k] = disk.center + radius * (cs[0] * disk.e1 + cs[1] * disk.e2);
     }
     return out;
-}
-
-PolygonLightShape baseShape(const DiskLightShape& disk) {
-    PolygonLightShape base;
-    const double h = kFrameHalfSide * disk.radius;
-    base.corner = disk.center - h * disk.e1 - h * disk.e2;
-    base.edgeU = 2.0 * h * disk.e1;
-    base.edgeV = 2.0 * h * disk.e2;
-    base.emitNormal = disk.emitNormal;
-    base.vertices = circumscribedPolygon(disk, 8, kBaseScale);
-    return base;
 }
 
 }  // namespace
@@ -186,10 +173,22 @@ std::vector<dvec3> circumscribedPolygon(const DiskLightShape& disk, uint32_t sid
     return out;
 }
 
+PolygonLightShape diskGatheringShape(const DiskLightShape& disk, uint32_t sides, double scale) {
+    PolygonLightShape base;
+    const double h = kDiskFrameHalfSide * disk.radius;
+    base.corner = disk.center - h * disk.e1 - h * disk.e2;
+    base.edgeU = 2.0 * h * disk.e1;
+    base.edgeV = 2.0 * h * disk.e2;
+    base.emitNormal = disk.emitNormal;
+    base.vertices = circumscribedPolygon(disk, sides, scale);
+    return base;
+}
+
 LightShadows diskShadows(const ExactTracer& tracer, const DiskLightShape& disk, const dvec3& p,
                          const dvec3& n, TriangleId self, uint32_t maxCandidates,
                          const OccluderOptions& more) {
-    return LightShadows(tracer, baseShape(disk), p, n, self, maxCandidates, more);
+    return LightShadows(tracer, diskGatheringShape(disk, 8, kBaseScale), p, n, self, maxCandidates,
+                        more);
 }
 
 DiskBound diskBoundAt(const LightShadows& shadows, const DiskLightShape& disk, const dvec3& p,

@@ -82,6 +82,13 @@ std::vector<glm::dvec3> inscribedPolygon(const DiskLightShape& disk, uint32_t si
 std::vector<glm::dvec3> circumscribedPolygon(const DiskLightShape& disk, uint32_t sides,
                                              double scale, const DiskArc& arc);
 
+// The frame square both disk passes quantise a disk's plane in: half-side 1.25 radii about the
+// centre, about their gathering octagons' vertices (at most 1.09 / cos(pi/8) = 1.18 radii).
+inline constexpr double kDiskFrameHalfSide = 1.25;
+// The light shape through which a disk's shadows are gathered: the `sides`-gon circumscribed
+// about `scale` radii, in that frame.
+PolygonLightShape diskGatheringShape(const DiskLightShape& disk, uint32_t sides, double scale);
+
 struct DiskBoundOptions {
     double targetHalfWidth = 1e-6;  // `--bound-target`
     uint32_t minSides = 32;         // powers of two in [8, kMaxDiskSides]

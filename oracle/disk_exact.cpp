@@ -25,8 +25,6 @@ constexpr double kQuantisationAllowance = 1e-8;
 // The gathering octagon's edges lie this far (relative) outside the circle: far more than the
 // quantisation moves them (2^-28 of the radius), so they never cross it.
 constexpr double kOctagonScale = 1.0 + 1.0 / 1048576.0;  // 1 + 2^-20
-// The frame's square: half-side 1.25 radii, about the octagon's vertices (1.0824 radii).
-constexpr double kFrameHalfSide = 1.25;
 // Arcs are cut to at most this before the adaptive rule, and halved where the two rules differ by
 // more than kArcTolerance of the scale, at most kMaxArcDepth times.
 constexpr double kMaxArc = kPi / 2.0;
@@ -167,22 +165,11 @@ bool inside(const std::vector<std::vector<dvec2>>& region, const dvec2& q) {
     return winding != 0;
 }
 
-PolygonLightShape gatheringShape(const DiskLightShape& disk) {
-    PolygonLightShape base;
-    const double h = kFrameHalfSide * disk.radius;
-    base.corner = disk.center - h * disk.e1 - h * disk.e2;
-    base.edgeU = 2.0 * h * disk.e1;
-    base.edgeV = 2.0 * h * disk.e2;
-    base.emitNormal = disk.emitNormal;
-    base.vertices = circumscribedPolygon(disk, kDiskGatheringSides, kOctagonScale);
-    return base;
-}
-
 // The frame's integers as (u, v) about the centre: (X - 2^28) / 2^28 half-sides.
 std::vector<std::vector<dvec2>> regionOf(const ClipperLib::Paths& paths,
                                          const DiskLightShape& disk) {
     const double half = 0.5 * LightPlaneFrame::kQuantum;
-    const double unit = kFrameHalfSide * disk.radius / half;
+    const double unit = kDiskFrameHalfSide * disk.radius / half;
     std::vector<std::vector<dvec2>> out;
     out.reserve(paths.size());
     for (const ClipperLib::Path& path : paths) {
@@ -271,7 +258,8 @@ DiskExactVisibility diskLightExact(const ExactTracer& tracer, const DiskLightSha
     DiskExactVisibility out;
     // The octagon may reach above the horizon where the disk does not: then no light (V = 0).
     if (!(diskArcAbove(disk, p, n).half > 0.0)) return out;
-    const LightShadows shadows(tracer, gatheringShape(disk), p, n, self, maxCandidates, more);
+    const LightShadows shadows(tracer, diskGatheringShape(disk, kDiskGatheringSides, kOctagonScale),
+                               p, n, self, maxCandidates, more);
     out.counts = shadows.counts();
     if (out.counts.status != PolygonVisibilityStatus::Exact) return out;
     if (out.counts.occluders == 0) {  // nothing in the pyramid: the disk is wholly visible
