@@ -31,16 +31,6 @@ using glm::dvec3;
 
 constexpr double kPi = std::numbers::pi;
 
-// A disk of radius 0.8 at height 4, emitting down.
-DiskLightShape downDisk() {
-    DiskLightShape d;
-    d.center = {0.25, 4.0, 0.125};
-    d.radius = 0.8;
-    d.emitNormal = {0, -1, 0};
-    diskAxes(d.emitNormal, d.e1, d.e2);
-    return d;
-}
-
 // The receivers the closed-form tests use: points on and off the axis, normals tilted.
 std::vector<std::pair<dvec3, dvec3>> receivers() {
     std::vector<std::pair<dvec3, dvec3>> out;

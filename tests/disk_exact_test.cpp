@@ -28,16 +28,6 @@ namespace {
 using glm::dvec2;
 using glm::dvec3;
 
-// A disk of radius 0.8 at height 4, emitting down.
-DiskLightShape downDisk() {
-    DiskLightShape d;
-    d.center = {0.25, 4.0, 0.125};
-    d.radius = 0.8;
-    d.emitNormal = {0, -1, 0};
-    diskAxes(d.emitNormal, d.e1, d.e2);
-    return d;
-}
-
 // Points on and off the axis, some near the disk's plane, with normals from up to tilted far
 // enough that the horizon cuts the disk.
 std::vector<std::pair<dvec3, dvec3>> receivers() {

@@ -10,12 +10,23 @@
 
 #include "core/scene.h"
 #include "lambert.h"
+#include "oracle/disk_bounds.h"
 #include "oracle/polygon_visibility.h"
 #include "test_scenes.h"
 
 namespace so::test {
 
 // The closed-form scene's light (test_scenes.h PenumbraScene): 2 x 1.5 at height 4, emitting down.
+// A disk of radius 0.8 at height 4, emitting down (the disk tests' light).
+inline DiskLightShape downDisk() {
+    DiskLightShape d;
+    d.center = {0.25, 4.0, 0.125};
+    d.radius = 0.8;
+    d.emitNormal = {0, -1, 0};
+    diskAxes(d.emitNormal, d.e1, d.e2);
+    return d;
+}
+
 inline const AxisRect kPenumbraLight = PenumbraScene{}.light;
 
 // An AxisRect light as the exact pass takes it: cross(edgeU, edgeV) points down, as it emits.

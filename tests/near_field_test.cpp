@@ -63,6 +63,19 @@ bool reaches(const NearTriangle& t, const glm::dvec3& origin, const glm::dvec3& 
     return !(hp > 0.0 && ho > kReach - kLsOriginOffset);
 }
 
+// The point at barycentrics (u, v) of triangle `prim`, and its unit normal turned up (the lit
+// side).
+struct FieldPoint {
+    glm::dvec3 p, m0;
+};
+FieldPoint fieldPoint(const Accel& accel, unsigned prim, double u, double v) {
+    glm::dvec3 a, b, c;
+    accel.triangle(0, prim, a, b, c);
+    glm::dvec3 m0 = glm::normalize(glm::cross(b - a, c - a));
+    if (m0.y < 0.0) m0 = -m0;
+    return {(1.0 - u - v) * a + u * b + v * c, m0};
+}
+
 TEST(NearField, SineBoundNeverRulesOutATriangleASegmentReaches) {
     EmbreeDevice device("threads=1");
     std::mt19937 rng(7);
@@ -74,15 +87,11 @@ TEST(NearField, SineBoundNeverRulesOutATriangleASegmentReaches) {
         const unsigned triangles = unsigned(scene.meshes[0].triangleCount());
         for (int sample = 0; sample < 4000; ++sample) {
             const unsigned prim = unsigned(unit(rng) * triangles) % triangles;
-            glm::dvec3 a, b, c;
-            accel.triangle(0, prim, a, b, c);
             // Points next to an edge or a vertex: one barycentric (or two) within 1e-4 of 0.
             double u = unit(rng), v = unit(rng) * (1.0 - u);
             if (sample % 3 == 0) u = 1e-4 * unit(rng);
             if (sample % 3 == 1) v = 1e-4 * unit(rng), u = std::min(u, 1e-4 * unit(rng));
-            const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
-            glm::dvec3 m0 = glm::normalize(glm::cross(b - a, c - a));
-            if (m0.y < 0.0) m0 = -m0;
+            const auto [p, m0] = fieldPoint(accel, prim, u, v);
             std::vector<uint32_t> ids;
             std::vector<NearTriangle> near;
             appendNearField(accel, p, 0, prim, ids, near);
@@ -151,13 +160,9 @@ TEST(NearField, AreaRelevanceNeverDropsATriangleASegmentReaches) {
         const unsigned triangles = unsigned(scene.meshes[0].triangleCount());
         for (int sample = 0; sample < 1500; ++sample) {
             const unsigned prim = unsigned(unit(rng) * triangles) % triangles;
-            glm::dvec3 a, b, c;
-            accel.triangle(0, prim, a, b, c);
             double u = 1e-4 * unit(rng), v = unit(rng) * (1.0 - u);
             if (sample % 2) std::swap(u, v);
-            const glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c;
-            glm::dvec3 m0 = glm::normalize(glm::cross(b - a, c - a));
-            if (m0.y < 0.0) m0 = -m0;
+            const auto [p, m0] = fieldPoint(accel, prim, u, v);
             NearFields f;
             f.begin = {0};
             appendNearField(accel, p, 0, prim, f.ids, f.triangles);
