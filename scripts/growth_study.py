@@ -800,8 +800,8 @@ def study(args):
         shutil.rmtree(work)
     else:
         print(f"growth-study: kept {work}", file=sys.stderr)
-    doc = args.doc if args.doc else (None if args.quick else os.path.join(root, "docs",
-                                                                          "benchmarks.md"))
+    doc = args.doc if args.doc else (None if args.quick else os.path.join(
+        root, "docs", "benchmarks-growth.md"))
     render(data, doc)
 
 
@@ -846,7 +846,7 @@ def main():
                    "temporary folder under out/, removed at the end)")
     p.add_argument("--keep", action="store_true", help="keep the temporary work folder")
     p.add_argument("--doc", help="markdown file to write between the markers (default "
-                   "docs/benchmarks.md; with --quick, none: the tables are printed)")
+                   "docs/benchmarks-growth.md; with --quick, none: the tables are printed)")
     p.add_argument("--quick", action="store_true", help="small axes: checks the script itself")
     p.add_argument("--reps", type=int, help="runs per point, the fastest kept (default 2; 1 "
                    "with --quick)")

@@ -2,7 +2,8 @@
 """scripts/work-figures: compares every shipped scene with one set of techniques and writes, per
 scene and light, the techniques ranked by llvmpipe's milliseconds, by bytes_moved and by
 fragments, and the three Pareto fronts of error against them, between the "BEGIN which-ranking"
-and "END which-ranking" markers of a markdown file (docs/benchmarks.md). Measured, not asserted."""
+and "END which-ranking" markers of a markdown file (docs/benchmarks-ranking.md). Measured, not
+asserted."""
 import json, pathlib, subprocess, sys
 from doc_markers import write_between_markers
 
@@ -11,7 +12,7 @@ TECHNIQUES = ["basic", "slope-bias", "pcf:kernel=5", "hw-pcf", "pcss", "vsm", "e
 SIZE = (320, 240)
 FRAMES = 3
 COSTS = [("ms", "llvmpipe ms"), ("bytes", "bytes_moved"), ("fragments", "fragments")]
-# Pairs whose relative GPU cost has been published (docs/benchmarks.md, below the tables): their
+# Pairs whose relative GPU cost has been published (docs/benchmarks-ranking.md, below the tables): their
 # ratio on each axis, per scene.
 PAIRS = [("hw-pcf", "slope-bias"), ("msm", "vsm"), ("vsm", "basic")]
 
