@@ -93,8 +93,7 @@ IndexResult parseResult(const json& r, const std::string& path, size_t i) {
 
 struct MetricSpec {
     const MetricInfo* metric;  // its name (as in metrics.csv) and which way is better
-    const char* title;
-    const char* meaning;  // one line; docs/metrics.md has the definitions
+    const char* title;         // its meaning is the metric table's description
     std::optional<double> IndexLightMetrics::*value;
 };
 
@@ -107,26 +106,14 @@ const MetricInfo* tableEntry(const char* name) {
 
 const std::vector<MetricSpec>& metricSpecs() {
     static const std::vector<MetricSpec> specs = {
-        {tableEntry("mae"), "Mean absolute error",
-         "mean |V &minus; V<sub>oracle</sub>| over the counted pixels (beyond the oracle's 95% "
-         "interval on area lights)",
-         &IndexLightMetrics::mae},
-        {tableEntry("acne_rate"), "Shadow acne",
-         "share of the lit pixels away from any shadow boundary that the technique shadows",
-         &IndexLightMetrics::acneRate},
-        {tableEntry("peter_panning_rate"), "Peter-panning",
-         "share of the shadowed pixels near their occluder's contact that the technique lights",
-         &IndexLightMetrics::peterPanningRate},
+        {tableEntry("mae"), "Mean absolute error", &IndexLightMetrics::mae},
+        {tableEntry("acne_rate"), "Shadow acne", &IndexLightMetrics::acneRate},
+        {tableEntry("peter_panning_rate"), "Peter-panning", &IndexLightMetrics::peterPanningRate},
         {tableEntry("boundary_displacement_px.p95"), "Shadow boundary displacement (p95, pixels)",
-         "95th percentile of the distance from a shadow boundary pixel to the nearest one of the "
-         "other image",
          &IndexLightMetrics::boundaryDisplacementP95Px},
         {tableEntry("light_bleeding_rate"), "Light bleeding",
-         "filtered shadow maps only: share of the umbra's pixels lit by more than 0.1",
          &IndexLightMetrics::lightBleedingRate},
-        {tableEntry("penumbra_mae"), "Penumbra error",
-         "area lights only: mean error over the pixels the oracle puts in the penumbra",
-         &IndexLightMetrics::penumbraMae},
+        {tableEntry("penumbra_mae"), "Penumbra error", &IndexLightMetrics::penumbraMae},
     };
     return specs;
 }
@@ -245,7 +232,7 @@ void writeMatrix(std::ostream& o, const std::vector<IndexEntry>& entries, const 
     if (values.empty()) return;
     const ColourScale scale = scaleOf(values);
     o << "<section id=\"" << spec.metric->name << "\"><h2>" << spec.title << " <code>"
-      << spec.metric->name << "</code></h2><p>" << spec.meaning << ".</p>"
+      << spec.metric->name << "</code></h2><p>" << html(spec.metric->description) << ".</p>"
       << legend(scale, *spec.metric);
     o << "<div class=\"scroll\"><table class=\"matrix\" data-metric=\"" << spec.metric->name
       << "\">";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <sstream>
 
 namespace so {
@@ -29,29 +30,35 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
     {"max_abs", U::V, B::Lower, S::All, "largest error over counted pixels"},
     {"false_shadow_rate", U::Share, B::Lower, S::All,
      "share of counted pixels the technique makes darker than the oracle by more than 0.5 (hard "
-     "lights) or the oracle's interval (area lights)"},
+     "lights) or the oracle's interval (area lights)",
+     "false shadow"},
     {"false_lit_rate", U::Share, B::Lower, S::All,
      "share of counted pixels the technique makes brighter than the oracle by more than 0.5 (hard "
-     "lights) or the oracle's interval (area lights)"},
+     "lights) or the oracle's interval (area lights)",
+     "false lit"},
     {"acne_rate", U::Share, B::Lower, S::All,
      "among fully lit pixels more than r pixels from an oracle shadow boundary, the share that "
      "are false shadow (on area lights, not penumbra spread; with the raster's depth channels, "
-     "only where its own depth comparison shadowed the pixel by its own surface)"},
+     "only where its own depth comparison shadowed the pixel by its own surface)",
+     "acne"},
     {"screen_bleed_rate", U::Share, B::Lower, S::ScreenSpaceFilter,
      "share of counted pixels, fully lit in the oracle, that are false shadow though their own "
-     "depth comparison lit them: a screen-space pass carried a neighbour's shadow over"},
+     "depth comparison lit them: a screen-space pass carried a neighbour's shadow over",
+     "screen-space bleed"},
     {"penumbra_spread_rate", U::Share, B::Lower, S::AreaLights,
      "share of counted pixels wrong just outside the oracle's penumbra where the technique's own "
-     "penumbra, too wide or shifted, covers them"},
+     "penumbra, too wide or shifted, covers them",
+     "penumbra spread"},
     {"peter_panning_rate", U::Share, B::Lower, S::OccluderDistance,
      "among shadowed pixels whose occluder is nearer than the contact threshold, the share that "
-     "are false lit"},
+     "are false lit",
+     "peter-panning"},
     {"light_leak_distance", U::WorldUnits, B::Lower, S::OccluderDistance,
      "the largest occluder distance among those false-lit pixels (0 if none)"},
     {"boundary_displacement_px.mean", U::Pixels, B::Lower, S::All,
      "mean distance between the two images' shadow boundaries, both ways"},
     {"boundary_displacement_px.p95", U::Pixels, B::Lower, S::All,
-     "95th percentile of the distance between the two images' shadow boundaries"},
+     "95th percentile of the distance between the two images' shadow boundaries", "boundary p95"},
     {"boundary_displacement_px.max", U::Pixels, B::Lower, S::All,
      "largest distance between the two images' shadow boundaries"},
     {"boundary_displacement_px.missing_boundary", U::Flag, B::None, S::All,
@@ -61,25 +68,31 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "mean error within r pixels of an oracle shadow boundary (null without one)"},
     {"aliasing_rate", U::Share, B::Lower, S::HardLights,
      "among counted pixels within r pixels of an oracle shadow boundary, the share that are "
-     "wrong"},
+     "wrong",
+     "aliasing"},
     {"other_false_shadow_rate", U::Share, B::Lower, S::All,
-     "share of counted pixels that are false shadow and that no artifact class explains"},
+     "share of counted pixels that are false shadow and that no artifact class explains",
+     "other false shadow"},
     {"other_false_lit_rate", U::Share, B::Lower, S::All,
-     "share of counted pixels that are false lit and that no artifact class explains"},
+     "share of counted pixels that are false lit and that no artifact class explains",
+     "other false lit"},
     {"light_bleeding_rate", U::Share, B::Lower, S::FilteredTechniques,
      "among counted pixels in the oracle's umbra, the share the technique lights by more than "
-     "0.1"},
+     "0.1",
+     "light bleeding"},
     {"penumbra_mae", U::V, B::Lower, S::AreaLights,
-     "mean error over counted pixels where the oracle's V is strictly between 0 and 1"},
+     "mean error over counted pixels where the oracle's V is strictly between 0 and 1",
+     "penumbra mae"},
     {"penumbra_bias", U::V, B::SmallerMagnitude, S::AreaLights,
-     "signed mean error over those pixels: < 0 too hard, > 0 too soft"},
+     "signed mean error over those pixels: < 0 too hard, > 0 too soft", "penumbra bias"},
     {"umbra_mae", U::V, B::Lower, S::AreaLights,
      "mean error over counted pixels where the oracle's V is exactly 0"},
     {"lit_mae", U::V, B::Lower, S::AreaLights,
      "mean error over counted pixels where the oracle's V is exactly 1"},
     {"penumbra_width_error_px.mean", U::Pixels, B::Lower, S::AreaLights,
      "mean absolute difference of the penumbra's 10%-90% width, along the oracle's gradient "
-     "(null without a measurable penumbra)"},
+     "(null without a measurable penumbra)",
+     "width error"},
     {"penumbra_width_error_px.p95", U::Pixels, B::Lower, S::AreaLights,
      "95th percentile of that width difference"},
     {"penumbra_width_error_px.oracle_mean_width", U::Pixels, B::None, S::AreaLights,
@@ -93,47 +106,54 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "correlation of the prediction's log with the boundary displacement at the raster's "
      "boundary pixels (null below 10 of them)"},
     {"cost.shadow_map_ms", U::Ms, B::Lower, S::All,
-     "median time of the light's passes before the visibility pass (the map, the volumes)"},
+     "median time of the light's passes before the visibility pass (the map, the volumes)",
+     "shadow pass"},
     {"cost.shadow_map_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
     {"cost.shadow_map_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
-    {"cost.visibility_ms", U::Ms, B::Lower, S::All, "median time of the visibility pass"},
+    {"cost.visibility_ms", U::Ms, B::Lower, S::All, "median time of the visibility pass",
+     "visibility pass"},
     {"cost.visibility_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
     {"cost.visibility_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
     {"cost.camera_ms", U::Ms, B::Lower, S::All,
-     "median time of the camera pass, shared by the scene's lights"},
+     "median time of the camera pass, shared by the scene's lights", "camera pass"},
     {"cost.camera_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
     {"cost.camera_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
     {"cost.frame_ms", U::Ms, B::Lower, S::All,
-     "median frame time: the light's passes and the camera pass"},
+     "median frame time: the light's passes and the camera pass", "frame time"},
     {"cost.frame_ms_p25", U::Ms, B::Lower, S::All, "its 25th percentile over the frames"},
     {"cost.frame_ms_p75", U::Ms, B::Lower, S::All, "its 75th percentile over the frames"},
     {"cost.noisy", U::Flag, B::None, S::All,
      "true when any of the times spreads (p25 to p75) by more than 20% of its median"},
-    {"cost.memory_bytes", U::Bytes, B::Lower, S::All,
-     "GL memory the technique holds for the light"},
+    {"cost.memory_bytes", U::Bytes, B::Lower, S::All, "GL memory the technique holds for the light",
+     "memory"},
     {"cost.bake_ms", U::Ms, B::Lower, S::BakedTechniques,
      "the light's bake before the first frame (lightmap), wall time; not part of frame_ms"},
     {"cost.work.fragments", U::Count, B::Lower, S::All,
      "fragment shader invocations of the light's passes in a frame (depth tested first where the "
-     "shader cannot discard)"},
+     "shader cannot discard)",
+     "fragments"},
     {"cost.work.texture_taps", U::Count, B::Lower, S::All,
-     "texture lookups of the light's passes in a frame (a filtered lookup is one)"},
+     "texture lookups of the light's passes in a frame (a filtered lookup is one)", "texture taps"},
     {"cost.work.texels_written", U::Count, B::Lower, S::All,
-     "render-target texels the light's passes write in a frame, each once per pass"},
+     "render-target texels the light's passes write in a frame, each once per pass",
+     "texels written"},
     {"cost.work.bytes_moved", U::Bytes, B::Lower, S::All,
      "render-target bytes the light's passes write and read (each texel once per pass) and the "
-     "bytes their taps fetch, in a frame"},
+     "bytes their taps fetch, in a frame",
+     "bytes moved"},
     {"cost.work.draw_calls", U::Count, B::Lower, S::All,
-     "draw calls of the light's passes in a frame"},
+     "draw calls of the light's passes in a frame", "draw calls"},
     {"cost.work.passes", U::Count, B::Lower, S::All,
-     "passes the light runs in a frame (a pass per sample counts per sample)"},
+     "passes the light runs in a frame (a pass per sample counts per sample)", "passes"},
     {"cost.oracle_seconds", U::Seconds, B::None, S::All, "what the ground truth of the light cost"},
     {"cost.oracle_ms_at_equal_error", U::Ms, B::None, S::AreaLights,
      "the oracle's time until its penumbra's mean 95% half-width came down to this technique's "
-     "penumbra_mae"},
+     "penumbra_mae",
+     "oracle at equal error"},
     {"temporal_flicker_rate", U::Share, B::Lower, S::FramesPath,
      "share of tracked pixel pairs of consecutive frames whose V flips where the oracle's does "
-     "not"},
+     "not",
+     "temporal flicker"},
     {"temporal_tracked_pairs", U::Count, B::None, S::FramesPath,
      "pixel pairs tracked, summed over the frame pairs"},
     {"temporal_flickering_pairs", U::Count, B::None, S::FramesPath,
@@ -262,6 +282,75 @@ const char* scopeName(MetricScope s) {
             return "baked techniques";
     }
     return "";
+}
+
+std::string metricLabel(const MetricInfo& m) {
+    return m.label ? m.label : m.name;
+}
+
+std::string formatMetricValue(const MetricInfo& m, double v) {
+    char buf[32];
+    switch (m.unit) {
+        case U::V:
+            std::snprintf(buf, sizeof buf, m.better == B::SmallerMagnitude ? "%+.3f" : "%.4f", v);
+            break;
+        case U::Share:
+            std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * v);
+            break;
+        case U::Pixels:
+        case U::Seconds:
+            std::snprintf(buf, sizeof buf, "%.2f", v);
+            break;
+        case U::Ms:
+            std::snprintf(buf, sizeof buf, v < 10.0 ? "%.2f" : "%.1f", v);
+            break;
+        case U::Bytes:
+            std::snprintf(buf, sizeof buf, "%.2f", v * displayScale(m));
+            break;
+        case U::Count:  // 3 significant digits with k, M, G beyond a thousand
+            if (v < 1e3)
+                std::snprintf(buf, sizeof buf, "%.0f", v);
+            else if (v < 1e6)
+                std::snprintf(buf, sizeof buf, "%.3g k", v / 1e3);
+            else if (v < 1e9)
+                std::snprintf(buf, sizeof buf, "%.3g M", v / 1e6);
+            else
+                std::snprintf(buf, sizeof buf, "%.3g G", v / 1e9);
+            break;
+        case U::Flag:
+            return v != 0.0 ? "true" : "false";
+        case U::WorldUnits:
+        case U::Ratio:
+            std::snprintf(buf, sizeof buf, "%.4g", v);
+            break;
+        case U::Correlation:
+            std::snprintf(buf, sizeof buf, "%+.2f", v);
+            break;
+    }
+    return buf;
+}
+
+const char* displayUnit(const MetricInfo& m) {
+    switch (m.unit) {
+        case U::Pixels:
+            return "px";
+        case U::Ms:
+            return "ms";
+        case U::Seconds:
+            return "s";
+        case U::Bytes:
+            return "MiB";
+        case U::Count:
+            return "count";
+        case U::WorldUnits:
+            return "world units";
+        default:
+            return "";
+    }
+}
+
+double displayScale(const MetricInfo& m) {
+    return m.unit == U::Bytes ? 1.0 / 1048576.0 : 1.0;
 }
 
 std::string metricTableMarkdown() {

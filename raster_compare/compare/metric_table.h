@@ -1,9 +1,9 @@
 // The one table of public metrics (docs/metrics.md): every name metrics.json, metrics.csv and the
 // limits file use, with its unit, which way is better, where it applies and one sentence of
 // meaning. The gate validates limit keys against it, the baseline takes its directions from it,
-// the report and the index their "lower is better", and docs/metrics.md's table is generated from
-// it (scripts/update-docs; a test fails when they differ), as techniques have their parameter
-// tables. The rows themselves are still written by the structs' toJson (metrics.h): a test checks
+// compare's report, the index and the sweep report their labels, meanings, number formats and
+// "lower is better", and docs/metrics.md's table is generated from it (scripts/update-docs; a test
+// fails when they differ), as techniques have their parameter tables. The rows themselves are still written by the structs' toJson (metrics.h): a test checks
 // that every name a full row has is here and every entry here is in some row.
 #pragma once
 
@@ -54,6 +54,9 @@ struct MetricInfo {
     Better better;
     MetricScope scope;
     const char* description;  // one sentence; docs/metrics.md has the full definitions
+    // Its name for people where the reports show it (compare's report, the index, the sweep
+    // report: "acne", "frame time"); null: the name itself.
+    const char* label = nullptr;
 };
 
 // Every public metric, in the order of docs/metrics.md. metrics.json and metrics.csv order their
@@ -74,6 +77,16 @@ std::vector<std::string> nearestMetrics(const std::string& name, size_t count = 
 const char* unitName(MetricUnit u);    // "V", "share", "px", "world units", ...
 const char* betterName(Better b);      // "lower", "higher", "nearer 0", "none"
 const char* scopeName(MetricScope s);  // "all", "hard lights", ...
+
+// How the reports show a metric, from its row: its label, a value formatted for its unit (V to 4
+// decimals, or signed to 3 where nearer 0 is better; shares as percentages; pixels to 2 decimals;
+// bytes in MiB; counts with k, M, G), and the unit such a value is in ("ms", "MiB", "px",
+// "count"; "" where the text says it, as a percentage does, or there is none).
+std::string metricLabel(const MetricInfo& m);
+std::string formatMetricValue(const MetricInfo& m, double v);
+const char* displayUnit(const MetricInfo& m);
+// The factor from the metric's unit to displayUnit's: 1 / 2^20 for bytes (MiB), else 1.
+double displayScale(const MetricInfo& m);
 
 // The table as docs/metrics.md shows it, between its metric-table markers.
 std::string metricTableMarkdown();

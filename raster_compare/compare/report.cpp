@@ -36,54 +36,11 @@ std::string num(std::optional<double> v, int digits = 4) {
     return buf;
 }
 
-// One number format per column: how a value reads in the tables.
-enum class Format { Error, Percent, Pixels, Signed, Ms, MiB, Count };
-
-std::string formatted(double v, Format f) {
-    char buf[32];
-    switch (f) {
-        case Format::Error:
-            std::snprintf(buf, sizeof buf, "%.4f", v);
-            break;
-        case Format::Percent:
-            std::snprintf(buf, sizeof buf, "%.2f%%", 100.0 * v);
-            break;
-        case Format::Pixels:
-            std::snprintf(buf, sizeof buf, "%.2f", v);
-            break;
-        case Format::Signed:
-            std::snprintf(buf, sizeof buf, "%+.3f", v);
-            break;
-        case Format::Ms:
-            std::snprintf(buf, sizeof buf, v < 10.0 ? "%.2f" : "%.1f", v);
-            break;
-        case Format::MiB:
-            std::snprintf(buf, sizeof buf, "%.2f", v / 1048576.0);
-            break;
-        case Format::Count:  // 3 significant digits with k, M, G beyond a thousand
-            if (v < 1e3)
-                std::snprintf(buf, sizeof buf, "%.0f", v);
-            else if (v < 1e6)
-                std::snprintf(buf, sizeof buf, "%.3g k", v / 1e3);
-            else if (v < 1e9)
-                std::snprintf(buf, sizeof buf, "%.3g M", v / 1e6);
-            else
-                std::snprintf(buf, sizeof buf, "%.3g G", v / 1e9);
-            break;
-    }
-    return buf;
-}
-
-// The value with its unit, where the column's header would say it: "12.3 ms", "195.48 MiB".
-std::string withUnit(double v, Format f) {
-    return formatted(v, f) + (f == Format::Ms ? " ms" : f == Format::MiB ? " MiB" : "");
-}
-
-// A numeric column of the tables: its metric key (docs/metrics.md), header, tooltip, format and
-// how to read it from a row. Which way is better is the metric table's (metric_table.h).
+// A numeric column of the tables: its metric key (docs/metrics.md) and how to read it from a
+// typed row. Its header, meaning, number format and which way is better are the metric table's
+// (metric_table.h), so the report and docs/metrics.md say the same.
 struct Column {
-    std::string key, header, tip;
-    Format format;
+    std::string key;
     std::function<std::optional<double>(const LightComparison&)> value;
     bool inSummary = true;
 };
@@ -99,76 +56,42 @@ std::optional<double> workCount(const LightComparison& l, uint64_t WorkCounts::*
 const std::vector<Column>& columns() {
     using L = const LightComparison&;
     static const std::vector<Column> cols = {
-        {"mae", "mae", "mean error of V beyond the oracle's interval, over counted pixels",
-         Format::Error, [](L l) { return std::optional(l.metrics.mae); }},
-        {"acne_rate", "acne",
-         "share of fully lit pixels away from a boundary that are false shadow", Format::Percent,
-         [](L l) { return std::optional(l.metrics.acneRate); }},
-        {"penumbra_spread_rate", "penumbra spread",
-         "share of pixels wrong just outside the oracle's penumbra, covered by the technique's "
-         "own penumbra (too wide or shifted; area lights)",
-         Format::Percent, [](L l) { return l.metrics.penumbraSpreadRate; }},
-        {"peter_panning_rate", "peter-panning",
-         "share of shadowed pixels near their occluder (contact) that are false lit",
-         Format::Percent, [](L l) { return l.metrics.peterPanningRate; }},
-        {"boundary_displacement_px.p95", "boundary p95 (px)",
-         "95th percentile of the distance from each oracle boundary pixel to the technique's",
-         Format::Pixels, [](L l) { return std::optional(l.metrics.boundaryDisplacement.p95); }},
-        {"aliasing_rate", "aliasing",
-         "share of pixels near a boundary that are wrong (hard lights)", Format::Percent,
-         [](L l) { return l.metrics.aliasingRate; }, false},
-        {"light_bleeding_rate", "bleeding", "share of umbra pixels with V above the oracle's + 0.1",
-         Format::Percent, [](L l) { return l.metrics.lightBleedingRate; }},
-        {"penumbra_mae", "penumbra mae", "mean error over pixels with 0 < V_oracle < 1",
-         Format::Error, [](L l) { return l.metrics.penumbraMae; }},
-        {"penumbra_bias", "penumbra bias", "too hard < 0 < too soft; best nearest 0",
-         Format::Signed, [](L l) { return l.metrics.penumbraBias; }},
-        {"penumbra_width_error_px.mean", "width error (px)",
-         "mean |10%-90% width - the oracle's| along the oracle's gradient", Format::Pixels,
+        {"mae", [](L l) { return std::optional(l.metrics.mae); }},
+        {"acne_rate", [](L l) { return std::optional(l.metrics.acneRate); }},
+        {"penumbra_spread_rate", [](L l) { return l.metrics.penumbraSpreadRate; }},
+        {"peter_panning_rate", [](L l) { return l.metrics.peterPanningRate; }},
+        {"boundary_displacement_px.p95",
+         [](L l) { return std::optional(l.metrics.boundaryDisplacement.p95); }},
+        {"aliasing_rate", [](L l) { return l.metrics.aliasingRate; }, false},
+        {"light_bleeding_rate", [](L l) { return l.metrics.lightBleedingRate; }},
+        {"penumbra_mae", [](L l) { return l.metrics.penumbraMae; }},
+        {"penumbra_bias", [](L l) { return l.metrics.penumbraBias; }},
+        {"penumbra_width_error_px.mean",
          [](L l) {
              return l.metrics.penumbraWidth ? std::optional(l.metrics.penumbraWidth->mean)
                                             : std::nullopt;
          }},
-        {"temporal_flicker_rate", "temporal flicker",
-         "compare --frames-path: share of tracked pixels whose V flips (> 0.5) between "
-         "consecutive frames where the oracle's does not",
-         Format::Percent, [](L l) { return l.temporal ? l.temporal->rate() : std::nullopt; }},
-        {"false_shadow_rate", "false shadow", "share of counted pixels that are false shadow",
-         Format::Percent, [](L l) { return std::optional(l.metrics.falseShadowRate); }, false},
-        {"false_lit_rate", "false lit", "share of counted pixels that are false lit",
-         Format::Percent, [](L l) { return std::optional(l.metrics.falseLitRate); }, false},
-        {"cost.frame_ms", "frame ms", "median frame time: the light's passes and the camera pass",
-         Format::Ms, [](L l) { return median(l.cost.frameMs); }},
-        {"cost.shadow_map_ms", "shadow pass ms",
-         "median of the light's passes before the visibility pass (the map, the volumes)",
-         Format::Ms, [](L l) { return median(l.cost.shadowMapMs); }},
-        {"cost.visibility_ms", "visibility ms", "median of the visibility pass", Format::Ms,
-         [](L l) { return median(l.cost.visibilityMs); }},
-        {"cost.camera_ms", "camera ms", "median of the camera pass, shared by the lights",
-         Format::Ms, [](L l) { return median(l.cost.cameraMs); }},
-        {"cost.memory_bytes", "memory MiB", "GL memory the technique holds for the light",
-         Format::MiB,
+        {"temporal_flicker_rate",
+         [](L l) { return l.temporal ? l.temporal->rate() : std::nullopt; }},
+        {"false_shadow_rate", [](L l) { return std::optional(l.metrics.falseShadowRate); }, false},
+        {"false_lit_rate", [](L l) { return std::optional(l.metrics.falseLitRate); }, false},
+        {"cost.frame_ms", [](L l) { return median(l.cost.frameMs); }},
+        {"cost.shadow_map_ms", [](L l) { return median(l.cost.shadowMapMs); }},
+        {"cost.visibility_ms", [](L l) { return median(l.cost.visibilityMs); }},
+        {"cost.camera_ms", [](L l) { return median(l.cost.cameraMs); }},
+        {"cost.memory_bytes",
          [](L l) {
              return l.cost.memoryBytes ? std::optional(double(*l.cost.memoryBytes)) : std::nullopt;
          }},
-        {"cost.work.fragments", "fragments",
-         "fragment shader invocations of the light's passes in a frame (docs/metrics.md, Work)",
-         Format::Count, [](L l) { return workCount(l, &WorkCounts::fragments); }},
-        {"cost.work.texture_taps", "taps", "texture lookups of the light's passes in a frame",
-         Format::Count, [](L l) { return workCount(l, &WorkCounts::textureTaps); }, false},
-        {"cost.work.texels_written", "texels written",
-         "render-target texels the light's passes write in a frame, each once per pass",
-         Format::Count, [](L l) { return workCount(l, &WorkCounts::texelsWritten); }, false},
-        {"cost.work.bytes_moved", "MiB moved",
-         "render-target bytes written and read and the bytes the taps fetch, in a frame",
-         Format::MiB, [](L l) { return workCount(l, &WorkCounts::bytesMoved); }},
-        {"cost.work.draw_calls", "draws", "draw calls of the light's passes in a frame",
-         Format::Count, [](L l) { return workCount(l, &WorkCounts::drawCalls); }, false},
-        {"cost.work.passes", "passes", "passes the light runs in a frame", Format::Count,
-         [](L l) { return workCount(l, &WorkCounts::passes); }, false},
-        {"cost.oracle_ms_at_equal_error", "oracle ms at same error",
-         "the oracle's time until its penumbra's 95% half-width came down to this penumbra mae",
-         Format::Ms, [](L l) { return l.cost.oracleMsAtEqualError; }, false},
+        {"cost.work.fragments", [](L l) { return workCount(l, &WorkCounts::fragments); }},
+        {"cost.work.texture_taps", [](L l) { return workCount(l, &WorkCounts::textureTaps); },
+         false},
+        {"cost.work.texels_written", [](L l) { return workCount(l, &WorkCounts::texelsWritten); },
+         false},
+        {"cost.work.bytes_moved", [](L l) { return workCount(l, &WorkCounts::bytesMoved); }},
+        {"cost.work.draw_calls", [](L l) { return workCount(l, &WorkCounts::drawCalls); }, false},
+        {"cost.work.passes", [](L l) { return workCount(l, &WorkCounts::passes); }, false},
+        {"cost.oracle_ms_at_equal_error", [](L l) { return l.cost.oracleMsAtEqualError; }, false},
     };
     return cols;
 }
@@ -190,44 +113,37 @@ bool hasPenumbra(const ReportInput& in, size_t li) {
     return anyValue(in, li, findColumn("penumbra_mae"));
 }
 
-// Whether a column's number format suits its metric's unit in the metric table.
-bool formatFits(Format f, MetricUnit u) {
-    switch (f) {
-        case Format::Error:
-        case Format::Signed:
-            return u == MetricUnit::V;
-        case Format::Percent:
-            return u == MetricUnit::Share;
-        case Format::Pixels:
-            return u == MetricUnit::Pixels;
-        case Format::Ms:
-            return u == MetricUnit::Ms;
-        case Format::MiB:
-            return u == MetricUnit::Bytes;
-        case Format::Count:
-            return u == MetricUnit::Count;
-    }
-    return false;
-}
-
-// The metric table's entry of a column; a key missing there, or a format that does not suit its
-// unit, is a bug, found by any test that writes a report.
+// The metric table's entry of a column; a key missing there is a bug, found by any test that
+// writes a report.
 const MetricInfo& tableEntry(const Column& c) {
     const MetricInfo* info = findMetric(c.key);
     SO_CHECK(info != nullptr);
-    SO_CHECK(formatFits(c.format, info->unit));
     return *info;
+}
+
+// "frame time (ms)", "acne": the label, and the unit its values are shown in (a count's is not
+// said).
+std::string titleWithUnit(const MetricInfo& m) {
+    const std::string unit = m.unit == MetricUnit::Count ? "" : displayUnit(m);
+    return metricLabel(m) + (unit.empty() ? "" : " (" + unit + ")");
+}
+
+// The value with its unit, where the column's header would say it: "12.3 ms", "195.48 MiB".
+std::string withUnit(const MetricInfo& m, double v) {
+    const std::string unit = m.unit == MetricUnit::Count ? "" : displayUnit(m);
+    return formatMetricValue(m, v) + (unit.empty() ? "" : " " + unit);
 }
 
 // The header cell of a numeric column: sortable, with its direction and meaning as a tooltip (a
 // signed column's tip says itself that nearer zero is better).
 std::string headerCell(const Column& c) {
-    const Better better = tableEntry(c).better;
-    const std::string direction = better == Better::Lower    ? "; lower is better"
-                                  : better == Better::Higher ? "; higher is better"
-                                                             : "";
-    return "<th data-col=\"" + html(c.key) + "\" title=\"" + html(c.key) + ": " + html(c.tip) +
-           direction + " (docs/metrics.md)\">" + html(c.header) + "</th>";
+    const MetricInfo& m = tableEntry(c);
+    const std::string direction = m.better == Better::Lower    ? "; lower is better"
+                                  : m.better == Better::Higher ? "; higher is better"
+                                                               : "";
+    return "<th data-col=\"" + html(c.key) + "\" title=\"" + html(c.key) + ": " +
+           html(m.description) + direction + " (docs/metrics.md)\">" + html(titleWithUnit(m)) +
+           "</th>";
 }
 
 // The cells of one column over rows, the best (least, or nearest zero) marked; none in a column
@@ -251,7 +167,7 @@ std::vector<std::string> columnCells(const Column& c,
         const bool isBest = v && rows.size() > 1 && better != Better::None && score(*v) == *best;
         cells.push_back(std::string("<td data-v=\"") + data + "\"" +
                         (isBest ? " class=\"best\"" : "") + ">" +
-                        (v ? formatted(*v, c.format) : "–") + "</td>");
+                        (v ? formatMetricValue(tableEntry(c), *v) : "–") + "</td>");
     }
     return cells;
 }
@@ -263,29 +179,21 @@ struct ChartChoice {
 };
 
 std::vector<ChartChoice> chartChoices(const ReportInput& in, size_t li, bool costs) {
-    static const std::vector<std::pair<std::string, std::string>> errors = {
-        {"penumbra_mae", "penumbra mae"},
-        {"mae", "mae"},
-        {"acne_rate", "acne rate"},
-        {"peter_panning_rate", "peter-panning rate"},
-        {"boundary_displacement_px.p95", "boundary displacement p95 (px)"},
-        {"light_bleeding_rate", "light bleeding rate"},
-        {"temporal_flicker_rate", "temporal flicker rate"}};
-    static const std::vector<std::pair<std::string, std::string>> cost = {
-        {"frame_ms", "frame time (ms)"},
-        {"shadow_map_ms", "shadow pass time (ms)"},
-        {"visibility_ms", "visibility pass time (ms)"},
-        {"memory_bytes", "memory (bytes)"},
-        {"work.fragments", "fragments"},
-        {"work.texture_taps", "texture taps"},
-        {"work.texels_written", "texels written"},
-        {"work.bytes_moved", "bytes moved"},
-        {"work.draw_calls", "draw calls"},
-        {"work.passes", "passes"}};
+    static const std::vector<std::string> errors = {"penumbra_mae",
+                                                    "mae",
+                                                    "acne_rate",
+                                                    "peter_panning_rate",
+                                                    "boundary_displacement_px.p95",
+                                                    "light_bleeding_rate",
+                                                    "temporal_flicker_rate"};
+    static const std::vector<std::string> cost = {
+        "frame_ms",        "shadow_map_ms",     "visibility_ms",       "memory_bytes",
+        "work.fragments",  "work.texture_taps", "work.texels_written", "work.bytes_moved",
+        "work.draw_calls", "work.passes"};
     std::vector<ChartChoice> out;
-    for (const auto& [key, name] : costs ? cost : errors) {
+    for (const std::string& key : costs ? cost : errors) {
         const Column& c = findColumn(costs ? "cost." + key : key);
-        if (anyValue(in, li, c)) out.push_back({key, name, &c});
+        if (anyValue(in, li, c)) out.push_back({key, titleWithUnit(tableEntry(c)), &c});
     }
     return out;
 }
@@ -312,7 +220,9 @@ ChartData chartData(const ReportInput& in, size_t light, const ChartChoice& cost
         // An external image without that cost (or a technique without a time) has no point.
         const std::optional<double> c = cost.column->value(t.lights[light]);
         if (!c) continue;
-        d.points.push_back({t.label, t.curve, t.quality, *c, area ? *m.penumbraMae : m.mae});
+        d.points.push_back({t.label, t.curve, t.quality,
+                            *c * displayScale(tableEntry(*cost.column)),
+                            area ? *m.penumbraMae : m.mae});
     }
     // The oracle's times are times: beside frame times only.
     if (!area || cost.key != "frame_ms") return d;
@@ -328,6 +238,7 @@ ChartData chartData(const ReportInput& in, size_t light, const ChartChoice& cost
 // the table of the cost selected (data-cost); without it the first, frame time, shows.
 std::string budgetTable(const ChartData& d, bool shown) {
     if (d.points.empty()) return "";
+    const MetricInfo& cost = tableEntry(*d.cost.column);
     std::ostringstream s;
     s << "<div class=\"budget-box\" data-cost=\"" << html(d.cost.key) << "\""
       << (shown ? "" : " hidden") << "><p class=\"caption\">Read off at error budgets ("
@@ -340,7 +251,7 @@ std::string budgetTable(const ChartData& d, bool shown) {
         const std::optional<size_t> best = cheapestWithin(d.points, budget);
         s << "<tr><td>" << num(budget, 3) << "</td><td>"
           << (best ? html(d.points[*best].label) : "none") << "</td><td>"
-          << (best ? withUnit(d.points[*best].cost, d.cost.column->format) : "–") << "</td>";
+          << (best ? withUnit(cost, d.points[*best].cost / displayScale(cost)) : "–") << "</td>";
         if (!d.oracle.empty()) {
             const std::optional<double> ms = oracleMsAtError(d.oracle, budget);
             s << "<td>" << (ms ? num(*ms, 3) : "not within its run") << "</td>";
@@ -432,7 +343,8 @@ nlohmann::json lightData(const ReportInput& in, size_t li) {
     auto values = [&](const std::vector<ChartChoice>& choices, const LightComparison& l) {
         nlohmann::json v = nlohmann::json::object();
         for (const ChartChoice& c : choices)
-            if (const auto x = c.column->value(l)) v[c.key] = *x;
+            if (const auto x = c.column->value(l))
+                v[c.key] = *x * displayScale(tableEntry(*c.column));
         return v;
     };
     auto names = [](const std::vector<ChartChoice>& choices) {
@@ -556,7 +468,8 @@ void writeTechniqueRow(std::ostream& o, const ReportInput& in, size_t li, size_t
     o << "<tr id=\"" << rowId(li, k) << "\"><td><b>" << html(t.label)
       << "</b><br><span class=\"muted\">" << html(t.family) << "<br>" << html(t.parameters)
       << "<br>mae " << num(lc.metrics.mae) << ", frame "
-      << (lc.cost.frameMs ? formatted(lc.cost.frameMs->median, Format::Ms) + " ms" : "unknown")
+      << (lc.cost.frameMs ? withUnit(*findMetric("cost.frame_ms"), lc.cost.frameMs->median)
+                          : "unknown")
       << "<br><a href=\"" << html(t.fileLabel) << "/raster.exr\">raster.exr</a> · <a href=\""
       << html(t.fileLabel) << "/raster.json\">raster.json</a> · <a href=\"error_"
       << html(t.fileLabel) << ".exr\">errors</a></span></td><td>"
@@ -619,8 +532,8 @@ void writeFlickerStrip(std::ostream& o, const ReportInput& in, size_t li, ImageS
           << "</figcaption></figure>";
     };
     o << "<p>The highest temporal_flicker_rate along the camera path (" << in.pathFrames
-      << " frames): <b>" << html(s->technique) << "</b>, " << formatted(s->rate, Format::Percent)
-      << ". Its worst pair, "
+      << " frames): <b>" << html(s->technique) << "</b>, "
+      << formatMetricValue(*findMetric("temporal_flicker_rate"), s->rate) << ". Its worst pair, "
       << "frames " << s->pair << " and " << s->pair + 1 << ", has " << s->flickering
       << " flickering pixels (red; dimmed: not tracked).</p><div class=\"flicker-strip\" "
          "id=\"flicker-strip-"

@@ -11,11 +11,13 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "core/error.h"
 #include "raster_compare/compare/artifacts.h"
 #include "raster_compare/compare/colour_scale.h"
 #include "raster_compare/compare/html.h"
+#include "raster_compare/compare/metric_table.h"
 #include "raster_compare/compare/tradeoff.h"
 
 namespace so {
@@ -52,11 +54,10 @@ std::optional<double> metricOf(const SweepRow& r, const std::string& key) {
     return it->second;
 }
 
-// The metric's name for people: the artifact's legend as in compare's report, or "mae".
+// The metric's name for people, the metric table's label ("acne", "penumbra mae").
 std::string metricName(const std::string& metric) {
-    for (const ArtifactClass& c : kArtifactClasses)
-        if (metric == c.metric) return c.legend;
-    return metric;
+    const MetricInfo* info = findMetric(metric);
+    return info ? metricLabel(*info) : metric;
 }
 
 // "<b>acne</b> <code>acne_rate</code>": the name, and the key to look it up by in docs/metrics.md.
@@ -66,23 +67,27 @@ std::string metricTitle(const std::string& metric) {
            (name == metric ? "" : " <code>" + html(metric) + "</code>");
 }
 
-// A cost axis: its metric, its name, and the factor to the unit it is shown in.
+// A cost axis: its metric, and from the metric table its name, the unit it is shown in and the
+// factor to that unit.
 struct Cost {
     std::string key, name, unit;
     double scale;
 };
 
 // Frame time and memory, then the work of a frame (docs/metrics.md, Work).
-const std::array<Cost, 8>& costs() {
-    static const std::array<Cost, 8> c = {
-        {{kFrameMs, "frame time", "ms", 1.0},
-         {kMemory, "memory", "MiB", 1.0 / 1048576.0},
-         {"cost.work.fragments", "fragments", "count", 1.0},
-         {"cost.work.texture_taps", "texture taps", "count", 1.0},
-         {"cost.work.texels_written", "texels written", "count", 1.0},
-         {"cost.work.bytes_moved", "bytes moved", "MiB", 1.0 / 1048576.0},
-         {"cost.work.draw_calls", "draw calls", "count", 1.0},
-         {"cost.work.passes", "passes", "count", 1.0}}};
+const std::vector<Cost>& costs() {
+    static const std::vector<Cost> c = [] {
+        std::vector<Cost> out;
+        for (const char* key :
+             {"cost.frame_ms", "cost.memory_bytes", "cost.work.fragments", "cost.work.texture_taps",
+              "cost.work.texels_written", "cost.work.bytes_moved", "cost.work.draw_calls",
+              "cost.work.passes"}) {
+            const MetricInfo* m = findMetric(key);
+            SO_CHECK(m != nullptr);
+            out.push_back({key, metricLabel(*m), displayUnit(*m), displayScale(*m)});
+        }
+        return out;
+    }();
     return c;
 }
 
