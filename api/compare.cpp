@@ -1,5 +1,5 @@
-// The API's comparison: raster_compare/comparison's compareWithOracle, with renderers' images
-// given in memory or read as `compare --image` reads them.
+// The API's comparison: raster_compare/pipeline/comparison.h's compareWithOracle, with renderers'
+// images given in memory or read as `compare --image` reads them.
 
 #include <nlohmann/json.hpp>
 

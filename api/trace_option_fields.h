@@ -1,4 +1,4 @@
-// TraceOptions' fields by the keys of the trace option table (oracle/trace_option_table.h): what
+// TraceOptions' fields by the keys of the trace option table (core/trace_option_table.h): what
 // the API checks and applies through the table. TraceOptionTable.ApiStructHoldsTheTablesDefaults
 // checks that the keys are the table's API rows and that TraceOptions{} holds their defaults.
 #pragma once

@@ -50,7 +50,7 @@ static void addQuiet(CLI::App* cmd, bool& progress) {
         "--quiet", [&progress] { progress = false; }, "no progress output");
 }
 
-// The trace options a command offers (oracle/trace_option_table.h: names, ranges, help), read
+// The trace options a command offers (core/trace_option_table.h: names, ranges, help), read
 // into `values` as CLI11 parses them; the table checks what it alone can (a name, a power of two)
 // and writes them into the oracle's options when the command runs, so that a bad one is the tool's
 // one-line error.

@@ -1,6 +1,6 @@
 // The scene model shared by the oracle and the raster path: parsed once, then plain immutable data.
 // Everything here is in world space and in double precision; each path converts to its own
-// precision and frame (the oracle recentres before going to float, see oracle/local_frame.h).
+// precision and frame (the oracle recentres before going to float, see core/local_frame.h).
 #pragma once
 
 #include <cstddef>

@@ -56,7 +56,7 @@ int integer(const Json& v, const std::string& file, const std::string& field, in
     return int(d);
 }
 
-// One trace option of the spec (oracle/trace_option_table.h), checked by the table.
+// One trace option of the spec (core/trace_option_table.h), checked by the table.
 TraceOptionValue traceOptionValue(const Json& v, const std::string& key, const std::string& file,
                                   const std::string& field) {
     const TraceOptionSpec& spec = traceOption(key);

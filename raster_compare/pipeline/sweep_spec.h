@@ -47,7 +47,7 @@ struct SweepTask {
 // default. Width and height are the raster's too.
 struct SweepOracleSettings {
     int width = 0, height = 0;  // 0: the scene camera's
-    // The "oracle" block's trace options by key (oracle/trace_option_table.h), checked; the ones
+    // The "oracle" block's trace options by key (core/trace_option_table.h), checked; the ones
     // left out keep compare's defaults.
     TraceOptionValues values;
 };
