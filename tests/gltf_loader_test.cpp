@@ -420,8 +420,9 @@ void checkSharedAsset(const std::string& name) {
     size_t images = 0;
     for (const auto& f : c.filesRead) {
         std::string ext = f.extension().string();
-        images += ext == ".png" || ext == ".jpg" || ext == ".jpeg";
-        EXPECT_TRUE(ext == ".gltf" || ext == ".bin" || images > 0) << f;
+        const bool image = ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+        images += image;
+        EXPECT_TRUE(ext == ".gltf" || ext == ".bin" || image) << f;
     }
     EXPECT_EQ(images, c.alphaTextures.size());
     size_t masked = 0;
