@@ -81,22 +81,6 @@ struct OracleStats {
     uint64_t disagreements() const { return verify ? verify->disagreements() : 0; }
 };
 
-// One band's stats (`trace --tile`) and what merging needs beyond them.
-struct TileStats {
-    OracleStats stats;
-    // Per light, in scene order: the pixels of a sampled light whose V ended strictly between 0
-    // and 1 (the penumbra the cost curve's penumbra mean averages over); 0 for other lights.
-    std::vector<uint64_t> penumbraPixels;
-};
-
-// The whole image's stats from its bands' (trace-merge; docs/oracle.md, "Tiles"): counts,
-// samples, rays and seconds are sums, maxima are maxima, means are re-weighted by what they
-// average over, and the setup (effects, seed, frame, libraries) is the first band's. The bands
-// must come from the same scene and options, in any order. uniformSpp is the bands' largest: only
-// the per-pixel variances give the whole image's (the caller recomputes it from the image). No
-// bands, or bands whose lights differ, are std::invalid_argument.
-OracleStats mergeTileStats(const std::vector<TileStats>& tiles, int width, int height);
-
 // Exactly the run-dependent part of oracle.json (docs/oracle.md).
 nlohmann::json toJson(const OracleStats& stats);
 // The inverse of toJson: toJson(oracleStatsFromJson(toJson(s), f)) == toJson(s). Throws InputError

@@ -17,6 +17,7 @@
 #include "core/preview.h"
 #include "oracle/oracle.h"
 #include "oracle/oracle_stats.h"
+#include "oracle/trace_merge_stats.h"
 #include "oracle/trace_output.h"
 
 namespace so {
