@@ -74,6 +74,29 @@ TEST(MetricTable, EveryNameOfAFullRowIsInTheTableAndEveryEntryInARow) {
     }
 }
 
+// The reports show every metric by its row: a label no other metric shows, and a value formatted
+// from the row's unit (compare's report, the index and the sweep report read nothing else).
+TEST(MetricTable, ReportsShowAMetricAsItsRowSays) {
+    std::map<std::string, std::string> shownBy;
+    for (const MetricInfo& m : allMetrics()) {
+        const std::string label = metricLabel(m);
+        EXPECT_FALSE(label.empty()) << m.name;
+        const auto [it, fresh] = shownBy.emplace(label, m.name);
+        EXPECT_TRUE(fresh) << m.name << " and " << it->second << " are both shown as " << label;
+    }
+    EXPECT_EQ(metricLabel(*findMetric("acne_rate")), "acne");
+    EXPECT_EQ(metricLabel(*findMetric("rmse")), "rmse") << "no label: the name";
+    EXPECT_EQ(formatMetricValue(*findMetric("mae"), 0.25), "0.2500");
+    EXPECT_EQ(formatMetricValue(*findMetric("penumbra_bias"), -0.0234), "-0.023");
+    EXPECT_EQ(formatMetricValue(*findMetric("acne_rate"), 0.0123), "1.23%");
+    EXPECT_EQ(formatMetricValue(*findMetric("cost.frame_ms"), 12.34), "12.3");
+    EXPECT_EQ(formatMetricValue(*findMetric("cost.memory_bytes"), 3.0 * 1048576.0), "3.00");
+    EXPECT_STREQ(displayUnit(*findMetric("cost.memory_bytes")), "MiB");
+    EXPECT_EQ(displayScale(*findMetric("cost.memory_bytes")), 1.0 / 1048576.0);
+    EXPECT_EQ(formatMetricValue(*findMetric("cost.work.fragments"), 2.5e6), "2.5 M");
+    EXPECT_EQ(formatMetricValue(*findMetric("cost.noisy"), 1.0), "true");
+}
+
 // The report's error maps and the sweep's heat maps and fronts mark the lowest value of mae and
 // of each artifact class's metric as the best: the table must agree.
 TEST(MetricTable, TheArtifactMetricsAreLowerIsBetter) {

@@ -3,8 +3,9 @@
 // meaning. The gate validates limit keys against it, the baseline takes its directions from it,
 // compare's report, the index and the sweep report their labels, meanings, number formats and
 // "lower is better", and docs/metrics.md's table is generated from it (scripts/update-docs; a test
-// fails when they differ), as techniques have their parameter tables. The rows themselves are still written by the structs' toJson (metrics.h): a test checks
-// that every name a full row has is here and every entry here is in some row.
+// fails when they differ), as techniques have their parameter tables. The rows themselves are still
+// written by the structs' toJson (metrics.h): a test checks that every name a full row has is here
+// and every entry here is in some row.
 #pragma once
 
 #include <span>
