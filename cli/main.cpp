@@ -31,13 +31,18 @@
 #include "raster_compare/gl/technique.h"
 #include "raster_compare/gl/technique_listing.h"
 
+// A trace option read straight into an int by a command that does not trace (view, export,
+// raster): the row's flag, help and range.
+static void addTraceOptionInt(CLI::App* cmd, const std::string& key, int& target) {
+    const so::TraceOptionSpec& s = so::traceOption(key);
+    cmd->add_option(s.cli, target, so::traceOptionHelp(s))
+        ->check(CLI::Range(int(s.min), int(s.max)));
+}
+
 // --width and --height of the commands that render without tracing: the trace options' ranges.
 static void addImageSize(CLI::App* cmd, int& width, int& height) {
-    for (const auto& [key, target] : {std::pair{"width", &width}, std::pair{"height", &height}}) {
-        const so::TraceOptionSpec& s = so::traceOption(key);
-        cmd->add_option(s.cli, *target, so::traceOptionHelp(s))
-            ->check(CLI::Range(int(s.min), int(s.max)));
-    }
+    addTraceOptionInt(cmd, "width", width);
+    addTraceOptionInt(cmd, "height", height);
 }
 
 // Each subcommand is added with its options; what is returned runs it once parsed. Options live
@@ -151,8 +156,7 @@ static Runner addView(CLI::App& app) {
     viewCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     viewCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     addImageSize(viewCmd, o->oracle.width, o->oracle.height);
-    viewCmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
+    addTraceOptionInt(viewCmd, "threads", o->oracle.threads);
     addQuiet(viewCmd, o->progress);
     return [o] { return so::runViewCommand(*o); };
 }
@@ -166,8 +170,7 @@ static Runner addExport(CLI::App& app) {
     cmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     cmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     addImageSize(cmd, o->oracle.width, o->oracle.height);
-    cmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
+    addTraceOptionInt(cmd, "threads", o->oracle.threads);
     addQuiet(cmd, o->progress);
     return [o] { return so::runExportCommand(*o); };
 }
