@@ -1,5 +1,6 @@
 #include "core/trace_option_table.h"
 
+#include <string>
 #include <vector>
 
 namespace so {
@@ -101,7 +102,8 @@ std::vector<OptionSpec> makeTable() {
     t.push_back(
         integerOption("bound_max_sides", 4096, 32, kMaxBoundSides, kAll,
                       "the most sides of the polygons bounding a disk (the independent check, "
-                      "not the exact pass), a power of two in [32, 16384]",
+                      "not the exact pass), a power of two in [32, " +
+                          std::to_string(kMaxBoundSides) + "]",
                       "the most sides of the polygons that bound a disk "
                       "(`oracle/disk_bounds.h`: the exact pass's independent check in the "
                       "tests; the exact pass itself does not use it)"));
