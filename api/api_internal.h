@@ -4,6 +4,7 @@
 
 #include <utility>
 
+#include "core/compare_option_table.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/progress.h"
@@ -36,7 +37,7 @@ struct RenderResult::Data {
 
 struct CompareResult::Data {
     so::Comparison comparison;  // the rows as the library made them
-    int boundaryRadius = 2;
+    int boundaryRadius = so::kDefaultBoundaryRadius;
 };
 
 namespace detail {
@@ -45,7 +46,9 @@ Image toApi(so::ChannelImage&& image);
 so::ChannelImage fromApi(const Image& image);
 so::ProgressCallback toLibrary(const ProgressCallback& callback);
 // The GL path's options from the API's, checked as the command line's parser checks them.
-so::RasterOptions rasterOptions(int width, int height, int frames, int warmup);
+// The API's render options, checked by the option tables' rows (errors name `file`).
+so::RasterOptions rasterOptions(int width, int height, int frames, int warmup,
+                                const std::string& file);
 
 // Runs f; the libraries' exceptions come out as the API's, with the same one-line messages.
 template <typename F>

@@ -91,10 +91,8 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
         const so::CachedOracle& o = oracle.data->oracle;
         if (o.stats.lights.size() != s.lights.size())
             so::throwInputError("compare", "oracle", "traced on another scene (other lights)");
-        if (!options.techniques.empty() && o.key.rfind("points ", 0) == 0)
-            so::throwInputError("compare", "techniques",
-                                "the built-in techniques render the scene's camera, not a "
-                                "G-buffer's points: compare images only with this oracle");
+        so::checkTechniquesAtPoints(o.atPoints, options.techniques.size(), "compare", "techniques",
+                                    "techniques");
         std::vector<so::TechniqueSpec> techniques;
         for (const std::string& t : options.techniques)
             techniques.push_back(so::parseTechniqueSpec(t));
@@ -103,9 +101,10 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
             images.push_back(imageInput(in, s, o.image.width(), o.image.height()));
         so::ComparisonOptions c;
         c.raster = detail::rasterOptions(o.image.width(), o.image.height(), options.frames,
-                                         options.warmup);
-        if (options.boundaryRadius < 0 || options.boundaryRadius > 64)
-            so::throwInputError("compare options", "boundary_radius", "must be in [0, 64]");
+                                         options.warmup, "compare options");
+        so::checkOptions(so::compareOptionTable(),
+                         {{"boundary_radius", {double(options.boundaryRadius), ""}}},
+                         {"compare options", false, "", false});
         c.boundaryRadius = options.boundaryRadius;
         c.contactThresholdRelative = options.contactThresholdRelative;
         c.progress = detail::toLibrary(options.progress);

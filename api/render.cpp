@@ -2,7 +2,9 @@
 #include <nlohmann/json.hpp>
 
 #include "api/api_internal.h"
+#include "core/trace_option_table.h"
 #include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/raster_options.h"
 #include "raster_compare/gl/renderer.h"
 #include "raster_compare/gl/technique_listing.h"
 
@@ -12,19 +14,16 @@ std::string techniquesJson() {
     return detail::translated([] { return so::techniquesListing(so::ListingFormat::Json); });
 }
 
-so::RasterOptions detail::rasterOptions(int width, int height, int frames, int warmup) {
-    const auto fail = [](const std::string& field, const std::string& why) {
-        so::throwInputError("render options", field, why);
-    };
-    if (width < 0 || width > 16384) fail("width", "must be in [0, 16384]");
-    if (height < 0 || height > 16384) fail("height", "must be in [0, 16384]");
-    if (frames < 1 || frames > 1000) fail("frames", "must be in [1, 1000]");
-    if (warmup < 0 || warmup > 1000) fail("warmup", "must be in [0, 1000]");
+so::RasterOptions detail::rasterOptions(int width, int height, int frames, int warmup,
+                                        const std::string& file) {
+    // The image size by the trace options' rows (0: the scene camera's), the rest by the raster's.
+    so::checkTraceOptions({{"width", {double(width), ""}}, {"height", {double(height), ""}}},
+                          {file, false, "", /*allowUnsetZero=*/true});
     so::RasterOptions o;
     o.width = width;
     o.height = height;
-    o.frames = frames;
-    o.warmup = warmup;
+    so::applyRasterOptions({{"frames", {double(frames), ""}}, {"warmup", {double(warmup), ""}}},
+                           {file, false, "", false}, o);
     return o;
 }
 
@@ -34,8 +33,8 @@ RenderResult render(const Scene& scene, const std::string& technique, const Para
         std::vector<std::string> settings;
         for (const auto& [key, value] : parameters) settings.push_back(key + "=" + value);
         const std::unique_ptr<so::Technique> t = so::createTechnique(technique, settings);
-        const so::RasterOptions o =
-            detail::rasterOptions(options.width, options.height, options.frames, options.warmup);
+        const so::RasterOptions o = detail::rasterOptions(
+            options.width, options.height, options.frames, options.warmup, "render options");
         so::GlContext gl;
         so::RasterResult r = so::renderRaster(scene.data().scene, *t, o, gl);
         RenderResult out;

@@ -52,6 +52,7 @@ TraceResult trace(const Scene& scene, const TraceOptions& options) {
         out.statsJson = so::toJson(r.stats).dump();
         auto data = std::make_shared<TraceResult::Data>();
         data->oracle.key = options.points.empty() ? "traced" : "points " + options.points;
+        data->oracle.atPoints = !options.points.empty();
         data->oracle.image = r.image;  // compare() measures against this copy
         data->oracle.stats = std::move(r.stats);
         data->options = o;

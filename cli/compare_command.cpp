@@ -62,7 +62,13 @@ int printCompareSummary(const CompareOptions& options, const CompareRun& run,
     return verifyExitCode(options, run.oracle.stats);
 }
 
-int runCompareCommand(const CompareOptions& options) {
+// The command's errors name its flags.
+const CompareOptionNames kCompareFlags = {
+    "command line", "--technique",          "--image", "--points", "--frames-path",
+    "--verify",     "--width and --height", "--out"};
+
+int runCompareCommand(CompareOptions options) {
+    options.names = kCompareFlags;
     CompareRun run = compareScene(options, printingCallbacks());
     return printCompareSummary(options, run, writeCompareRun(options, run));
 }

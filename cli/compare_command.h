@@ -24,6 +24,6 @@ CompareCallbacks printingCallbacks();
 int printCompareSummary(const CompareOptions& options, const CompareRun& run,
                         const CompareOutputFiles& files);
 // `shadow-oracle compare`: compareScene, writeCompareRun and the summary.
-int runCompareCommand(const CompareOptions& options);
+int runCompareCommand(CompareOptions options);
 
 }  // namespace so

@@ -11,7 +11,7 @@ namespace so {
 int runExportCommand(const ExportCommandOptions& options) {
     const Scene scene = loadScene(options.scenePath);
     printSceneWarnings(options.scenePath, scene);
-    const std::filesystem::path out = makeOutputDir(options.outDir);
+    const std::filesystem::path out = makeOutputDir(options.outDir, "--out");
     ProgressBar bar(options.progress);
     OracleOptions oracle = options.oracle;
     oracle.progress = bar.callback();

@@ -27,16 +27,22 @@
 #include "oracle/oracle.h"
 #include "oracle/trace_options.h"
 #include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/raster_options.h"
 #include "raster_compare/gl/technique.h"
 #include "raster_compare/gl/technique_listing.h"
 
+// A trace option read straight into an int by a command that does not trace (view, export,
+// raster): the row's flag, help and range.
+static void addTraceOptionInt(CLI::App* cmd, const std::string& key, int& target) {
+    const so::TraceOptionSpec& s = so::traceOption(key);
+    cmd->add_option(s.cli, target, so::traceOptionHelp(s))
+        ->check(CLI::Range(int(s.min), int(s.max)));
+}
+
 // --width and --height of the commands that render without tracing: the trace options' ranges.
 static void addImageSize(CLI::App* cmd, int& width, int& height) {
-    for (const auto& [key, target] : {std::pair{"width", &width}, std::pair{"height", &height}}) {
-        const so::TraceOptionSpec& s = so::traceOption(key);
-        cmd->add_option(s.cli, *target, so::traceOptionHelp(s))
-            ->check(CLI::Range(int(s.min), int(s.max)));
-    }
+    addTraceOptionInt(cmd, "width", width);
+    addTraceOptionInt(cmd, "height", height);
 }
 
 // Each subcommand is added with its options; what is returned runs it once parsed. Options live
@@ -50,25 +56,26 @@ static void addQuiet(CLI::App* cmd, bool& progress) {
         "--quiet", [&progress] { progress = false; }, "no progress output");
 }
 
-// The trace options a command offers (core/trace_option_table.h: names, ranges, help), read
+// The options of a table (core/option_table.h: names, ranges, help) that a command offers, read
 // into `values` as CLI11 parses them; the table checks what it alone can (a name, a power of two)
-// and writes them into the oracle's options when the command runs, so that a bad one is the tool's
-// one-line error.
-struct TraceOptionFlags {
-    so::TraceOptionValues values;
-    void applyTo(so::OracleOptions& o) const {
-        so::applyTraceOptions(values, {"command line", /*cliNames=*/true, "", false}, o);
-    }
+// and its kind's apply function writes them into the library's options when the command runs, so
+// that a bad one is the tool's one-line error naming the flag.
+struct OptionFlags {
+    so::OptionValues values;
 };
-static std::shared_ptr<TraceOptionFlags> addTraceOptions(CLI::App* cmd, so::TraceSurface surface) {
-    auto flags = std::make_shared<TraceOptionFlags>();
-    TraceOptionFlags* f = flags.get();  // the command's Runner keeps it alive
+// How the command line names a field in errors: by its flag.
+static const so::OptionNaming kCliNaming{"command line", /*cliNames=*/true, "", false};
+
+static std::shared_ptr<OptionFlags> addTableOptions(CLI::App* cmd, const so::OptionTable& table,
+                                                    so::OptionSurface surface) {
+    auto flags = std::make_shared<OptionFlags>();
+    OptionFlags* f = flags.get();  // the command's Runner keeps it alive
     std::map<std::string, CLI::Option*> added;
-    for (const so::TraceOptionSpec& s : so::traceOptionTable()) {
+    for (const so::OptionSpec& s : table.rows) {
         if (!(s.surfaces & surface)) continue;
-        const std::string key = s.key, help = so::traceOptionHelp(s);
+        const std::string key = s.key, help = so::optionHelp(s);
         CLI::Option* opt = nullptr;
-        if (s.type == so::TraceOptionType::Integer) {
+        if (s.type == so::OptionType::Integer) {
             opt = cmd->add_option_function<int64_t>(
                 s.cli,
                 [f, key](const int64_t& v) {
@@ -76,7 +83,7 @@ static std::shared_ptr<TraceOptionFlags> addTraceOptions(CLI::App* cmd, so::Trac
                 },
                 help);
             if (!s.powerOfTwo) opt->check(CLI::Range(int64_t(s.min), int64_t(s.max)));
-        } else if (s.type == so::TraceOptionType::Real) {
+        } else if (s.type == so::OptionType::Real) {
             opt = cmd->add_option_function<double>(
                 s.cli,
                 [f, key](const double& v) {
@@ -94,7 +101,7 @@ static std::shared_ptr<TraceOptionFlags> addTraceOptions(CLI::App* cmd, so::Trac
         }
         added[key] = opt;
     }
-    for (const so::TraceOptionSpec& s : so::traceOptionTable())
+    for (const so::OptionSpec& s : table.rows)
         for (const std::string& other : s.excludes)
             if (added.count(s.key) && added.count(other)) added[s.key]->excludes(added[other]);
     return flags;
@@ -106,8 +113,8 @@ static Runner addTrace(CLI::App& app) {
         "trace", "ground-truth shadows with Embree: oracle.exr, oracle.json, previews");
     traceCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     traceCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
-    const std::shared_ptr<TraceOptionFlags> traceOptions =
-        addTraceOptions(traceCmd, so::kSurfaceTrace);
+    const std::shared_ptr<OptionFlags> traceOptions =
+        addTableOptions(traceCmd, so::traceOptions(), so::kSurfaceTrace);
     addQuiet(traceCmd, o->progress);
     traceCmd->add_flag_callback(
         "--no-previews", [o] { o->previews = false; },
@@ -123,7 +130,7 @@ static Runner addTrace(CLI::App& app) {
         "--width, --height");
 
     return [o, traceOptions] {
-        traceOptions->applyTo(o->oracle);
+        so::applyTraceOptions(traceOptions->values, kCliNaming, o->oracle);
         return so::runTraceCommand(*o);
     };
 }
@@ -149,8 +156,7 @@ static Runner addView(CLI::App& app) {
     viewCmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     viewCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     addImageSize(viewCmd, o->oracle.width, o->oracle.height);
-    viewCmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
+    addTraceOptionInt(viewCmd, "threads", o->oracle.threads);
     addQuiet(viewCmd, o->progress);
     return [o] { return so::runViewCommand(*o); };
 }
@@ -164,8 +170,7 @@ static Runner addExport(CLI::App& app) {
     cmd->add_option("scene", o->scenePath, "scene file (.json, .gltf or .glb)")->required();
     cmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     addImageSize(cmd, o->oracle.width, o->oracle.height);
-    cmd->add_option("--threads", o->oracle.threads, "worker threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
+    addTraceOptionInt(cmd, "threads", o->oracle.threads);
     addQuiet(cmd, o->progress);
     return [o] { return so::runExportCommand(*o); };
 }
@@ -185,13 +190,13 @@ static Runner addRaster(CLI::App& app) {
         "--set", o->settings,
         "technique parameter key=value (repeatable; `shadow-oracle techniques` lists them)");
     addImageSize(rasterCmd, o->raster.width, o->raster.height);
-    rasterCmd
-        ->add_option(
-            "--frames", o->raster.frames,
-            "timed frames after 2 warm-up frames, median and quartiles reported (default 9)")
-        ->check(CLI::Range(1, 1000));
+    const std::shared_ptr<OptionFlags> rasterOptions =
+        addTableOptions(rasterCmd, so::rasterOptionTable(), so::kSurfaceRaster);
 
-    return [o] { return so::runRasterCommand(*o); };
+    return [o, rasterOptions] {
+        so::applyRasterOptions(rasterOptions->values, kCliNaming, o->raster);
+        return so::runRasterCommand(*o);
+    };
 }
 
 static Runner addCompare(CLI::App& app) {
@@ -213,30 +218,23 @@ static Runner addCompare(CLI::App& app) {
     compareCmd->add_option("--points", o->pointsPath,
                            "GBUFFER.exr: the oracle at a renderer's own G-buffer points instead of "
                            "the scene camera's pixels (with --image only; trace --points)");
-    const std::shared_ptr<TraceOptionFlags> traceOptions =
-        addTraceOptions(compareCmd, so::kSurfaceCompare);
-    compareCmd
-        ->add_option(
-            "--frames", o->raster.frames,
-            "timed frames per technique after 2 warm-up frames, techniques interleaved (default 9)")
-        ->check(CLI::Range(1, 1000));
+    const std::shared_ptr<OptionFlags> traceOptions =
+        addTableOptions(compareCmd, so::traceOptions(), so::kSurfaceCompare);
+    const std::shared_ptr<OptionFlags> rasterOptions =
+        addTableOptions(compareCmd, so::rasterOptionTable(), so::kSurfaceCompare);
+    const std::shared_ptr<OptionFlags> compareOptions =
+        addTableOptions(compareCmd, so::compareOptionTable(), so::kSurfaceCompare);
     compareCmd->add_option("--cache", o->cacheDir,
                            "oracle cache folder (default: $XDG_CACHE_HOME/shadow-oracle)");
     compareCmd->add_flag("--no-cache", *noCache, "always trace the oracle, and do not store it");
     compareCmd->add_flag("--embed-images", o->embedImages,
                          "report.html with its images inside (one file); default: PNGs in "
                          "report_images/ beside it");
-    compareCmd
-        ->add_option("--boundary-radius", o->boundaryRadius, "r of docs/metrics.md (default 2)")
-        ->check(CLI::Range(0, 64));
-    compareCmd
-        ->add_option("--frames-path", o->pathFrames,
-                     "also render N frames along the scene's camera_path (oracle and every "
-                     "technique) for temporal_flicker_rate (docs/metrics.md)")
-        ->check(CLI::Range(2, 10000));
 
-    return [o, noCache, encoding, images, traceOptions] {
-        traceOptions->applyTo(o->oracle);
+    return [o, noCache, encoding, images, traceOptions, rasterOptions, compareOptions] {
+        so::applyTraceOptions(traceOptions->values, kCliNaming, o->oracle);
+        so::applyRasterOptions(rasterOptions->values, kCliNaming, o->raster);
+        so::applyCompareOptions(compareOptions->values, kCliNaming, *o);
         // One size for the oracle and the renders.
         o->raster.width = o->oracle.width;
         o->raster.height = o->oracle.height;
@@ -349,17 +347,19 @@ static Runner addTechniques(CLI::App& app) {
     };
 }
 
-static Runner addTraceOptionsListing(CLI::App& app) {
+// `trace-options`, `raster-options`, `compare-options`: a table as Markdown or JSON.
+static Runner addOptionListing(CLI::App& app, const std::string& name, const std::string& what,
+                               const so::OptionTable& table) {
     auto json = std::make_shared<bool>(false), markdown = std::make_shared<bool>(false);
     CLI::App* cmd = app.add_subcommand(
-        "trace-options",
-        "list the oracle's options with their API and sweep keys, defaults, ranges and the "
-        "commands that take them");
+        name, "list the " + what +
+                  " with their API and sweep keys, defaults, ranges and the commands that take "
+                  "them");
     auto* jsonFlag = cmd->add_flag("--json", *json, "as JSON (format_version 1)");
     cmd->add_flag("--markdown", *markdown, "as the Markdown table of docs/cli.md")
         ->excludes(jsonFlag);
-    return [json, markdown] {
-        std::cout << (*json ? so::traceOptionsJson() : so::traceOptionsMarkdown());
+    return [json, markdown, &table] {
+        std::cout << (*json ? so::optionsJson(table) : so::optionsMarkdown(table));
         return 0;
     };
 }
@@ -391,7 +391,12 @@ int main(int argc, char** argv) {
         {"gate", addGate(app)},
         {"index", addIndex(app)},
         {"techniques", addTechniques(app)},
-        {"trace-options", addTraceOptionsListing(app)},
+        {"trace-options",
+         addOptionListing(app, "trace-options", "oracle's options", so::traceOptions())},
+        {"raster-options", addOptionListing(app, "raster-options", "raster path's timing options",
+                                            so::rasterOptionTable())},
+        {"compare-options", addOptionListing(app, "compare-options", "comparison's options",
+                                             so::compareOptionTable())},
         {"metrics", addMetrics(app)}};
     try {
         app.parse(argc, argv);

@@ -13,10 +13,10 @@ namespace so {
 int runRasterCommand(const RasterCommandOptions& options) {
     // Every setting is validated before the scene is read or a context made.
     const std::unique_ptr<Technique> technique =
-        createTechniqueOfFlag("--technique", options.technique, options.settings);
+        createTechniqueOfFlag("command line", "--technique", options.technique, options.settings);
     const Scene scene = loadScene(options.scenePath);
     printSceneWarnings(options.scenePath, scene);
-    const std::filesystem::path out = makeOutputDir(options.outDir);
+    const std::filesystem::path out = makeOutputDir(options.outDir, "--out");
 
     GlContext gl;  // GlUnavailable propagates: main reports it
     RasterResult r;

@@ -34,6 +34,15 @@ void printNotice(const std::string& line) {
 
 // The tasks as child processes of this program (`sweep-task`), the pool's state on the bar; then
 // the merge.
+// One task as a child process: this program's `sweep-task`, run by the local pool and by the
+// Slurm scripts alike.
+SweepTaskCommand taskCommand(const std::string& exe, const fs::path& dir) {
+    return [exe, dir](bool oracle, const std::string& number) {
+        return std::vector<std::string>{exe, "sweep-task", dir.string(),
+                                        oracle ? "--oracle" : "--index", number};
+    };
+}
+
 int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o) {
     const std::string exe = thisExecutable().string();
     ProgressBar bar(o.progress);
@@ -44,18 +53,18 @@ int runLocally(const SweepPlan& plan, const fs::path& dir, const SweepOptions& o
         bar.setNote(note);
         bar.update(stage, ended, total);
     };
-    const SweepTaskCommand command = [&](bool oracle, size_t number) {
-        return std::vector<std::string>{exe, "sweep-task", dir.string(),
-                                        oracle ? "--oracle" : "--index", std::to_string(number)};
-    };
-    runSweepLocally(plan, dir, o.jobs, command, callbacks);
+    runSweepLocally(plan, dir, o.jobs, taskCommand(exe, dir), callbacks);
     return runSweepMerge({dir.string(), false, true});
 }
 
 // What --slurm wrote and submitted (with --dry-run: the scripts and the sbatch commands).
 int submitToSlurm(const SweepPlan& plan, const fs::path& dir, const SweepOptions& options) {
     SlurmOptions o = options.slurmOptions;
-    o.program = thisExecutable();
+    o.taskCommand = taskCommand(thisExecutable().string(), dir);
+    o.mergeCommand = {thisExecutable().string(), "sweep-merge", dir.string()};
+    o.source = "command line";
+    o.outName = "--out";
+    o.slurmName = "--slurm";
     const SlurmSubmission r = submitSweepToSlurm(plan, dir, o);
     if (r.nothingToSubmit) {
         std::cout << "all " << plan.tasks.size() << " tasks of " << dir.string()
@@ -92,7 +101,7 @@ int runSweepCommand(const SweepOptions& options) {
         planSweep(options.specPath, [](const std::string& name, const std::vector<std::string>& s) {
             return createTechnique(name, s)->values().all();
         });
-    const fs::path dir = fs::absolute(makeOutputDir(options.outDir));
+    const fs::path dir = fs::absolute(makeOutputDir(options.outDir, "--out"));
     keepPlan(dir, plan);
     SweepRunCallbacks notices;
     notices.notice = printNotice;

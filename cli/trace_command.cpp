@@ -121,7 +121,7 @@ int runTracePoints(const TraceCommandOptions& options) {
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     printSceneWarnings(options.scenePath, scene);
 
-    const std::filesystem::path out = makeOutputDir(options.outDir);
+    const std::filesystem::path out = makeOutputDir(options.outDir, "--out");
     ProgressBar bar(options.progress);
     OracleOptions oracle = options.oracle;
     oracle.progress = bar.callback();
@@ -176,7 +176,7 @@ int runTraceCommand(const TraceCommandOptions& options) {
     }
     const RowBand rows = oracle.rows.value_or(RowBand{0, cam.height});
 
-    const std::filesystem::path out = makeOutputDir(options.outDir);
+    const std::filesystem::path out = makeOutputDir(options.outDir, "--out");
     OracleResult result =
         namingFlag("verify", "--verify", [&] { return runOracle(scene, oracle); });
 

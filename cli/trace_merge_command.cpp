@@ -13,7 +13,8 @@ int runTraceMergeCommand(const TraceMergeOptions& options) {
     {
         ProgressBar bar(options.progress);
         files = mergeTraceTiles(
-            options.tileDirs, [&] { return makeOutputDir(options.outDir); }, bar.callback());
+            options.tileDirs, [&] { return makeOutputDir(options.outDir, "--out"); },
+            bar.callback());
     }
     std::cout << "merged " << files.tiles << " tiles (" << files.width << "x" << files.height
               << ")\n  " << files.exr.string() << "\n  " << files.json.string() << "\n";

@@ -24,6 +24,9 @@
 #include <optional>
 #include <vector>
 
+#include "core/channels.h"
+#include "core/trace_option_table.h"
+
 #include "oracle/accel.h"
 #include "oracle/area_light.h"
 #include "oracle/pass_stats.h"
@@ -41,8 +44,8 @@ struct AreaSampling {
     double targetError = 0.01;  // 95% half-width
     // Pixels whose samples all agree stop at max(targetError, agreementTarget) (above).
     double agreementTarget = 0.01;
-    int maxSpp = 16384;
-    int fixedSpp = 0;  // > 0: exactly this many samples per pixel, no adaptivity
+    int maxSpp = kDefaultMaxSpp;  // the trace option table's default
+    int fixedSpp = 0;             // > 0: exactly this many samples per pixel, no adaptivity
     uint32_t seed = 0;
 };
 

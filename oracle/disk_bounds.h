@@ -34,6 +34,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/trace_option_table.h"
 #include "oracle/polygon_visibility.h"
 
 namespace so {
@@ -61,7 +62,7 @@ double diskSolidAngle(const DiskLightShape& disk, const glm::dvec3& p, const glm
 
 // The n-gons (n a power of two, 8 <= n <= kMaxSides): inscribed in the circle of radius
 // radius * scale, and circumscribed about it (its edges tangent to it).
-inline constexpr uint32_t kMaxDiskSides = 16384;
+inline constexpr uint32_t kMaxDiskSides = kMaxBoundSides;  // the trace option table's limit
 std::vector<glm::dvec3> inscribedPolygon(const DiskLightShape& disk, uint32_t sides, double scale);
 std::vector<glm::dvec3> circumscribedPolygon(const DiskLightShape& disk, uint32_t sides,
                                              double scale);

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/version.h"
+#include "oracle/trace_options.h"
 
 namespace so {
 
@@ -28,34 +29,19 @@ fs::path defaultOracleCacheDir() {
 }
 
 nlohmann::json oracleSamplingJson(const OracleOptions& o, const CameraDesc& cam) {
-    nlohmann::json j = {{"width", cam.width},
-                        {"height", cam.height},
-                        {"seed", o.area.seed},
-                        {"spp", o.area.fixedSpp},
-                        {"target_error", o.area.targetError},
-                        {"agreement_target", o.area.agreementTarget},
-                        {"max_spp", o.area.maxSpp}};
-    // Only when asked, so that sampled runs keep the keys they had.
-    if (o.penumbra.method != PenumbraMethod::Sampled) {
-        j["penumbra"] = penumbraMethodName(o.penumbra.method);
-        j["exact_pixels"] = o.penumbra.allPixels ? "all" : "penumbra";
-        j["exact_max_occluders"] = o.penumbra.maxOccluders;
-        j["bound_target"] = o.penumbra.bound.targetHalfWidth;
-        j["bound_max_sides"] = o.penumbra.bound.maxSides;
-    }
+    nlohmann::json j = resultOptionsJson(o, cam);
+    j["exact_max_occluders"] = o.penumbra.maxOccluders;  // the exact pass's, not a table row
     return j;
 }
 
-// The oracle's result is a function of the scene's content, the options that change it and the
-// code that made it: all go into the key. Entries made before keep their keys: change nothing here
-// without a reason to invalidate them.
+// The oracle's result is a function of the scene's content, the options that change it (every
+// trace option table row but those marked sameResult, by resultOptionsJson) and the code that made
+// it: all go into the key. A change of the key's text invalidates the entries made before.
 // (nlohmann::json keeps an object's keys sorted, so the key's text does not depend on the order in
 // which they are added.)
 std::string oracleCacheKey(const Scene& scene, const OracleOptions& o) {
     nlohmann::json k = oracleSamplingJson(o, effectiveCamera(scene, o));
     k["scene"] = scene.contentHash;
-    k["verify"] = o.verify.pixels;
-    k["verify_samples"] = o.verify.areaSamples;
     k["tool"] = std::string(kToolVersion) + " " + kGitRevision;
     // A camera override (a path frame) sees other pixels. Only then is the pose in the key, so
     // the scene camera's entries keep the keys they had. Doubles as %.17g: exact round trip.

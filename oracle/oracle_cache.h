@@ -30,15 +30,19 @@ struct CachedOracle {
     // "oracle cache entry DIR unusable (why): tracing again", "oracle cache: not stored (why)":
     // for the caller to print (the library writes nothing to stderr).
     std::vector<std::string> warnings = {};
+    // Traced at a G-buffer's points (trace --points), not at the camera's pixels: what only images
+    // can be judged against (checkTechniquesAtPoints).
+    bool atPoints = false;
 };
 
 // $XDG_CACHE_HOME/shadow-oracle, else ~/.cache/shadow-oracle, else the temp folder's
 // shadow-oracle-cache.
 std::filesystem::path defaultOracleCacheDir();
 
-// The options besides the scene and the camera's pose that decide the pixels: width, height, seed,
-// spp, target_error, agreement_target and max_spp. The cache key and the `options` block of a
-// tile's oracle.json (trace --tile) both start from it and add their own.
+// The options besides the scene and the camera's pose that decide the pixels: the trace option
+// table's rows that change the result (resultOptionsJson, oracle/trace_options.h) and the exact
+// pass's occluder limit. The cache key and the `options` block of a tile's oracle.json
+// (trace --tile) both start from it and add their own.
 nlohmann::json oracleSamplingJson(const OracleOptions& options, const CameraDesc& cam);
 
 // The entry's folder name: a hash of what the oracle's result is a function of.

@@ -436,7 +436,8 @@ void bindRender(py::module_& m) {
             return out;
         },
         py::arg("scene"), py::arg("technique"), py::kw_only(), py::arg("width") = 0,
-        py::arg("height") = 0, py::arg("frames") = 9, py::arg("warmup") = 2,
+        py::arg("height") = 0, py::arg("frames") = so::RenderOptions{}.frames,
+        py::arg("warmup") = so::RenderOptions{}.warmup,
         "A built-in technique through the GL path, its parameters as keywords by the names of "
         "docs/techniques.md: render(scene, \"pcf\", kernel=5, pattern=\"poisson\").");
     m.def(
@@ -514,8 +515,10 @@ void bindCompare(py::module_& m) {
             return jsonLoads(r.metricsJson);
         },
         py::arg("scene"), py::arg("oracle"), py::arg("images") = py::none(), py::kw_only(),
-        py::arg("techniques") = std::vector<std::string>{}, py::arg("boundary_radius") = 2,
-        py::arg("frames") = 9, py::arg("warmup") = 2, py::arg("progress") = py::none(),
+        py::arg("techniques") = std::vector<std::string>{},
+        py::arg("boundary_radius") = so::CompareOptions{}.boundaryRadius,
+        py::arg("frames") = so::CompareOptions{}.frames,
+        py::arg("warmup") = so::CompareOptions{}.warmup, py::arg("progress") = py::none(),
         py::arg("out_dir") = py::none(), py::arg("report") = true,
         "Judges renderers' images ({label: V array, or {light: V array}}) and built-in techniques "
         "(\"pcf:kernel=5\") against the oracle; returns metrics.json as a dict. With out_dir, "

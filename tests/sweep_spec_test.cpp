@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/compare_option_table.h"
 #include "core/error.h"
+#include "core/raster_option_table.h"
 #include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
@@ -370,6 +372,40 @@ TEST_F(SweepSpec, TraceOptionTableSweepKeysAreTheSpecsKeys) {
         }
     }
     EXPECT_GE(offered, 10u);
+}
+
+// The raster and comparison tables' sweep rows are the spec's top-level keys, checked by their
+// rows; the others are unknown keys.
+TEST_F(SweepSpec, RasterAndCompareTableSweepKeysAreTheSpecsKeys) {
+    const std::string head = R"({"sweep_format": 1, "scenes": ["scenes/a.scene.json"], )"
+                             R"("techniques": [{"name": "shadow"}])";
+    size_t offered = 0;
+    for (const OptionTable* table : {&rasterOptionTable(), &compareOptionTable()})
+        for (const OptionSpec& s : table->rows) {
+            const auto spec = [&](const std::string& value) {
+                return head + ", \"" + s.key + "\": " + value + "}";
+            };
+            const std::string def = nlohmann::json(int64_t(s.max)).dump();
+            if (!(s.surfaces & kSurfaceSweep)) {
+                EXPECT_NE(error(spec(def)).find(s.key + ": unknown key"), std::string::npos)
+                    << s.key;
+                continue;
+            }
+            ++offered;
+            EXPECT_EQ(error(spec(def)), "") << s.key;
+            const std::string e = error(spec("-1"));
+            EXPECT_NE(e.find(": " + s.key + ": must be an integer in"), std::string::npos)
+                << s.key << " -> " << e;
+            const SweepSettings settings =
+                plan(R"([{"name": "shadow"}])", R"(["scenes/a.scene.json"])",
+                     ", \"" + s.key + "\": " + def)
+                    .settings;
+            const OptionValues& values =
+                table == &rasterOptionTable() ? settings.raster : settings.compare;
+            ASSERT_EQ(values.count(s.key), 1u) << s.key;
+            EXPECT_EQ(values.at(s.key).number, s.max) << s.key;
+        }
+    EXPECT_GE(offered, 2u);  // frames, boundary_radius
 }
 
 }  // namespace

@@ -79,21 +79,23 @@ def export_scene(
 def trace(
     scene: Scene,
     *,
+    # BEGIN trace-options (generated: scripts/update-docs)
     width: int = 0,
     height: int = 0,
+    threads: int = 0,
+    seed: int = 0,
     target_error: float = 0.01,
     agreement_target: float = 0.01,
     max_spp: int = 16384,
     spp: int = 0,
-    seed: int = 0,
-    threads: int = 0,
     verify: int = 0,
     penumbra: str = "auto",
     exact_pixels: str = "penumbra",
-    points: Optional[str] = None,
-    progress: Optional[ProgressFn] = None,
     bound_target: float = 1e-06,
     bound_max_sides: int = 4096,
+    # END trace-options
+    points: Optional[str] = None,
+    progress: Optional[ProgressFn] = None,
 ) -> Trace: ...
 def render(
     scene: Scene,
@@ -101,8 +103,10 @@ def render(
     *,
     width: int = 0,
     height: int = 0,
+    # BEGIN raster-options (generated: scripts/update-docs)
     frames: int = 9,
     warmup: int = 2,
+    # END raster-options
     **parameters: Union[float, int, str, bool],
 ) -> Render: ...
 def techniques() -> dict[str, Any]: ...
@@ -113,9 +117,13 @@ def compare(
     images: Optional[Mapping[str, ImageArg]] = None,
     *,
     techniques: Sequence[str] = (),
+    # BEGIN compare-options (generated: scripts/update-docs)
     boundary_radius: int = 2,
+    # END compare-options
+    # BEGIN raster-options (generated: scripts/update-docs)
     frames: int = 9,
     warmup: int = 2,
+    # END raster-options
     progress: Optional[ProgressFn] = None,
     out_dir: Optional[str] = None,
     report: bool = True,

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/compare_option_table.h"
 #include "core/image.h"
 #include "core/timing.h"
 #include "core/work_counts.h"
@@ -26,7 +27,7 @@ namespace so {
 inline constexpr int kMetricsSchemaVersion = 8;
 
 struct MetricOptions {
-    int boundaryRadius = 2;  // r: pixels from an oracle shadow boundary
+    int boundaryRadius = kDefaultBoundaryRadius;  // r: pixels from an oracle shadow boundary
     double contactThreshold =
         0.0;  // occluder distance below which a shadow is "at contact" (world units)
     bool filteredTechnique = false;  // light bleeding is only measured for filtered techniques

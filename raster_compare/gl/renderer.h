@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/raster_option_table.h"
 #include "core/scene.h"
 #include "raster_compare/gl/raster_result.h"
 #include "raster_compare/gl/technique.h"
@@ -22,8 +23,8 @@ struct RasterOptions {
     // Another camera than the scene's (a frame of compare --frames-path); width and height above
     // still override its size.
     std::optional<CameraDesc> camera;
-    int frames = 9;  // timed frames (median and quartiles reported)
-    int warmup = 2;  // untimed frames first
+    int frames = kDefaultFrames;  // timed frames (median and quartiles reported)
+    int warmup = kDefaultWarmup;  // untimed frames first
     // Before its timed frames, each technique's work is counted in one frame of its counting
     // build (work_counter.h; docs/metrics.md, "Work"), which never runs in the timed frames.
     bool countWork = true;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "core/compare_option_table.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "oracle/area_shadow.h"
@@ -19,9 +20,10 @@
 namespace so {
 
 struct CompareOutputOptions {
-    std::string scenePath;   // metrics.json's scene.file: the path as the caller gave it
-    int boundaryRadius = 2;  // as the comparison was made with (metrics.json "options")
-    AreaSampling sampling;   // the oracle's, as the report's provenance states it
+    std::string scenePath;  // metrics.json's scene.file: the path as the caller gave it
+    int boundaryRadius =
+        kDefaultBoundaryRadius;  // as the comparison was made with (metrics.json "options")
+    AreaSampling sampling;       // the oracle's, as the report's provenance states it
     // report.html (images in report_images/, or inside it with embedImages) and the oracle.exr it
     // shows; a sweep's task writes neither.
     bool writeReport = true, embedImages = false;

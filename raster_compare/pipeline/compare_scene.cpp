@@ -1,5 +1,6 @@
 #include "raster_compare/pipeline/compare_scene.h"
 
+#include <map>
 #include <optional>
 
 #include "core/error.h"
@@ -15,33 +16,30 @@ namespace {
 std::vector<TechniqueSpec> parseTechniques(const CompareOptions& options) {
     std::vector<TechniqueSpec> specs;
     for (const std::string& s : options.techniques)
-        specs.push_back(asFlag(options.names.technique, [&] { return parseTechniqueSpec(s); }));
+        specs.push_back(asFlag(options.names.source, options.names.technique,
+                               [&] { return parseTechniqueSpec(s); }));
     return specs;
 }
 
 // What the caller's options can get wrong, said with their names, before anything is read.
 void checkOptions(const CompareOptions& options, const std::vector<TechniqueSpec>& specs) {
     const CompareOptionNames& n = options.names;
+    SO_CHECK(!n.source.empty());  // the caller names its options (CompareOptionNames)
     if (specs.empty() && options.images.empty())
         throwInputError(
-            "command line", n.technique,
+            n.source, n.technique,
             "nothing to compare: give " + n.technique + " NAME or " + n.image + " LABEL=PATH");
     for (const TechniqueSpec& spec : specs)
-        createTechniqueOfFlag(n.technique, spec.name, spec.settings);
-    asFlag(n.image, [&] { checkRowLabels(specs, options.images); });
+        createTechniqueOfFlag(n.source, n.technique, spec.name, spec.settings);
+    asFlag(n.source, n.image, [&] { checkRowLabels(specs, options.images); });
     if (!options.pointsPath.empty()) {
-        if (!specs.empty())
-            throwInputError("command line", n.points,
-                            "judges images only: the built-in techniques render the scene's "
-                            "camera, not the G-buffer's pixels (drop " +
-                                n.technique + ")");
+        checkTechniquesAtPoints(true, specs.size(), n.source, n.points, n.technique);
         if (options.raster.width > 0 || options.raster.height > 0)
-            throwInputError("command line", n.points,
-                            "the image is the G-buffer's size: drop " + n.size);
+            throwInputError(n.source, n.points, "the image is the G-buffer's size: drop " + n.size);
     }
     if (options.pathFrames > 0 && !options.images.empty())
         throwInputError(
-            "command line", n.framesPath,
+            n.source, n.framesPath,
             "an image is one frame: " + n.framesPath + " works with " + n.technique + " only");
 }
 
@@ -66,7 +64,9 @@ CachedOracle oracleFor(const CompareOptions& options, const CompareCallbacks& ca
     }
     OracleResult r = namingFlag("verify", verify,
                                 [&] { return runOracleAtPoints(scene, *points, oracleOptions); });
-    return {std::move(r.image), std::move(r.stats), false, "points " + points->path};
+    CachedOracle oracle{std::move(r.image), std::move(r.stats), false, "points " + points->path};
+    oracle.atPoints = true;
+    return oracle;
 }
 
 ComparisonOptions comparisonOptions(const CompareOptions& options,
@@ -84,7 +84,32 @@ ComparisonOptions comparisonOptions(const CompareOptions& options,
     return c;
 }
 
+using CompareSetter = void (*)(CompareOptions& o, const OptionValue& v);
+
+// Where each key of the compare option table goes.
+const std::map<std::string, CompareSetter>& compareSetters() {
+    static const std::map<std::string, CompareSetter> kSetters = {
+        {"boundary_radius",
+         [](CompareOptions& o, const OptionValue& v) { o.boundaryRadius = int(v.number); }},
+        {"frames_path",
+         [](CompareOptions& o, const OptionValue& v) { o.pathFrames = int(v.number); }},
+    };
+    return kSetters;
+}
+
 }  // namespace
+
+void applyCompareOptions(const OptionValues& values, const OptionNaming& naming,
+                         CompareOptions& o) {
+    so::checkOptions(compareOptionTable(), values, naming);
+    for (const auto& [key, value] : values) compareSetters().at(key)(o, value);
+}
+
+std::vector<std::string> appliedCompareOptionKeys() {
+    std::vector<std::string> keys;
+    for (const auto& [key, setter] : compareSetters()) keys.push_back(key);
+    return keys;
+}
 
 CompareRun compareScene(const CompareOptions& options, const CompareCallbacks& callbacks) {
     // Everything the caller can get wrong is checked before any work starts.
@@ -111,7 +136,7 @@ CompareRun compareScene(const CompareOptions& options, const CompareCallbacks& c
     for (const ImageSpec& spec : options.images)
         images.push_back({spec, readVisibilityImage(spec.path, scene.lights, width, height,
                                                     options.imageEncoding)});
-    if (!options.outDir.empty()) run.out = makeOutputDir(options.outDir);
+    if (!options.outDir.empty()) run.out = makeOutputDir(options.outDir, options.names.out);
 
     run.atPoints = points.has_value();
     run.oracle =

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/compare_option_table.h"
 #include "core/progress.h"
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
@@ -19,15 +20,18 @@
 
 namespace so {
 
-// What the caller calls the options the checks refuse: their errors read "command line: NAME:
-// ...". The defaults are compare's flags, which a sweep's task names too (docs/cli.md).
+// What the caller calls the options the checks refuse: their errors read "SOURCE: NAME: ...". No
+// defaults: the command passes its flags ("command line", "--technique"), a sweep's task its
+// spec's keys (sweep_task.h), so that an error names what the user wrote.
 struct CompareOptionNames {
-    std::string technique = "--technique";
-    std::string image = "--image";
-    std::string points = "--points";
-    std::string framesPath = "--frames-path";
-    std::string verify = "--verify";
-    std::string size = "--width and --height";
+    std::string source;      // where the options come from: "command line", the spec's path
+    std::string technique;   // "--technique"
+    std::string image;       // "--image"
+    std::string points;      // "--points"
+    std::string framesPath;  // "--frames-path"
+    std::string verify;      // "--verify"
+    std::string size;        // "--width and --height"
+    std::string out;         // "--out"
 };
 
 struct CompareOptions {
@@ -46,7 +50,7 @@ struct CompareOptions {
     std::filesystem::path cacheDir;  // empty: defaultOracleCacheDir()
     bool useCache = true;
     bool embedImages = false;  // report.html's images inside it, not in report_images/
-    int boundaryRadius = 2;
+    int boundaryRadius = kDefaultBoundaryRadius;
     double contactThresholdRelative = 0.01;  // of the scene's bounding-box diagonal
     // --frames-path N (>= 2): the scene's camera path in N frames, for temporal_flicker_rate;
     // 0: none.
@@ -80,6 +84,12 @@ struct CompareRun {
     Comparison comparison;
     std::filesystem::path out;  // the output folder, made; empty when options.outDir is
 };
+
+// The compare option table's values (core/compare_option_table.h): checks each of `values`
+// (naming its field as `naming` says) and writes it into `o`.
+void applyCompareOptions(const OptionValues& values, const OptionNaming& naming, CompareOptions& o);
+// The keys applyCompareOptions can write, sorted (a test compares them with the table's).
+std::vector<std::string> appliedCompareOptionKeys();
 
 // Checks the options (InputError naming them as options.names does, before any work), loads the
 // scene, makes the output folder (unless options.outDir is empty), traces or reads the oracle and

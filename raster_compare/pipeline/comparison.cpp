@@ -48,6 +48,15 @@ ImageSpec makeImageSpec(const std::string& label, const std::string& path) {
     return {label, fileLabelOf(label), path};
 }
 
+void checkTechniquesAtPoints(bool atPoints, size_t techniques, const std::string& file,
+                             const std::string& field, const std::string& techniqueName) {
+    if (atPoints && techniques > 0)
+        throwInputError(file, field,
+                        "judges images only: the built-in techniques render the scene's camera, "
+                        "not a G-buffer's points (drop " +
+                            techniqueName + ")");
+}
+
 void checkRowLabels(const std::vector<TechniqueSpec>& techniques,
                     const std::vector<ImageSpec>& images) {
     std::set<std::string> labels, fileLabels;

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/compare_option_table.h"
 #include "core/progress.h"
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
@@ -59,11 +60,17 @@ struct ImageInput {
     VisibilityImage image;
 };
 
+// An oracle traced at a G-buffer's points (CachedOracle::atPoints) judges images only: an
+// InputError(file, field) when `techniques` > 0, telling to drop `techniqueName` (the caller's name
+// of the techniques: "--technique", "techniques"). The one check of that rule, for every caller.
+void checkTechniquesAtPoints(bool atPoints, size_t techniques, const std::string& file,
+                             const std::string& field, const std::string& techniqueName);
+
 struct ComparisonOptions {
     // The techniques' frames; width and height must be the oracle's (0: the scene camera's).
     RasterOptions raster;
-    int boundaryRadius = 2;                  // r of docs/metrics.md
-    double contactThresholdRelative = 0.01;  // of the scene's bounding-box diagonal
+    int boundaryRadius = kDefaultBoundaryRadius;  // r of docs/metrics.md
+    double contactThresholdRelative = 0.01;       // of the scene's bounding-box diagonal
     // N >= 2: every technique also along the scene's camera path in N frames, for
     // temporal_flicker_rate, with the oracle of each frame from `pathOracle` and `pathCache`.
     int pathFrames = 0;

@@ -9,9 +9,10 @@ std::filesystem::path makeOutputDir(const std::string& dir, const std::string& f
     return std::filesystem::path(dir);
 }
 
-std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& flag, const std::string& name,
+std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& source, const std::string& flag,
+                                                 const std::string& name,
                                                  const std::vector<std::string>& settings) {
-    asFlag(flag, [&] { findTechnique(name); });
+    asFlag(source, flag, [&] { findTechnique(name); });
     return createTechnique(name, settings);
 }
 

@@ -14,13 +14,14 @@
 
 namespace so {
 
-// Runs `f`; any InputError it throws becomes the command line's: "command line: FLAG: message".
+// Runs `f`; any InputError it throws becomes one of the caller's options: "SOURCE: FLAG: message"
+// (the command's "command line: --technique: ...").
 template <class F>
-decltype(auto) asFlag(const std::string& flag, F&& f) {
+decltype(auto) asFlag(const std::string& source, const std::string& flag, F&& f) {
     try {
         return f();
     } catch (const InputError& e) {
-        throwInputError("command line", flag, e.message());
+        throwInputError(source, flag, e.message());
     }
 }
 // Runs `f`; an InputError on the library's option `field` (e.g. OracleOptions' "verify", in the
@@ -35,13 +36,15 @@ decltype(auto) namingFlag(const std::string& field, const std::string& flag, F&&
     }
 }
 
-// Creates the folder (and its parents); an InputError naming `flag` (the folder's option) when it
-// cannot.
-std::filesystem::path makeOutputDir(const std::string& dir, const std::string& flag = "--out");
+// Creates the folder (and its parents); an InputError naming `flag` (the caller's name of the
+// folder's option: the command's "--out") when it cannot.
+std::filesystem::path makeOutputDir(const std::string& dir, const std::string& flag);
 
-// The technique a command-line flag names, created (so its settings validated): an unknown name
-// is an InputError naming the flag ("command line: --technique: unknown technique "nope" ...").
-std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& flag, const std::string& name,
+// The technique an option of the caller names, created (so its settings validated): an unknown
+// name is an InputError naming the option as the caller does ("command line: --technique: unknown
+// technique "nope" ...").
+std::unique_ptr<Technique> createTechniqueOfFlag(const std::string& source, const std::string& flag,
+                                                 const std::string& name,
                                                  const std::vector<std::string>& settings);
 
 }  // namespace so

@@ -77,6 +77,27 @@ SlurmScript script(const SweepPlan& plan, const fs::path& dir, const SlurmOption
     return {what + ".sbatch", s};
 }
 
+// The array task's index, as a task command's `number` (SweepTaskCommand).
+constexpr const char* kArrayIndex = "$SLURM_ARRAY_TASK_ID";
+
+// A word the shell reads as itself.
+bool plainWord(const std::string& a) {
+    return !a.empty() && a.find_first_not_of(
+                             "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                             "0123456789_./=:+-") == std::string::npos;
+}
+
+// An argv as a line of the script: words quoted where the shell would read them otherwise, the
+// array index expanded by the shell.
+std::string commandLine(const std::vector<std::string>& argv) {
+    std::string line;
+    for (const std::string& a : argv)
+        line += (line.empty() ? "" : " ") + (a == kArrayIndex ? "\"" + a + "\""
+                                             : plainWord(a)   ? a
+                                                              : shellQuote(a));
+    return line;
+}
+
 // sbatch --parsable: "JOBID" or "JOBID;CLUSTER".
 std::string submit(const fs::path& file, const std::string& dependency) {
     std::string command = "sbatch --parsable";
@@ -117,25 +138,24 @@ SlurmSubmission submitSweepToSlurm(const SweepPlan& plan, const fs::path& dir,
     // #SBATCH lines are split at white space: a log path there cannot hold any.
     if (dir.string().find_first_of(" \t\n") != std::string::npos)
         throwInputError(
-            "command line", o.outName,
+            o.source, o.outName,
             o.slurmName + " needs a folder path without spaces (#SBATCH --output takes it)");
     if (!o.dryRun && !onPath("sbatch"))
-        throwInputError("command line", o.slurmName,
+        throwInputError(o.source, o.slurmName,
                         "sbatch is not on PATH: " + o.slurmName +
                             " needs Slurm's client commands (--dry-run prints the scripts without "
                             "them)");
     if (const size_t limit = o.dryRun ? SIZE_MAX : maxArraySize(); tasks.back() >= limit)
-        throwInputError("command line", o.slurmName,
+        throwInputError(o.source, o.slurmName,
                         "task index " + std::to_string(tasks.back()) +
                             " is not below the cluster's MaxArraySize (" + std::to_string(limit) +
                             "): raise MaxArraySize in slurm.conf or split the sweep");
-    const std::string exe = shellQuote(o.program.string()), qdir = shellQuote(dir.string());
     const std::string limit = o.maxConcurrent > 0 ? "%" + std::to_string(o.maxConcurrent) : "";
     r.scripts = {script(plan, dir, o, "oracles", slurmArrayList(scenes) + limit, "oracle-%a.log",
-                        exe + " sweep-task " + qdir + " --oracle \"$SLURM_ARRAY_TASK_ID\""),
+                        commandLine(o.taskCommand(true, kArrayIndex))),
                  script(plan, dir, o, "tasks", slurmArrayList(tasks) + limit, "task-%a.log",
-                        exe + " sweep-task " + qdir + " --index \"$SLURM_ARRAY_TASK_ID\""),
-                 script(plan, dir, o, "merge", "", "merge.log", exe + " sweep-merge " + qdir)};
+                        commandLine(o.taskCommand(false, kArrayIndex))),
+                 script(plan, dir, o, "merge", "", "merge.log", commandLine(o.mergeCommand))};
     std::error_code ec;
     fs::create_directories(dir / "slurm", ec);
     fs::create_directories(dir / "logs", ec);

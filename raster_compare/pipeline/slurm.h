@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "raster_compare/pipeline/sweep_runner.h"
 #include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
@@ -20,10 +21,13 @@ struct SlurmOptions {
     int maxConcurrent = 0;                // --max-concurrent K: "%K" on the arrays; 0: no limit
     std::vector<std::string> sbatchArgs;  // --sbatch-arg, each an #SBATCH line of every script
     bool dryRun = false;                  // write the scripts, submit nothing
-    // The program the scripts run (`PROGRAM sweep-task DIR ...`, `PROGRAM sweep-merge DIR`).
-    std::filesystem::path program;
-    // What the caller calls the sweep's folder and the cluster option, as the errors name them.
-    std::string outName = "--out", slurmName = "--slurm";
+    // What the array tasks run: the local runner's command (sweep_runner.h), given the array
+    // index as the shell word "$SLURM_ARRAY_TASK_ID".
+    SweepTaskCommand taskCommand;
+    std::vector<std::string> mergeCommand;  // what the merge job runs
+    // What the caller calls where the options come from, the sweep's folder and the cluster
+    // option, as the errors name them ("command line", "--out", "--slurm"); no defaults.
+    std::string source, outName, slurmName;
 };
 
 struct SlurmScript {

@@ -168,12 +168,13 @@ void runSweepLocally(const SweepPlan& plan, const fs::path& dir, int jobs,
             " of " + std::to_string(plan.tasks.size()) + " tasks already finished, " +
             std::to_string(left.tasks.size()) + " to run over " + std::to_string(sceneList.size()) +
             " scenes, " + std::to_string(jobs) + " at once");
-    for (size_t s : sceneList) oracles.push_back({command(true, s), sweepOracleLogPath(dir, s)});
+    for (size_t s : sceneList)
+        oracles.push_back({command(true, std::to_string(s)), sweepOracleLogPath(dir, s)});
     std::set<size_t> badScenes;
     for (size_t k : runPool(oracles, jobs, callbacks, "oracles")) badScenes.insert(sceneList[k]);
     for (size_t i : left.tasks)
         if (!badScenes.count(plan.tasks[i].scene))  // its oracle's log says why
-            tasks.push_back({command(false, i), sweepTaskLogPath(dir, i)});
+            tasks.push_back({command(false, std::to_string(i)), sweepTaskLogPath(dir, i)});
         else
             fs::remove(sweepTaskLogPath(dir, i), ec);
     runPool(tasks, jobs, callbacks, "tasks");

@@ -27,8 +27,11 @@ struct SweepRunCallbacks {
 };
 
 // The argv of the child process that runs one task: the oracle of scene S (oracle = true) or
-// technique task K (runSweepOracleTask, runSweepTechniqueTask in a process of its own).
-using SweepTaskCommand = std::function<std::vector<std::string>(bool oracle, size_t number)>;
+// technique task K (runSweepOracleTask, runSweepTechniqueTask in a process of its own). `number`
+// is S or K as text, or a shell word that expands to it (the Slurm scripts' array index): the
+// local runner and the Slurm scripts (slurm.h) run the same command.
+using SweepTaskCommand =
+    std::function<std::vector<std::string>(bool oracle, const std::string& number)>;
 
 // A scene edited since its rows were made (same name, other content) makes them stale: they are
 // removed, so that its tasks run again, and the scene's hash is recorded for sweep-merge, which

@@ -13,8 +13,10 @@
 #include <set>
 #include <sstream>
 
+#include "core/compare_option_table.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/raster_option_table.h"
 #include "core/read_file.h"
 #include "core/trace_option_table.h"
 
@@ -56,12 +58,11 @@ int integer(const Json& v, const std::string& file, const std::string& field, in
     return int(d);
 }
 
-// One trace option of the spec (core/trace_option_table.h), checked by the table.
-TraceOptionValue traceOptionValue(const Json& v, const std::string& key, const std::string& file,
-                                  const std::string& field) {
-    const TraceOptionSpec& spec = traceOption(key);
-    TraceOptionValue out;
-    if (spec.type == TraceOptionType::Name) {
+// One option of the spec (core/option_table.h), checked by its table's row.
+OptionValue optionValue(const OptionSpec& spec, const Json& v, const std::string& file,
+                        const std::string& field) {
+    OptionValue out;
+    if (spec.type == OptionType::Name) {
         std::string list;
         for (const std::string& n : spec.names) list += (list.empty() ? "" : ", ") + n;
         if (!v.is_string()) throwInputError(file, field, "must be one of " + list);
@@ -69,13 +70,23 @@ TraceOptionValue traceOptionValue(const Json& v, const std::string& key, const s
     } else {
         out.number = number(v, file, field);
     }
-    checkTraceOption(spec, out, file, field, /*allowUnsetZero=*/false);
+    checkOption(spec, out, file, field, /*allowUnsetZero=*/false);
     return out;
 }
 
 // The image size lies at the spec's top level; the other trace options in its "oracle" block.
 bool topLevelTraceOption(const std::string& key) {
     return key == "width" || key == "height";
+}
+
+// The spec's top-level keys: its own, the image size and the tables' sweep rows.
+std::set<std::string> topLevelKeys() {
+    std::set<std::string> keys = {"sweep_format", "name",   "scenes",     "width", "height",
+                                  "keep_outputs", "oracle", "techniques", "images"};
+    for (const OptionTable* table : {&rasterOptionTable(), &compareOptionTable()})
+        for (const OptionSpec& spec : table->rows)
+            if (spec.surfaces & kSurfaceSweep) keys.insert(spec.key);
+    return keys;
 }
 
 // The spec's oracle block: the trace options the table offers to sweeps, with their ranges.
@@ -86,18 +97,22 @@ void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& or
             keys.insert(spec.key);
     checkKeys(o, keys, file, "oracle");
     for (const auto& [key, value] : o.items())
-        oracle.values[key] = traceOptionValue(value, key, file, "oracle." + key);
+        oracle.values[key] = optionValue(traceOption(key), value, file, "oracle." + key);
 }
 
 SweepSettings parseSettings(const Json& spec, const std::string& file) {
     SweepSettings s;
     if (spec.contains("width"))
-        s.oracle.width = int(traceOptionValue(spec["width"], "width", file, "width").number);
+        s.oracle.width =
+            int(optionValue(traceOption("width"), spec["width"], file, "width").number);
     if (spec.contains("height"))
-        s.oracle.height = int(traceOptionValue(spec["height"], "height", file, "height").number);
-    if (spec.contains("frames")) s.frames = integer(spec["frames"], file, "frames", 1, 1000);
-    if (spec.contains("boundary_radius"))
-        s.boundaryRadius = integer(spec["boundary_radius"], file, "boundary_radius", 0, 64);
+        s.oracle.height =
+            int(optionValue(traceOption("height"), spec["height"], file, "height").number);
+    for (const auto& [table, values] :
+         {std::pair{&rasterOptionTable(), &s.raster}, std::pair{&compareOptionTable(), &s.compare}})
+        for (const OptionSpec& row : table->rows)
+            if ((row.surfaces & kSurfaceSweep) && spec.contains(row.key))
+                (*values)[row.key] = optionValue(row, spec[row.key], file, row.key);
     if (spec.contains("keep_outputs")) {
         if (!spec["keep_outputs"].is_boolean())
             throwInputError(file, "keep_outputs", "must be true or false");
@@ -536,10 +551,7 @@ SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
     } catch (const Json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
         throwInputError(file, "", std::string("not valid JSON: ") + e.what());
     }
-    checkKeys(plan.spec,
-              {"sweep_format", "name", "scenes", "width", "height", "frames", "boundary_radius",
-               "keep_outputs", "oracle", "techniques", "images"},
-              file, "");
+    checkKeys(plan.spec, topLevelKeys(), file, "");
     if (!plan.spec.contains("sweep_format"))
         throwInputError(file, "sweep_format", "missing (this tool writes and reads 1)");
     if (integer(plan.spec["sweep_format"], file, "sweep_format", 0, 1 << 30) != kSweepFormat)

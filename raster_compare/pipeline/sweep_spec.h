@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/option_table.h"
 #include "core/trace_option_table.h"
 
 namespace so {
@@ -55,8 +56,9 @@ struct SweepOracleSettings {
 // What every task of the sweep shares.
 struct SweepSettings {
     SweepOracleSettings oracle;
-    int frames = 9;
-    int boundaryRadius = 2;
+    // The top-level keys of the raster and comparison option tables (core/raster_option_table.h,
+    // core/compare_option_table.h), checked; the ones left out keep compare's defaults.
+    OptionValues raster, compare;
     bool keepOutputs = false;  // keep each task's compare folder (images, error EXRs)
 };
 

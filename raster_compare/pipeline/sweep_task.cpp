@@ -6,6 +6,7 @@
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/trace_options.h"
+#include "raster_compare/gl/raster_options.h"
 
 namespace so {
 
@@ -84,10 +85,14 @@ CompareOptions taskCompareOptions(const fs::path& dir, const SweepPlan& plan, co
     c.oracle = oracleOptions(plan.settings.oracle);
     c.raster.width = plan.settings.oracle.width;
     c.raster.height = plan.settings.oracle.height;
-    c.raster.frames = plan.settings.frames;
+    const std::string spec = plan.specFile.string();
+    applyRasterOptions(plan.settings.raster, {spec, false, "", false}, c.raster);
+    applyCompareOptions(plan.settings.compare, {spec, false, "", false}, c);
     c.cacheDir = sweepOracleCacheDir(dir);
-    c.boundaryRadius = plan.settings.boundaryRadius;
     c.writeReport = false;
+    // Errors name the spec's keys: a task runs what the spec says, not a command line.
+    c.names = {spec,          "techniques",    "images",           "points",
+               "frames_path", "oracle.verify", "width and height", "keep_outputs"};
     return c;
 }
 

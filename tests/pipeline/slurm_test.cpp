@@ -31,6 +31,15 @@ TEST(Slurm, ArrayListsJoinRuns) {
     EXPECT_EQ(slurmArrayList({2, 4, 6}), "2,4,6");
 }
 
+// The command the program gives both runners (cli/sweep_command.cpp): `sweep-task DIR --oracle S`
+// or `--index K`, the array index as the shell word.
+SweepTaskCommand taskCommand(const std::string& exe, const fs::path& dir) {
+    return [exe, dir](bool oracle, const std::string& number) {
+        return std::vector<std::string>{exe, "sweep-task", dir.string(),
+                                        oracle ? "--oracle" : "--index", number};
+    };
+}
+
 TEST(Slurm, DryRunWritesThreeScriptsOverTheUnfinishedTasks) {
     test::SweepFolder folder("slurm_test");
     const SweepPlan& plan = folder.plan();
@@ -45,7 +54,8 @@ TEST(Slurm, DryRunWritesThreeScriptsOverTheUnfinishedTasks) {
     o.maxConcurrent = 3;
     o.sbatchArgs = {"--time=00:10:00", "--gres=gpu:1"};
     o.dryRun = true;
-    o.program = "/opt/so/bin/shadow-oracle";
+    o.taskCommand = taskCommand("/opt/so/bin/shadow-oracle", folder.dir());
+    o.mergeCommand = {"/opt/so/bin/shadow-oracle", "sweep-merge", folder.dir().string()};
     const SlurmSubmission s = submitSweepToSlurm(plan, folder.dir(), o);
     EXPECT_FALSE(s.nothingToSubmit);
     EXPECT_EQ(s.tasks, 3u);
@@ -53,17 +63,21 @@ TEST(Slurm, DryRunWritesThreeScriptsOverTheUnfinishedTasks) {
     EXPECT_TRUE(s.oraclesJob.empty() && s.tasksJob.empty() && s.mergeJob.empty())
         << "a dry run submits nothing";
     ASSERT_EQ(s.scripts.size(), 3u);
-    const std::string dir = "'" + folder.dir().string() + "'";
+    // The folder as the script's shell reads it: quoted only where it has to be (slurm.cpp).
+    const std::string path = folder.dir().string();
+    const bool plain = path.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                              "0123456789_./=:+-") == std::string::npos;
+    const std::string dir = plain ? path : "'" + path + "'";
     const std::vector<std::pair<std::string, std::string>> expected = {
         {"oracles.sbatch", "#SBATCH --array=0-1%3\n"},
         {"tasks.sbatch", "#SBATCH --array=1-3%3\n"},
         {"merge.sbatch", ""}};
     const std::vector<std::string> commands = {
-        "exec '/opt/so/bin/shadow-oracle' sweep-task " + dir +
+        "exec /opt/so/bin/shadow-oracle sweep-task " + dir +
             " --oracle \"$SLURM_ARRAY_TASK_ID\"\n",
-        "exec '/opt/so/bin/shadow-oracle' sweep-task " + dir +
+        "exec /opt/so/bin/shadow-oracle sweep-task " + dir +
             " --index \"$SLURM_ARRAY_TASK_ID\"\n",
-        "exec '/opt/so/bin/shadow-oracle' sweep-merge " + dir + "\n"};
+        "exec /opt/so/bin/shadow-oracle sweep-merge " + dir + "\n"};
     for (size_t i = 0; i < 3; ++i) {
         const SlurmScript& script = s.scripts[i];
         SCOPED_TRACE(script.name);
@@ -92,7 +106,8 @@ TEST(Slurm, NothingToSubmitWhenEveryTaskHasItsRow) {
     }
     SlurmOptions o;
     o.dryRun = true;
-    o.program = "shadow-oracle";
+    o.taskCommand = taskCommand("shadow-oracle", folder.dir());
+    o.mergeCommand = {"shadow-oracle", "sweep-merge", folder.dir().string()};
     const SlurmSubmission s = submitSweepToSlurm(folder.plan(), folder.dir(), o);
     EXPECT_TRUE(s.nothingToSubmit);
     EXPECT_EQ(s.tasks, 0u);

@@ -1,0 +1,40 @@
+#include "core/compare_option_table.h"
+
+#include <vector>
+
+namespace so {
+
+namespace {
+
+// The rows, in the order of docs/cli.md. A default is stated once, by the constant a row uses.
+std::vector<OptionSpec> makeTable() {
+    std::vector<OptionSpec> t;
+    t.push_back(integerOption(
+        "boundary_radius", kDefaultBoundaryRadius, 0, 64,
+        kSurfaceCompare | kSurfaceSweep | kSurfaceApi, "r of docs/metrics.md",
+        "r of [metrics.md](metrics.md): the pixels within r of an oracle shadow boundary are the "
+        "boundary band of the `boundary_*` metrics"));
+    t.push_back(zeroMeans(
+        integerOption("frames_path", 0, 2, 10000, kSurfaceCompare,
+                      "also render N frames along the scene's camera_path (oracle and every "
+                      "technique) for temporal_flicker_rate (docs/metrics.md)",
+                      "also render N frames along the scene's `camera_path` (scene_format 2), the "
+                      "oracle and every technique once per frame, for `temporal_flicker_rate` "
+                      "([metrics.md](metrics.md)); techniques only, not `--image`"),
+        "0 (off)"));
+    return t;
+}
+
+}  // namespace
+
+const OptionTable& compareOptionTable() {
+    static const std::vector<OptionSpec> rows = makeTable();
+    static const OptionTable table{"compare option", rows};
+    return table;
+}
+
+const OptionSpec& compareOption(const std::string& key) {
+    return compareOptionTable().at(key);
+}
+
+}  // namespace so
