@@ -65,18 +65,17 @@ TEST(Slurm, DryRunWritesThreeScriptsOverTheUnfinishedTasks) {
     ASSERT_EQ(s.scripts.size(), 3u);
     // The folder as the script's shell reads it: quoted only where it has to be (slurm.cpp).
     const std::string path = folder.dir().string();
-    const bool plain = path.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
-                                              "0123456789_./=:+-") == std::string::npos;
+    const bool plain = path.find_first_not_of(
+                           "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                           "0123456789_./=:+-") == std::string::npos;
     const std::string dir = plain ? path : "'" + path + "'";
     const std::vector<std::pair<std::string, std::string>> expected = {
         {"oracles.sbatch", "#SBATCH --array=0-1%3\n"},
         {"tasks.sbatch", "#SBATCH --array=1-3%3\n"},
         {"merge.sbatch", ""}};
     const std::vector<std::string> commands = {
-        "exec /opt/so/bin/shadow-oracle sweep-task " + dir +
-            " --oracle \"$SLURM_ARRAY_TASK_ID\"\n",
-        "exec /opt/so/bin/shadow-oracle sweep-task " + dir +
-            " --index \"$SLURM_ARRAY_TASK_ID\"\n",
+        "exec /opt/so/bin/shadow-oracle sweep-task " + dir + " --oracle \"$SLURM_ARRAY_TASK_ID\"\n",
+        "exec /opt/so/bin/shadow-oracle sweep-task " + dir + " --index \"$SLURM_ARRAY_TASK_ID\"\n",
         "exec /opt/so/bin/shadow-oracle sweep-merge " + dir + "\n"};
     for (size_t i = 0; i < 3; ++i) {
         const SlurmScript& script = s.scripts[i];
