@@ -42,6 +42,7 @@
 #include "core/gltf_draco.h"
 #include "core/gltf_extensions.h"
 #include "core/gltf_meshopt.h"
+#include "core/lights/make_light.h"
 
 namespace so {
 namespace {
@@ -697,22 +698,23 @@ void addLight(const Context& ctx, const tinygltf::Model& model, const Instance& 
              "more than " + std::to_string(ctx.limits.maxLights) + " lights in the scene");
     const tinygltf::Light& src = model.lights[size_t(li)];
     std::string lightField = "KHR_lights_punctual." + idx("lights", size_t(li));
-    Light l;
-    l.wsPosition = glm::dvec3(inst.world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-    if (src.type == "point") {
-        l.type = LightType::Point;
-    } else {
+    const glm::dvec3 wsAt(inst.world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    Light l = pointLight("", wsAt);
+    if (src.type != "point") {
         // Normalising drops the node's (uniform) scale, which glTF says lights ignore.
-        l.wsDirection = unitDirection(ctx, inst.world, {0.0, 0.0, -1.0}, idx("nodes", inst.node));
-        l.type = src.type == "spot" ? LightType::Spot : LightType::Directional;
-        if (l.type == LightType::Spot) {
+        const glm::dvec3 wsAlong =
+            unitDirection(ctx, inst.world, {0.0, 0.0, -1.0}, idx("nodes", inst.node));
+        if (src.type == "spot") {
             double inner = src.spot.innerConeAngle * 180.0 / std::numbers::pi;
             double outer = src.spot.outerConeAngle * 180.0 / std::numbers::pi;
             if (!(inner >= 0.0 && inner <= outer && outer > 0.0 && outer <= 90.0))
                 fail(ctx, lightField + ".spot",
                      "need 0 <= innerConeAngle <= outerConeAngle <= pi/2 and outerConeAngle > 0");
-            l.innerConeDeg = inner;
-            l.outerConeDeg = outer;
+            l = spotLight("", wsAt, wsAlong, outer, inner);
+        } else {
+            l = directionalLight("", wsAlong);
+            l.wsPosition =
+                wsAt;  // the node's place, kept as before (a directional light ignores it)
         }
     }
     std::string base = channels::sanitizeLayerName(src.name, "light" + std::to_string(li));
