@@ -118,7 +118,7 @@ Scene postField(int width, int height) {
     s.camera.wsTarget = {0.0, 0.0, -100.0};
     s.camera.vfovDeg = 50.0;
     s.camera.width = width, s.camera.height = height;
-    s.lights = {LightdirectionalLight("sun", glm::normalize(glm::dvec3(-0.8, -0.3, -0.25)))};
+    s.lights = {directionalLight("sun", glm::normalize(glm::dvec3(-0.8, -0.3, -0.25)))};
     s.effects = {"hard"};
     finalizeScene(s);
     return s;
