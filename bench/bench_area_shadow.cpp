@@ -29,6 +29,7 @@
 #include "bench_scene.h"
 #include "bench_util.h"
 #include "core/camera.h"
+#include "core/lights/make_light.h"
 #include "oracle/area_shadow.h"
 #include "oracle/oracle.h"
 #include "oracle/surface_buffer.h"
@@ -39,22 +40,8 @@ using namespace so::bench;
 namespace {
 
 std::vector<Light> benchLights() {
-    Light rect;
-    rect.name = "rect";
-    rect.type = LightType::Rect;
-    rect.wsPosition = {1, 12, 2};
-    rect.wsU = {4, 0, 0};
-    rect.wsV = {0, 0, 3};
-    Light disk = rect;
-    disk.name = "disk";
-    disk.type = LightType::Disk;
-    disk.wsNormal = {0, -1, 0};
-    disk.radius = 1.8;
-    Light sphere = rect;
-    sphere.name = "sphere";
-    sphere.type = LightType::Sphere;
-    sphere.radius = 1.5;
-    return {rect, disk, sphere};
+    return {rectLight("rect", {1, 12, 2}, {4, 0, 0}, {0, 0, 3}),
+            diskLight("disk", {1, 12, 2}, {0, -1, 0}, 1.8), sphereLight("sphere", {1, 12, 2}, 1.5)};
 }
 
 }  // namespace

@@ -31,6 +31,7 @@
 
 #include "bunny_scene.h"
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "core/local_frame.h"
 #include "core/scene.h"
 #include "exact_penumbra_util.h"
@@ -332,14 +333,13 @@ int lightKinds(int size, int repeats) {
         size, size, repeats, "light", "exact px", "penumbra", "pass s", "us/penumbra", "x rect",
         "error mean", "error max");
     double rectPerPixel = 0.0;
-    for (LightType type : {LightType::Rect, LightType::Disk, LightType::Sphere}) {
+    for (const std::string kind : {"rect", "disk", "sphere"}) {
         Scene scene = base;
         Light& l = scene.lights[0];
-        if (type != LightType::Rect) {
-            l.type = type;
-            l.radius = std::sqrt(area / std::numbers::pi);
-            l.wsNormal = {0, -1, 0};
-            l.wsU = l.wsV = glm::dvec3(0.0);
+        if (kind != "rect") {
+            const double radius = std::sqrt(area / std::numbers::pi);
+            l = kind == "disk" ? diskLight(l.name, l.wsPosition, {0, -1, 0}, radius)
+                               : sphereLight(l.name, l.wsPosition, radius);
             finalizeScene(scene);
         }
         double best = 1e30;
@@ -362,8 +362,8 @@ int lightKinds(int size, int repeats) {
             errorMax = e.boundHalfWidthMax;
         }
         const double perPixel = best / double(std::max<uint64_t>(penumbra, 1));
-        if (type == LightType::Rect) rectPerPixel = perPixel;
-        std::printf("%8s %10llu %10llu %10.4f %12.2f %8.2f %12.3g %12.3g\n", lightTypeName(type),
+        if (kind == "rect") rectPerPixel = perPixel;
+        std::printf("%8s %10llu %10llu %10.4f %12.2f %8.2f %12.3g %12.3g\n", kind.c_str(),
                     (unsigned long long)exactPixels, (unsigned long long)penumbra, best,
                     1e6 * perPixel, perPixel / rectPerPixel, errorMean, errorMax);
         std::fflush(stdout);
@@ -404,7 +404,8 @@ int main(int argc, char** argv) {
     againstRqmc("penumbra_square", square, tightest);
 
     Scene chair = loadScene(SO_SCENES_DIR "/soft_chair.scene.json");
-    std::erase_if(chair.lights, [](const Light& l) { return l.type != LightType::Rect; });
+    std::erase_if(chair.lights,
+                  [](const Light& l) { return std::string(lightTypeName(l.type)) != "rect"; });
     againstRqmc("soft_chair", chair, tightest);
 
     std::string why;

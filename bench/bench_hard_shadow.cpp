@@ -32,6 +32,7 @@
 #include "bench_scene.h"
 #include "bench_util.h"
 #include "core/camera.h"
+#include "core/lights/make_light.h"
 #include "oracle/accel.h"
 #include "oracle/hard_shadow.h"
 #include "oracle/surface_buffer.h"
@@ -53,9 +54,8 @@ int main(int argc, char** argv) {
                  "leave the near fields out (their price: the oracle's time with and without)");
     CLI11_PARSE(app, argc, argv);
     Scene scene = makeBenchScene(grid, size);
-    scene.lights.push_back({"point", LightType::Point, {2, 14, 3}, {0, -1, 0}, 45, 0});
-    scene.lights.push_back(
-        {"sun", LightType::Directional, {0, 0, 0}, glm::normalize(glm::dvec3(0.5, -1, 0.3)), 0, 0});
+    scene.lights.push_back(pointLight("point", {2, 14, 3}));
+    scene.lights.push_back(directionalLight("sun", glm::normalize(glm::dvec3(0.5, -1, 0.3))));
 
     const int threads = int(std::thread::hardware_concurrency());
     std::printf("scene: %zu triangles, %dx%d pixels, %d threads, Embree %s, median of %d runs\n",

@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/channels.h"
+#include "core/lights/light_kind.h"
 #include "core/scene.h"
 #include "raster_compare/compare/penumbra_width.h"
 #include "raster_compare/gl/gl_context.h"
@@ -50,11 +51,10 @@ std::vector<uint8_t> facingPixels(const ChannelImage& img, const Light& light) {
     for (size_t i = 0; i < img.pixelCount(); ++i) {
         if (A[i] == 0.0f) continue;
         const glm::dvec3 p(px[i], py[i], pz[i]), n(nx[i], ny[i], nz[i]);
-        const glm::dvec3 l = light.type == LightType::Directional
-                                 ? -glm::normalize(light.wsDirection)
-                                 : glm::normalize(light.wsPosition - p);
+        const glm::dvec3 l = isDirectional(light) ? -glm::normalize(light.wsDirection)
+                                                  : glm::normalize(light.wsPosition - p);
         bool lit = glm::dot(n, l) > 0.0;
-        if (light.type == LightType::Spot)
+        if (hasCone(light))
             lit = lit && glm::dot(-l, glm::normalize(light.wsDirection)) >= cosOuter;
         mask[i] = lit;
     }

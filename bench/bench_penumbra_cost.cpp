@@ -34,6 +34,7 @@
 #include "oracle/embree_handles.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/exact_scene.h"
+#include "oracle/lights/area_light_kind.h"
 #include "oracle/mesh_facing.h"
 #include "oracle/near_field.h"
 #include "oracle/oracle.h"
@@ -109,7 +110,7 @@ Row measure(const Scene& scene, const Setup& s, uint32_t li, double target, int 
     Row r;
     r.name = scene.path.stem().stem().string() + " " + light.name + " (" +
              lightTypeName(light.type) + ")";
-    r.bounded = light.type != LightType::Rect;
+    r.bounded = areaLightKind(light.type).bounded();
     r.points = s.points;
     r.triangles = double(scene.stats.triangles);
     std::vector<double> ts, te;
@@ -304,8 +305,8 @@ int main(int argc, char** argv) {
         const Setup setup(scene);
         const size_t first = rows.size();
         for (uint32_t li = 0; li < scene.lights.size(); ++li) {
-            const LightType t = scene.lights[li].type;
-            if (t != LightType::Rect && t != LightType::Disk && t != LightType::Sphere) continue;
+            const std::string kind = lightTypeName(scene.lights[li].type);
+            if (kind != "rect" && kind != "disk" && kind != "sphere") continue;
             rows.push_back(measure(scene, setup, li, target, repeats));
             std::fprintf(stderr, "%s: sampled %.4f s, exact %.4f s\n", rows.back().name.c_str(),
                          rows.back().sampledSeconds, rows.back().exactSeconds);

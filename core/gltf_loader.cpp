@@ -42,6 +42,7 @@
 #include "core/gltf_draco.h"
 #include "core/gltf_extensions.h"
 #include "core/gltf_meshopt.h"
+#include "core/lights/make_light.h"
 
 namespace so {
 namespace {
@@ -697,22 +698,23 @@ void addLight(const Context& ctx, const tinygltf::Model& model, const Instance& 
              "more than " + std::to_string(ctx.limits.maxLights) + " lights in the scene");
     const tinygltf::Light& src = model.lights[size_t(li)];
     std::string lightField = "KHR_lights_punctual." + idx("lights", size_t(li));
-    Light l;
-    l.wsPosition = glm::dvec3(inst.world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-    if (src.type == "point") {
-        l.type = LightType::Point;
-    } else {
+    const glm::dvec3 wsAt(inst.world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    Light l = pointLight("", wsAt);
+    if (src.type != "point") {
         // Normalising drops the node's (uniform) scale, which glTF says lights ignore.
-        l.wsDirection = unitDirection(ctx, inst.world, {0.0, 0.0, -1.0}, idx("nodes", inst.node));
-        l.type = src.type == "spot" ? LightType::Spot : LightType::Directional;
-        if (l.type == LightType::Spot) {
+        const glm::dvec3 wsAlong =
+            unitDirection(ctx, inst.world, {0.0, 0.0, -1.0}, idx("nodes", inst.node));
+        if (src.type == "spot") {
             double inner = src.spot.innerConeAngle * 180.0 / std::numbers::pi;
             double outer = src.spot.outerConeAngle * 180.0 / std::numbers::pi;
             if (!(inner >= 0.0 && inner <= outer && outer > 0.0 && outer <= 90.0))
                 fail(ctx, lightField + ".spot",
                      "need 0 <= innerConeAngle <= outerConeAngle <= pi/2 and outerConeAngle > 0");
-            l.innerConeDeg = inner;
-            l.outerConeDeg = outer;
+            l = spotLight("", wsAt, wsAlong, outer, inner);
+        } else {
+            l = directionalLight("", wsAlong);
+            l.wsPosition =
+                wsAt;  // the node's place, kept as before (a directional light ignores it)
         }
     }
     std::string base = channels::sanitizeLayerName(src.name, "light" + std::to_string(li));
@@ -838,10 +840,8 @@ MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Json
     return out;
 }
 
-void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
-             const glm::dmat4& wsFromFile) {
-    GltfContent& out = *ctx.out;
-    checkBufferViews(ctx, model);
+// Every node's mesh and camera index in range, before the graph is walked.
+void checkNodeIndices(const Context& ctx, const tinygltf::Model& model) {
     for (size_t i = 0; i < model.nodes.size(); ++i) {
         const tinygltf::Node& n = model.nodes[i];
         if (n.mesh < -1 || n.mesh >= int(model.meshes.size()))
@@ -853,106 +853,112 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
                  std::to_string(n.camera) + " out of range (" +
                      std::to_string(model.cameras.size()) + " cameras)");
     }
-    checkNodeGraph(ctx, model);
+}
 
-    // Pass 1: validate and count everything, so that limits are checked before allocating.
-    std::vector<PlannedPrimitive> plan;
+// What the first pass counts besides the plan: the primitives it skips, the totals the limits
+// bound, and whether anything animates (ignored, with a warning).
+struct PlanCounts {
     size_t nonTriangle = 0, empty = 0;
     uint64_t totalTriangles = 0, totalVertices = 0;
-    bool skinsOrMorphs = false, cameraSeen = false;
-    std::set<std::string> lightNames;
-    traverse(ctx, model, doc, wsFromFile, [&](const Instance& inst) {
-        const tinygltf::Node& node = model.nodes[inst.node];
-        addCamera(ctx, model, inst, out.camera, cameraSeen);
-        addLight(ctx, model, inst, lightNames);
-        if (node.mesh < 0) return;
-        skinsOrMorphs |= node.skin >= 0 || !node.weights.empty();
-        const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
-        for (size_t k = 0; k < mesh.primitives.size(); ++k) {
-            const tinygltf::Primitive& prim = mesh.primitives[k];
-            std::string field = primField(size_t(node.mesh), k);
-            skinsOrMorphs |= !prim.targets.empty();
-            if (prim.mode < TINYGLTF_MODE_POINTS || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
-                fail(ctx, field + ".mode", "invalid mode " + std::to_string(prim.mode));
-            if (prim.mode < TINYGLTF_MODE_TRIANGLES) {
-                ++nonTriangle;
-                continue;
-            }
-            PlannedPrimitive pp{inst, size_t(node.mesh), k, {}, std::nullopt, prim.mode, 0, 0};
-            auto pos = prim.attributes.find("POSITION");
-            if (pos == prim.attributes.end()) fail(ctx, field + ".attributes", "no POSITION");
-            pp.positions =
-                checkedAccessor(ctx, model, doc, pos->second, field + ".attributes.POSITION",
-                                [&](const tinygltf::Accessor& a) {
-                                    checkPositionType(ctx, a, size_t(pos->second));
-                                });
-            if (pp.positions.count > 3 * ctx.limits.maxTrianglesPerMesh)
-                fail(
-                    ctx, idx("accessors", size_t(pos->second)) + ".count",
-                    std::to_string(pp.positions.count) + " vertices, over 3 x maxTrianglesPerMesh");
-            pp.elements = pp.positions.count;
-            if (prim.indices >= 0) {
-                pp.indices = checkedAccessor(
-                    ctx, model, doc, prim.indices, field + ".indices",
-                    [&](const tinygltf::Accessor& a) {
-                        if (a.type != TINYGLTF_TYPE_SCALAR ||
-                            (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                             a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                             a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-                            fail(ctx, field + ".indices",
-                                 idx("accessors", size_t(prim.indices)) +
-                                     " must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
-                                     "UNSIGNED_INT");
-                    });
-                pp.elements = pp.indices->count;
-            }
-            if (pp.mode == TINYGLTF_MODE_TRIANGLES) {
-                if (pp.elements % 3 != 0)
-                    fail(ctx, field + (pp.indices ? ".indices" : ".attributes.POSITION"),
-                         "TRIANGLES with " + std::to_string(pp.elements) +
-                             " elements, not a multiple of 3");
-                pp.triangles = pp.elements / 3;
-            } else {
-                pp.triangles = pp.elements < 3 ? 0 : pp.elements - 2;
-            }
-            if (pp.triangles == 0) {
-                ++empty;
-                continue;
-            }
-            if (pp.triangles > ctx.limits.maxTrianglesPerMesh)
-                fail(ctx, field,
-                     std::to_string(pp.triangles) + " triangles, over the limit of " +
-                         std::to_string(ctx.limits.maxTrianglesPerMesh));
-            if (plan.size() + 1 > ctx.limits.maxMeshes)
-                fail(ctx, "meshes",
-                     "more than " + std::to_string(ctx.limits.maxMeshes) + " drawn primitives");
-            totalTriangles += pp.triangles;
-            totalVertices += pp.positions.count;
-            if (totalTriangles > ctx.limits.maxTotalTriangles)
-                fail(ctx, "meshes",
-                     "more than " + std::to_string(ctx.limits.maxTotalTriangles) +
-                         " triangles in all");
-            if (totalVertices > 3 * ctx.limits.maxTotalTriangles)
-                fail(ctx, "meshes",
-                     "more than " + std::to_string(3 * ctx.limits.maxTotalTriangles) +
-                         " vertices in all");
-            plan.push_back(pp);
-        }
-    });
-    if (nonTriangle > 0)
-        out.warnings.push_back(std::to_string(nonTriangle) +
-                               " point or line primitive(s) skipped (only triangles are traced)");
-    if (empty > 0)
-        out.warnings.push_back(std::to_string(empty) + " primitive(s) with no triangle skipped");
-    if (skinsOrMorphs)
-        out.warnings.push_back("skins and morph targets are ignored (meshes drawn in rest pose)");
-    out.skippedPrimitives = nonTriangle + empty;
+    bool skinsOrMorphs = false;
+};
 
-    // Pass 2: build.
-    GltfAlpha alpha(ctx, model, doc);
-    out.meshes.reserve(plan.size());
-    for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, doc, pp, alpha));
-    out.alphaTextures = alpha.takeTextures();
+void checkIndexType(const Context& ctx, const tinygltf::Accessor& a, int index,
+                    const std::string& field) {
+    if (a.type != TINYGLTF_TYPE_SCALAR ||
+        (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+        fail(ctx, field + ".indices",
+             idx("accessors", size_t(index)) +
+                 " must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
+}
+
+// The triangles a primitive's elements make in its mode (a TRIANGLES count must be a multiple
+// of 3).
+uint64_t plannedTriangles(const Context& ctx, const PlannedPrimitive& pp,
+                          const std::string& field) {
+    if (pp.mode != TINYGLTF_MODE_TRIANGLES) return pp.elements < 3 ? 0 : pp.elements - 2;
+    if (pp.elements % 3 != 0)
+        fail(ctx, field + (pp.indices ? ".indices" : ".attributes.POSITION"),
+             "TRIANGLES with " + std::to_string(pp.elements) + " elements, not a multiple of 3");
+    return pp.elements / 3;
+}
+
+// Primitive k of the instance's mesh, checked and counted: its plan, or nothing for a point, line
+// or empty primitive (counted in `counts`).
+std::optional<PlannedPrimitive> planPrimitive(const Context& ctx, const tinygltf::Model& model,
+                                              const Json& doc, const Instance& inst, size_t k,
+                                              PlanCounts& counts) {
+    const size_t meshIndex = size_t(model.nodes[inst.node].mesh);
+    const tinygltf::Primitive& prim = model.meshes[meshIndex].primitives[k];
+    const std::string field = primField(meshIndex, k);
+    counts.skinsOrMorphs |= !prim.targets.empty();
+    if (prim.mode < TINYGLTF_MODE_POINTS || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(ctx, field + ".mode", "invalid mode " + std::to_string(prim.mode));
+    if (prim.mode < TINYGLTF_MODE_TRIANGLES) {
+        ++counts.nonTriangle;
+        return std::nullopt;
+    }
+    PlannedPrimitive pp{inst, meshIndex, k, {}, std::nullopt, prim.mode, 0, 0};
+    auto pos = prim.attributes.find("POSITION");
+    if (pos == prim.attributes.end()) fail(ctx, field + ".attributes", "no POSITION");
+    pp.positions = checkedAccessor(
+        ctx, model, doc, pos->second, field + ".attributes.POSITION",
+        [&](const tinygltf::Accessor& a) { checkPositionType(ctx, a, size_t(pos->second)); });
+    if (pp.positions.count > 3 * ctx.limits.maxTrianglesPerMesh)
+        fail(ctx, idx("accessors", size_t(pos->second)) + ".count",
+             std::to_string(pp.positions.count) + " vertices, over 3 x maxTrianglesPerMesh");
+    pp.elements = pp.positions.count;
+    if (prim.indices >= 0) {
+        pp.indices = checkedAccessor(
+            ctx, model, doc, prim.indices, field + ".indices",
+            [&](const tinygltf::Accessor& a) { checkIndexType(ctx, a, prim.indices, field); });
+        pp.elements = pp.indices->count;
+    }
+    pp.triangles = plannedTriangles(ctx, pp, field);
+    if (pp.triangles == 0) {
+        ++counts.empty;
+        return std::nullopt;
+    }
+    if (pp.triangles > ctx.limits.maxTrianglesPerMesh)
+        fail(ctx, field,
+             std::to_string(pp.triangles) + " triangles, over the limit of " +
+                 std::to_string(ctx.limits.maxTrianglesPerMesh));
+    return pp;
+}
+
+// The limits on the whole scene, checked as each primitive joins the plan, so that nothing is
+// allocated past them.
+void addToPlan(const Context& ctx, const PlannedPrimitive& pp, std::vector<PlannedPrimitive>& plan,
+               PlanCounts& counts) {
+    if (plan.size() + 1 > ctx.limits.maxMeshes)
+        fail(ctx, "meshes",
+             "more than " + std::to_string(ctx.limits.maxMeshes) + " drawn primitives");
+    counts.totalTriangles += pp.triangles;
+    counts.totalVertices += pp.positions.count;
+    if (counts.totalTriangles > ctx.limits.maxTotalTriangles)
+        fail(ctx, "meshes",
+             "more than " + std::to_string(ctx.limits.maxTotalTriangles) + " triangles in all");
+    if (counts.totalVertices > 3 * ctx.limits.maxTotalTriangles)
+        fail(ctx, "meshes",
+             "more than " + std::to_string(3 * ctx.limits.maxTotalTriangles) + " vertices in all");
+    plan.push_back(pp);
+}
+
+void planWarnings(const PlanCounts& counts, GltfContent& out) {
+    if (counts.nonTriangle > 0)
+        out.warnings.push_back(std::to_string(counts.nonTriangle) +
+                               " point or line primitive(s) skipped (only triangles are traced)");
+    if (counts.empty > 0)
+        out.warnings.push_back(std::to_string(counts.empty) +
+                               " primitive(s) with no triangle skipped");
+    if (counts.skinsOrMorphs)
+        out.warnings.push_back("skins and morph targets are ignored (meshes drawn in rest pose)");
+    out.skippedPrimitives = counts.nonTriangle + counts.empty;
+}
+
+void alphaWarnings(const GltfAlpha& alpha, const tinygltf::Model& model, GltfContent& out) {
     if (!alpha.imagesNotRead().empty()) {
         std::string names;
         size_t listed = 0;
@@ -973,6 +979,40 @@ void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
     if (alpha.fromBlend() > 0)
         out.warnings.push_back(std::to_string(alpha.fromBlend()) +
                                " primitive(s) with alphaMode BLEND read as MASK at cutoff 0.5");
+}
+
+void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
+             const glm::dmat4& wsFromFile) {
+    GltfContent& out = *ctx.out;
+    checkBufferViews(ctx, model);
+    checkNodeIndices(ctx, model);
+    checkNodeGraph(ctx, model);
+
+    // Pass 1: validate and count everything, so that limits are checked before allocating.
+    std::vector<PlannedPrimitive> plan;
+    PlanCounts counts;
+    bool cameraSeen = false;
+    std::set<std::string> lightNames;
+    traverse(ctx, model, doc, wsFromFile, [&](const Instance& inst) {
+        const tinygltf::Node& node = model.nodes[inst.node];
+        addCamera(ctx, model, inst, out.camera, cameraSeen);
+        addLight(ctx, model, inst, lightNames);
+        if (node.mesh < 0) return;
+        counts.skinsOrMorphs |= node.skin >= 0 || !node.weights.empty();
+        const size_t primitives = model.meshes[size_t(node.mesh)].primitives.size();
+        for (size_t k = 0; k < primitives; ++k)
+            if (std::optional<PlannedPrimitive> pp =
+                    planPrimitive(ctx, model, doc, inst, k, counts))
+                addToPlan(ctx, *pp, plan, counts);
+    });
+    planWarnings(counts, out);
+
+    // Pass 2: build.
+    GltfAlpha alpha(ctx, model, doc);
+    out.meshes.reserve(plan.size());
+    for (const PlannedPrimitive& pp : plan) out.meshes.push_back(build(ctx, model, doc, pp, alpha));
+    out.alphaTextures = alpha.takeTextures();
+    alphaWarnings(alpha, model, out);
 }
 
 // tinygltf's reading of the (checked, possibly rewritten) file; its warnings go to the content.

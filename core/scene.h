@@ -14,6 +14,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/lights/light.h"
+
 namespace so {
 
 // Axis-aligned box in world space. Empty until a point is added.
@@ -56,31 +58,6 @@ struct CameraPath {
     // At least 2, t strictly increasing. A `poses` list is keyframes at t = 0, 1, 2, ... (linear).
     std::vector<CameraKeyframe> keyframes;
     PathInterpolation interpolation = PathInterpolation::Linear;
-};
-
-// The light types, in the order of core/lights/light_kind.cpp's table: each is a plug-in with one
-// file per layer (core/lights/, oracle/lights/, raster_compare/gl/lights/; docs/architecture.md).
-enum class LightType { Point, Directional, Spot, Rect, Disk, Sphere, Polygon };
-const char* lightTypeName(LightType t);  // the scene format's name
-bool isAreaLight(LightType t);           // rect, disk, sphere, polygon
-
-struct Light {
-    std::string name;  // unique in the scene, a valid EXR layer name (see channels.h)
-    LightType type = LightType::Point;
-    glm::dvec3 wsPosition{0.0};              // point, spot
-    glm::dvec3 wsDirection{0.0, -1.0, 0.0};  // directional, spot: unit, the way light travels
-    double outerConeDeg = 45.0;              // spot: half-angle of the lit cone
-    double innerConeDeg = 0.0;               // spot: half-angle of full intensity (raster only)
-    // Area lights: wsPosition is the centre.
-    glm::dvec3 wsU{0.0}, wsV{0.0};  // rect: full edge vectors; emits on the side of cross(u, v)
-    glm::dvec3 wsNormal{0.0};       // disk, polygon: unit, the side it emits on
-    double radius = 0.0;            // disk, sphere
-    // polygon: 3 to 64, planar, convex, counter-clockwise seen from the side it emits on; its
-    // wsPosition is the area centroid (core/lights/polygon.cpp checks all of it).
-    std::vector<glm::dvec3> wsVertices{};
-    // Rect, disk and polygon emit on one side only: the unit normal of that side (zero for other
-    // types).
-    glm::dvec3 wsEmitNormal() const;
 };
 
 // How a texture repeats outside [0, 1] (glTF sampler wrapS / wrapT), and how it is read.

@@ -1,6 +1,6 @@
-// The scene file parser (docs/scene-format.md, scene_format 1 to 4) and loadScene's dispatch.
-// Strict on purpose: an unknown key is almost always a typo that would otherwise silently change
-// what is measured, so every object lists the keys it accepts.
+// The scene file parser (docs/scene-format.md, scene_format 1 to newestSceneFormat()) and
+// loadScene's dispatch. Strict on purpose: an unknown key is almost always a typo that would
+// otherwise silently change what is measured, so every object lists the keys it accepts.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -19,6 +19,7 @@
 #include "core/hash.h"
 #include "core/json_reader.h"
 #include "core/lights/light_kind.h"
+#include "core/lights/make_light.h"
 #include "core/read_file.h"
 #include "core/scene.h"
 
@@ -29,8 +30,21 @@ namespace {
 using Reader = JsonReader;
 
 // The newest version read; every older one still loads. 2 added camera_path, 3 geometry[i].dynamic,
-// 4 polygon lights.
-constexpr int kSceneFormat = 4;
+// 4 polygon lights; a light type that came with a newer version says so (LightKind::sceneFormat),
+// and that version is then the newest.
+int newestSceneFormat() {
+    int newest = 4;
+    for (const LightKind* k : allLightKinds()) newest = std::max(newest, k->sceneFormat());
+    return newest;
+}
+
+// "rect, disk, ...": the area light types, for the warnings.
+std::string areaLightNames() {
+    std::string list;
+    for (const LightKind* k : allLightKinds())
+        if (k->isArea()) list += (list.empty() ? "" : ", ") + std::string(k->name());
+    return list;
+}
 
 // Parses JSON and rejects duplicate keys in any object, which nlohmann would silently resolve to
 // the last one.
@@ -311,9 +325,8 @@ void warnAboutEffects(Scene& scene) {
             " alpha-tested primitive(s) drawn opaque: effects lacks \"alpha\"");
     if (scene.hasEffect("penumbra") && !anyArea)
         scene.stats.warnings.push_back(
-            "effects: \"penumbra\" is listed but the scene has no area light (rect, disk, sphere, "
-            "polygon): "
-            "nothing to sample");
+            "effects: \"penumbra\" is listed but the scene has no area light (" + areaLightNames() +
+            "): nothing to sample");
     if (!scene.hasEffect("penumbra"))
         for (const Light& l : scene.lights)
             if (isAreaLight(l.type))
@@ -343,16 +356,20 @@ std::vector<std::string> parseEffects(const json& root, const Reader& r) {
     return effects;
 }
 
-// Polygon lights came with scene_format 4: an older file naming one is told so (a scene made in
-// memory has no version and takes every type).
-void checkPolygonFormat(const json& root, const Reader& r, int format) {
-    if (format >= 4 || !root.contains("lights") || !root["lights"].is_array()) return;
+// A light type that came with a newer scene_format (polygon: 4): an older file naming one is told
+// so (a scene made in memory has no version and takes every type).
+void checkLightFormats(const json& root, const Reader& r, int format) {
+    if (!root.contains("lights") || !root["lights"].is_array()) return;
     const json& jl = root["lights"];
-    for (size_t i = 0; i < jl.size(); ++i)
-        if (jl[i].is_object() && jl[i].contains("type") && jl[i]["type"] == "polygon")
-            r.fail(
-                Reader::index("lights", i) + ".type",
-                "\"polygon\" needs scene_format 4 (the file says " + std::to_string(format) + ")");
+    for (size_t i = 0; i < jl.size(); ++i) {
+        if (!jl[i].is_object() || !jl[i].contains("type") || !jl[i]["type"].is_string()) continue;
+        const std::string name = jl[i]["type"].get<std::string>();
+        const LightKind* kind = findLightKind(name);
+        if (kind && kind->sceneFormat() > format)
+            r.fail(Reader::index("lights", i) + ".type",
+                   "\"" + name + "\" needs scene_format " + std::to_string(kind->sceneFormat()) +
+                       " (the file says " + std::to_string(format) + ")");
+    }
 }
 
 // What a scene file and a scene made in memory share once their meshes are in: the camera, the
@@ -392,15 +409,16 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
                 {"scene_format", "geometry", "camera", "camera_path", "lights", "effects"});
     if (!root.contains("scene_format"))
         r.fail("scene_format",
-               "missing (this tool reads 1 to " + std::to_string(kSceneFormat) + ")");
+               "missing (this tool reads 1 to " + std::to_string(newestSceneFormat()) + ")");
     int format = r.integer(root["scene_format"], "scene_format", 0, 1 << 30);
-    if (format < 1 || format > kSceneFormat)
+    if (format < 1 || format > newestSceneFormat())
         r.fail("scene_format", "unsupported version " + std::to_string(format) +
-                                   " (this tool reads 1 to " + std::to_string(kSceneFormat) + ")");
+                                   " (this tool reads 1 to " + std::to_string(newestSceneFormat()) +
+                                   ")");
     if (root.contains("camera_path") && format < 2)
         r.fail("camera_path",
                "needs scene_format 2 (the file says " + std::to_string(format) + ")");
-    checkPolygonFormat(root, r, format);
+    checkLightFormats(root, r, format);
 
     Scene scene;
     scene.path = path;
@@ -475,11 +493,8 @@ Scene loadSceneGltf(const std::filesystem::path& path, const std::string& displa
         hasher.addFile(fr, fr.lexically_relative(folder).generic_string());
     scene.lights = g.lights;
     if (scene.lights.empty()) {
-        Light sun;
-        sun.name = "sun";
-        sun.type = LightType::Directional;
-        sun.wsDirection = glm::normalize(glm::dvec3(-0.3, -1.0, -0.5));
-        scene.lights.push_back(sun);
+        scene.lights.push_back(
+            directionalLight("sun", glm::normalize(glm::dvec3(-0.3, -1.0, -0.5))));
         scene.stats.warnings.push_back(
             "the glTF file has no KHR_lights_punctual lights: added the default directional light "
             "\"sun\" travelling along (-0.3, -1, -0.5)");

@@ -1,5 +1,7 @@
 #include "core/scene_writer.h"
 
+#include <algorithm>
+
 #include "core/lights/light_kind.h"
 
 namespace so {
@@ -34,9 +36,9 @@ json sceneFileJson(const Scene& scene, const CameraDesc& camera, const std::stri
     json lights = json::array();
     for (const Light& l : scene.lights) lights.push_back(sceneLightJson(l));
     // The oldest version that holds the scene, so older readers still load what they can.
-    bool polygon = false;
-    for (const Light& l : scene.lights) polygon |= l.type == LightType::Polygon;
-    json j = {{"scene_format", polygon ? 4 : 3},
+    int format = 3;
+    for (const Light& l : scene.lights) format = std::max(format, lightKind(l.type).sceneFormat());
+    json j = {{"scene_format", format},
               {"geometry", json::array({{{"file", geometryFile}}})},
               {"camera",
                {{"eye", jsonVec3(camera.wsEye)},

@@ -32,7 +32,7 @@ namespace so {
 class AreaLightKind;
 
 struct AreaLight {
-    LightType type = LightType::Rect;
+    LightType type{};                     // ws.type, set by makeAreaLight
     const AreaLightKind* kind = nullptr;  // its type's oracle part (oracle/lights/)
     glm::vec3 lsCenter{0.0f};
     glm::vec3 lsU{0.0f}, lsV{0.0f};    // rect: full edges

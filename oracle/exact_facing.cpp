@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "oracle/exact_sign.h"
+#include "oracle/lights/area_light_kind.h"
 
 namespace so {
 
@@ -32,38 +33,14 @@ int facingDirection(const PixelTriangle& t, const glm::dvec3& wsToLight) {
 }
 
 int emitterSide(const PixelTriangle& t, const Light& light) {
-    SO_CHECK(light.type == LightType::Rect || light.type == LightType::Disk ||
-             light.type == LightType::Polygon);
+    const AreaLightKind& kind = areaLightKind(light.type);
     int front = 0;
-    for (const glm::dvec3& v : {t.a, t.b, t.c}) {
-        // A rect's plane is the span of its edges (its unit normal is rounded; the span is not).
-        // A polygon's is the plane through its first vertex with its (rounded) normal, as a disk's.
-        const int s = light.type == LightType::Rect
-                          ? exact::sideOfSpan(light.wsPosition, light.wsU, light.wsV, v)
-                      : light.type == LightType::Polygon
-                          ? exact::sideOfPlane(light.wsVertices[0], light.wsNormal, v)
-                          : exact::sideOfPlane(light.wsPosition, light.wsNormal, v);
-        front += s > 0;
-    }
+    for (const glm::dvec3& v : {t.a, t.b, t.c}) front += kind.sideOfPlane(light, v) > 0;
     return front == 3 ? 1 : front == 0 ? -1 : 0;
 }
 
 bool areaLightAbovePlane(const PixelTriangle& t, const Light& light) {
-    if (light.type == LightType::Disk)
-        return exact::diskAbovePlane(t.a, t.b, t.c, light.wsPosition, light.wsNormal, light.radius);
-    if (light.type == LightType::Polygon) {
-        for (const glm::dvec3& v : light.wsVertices)
-            if (exact::orient(t.a, t.b, t.c, v) > 0) return true;
-        return false;
-    }
-    SO_CHECK(light.type == LightType::Rect);
-    // Corners centre +- u/2 +- v/2: halving a double is exact, the sum is taken exactly.
-    for (int k = 0; k < 4; ++k) {
-        const glm::dvec3 hu = ((k & 1) ? 0.5 : -0.5) * light.wsU;
-        const glm::dvec3 hv = ((k & 2) ? 0.5 : -0.5) * light.wsV;
-        if (exact::orient(t.a, t.b, t.c, light.wsPosition, hu, hv) > 0) return true;
-    }
-    return false;
+    return areaLightKind(light.type).abovePlane(t, light);
 }
 
 }  // namespace so

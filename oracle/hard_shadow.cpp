@@ -36,14 +36,14 @@ HardLight makeHardLight(const Light& light, const LocalFrame& frame) {
     h.ws = light;
     // Without the penumbra effect an area light is traced as a point light at its centre; rect,
     // disk and polygon lights still emit on one side only.
-    h.type = isAreaLight(light.type) ? LightType::Point : light.type;
-    h.oneSided = lightKind(light.type).oneSided();
+    h.directional = isDirectional(light);
+    h.spot = hasCone(light);
+    h.oneSided = isOneSided(light);
     if (h.oneSided) h.lsEmitNormalF = glm::vec3(light.wsEmitNormal());
     h.lsPosition = frame.lsFromWs(light.wsPosition);
     h.lsDirection = glm::normalize(light.wsDirection);
-    if (light.type == LightType::Spot)
-        h.cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
-    if (h.type != LightType::Directional) h.lsEndMargin = offsetMargin(glm::vec3(h.lsPosition));
+    if (h.spot) h.cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
+    if (!h.directional) h.lsEndMargin = offsetMargin(glm::vec3(h.lsPosition));
     h.lsPositionF = glm::vec3(h.lsPosition);
     h.lsDirectionF = glm::vec3(h.lsDirection);
     h.cosOuterF = float(h.cosOuter);
@@ -135,7 +135,7 @@ __m128i selectBytes(__m128i mask, ShadowRayKind a, __m128i b) {
 template <bool kOneSided>
 uint32_t classifyPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light,
                         const LaneScratch& ls, PacketSetup& ps) {
-    const bool spot = light.type == LightType::Spot;
+    const bool spot = light.spot;
     const __m128i missBytes = _mm_cmpeq_epi8(
         _mm_loadu_si128(reinterpret_cast<const __m128i*>(&sb.hit[base])), _mm_setzero_si128());
     const __m128i missLo = _mm_unpacklo_epi8(missBytes, missBytes),
@@ -184,7 +184,7 @@ ShadowRayKind laneKind(bool facing, bool outsideCone, bool behind) {
 // cos channel's sign always agrees with the decision.
 void resolveTies(const Accel& accel, const SurfaceBuffer& sb, size_t base, const HardLight& light,
                  uint32_t ties, const LaneScratch& ls, PacketSetup& ps) {
-    const bool spot = light.type == LightType::Spot;
+    const bool spot = light.spot;
     for (int k = 0; k < 16; ++k) {
         if (!(ties >> k & 1u)) continue;
         const size_t slot = base + size_t(k);
@@ -192,9 +192,8 @@ void resolveTies(const Accel& accel, const SurfaceBuffer& sb, size_t base, const
         if (cache.triangle != sb.originId[slot]) {
             const PixelTriangle t = pixelTriangle(accel, sb, slot);
             cache.triangle = sb.originId[slot];
-            cache.facing = int8_t(light.type == LightType::Directional
-                                      ? facingDirection(t, -light.ws.wsDirection)
-                                      : facingPoint(t, light.ws.wsPosition));
+            cache.facing = int8_t(light.directional ? facingDirection(t, -light.ws.wsDirection)
+                                                    : facingPoint(t, light.ws.wsPosition));
             cache.emitter = int8_t(light.oneSided ? emitterSide(t, light.ws) : 1);
         }
         ++ps.exactDecisions;
@@ -215,7 +214,7 @@ void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const
     // Branch-free loops over the 16 lanes, so the compiler vectorises them: this setup runs once
     // per shadow ray and is what separates the oracle from a bare Embree loop (bench/).
     LaneScratch ls;
-    if (light.type == LightType::Directional)
+    if (light.directional)
         setupDirectional(light, ps, ls, &sb.lsNormalX[base], &sb.lsNormalY[base],
                          &sb.lsNormalZ[base]);
     else
@@ -398,7 +397,7 @@ uint64_t markNearLanes(const Accel& accel, const SurfaceBuffer& sb, const HardLi
     // the largest bound of the tile's slots (-inf where none has a near field).
     const float tileBound = f.tileSineBound[base / 16];
     if (tileBound == -std::numeric_limits<float>::infinity()) return 0;
-    const bool directional = light.type == LightType::Directional;
+    const bool directional = light.directional;
     const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
     __m128 lowestCos = inf, nearestEnd = inf, unordered = _mm_setzero_ps();
     for (int g = 0; g < 16; g += 4) {
@@ -508,7 +507,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
         HardShadowStats& st;
         HardPacket packet;
     };
-    const bool spot = light.type == LightType::Spot;
+    const bool spot = light.spot;
     forEachTileRow(
         sb.tilesY,
         [&] {

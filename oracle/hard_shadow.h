@@ -29,7 +29,11 @@ class Progress;
 
 // A punctual light in the local frame.
 struct HardLight {
-    LightType type = LightType::Point;
+    // What the loops branch on, asked of the light's kind once (core/lights/light_kind.h): a
+    // directional light's rays go along -lsDirection without end; a spot's stop at its cone.
+    // Neither: a point light, or an area light traced at its centre.
+    bool directional = false;
+    bool spot = false;
     glm::dvec3 lsPosition{0.0};
     glm::dvec3 lsDirection{0.0, -1.0, 0.0};  // the way light travels, unit
     double cosOuter = -1.0;                  // spot: cos of the outer half-angle

@@ -21,7 +21,7 @@ namespace so {
 
 struct OracleLightStats {
     std::string name;
-    LightType type = LightType::Point;
+    LightType type{};                      // set from the scene's light, or oracle.json's "type"
     std::string method;                    // how the light was traced, for people
     std::optional<AreaShadowStats> area;   // sampled (penumbra) area lights
     std::optional<PenumbraChoice> choice;  // --penumbra auto, area lights with "penumbra"

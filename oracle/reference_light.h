@@ -6,7 +6,7 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 #include <glm/vec3.hpp>
 
@@ -27,19 +27,24 @@ struct SplitMix {
     double uniform() { return double(next() >> 11) * 0x1.0p-53; }  // [0, 1)
 };
 
+// One area light's independent samples: each kind makes its own (oracle/lights/, reference()).
+class ReferenceSampler {
+  public:
+    virtual ~ReferenceSampler() = default;
+    // The point for (u1, u2) in [0, 1)^2, uniform by area, and the light's outward normal there
+    // (one-sided lights: the side they emit on), local frame.
+    virtual void point(double u1, double u2, glm::dvec3& lsY, glm::dvec3& normal) const = 0;
+};
+
 class ReferenceLight {
   public:
     ReferenceLight(const Light& light, const LocalFrame& frame);
-    // The point for (u1, u2) in [0, 1)^2, uniform by area, and the light's outward normal there
-    // (rect and disk: the side they emit on), local frame.
-    void point(double u1, double u2, glm::dvec3& lsY, glm::dvec3& normal) const;
+    void point(double u1, double u2, glm::dvec3& lsY, glm::dvec3& normal) const {
+        sampler_->point(u1, u2, lsY, normal);
+    }
 
   private:
-    LightType type_;
-    glm::dvec3 c_, u_, v_, m_, e1_{0.0}, e2_{0.0};
-    double radius_;
-    std::vector<glm::dvec3> vertices_;  // polygon, local frame
-    std::vector<double> fanCdf_;        // its fan from vertex 0: cumulative area shares
+    std::shared_ptr<const ReferenceSampler> sampler_;
 };
 
 }  // namespace so

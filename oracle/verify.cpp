@@ -13,6 +13,7 @@
 #include "core/lights/light_kind.h"
 #include "oracle/area_shadow.h"
 #include "oracle/disk_bounds.h"
+#include "oracle/lights/area_light_kind.h"
 #include "oracle/offset.h"
 #include "oracle/reference_light.h"
 
@@ -125,7 +126,7 @@ std::vector<size_t> Verifier::choosePixels(const Light& light, uint32_t lightInd
         hits.push_back(s);
         const glm::dvec3 p(sb.lsPoint(s)), n(sb.lsNormal(s));
         const glm::dvec3 toLight =
-            light.type == LightType::Directional ? -light.wsDirection : glm::normalize(lsLight - p);
+            isDirectional(light) ? -light.wsDirection : glm::normalize(lsLight - p);
         if (std::fabs(glm::dot(n, toLight)) < sinHorizon) horizon.push_back(s);
     }
     // A partial Fisher-Yates shuffle with the seed: the same pixels at any thread count.
@@ -210,7 +211,7 @@ Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, f
     bool reaches = true;  // faces the light, inside its cone, on its emitting side
     const glm::dvec3 lsPos = frame_.lsFromWs(light.wsPosition);
     double tie = kInf;  // the smallest facing/cone/emitter test value: near 0 is a tie
-    if (light.type == LightType::Directional) {
+    if (isDirectional(light)) {
         tgt.dir = -light.wsDirection;
     } else {
         const glm::dvec3 w = lsPos - ref.p;
@@ -218,7 +219,7 @@ Verifier::Verdict Verifier::hardPixel(const Light& light, const PixelRef& ref, f
         tgt.dir = w / dist;
         // The oracle's segment stops short of the light by twice its end margin (hard_shadow.cpp).
         tgt.tMax = std::max(0.0, dist - 2.0 * double(offsetMargin(glm::vec3(lsPos))));
-        if (light.type == LightType::Spot) {
+        if (hasCone(light)) {
             const double cosCone = glm::dot(-tgt.dir, light.wsDirection);
             const double cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
             reaches = reaches && !(cosCone < cosOuter);
@@ -341,19 +342,9 @@ Verifier::Verdict Verifier::polygonBoundPixel(const Light& light, const SurfaceB
     const TriangleId id{sb.meshId[slot], sb.primId[slot]};
     const glm::dvec3 p = exact_.point(id, sb.baryU[slot], sb.baryV[slot]);
     const glm::dvec3 n = exact_.normal(id, glm::dvec3(sb.lsNormal(slot)));
-    const glm::dvec3 center = frame_.lsFromWs(light.wsPosition);
-    const double radius = frame_.lsLength(light.radius);
     DiskLightShape disk;
-    if (light.type == LightType::Sphere) {
-        const glm::dvec3 w = center - p;
-        if (!(glm::dot(w, w) > radius * radius)) return Verdict::Agree;  // inside: no light
-        disk = sphereSilhouette(center, radius, p);
-    } else {
-        disk.center = center;
-        disk.radius = radius;
-        disk.emitNormal = light.wsEmitNormal();
-        diskAxes(disk.emitNormal, disk.e1, disk.e2);
-    }
+    if (!areaLightKind(light.type).boundedDisk(light, frame_, p, disk))
+        return Verdict::Agree;  // inside a sphere: no light
     const DiskVisibility b = diskLightVisibility(exact_.tracer(), disk, p, n, id,
                                                  kVerifyBoundMaxOccluders, kVerifyBound);
     if (b.counts.status == PolygonVisibilityStatus::TooManyOccluders ||
@@ -389,6 +380,7 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
     std::vector<Verdict> verdicts(slots.size(), Verdict::Agree);
     std::vector<VerifyDisagreement> found(slots.size());
     std::vector<uint8_t> primaryDiffers(slots.size(), 0), alphaAmbiguous(slots.size(), 0);
+    const bool boundedLight = isAreaLight(light) && areaLightKind(light.type).bounded();
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t i) {
         const size_t slot = slots[i];
         const size_t pixel = sb.pixelOfSlot(slot);
@@ -409,10 +401,9 @@ LightVerification Verifier::verifyLight(const Light& light, uint32_t lightIndex,
                 sampled ? areaPixel(light, lightIndex, pixel, ref, V[pixel], stderr_[pixel],
                                     spp[pixel], bound ? bound[pixel] : 0.0f, out.zThreshold, d)
                         : hardPixel(light, ref, V[pixel], d, alpha);
-            // An exact disk or sphere pixel: also against the polygons' bound.
+            // An exact pixel of a bounded light (disk, sphere): also against the polygons' bound.
             if (verdicts[i] == Verdict::Agree && sampled && bound && exact &&
-                exact[pixel] == 1.0f &&
-                (light.type == LightType::Disk || light.type == LightType::Sphere))
+                exact[pixel] == 1.0f && boundedLight)
                 verdicts[i] = polygonBoundPixel(light, sb, slot, V[pixel], bound[pixel], d);
         }
         alphaAmbiguous[i] = alpha && verdicts[i] == Verdict::Ambiguous;

@@ -19,6 +19,7 @@
 
 #include "core/alpha_mask.h"
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "lambert.h"
 #include "oracle/accel.h"
 #include "oracle/exact_alpha.h"
@@ -66,7 +67,7 @@ CheckerScene makeCheckerScene(bool alphaEffect) {
     mask.texture = 0;
     s.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
     s.meshes.push_back(makeMaskedSquare(CheckerScene::kY, CheckerScene::kHalf, 2, mask));
-    s.lights.push_back({"key", LightType::Point, c.light, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("key", c.light));
     s.effects =
         alphaEffect ? std::vector<std::string>{"hard", "alpha"} : std::vector<std::string>{"hard"};
     s.camera.wsEye = {0.5, 7.0, 3.0};
@@ -236,13 +237,8 @@ GrateScene makeGrateScene(int size) {
     mask.texture = 0;
     s.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
     s.meshes.push_back(makeMaskedSquare(GrateScene::kY, GrateScene::kHalf, 1, mask));
-    Light l;
-    l.name = "panel";
-    l.type = LightType::Rect;
-    l.wsPosition = {0.0, g.light.y, 0.0};
-    l.wsU = {1, 0, 0};
-    l.wsV = {0, 0, 1};  // cross(u, v) points down
-    s.lights = {l};
+    // cross(u, v) points down
+    s.lights = {rectLight("panel", {0.0, g.light.y, 0.0}, {1, 0, 0}, {0, 0, 1})};
     s.effects = {"hard", "penumbra", "alpha"};
     // Below the grate, looking down at the floor under it.
     s.camera.wsEye = {0.0, 1.0, 2.5};
@@ -390,7 +386,7 @@ TEST(AlphaVerify, CheckerAgreesAndAWrongCutoffIsCaught) {
 TEST(AlphaVerify, TexelBoundaryCrossingIsAmbiguousNotADisagreement) {
     CheckerScene c = makeGreyCheckerScene();
     Scene& s = c.scene;
-    s.lights = {{"sun", LightType::Directional, {0, 0, 0}, {0, -1, 0}, 0, 0}};
+    s.lights = {directionalLight("sun", {0, -1, 0})};
     s.camera.wsEye = {0.25, 7.0, 3.0};
     s.camera.wsTarget = {0.25, 0.0, 0.0};
     s.camera.width = s.camera.height = 81;

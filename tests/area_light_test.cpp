@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "core/sobol.h"
 #include "lambert.h"
 #include "oracle/area_shadow.h"
@@ -216,18 +217,12 @@ TEST(AreaLight, IntervalsSayTheRealAccuracyAtFixedCounts) {
 }
 
 TEST(AreaLight, UnoccludedLightsGiveExactlyOne) {
-    for (LightType type : {LightType::Rect, LightType::Disk, LightType::Sphere}) {
+    const glm::dvec3 c{0.5, 2.0, 0.25};
+    for (const Light& l : {rectLight("L", c, {1.5, 0, 0}, {0, 0, 1.0}),
+                           diskLight("L", c, {0, -1, 0}, 0.8), sphereLight("L", c, 0.8)}) {
         Scene sc;
         // A tilted plane: for some pixels part of the light is below the horizon.
         sc.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 3, -12}, 6, "plane"));
-        Light l;
-        l.name = "L";
-        l.type = type;
-        l.wsPosition = {0.5, 2.0, 0.25};
-        l.wsU = {1.5, 0, 0};
-        l.wsV = {0, 0, 1.0};
-        l.wsNormal = {0, -1, 0};
-        l.radius = 0.8;
         sc.lights = {l};
         sc.effects = {"penumbra"};
         sc.camera.wsEye = {0, 9, 9};
@@ -243,9 +238,9 @@ TEST(AreaLight, UnoccludedLightsGiveExactlyOne) {
         for (size_t i = 0; i < r.img.pixelCount(); ++i) {
             if (spp[i] == 0.0f) continue;
             ++sampled;
-            ASSERT_EQ(V[i], 1.0f) << lightTypeName(type) << " pixel " << i;
+            ASSERT_EQ(V[i], 1.0f) << lightTypeName(l.type) << " pixel " << i;
         }
-        EXPECT_GT(sampled, r.img.pixelCount() / 3) << lightTypeName(type);
+        EXPECT_GT(sampled, r.img.pixelCount() / 3) << lightTypeName(l.type);
     }
 }
 
@@ -513,7 +508,7 @@ TEST(Effects, ContactOnlyWhenAsked) {
     Scene sc;
     sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
     sc.meshes.push_back(makeBox({-1, 0, -1}, {1, 1.5, 1}, "box"));
-    sc.lights = {{"key", LightType::Point, {2.5, 5.0, 1.5}, {0, -1, 0}, 0, 0}};
+    sc.lights = {pointLight("key", {2.5, 5.0, 1.5})};
     sc.camera.wsEye = {-5, 6, -6};
     sc.camera.wsTarget = {0, 0.5, 0};
     sc.camera.width = sc.camera.height = 96;

@@ -1,4 +1,5 @@
 #include "bunny_scene.h"
+#include "core/lights/make_light.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -83,9 +84,7 @@ const MeshPrimitive* cgalBunny(std::string& whyNot) {
 }
 
 void useLowRectLight(Scene& scene) {
-    scene.lights = {{"panel", LightType::Rect, {-9.0, 3.0, 4.0}, {0, -1, 0}, 45, 0}};
-    scene.lights[0].wsU = {0.0, 0.0, -3.0};
-    scene.lights[0].wsV = {0.0, 2.0, 0.0};
+    scene.lights = {rectLight("panel", {-9.0, 3.0, 4.0}, {0.0, 0.0, -3.0}, {0.0, 2.0, 0.0})};
     scene.effects = {"hard", "penumbra"};
     finalizeScene(scene);
 }

@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "core/lights/light_kind.h"
+#include "core/lights/make_light.h"
 #include "test_scenes.h"
 
 namespace so::test {
@@ -25,9 +27,8 @@ struct Exact {
 Exact exactSquare(const glm::dvec3& p, const Light& light) {
     using S = SquareOccluderScene;
     Exact e;
-    glm::dvec3 toLight =
-        light.type == LightType::Directional ? -light.wsDirection : light.wsPosition - p;
-    if (light.type == LightType::Spot) {
+    glm::dvec3 toLight = isDirectional(light) ? -light.wsDirection : light.wsPosition - p;
+    if (hasCone(light)) {
         double c = glm::dot(glm::normalize(p - light.wsPosition), light.wsDirection);
         double cosOuter = std::cos(light.outerConeDeg * std::numbers::pi / 180.0);
         e.margin = std::fabs(c - cosOuter) * glm::length(p - light.wsPosition);
@@ -39,7 +40,7 @@ Exact exactSquare(const glm::dvec3& p, const Light& light) {
     // The segment p + t * toLight, t in (0, 1] (directional: t > 0) crosses y = h once at most.
     if (toLight.y == 0.0) return e;
     double t = (S::kOccluderY - p.y) / toLight.y;
-    bool withinSegment = t > 1e-12 && (light.type == LightType::Directional || t < 1.0);
+    bool withinSegment = t > 1e-12 && (isDirectional(light) || t < 1.0);
     if (!withinSegment) return e;
     glm::dvec3 q = p + t * toLight;
     e.margin = std::min({e.margin, std::fabs(q.x - S::kX0), std::fabs(q.x - S::kX1),
@@ -119,20 +120,12 @@ TEST(Grazing, NoFalseShadowDownToCos1e5) {
                 for (int az = 0; az < 4; ++az) {
                     double phi = 0.4 + az * std::numbers::pi / 2;
                     glm::dvec3 toLight = c * n + s * (std::cos(phi) * t1 + std::sin(phi) * t2);
-                    Light sun{"sun_" + std::to_string(k) + "_" + std::to_string(az),
-                              LightType::Directional,
-                              {0, 0, 0},
-                              -toLight,
-                              0,
-                              0};
+                    Light sun = directionalLight(
+                        "sun_" + std::to_string(k) + "_" + std::to_string(az), -toLight);
                     scene.lights.push_back(sun);
                     // A point light far along the same direction grazes the same way.
-                    Light pt{"pt_" + std::to_string(k) + "_" + std::to_string(az),
-                             LightType::Point,
-                             origin + 1e3 * toLight,
-                             {0, -1, 0},
-                             0,
-                             0};
+                    Light pt = pointLight("pt_" + std::to_string(k) + "_" + std::to_string(az),
+                                          origin + 1e3 * toLight);
                     scene.lights.push_back(pt);
                 }
             }
@@ -155,7 +148,7 @@ TEST(Grazing, NoFalseShadowDownToCos1e5) {
                                            << n.z << " origin " << origin.x;
                 // Point lights 1000 away see the plane at slightly varying angles; the directional
                 // light must see every hit pixel as facing it.
-                if (l.type == LightType::Directional) {
+                if (isDirectional(l)) {
                     EXPECT_EQ(facing, hits) << l.name;
                 }
             }
@@ -210,7 +203,7 @@ TEST(Contact, ShadowReachesTheBoxBase) {
     scene.meshes.push_back(makeGrid({0, 0, 0}, {24, 0, 0}, {0, 0, -24}, 16, "floor"));
     scene.meshes.push_back(makeBox({-1, 0, -1}, {1, 2, 1}, "box"));
     const glm::dvec3 lightPos(3.5, 4.0, 2.5);
-    scene.lights.push_back({"key", LightType::Point, lightPos, {0, -1, 0}, 0, 0});
+    scene.lights.push_back(pointLight("key", lightPos));
     // Looking from the side away from the light, so the shadowed faces and their base are in view.
     scene.camera.wsEye = {-6.0, 3.5, -5.0};
     scene.camera.wsTarget = {-0.5, 0.5, -0.5};

@@ -16,6 +16,7 @@
 #include "bunny_scene.h"
 #include "cli_run.h"
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "core/scene.h"
 #include "exact_penumbra_util.h"
 #include "oracle/disk_bounds.h"
@@ -245,9 +246,7 @@ TEST(ExactDiskSphere, ShippedSphereSceneWithinTheSampledIntervals) {
 TEST(ExactDiskSphere, SameImageAtAnyThreadCount) {
     PenumbraScene s = makePenumbraScene(64, 48);
     Light& l = s.scene.lights[0];
-    l.type = LightType::Disk;
-    l.radius = 0.75;
-    l.wsNormal = {0, -1, 0};
+    l = diskLight(l.name, l.wsPosition, {0, -1, 0}, 0.75);
     std::vector<std::vector<float>> images;
     for (int threads : {1, 2}) {
         OracleOptions o;
@@ -273,10 +272,7 @@ Scene bunnyUnderDisk(const MeshPrimitive& bunny) {
     Scene scene = makeBunnyScene(bunny, 64, 48);
     useLowRectLight(scene);
     Light& l = scene.lights[0];
-    l.type = LightType::Disk;
-    l.radius = 1.5;
-    l.wsNormal = {1, 0, 0};
-    l.wsU = l.wsV = glm::dvec3(0.0);
+    l = diskLight(l.name, l.wsPosition, {1, 0, 0}, 1.5);
     finalizeScene(scene);
     return scene;
 }

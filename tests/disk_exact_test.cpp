@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "core/lights/make_light.h"
 #include "core/scene.h"
 #include "exact_penumbra_util.h"
 #include "oracle/disk_bounds.h"
@@ -268,9 +269,7 @@ TEST(DiskExact, EdgeThroughTheCentreHidesHalf) {
 TEST(DiskExact, SphereSameImageAtAnyThreadCount) {
     PenumbraScene s = makePenumbraScene(64, 48);
     Light& l = s.scene.lights[0];
-    l.type = LightType::Sphere;
-    l.radius = 0.75;
-    l.wsU = l.wsV = dvec3(0.0);
+    l = sphereLight(l.name, l.wsPosition, 0.75);
     finalizeScene(s.scene);
     std::vector<std::vector<float>> images;
     for (int threads : {1, 2}) {

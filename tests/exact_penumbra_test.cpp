@@ -18,6 +18,7 @@
 #include "exact_penumbra_util.h"
 #include "lambert.h"
 #include "oracle/exact_penumbra.h"
+#include "oracle/lights/area_light_kind.h"
 #include "oracle/mesh_facing.h"
 #include "oracle/oracle.h"
 #include "oracle/penumbra_choice.h"
@@ -305,7 +306,7 @@ TEST(ExactPenumbra, FastUnionAgreesWithThePlainUnionOnShippedScenes) {
         for (size_t l = 0; l < scene.lights.size(); ++l) {
             if (!runs[0].stats.lights[l].area || !runs[0].stats.lights[l].area->exact) continue;
             const std::string light = scene.lights[l].name;
-            const bool bounded = scene.lights[l].type != LightType::Rect;
+            const bool bounded = areaLightKind(scene.lights[l].type).bounded();
             const float* v[2] = {runs[0].image.channel(light + ".V"),
                                  runs[1].image.channel(light + ".V")};
             const float* mask[2] = {runs[0].image.channel(light + "." + ch::kExact),

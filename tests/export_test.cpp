@@ -239,7 +239,7 @@ TEST(Export, GlbStructure) {
         EXPECT_EQ(ex["type"], so::lightTypeName(l.type));
         EXPECT_EQ(ex["center"], json::array({l.wsPosition.x, l.wsPosition.y, l.wsPosition.z}));
         EXPECT_GT(ex["size"].get<double>(), 0.0);
-        if (l.type == so::LightType::Rect) {
+        if (std::string(so::lightTypeName(l.type)) == "rect") {
             EXPECT_EQ(gl["type"], "spot");
             EXPECT_EQ(ex["edge_u"], json::array({l.wsU.x, l.wsU.y, l.wsU.z}));
             EXPECT_EQ(ex["edge_v"], json::array({l.wsV.x, l.wsV.y, l.wsV.z}));

@@ -192,12 +192,12 @@ TEST(GltfLoader, LightsAndCamera) {
     ASSERT_EQ(c.lights.size(), 6u);
     const so::Light& point = c.lights[0];
     EXPECT_EQ(point.name, "Key");
-    EXPECT_EQ(point.type, so::LightType::Point);
+    EXPECT_STREQ(so::lightTypeName(point.type), "point");
     expectNear(point.wsPosition, {1, 2, 3});  // the node's scale does not move its origin
 
     const so::Light& spot = c.lights[1];
     EXPECT_EQ(spot.name, "Key_2");
-    EXPECT_EQ(spot.type, so::LightType::Spot);
+    EXPECT_STREQ(so::lightTypeName(spot.type), "spot");
     expectNear(spot.wsPosition, {0, 5, 0});
     expectNear(spot.wsDirection, {0, -1, 0});  // -Z rotated -90 deg about X; scale 3 ignored
     EXPECT_NEAR(spot.innerConeDeg, 0.2 * 180.0 / std::numbers::pi, 1e-12);
@@ -205,7 +205,7 @@ TEST(GltfLoader, LightsAndCamera) {
 
     const so::Light& sun = c.lights[2];
     EXPECT_EQ(sun.name, "sun_light_");
-    EXPECT_EQ(sun.type, so::LightType::Directional);
+    EXPECT_STREQ(so::lightTypeName(sun.type), "directional");
     expectNear(sun.wsDirection, {-1, 0, 0});  // -Z rotated 90 deg about Y
 
     // Light 0 used by a second node: a second light, renamed.
@@ -216,7 +216,7 @@ TEST(GltfLoader, LightsAndCamera) {
     // "P" is a reserved layer name; a spot without angles gets glTF's defaults.
     const so::Light& p = c.lights[5];
     EXPECT_NE(p.name, "P");
-    EXPECT_EQ(p.type, so::LightType::Spot);
+    EXPECT_STREQ(so::lightTypeName(p.type), "spot");
     EXPECT_NEAR(p.outerConeDeg, 45.0, 1e-6);
     EXPECT_EQ(p.innerConeDeg, 0.0);
 

@@ -14,6 +14,8 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/lights/light_kind.h"
+#include "core/lights/make_light.h"
 #include "oracle/oracle.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/oracle_stats.h"
@@ -29,26 +31,10 @@ using nlohmann::json;
 // (one-sided) and a sphere.
 Scene lightsOfEveryKind(int width, int height, std::vector<std::string> effects) {
     Scene scene = makeSquareOccluderScene(width, height).scene;
-    Light rect;
-    rect.name = "panel";
-    rect.type = LightType::Rect;
-    rect.wsPosition = {0.5, 5.0, 0.25};
-    rect.wsU = {1.0, 0.0, 0.0};
-    rect.wsV = {0.0, 0.0, 1.0};  // cross(u, v) points down
-    Light disk;
-    disk.name = "lamp";
-    disk.type = LightType::Disk;
-    disk.wsPosition = {2.0, 4.5, 1.0};
-    disk.wsNormal = {0.0, -1.0, 0.0};
-    disk.radius = 0.5;
-    Light sphere;
-    sphere.name = "globe";
-    sphere.type = LightType::Sphere;
-    sphere.wsPosition = {-2.0, 4.0, -1.0};
-    sphere.radius = 0.5;
-    scene.lights.push_back(rect);
-    scene.lights.push_back(disk);
-    scene.lights.push_back(sphere);
+    // cross(u, v) points down
+    scene.lights.push_back(rectLight("panel", {0.5, 5.0, 0.25}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}));
+    scene.lights.push_back(diskLight("lamp", {2.0, 4.5, 1.0}, {0.0, -1.0, 0.0}, 0.5));
+    scene.lights.push_back(sphereLight("globe", {-2.0, 4.0, -1.0}, 0.5));
     scene.effects = std::move(effects);
     finalizeScene(scene);
     return scene;
@@ -319,11 +305,11 @@ TEST(StatFields, EveryCounterIsCombinedWrittenAndRead) {
     OracleStats stats;
     stats.lights.resize(2);
     stats.lights[0].name = "spot";
-    stats.lights[0].type = LightType::Spot;
+    stats.lights[0].type = findLightKind("spot")->type();
     const auto hardA = numbered<HardShadowStats>(1.0), hardB = numbered<HardShadowStats>(10.0);
     combineStats(stats.lights[0].hard.emplace(hardA), hardB);
     stats.lights[1].name = "panel";
-    stats.lights[1].type = LightType::Rect;
+    stats.lights[1].type = findLightKind("rect")->type();
     auto areaA = numbered<AreaShadowStats>(1.0), areaB = numbered<AreaShadowStats>(10.0);
     // What the reader checks: a share of pixels reached the target, samples cover the rays and
     // the agreeing samples.

@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
 #include "test_scenes.h"
@@ -84,12 +85,8 @@ TEST(AcneCause, ZeroBiasOnAGrazingPlaneIsAcne) {
     Scene s;
     s.meshes.push_back(makeGrid({0, 0, 0}, {20, 0, 0}, {0, 0, -20}, 8, "plane"));
     const double el = 12.0 * std::numbers::pi / 180.0;
-    s.lights = {{"sun",
-                 LightType::Directional,
-                 {0, 0, 0},
-                 glm::normalize(glm::dvec3(-std::cos(el), -std::sin(el), -0.2)),
-                 0,
-                 0}};
+    s.lights = {
+        directionalLight("sun", glm::normalize(glm::dvec3(-std::cos(el), -std::sin(el), -0.2)))};
     aimCamera(s, {0, 12, 14}, {0, 0, 0}, 45, 96, 72);
     finalizeScene(s);
     const ChannelImage o = runQuiet(s);

@@ -10,6 +10,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/lights/make_light.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/gl/renderer.h"
@@ -180,12 +181,7 @@ Scene grazingScene(int width, int height) {
     s.camera.vfovDeg = 45.0;
     s.camera.width = width;
     s.camera.height = height;
-    s.lights = {{"sun",
-                 LightType::Directional,
-                 {0, 0, 0},
-                 glm::normalize(glm::dvec3(0.8, -0.5, 0.3)),
-                 0,
-                 0}};
+    s.lights = {directionalLight("sun", glm::normalize(glm::dvec3(0.8, -0.5, 0.3)))};
     s.effects = {"hard"};
     finalizeScene(s);
     return s;

@@ -15,6 +15,7 @@
 
 #include "core/alpha_mask.h"
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "gl_test_context.h"
 #include "raster_compare/gl/gl_context.h"
 #include "raster_compare/gl/renderer.h"
@@ -52,7 +53,7 @@ Scene makeQuadScene(const AlphaMask& mask, const AlphaTexture* texture, double u
         quad.alpha->texture = 0;
     }
     s.meshes.push_back(quad);
-    s.lights = {{"point", LightType::Point, kLight, {0, -1, 0}, 45, 0}};
+    s.lights = {pointLight("point", kLight)};
     s.camera.wsEye = {0.5, 7.0, 4.5};
     s.camera.wsTarget = {0.0, 0.0, 0.0};
     s.camera.vfovDeg = 45.0;

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "core/local_frame.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
@@ -71,9 +72,7 @@ glm::dvec2 texelOf(const LightCamera& lc, int i, const glm::dvec3& p, int res) {
 // Snapped: each cascade keeps its texel size as the camera moves and turns, and a fixed point
 // moves by whole texels in it (the texel grid stays put); the tight fit does neither.
 TEST(CascadeFit, SnappedCascadesKeepTheirTexelGrid) {
-    Light sun{"sun",     LightType::Directional,
-              {0, 0, 0}, glm::normalize(glm::dvec3(-0.5, -0.4, -0.7)),
-              0,         0};
+    Light sun = directionalLight("sun", glm::normalize(glm::dvec3(-0.5, -0.4, -0.7)));
     const Bounds3d lsBounds{{-1, -0.1, -1}, {1, 0.1, 1}};
     const int res = 1024;
     const glm::dvec3 p(0.1, 0.0, 0.5);
@@ -119,12 +118,7 @@ Scene postField(int width, int height) {
     s.camera.wsTarget = {0.0, 0.0, -100.0};
     s.camera.vfovDeg = 50.0;
     s.camera.width = width, s.camera.height = height;
-    s.lights = {Light{"sun",
-                      LightType::Directional,
-                      {0, 0, 0},
-                      glm::normalize(glm::dvec3(-0.8, -0.3, -0.25)),
-                      0,
-                      0}};
+    s.lights = {directionalLight("sun", glm::normalize(glm::dvec3(-0.8, -0.3, -0.25)))};
     s.effects = {"hard"};
     finalizeScene(s);
     return s;

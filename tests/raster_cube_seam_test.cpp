@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "gl_test_context.h"
 #include "raster_compare/gl/renderer.h"
 #include "raster_compare/gl/technique.h"
@@ -40,8 +41,7 @@ Scene seamScene(int width, int height) {
     s.meshes.push_back(makeGrid({0, 0, 0}, {10, 0, 0}, {0, 0, -10}, 8, "floor"));
     s.meshes.push_back(makeGrid(kEdgePoint + 3.0 * kEdgeNormal, 8.0 * kEdgeDir, -6.0 * kEdgeNormal,
                                 1, "occluder"));
-    Light bulb{"bulb", LightType::Sphere, kLight, {0, -1, 0}, 0, 0};
-    bulb.radius = kLightRadius;
+    Light bulb = sphereLight("bulb", kLight, kLightRadius);
     s.lights = {bulb};
     s.effects = {"penumbra"};
     s.camera.wsEye = {1.5, 4.0, 0.01};

@@ -19,6 +19,7 @@
 #include "cli_run.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/lights/make_light.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/gl/renderer.h"
@@ -50,7 +51,7 @@ Scene planeUnderSquare(double turnDeg, const glm::dvec3& lightDirection, bool sp
     s.camera.wsTarget = {0.0, 0.0, 0.0};
     s.camera.vfovDeg = vfovDeg;
     s.camera.width = s.camera.height = size;
-    s.lights = {{"sun", LightType::Directional, {0, 0, 0}, glm::normalize(lightDirection), 0, 0}};
+    s.lights = {directionalLight("sun", glm::normalize(lightDirection))};
     s.effects = {"hard"};
     finalizeScene(s);
     return s;
@@ -250,7 +251,7 @@ TEST(Lightmap, EveryTriangleGetsATexelEvenSmallerThanOne) {
     s.camera.wsEye = {0.0, 6.0, 0.5};
     s.camera.wsTarget = {0.0, 0.0, 0.0};
     s.camera.width = s.camera.height = 96;
-    s.lights = {{"sun", LightType::Directional, {0, 0, 0}, {0, -1, 0}, 0, 0}};
+    s.lights = {directionalLight("sun", {0, -1, 0})};
     s.effects = {"hard"};
     finalizeScene(s);
     const RasterResult r = renderOneFrame(s, "lightmap", {"texels_per_unit=4"});

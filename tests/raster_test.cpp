@@ -20,6 +20,7 @@
 #include "bunny_scene.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/lights/make_light.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/gate.h"
 #include "raster_compare/compare/metrics.h"
@@ -166,12 +167,7 @@ TEST(Raster, AcneAtGrazingAndSlopeBiasCuresIt) {
     Scene s;
     s.meshes.push_back(makeGrid({0, 0, 0}, {20, 0, 0}, {0, 0, -20}, 8, "plane"));
     const double el = 12.0 * std::numbers::pi / 180.0;
-    s.lights = {{"sun",
-                 LightType::Directional,
-                 {0, 0, 0},
-                 glm::dvec3(-std::cos(el), -std::sin(el), -0.2),
-                 0,
-                 0}};
+    s.lights = {directionalLight("sun", glm::dvec3(-std::cos(el), -std::sin(el), -0.2))};
     s.lights[0].wsDirection = glm::normalize(s.lights[0].wsDirection);
     s.camera.wsEye = {0, 12, 14};
     s.camera.wsTarget = {0, 0, 0};
@@ -225,7 +221,7 @@ TEST(Raster, CubeMapShadowsOnAllSixFacesWithoutSeams) {
     s.meshes.push_back(makeBox({-0.5, 0.4, -0.4}, {0.4, 0.5, 0.5}, "plate below"));
     s.meshes.push_back(makeBox({-0.4, 2.5, -0.5}, {0.5, 2.6, 0.4}, "plate above"));
     const glm::dvec3 light(0.1, 1.5, 0.05);
-    s.lights = {{"bulb", LightType::Point, light, {0, -1, 0}, 0, 0}};
+    s.lights = {pointLight("bulb", light)};
     s.camera.wsEye = {0.3, 1.5, 5.5};
     s.camera.wsTarget = {0.0, 1.5, 0.0};
     s.camera.vfovDeg = 110;
@@ -295,12 +291,7 @@ TEST(Raster, VsmBleedsLightUnderOverlappingOccluders) {
     s.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 0, -12}, 4, "floor"));
     s.meshes.push_back(makeGrid({-0.5, 0.6, 0}, {3, 0, 0}, {0, 0, -3}, 1, "low plate"));
     s.meshes.push_back(makeGrid({0.8, 4.0, 0.3}, {3, 0, 0}, {0, 0, -3}, 1, "high plate"));
-    s.lights = {{"sun",
-                 LightType::Directional,
-                 {0, 0, 0},
-                 glm::normalize(glm::dvec3(0.15, -1.0, 0.1)),
-                 0,
-                 0}};
+    s.lights = {directionalLight("sun", glm::normalize(glm::dvec3(0.15, -1.0, 0.1)))};
     // Low, so that the floor under both plates is in view.
     s.camera.wsEye = {-1, 2.2, 7};
     s.camera.wsTarget = {0.3, 0, 0};
@@ -355,12 +346,7 @@ TEST(Raster, VsmBleedsLightUnderOverlappingOccluders) {
 TEST(Raster, EveryTechniqueRendersEveryLightKind) {
     REQUIRE_GL();
     Scene s = loadShipped("spot_objects", 160, 120);
-    s.lights.push_back({"sun",
-                        LightType::Directional,
-                        {0, 0, 0},
-                        glm::normalize(glm::dvec3(0.3, -1.0, 0.2)),
-                        0,
-                        0});
+    s.lights.push_back(directionalLight("sun", glm::normalize(glm::dvec3(0.3, -1.0, 0.2))));
     ChannelImage o = runQuiet(s);
     for (const TechniqueInfo* t : allTechniques()) {
         ChannelImage r = raster(s, t->name, settingsFor(*t, {"resolution=1024"}));
@@ -852,7 +838,7 @@ TEST(Raster, ShadowVolumesExactWithTheCameraOutsideAndInside) {
     Scene s;
     s.meshes.push_back(makeGrid({0, 0, 0}, {24, 0, 0}, {0, 0, -24}, 8, "ground"));
     s.meshes.push_back(makeBox({-1, 1.5, -1}, {1, 3.5, 1}, "cube"));
-    s.lights = {{"lamp", LightType::Point, {0.375, 9, 0.25}, {0, -1, 0}, 45, 0}};
+    s.lights = {pointLight("lamp", {0.375, 9, 0.25})};
     s.camera.width = 240;
     s.camera.height = 180;
     s.camera.vfovDeg = 60;
@@ -888,7 +874,7 @@ TEST(Raster, ShadowVolumesOnOpenMeshesAndShippedScenes) {
     Scene quad;
     quad.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "ground"));
     quad.meshes.push_back(makeGrid({0, 2, 0}, {3, 0, 0}, {0, 0, 3}, 1, "quad"));  // faces down
-    quad.lights = {{"lamp", LightType::Point, {0.5, 7, 0.25}, {0, -1, 0}, 45, 0}};
+    quad.lights = {pointLight("lamp", {0.5, 7, 0.25})};
     quad.camera.wsEye = {-4, 8, 9};
     quad.camera.wsTarget = {0, 0, 0};
     quad.camera.width = 200;
@@ -920,13 +906,8 @@ TEST(Raster, ShadowVolumesOnTheBunny) {
     const MeshPrimitive* bunny = cgalBunny(why);
     if (!bunny) GTEST_SKIP() << why;
     Scene s = makeBunnyScene(*bunny, 240, 180);
-    s.lights = {{"lamp", LightType::Point, {4, 14, 6}, {0, -1, 0}, 45, 0},
-                {"sun",
-                 LightType::Directional,
-                 {0, 0, 0},
-                 glm::normalize(glm::dvec3(-0.5, -1.0, -0.375)),
-                 0,
-                 0}};
+    s.lights = {pointLight("lamp", {4, 14, 6}),
+                directionalLight("sun", glm::normalize(glm::dvec3(-0.5, -1.0, -0.375)))};
     finalizeScene(s);
     ChannelImage o = runQuiet(s);
     for (const char* t : {"volume-zpass", "volume-zfail"}) {
@@ -994,13 +975,8 @@ TEST(Raster, PlanarAndShadowTextureMissShadowsOffTheReceiver) {
     s.meshes.push_back(makeBox({-1, 0, -1}, {1, 4, 1}, "tall"));
     s.meshes.push_back(makeBox({1.75, 0, -0.75}, {3.25, 1, 0.75}, "small"));
     s.meshes.push_back(makeBox({-3, -2, 3}, {-1, -0.5, 5}, "buried"));
-    s.lights = {{"sun",
-                 LightType::Directional,
-                 {0, 0, 0},
-                 glm::normalize(glm::dvec3(1.0, -0.75, 0.125)),
-                 0,
-                 0},
-                {"lamp", LightType::Point, {-3.5, 6, 0.25}, {0, -1, 0}, 45, 0}};
+    s.lights = {directionalLight("sun", glm::normalize(glm::dvec3(1.0, -0.75, 0.125))),
+                pointLight("lamp", {-3.5, 6, 0.25})};
     s.camera.wsEye = {3, 7, 10};
     s.camera.wsTarget = {1, 0.5, 0};
     s.camera.width = 240;

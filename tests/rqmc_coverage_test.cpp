@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "lambert.h"
 #include "oracle/accel.h"
 #include "oracle/area_shadow.h"
@@ -32,7 +33,7 @@ namespace ch = channels;
 // A light 4 above the floor, a 2 x 2 square occluder at 1.5 between: wide penumbrae. `tilted`: the
 // receiver is instead a plane through the light's centre, so its horizon cuts the light for every
 // pixel (the clipped samplers), with a strip occluder in front of it.
-Scene makeScene(LightType type, bool tilted) {
+Scene makeScene(const Light& l, bool tilted) {
     Scene sc;
     if (!tilted) {
         sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
@@ -47,12 +48,6 @@ Scene makeScene(LightType type, bool tilted) {
         sc.camera.wsEye = centre + 7.0 * n + glm::dvec3(0, 1.0, 0);
         sc.camera.wsTarget = centre;
     }
-    Light l;
-    l.name = "L";
-    l.type = type;
-    l.wsPosition = {0.5, 4.0, 0.25};
-    l.wsNormal = {0, -1, 0};
-    l.radius = 0.9;
     sc.lights = {l};
     sc.effects = {"penumbra"};
     if (!tilted) {
@@ -148,13 +143,14 @@ Calibration calibrate(const std::vector<Pixel>& pixels, const ChannelImage& img)
 }
 
 TEST(Rqmc, DiskAndSphereIntervalsCoverAnIndependentReference) {
-    for (const auto& [type, tilted] : {std::pair{LightType::Disk, false},
-                                       {LightType::Sphere, false},
-                                       {LightType::Disk, true},
-                                       {LightType::Sphere, true}}) {
-        const Scene scene = makeScene(type, tilted);
+    const glm::dvec3 center{0.5, 4.0, 0.25};
+    const Light disk = diskLight("L", center, {0, -1, 0}, 0.9),
+                sphere = sphereLight("L", center, 0.9);
+    for (const auto& [light, tilted] :
+         {std::pair{disk, false}, {sphere, false}, {disk, true}, {sphere, true}}) {
+        const Scene scene = makeScene(light, tilted);
         const std::string what =
-            std::string(lightTypeName(type)) + (tilted ? ", horizon across" : "");
+            std::string(lightTypeName(light.type)) + (tilted ? ", horizon across" : "");
         EmbreeDevice device;
         const Accel accel(scene, device);
         OracleOptions adaptive;
@@ -289,12 +285,7 @@ Scene ropeAndLowSphere() {
     Scene sc;
     sc.meshes.push_back(makeGrid({1.5, 0, 0}, {6, 0, 0}, {0, 0, -6}, 4, "floor"));
     sc.meshes.push_back(makeBox({0.9, 0.14, -3.0}, {0.912, 0.152, 3.0}, "rope"));
-    Light l;
-    l.name = "lantern";
-    l.type = LightType::Sphere;
-    l.wsPosition = {0.0, 0.2, 0.0};
-    l.radius = 0.35;
-    sc.lights = {l};
+    sc.lights = {sphereLight("lantern", {0.0, 0.2, 0.0}, 0.35)};
     sc.effects = {"penumbra"};
     sc.camera.wsEye = {1.9, 2.5, 0.6};
     sc.camera.wsTarget = {1.9, 0.0, 0.0};

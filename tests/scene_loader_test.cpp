@@ -66,9 +66,9 @@ TEST(SceneLoader, ValidSceneLoadsExactly) {
     EXPECT_EQ(s.meshes[0].wsPositions[1], glm::dvec3(1, 0, 0));
     ASSERT_EQ(s.lights.size(), 2u);
     EXPECT_EQ(s.lights[0].name, "key");
-    EXPECT_EQ(s.lights[0].type, LightType::Point);
+    EXPECT_STREQ(lightTypeName(s.lights[0].type), "point");
     EXPECT_EQ(s.lights[0].wsPosition, glm::dvec3(0, 4, 0));
-    EXPECT_EQ(s.lights[1].type, LightType::Directional);
+    EXPECT_STREQ(lightTypeName(s.lights[1].type), "directional");
     EXPECT_NEAR(glm::length(s.lights[1].wsDirection), 1.0, 1e-15);  // normalised
     EXPECT_EQ(s.camera.width, 64);
     EXPECT_EQ(s.effects, std::vector<std::string>{"hard"});
@@ -134,7 +134,7 @@ TEST(SceneLoader, EffectsWarnings) {
     EXPECT_EQ(warnings(rect, R"(["penumbra", "contact"])").find("penumbra"), std::string::npos);
     Scene s = loadScene(dir / "s.json");
     EXPECT_TRUE(s.hasEffect("contact"));
-    EXPECT_EQ(s.lights[0].type, LightType::Rect);
+    EXPECT_STREQ(lightTypeName(s.lights[0].type), "rect");
     EXPECT_NEAR(s.lights[0].wsEmitNormal().y, -1.0, 1e-15);  // cross((1,0,0), (0,0,1)) = (0,-1,0)
 }
 

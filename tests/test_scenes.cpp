@@ -1,4 +1,5 @@
 #include "test_scenes.h"
+#include "core/lights/make_light.h"
 
 #include <glm/geometric.hpp>
 
@@ -46,16 +47,10 @@ SquareOccluderScene makeSquareOccluderScene(int width, int height) {
     scene.camera.vfovDeg = 50.0;
     scene.camera.width = width;
     scene.camera.height = height;
-    Light point{"point", LightType::Point, {0.625, 6.0, 0.375}, {0, -1, 0}, 45, 0};
-    Light spot{"spot",
-               LightType::Spot,
-               {-0.5, 5.5, 1.25},
-               glm::normalize(glm::dvec3(0.25, -1.0, -0.125)),
-               40,
-               30};
-    Light sun{"sun",     LightType::Directional,
-              {0, 0, 0}, glm::normalize(glm::dvec3(0.375, -1.0, 0.25)),
-              0,         0};
+    Light point = pointLight("point", {0.625, 6.0, 0.375});
+    Light spot = spotLight("spot", {-0.5, 5.5, 1.25},
+                           glm::normalize(glm::dvec3(0.25, -1.0, -0.125)), 40, 30);
+    Light sun = directionalLight("sun", glm::normalize(glm::dvec3(0.375, -1.0, 0.25)));
     scene.lights = {point, spot, sun};
     scene.effects = {"hard"};
     finalizeScene(scene);
@@ -86,13 +81,7 @@ ChannelImage runQuiet(const Scene& scene, int threads) {
 
 Light makeRectLight(const std::string& name, const glm::dvec3& center, const glm::dvec3& u,
                     const glm::dvec3& v) {
-    Light l;
-    l.name = name;
-    l.type = LightType::Rect;
-    l.wsPosition = center;
-    l.wsU = u;
-    l.wsV = v;
-    return l;
+    return rectLight(name, center, u, v);
 }
 
 void aimCamera(Scene& scene, const glm::dvec3& eye, const glm::dvec3& target, double vfovDeg,
@@ -109,13 +98,10 @@ PenumbraScene makePenumbraScene(int w, int h) {
     Scene& sc = s.scene;
     sc.meshes.push_back(makeGrid({0, 0, 0}, {16, 0, 0}, {0, 0, -16}, 4, "floor"));
     sc.meshes.push_back(makeGrid({0, s.occluder.y, 0}, {2, 0, 0}, {0, 0, -2}, 1, "occluder"));
-    Light l;
-    l.name = "panel";
-    l.type = LightType::Rect;
-    l.wsPosition = {0.5 * (s.light.x0 + s.light.x1), s.light.y, 0.5 * (s.light.z0 + s.light.z1)};
-    l.wsU = {s.light.x1 - s.light.x0, 0, 0};
-    l.wsV = {0, 0, s.light.z1 - s.light.z0};  // cross(u, v) points down: it lights the floor
-    sc.lights = {l};
+    // cross(u, v) points down: it lights the floor
+    sc.lights = {rectLight(
+        "panel", {0.5 * (s.light.x0 + s.light.x1), s.light.y, 0.5 * (s.light.z0 + s.light.z1)},
+        {s.light.x1 - s.light.x0, 0, 0}, {0, 0, s.light.z1 - s.light.z0})};
     sc.effects = {"hard", "penumbra"};
     sc.camera.wsEye = {0.25, 6.0, 5.0};
     sc.camera.wsTarget = {0.25, 0.0, 0.0};

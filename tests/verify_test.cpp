@@ -22,6 +22,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/image_module.h"
+#include "core/lights/make_light.h"
 #include "core/scene.h"
 #include "oracle/accel.h"
 #include "oracle/oracle.h"
@@ -45,10 +46,9 @@ std::vector<Light> bunnyLights() {
         const double e = (5.0 + 80.0 * frac) * std::numbers::pi / 180.0, az = 2.39996 * i;
         const glm::dvec3 toLight(std::cos(e) * std::cos(az), std::sin(e),
                                  std::cos(e) * std::sin(az));
-        out.push_back(
-            {"sun" + std::to_string(i), LightType::Directional, {0, 0, 0}, -toLight, 0, 0});
+        out.push_back(directionalLight("sun" + std::to_string(i), -toLight));
     }
-    out.push_back({"point", LightType::Point, {-6.0, 9.0, 7.0}, {0, -1, 0}, 45, 0});
+    out.push_back(pointLight("point", {-6.0, 9.0, 7.0}));
     return out;
 }
 
@@ -200,9 +200,8 @@ TEST(Verify, AreaThresholdFollowsTheStudentT) {
 // The same for a sampled rect light: an estimate moved by 0.2 is found, and no other pixel is.
 TEST(Verify, ShiftedPenumbraEstimatesAreFound) {
     SquareOccluderScene s = makeSquareOccluderScene(64, 48);
-    Light rect{"panel", LightType::Rect, {-0.25, 4.0, 0.125}, {0, -1, 0}, 45, 0};
-    rect.wsU = {1.5, 0.0, 0.0};
-    rect.wsV = {0.0, 0.0, 1.0};  // cross(u, v) points down, at the receiver
+    Light rect = rectLight("panel", {-0.25, 4.0, 0.125}, {1.5, 0.0, 0.0},
+                           {0.0, 0.0, 1.0});  // cross(u, v) points down, at the receiver
     s.scene.lights = {rect};
     s.scene.effects = {"hard", "penumbra"};
     finalizeScene(s.scene);
@@ -237,9 +236,7 @@ TEST(Verify, ShiftedPenumbraEstimatesAreFound) {
 // all 20 pixels said to be 0.35% lit were flagged.
 TEST(Verify, ExactPixelsAgainstAgreeingSamplesUseTheirMissChance) {
     SquareOccluderScene s = makeSquareOccluderScene(64, 48);
-    Light rect{"panel", LightType::Rect, {-0.25, 4.0, 0.125}, {0, -1, 0}, 45, 0};
-    rect.wsU = {1.5, 0.0, 0.0};
-    rect.wsV = {0.0, 0.0, 1.0};
+    Light rect = rectLight("panel", {-0.25, 4.0, 0.125}, {1.5, 0.0, 0.0}, {0.0, 0.0, 1.0});
     s.scene.lights = {rect};
     s.scene.effects = {"hard", "penumbra"};
     finalizeScene(s.scene);

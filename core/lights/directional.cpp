@@ -9,6 +9,7 @@ class DirectionalLightKind final : public LightKind {
   public:
     LightType type() const override { return LightType::Directional; }
     const char* name() const override { return "directional"; }
+    bool isDirectional() const override { return true; }
     std::vector<std::string> keys() const override { return {"direction"}; }
     void parse(const json& j, const JsonReader& r, const std::string& f,
                Light& light) const override {
@@ -32,9 +33,6 @@ class DirectionalLightKind final : public LightKind {
 
 }  // namespace
 
-const LightKind& directionalLightKind() {
-    static const DirectionalLightKind kind;
-    return kind;
-}
+SO_REGISTER_LIGHT_KIND(DirectionalLightKind);
 
 }  // namespace so

@@ -35,9 +35,6 @@ class DiskLightKind final : public LightKind {
 
 }  // namespace
 
-const LightKind& diskLightKind() {
-    static const DiskLightKind kind;
-    return kind;
-}
+SO_REGISTER_LIGHT_KIND(DiskLightKind);
 
 }  // namespace so

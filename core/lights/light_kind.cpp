@@ -1,7 +1,6 @@
 #include "core/lights/light_kind.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -13,11 +12,22 @@ namespace so {
 
 namespace {
 
-// The one table of light types, in LightType's order: registering a type is one line here.
-const std::array<const LightKind*, 7>& table() {
-    static const std::array<const LightKind*, 7> kinds = {
-        &pointLightKind(), &directionalLightKind(), &spotLightKind(),   &rectLightKind(),
-        &diskLightKind(),  &sphereLightKind(),      &polygonLightKind()};
+// The registered kinds in LightType's order, so that a type's kind is at its index and the error
+// messages list the types in the scene format's order. Every value from 0 up has exactly one kind.
+LightKindList buildTable() {
+    LightKindList kinds;
+    registerBuiltInLightKinds(kinds);
+    std::sort(kinds.begin(), kinds.end(),
+              [](const LightKind* a, const LightKind* b) { return a->type() < b->type(); });
+    for (size_t i = 0; i < kinds.size(); ++i)
+        if (size_t(kinds[i]->type()) != i)
+            throw InternalError(std::string("light kinds: ") + kinds[i]->name() +
+                                " is registered twice or a type before it has no kind");
+    return kinds;
+}
+
+const LightKindList& table() {
+    static const LightKindList kinds = buildTable();
     return kinds;
 }
 
@@ -62,6 +72,10 @@ const LightKind& lightKind(LightType t) {
     const size_t i = size_t(t);
     SO_CHECK(i < table().size() && table()[i]->type() == t);
     return *table()[i];
+}
+
+const std::vector<const LightKind*>& allLightKinds() {
+    return table();
 }
 
 const LightKind* findLightKind(const std::string& name) {

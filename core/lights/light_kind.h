@@ -1,9 +1,12 @@
 // Light types as plug-ins, the scene-format layer (pbrt-v4's Light::Create is the model): each type
 // is one LightKind in its own file here (point.cpp, spot.cpp, ...) that reads its keys of a scene
-// file's light into the typed `Light` (core/scene.h), writes them back, and says what the glTF
-// export stands in for it. lightKind() and findLightKind() are the one table of types
-// (light_kind.cpp); the oracle (oracle/lights/) and the raster path keep their own per-type parts.
-// Adding a type: a LightType value, a file here, one line in the table (docs/architecture.md).
+// file's light into the typed `Light` (core/scene.h), writes them back, says what the glTF export
+// stands in for it, and answers what the other modules ask of a light (isDirectional, hasCone,
+// isAreaLight, oneSided) so that none of them names a LightType. Each file registers its kind
+// with one line SO_REGISTER_LIGHT_KIND(Class), which core/CMakeLists.txt finds to generate the
+// list (cmake/so_registry.cmake), as techniques register; lightKind() and findLightKind() read it.
+// The oracle (oracle/lights/) and the raster path (raster_compare/gl/lights/) register their own
+// per-type parts the same way. Adding a type: docs/architecture.md, "A light type".
 #pragma once
 
 #include <string>
@@ -31,6 +34,13 @@ class LightKind {
     virtual LightType type() const = 0;
     virtual const char* name() const = 0;  // the scene format's "type"
     virtual bool isArea() const { return false; }
+    // Light from a direction (at infinity), not from a point: directional.
+    virtual bool isDirectional() const { return false; }
+    // Limited to a cone about wsDirection (outerConeDeg): spot.
+    virtual bool hasCone() const { return false; }
+    // The scene_format this type came with (1: from the start): an older file naming it is an
+    // error, and core/scene_writer.h writes no older version for a scene holding it.
+    virtual int sceneFormat() const { return 1; }
     // The keys it takes besides "name" and "type" (unknown ones are an error).
     virtual std::vector<std::string> keys() const = 0;
     // Reads j's keys (j is the light object at `field`, e.g. "lights[2]") into `light`, whose name
@@ -63,20 +73,42 @@ GltfStandIn spotStandInAlongNormal(const Light& light, const Bounds3d& wsBounds)
 // glTF requires innerConeAngle < outerConeAngle; the scene allows them equal.
 double innerConeBelowOuter(double innerRad, double outerRad);
 
-// The registered type of `t`; every LightType has one.
+// The registered kind of `t`; every LightType has one (checked at the first call).
 const LightKind& lightKind(LightType t);
+// What modules ask of a light, answered by its kind.
+inline bool isDirectional(const Light& l) {
+    return lightKind(l.type).isDirectional();
+}
+inline bool hasCone(const Light& l) {
+    return lightKind(l.type).hasCone();
+}
+inline bool isAreaLight(const Light& l) {
+    return lightKind(l.type).isArea();
+}
+inline bool isOneSided(const Light& l) {
+    return lightKind(l.type).oneSided();
+}
+// Every registered kind, in LightType's order.
+const std::vector<const LightKind*>& allLightKinds();
 // The type the scene format names `name`, or null.
 const LightKind* findLightKind(const std::string& name);
 // "point, directional, ...", in the table's order, for error messages.
 std::string lightKindNames();
 
-// Each type's one instance (defined in its own file), for the table.
-const LightKind& pointLightKind();
-const LightKind& directionalLightKind();
-const LightKind& spotLightKind();
-const LightKind& rectLightKind();
-const LightKind& diskLightKind();
-const LightKind& sphereLightKind();
-const LightKind& polygonLightKind();
+// The registration list: generated (light_list.cpp) from the SO_REGISTER_LIGHT_KIND lines of
+// core/lights/*.cpp, and how many there are.
+using LightKindList = std::vector<const LightKind*>;
+void registerBuiltInLightKinds(LightKindList& registry);
+extern const size_t kBuiltInLightKindCount;
+
+// Defines soRegisterLight_<Class> (external linkage: at namespace so's scope, not in an anonymous
+// namespace, else the generated list fails to link); the trailing declaration takes the line's
+// semicolon. The one instance lives in the function.
+#define SO_REGISTER_LIGHT_KIND(Class)                             \
+    void soRegisterLight_##Class(::so::LightKindList& registry) { \
+        static const Class kind;                                  \
+        registry.push_back(&kind);                                \
+    }                                                             \
+    void soRegisterLight_##Class(::so::LightKindList& registry)
 
 }  // namespace so

@@ -26,9 +26,6 @@ class PointLightKind final : public LightKind {
 
 }  // namespace
 
-const LightKind& pointLightKind() {
-    static const PointLightKind kind;
-    return kind;
-}
+SO_REGISTER_LIGHT_KIND(PointLightKind);
 
 }  // namespace so

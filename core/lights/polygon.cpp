@@ -72,6 +72,7 @@ class PolygonLightKind final : public LightKind {
     const char* name() const override { return "polygon"; }
     bool isArea() const override { return true; }
     bool oneSided() const override { return true; }
+    int sceneFormat() const override { return 4; }  // polygon lights came with format 4
     std::vector<std::string> keys() const override { return {"vertices"}; }
     void parse(const json& j, const JsonReader& r, const std::string& f,
                Light& light) const override {
@@ -126,9 +127,6 @@ class PolygonLightKind final : public LightKind {
 
 }  // namespace
 
-const LightKind& polygonLightKind() {
-    static const PolygonLightKind kind;
-    return kind;
-}
+SO_REGISTER_LIGHT_KIND(PolygonLightKind);
 
 }  // namespace so

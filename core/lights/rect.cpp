@@ -53,9 +53,6 @@ class RectLightKind final : public LightKind {
 
 }  // namespace
 
-const LightKind& rectLightKind() {
-    static const RectLightKind kind;
-    return kind;
-}
+SO_REGISTER_LIGHT_KIND(RectLightKind);
 
 }  // namespace so

@@ -34,9 +34,6 @@ class SphereLightKind final : public LightKind {
 
 }  // namespace
 
-const LightKind& sphereLightKind() {
-    static const SphereLightKind kind;
-    return kind;
-}
+SO_REGISTER_LIGHT_KIND(SphereLightKind);
 
 }  // namespace so

@@ -13,6 +13,7 @@ class SpotLightKind final : public LightKind {
   public:
     LightType type() const override { return LightType::Spot; }
     const char* name() const override { return "spot"; }
+    bool hasCone() const override { return true; }
     std::vector<std::string> keys() const override {
         return {"position", "direction", "outer_cone_deg", "inner_cone_deg"};
     }
@@ -54,9 +55,6 @@ class SpotLightKind final : public LightKind {
 
 }  // namespace
 
-const LightKind& spotLightKind() {
-    static const SpotLightKind kind;
-    return kind;
-}
+SO_REGISTER_LIGHT_KIND(SpotLightKind);
 
 }  // namespace so

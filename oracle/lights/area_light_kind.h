@@ -3,11 +3,16 @@
 // polygon.cpp) holds everything the oracle does differently by type: the light's local-frame data,
 // which pixels it cannot reach, the per-pixel set-up and the 16-sample batches of the sampled pass
 // (area_light.h), the points the near-field test needs (near_field.h), and the exact pass's answer
-// at a point (exact_penumbra.h). area_light.cpp and exact_penumbra.cpp call these through one
-// table, areaLightKind(); adding a type is a file here and one line in that table.
+// at a point (exact_penumbra.h), the exact side and horizon decisions on a pixel's triangle
+// (exact_facing.h), and the verifier's parts (its independent samples, reference_light.h; the disk
+// it bounds V over, verify.cpp). Each file registers its kind with one line
+// SO_REGISTER_AREA_LIGHT_KIND(Class), which oracle/CMakeLists.txt finds to generate the list
+// (cmake/so_registry.cmake); areaLightKind() reads it. Adding a type is a file here.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -25,6 +30,9 @@ struct NearTarget;
 struct ExactPenumbraOptions;
 struct DiskExactVisibility;
 struct DiskBoundOptions;
+struct DiskLightShape;
+struct PixelTriangle;
+class ReferenceSampler;
 enum class AreaSkip : uint8_t;
 
 // The exact pass's answer at one point: V with its counts, and for a bounded light (disk,
@@ -69,14 +77,37 @@ class AreaLightKind {
                                      const ExactPenumbraOptions& options,
                                      const OccluderOptions& more, const glm::dvec3& p,
                                      const glm::dvec3& n, TriangleId self) const = 0;
+    // One-sided types: the exact side of the light's plane a world-space point lies on (1: the
+    // side it emits on, -1: behind it, 0: in it), for exact_facing.h's emitterSide.
+    virtual int sideOfPlane(const Light& light, const glm::dvec3& wsPoint) const;
+    // One-sided types: whether some point of the light lies strictly above t's plane, exactly
+    // (exact_facing.h, areaLightAbovePlane).
+    virtual bool abovePlane(const PixelTriangle& t, const Light& light) const;
+    // The verifier's independent samples of the light, uniform by area (reference_light.h).
+    virtual std::shared_ptr<const ReferenceSampler> reference(const Light& light,
+                                                              const LocalFrame& frame) const = 0;
+    // Bounded types: the disk whose V the exact pass bounds as seen from p (local frame), as the
+    // verifier re-runs it; false where no point of the light is seen (inside a sphere).
+    virtual bool boundedDisk(const Light& light, const LocalFrame& frame, const glm::dvec3& p,
+                             DiskLightShape& disk) const;
 };
 
-// The registered kind of an area light type (rect, disk, sphere, polygon).
+// The registered kind of an area light type (rect, disk, sphere, polygon); an InternalError for
+// a punctual type.
 const AreaLightKind& areaLightKind(LightType type);
 
-const AreaLightKind& rectAreaLightKind();
-const AreaLightKind& diskAreaLightKind();
-const AreaLightKind& sphereAreaLightKind();
-const AreaLightKind& polygonAreaLightKind();
+// The registration list: generated (area_light_list.cpp) from the SO_REGISTER_AREA_LIGHT_KIND
+// lines of oracle/lights/*.cpp, and how many there are.
+using AreaLightKindList = std::vector<const AreaLightKind*>;
+void registerBuiltInAreaLightKinds(AreaLightKindList& registry);
+extern const size_t kBuiltInAreaLightKindCount;
+
+// Defines soRegisterAreaLight_<Class> at namespace so's scope (as SO_REGISTER_LIGHT_KIND does).
+#define SO_REGISTER_AREA_LIGHT_KIND(Class)                                \
+    void soRegisterAreaLight_##Class(::so::AreaLightKindList& registry) { \
+        static const Class kind;                                          \
+        registry.push_back(&kind);                                        \
+    }                                                                     \
+    void soRegisterAreaLight_##Class(::so::AreaLightKindList& registry)
 
 }  // namespace so

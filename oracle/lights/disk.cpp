@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -11,10 +12,13 @@
 #include "oracle/area_light.h"
 #include "oracle/disk_bounds.h"
 #include "oracle/disk_exact.h"
+#include "oracle/exact_facing.h"
 #include "oracle/exact_penumbra.h"
+#include "oracle/exact_sign.h"
 #include "oracle/lights/area_light_kind.h"
 #include "oracle/lights/area_sampling.h"
 #include "oracle/near_field.h"
+#include "oracle/reference_light.h"
 
 namespace so {
 
@@ -65,6 +69,29 @@ SO_SAMPLER_CLONES void diskPoints(const AreaLight& light, const float* su, const
         yz[k] = light.lsCenter.z + e1 * light.lsE1.z + e2 * light.lsE2.z;
     }
 }
+
+// The verifier's independent samples: uniform by area, r = R sqrt(u1) (no concentric map, unlike
+// the sampled pass, so that the two share nothing).
+class DiskReference final : public ReferenceSampler {
+  public:
+    DiskReference(const Light& light, const LocalFrame& frame)
+        : c_(frame.lsFromWs(light.wsPosition)),
+          m_(light.wsEmitNormal()),
+          radius_(light.radius * frame.lsLength(1.0)) {
+        const glm::dvec3 helper = std::fabs(m_.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        e1_ = glm::normalize(glm::cross(helper, m_));
+        e2_ = glm::cross(m_, e1_);
+    }
+    void point(double u1, double u2, glm::dvec3& y, glm::dvec3& ny) const override {
+        const double r = radius_ * std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
+        y = c_ + r * (std::cos(phi) * e1_ + std::sin(phi) * e2_);
+        ny = m_;
+    }
+
+  private:
+    glm::dvec3 c_, m_, e1_{0.0}, e2_{0.0};
+    double radius_;
+};
 
 class DiskAreaLightKind final : public AreaLightKind {
   public:
@@ -135,6 +162,25 @@ class DiskAreaLightKind final : public AreaLightKind {
         return diskAnswer(diskLightExact(tracer, disk, p, n, self, options.maxOccluders, more),
                           options.bound);
     }
+    // Its plane: through its centre with its (rounded) normal.
+    int sideOfPlane(const Light& l, const glm::dvec3& q) const override {
+        return exact::sideOfPlane(l.wsPosition, l.wsNormal, q);
+    }
+    bool abovePlane(const PixelTriangle& t, const Light& l) const override {
+        return exact::diskAbovePlane(t.a, t.b, t.c, l.wsPosition, l.wsNormal, l.radius);
+    }
+    std::shared_ptr<const ReferenceSampler> reference(const Light& l,
+                                                      const LocalFrame& f) const override {
+        return std::make_shared<DiskReference>(l, f);
+    }
+    bool boundedDisk(const Light& l, const LocalFrame& frame, const glm::dvec3&,
+                     DiskLightShape& disk) const override {
+        disk.center = frame.lsFromWs(l.wsPosition);
+        disk.radius = frame.lsLength(l.radius);
+        disk.emitNormal = l.wsEmitNormal();
+        diskAxes(disk.emitNormal, disk.e1, disk.e2);
+        return true;
+    }
 };
 
 }  // namespace
@@ -148,9 +194,6 @@ ExactLightAnswer diskAnswer(const DiskExactVisibility& d, const DiskBoundOptions
     return a;
 }
 
-const AreaLightKind& diskAreaLightKind() {
-    static const DiskAreaLightKind kind;
-    return kind;
-}
+SO_REGISTER_AREA_LIGHT_KIND(DiskAreaLightKind);
 
 }  // namespace so

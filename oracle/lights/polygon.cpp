@@ -8,18 +8,51 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <glm/geometric.hpp>
 
 #include "oracle/area_light.h"
+#include "oracle/exact_facing.h"
 #include "oracle/exact_penumbra.h"
+#include "oracle/exact_sign.h"
 #include "oracle/lights/area_light_kind.h"
 #include "oracle/lights/area_sampling.h"
 #include "oracle/near_field.h"
+#include "oracle/reference_light.h"
 
 namespace so {
 
 namespace {
+
+// The verifier's independent samples: a triangle of its fan from vertex 0 by area, then uniform in
+// it.
+class PolygonReference final : public ReferenceSampler {
+  public:
+    PolygonReference(const Light& light, const LocalFrame& frame) : m_(light.wsEmitNormal()) {
+        for (const glm::dvec3& w : light.wsVertices) vertices_.push_back(frame.lsFromWs(w));
+        double total = 0.0;
+        for (size_t k = 1; k + 1 < vertices_.size(); ++k) {
+            const glm::dvec3 a = vertices_[k] - vertices_[0], b = vertices_[k + 1] - vertices_[0];
+            fanCdf_.push_back(total += glm::length(glm::cross(a, b)));
+        }
+        for (double& f : fanCdf_) f /= total;
+    }
+    void point(double u1, double u2, glm::dvec3& y, glm::dvec3& ny) const override {
+        size_t t = 0;
+        while (t + 1 < fanCdf_.size() && u1 >= fanCdf_[t]) ++t;
+        const double lo = t ? fanCdf_[t - 1] : 0.0;
+        const double r = std::sqrt(std::min(1.0, (u1 - lo) / (fanCdf_[t] - lo)));
+        y = (1.0 - r) * vertices_[0] + r * (1.0 - u2) * vertices_[t + 1] +
+            r * u2 * vertices_[t + 2];
+        ny = m_;
+    }
+
+  private:
+    glm::dvec3 m_;
+    std::vector<glm::dvec3> vertices_;  // local frame
+    std::vector<double> fanCdf_;        // cumulative area shares
+};
 
 class PolygonAreaLightKind final : public AreaLightKind {
   public:
@@ -105,13 +138,23 @@ class PolygonAreaLightKind final : public AreaLightKind {
         a.result.V = std::clamp(in.visible / in.whole, 0.0, 1.0);
         return a;
     }
+    // Its plane: through its first vertex with its (rounded) normal, as a disk's.
+    int sideOfPlane(const Light& l, const glm::dvec3& q) const override {
+        return exact::sideOfPlane(l.wsVertices[0], l.wsNormal, q);
+    }
+    bool abovePlane(const PixelTriangle& t, const Light& l) const override {
+        for (const glm::dvec3& v : l.wsVertices)
+            if (exact::orient(t.a, t.b, t.c, v) > 0) return true;
+        return false;
+    }
+    std::shared_ptr<const ReferenceSampler> reference(const Light& l,
+                                                      const LocalFrame& f) const override {
+        return std::make_shared<PolygonReference>(l, f);
+    }
 };
 
 }  // namespace
 
-const AreaLightKind& polygonAreaLightKind() {
-    static const PolygonAreaLightKind kind;
-    return kind;
-}
+SO_REGISTER_AREA_LIGHT_KIND(PolygonAreaLightKind);
 
 }  // namespace so

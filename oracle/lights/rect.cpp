@@ -4,15 +4,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 #include <glm/geometric.hpp>
 
 #include "oracle/area_light.h"
+#include "oracle/exact_facing.h"
 #include "oracle/exact_penumbra.h"
+#include "oracle/exact_sign.h"
 #include "oracle/lights/area_light_kind.h"
 #include "oracle/lights/area_sampling.h"
 #include "oracle/near_field.h"
+#include "oracle/reference_light.h"
 
 namespace so {
 
@@ -72,6 +76,24 @@ SO_SAMPLER_CLONES void rectPoints(const AreaLight& light, const float* su, const
     }
 }
 
+// The verifier's independent samples: uniform by area over centre + [-1/2, 1/2] u + [-1/2, 1/2] v.
+class RectReference final : public ReferenceSampler {
+  public:
+    RectReference(const Light& light, const LocalFrame& frame)
+        : c_(frame.lsFromWs(light.wsPosition)), m_(light.wsEmitNormal()) {
+        const double s = frame.lsLength(1.0);
+        u_ = light.wsU * s;
+        v_ = light.wsV * s;
+    }
+    void point(double u1, double u2, glm::dvec3& y, glm::dvec3& ny) const override {
+        y = c_ + (u1 - 0.5) * u_ + (u2 - 0.5) * v_;
+        ny = m_;
+    }
+
+  private:
+    glm::dvec3 c_, m_, u_{0.0}, v_{0.0};
+};
+
 class RectAreaLightKind final : public AreaLightKind {
   public:
     LightType type() const override { return LightType::Rect; }
@@ -122,13 +144,27 @@ class RectAreaLightKind final : public AreaLightKind {
         a.result = rectLightVisibility(tracer, shape, p, n, self, options.maxOccluders, more);
         return a;
     }
+    // Its plane is the span of its edges (its unit normal is rounded; the span is not).
+    int sideOfPlane(const Light& l, const glm::dvec3& q) const override {
+        return exact::sideOfSpan(l.wsPosition, l.wsU, l.wsV, q);
+    }
+    bool abovePlane(const PixelTriangle& t, const Light& l) const override {
+        // Corners centre +- u/2 +- v/2: halving a double is exact, the sum is taken exactly.
+        for (int k = 0; k < 4; ++k) {
+            const glm::dvec3 hu = ((k & 1) ? 0.5 : -0.5) * l.wsU;
+            const glm::dvec3 hv = ((k & 2) ? 0.5 : -0.5) * l.wsV;
+            if (exact::orient(t.a, t.b, t.c, l.wsPosition, hu, hv) > 0) return true;
+        }
+        return false;
+    }
+    std::shared_ptr<const ReferenceSampler> reference(const Light& l,
+                                                      const LocalFrame& f) const override {
+        return std::make_shared<RectReference>(l, f);
+    }
 };
 
 }  // namespace
 
-const AreaLightKind& rectAreaLightKind() {
-    static const RectAreaLightKind kind;
-    return kind;
-}
+SO_REGISTER_AREA_LIGHT_KIND(RectAreaLightKind);
 
 }  // namespace so

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -15,6 +16,7 @@
 #include "oracle/lights/area_light_kind.h"
 #include "oracle/lights/area_sampling.h"
 #include "oracle/near_field.h"
+#include "oracle/reference_light.h"
 
 namespace so {
 
@@ -144,6 +146,23 @@ SO_SAMPLER_CLONES void sphereCapBatch(const AreaPixel& px, const float* su, cons
     }
 }
 
+// The verifier's independent samples: uniform by area over the whole sphere.
+class SphereReference final : public ReferenceSampler {
+  public:
+    SphereReference(const Light& light, const LocalFrame& frame)
+        : c_(frame.lsFromWs(light.wsPosition)), radius_(light.radius * frame.lsLength(1.0)) {}
+    void point(double u1, double u2, glm::dvec3& y, glm::dvec3& ny) const override {
+        const double zc = 1.0 - 2.0 * u1, rr = std::sqrt(std::max(0.0, 1.0 - zc * zc));
+        const double phi = 2.0 * std::numbers::pi * u2;
+        ny = glm::dvec3(rr * std::cos(phi), rr * std::sin(phi), zc);
+        y = c_ + radius_ * ny;
+    }
+
+  private:
+    glm::dvec3 c_;
+    double radius_;
+};
+
 class SphereAreaLightKind final : public AreaLightKind {
   public:
     LightType type() const override { return LightType::Sphere; }
@@ -188,13 +207,24 @@ class SphereAreaLightKind final : public AreaLightKind {
         return diskAnswer(diskLightExact(tracer, disk, p, n, self, options.maxOccluders, more),
                           options.bound);
     }
+    std::shared_ptr<const ReferenceSampler> reference(const Light& l,
+                                                      const LocalFrame& f) const override {
+        return std::make_shared<SphereReference>(l, f);
+    }
+    // Its silhouette disk from p; none from inside.
+    bool boundedDisk(const Light& l, const LocalFrame& frame, const glm::dvec3& p,
+                     DiskLightShape& disk) const override {
+        const glm::dvec3 center = frame.lsFromWs(l.wsPosition);
+        const double radius = frame.lsLength(l.radius);
+        const glm::dvec3 w = center - p;
+        if (!(glm::dot(w, w) > radius * radius)) return false;
+        disk = sphereSilhouette(center, radius, p);
+        return true;
+    }
 };
 
 }  // namespace
 
-const AreaLightKind& sphereAreaLightKind() {
-    static const SphereAreaLightKind kind;
-    return kind;
-}
+SO_REGISTER_AREA_LIGHT_KIND(SphereAreaLightKind);
 
 }  // namespace so

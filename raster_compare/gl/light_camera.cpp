@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
@@ -79,7 +80,8 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
     lc.lsPosition = frame.lsFromWs(light.wsPosition);
     lc.lsDirection = glm::normalize(light.wsDirection);
     lc.lsEmitNormal = light.wsEmitNormal();  // the local frame only scales and translates
-    if (light.type == LightType::Directional) {
+    const LightCamera::Kind kind = rasterLightKind(light.type).cameraKind();
+    if (kind == LightCamera::Kind::Ortho) {
         glm::dvec3 lo, hi;
         directionalView(lc, b, lo, hi);
         if (lsReceivers && !lsReceivers->empty()) {
@@ -95,7 +97,7 @@ LightCamera fitLightCamera(const Light& light, const LocalFrame& frame, const Bo
         lc.texelScale = 2.0 * half / resolution;
         return lc;
     }
-    if (light.type == LightType::Spot) {
+    if (kind == LightCamera::Kind::Perspective) {
         lc.kind = LightCamera::Kind::Perspective;
         lc.fovYDeg = std::min(170.0, 2.0 * light.outerConeDeg * 1.02);
         enclose(lc.lsPosition, b, 0.5 * lc.fovYDeg * std::numbers::pi / 180.0, lc.near, lc.far);
@@ -231,6 +233,26 @@ LightCamera fitCascades(const Light& light, const Bounds3d& lsBounds, int resolu
     }
     lc.texelScale = lc.cascadeTexel[0];
     return lc;
+}
+
+// Cascades are orthographic maps to the techniques' lookups.
+std::string lightCameraDefines(const LightCamera& cam) {
+    switch (cam.kind) {
+        case LightCamera::Kind::Cube:
+            return "#define LIGHT_CUBE\n";
+        case LightCamera::Kind::Ortho:
+            return "#define LIGHT_ORTHO\n";
+        case LightCamera::Kind::Cascades:
+            return "#define LIGHT_ORTHO\n#define CASCADES " + std::to_string(cam.faces) + "\n";
+        default:
+            return "#define LIGHT_SPOT\n";
+    }
+}
+
+std::string lightCameraDefines(const Light& light) {
+    LightCamera cam;
+    cam.kind = rasterLightKind(light.type).cameraKind();
+    return lightCameraDefines(cam);
 }
 
 double lightWidth(const Light& light) {

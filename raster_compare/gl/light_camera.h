@@ -95,6 +95,12 @@ struct LightSpaceFace {
 std::vector<LightSpaceFace> lightSpaceFaces(const Light& light, const Bounds3d& wsSceneBounds,
                                             const Bounds3d* lsReceivers);
 
+// The shaders' defines for a light camera (shadow_map.frag): LIGHT_ORTHO, LIGHT_SPOT (a
+// perspective map) or LIGHT_CUBE, and with cascades LIGHT_ORTHO and CASCADES n.
+std::string lightCameraDefines(const LightCamera& cam);
+// The same for the camera the light's kind takes (raster_compare/gl/lights/), before it is fitted.
+std::string lightCameraDefines(const Light& light);
+
 // The width of an area light as the soft-shadow approximations take it (pcss, plateaus): the side
 // of a square of its area (rect: sqrt(|u x v|); disk and sphere: r sqrt(pi)), world units; 0 for
 // point, spot and directional lights.

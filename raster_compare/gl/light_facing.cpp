@@ -8,15 +8,14 @@
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/shaders.h"
 
 namespace so {
 
 GlProgram buildLightFacingProgram(const Light& light, const GpuScene& scene,
                                   const CameraPass& camera) {
-    const std::string defines = light.type == LightType::Directional ? "#define LIGHT_ORTHO\n"
-                                : light.type == LightType::Spot      ? "#define LIGHT_SPOT\n"
-                                                                     : "";
+    const std::string defines = lightCameraDefines(light);
     GlProgram p = buildProgram(scene.alphaDefines() + defines, shaders::scene_vert,
                                {shaders::alpha_test_glsl, shaders::light_facing_frag});
     const GLuint id = p.get();

@@ -14,6 +14,7 @@
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 
@@ -155,9 +156,7 @@ class LightmapLight final : public LightTechnique {
 };
 
 void LightmapLight::buildProgram(const LightmapSettings& settings, const CameraPass& camera) {
-    const std::string lightKind = light_.type == LightType::Directional ? "#define LIGHT_ORTHO\n"
-                                  : light_.type == LightType::Spot      ? "#define LIGHT_SPOT\n"
-                                                                        : "";
+    const std::string lightKind = lightCameraDefines(light_);
     program_ =
         so::buildProgram(scene_.alphaDefines() + lightKind + settings.defines, shaders::scene_vert,
                          {shaders::alpha_test_glsl, shaders::lightmap_frag, settings.glsl});

@@ -7,10 +7,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/lights/light_kind.h"
+#include "core/lights/make_light.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/light_samples.h"
+#include "raster_compare/gl/lights/raster_light_kind.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
@@ -96,12 +99,6 @@ Target makeTarget(const std::vector<GLenum>& formats, int width, int height) {
     return t;
 }
 
-std::string lightDefine(LightType type) {
-    return type == LightType::Directional ? "#define LIGHT_ORTHO\n"
-           : type == LightType::Spot      ? "#define LIGHT_SPOT\n"
-                                          : "#define LIGHT_CUBE\n";
-}
-
 class Baker {
   public:
     Baker(const Light& light, const GpuScene& gpu, const LightmapAtlas& atlas,
@@ -159,7 +156,7 @@ Baker::Baker(const Light& light, const GpuScene& gpu, const LightmapAtlas& atlas
 // The light's shadow maps: one map for its own camera, or a cube for a point light and for each
 // sample of an area light (a point light there); 32-bit float depth, read point-sampled.
 void Baker::createMap() {
-    const bool cube = light_.type == LightType::Point || isAreaLight(light_.type);
+    const bool cube = rasterLightKind(light_.type).cameraKind() == LightCamera::Kind::Cube;
     const int res = settings_.resolution;
     map_ = makeTexture(cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D);
     glTextureStorage2D(map_.get(), 1, GL_DEPTH_COMPONENT32F, res, res);
@@ -181,13 +178,11 @@ void Baker::createMap() {
 void Baker::buildPrograms() {
     depthProg_ = buildProgram(gpu_.alphaDefines(), shaders::scene_vert,
                               {shaders::alpha_test_glsl, shaders::depth_frag});
-    const std::string lightKind =
-        light_.type == LightType::Directional ? "#define LIGHT_ORTHO\n" : "";
+    const std::string lightKind = lightCameraDefines(light_);
     texelsProg_ =
         buildProgram(lightKind, shaders::lightmap_bake_vert, {shaders::lightmap_texels_frag});
-    // Every sample of an area light is a point light: a cube map.
-    const std::string pointKind =
-        isAreaLight(light_.type) ? lightDefine(LightType::Point) : lightDefine(light_.type);
+    // Every sample of an area light is a point light: a cube map, as its kind's camera is.
+    const std::string pointKind = lightCameraDefines(light_);
     const SlopeBias bias(parseParams("lightmap", SlopeBias::params(), {}));
     visibilityProg_ = buildProgram(
         "#define ALPHA_TEST_OFF\n#define VISIBILITY_PASS\n#define MAP_DEPTH\n"
@@ -196,9 +191,8 @@ void Baker::buildPrograms() {
             pointKind + bias.defines(),
         shaders::lightmap_bake_vert,
         {shaders::alpha_test_glsl, shaders::shadow_map_frag, shaders::slope_bias_glsl});
-    const std::string emitter = !areaSampled_                      ? "#define EMITTER_POINT\n"
-                                : light_.type == LightType::Sphere ? "#define EMITTER_SPHERE\n"
-                                                                   : "#define EMITTER_ONE_SIDED\n";
+    const std::string emitter = !areaSampled_ ? std::string("#define EMITTER_POINT\n")
+                                              : rasterLightKind(light_.type).emitterDefine();
     // What its fetches read (the work counts' SO_TAP): the texels' positions and normals and the
     // sample's V.
     const std::string tapBytes =
@@ -217,8 +211,7 @@ void Baker::buildPrograms() {
     setInt(visibilityProg_.get(), "u_map", 0);
     const GLuint wp = weightProg_.get();
     setVec3(wp, "u_lsLightCenter", frame.lsFromWs(light_.wsPosition));
-    if (areaSampled_ && light_.type != LightType::Sphere)
-        setVec3(wp, "u_lsEmitNormal", light_.wsEmitNormal());
+    if (areaSampled_ && isOneSided(light_)) setVec3(wp, "u_lsEmitNormal", light_.wsEmitNormal());
     setInt(wp, "u_visibility", 0);
     setInt(wp, "u_position", 1);
     setInt(wp, "u_normal", 2);
@@ -311,8 +304,7 @@ void Baker::sample(const Light& point, const glm::dvec3& wsSample) {
     // The frame turns the normal towards u_lsEye: here towards the light, whichever side the
     // camera will see (the camera's lookup applies its own facing test).
     setVec3(vp, "u_lsEye",
-            point.type == LightType::Directional ? -1e4 * glm::normalize(point.wsDirection)
-                                                 : lc.lsPosition);
+            isDirectional(point) ? -1e4 * glm::normalize(point.wsDirection) : lc.lsPosition);
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(sampleV_.fbo.get(), GL_COLOR, 0, zero);
     glBindFramebuffer(GL_FRAMEBUFFER, sampleV_.fbo.get());
@@ -405,12 +397,7 @@ BakedLightmap Baker::run() {
                                                ? lightSamplePoints(light_, settings_.samples)
                                                : std::vector<glm::dvec3>{light_.wsPosition};
     for (const glm::dvec3& p : points) {
-        Light point = light_;
-        if (isAreaLight(light_.type)) {
-            point.type = LightType::Point;
-            point.wsPosition = p;
-        }
-        sample(point, p);
+        sample(isAreaLight(light_) ? pointLightAt(light_, p) : light_, p);
     }
     out_.samples = int(points.size());
     resolveAndDilate();

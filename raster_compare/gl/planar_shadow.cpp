@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/lights/light_kind.h"
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
@@ -45,7 +46,7 @@ PlanarLight::PlanarLight(const PlanarSettings& settings, const LightSetup& setup
     const LocalFrame& frame = scene_.frame();
     receiver_ = findReceiver(scene_.scene(), frame, settings.receiver, settings.technique);
     // The light as a homogeneous point: its position, or the point at infinity it shines from.
-    const glm::dvec4 L = light_.type == LightType::Directional
+    const glm::dvec4 L = isDirectional(light_)
                              ? glm::dvec4(-glm::normalize(light_.wsDirection), 0.0)
                              : glm::dvec4(frame.lsFromWs(light_.wsPosition), 1.0);
     glm::dvec4 P = receiver_.lsPlane;

@@ -2,6 +2,7 @@
 
 #include <glm/matrix.hpp>
 
+#include "core/lights/light_kind.h"
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
@@ -176,7 +177,7 @@ class ShadowMapLight final : public LightTechnique {
 
 ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup)
     : technique_(technique), light_(setup.light), scene_(setup.scene) {
-    if (light_.type == LightType::Directional && technique.cascades().count > 1)
+    if (isDirectional(light_) && technique.cascades().count > 1)
         cam_ = fitCascades(light_, scene_.lsBounds(), technique.resolution(),
                            cascadeView(setup.camera), technique.cascades());
     else
@@ -351,22 +352,6 @@ void ShadowMapLight::blurCubeAcrossFaces() {
     glEnable(GL_DEPTH_TEST);
 }
 
-// Cascades are orthographic maps to the techniques' lookups.
-std::string lightDefine(const LightCamera& cam) {
-    switch (cam.kind) {
-        case LightCamera::Kind::Cube:
-            return "#define LIGHT_CUBE\n";
-        case LightCamera::Kind::Ortho:
-            return "#define LIGHT_ORTHO\n";
-        case LightCamera::Kind::Cascades:
-            return "#define LIGHT_ORTHO\n#define CASCADES " + std::to_string(cam.faces) + "\n";
-        default:
-            return "#define LIGHT_SPOT\n";
-    }
-}
-
-// The map's kind, and what one lookup reads of it (the work counts' SO_TAP): a filtered lookup
-// (the hardware compare, bilinear moments) reads 2 x 2 texels.
 std::string mapDefines(const ShadowMapTechnique& technique, GLuint map) {
     const MapStorage storage = technique.storage();
     const bool filtered = storage == MapStorage::DepthHardwareCompare ||
@@ -380,9 +365,9 @@ std::string mapDefines(const ShadowMapTechnique& technique, GLuint map) {
 
 GlProgram ShadowMapLight::createVisibilityProgram(const CameraPass& camera, bool probe) const {
     const std::string defines =
-        scene_.alphaDefines() +
-        ("#define VISIBILITY_PASS\n" + lightDefine(cam_) + mapDefines(technique_, map_.get()) +
-         technique_.shaderDefines() + (probe ? "#define DEPTH_PROBE\n" : ""));
+        scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightCameraDefines(cam_) +
+                                 mapDefines(technique_, map_.get()) + technique_.shaderDefines() +
+                                 (probe ? "#define DEPTH_PROBE\n" : ""));
     GlProgram program =
         buildProgram(defines, shaders::scene_vert,
                      {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/lights/light_kind.h"
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
@@ -22,8 +23,7 @@ namespace {
 // The light as the volumes see it: (position, 1), or (direction, 0) for a directional light;
 // area lights from their centre, as the shadow maps do.
 glm::dvec4 lsLightOf(const Light& light, const LocalFrame& frame) {
-    if (light.type == LightType::Directional)
-        return glm::dvec4(glm::normalize(light.wsDirection), 0.0);
+    if (isDirectional(light)) return glm::dvec4(glm::normalize(light.wsDirection), 0.0);
     return glm::dvec4(frame.lsFromWs(light.wsPosition), 1.0);
 }
 

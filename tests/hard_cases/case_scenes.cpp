@@ -1,4 +1,5 @@
 #include "case_scenes.h"
+#include "core/lights/make_light.h"
 
 #include <cmath>
 #include <numbers>
@@ -27,22 +28,18 @@ void addGrazingLights(GrazingScene& g, int index, double c, const glm::dvec3& u,
         const glm::dvec3 toLight =
             c == 0.0 ? (az == 0 ? glm::normalize(u) : glm::normalize(-v)) : c * n + s * t;
         const std::string tag = std::to_string(index) + "_" + std::to_string(az);
-        g.scene.lights.push_back({"dir_" + tag, LightType::Directional, {0, 0, 0}, -toLight, 0, 0});
-        g.lights.push_back({"dir_" + tag, LightType::Directional, c});
+        g.scene.lights.push_back(directionalLight("dir_" + tag, -toLight));
+        g.lights.push_back({"dir_" + tag, false, c});
         const glm::dvec3 wsPoint = c == 0.0 ? (az == 0 ? 32.0 * u : -32.0 * v) : 1024.0 * toLight;
-        g.scene.lights.push_back({"pt_" + tag, LightType::Point, wsPoint, {0, -1, 0}, 0, 0});
-        g.lights.push_back({"pt_" + tag, LightType::Point, c});
+        g.scene.lights.push_back(pointLight("pt_" + tag, wsPoint));
+        g.lights.push_back({"pt_" + tag, false, c});
     }
     // A rect light parallel to the plane (its edges are u / 32 and -v / 32, so every corner is
     // exactly as high above the plane as its centre), emitting towards it.
-    Light rect;
-    rect.name = "rect_" + std::to_string(index);
-    rect.type = LightType::Rect;
-    rect.wsPosition = c == 0.0 ? 4.0 * u : 64.0 * (c * n + s * t1);
-    rect.wsU = u / 32.0;
-    rect.wsV = -v / 32.0;
+    const Light rect = rectLight("rect_" + std::to_string(index),
+                                 c == 0.0 ? 4.0 * u : 64.0 * (c * n + s * t1), u / 32.0, -v / 32.0);
     g.scene.lights.push_back(rect);
-    g.lights.push_back({rect.name, LightType::Rect, c});
+    g.lights.push_back({rect.name, true, c});
 }
 
 }  // namespace
@@ -77,7 +74,7 @@ ContactScene makeContactScene(double gapRelative, bool zoomed, int size) {
     Scene& s = c.scene;
     s.meshes.push_back(makeGrid({0, 0, 0}, {24, 0, 0}, {0, 0, -24}, 16, "floor"));
     s.meshes.push_back(makeBox(c.boxLo, c.boxHi, "box"));
-    s.lights.push_back({"key", LightType::Point, c.wsLight, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("key", c.wsLight));
     s.camera.width = s.camera.height = size;
     if (!zoomed) {
         s.camera.wsEye = {-6.0, 3.5, -5.0};
@@ -106,7 +103,7 @@ ClosedMeshScene makeClosedMeshScene(bool icosphere, uint64_t seed, int size) {
     rotateMesh(m, randomRotation(seed), center);
     s.meshes.push_back(std::move(m));
     c.wsLight = {1.5, 6.0, 0.75};
-    s.lights.push_back({"key", LightType::Point, c.wsLight, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("key", c.wsLight));
     s.camera.wsEye = {-0.5, 9.0, 4.0};
     s.camera.wsTarget = {-0.5, 0.0, -0.75};
     s.camera.width = s.camera.height = size;

@@ -17,8 +17,8 @@ namespace so::test::hard {
 // occludes: V must be exactly 1 where n.l > 0 and 0 where n.l <= 0.
 struct GrazingLight {
     std::string name;
-    LightType type = LightType::Point;
-    double cosine = 0.0;  // the nominal n.l (for point and rect lights, at the plane's centre)
+    bool sampledRect = false;  // the sampled rect light (else directional or point)
+    double cosine = 0.0;       // the nominal n.l (for point and rect lights, at the plane's centre)
 };
 struct GrazingScene {
     Scene scene;

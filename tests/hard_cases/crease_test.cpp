@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "hard_scenes.h"
 #include "oracle/oracle.h"
 #include "oracle/verify.h"
@@ -173,19 +174,14 @@ TEST(HardCrease, HardLightsAtTheCreaseAgreeWithTheExactRetrace) {
     for (const glm::dvec3& offset :
          {glm::dvec3(0), glm::dvec3(0.75, 0, 0.75), glm::dvec3(-0.75, 0, 0.75),
           glm::dvec3(0.75, 0, -0.75), glm::dvec3(-0.75, 0, -0.75)})
-        scene.lights.push_back(
-            {"point" + std::to_string(n++), LightType::Point, lamp + offset, {0, -1, 0}, 45, 0});
+        scene.lights.push_back(pointLight("point" + std::to_string(n++), lamp + offset));
     // Towards the light: nearly along the faces (their normals are close to +-x), from above,
     // from the sides, and the lamp's own direction from the patch.
     for (const glm::dvec3& towards :
          {glm::dvec3(0.02, 1, 0), glm::dvec3(0.05, 1, 0.3), glm::dvec3(0.1, 0.2, 1),
           glm::dvec3(0.15, 1, -0.4), glm::dvec3(0.01, 0.3, -1), glm::dvec3(3.09, 5.96, -0.62)})
-        scene.lights.push_back({"sun" + std::to_string(n++),
-                                LightType::Directional,
-                                {0, 0, 0},
-                                -glm::normalize(towards),
-                                0,
-                                0});
+        scene.lights.push_back(
+            directionalLight("sun" + std::to_string(n++), -glm::normalize(towards)));
     // A close view of the patch, so that most pixels lie on it.
     aimCamera(scene, {-2.02, 0.05, 1.665}, {-2.09, 0.015, 1.62}, 45, 160, 120);
     finalizeScene(scene);

@@ -17,6 +17,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/lights/make_light.h"
 #include "core/local_frame.h"
 #include "hard_scenes.h"
 #include "test_scenes.h"
@@ -58,7 +59,7 @@ Scene floorScene(int size) {
 TEST(HardDegenerate, VerticesAt1e30AreAnInputError) {
     Scene s = floorScene(64);
     s.meshes.push_back(makeBox({1e30, 0, 0}, {1e30 + 1e15, 1e15, 1e15}, "far"));
-    s.lights.push_back({"key", LightType::Point, {0.5, 4, 0.25}, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("key", {0.5, 4, 0.25}));
     std::string inCode = "(none)", loaded = "(none)";
     try {
         finalizeScene(s);
@@ -121,7 +122,7 @@ TEST(HardDegenerate, ZeroAreaAndNeedleTriangles) {
         m.wsPositions.push_back(p);
     }
     s.meshes.push_back(m);
-    s.lights.push_back({"down", LightType::Directional, {0, 0, 0}, {0, -1, 0}, 0, 0});
+    s.lights.push_back(directionalLight("down", {0, -1, 0}));
     finalizeScene(s);
     OracleResult r = runHard(s);
     const double tol = 2.0 * r.stats.offsetPolicy.maxBlindDistance;
@@ -167,9 +168,9 @@ TEST(HardDegenerate, DuplicatedAndCoplanarTrianglesOnTheReceiver) {
     s.meshes[1].name = "floor copy";
     s.meshes.push_back(makeGrid({0.25, 0, -0.5}, {5, 0, 0}, {0, 0, -3}, 3, "coplanar square"));
     const double c = 1e-3, sn = std::sqrt(1.0 - c * c);
-    s.lights.push_back({"sun", LightType::Directional, {0, 0, 0}, {-0.6, -0.8, 0}, 0, 0});
-    s.lights.push_back({"grazing", LightType::Directional, {0, 0, 0}, {-sn, -c, 0}, 0, 0});
-    s.lights.push_back({"lamp", LightType::Point, {1.5, 3, 0.75}, {0, -1, 0}, 0, 0});
+    s.lights.push_back(directionalLight("sun", {-0.6, -0.8, 0}));
+    s.lights.push_back(directionalLight("grazing", {-sn, -c, 0}));
+    s.lights.push_back(pointLight("lamp", {1.5, 3, 0.75}));
     finalizeScene(s);
     OracleResult r = runHard(s);
     size_t perMesh[3] = {countV(r.image, "sun", 0).hits, countV(r.image, "sun", 1).hits,
@@ -191,7 +192,7 @@ TEST(HardDegenerate, DuplicatedAndCoplanarTrianglesOnTheReceiver) {
 TEST(HardDegenerate, LightInsideAClosedBox) {
     Scene s = floorScene(96);
     s.meshes.push_back(makeBox({-1, 0, -1}, {1, 2, 1}, "box"));
-    s.lights.push_back({"inside", LightType::Point, {0.25, 1, -0.125}, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("inside", {0.25, 1, -0.125}));
     finalizeScene(s);
     OracleResult r = runHard(s);
     const VCount n = countV(r.image, "inside");
@@ -219,8 +220,8 @@ TEST(HardDegenerate, CameraInsideAClosedMesh) {
     s.camera.vfovDeg = 90;
     s.camera.width = s.camera.height = 128;
     const glm::dvec3 lamp(1.5, 3.5, 1.0);
-    s.lights.push_back({"lamp", LightType::Point, lamp, {0, -1, 0}, 0, 0});
-    s.lights.push_back({"outside", LightType::Point, {0.5, 10, 0.25}, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("lamp", lamp));
+    s.lights.push_back(pointLight("outside", {0.5, 10, 0.25}));
     finalizeScene(s);
     OracleResult r = runHard(s);
     const double tol = 2.0 * r.stats.offsetPolicy.maxBlindDistance;
@@ -255,8 +256,8 @@ TEST(HardDegenerate, CameraInsideAClosedMesh) {
 TEST(HardDegenerate, LightOnTheReceiverSurface) {
     Scene s = floorScene(128);
     s.meshes.push_back(makeGrid({0, 1, 0}, {2, 0, 0}, {0, 2, 0}, 2, "wall"));  // z = 0
-    s.lights.push_back({"on_floor", LightType::Point, {0.5, 0, 0.25}, {0, -1, 0}, 0, 0});
-    s.lights.push_back({"on_wall", LightType::Point, {0.25, 1, 0}, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("on_floor", {0.5, 0, 0.25}));
+    s.lights.push_back(pointLight("on_wall", {0.25, 1, 0}));
     finalizeScene(s);
     OracleResult r = runHard(s);
     const VCount floorOnFloor = countV(r.image, "on_floor", 0);
@@ -301,7 +302,7 @@ TEST(HardDegenerate, TrianglesDegenerateInDoubleButNotInFloat) {
         }
     }
     s.meshes.push_back(m);
-    s.lights.push_back({"lamp", LightType::Point, {0.5, 6, 0.25}, {0, -1, 0}, 0, 0});
+    s.lights.push_back(pointLight("lamp", {0.5, 6, 0.25}));
     finalizeScene(s);
     OracleResult r = runHard(s);
     const float* A = r.image.channel(ch::kHit);

@@ -8,6 +8,7 @@
 
 #include "case_scenes.h"
 #include "core/channels.h"
+#include "core/lights/make_light.h"
 #include "core/scene.h"
 #include "hard_scenes.h"
 
@@ -44,7 +45,7 @@ LightCount countWrong(const ChannelImage& img, const GrazingLight& l) {
 // (exact_decisions); from |n.l| = 1e-3 on, none is.
 void checkStats(const OracleLightStats& s, const GrazingLight& l, uint64_t hits) {
     const bool inPlane = l.cosine == 0.0, clear = std::fabs(l.cosine) >= 1e-3;
-    if (l.type == LightType::Rect) {
+    if (l.sampledRect) {
         ASSERT_TRUE(s.area.has_value()) << l.name;
         if (l.cosine > 0.0) {
             EXPECT_EQ(s.area->pixelsSampled, hits) << l.name;
@@ -132,14 +133,9 @@ TEST(HardGrazing, LightsAHairOffThePlaneAreDecidedExactly) {
     for (int above = 0; above < 2; ++above) {
         const double side = above ? hair : -hair;
         const std::string tag = above ? "above" : "below";
+        g.scene.lights.push_back(pointLight("pt_" + tag, 32.0 * u + side * nInt));
         g.scene.lights.push_back(
-            {"pt_" + tag, LightType::Point, 32.0 * u + side * nInt, {0, -1, 0}, 0, 0});
-        g.scene.lights.push_back({"dir_" + tag,
-                                  LightType::Directional,
-                                  {0, 0, 0},
-                                  -glm::normalize(glm::normalize(u) + side * nInt),
-                                  0,
-                                  0});
+            directionalLight("dir_" + tag, -glm::normalize(glm::normalize(u) + side * nInt)));
     }
     finalizeScene(g.scene);
     const OracleResult r = runHard(g.scene, PenumbraMethod::Sampled);

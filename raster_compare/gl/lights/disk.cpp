@@ -27,9 +27,6 @@ class DiskRasterLightKind final : public RasterAreaLightKind {
 
 }  // namespace
 
-const RasterAreaLightKind& diskRasterLightKind() {
-    static const DiskRasterLightKind kind;
-    return kind;
-}
+SO_REGISTER_RASTER_LIGHT_KIND(DiskRasterLightKind);
 
 }  // namespace so

@@ -44,9 +44,6 @@ class PolygonRasterLightKind final : public RasterAreaLightKind {
 
 }  // namespace
 
-const RasterAreaLightKind& polygonRasterLightKind() {
-    static const PolygonRasterLightKind kind;
-    return kind;
-}
+SO_REGISTER_RASTER_LIGHT_KIND(PolygonRasterLightKind);
 
 }  // namespace so

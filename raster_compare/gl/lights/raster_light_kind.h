@@ -1,21 +1,46 @@
-// Area light types as plug-ins, the raster path's layer (core/lights/light_kind.h is the scene
-// format's, oracle/lights/area_light_kind.h the oracle's): what a technique needs to know of an
-// area light's shape. Every area light's shadow camera is the cube from its centre
-// (light_camera.h) and its facing the one-sided or sphere emitter's (light_facing.h); what differs
-// by type is here, one file each (rect.cpp, disk.cpp, sphere.cpp, polygon.cpp), one line each in
-// raster_light_kind.cpp's table.
+// Light types as plug-ins, the raster path's layer (core/lights/light_kind.h is the scene
+// format's, oracle/lights/area_light_kind.h the oracle's): what the raster path needs to know of a
+// light's type. Every type has a RasterLightKind, one file each (point.cpp, directional.cpp,
+// spot.cpp, rect.cpp, disk.cpp, sphere.cpp, polygon.cpp), registered with one line
+// SO_REGISTER_RASTER_LIGHT_KIND(Class), which raster_compare/gl/CMakeLists.txt finds to generate
+// the list (cmake/so_registry.cmake), as techniques register. It says which shadow camera the
+// light takes (light_camera.h, which also makes the shaders' LIGHT_* defines from it) and what the
+// soft techniques' weight passes integrate over (the EMITTER_* defines); an area light's kind adds
+// its width (PCSS-like techniques) and its sample points (the soft techniques). Every area light's
+// shadow camera is the cube from its centre and its facing the one-sided or sphere emitter's
+// (light_facing.h), so those need nothing per type.
 #pragma once
+
+#include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "core/scene.h"
+#include "raster_compare/gl/light_camera.h"
 
 namespace so {
 
-class RasterAreaLightKind {
+class RasterAreaLightKind;
+
+class RasterLightKind {
   public:
-    virtual ~RasterAreaLightKind() = default;
+    virtual ~RasterLightKind() = default;
     virtual LightType type() const = 0;
+    // Its own shadow camera (fitLightCamera): Ortho (directional), Perspective (spot), or the
+    // cube from its position (point lights, area lights from their centre).
+    virtual LightCamera::Kind cameraKind() const { return LightCamera::Kind::Cube; }
+    // What a weight pass integrates over (accumulate.glsl): "#define EMITTER_POINT\n" (one
+    // sample, a punctual light), EMITTER_ONE_SIDED (a one-sided area light's samples),
+    // EMITTER_SPHERE.
+    virtual const char* emitterDefine() const { return "#define EMITTER_POINT\n"; }
+    // Area lights: their part; null for punctual lights.
+    virtual const RasterAreaLightKind* area() const { return nullptr; }
+};
+
+class RasterAreaLightKind : public RasterLightKind {
+  public:
+    const char* emitterDefine() const override { return "#define EMITTER_ONE_SIDED\n"; }
+    const RasterAreaLightKind* area() const override { return this; }
     // The side of the square with the light's area seen face-on (sphere: of its silhouette disk):
     // the one size PCSS-like techniques take (light_camera.h, lightWidth).
     virtual double width(const Light& light) const = 0;
@@ -24,12 +49,25 @@ class RasterAreaLightKind {
     virtual glm::dvec3 samplePoint(const Light& light, double u, double v) const = 0;
 };
 
-// The registered kind of an area light type; null for punctual lights.
-const RasterAreaLightKind* rasterAreaLightKind(LightType type);
+// The registered kind of a light type; every type has one (checked at the first call).
+const RasterLightKind& rasterLightKind(LightType type);
+// Its area part; null for punctual lights.
+inline const RasterAreaLightKind* rasterAreaLightKind(LightType type) {
+    return rasterLightKind(type).area();
+}
 
-const RasterAreaLightKind& rectRasterLightKind();
-const RasterAreaLightKind& diskRasterLightKind();
-const RasterAreaLightKind& sphereRasterLightKind();
-const RasterAreaLightKind& polygonRasterLightKind();
+// The registration list: generated (raster_light_list.cpp) from the SO_REGISTER_RASTER_LIGHT_KIND
+// lines of raster_compare/gl/lights/*.cpp, and how many there are.
+using RasterLightKindList = std::vector<const RasterLightKind*>;
+void registerBuiltInRasterLightKinds(RasterLightKindList& registry);
+extern const size_t kBuiltInRasterLightKindCount;
+
+// Defines soRegisterRasterLight_<Class> at namespace so's scope (as SO_REGISTER_LIGHT_KIND does).
+#define SO_REGISTER_RASTER_LIGHT_KIND(Class)                                  \
+    void soRegisterRasterLight_##Class(::so::RasterLightKindList& registry) { \
+        static const Class kind;                                              \
+        registry.push_back(&kind);                                            \
+    }                                                                         \
+    void soRegisterRasterLight_##Class(::so::RasterLightKindList& registry)
 
 }  // namespace so

@@ -22,9 +22,6 @@ class RectRasterLightKind final : public RasterAreaLightKind {
 
 }  // namespace
 
-const RasterAreaLightKind& rectRasterLightKind() {
-    static const RectRasterLightKind kind;
-    return kind;
-}
+SO_REGISTER_RASTER_LIGHT_KIND(RectRasterLightKind);
 
 }  // namespace so

@@ -12,6 +12,7 @@ namespace {
 class SphereRasterLightKind final : public RasterAreaLightKind {
   public:
     LightType type() const override { return LightType::Sphere; }
+    const char* emitterDefine() const override { return "#define EMITTER_SPHERE\n"; }
     double width(const Light& l) const override { return l.radius * std::sqrt(std::numbers::pi); }
     glm::dvec3 samplePoint(const Light& l, double u, double v) const override {
         const double phi = 2.0 * std::numbers::pi * v;
@@ -22,9 +23,6 @@ class SphereRasterLightKind final : public RasterAreaLightKind {
 
 }  // namespace
 
-const RasterAreaLightKind& sphereRasterLightKind() {
-    static const SphereRasterLightKind kind;
-    return kind;
-}
+SO_REGISTER_RASTER_LIGHT_KIND(SphereRasterLightKind);
 
 }  // namespace so

@@ -12,10 +12,13 @@
 // method=map.
 #include <deque>
 
+#include "core/lights/light_kind.h"
+#include "core/lights/make_light.h"
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
 #include "raster_compare/gl/light_samples.h"
+#include "raster_compare/gl/lights/raster_light_kind.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/technique.h"
@@ -76,12 +79,7 @@ class Accumulate final : public Technique {
 AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& setup)
     : light_(setup.light), camera_(setup.camera), sampleTarget_(setup.camera) {
     for (const glm::dvec3& p : lightSamplePoints(light_, technique.samples)) {
-        Light point = light_;
-        if (isAreaLight(light_.type)) {
-            point.type = LightType::Point;
-            point.wsPosition = p;
-        }
-        points_.push_back(point);
+        points_.push_back(isAreaLight(light_) ? pointLightAt(light_, p) : light_);
         lsSamples_.push_back(glm::vec3(setup.scene.frame().lsFromWs(p)));
         samples_.push_back(technique.inner->setUp(
             {points_.back(), setup.scene, setup.camera, setup.lsReceivers, nullptr}));
@@ -91,16 +89,13 @@ AccumulateLight::AccumulateLight(const Accumulate& technique, const LightSetup& 
     sumsFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(sumsFbo_.get(), GL_COLOR_ATTACHMENT0, sums_.get(), 0);
     const LocalFrame& frame = setup.scene.frame();
-    const std::string kind = light_.type == LightType::Sphere ? "#define EMITTER_SPHERE\n"
-                             : isAreaLight(light_.type)       ? "#define EMITTER_ONE_SIDED\n"
-                                                              : "#define EMITTER_POINT\n";
+    const std::string kind = rasterLightKind(light_.type).emitterDefine();
     weightProg_ = buildProgram("#define WEIGHT_PASS\n" + kind + camera_.texelBytesDefines() +
                                    sampleTarget_.texelBytesDefines(),
                                shaders::fullscreen_vert, {shaders::accumulate_glsl});
     const GLuint wp = weightProg_.get();
     setVec3(wp, "u_lsLightCenter", frame.lsFromWs(light_.wsPosition));
-    if (isAreaLight(light_.type) && light_.type != LightType::Sphere)
-        setVec3(wp, "u_lsEmitNormal", light_.wsEmitNormal());
+    if (isOneSided(light_)) setVec3(wp, "u_lsEmitNormal", light_.wsEmitNormal());
     for (const char* name : {"u_visibility", "u_position", "u_normal"})
         setInt(wp, name, name[2] == 'v' ? 0 : name[2] == 'p' ? 1 : 2);
     resolveProg_ =

@@ -20,6 +20,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/lights/light_kind.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/shaders.h"
@@ -67,8 +68,7 @@ class Pcss final : public ShadowMapTechnique {
                           const LocalFrame& frame) const override {
         const double size = lightSize_ >= 0.0 ? lightSize_ : lightWidth(light);
         // Directional: a tangent, no length.
-        setFloat(program, "u_lightSize",
-                 light.type == LightType::Directional ? size : frame.lsLength(size));
+        setFloat(program, "u_lightSize", isDirectional(light) ? size : frame.lsLength(size));
     }
 
   private:

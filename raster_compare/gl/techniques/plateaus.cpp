@@ -22,6 +22,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/lights/light_kind.h"
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
@@ -175,9 +176,8 @@ PlateauLight::PlateauLight(const PlateauSettings& settings, const LightSetup& se
     const LocalFrame& frame = scene_.frame();
     const Light& light = setup.light;
     receiver_ = findReceiver(scene_.scene(), frame, settings.receiver, "plateaus");
-    const glm::dvec4 L = light.type == LightType::Directional
-                             ? glm::dvec4(-glm::normalize(light.wsDirection), 0.0)
-                             : glm::dvec4(frame.lsFromWs(light.wsPosition), 1.0);
+    const glm::dvec4 L = isDirectional(light) ? glm::dvec4(-glm::normalize(light.wsDirection), 0.0)
+                                              : glm::dvec4(frame.lsFromWs(light.wsPosition), 1.0);
     glm::dvec4 P = receiver_.lsPlane;
     if (glm::dot(P, L) < 0.0) P = -P;  // the normal towards the light
     const Bounds3d& b = scene_.lsBounds();

@@ -1,0 +1,17 @@
+// The raster path's point light: the cube from its position, one sample.
+#include "raster_compare/gl/lights/raster_light_kind.h"
+
+namespace so {
+
+namespace {
+
+class PointRasterLightKind final : public RasterLightKind {
+  public:
+    LightType type() const override { return LightType::Point; }
+};
+
+}  // namespace
+
+SO_REGISTER_RASTER_LIGHT_KIND(PointRasterLightKind);
+
+}  // namespace so
