@@ -1,6 +1,7 @@
-// The penumbra error of shadow-visibility images against Lambert's closed form (tests/lambert.cpp),
-// for scripts/cycles-compare (docs/benchmarks.md, "cycles-compare"): any renderer's `LIGHT.V`
-// (Cycles' shadows.exr, the oracle's oracle.exr) judged at the surface points of one G-buffer.
+// The penumbra error of shadow-visibility images against Lambert's closed form
+// (tests/support/lambert.cpp), for scripts/cycles-compare (docs/benchmarks.md, "cycles-compare"):
+// any renderer's `LIGHT.V` (Cycles' shadows.exr, the oracle's oracle.exr) judged at the surface
+// points of one G-buffer.
 //
 //   bench_closed_form_error SCENE --geometry GBUFFER.exr [--light NAME] IMAGE.exr...
 //
@@ -15,7 +16,7 @@
 // mean, 99th percentile and signed mean of V - V_exact there, and how many covered pixels outside
 // it are off by more than 1e-3. `noise_bound_1spp` is the mean over the penumbra of
 // sqrt(2/pi) sqrt(V (1 - V)): E|error| of one independent sample; N independent samples per pixel
-// give it over sqrt(N) (the bound tests/blender_test.cpp holds Cycles to).
+// give it over sqrt(N) (the bound tests/cli/blender_test.cpp holds Cycles to).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

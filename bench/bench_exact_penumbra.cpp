@@ -1,6 +1,7 @@
 // What the exact penumbra pass costs (docs/benchmarks.md, "Exact penumbrae against RQMC"):
 //
-// 1. Growth: the closed-form scene (tests/test_scenes.h PenumbraScene) with its square occluder
+// 1. Growth: the closed-form scene (tests/support/test_scenes.h PenumbraScene) with its square
+// occluder
 //    split into k x k squares, 2k^2 triangles tiling the same square, so that V and its closed
 //    form stay the same while the triangles in each pixel's pyramid grow as k^2. Per k: the exact
 //    pass's seconds per pixel as it ships and as the plain union (two curves), occluders per

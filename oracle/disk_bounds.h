@@ -1,9 +1,9 @@
 // Disk and sphere lights bounded by polygons (docs/oracle.md, "Disk and sphere lights"): V in a
 // guaranteed interval, without sampling. This was the exact pass's method (issue 45); the pass now
 // integrates the circle's arcs (disk_exact.h, issue 55) at about 1/50 of the cost, and this bound
-// is its independent check (tests/disk_exact_test.cpp: the exact V lies in the interval). The
-// geometry helpers below (the disk's frame, its closed form, the sphere's silhouette, the arc above
-// the horizon, the polygons) serve both.
+// is its independent check (tests/oracle/disk_exact_test.cpp: the exact V lies in the interval).
+// The geometry helpers below (the disk's frame, its closed form, the sphere's silhouette, the arc
+// above the horizon, the polygons) serve both.
 //
 // The disk is not a polygon, but it lies between two: its inscribed n-gon P_in (vertices on the
 // circle) and its circumscribed one P_out (edges tangent to it), P_in in disk in P_out. Both are

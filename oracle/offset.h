@@ -44,7 +44,7 @@ inline glm::vec3 errorBoundOrigin(const glm::dvec3& p, const glm::dvec3& n) {
 // axis planes, thin ones): rays from there always run the filter. The bound follows Embree's robust
 // test operation by operation, with every rounding bounded from the triangle's extent per axis
 // (offset.cpp; docs/oracle.md, "The origin filter, where it can matter"), times two.
-// tests/hard_cases/origin_tangency_test.cpp traces rays at the bound without the filter on
+// tests/oracle/hard_cases/origin_tangency_test.cpp traces rays at the bound without the filter on
 // generated triangles and finds no self-hit.
 float originTangencyBound(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 

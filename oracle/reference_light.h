@@ -1,7 +1,7 @@
 // Independent random samples of an area light, for the references that judge the oracle (the
-// verifier, tests/rqmc_coverage_test.cpp): SplitMix64 numbers, unrelated to the oracle's Sobol
-// sequences, and points uniform by area on the rect, the disk, the polygon (a triangle of its fan
-// by area, then uniform in it) or the whole sphere, in the local frame. Deliberately simple:
+// verifier, tests/oracle/rqmc_coverage_test.cpp): SplitMix64 numbers, unrelated to the oracle's
+// Sobol sequences, and points uniform by area on the rect, the disk, the polygon (a triangle of its
+// fan by area, then uniform in it) or the whole sphere, in the local frame. Deliberately simple:
 // correctness over speed.
 #pragma once
 

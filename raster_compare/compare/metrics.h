@@ -1,6 +1,6 @@
 // Error of a technique's shadows against the oracle, split by artifact (docs/metrics.md: the names
 // and definitions are a public contract). Pure functions of two images, so they are tested on
-// synthetic pairs with known answers (tests/metrics_test.cpp).
+// synthetic pairs with known answers (tests/compare/metrics_test.cpp).
 #pragma once
 
 #include <cstdint>

@@ -34,7 +34,7 @@ std::array<glm::dvec3, 8> corners(const Bounds3d& b) {
 // view depth, not distance: a point at distance d inside the frustum has depth at least
 // d cos(alpha), alpha the angle of the frustum's corner ray (tan alpha = sqrt(2) tan(half-angle)).
 // With the distance alone the tops of the objects nearest a tilted spot fell in front of the near
-// plane and out of the map (found by tests/view_test.cpp).
+// plane and out of the map (found by tests/cli/view_test.cpp).
 void enclose(const glm::dvec3& eye, const Bounds3d& b, double halfFovRad, double& near,
              double& far) {
     far = 0.0;

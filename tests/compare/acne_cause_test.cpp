@@ -2,7 +2,7 @@
 // saw (NAME.map_depth, NAME.receiver_depth, NAME.map_texel and, after a screen-space pass,
 // NAME.V_unfiltered), a false shadow is acne only where that comparison shadowed the pixel by its
 // own surface, and screen-space bleed where the comparison lit it. Synthetic pairs with the answer
-// known by construction; tests/raster_acne_cause_test.cpp renders the two causes.
+// known by construction; tests/gl/raster_acne_cause_test.cpp renders the two causes.
 #include <algorithm>
 #include <cmath>
 #include <iterator>

@@ -69,9 +69,9 @@ double sampledIrradiance(const Light& light, const dvec3& p, const dvec3& n, uin
 }
 
 // The sampler's pdf is uniform by area over the fan: its estimate of int G dA converges to
-// Lambert's formula for the polygon (tests/lambert.h, written independently), for a hexagon, a
-// tilted triangle and a 40-gon, from receivers facing the light and tilted so that the horizon
-// cuts it (those samples below it weigh 0).
+// Lambert's formula for the polygon (tests/support/lambert.h, written independently), for a
+// hexagon, a tilted triangle and a 40-gon, from receivers facing the light and tilted so that the
+// horizon cuts it (those samples below it weigh 0).
 TEST(PolygonLight, SamplerMatchesLambertsFormula) {
     const Light hexagon = polygonLight("hex", regularPolygon({0, 4, 0}, 1.2, 6));
     const Light triangle =

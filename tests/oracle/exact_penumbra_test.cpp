@@ -1,7 +1,7 @@
 // The exact penumbra pass (oracle/polygon_visibility.h, oracle/exact_penumbra.h) against the
-// closed form of tests/lambert.h, against the sampled pass's own intervals and independent float64
-// estimates on a real mesh, at any thread count and through the command line. Its hard cases are
-// in tests/hard_cases/exact_penumbra_cases_test.cpp.
+// closed form of tests/support/lambert.h, against the sampled pass's own intervals and independent
+// float64 estimates on a real mesh, at any thread count and through the command line. Its hard
+// cases are in tests/oracle/hard_cases/exact_penumbra_cases_test.cpp.
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -15,7 +15,7 @@
 
 #include <shadow_oracle/shadow_oracle.h>
 
-#include "tests/cli_run.h"
+#include "tests/support/cli_run.h"
 
 namespace soa = shadow_oracle;
 namespace cli = so::test;

@@ -4,9 +4,9 @@
 // timings compare the oracle against. Statistical checks, not timing ones: the speed figures live
 // in docs/benchmarks.md.
 //
-// Read here with the project's EXR reader and the closed form of tests/lambert.cpp, with the
-// scene's light and occluder written out as bench_penumbra_accuracy has them (not derived from the
-// scene as the script's bench_closed_form_error does: an independent reading):
+// Read here with the project's EXR reader and the closed form of tests/support/lambert.cpp, with
+// the scene's light and occluder written out as bench_penumbra_accuracy has them (not derived from
+// the scene as the script's bench_closed_form_error does: an independent reading):
 // - each Cycles image's penumbra mean |V - V_exact| is below what N independent samples per pixel
 //   would give, sqrt(2/pi) sqrt(V (1 - V) / N) averaged over the penumbra (Cycles' samples are
 //   stratified, which does better: measured 0.29, 0.17 and 0.09 of it at 16, 64 and 256 spp);

@@ -1,7 +1,8 @@
 // Case 4 (docs/hard-cases.md): every hard case translated by 2^17 and 2^20 and scaled by 2^-10
 // and 2^10 gives the very same bits (hit, ids, and every light's V and cos), because the oracle
 // recentres and rescales in double before anything becomes float (core/local_frame.h). The
-// existing test (tests/closed_form_test.cpp, Invariance.*) covers 2^16 on the square occluder.
+// existing test (tests/oracle/closed_form_test.cpp, Invariance.*) covers 2^16 on the square
+// occluder.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
