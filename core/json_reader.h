@@ -1,15 +1,22 @@
-// Typed, path-tracking access to a scene file's JSON (docs/scene-format.md), shared by the scene
-// parser and the per-type light parsers (core/lights/): every error names the file and the field as
-// the user wrote it ("lights[2].vertices[1]") in one line.
+// The one reader of a user's JSON (scene files, sweep specs, limits and baselines, metrics.json,
+// oracle.json, an image's sidecar): typed, path-tracking access whose every error is one line
+// naming the file and the field as the user wrote it ("lights[2].vertices[1]"), in one wording
+// per mistake (docs/scene-format.md#errors):
+//
+//   wrong type         expected a number, got a string
+//   not an integer     expected an integer, got 1.5
+//   missing            missing
+//   unknown key        unknown key (valid: a, b)
+//   unknown name       unknown <what> "x" (valid: a, b)
+//   out of range       must be in [lo, hi], got 7        (or: must be >= 0, got -1)
+//   not finite         not a finite number
 #pragma once
 
-#include <algorithm>
-#include <cmath>
+#include <cstdint>
 #include <initializer_list>
 #include <string>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
@@ -19,7 +26,8 @@ namespace so {
 
 using nlohmann::json;
 
-// Typed, path-tracking access to a JSON value, so every error names the field as a user wrote it.
+// Typed access to JSON values, so every error names the field as a user wrote it. Each getter
+// takes the value and its field path (join, index build them) and throws InputError.
 class JsonReader {
   public:
     explicit JsonReader(std::string file) : file_(std::move(file)) {}
@@ -29,65 +37,47 @@ class JsonReader {
         throwInputError(file_, field, msg);
     }
 
-    void requireObject(const json& j, const std::string& field) const {
-        if (!j.is_object()) fail(field, "expected an object, got " + typeName(j));
-    }
+    // The member `key` of the object `obj` (at `field`), which must be there: "missing".
+    const json& at(const json& obj, const std::string& field, const std::string& key) const;
+    // The member, or nullptr where `obj` has none.
+    static const json* find(const json& obj, const std::string& key);
+
+    void requireObject(const json& j, const std::string& field) const;
+    void requireArray(const json& j, const std::string& field) const;
 
     void checkKeys(const json& j, const std::string& field,
                    std::initializer_list<const char*> allowed,
                    const std::string& context = "") const {
         checkKeys(j, field, std::vector<std::string>(allowed.begin(), allowed.end()), context);
     }
-
-    // Fails on the first key of `j` not in `allowed`, naming the valid ones.
+    // Fails on the first key of `j` not in `allowed`, naming the valid ones; `context` says
+    // whose keys they are (" for a point light").
     void checkKeys(const json& j, const std::string& field, const std::vector<std::string>& allowed,
-                   const std::string& context = "") const {
-        for (auto it = j.begin(); it != j.end(); ++it) {
-            if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
-            std::string list;
-            for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-            fail(join(field, it.key()), "unknown key" + context + " (valid: " + list + ")");
-        }
-    }
+                   const std::string& context = "") const;
+    // One key of an object at `field`: for callers holding another JSON flavour (ordered_json),
+    // which iterate their keys in the file's order themselves.
+    void checkKey(const std::string& key, const std::string& field,
+                  const std::vector<std::string>& allowed, const std::string& context = "") const;
 
-    double number(const json& j, const std::string& field) const {
-        if (!j.is_number()) fail(field, "expected a number, got " + typeName(j));
-        double v = j.get<double>();
-        if (!std::isfinite(v)) fail(field, "not a finite number");
-        return v;
-    }
-
-    int integer(const json& j, const std::string& field, int lo, int hi) const {
-        if (!j.is_number_integer() && !(j.is_number_float() && isIntegral(j.get<double>())))
-            fail(field, "expected an integer, got " + (j.is_number() ? dumpShort(j) : typeName(j)));
-        double v = j.get<double>();
-        if (v < lo || v > hi)
-            fail(field, dumpShort(j) + " is out of range [" + std::to_string(lo) + ", " +
-                            std::to_string(hi) + "]");
-        return int(v);
-    }
-
-    std::string string(const json& j, const std::string& field) const {
-        if (!j.is_string()) fail(field, "expected a string, got " + typeName(j));
-        return j.get<std::string>();
-    }
-
-    glm::dvec3 vec3(const json& j, const std::string& field) const {
-        if (!j.is_array() || j.size() != 3)
-            fail(field,
-                 "expected an array of 3 numbers, got " +
-                     (j.is_array() ? "an array of " + std::to_string(j.size()) : typeName(j)));
-        glm::dvec3 v;
-        for (int i = 0; i < 3; ++i) v[i] = number(j[i], field + "[" + std::to_string(i) + "]");
-        return v;
-    }
-
-    glm::dvec3 unitVec3(const json& j, const std::string& field) const {
-        glm::dvec3 v = vec3(j, field);
-        double len = glm::length(v);
-        if (!(len > 0.0) || !std::isfinite(len)) fail(field, "zero length");
-        return v / len;
-    }
+    // A finite number.
+    double number(const json& j, const std::string& field) const;
+    double numberAtLeast(const json& j, const std::string& field, double lo) const;
+    double numberIn(const json& j, const std::string& field, double lo, double hi) const;
+    // A number, or null read as NaN: how oracle.json writes a non-finite value.
+    double nullableNumber(const json& j, const std::string& field) const;
+    std::vector<double> numbers(const json& j, const std::string& field) const;
+    // An integer (1.0 counts) in [lo, hi].
+    int integer(const json& j, const std::string& field, int lo, int hi) const;
+    // A non-negative 64-bit integer: a counter.
+    uint64_t count(const json& j, const std::string& field) const;
+    bool boolean(const json& j, const std::string& field) const;
+    std::string string(const json& j, const std::string& field) const;
+    std::vector<std::string> strings(const json& j, const std::string& field) const;
+    // One of `names`; `what` names the kind ("metric") in the error.
+    std::string oneOf(const json& j, const std::string& field, const std::string& what,
+                      const std::vector<std::string>& names) const;
+    glm::dvec3 vec3(const json& j, const std::string& field) const;
+    glm::dvec3 unitVec3(const json& j, const std::string& field) const;
 
     static std::string join(const std::string& parent, const std::string& key) {
         return parent.empty() ? key : parent + "." + key;
@@ -95,27 +85,18 @@ class JsonReader {
     static std::string index(const std::string& parent, size_t i) {
         return parent + "[" + std::to_string(i) + "]";
     }
-
-    static std::string typeName(const json& j) {
-        switch (j.type()) {
-            case json::value_t::null:
-                return "null";
-            case json::value_t::object:
-                return "an object";
-            case json::value_t::array:
-                return "an array";
-            case json::value_t::string:
-                return "a string";
-            case json::value_t::boolean:
-                return "a boolean";
-            default:
-                return "a number";
-        }
-    }
+    // "a string", "an object", "null": what a wrong value was, for "expected X, got Y".
+    static std::string typeName(const json& j);
+    // "a, b, c", for "(valid: ...)".
+    static std::string list(const std::vector<std::string>& names);
+    // A number as the error quotes it ("got 7").
+    static std::string numberText(double v);
 
   private:
-    static bool isIntegral(double v) { return std::isfinite(v) && v == std::floor(v); }
-    static std::string dumpShort(const json& j) { return printable(j.dump(), 40); }
+    [[noreturn]] void wrongType(const json& j, const std::string& field,
+                                const std::string& expected) const {
+        fail(field, "expected " + expected + ", got " + typeName(j));
+    }
     std::string file_;
 };
 

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/gbuffer.h"
 #include "core/image_codec.h"
+#include "core/json_reader.h"
 #include "core/read_file.h"
 
 namespace so {
@@ -120,12 +121,10 @@ VisibilityImage readPngVisibility(const std::string& path, const std::vector<Lig
 }
 
 std::optional<double> costNumber(const nlohmann::json& j, const std::string& key,
-                                 const std::string& path) {
-    if (!j.contains(key)) return std::nullopt;
-    const nlohmann::json& v = j[key];
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
-        throwInputError(path, key, "expected a finite number >= 0");
-    return v.get<double>();
+                                 const JsonReader& r) {
+    const nlohmann::json* v = JsonReader::find(j, key);
+    if (!v) return std::nullopt;
+    return r.numberAtLeast(*v, key, 0.0);
 }
 
 }  // namespace
@@ -151,7 +150,7 @@ ImageEncoding parseImageEncoding(const std::string& text, const std::string& fil
     if (text == "linear") return ImageEncoding::Linear;
     if (text == "srgb") return ImageEncoding::Srgb;
     throwInputError(file, field,
-                    "\"" + printable(text, 40) + "\" is not an encoding (linear or srgb)");
+                    "unknown encoding \"" + printable(text, 40) + "\" (valid: linear, srgb)");
 }
 
 std::optional<ExternalCost> readExternalCost(const std::string& jsonPath) {
@@ -160,30 +159,26 @@ std::optional<ExternalCost> readExternalCost(const std::string& jsonPath) {
     const std::string text = readFileCapped(jsonPath, jsonPath, uint64_t(1) << 20);
     const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
     if (j.is_discarded()) throwInputError(jsonPath, "", "invalid JSON");
-    if (!j.is_object()) throwInputError(jsonPath, "", "expected an object");
-    for (const auto& [key, value] : j.items())
-        if (key != "renderer" && key != "frame_ms" && key != "shadow_ms" && key != "memory_bytes" &&
-            key != "params")
-            throwInputError(jsonPath, printable(key, 40),
-                            "unknown key (renderer, frame_ms, shadow_ms, memory_bytes, params)");
+    const JsonReader r(jsonPath);
+    r.checkKeys(j, "", {"renderer", "frame_ms", "shadow_ms", "memory_bytes", "params"});
     ExternalCost c;
-    if (j.contains("renderer")) {
-        if (!j["renderer"].is_string()) throwInputError(jsonPath, "renderer", "expected a string");
-        c.renderer = printable(j["renderer"].get<std::string>(), 200);
-    }
-    c.frameMs = costNumber(j, "frame_ms", jsonPath);
-    c.shadowMs = costNumber(j, "shadow_ms", jsonPath);
-    if (const auto m = costNumber(j, "memory_bytes", jsonPath)) {
-        if (*m > 0x1p62) throwInputError(jsonPath, "memory_bytes", "beyond 2^62");
+    if (const nlohmann::json* renderer = JsonReader::find(j, "renderer"))
+        c.renderer = printable(r.string(*renderer, "renderer"), 200);
+    c.frameMs = costNumber(j, "frame_ms", r);
+    c.shadowMs = costNumber(j, "shadow_ms", r);
+    if (const auto m = costNumber(j, "memory_bytes", r)) {
+        if (*m > 0x1p62)
+            r.fail("memory_bytes", "must be in [0, 2^62], got " + JsonReader::numberText(*m));
         c.memoryBytes = uint64_t(*m);
     }
     if (j.contains("params")) {
-        if (!j["params"].is_object()) throwInputError(jsonPath, "params", "expected an object");
+        r.requireObject(j["params"], "params");
         for (const auto& [key, value] : j["params"].items()) {
-            if (!(value.is_number() || value.is_string() || value.is_boolean()) ||
-                (value.is_number() && !std::isfinite(value.get<double>())))
-                throwInputError(jsonPath, "params." + printable(key, 40),
-                                "expected a finite number, a string or a boolean");
+            if (!(value.is_number() || value.is_string() || value.is_boolean()))
+                r.fail("params." + printable(key, 40),
+                       "expected a number, a string or true or false, got " +
+                           JsonReader::typeName(value));
+            if (value.is_number()) r.number(value, "params." + printable(key, 40));
             if (key.empty() || key.size() > 64)
                 throwInputError(jsonPath, "params", "names are 1 to 64 characters");
         }

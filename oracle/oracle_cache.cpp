@@ -94,7 +94,7 @@ bool loadEntry(const fs::path& entry, const Scene& scene, const OracleOptions& o
         out.image = readExr(exr.string());
         std::ifstream in(json);
         const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-        if (j.is_discarded()) throwInputError(json.string(), "", "not valid JSON");
+        if (j.is_discarded()) throwInputError(json.string(), "", "invalid JSON");
         out.stats = oracleStatsFromJson(j, json.string());
         why = staleReason(out, scene, options);
     } catch (const InputError& e) {

@@ -1,7 +1,7 @@
 // oracle.json read back (oracleStatsFromJson, oracle_stats.h): what trace-merge joins the bands'
-// stats from. Its own typed accessor, Fields, rather than core/json_reader.h's JsonReader: this
-// file is written by toJson, where a non-finite number is null (read as NaN, not refused) and
-// counters are 64-bit unsigned, and its errors name the dotted path from the file's top
+// stats from, through the one reader of user JSON (core/json_reader.h): this file is written by
+// toJson, where a non-finite number is null (read as NaN, JsonReader::nullableNumber) and counters
+// are 64-bit unsigned (JsonReader::count), and its errors name the dotted path from the file's top
 // ("lights[0].area.").
 #include "oracle/oracle_stats.h"
 
@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "core/lights/light_kind.h"
 #include "oracle/oracle_stats_json.h"
 
@@ -25,111 +26,66 @@ using namespace oracle_stats_json;
 
 namespace {
 
-// Typed access to one JSON object; every failure is an InputError naming the field's full path.
+// One object of oracle.json and its dotted path from the file's top, read through the one reader
+// of user JSON (core/json_reader.h), so its errors read like every other file's.
 class Fields {
   public:
-    Fields(const json& j, const std::string& file, std::string path)
-        : j_(j), file_(file), path_(std::move(path)) {
-        if (!j_.is_object()) fail(path_.empty() ? "(top level)" : path_, "must be an object");
+    Fields(const json& j, const JsonReader& r, std::string path)
+        : j_(j), r_(r), path_(std::move(path)) {
+        r_.requireObject(j_, path_.empty() ? "(top level)" : path_);
     }
 
     bool has(const char* key) const { return j_.contains(key); }
     bool isNull(const char* key) const { return at(key).is_null(); }
-    // An array of numbers.
-    std::vector<double> numbers(const char* key) const {
-        const json& v = at(key);
-        if (!v.is_array()) fail(name(key), "must be an array of numbers");
-        std::vector<double> out;
-        for (const json& e : v) {
-            if (!e.is_number()) fail(name(key), "must be an array of numbers");
-            out.push_back(e.get<double>());
-        }
-        return out;
-    }
-    Fields object(const char* key) const { return Fields(at(key), file_, name(key)); }
+    std::vector<double> numbers(const char* key) const { return r_.numbers(at(key), name(key)); }
+    Fields object(const char* key) const { return Fields(at(key), r_, name(key)); }
     // The elements of an array, each checked to be an object.
     std::vector<Fields> objects(const char* key) const {
         const json& a = at(key);
-        if (!a.is_array()) fail(name(key), "must be an array");
+        r_.requireArray(a, name(key));
         std::vector<Fields> out;
         for (size_t i = 0; i < a.size(); ++i)
-            out.emplace_back(a[i], file_, name(key) + "[" + std::to_string(i) + "]");
+            out.emplace_back(a[i], r_, JsonReader::index(name(key), i));
         return out;
     }
-    std::string str(const char* key) const {
-        const json& v = at(key);
-        if (!v.is_string()) fail(name(key), "must be a string");
-        return v.get<std::string>();
-    }
+    std::string str(const char* key) const { return r_.string(at(key), name(key)); }
     std::vector<std::string> strings(const char* key) const {
-        const json& v = at(key);
-        if (!v.is_array()) fail(name(key), "must be an array of strings");
-        std::vector<std::string> out;
-        for (const json& e : v) {
-            if (!e.is_string()) fail(name(key), "must be an array of strings");
-            out.push_back(e.get<std::string>());
-        }
-        return out;
+        return r_.strings(at(key), name(key));
     }
-    bool boolean(const char* key) const {
-        const json& v = at(key);
-        if (!v.is_boolean()) fail(name(key), "must be true or false");
-        return v.get<bool>();
+    std::string oneOf(const char* key, const std::string& what,
+                      const std::vector<std::string>& names) const {
+        return r_.oneOf(at(key), name(key), what, names);
     }
-    uint64_t u64(const char* key) const {
-        const json& v = at(key);
-        if (v.is_number_unsigned()) return v.get<uint64_t>();
-        if (v.is_number_integer() && v.get<int64_t>() >= 0) return uint64_t(v.get<int64_t>());
-        fail(name(key), "must be a non-negative integer");
-    }
+    bool boolean(const char* key) const { return r_.boolean(at(key), name(key)); }
+    uint64_t u64(const char* key) const { return r_.count(at(key), name(key)); }
     uint32_t u32(const char* key) const {
         const uint64_t v = u64(key);
-        if (v > std::numeric_limits<uint32_t>::max()) fail(name(key), "out of range");
+        if (v > std::numeric_limits<uint32_t>::max())
+            fail(name(key), "must be in [0, " +
+                                std::to_string(std::numeric_limits<uint32_t>::max()) + "], got " +
+                                std::to_string(v));
         return uint32_t(v);
     }
     int i32(const char* key) const {
-        const json& v = at(key);
-        if (!v.is_number_integer()) fail(name(key), "must be an integer");
-        if (v.is_number_unsigned() ? v.get<uint64_t>() > uint64_t(std::numeric_limits<int>::max())
-                                   : (v.get<int64_t>() < std::numeric_limits<int>::min() ||
-                                      v.get<int64_t>() > std::numeric_limits<int>::max()))
-            fail(name(key), "out of range");
-        return int(v.get<int64_t>());
+        return r_.integer(at(key), name(key), std::numeric_limits<int>::min(),
+                          std::numeric_limits<int>::max());
     }
     // A number; null (how nlohmann writes a non-finite number) reads as NaN.
-    double number(const char* key) const {
-        const json& v = at(key);
-        if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
-        if (!v.is_number()) fail(name(key), "must be a number");
-        return v.get<double>();
-    }
+    double number(const char* key) const { return r_.nullableNumber(at(key), name(key)); }
     std::optional<double> optionalNumber(const char* key) const {
         if (at(key).is_null()) return std::nullopt;
         return number(key);
     }
-    glm::dvec3 vec3(const char* key) const {
-        const json& v = at(key);
-        if (!v.is_array() || v.size() != 3) fail(name(key), "must be an array of 3 numbers");
-        glm::dvec3 out;
-        for (int k = 0; k < 3; ++k) {
-            if (!v[k].is_number()) fail(name(key), "must be an array of 3 numbers");
-            out[k] = v[k].get<double>();
-        }
-        return out;
-    }
+    glm::dvec3 vec3(const char* key) const { return r_.vec3(at(key), name(key)); }
     [[noreturn]] void fail(const std::string& field, const std::string& message) const {
-        throwInputError(file_, field, message);
+        r_.fail(field, message);
     }
-    std::string name(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
+    std::string name(const char* key) const { return JsonReader::join(path_, key); }
 
   private:
-    const json& at(const char* key) const {
-        const auto it = j_.find(key);
-        if (it == j_.end()) fail(name(key), "missing");
-        return *it;
-    }
+    const json& at(const char* key) const { return r_.at(j_, path_, key); }
     const json& j_;
-    const std::string& file_;
+    const JsonReader& r_;
     std::string path_;
 };
 
@@ -176,14 +132,9 @@ ExactPenumbraStats readExactPenumbra(const Fields& f) {
     e.method = parsePenumbraMethod(f.str("method"), "oracle.json", f.name("method"));
     if (e.method == PenumbraMethod::Sampled || e.method == PenumbraMethod::Auto)
         f.fail(f.name("method"), "must be exact or both");
-    const std::string pixels = f.str("pixels");
-    if (pixels != "all" && pixels != "penumbra")
-        f.fail(f.name("pixels"), "must be all or penumbra");
-    e.allPixels = pixels == "all";
+    e.allPixels = f.oneOf("pixels", "pixel set", {"all", "penumbra"}) == "all";
     if (!f.isNull("not_applied")) e.notApplied = f.str("not_applied");
-    e.errorKind = f.str("error_kind");
-    if (e.errorKind != "exact" && e.errorKind != "bound")
-        f.fail(f.name("error_kind"), "must be exact or bound");
+    e.errorKind = f.oneOf("error_kind", "error kind", {"exact", "bound"});
     if (e.errorKind == "bound") {
         const Fields b = f.object("bound");
         e.bound.targetHalfWidth = b.number("target_half_width");
@@ -290,9 +241,7 @@ VerifyDisagreement readDisagreement(const Fields& f) {
 LightVerification readLightVerification(const Fields& f) {
     LightVerification l;
     l.light = f.str("name");
-    const std::string test = f.str("test");
-    if (test != kAreaTest && test != kHardTest)
-        f.fail(f.name("test"), "unknown test \"" + printable(test, 60) + "\"");
+    const std::string test = f.oneOf("test", "test", {kAreaTest, kHardTest});
     l.sampled = test == kAreaTest;
     l.checked = f.u64("pixels_checked");
     l.random = f.u64("random");
@@ -325,7 +274,8 @@ OracleVerifyStats readVerify(const Fields& f) {
 }  // namespace
 
 OracleStats oracleStatsFromJson(const json& j, const std::string& file) {
-    const Fields f(j, file, "");
+    const JsonReader reader(file);
+    const Fields f(j, reader, "");
     OracleStats s;
     const Fields image = f.object("image");
     s.width = image.i32("width");

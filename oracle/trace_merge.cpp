@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include "core/error.h"
 #include "core/image_codec.h"
 #include "core/json_file.h"
+#include "core/json_reader.h"
 #include "core/png_encode.h"
 #include "core/preview.h"
 #include "oracle/oracle.h"
@@ -45,10 +47,11 @@ std::string fieldName(const char* pointer) {
 }
 
 int intAt(const json& j, const std::string& path, const char* pointer) {
+    const JsonReader r(path);
     const json::json_pointer p(pointer);
-    if (!j.contains(p) || !j.at(p).is_number_integer())
-        throwInputError(path, fieldName(pointer), j.contains(p) ? "must be an integer" : "missing");
-    return j.at(p).get<int>();
+    if (!j.contains(p)) r.fail(fieldName(pointer), "missing");
+    return r.integer(j.at(p), fieldName(pointer), std::numeric_limits<int>::min(),
+                     std::numeric_limits<int>::max());
 }
 
 Tile readTile(const std::string& dir) {
@@ -58,12 +61,13 @@ Tile readTile(const std::string& dir) {
     t.j = readJsonFile(t.jsonPath, "not an output folder of trace --tile?");
     if (!t.j.is_object() || !t.j.contains("tile"))
         throwInputError(t.jsonPath, "tile", "missing: not written by trace --tile");
+    const JsonReader r(t.jsonPath);
     t.spec = {intAt(t.j, t.jsonPath, "/tile/index"), intAt(t.j, t.jsonPath, "/tile/count")};
-    const json& rows = t.j["tile"].value("rows", json());
-    if (!rows.is_array() || rows.size() != 2 || !rows[0].is_number_integer() ||
-        !rows[1].is_number_integer())
-        throwInputError(t.jsonPath, "tile.rows", "must be [first row, end row]");
-    t.rows = {rows[0].get<int>(), rows[1].get<int>()};
+    const json& rows = r.at(t.j["tile"], "tile", "rows");
+    if (!rows.is_array() || rows.size() != 2)
+        r.fail("tile.rows", "expected [first row, end row], got " + JsonReader::typeName(rows));
+    t.rows = {r.integer(rows[0], "tile.rows[0]", 0, std::numeric_limits<int>::max()),
+              r.integer(rows[1], "tile.rows[1]", 0, std::numeric_limits<int>::max())};
     t.exr = readExrFile((t.dir / "oracle.exr").string());
     return t;
 }

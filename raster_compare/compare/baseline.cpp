@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "raster_compare/compare/gate.h"
 #include "raster_compare/compare/metrics.h"
 
@@ -111,15 +112,10 @@ const BaselineMetric* findCompared(const std::string& name) {
 
 Tolerance readTolerance(const json& j, const std::string& lf, const std::string& field,
                         Tolerance t) {
-    if (!j.is_object()) throwInputError(lf, field, "expected an object {\"abs\": x, \"rel\": y}");
-    for (auto it = j.begin(); it != j.end(); ++it) {
-        const std::string f = field + "." + printable(it.key(), 40);
-        if (it.key() != "abs" && it.key() != "rel")
-            throwInputError(lf, f, "unknown key (valid: abs, rel)");
-        if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < 0.0)
-            throwInputError(lf, f, "expected a finite number >= 0");
-        (it.key() == "abs" ? t.abs : t.rel) = it->get<double>();
-    }
+    const JsonReader r(lf);
+    r.checkKeys(j, field, {"abs", "rel"});
+    for (auto it = j.begin(); it != j.end(); ++it)
+        (it.key() == "abs" ? t.abs : t.rel) = r.numberAtLeast(*it, field + "." + it.key(), 0.0);
     return t;
 }
 
@@ -134,19 +130,15 @@ BaselineSettings readBaselineSettings(const json* limits, const std::string& lf)
             throwInputError(lf, "baseline", "needs limits_format 2");
         b = &(*limits)["baseline"];
     }
-    if (!b->is_object()) throwInputError(lf, "baseline", "expected an object");
-    for (auto it = b->begin(); it != b->end(); ++it)
-        if (it.key() != "default" && it.key() != "metrics" && it.key() != "ignore")
-            throwInputError(lf, "baseline." + printable(it.key(), 40),
-                            "unknown key (valid: default, metrics, ignore)");
+    const JsonReader r(lf);
+    r.checkKeys(*b, "baseline", {"default", "metrics", "ignore"});
     std::optional<Tolerance> fileDefault;
     if (b->contains("default"))
         fileDefault = readTolerance((*b)["default"], lf, "baseline.default", {0.001, 0.05});
     std::map<const BaselineMetric*, Tolerance> named;
     if (b->contains("metrics")) {
         const json& ms = (*b)["metrics"];
-        if (!ms.is_object())
-            throwInputError(lf, "baseline.metrics", "expected an object of metric: tolerance");
+        r.requireObject(ms, "baseline.metrics");
         for (auto it = ms.begin(); it != ms.end(); ++it) {
             const std::string f = "baseline.metrics." + printable(it.key(), 60);
             const BaselineMetric* m = findCompared(it.key());
@@ -161,11 +153,10 @@ BaselineSettings readBaselineSettings(const json* limits, const std::string& lf)
     std::set<const BaselineMetric*> ignored;
     if (b->contains("ignore")) {
         const json& ig = (*b)["ignore"];
-        if (!ig.is_array()) throwInputError(lf, "baseline.ignore", "expected an array of metrics");
+        r.requireArray(ig, "baseline.ignore");
         for (size_t i = 0; i < ig.size(); ++i) {
-            const std::string f = "baseline.ignore[" + std::to_string(i) + "]";
-            if (!ig[i].is_string()) throwInputError(lf, f, "expected a metric name");
-            const BaselineMetric* m = findCompared(ig[i].get<std::string>());
+            const std::string f = JsonReader::index("baseline.ignore", i);
+            const BaselineMetric* m = findCompared(r.string(ig[i], f));
             if (!m)
                 throwInputError(lf, f,
                                 "not a metric the baseline compares (docs/gate.md#baseline)");
@@ -196,13 +187,11 @@ struct OracleUncertainty {
     double meanHalfWidth = 0.0, worstHalfWidth = 0.0;
 };
 
-double optionalNumber(const json& o, const char* key, const std::string& path,
+double optionalNumber(const json& o, const char* key, const JsonReader& r,
                       const std::string& field) {
-    const auto it = o.find(key);
-    if (it == o.end() || it->is_null()) return 0.0;
-    if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < 0.0)
-        throwInputError(path, field + "." + key, "expected a number >= 0");
-    return it->get<double>();
+    const json* v = JsonReader::find(o, key);
+    if (!v || v->is_null()) return 0.0;
+    return r.numberAtLeast(*v, field + "." + key, 0.0);
 }
 
 std::map<std::string, OracleUncertainty> oracleUncertainty(const json& metrics,
@@ -214,29 +203,27 @@ std::map<std::string, OracleUncertainty> oracleUncertainty(const json& metrics,
     if (stats == oracle->end() || !stats->is_object()) return out;
     const auto lights = stats->find("lights");
     if (lights == stats->end()) return out;
-    if (!lights->is_array()) throwInputError(path, "oracle.stats.lights", "expected an array");
+    const JsonReader r(path);
+    r.requireArray(*lights, "oracle.stats.lights");
     for (size_t i = 0; i < lights->size(); ++i) {
-        const std::string f = "oracle.stats.lights[" + std::to_string(i) + "]";
+        const std::string f = JsonReader::index("oracle.stats.lights", i);
         const json& l = (*lights)[i];
-        if (!l.is_object()) throwInputError(path, f, "expected an object");
-        const auto name = l.find("name");
-        if (name == l.end() || !name->is_string())
-            throwInputError(path, f + ".name", "missing or not a string");
+        const std::string name = r.string(r.at(l, f, "name"), f + ".name");
         OracleUncertainty u;
-        u.worstHalfWidth = optionalNumber(l, "worst_half_width", path, f);
-        const auto curve = l.find("cost_curve");
-        if (curve != l.end() && !curve->is_null()) {
-            if (!curve->is_array()) throwInputError(path, f + ".cost_curve", "expected an array");
+        u.worstHalfWidth = optionalNumber(l, "worst_half_width", r, f);
+        const json* curve = JsonReader::find(l, "cost_curve");
+        if (curve && !curve->is_null()) {
+            r.requireArray(*curve, f + ".cost_curve");
             if (!curve->empty()) {
-                const std::string pf = f + ".cost_curve[" + std::to_string(curve->size() - 1) + "]";
+                const std::string pf = JsonReader::index(f + ".cost_curve", curve->size() - 1);
                 const json& last = curve->back();
-                if (!last.is_object()) throwInputError(path, pf, "expected an object");
-                u.meanHalfWidth = optionalNumber(last, "penumbra_mean_half_width", path, pf);
+                r.requireObject(last, pf);
+                u.meanHalfWidth = optionalNumber(last, "penumbra_mean_half_width", r, pf);
                 if (u.meanHalfWidth == 0.0)  // no penumbra pixels: the mean over all sampled ones
-                    u.meanHalfWidth = optionalNumber(last, "mean_half_width", path, pf);
+                    u.meanHalfWidth = optionalNumber(last, "mean_half_width", r, pf);
             }
         }
-        out[name->get<std::string>()] = u;
+        out[name] = u;
     }
     return out;
 }

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "raster_compare/compare/baseline.h"
 #include "raster_compare/compare/metric_table.h"
 #include "raster_compare/compare/metrics.h"
@@ -59,35 +60,32 @@ bool nestedDeeperThan(const json& j, int depth) {
 }  // namespace
 
 void checkMetricsShape(const json& metrics, const std::string& mp) {
-    const auto version = metrics.is_object() ? metrics.find("schema_version") : metrics.end();
-    if (version == metrics.end() || !version->is_number_integer() || version->get<int64_t>() < 1 ||
+    const JsonReader r(mp);
+    const json* version = JsonReader::find(metrics, "schema_version");
+    if (!version || !version->is_number_integer() || version->get<int64_t>() < 1 ||
         version->get<int64_t>() > kMaxMetricsSchema || !metrics.contains("results"))
         throwInputError(
             mp, "schema_version",
             "not a metrics.json of schema_version 1 to " + std::to_string(kMaxMetricsSchema));
-    const auto scene = metrics.find("scene");
-    if (scene != metrics.end()) {
-        if (!scene->is_object()) throwInputError(mp, "scene", "expected an object");
-        if (scene->contains("file") && !(*scene)["file"].is_string())
-            throwInputError(mp, "scene.file", "expected a string");
+    if (const json* scene = JsonReader::find(metrics, "scene")) {
+        r.requireObject(*scene, "scene");
+        if (const json* file = JsonReader::find(*scene, "file")) r.string(*file, "scene.file");
     }
     const json& results = metrics["results"];
-    if (!results.is_array()) throwInputError(mp, "results", "expected an array");
+    r.requireArray(results, "results");
     for (size_t i = 0; i < results.size(); ++i) {
-        const std::string f = "results[" + std::to_string(i) + "]";
-        const json& r = results[i];
-        if (!r.is_object()) throwInputError(mp, f, "expected an object");
+        const std::string f = JsonReader::index("results", i);
+        r.requireObject(results[i], f);
         for (const char* key : {"technique", "label"})
-            if (r.contains(key) && !r[key].is_string())
-                throwInputError(mp, f + "." + key, "expected a string");
-        if (!r.contains("lights") || !r["lights"].is_object())
-            throwInputError(mp, f + ".lights", "missing or not an object");
-        for (const auto& [light, m] : r["lights"].items()) {
+            if (const json* v = JsonReader::find(results[i], key)) r.string(*v, f + "." + key);
+        const json& lights = r.at(results[i], f, "lights");
+        r.requireObject(lights, f + ".lights");
+        for (const auto& [light, m] : lights.items()) {
             const std::string lf = f + ".lights." + printable(light, 40);
-            if (!m.is_object()) throwInputError(mp, lf, "expected an object of metrics");
+            r.requireObject(m, lf);
             // Metrics nest two levels (docs/metrics.md); the bound keeps flatMetrics' recursion
             // shallow.
-            if (nestedDeeperThan(m, 8)) throwInputError(mp, lf, "nested too deeply");
+            if (nestedDeeperThan(m, 8)) r.fail(lf, "nested too deeply");
         }
     }
 }
@@ -109,56 +107,46 @@ void checkMetricName(const std::string& name, const std::string& lf, const std::
 
 std::map<std::string, double> readMax(const json& j, const std::string& lf,
                                       const std::string& field) {
+    const JsonReader r(lf);
     std::map<std::string, double> out;
-    if (!j.is_object()) throwInputError(lf, field, "expected an object of metric: maximum");
+    r.requireObject(j, field);
     for (auto it = j.begin(); it != j.end(); ++it) {
-        checkMetricName(it.key(), lf, field + "." + printable(it.key(), 60));
-        if (!it->is_number()) throwInputError(lf, field + "." + it.key(), "expected a number");
-        out[it.key()] = it->get<double>();
+        const std::string f = field + "." + printable(it.key(), 60);
+        checkMetricName(it.key(), lf, f);
+        out[it.key()] = r.number(*it, f);
     }
     return out;
 }
 
 Rule readRule(const json& r, const std::string& lf, size_t i) {
-    const std::string f = "rules[" + std::to_string(i) + "]";
-    if (!r.is_object()) throwInputError(lf, f, "expected an object");
-    for (auto it = r.begin(); it != r.end(); ++it) {
-        if (it.key() == "max") continue;
-        if (it.key() != "scene" && it.key() != "light" && it.key() != "technique")
-            throwInputError(lf, f + "." + printable(it.key(), 40),
-                            "unknown key (valid: scene, light, technique, max)");
-        if (!it->is_string()) throwInputError(lf, f + "." + it.key(), "expected a pattern string");
-    }
+    const JsonReader reader(lf);
+    const std::string f = JsonReader::index("rules", i);
+    reader.checkKeys(r, f, {"scene", "light", "technique", "max"});
     Rule rule;
-    rule.scene = r.value("scene", "*");
-    rule.light = r.value("light", "*");
-    rule.technique = r.value("technique", "*");
-    if (!r.contains("max")) throwInputError(lf, f + ".max", "missing");
-    rule.max = readMax(r["max"], lf, f + ".max");
+    for (auto [key, pattern] : {std::pair{"scene", &rule.scene}, std::pair{"light", &rule.light},
+                                std::pair{"technique", &rule.technique}})
+        if (const json* v = JsonReader::find(r, key)) *pattern = reader.string(*v, f + "." + key);
+    rule.max = readMax(reader.at(r, f, "max"), lf, f + ".max");
     return rule;
 }
 
 std::vector<Rule> readRules(const json& limits, const std::string& lf) {
-    if (!limits.is_object()) throwInputError(lf, "", "expected an object");
-    for (auto it = limits.begin(); it != limits.end(); ++it)
-        if (it.key() != "limits_format" && it.key() != "default" && it.key() != "rules" &&
-            it.key() != "baseline")
-            throwInputError(lf, printable(it.key(), 40),
-                            "unknown key (valid: limits_format, default, rules, baseline)");
+    const JsonReader r(lf);
+    r.checkKeys(limits, "", {"limits_format", "default", "rules", "baseline"});
     // Format 2 added `baseline` (docs/gate.md#baseline); format 1 files are read as they were.
-    const auto format = limits.find("limits_format");
-    if (format == limits.end() || !format->is_number() ||
-        (format->get<double>() != 1.0 && format->get<double>() != 2.0))
-        throwInputError(lf, "limits_format", "missing or not 1 or 2");
+    const double format = r.number(r.at(limits, "", "limits_format"), "limits_format");
+    if (format != 1.0 && format != 2.0)
+        r.fail("limits_format", "unsupported version " + JsonReader::numberText(format) +
+                                    " (this tool reads 1 and 2)");
     if (limits.contains("baseline")) {
-        if (format->get<double>() != 2.0) throwInputError(lf, "baseline", "needs limits_format 2");
+        if (format != 2.0) r.fail("baseline", "needs limits_format 2");
         readBaselineSettings(&limits, lf);  // checked here too: a typo fails without --baseline
     }
     std::vector<Rule> rules;
     if (limits.contains("default"))
         rules.push_back({"*", "*", "*", readMax(limits["default"], lf, "default")});
     if (limits.contains("rules")) {
-        if (!limits["rules"].is_array()) throwInputError(lf, "rules", "expected an array");
+        r.requireArray(limits["rules"], "rules");
         for (size_t i = 0; i < limits["rules"].size(); ++i)
             rules.push_back(readRule(limits["rules"][i], lf, i));
     }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "raster_compare/compare/colour_scale.h"
 #include "raster_compare/compare/html.h"
 #include "raster_compare/compare/metric_table.h"
@@ -26,66 +27,63 @@ namespace {
 // The index shows what compare measured; a metric that is null or absent simply has no cell, but
 // a value of another type is a broken file, and a silently empty cell would hide it.
 std::optional<double> optionalNumber(const json& object, const std::string& key,
-                                     const std::string& path, const std::string& field) {
-    const auto it = object.find(key);
-    if (it == object.end() || it->is_null()) return std::nullopt;
-    if (!it->is_number()) throwInputError(path, field + "." + key, "expected a number or null");
-    return it->get<double>();
+                                     const JsonReader& r, const std::string& field) {
+    const json* v = JsonReader::find(object, key);
+    if (!v) return std::nullopt;
+    const double x = r.nullableNumber(*v, field + "." + key);
+    return std::isnan(x) ? std::nullopt : std::optional(x);
 }
 
 // An object that may be null or absent (boundary_displacement_px, cost): an empty one then, so
 // its members read as null.
-const json& optionalObject(const json& object, const std::string& key, const std::string& path,
+const json& optionalObject(const json& object, const std::string& key, const JsonReader& r,
                            const std::string& field) {
     static const json empty = json::object();
-    const auto it = object.find(key);
-    if (it == object.end() || it->is_null()) return empty;
-    if (!it->is_object()) throwInputError(path, field + "." + key, "expected an object or null");
-    return *it;
+    const json* v = JsonReader::find(object, key);
+    if (!v || v->is_null()) return empty;
+    r.requireObject(*v, field + "." + key);
+    return *v;
 }
 
-std::string optionalString(const json& object, const std::string& key, const std::string& path,
+std::string optionalString(const json& object, const std::string& key, const JsonReader& r,
                            const std::string& field) {
-    const auto it = object.find(key);
-    if (it == object.end() || it->is_null()) return "";
-    if (!it->is_string()) throwInputError(path, field + "." + key, "expected a string");
-    return it->get<std::string>();
+    const json* v = JsonReader::find(object, key);
+    if (!v || v->is_null()) return "";
+    return r.string(*v, field + "." + key);
 }
 
-IndexLightMetrics parseLight(const json& m, const std::string& light, const std::string& path,
+IndexLightMetrics parseLight(const json& m, const std::string& light, const JsonReader& r,
                              const std::string& field) {
-    if (!m.is_object()) throwInputError(path, field, "expected an object of metrics");
+    r.requireObject(m, field);
     IndexLightMetrics out;
     out.light = light;
-    out.mae = optionalNumber(m, "mae", path, field);
-    out.acneRate = optionalNumber(m, "acne_rate", path, field);
-    out.peterPanningRate = optionalNumber(m, "peter_panning_rate", path, field);
+    out.mae = optionalNumber(m, "mae", r, field);
+    out.acneRate = optionalNumber(m, "acne_rate", r, field);
+    out.peterPanningRate = optionalNumber(m, "peter_panning_rate", r, field);
     const std::string bdField = field + ".boundary_displacement_px";
-    out.boundaryDisplacementP95Px = optionalNumber(
-        optionalObject(m, "boundary_displacement_px", path, field), "p95", path, bdField);
-    out.lightBleedingRate = optionalNumber(m, "light_bleeding_rate", path, field);
-    out.penumbraMae = optionalNumber(m, "penumbra_mae", path, field);
+    out.boundaryDisplacementP95Px =
+        optionalNumber(optionalObject(m, "boundary_displacement_px", r, field), "p95", r, bdField);
+    out.lightBleedingRate = optionalNumber(m, "light_bleeding_rate", r, field);
+    out.penumbraMae = optionalNumber(m, "penumbra_mae", r, field);
     out.frameMs =
-        optionalNumber(optionalObject(m, "cost", path, field), "frame_ms", path, field + ".cost");
+        optionalNumber(optionalObject(m, "cost", r, field), "frame_ms", r, field + ".cost");
     return out;
 }
 
-IndexResult parseResult(const json& r, const std::string& path, size_t i) {
-    const std::string field = "results[" + std::to_string(i) + "]";
-    if (!r.is_object()) throwInputError(path, field, "expected an object");
+IndexResult parseResult(const json& j, const JsonReader& r, size_t i) {
+    const std::string field = JsonReader::index("results", i);
+    r.requireObject(j, field);
     IndexResult out;
-    out.technique = optionalString(r, "technique", path, field);
-    out.family = optionalString(r, "family", path, field);
+    out.technique = optionalString(j, "technique", r, field);
+    out.family = optionalString(j, "family", r, field);
     // The label is the row of every matrix; schema_version 1 files may name only the technique.
-    out.label = optionalString(r, "label", path, field);
+    out.label = optionalString(j, "label", r, field);
     if (out.label.empty()) out.label = out.technique;
-    if (out.label.empty()) throwInputError(path, field + ".label", "missing");
-    const auto lights = r.find("lights");
-    if (lights == r.end()) throwInputError(path, field + ".lights", "missing");
-    if (!lights->is_object())
-        throwInputError(path, field + ".lights", "expected an object of light: metrics");
-    for (const auto& [light, m] : lights->items())
-        out.lights.push_back(parseLight(m, light, path, field + ".lights." + printable(light, 60)));
+    if (out.label.empty()) r.fail(field + ".label", "missing");
+    const json& lights = r.at(j, field, "lights");
+    r.requireObject(lights, field + ".lights");
+    for (const auto& [light, m] : lights.items())
+        out.lights.push_back(parseLight(m, light, r, field + ".lights." + printable(light, 60)));
     return out;
 }
 
@@ -297,29 +295,27 @@ void writeIntro(std::ostream& o, const std::vector<IndexEntry>& entries) {
 }  // namespace
 
 SceneMetrics parseSceneMetrics(const json& metrics, const std::string& path) {
-    if (!metrics.is_object()) throwInputError(path, "", "expected a JSON object (metrics.json)");
-    const auto version = metrics.find("schema_version");
+    const JsonReader r(path);
+    r.requireObject(metrics, "");
+    const json* version = JsonReader::find(metrics, "schema_version");
     // 1 to 5 keep the names read here (docs/metrics.md, Versions); a later one may not.
-    if (version == metrics.end() || !version->is_number_integer() || *version < 1 ||
+    if (!version || !version->is_number_integer() || *version < 1 ||
         *version > kMetricsSchemaVersion)
-        throwInputError(
-            path, "schema_version",
-            "not a metrics.json of schema_version 1 to " + std::to_string(kMetricsSchemaVersion));
+        r.fail("schema_version", "not a metrics.json of schema_version 1 to " +
+                                     std::to_string(kMetricsSchemaVersion));
     SceneMetrics out;
     out.path = path;
     out.schemaVersion = version->get<int>();
-    const auto scene = metrics.find("scene");
-    if (scene == metrics.end() || !scene->is_object())
-        throwInputError(path, "scene", "missing or not an object");
-    out.sceneFile = optionalString(*scene, "file", path, "scene");
-    if (out.sceneFile.empty()) throwInputError(path, "scene.file", "missing");
-    if (metrics.contains("gl") && metrics["gl"].is_object())
-        out.timedOn = optionalString(metrics["gl"], "renderer", path, "gl");
-    const auto results = metrics.find("results");
-    if (results == metrics.end()) throwInputError(path, "results", "missing");
-    if (!results->is_array()) throwInputError(path, "results", "expected an array");
-    for (size_t i = 0; i < results->size(); ++i) {
-        out.results.push_back(parseResult((*results)[i], path, i));
+    const json& scene = r.at(metrics, "", "scene");
+    r.requireObject(scene, "scene");
+    out.sceneFile = optionalString(scene, "file", r, "scene");
+    if (out.sceneFile.empty()) r.fail("scene.file", "missing");
+    if (const json* gl = JsonReader::find(metrics, "gl"); gl && gl->is_object())
+        out.timedOn = optionalString(*gl, "renderer", r, "gl");
+    const json& results = r.at(metrics, "", "results");
+    r.requireArray(results, "results");
+    for (size_t i = 0; i < results.size(); ++i) {
+        out.results.push_back(parseResult(results[i], r, i));
         for (const IndexLightMetrics& m : out.results.back().lights)
             if (std::find(out.lights.begin(), out.lights.end(), m.light) == out.lights.end())
                 out.lights.push_back(m.light);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "core/tool_info.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/compare/sweep_report.h"
@@ -142,19 +143,25 @@ void addLight(Tables& t, const SweepPlan& plan, const std::vector<std::string>& 
     t.report.rows.push_back(std::move(row));
 }
 
+// A row's shape is checked by the one reader of JSON (core/json_reader.h), naming the row's file
+// and field; what lies deeper (a metric's value) is caught by mergeSweep as a malformed row.
 void addRow(Tables& t, const SweepPlan& plan, const std::vector<std::string>& swept, size_t index,
-            const nlohmann::json& row) {
+            const nlohmann::json& row, const JsonReader& in) {
     const SweepTask& task = plan.tasks[index];
-    const nlohmann::json& result = row.at("result");
-    for (const auto& [light, metrics] : result.at("lights").items())
-        addLight(t, plan, swept, task, result.at("parameters"), light, metrics);
+    const nlohmann::json& result = in.at(row, "", "result");
+    const nlohmann::json& lights = in.at(result, "result", "lights");
+    in.requireObject(lights, "result.lights");
+    const nlohmann::json& parameters = in.at(result, "result", "parameters");
+    in.requireObject(parameters, "result.parameters");
+    for (const auto& [light, metrics] : lights.items())
+        addLight(t, plan, swept, task, parameters, light, metrics);
     nlohmann::json r = result;
     r["task"] = {{"index", index}, {"id", task.id}, {"scene", plan.scenes[task.scene].name}};
-    r["swept"] = row.at("task").at("swept");
-    r["oracle_key"] = row.at("oracle").at("key");
-    r["gl"] = row.at("gl");
+    r["swept"] = in.at(in.at(row, "", "task"), "task", "swept");
+    r["oracle_key"] = in.at(in.at(row, "", "oracle"), "oracle", "key");
+    const nlohmann::json& gl = in.at(row, "", "gl");
+    r["gl"] = gl;
     // Who measured the times: the GL renderer, or for an image the renderer its cost file names.
-    const nlohmann::json& gl = row.at("gl");
     const std::string renderer =
         gl.is_object() ? gl.value("renderer", "") : result.value("renderer", std::string());
     if (!renderer.empty()) t.renderers.insert(renderer);
@@ -184,7 +191,9 @@ SweepMerge mergeSweep(const fs::path& dir, bool imagesChecked) {
     for (const std::string& name : swept) t.csv << ",param." << csvField(name);
     t.csv << "\n";
     try {
-        for (const auto& [index, row] : rows.done) addRow(t, plan, swept, index, row);
+        for (const auto& [index, row] : rows.done)
+            addRow(t, plan, swept, index, row,
+                   JsonReader(sweepRowPath(dir, plan.tasks[index]).string()));
     } catch (const nlohmann::json::exception& e) {
         throwInputError((dir / "rows").string(), "",
                         std::string("a row is malformed: ") + e.what());

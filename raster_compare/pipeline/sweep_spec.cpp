@@ -16,6 +16,7 @@
 #include "core/compare_option_table.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/json_reader.h"
 #include "core/raster_option_table.h"
 #include "core/read_file.h"
 #include "core/trace_option_table.h"
@@ -31,31 +32,34 @@ namespace {
 constexpr uintmax_t kMaxSpecBytes = 4u << 20;
 constexpr size_t kMaxValuesPerParam = 100000;
 
+// The spec is an ordered_json (its settings keep the file's order); its values are checked by
+// the one reader of user JSON (core/json_reader.h), so its errors read like every other file's.
+nlohmann::json plain(const Json& v) {
+    return nlohmann::json(v);
+}
+
 void checkKeys(const Json& obj, const std::set<std::string>& allowed, const std::string& file,
                const std::string& field) {
-    if (!obj.is_object()) throwInputError(file, field, "must be an object");
-    for (const auto& [key, value] : obj.items())
-        if (!allowed.count(key)) {
-            std::string valid;
-            for (const std::string& a : allowed) valid += (valid.empty() ? "" : ", ") + a;
-            throwInputError(file, (field.empty() ? "" : field + ".") + printable(key, 40),
-                            "unknown key (valid: " + valid + ")");
-        }
+    const JsonReader r(file);
+    if (!obj.is_object()) r.requireObject(plain(obj), field);
+    const std::vector<std::string> valid(allowed.begin(), allowed.end());
+    for (const auto& [key, value] : obj.items()) r.checkKey(key, field, valid);
 }
 
 double number(const Json& v, const std::string& file, const std::string& field) {
-    if (!v.is_number() || !std::isfinite(v.get<double>()))
-        throwInputError(file, field, "must be a finite number");
-    return v.get<double>();
+    return JsonReader(file).number(plain(v), field);
 }
 
 int integer(const Json& v, const std::string& file, const std::string& field, int lo, int hi) {
-    const double d = number(v, file, field);
-    if (d != std::floor(d) || d < lo || d > hi)
-        throwInputError(
-            file, field,
-            "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return int(d);
+    return JsonReader(file).integer(plain(v), field, lo, hi);
+}
+
+bool boolean(const Json& v, const std::string& file, const std::string& field) {
+    return JsonReader(file).boolean(plain(v), field);
+}
+
+std::string string(const Json& v, const std::string& file, const std::string& field) {
+    return JsonReader(file).string(plain(v), field);
 }
 
 // One option of the spec (core/option_table.h), checked by its table's row.
@@ -63,10 +67,7 @@ OptionValue optionValue(const OptionSpec& spec, const Json& v, const std::string
                         const std::string& field) {
     OptionValue out;
     if (spec.type == OptionType::Name) {
-        std::string list;
-        for (const std::string& n : spec.names) list += (list.empty() ? "" : ", ") + n;
-        if (!v.is_string()) throwInputError(file, field, "must be one of " + list);
-        out.text = v.get<std::string>();
+        out.text = string(v, file, field);
     } else {
         out.number = number(v, file, field);
     }
@@ -113,11 +114,8 @@ SweepSettings parseSettings(const Json& spec, const std::string& file) {
         for (const OptionSpec& row : table->rows)
             if ((row.surfaces & kSurfaceSweep) && spec.contains(row.key))
                 (*values)[row.key] = optionValue(row, spec[row.key], file, row.key);
-    if (spec.contains("keep_outputs")) {
-        if (!spec["keep_outputs"].is_boolean())
-            throwInputError(file, "keep_outputs", "must be true or false");
-        s.keepOutputs = spec["keep_outputs"].get<bool>();
-    }
+    if (spec.contains("keep_outputs"))
+        s.keepOutputs = boolean(spec["keep_outputs"], file, "keep_outputs");
     if (spec.contains("oracle")) parseOracle(spec["oracle"], file, s.oracle);
     return s;
 }
@@ -151,9 +149,8 @@ std::vector<SweepScene> expandScenes(const Json& spec, const fs::path& specDir,
     std::set<fs::path> seen;
     for (size_t i = 0; i < spec["scenes"].size(); ++i) {
         const std::string field = "scenes[" + std::to_string(i) + "]";
-        if (!spec["scenes"][i].is_string()) throwInputError(file, field, "must be a string");
         for (const fs::path& p :
-             matchScenes(spec["scenes"][i].get<std::string>(), specDir, file, field)) {
+             matchScenes(string(spec["scenes"][i], file, field), specDir, file, field)) {
             const fs::path abs = fs::weakly_canonical(p);
             if (!seen.insert(abs).second) continue;  // a scene two globs match runs once
             // Named as written: relative to the spec's folder ("../contact_box.scene.json") when
@@ -185,9 +182,7 @@ std::vector<double> paramValues(const Json& v, const std::string& file, const st
     const double from = number(v["from"], file, field + ".from");
     const double to = number(v["to"], file, field + ".to");
     const int steps = integer(v["steps"], file, field + ".steps", 1, int(kMaxValuesPerParam));
-    const bool log = v.contains("log") && v["log"].is_boolean() && v["log"].get<bool>();
-    if (v.contains("log") && !v["log"].is_boolean())
-        throwInputError(file, field + ".log", "must be true or false");
+    const bool log = v.contains("log") && boolean(v["log"], file, field + ".log");
     if (log && (from <= 0 || to <= 0))
         throwInputError(file, field, "a log range needs from > 0 and to > 0");
     if (steps == 1) return {from};
@@ -249,7 +244,7 @@ std::vector<SweepTask> expandGrid(const Json& entry, const std::string& name,
     size_t count = 1;
     if (entry.contains("params")) {
         if (!entry["params"].is_object())
-            throwInputError(file, field + ".params", "must be an object");
+            JsonReader(file).requireObject(plain(entry["params"]), field + ".params");
         // Bounded as each parameter is read, so that no spec makes many large ranges first.
         for (const auto& [key, v] : entry["params"].items()) {
             const std::string at = field + ".params." + printable(key, 40);
@@ -366,8 +361,7 @@ std::vector<size_t> imageScenes(const Json& entry, const std::vector<SweepScene>
                         "must be a non-empty list of scene names or globs");
     for (size_t k = 0; k < list.size(); ++k) {
         const std::string f = field + ".scenes[" + std::to_string(k) + "]";
-        if (!list[k].is_string()) throwInputError(file, f, "must be a string");
-        const std::string pattern = list[k].get<std::string>();
+        const std::string pattern = string(list[k], file, f);
         bool matched = false;
         for (size_t si = 0; si < scenes.size(); ++si)
             if (::fnmatch(pattern.c_str(), scenes[si].name.c_str(), 0) == 0) {
@@ -412,10 +406,8 @@ void expandImages(const Json& entry, size_t ii, const SweepPlan& plan, const std
         throwInputError(file, field + ".path", "must be the image's path (with {scene}, {PARAM})");
     std::string encoding = "linear";
     if (entry.contains("encoding")) {
-        if (!entry["encoding"].is_string() ||
-            (entry["encoding"] != "linear" && entry["encoding"] != "srgb"))
-            throwInputError(file, field + ".encoding", "must be \"linear\" or \"srgb\"");
-        encoding = entry["encoding"].get<std::string>();
+        encoding = JsonReader(file).oneOf(plain(entry["encoding"]), field + ".encoding", "encoding",
+                                          {"linear", "srgb"});
     }
     // A parameter's name goes into the label and the path: no separator of either.
     if (entry.contains("params") && entry["params"].is_object())
@@ -549,7 +541,7 @@ SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
     try {
         plan.spec = Json::parse(text);
     } catch (const Json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
-        throwInputError(file, "", std::string("not valid JSON: ") + e.what());
+        throwInputError(file, "", "invalid JSON: " + printable(e.what(), 160));
     }
     checkKeys(plan.spec, topLevelKeys(), file, "");
     if (!plan.spec.contains("sweep_format"))
@@ -560,8 +552,7 @@ SweepPlan planSweepText(const std::string& text, const fs::path& specPath,
     plan.specHash = hashBytes(text);
     plan.name = plan.specFile.stem().string();
     if (plan.spec.contains("name")) {
-        if (!plan.spec["name"].is_string()) throwInputError(file, "name", "must be a string");
-        plan.name = plan.spec["name"].get<std::string>();
+        plan.name = string(plan.spec["name"], file, "name");
     }
     plan.settings = parseSettings(plan.spec, file);
     plan.scenes = expandScenes(plan.spec, plan.specFile.parent_path(), file);

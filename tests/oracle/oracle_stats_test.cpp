@@ -378,7 +378,7 @@ TEST(OracleCache, CorruptEntryIsTracedAgain) {
     // The warning is the caller's to print (the library writes nothing to stderr).
     ASSERT_EQ(again.warnings.size(), 1u);
     EXPECT_EQ(again.warnings[0].rfind("oracle cache entry ", 0), 0u) << again.warnings[0];
-    EXPECT_NE(again.warnings[0].find("not valid JSON): tracing again"), std::string::npos)
+    EXPECT_NE(again.warnings[0].find("invalid JSON): tracing again"), std::string::npos)
         << again.warnings[0];
     EXPECT_TRUE(traceOrLoad(scene, o, {tmp.path, true}).fromCache);  // stored again
 
