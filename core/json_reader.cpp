@@ -55,15 +55,14 @@ double JsonReader::number(const json& j, const std::string& field) const {
 
 double JsonReader::numberAtLeast(const json& j, const std::string& field, double lo) const {
     const double v = number(j, field);
-    if (v < lo) fail(field, "must be >= " + numberText(lo) + ", got " + numberText(v));
+    if (v < lo) outOfRange(field, ">= " + numberText(lo), v);
     return v;
 }
 
 double JsonReader::numberIn(const json& j, const std::string& field, double lo, double hi) const {
     const double v = number(j, field);
     if (v < lo || v > hi)
-        fail(field,
-             "must be in [" + numberText(lo) + ", " + numberText(hi) + "], got " + numberText(v));
+        outOfRange(field, "in [" + numberText(lo) + ", " + numberText(hi) + "]", v);
     return v;
 }
 
@@ -86,8 +85,7 @@ int JsonReader::integer(const json& j, const std::string& field, int lo, int hi)
     if (!std::isfinite(v) || v != std::floor(v))
         fail(field, "expected an integer, got " + printable(j.dump(), 40));
     if (v < lo || v > hi)
-        fail(field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                        numberText(v));
+        outOfRange(field, "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", v);
     return int(v);
 }
 

@@ -37,6 +37,13 @@ class JsonReader {
         throwInputError(file_, field, msg);
     }
 
+    // The one wording of a number out of its range: "must be " + range + ", got " + value, with
+    // range "in [lo, hi]", "in (0, 180)", ">= 0" or "> 0".
+    [[noreturn]] void outOfRange(const std::string& field, const std::string& range,
+                                 double value) const {
+        fail(field, "must be " + range + ", got " + numberText(value));
+    }
+
     // The member `key` of the object `obj` (at `field`), which must be there: "missing".
     const json& at(const json& obj, const std::string& field, const std::string& key) const;
     // The member, or nullptr where `obj` has none.

@@ -122,7 +122,7 @@ struct Loaded {
 };
 
 void parseLights(const json& jl, const Reader& r, const LoadLimits& limits, Scene& scene) {
-    if (!jl.is_array()) r.fail("lights", "expected an array, got " + Reader::typeName(jl));
+    r.requireArray(jl, "lights");
     if (jl.empty()) r.fail("lights", "a scene needs at least one light");
     if (jl.size() > limits.maxLights)
         r.fail("lights",
@@ -171,7 +171,8 @@ CameraDesc parseCamera(const json& j, const Reader& r, const LoadLimits& limits,
         c.width = r.integer(j["width"], "camera.width", 1, limits.maxImageSide);
     if (j.contains("height"))
         c.height = r.integer(j["height"], "camera.height", 1, limits.maxImageSide);
-    if (!(c.vfovDeg > 0.0 && c.vfovDeg < 180.0)) r.fail("camera.vfov_deg", "must be in (0, 180)");
+    if (!(c.vfovDeg > 0.0 && c.vfovDeg < 180.0))
+        r.outOfRange("camera.vfov_deg", "in (0, 180)", c.vfovDeg);
     glm::dvec3 forward = c.wsTarget - c.wsEye;
     if (!(glm::length(forward) > 0.0)) r.fail("camera.target", "equals camera.eye");
     if (!(glm::length(c.wsUp) > 0.0)) r.fail("camera.up", "zero length");
@@ -215,7 +216,7 @@ CameraKeyframe parsePathPose(const json& j, const Reader& r, const std::string& 
     if (j.contains("vfov_deg")) {
         k.vfovDeg = r.number(j["vfov_deg"], f + ".vfov_deg");
         if (!(*k.vfovDeg > 0.0 && *k.vfovDeg < 180.0))
-            r.fail(f + ".vfov_deg", "must be in (0, 180)");
+            r.outOfRange(f + ".vfov_deg", "in (0, 180)", *k.vfovDeg);
     }
     checkPose(k.wsEye, k.wsTarget, k.wsUp.value_or(base.wsUp), r, f);
     return k;
@@ -235,7 +236,7 @@ CameraPath parseCameraPath(const json& j, const Reader& r, const LoadLimits& lim
     path.file = r.file();
     const std::string list = keyed ? "camera_path.keyframes" : "camera_path.poses";
     const json& jk = keyed ? j["keyframes"] : j["poses"];
-    if (!jk.is_array()) r.fail(list, "expected an array, got " + Reader::typeName(jk));
+    r.requireArray(jk, list);
     if (jk.size() < 2) r.fail(list, "needs at least 2 entries");
     if (jk.size() > limits.maxPathKeyframes)
         r.fail(list, std::to_string(jk.size()) + " entries, limit is " +
@@ -268,9 +269,7 @@ bool parseDynamic(const json& j, const Reader& r, const std::string& field, int 
     const std::string f = field + ".dynamic";
     if (format < 3)
         r.fail(f, "needs scene_format 3 (the file says " + std::to_string(format) + ")");
-    if (!j["dynamic"].is_boolean())
-        r.fail(f, "expected true or false, got " + Reader::typeName(j["dynamic"]));
-    return j["dynamic"].get<bool>();
+    return r.boolean(j["dynamic"], f);
 }
 
 void addGltf(Scene& scene, const GltfContent& g, uint64_t& totalBytes, const LoadLimits& limits,
@@ -432,7 +431,7 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
 
     if (!root.contains("geometry")) r.fail("geometry", "missing");
     const json& jg = root["geometry"];
-    if (!jg.is_array()) r.fail("geometry", "expected an array, got " + Reader::typeName(jg));
+    r.requireArray(jg, "geometry");
     for (size_t i = 0; i < jg.size(); ++i) {
         std::string f = Reader::index("geometry", i);
         const json& j = jg[i];

@@ -18,7 +18,7 @@ class DiskLightKind final : public LightKind {
         light.wsPosition = r.vec3(need(j, r, f, "center"), f + ".center");
         light.wsNormal = r.unitVec3(need(j, r, f, "normal"), f + ".normal");
         light.radius = r.number(need(j, r, f, "radius"), f + ".radius");
-        if (!(light.radius > 0.0)) r.fail(f + ".radius", "must be positive");
+        if (!(light.radius > 0.0)) r.outOfRange(f + ".radius", "> 0", light.radius);
     }
     void write(const Light& l, json& j) const override {
         j["center"] = jsonVec3(l.wsPosition);

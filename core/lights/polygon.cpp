@@ -77,7 +77,7 @@ class PolygonLightKind final : public LightKind {
     void parse(const json& j, const JsonReader& r, const std::string& f,
                Light& light) const override {
         const json& jv = need(j, r, f, "vertices");
-        if (!jv.is_array()) r.fail(f + ".vertices", "expected an array, got " + r.typeName(jv));
+        r.requireArray(jv, f + ".vertices");
         if (jv.size() < kMinVertices || jv.size() > kMaxVertices)
             r.fail(f + ".vertices", std::to_string(jv.size()) + " vertices (a polygon light has " +
                                         std::to_string(kMinVertices) + " to " +

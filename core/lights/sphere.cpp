@@ -15,7 +15,7 @@ class SphereLightKind final : public LightKind {
                Light& light) const override {
         light.wsPosition = r.vec3(need(j, r, f, "center"), f + ".center");
         light.radius = r.number(need(j, r, f, "radius"), f + ".radius");
-        if (!(light.radius > 0.0)) r.fail(f + ".radius", "must be positive");
+        if (!(light.radius > 0.0)) r.outOfRange(f + ".radius", "> 0", light.radius);
     }
     void write(const Light& l, json& j) const override {
         j["center"] = jsonVec3(l.wsPosition);

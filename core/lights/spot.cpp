@@ -23,12 +23,13 @@ class SpotLightKind final : public LightKind {
         light.wsDirection = r.unitVec3(need(j, r, f, "direction"), f + ".direction");
         light.outerConeDeg = r.number(need(j, r, f, "outer_cone_deg"), f + ".outer_cone_deg");
         if (!(light.outerConeDeg > 0.0 && light.outerConeDeg <= 90.0))
-            r.fail(f + ".outer_cone_deg", "must be in (0, 90] degrees (a half-angle)");
+            r.outOfRange(f + ".outer_cone_deg", "in (0, 90] degrees (a half-angle)",
+                         light.outerConeDeg);
         light.innerConeDeg = 0.0;
         if (j.contains("inner_cone_deg")) {
             light.innerConeDeg = r.number(j["inner_cone_deg"], f + ".inner_cone_deg");
             if (!(light.innerConeDeg >= 0.0 && light.innerConeDeg <= light.outerConeDeg))
-                r.fail(f + ".inner_cone_deg", "must be in [0, outer_cone_deg]");
+                r.outOfRange(f + ".inner_cone_deg", "in [0, outer_cone_deg]", light.innerConeDeg);
         }
     }
     void write(const Light& l, json& j) const override {
