@@ -675,24 +675,33 @@ SweepPlan readPlan(const fs::path& dir, bool withTasks) {
     const std::string file = path.string();
     if (!fs::exists(path))
         throwInputError(file, "", "missing: not a sweep folder (made by `shadow-oracle sweep`)");
-    SweepPlan plan;
+    Json j;
     try {
-        const Json j = Json::parse(readFileCapped(path, file, kMaxSpecBytes * 4));
-        if (j.at("sweep_format").get<int>() != kSweepFormat)
-            throwInputError(file, "sweep_format", "unsupported (this tool reads 1)");
-        plan.name = j.at("name").get<std::string>();
-        plan.specFile = j.at("spec_file").get<std::string>();
-        plan.specHash = j.at("spec_hash").get<std::string>();
-        plan.spec = j.at("spec");
-        plan.settings = parseSettings(plan.spec, file);
-        for (const Json& s : j.at("scenes"))
-            plan.scenes.push_back(
-                {s.at("name").get<std::string>(), s.at("path").get<std::string>()});
-        plan.taskCount = j.at("tasks").get<size_t>();
+        j = Json::parse(readFileCapped(path, file, kMaxSpecBytes * 4));
     } catch (const Json::exception& e) {
-        throwInputError(file, "", std::string("not a sweep plan: ") + e.what());
+        throwInputError(file, "", "invalid JSON: " + printable(e.what(), 160));
     }
-    if (plan.taskCount > kMaxSweepTasks) throwInputError(file, "tasks", "too many");
+    const JsonReader r(file);
+    const nlohmann::json top = plain(j);
+    if (r.integer(r.at(top, "", "sweep_format"), "sweep_format", 0, 1 << 30) != kSweepFormat)
+        r.fail("sweep_format", "unsupported (this tool reads 1)");
+    SweepPlan plan;
+    plan.name = r.string(r.at(top, "", "name"), "name");
+    plan.specFile = r.string(r.at(top, "", "spec_file"), "spec_file");
+    plan.specHash = r.string(r.at(top, "", "spec_hash"), "spec_hash");
+    r.at(top, "", "spec");
+    plan.spec = j["spec"];  // the file's order, which the settings keep
+    plan.settings = parseSettings(plan.spec, file);
+    const nlohmann::json& scenes = r.at(top, "", "scenes");
+    r.requireArray(scenes, "scenes");
+    for (size_t i = 0; i < scenes.size(); ++i) {
+        const std::string f = JsonReader::index("scenes", i);
+        plan.scenes.push_back({r.string(r.at(scenes[i], f, "name"), f + ".name"),
+                               r.string(r.at(scenes[i], f, "path"), f + ".path")});
+    }
+    plan.taskCount = r.count(r.at(top, "", "tasks"), "tasks");
+    if (plan.taskCount > kMaxSweepTasks)
+        r.outOfRange("tasks", "<= " + std::to_string(kMaxSweepTasks), double(plan.taskCount));
     if (!withTasks) return plan;
     const fs::path tasksPath = dir / "tasks.jsonl";
     std::istringstream in(readFileCapped(tasksPath, tasksPath.string(), uint64_t(1) << 32));
