@@ -1084,7 +1084,7 @@ GltfContent loadGltf(const std::filesystem::path& path, const std::string& displ
     try {
         doc = Json::parse(json, json + jsonSize);
     } catch (const Json::exception& e) {
-        fail(ctx, "", "not valid JSON: " + printable(e.what(), 200));
+        fail(ctx, "", "invalid JSON: " + printable(e.what(), 200));
     }
     if (!doc.is_object()) fail(ctx, "", "not a glTF file (the JSON is not an object)");
     checkNumbers(ctx, doc, "", "", "");

@@ -180,7 +180,8 @@ AreaShadowStats readArea(const Fields& f) {
 LightType readLightType(const Fields& f) {
     const std::string name = f.str("type");
     if (const LightKind* kind = findLightKind(name)) return kind->type();
-    f.fail(f.name("type"), "unknown light type \"" + printable(name, 40) + "\"");
+    f.fail(f.name("type"),
+           "unknown light type \"" + printable(name, 40) + "\" (valid: " + lightKindNames() + ")");
 }
 
 PenumbraChoice readChoice(const Fields& f) {
