@@ -13,7 +13,7 @@ namespace shadow_oracle {
 namespace {
 
 // The options, each checked by the trace option table (one line naming its key: "trace options:
-// max_spp: must be an integer in [16, 1048576]"), as the oracle's.
+// max_spp: must be an integer in [16, 1048576], got 8"), as the oracle's.
 so::OracleOptions oracleOptions(const TraceOptions& o) {
     if (!o.points.empty() && (o.width > 0 || o.height > 0))
         so::throwInputError("trace options", "points",

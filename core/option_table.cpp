@@ -147,7 +147,8 @@ void checkOption(const OptionSpec& spec, const OptionValue& v, const std::string
         throwInputError(
             file, field,
             std::string("must be ") + (integer ? "an integer in " : "in ") + range +
-                (allowUnsetZero && spec.unsetZero ? " or 0 (" + spec.defaultText + ")" : ""));
+                (allowUnsetZero && spec.unsetZero ? " or 0 (" + spec.defaultText + ")" : "") +
+                ", got " + numberText(x));
 }
 
 void checkOptions(const OptionTable& table, const OptionValues& values,

@@ -39,7 +39,8 @@ TEST(RasterOptionTable, AppliedValuesAreCheckedByTheRows) {
         applyRasterOptions({{"frames", {0, ""}}}, {"render options", false, "", false}, o);
         ADD_FAILURE() << "frames 0 accepted";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), "render options: frames: must be an integer in [1, 1000]");
+        EXPECT_EQ(std::string(e.what()),
+                  "render options: frames: must be an integer in [1, 1000], got 0");
     }
     EXPECT_EQ(o.frames, RasterOptions{}.frames) << "nothing written before the check";
 }

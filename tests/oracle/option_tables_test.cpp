@@ -81,11 +81,11 @@ TEST(OptionTables, ChecksNameTheFieldAndTheRange) {
         return std::string();
     };
     EXPECT_EQ(error(rasterOption("frames"), 0),
-              "render options: frames: must be an integer in [1, 1000]");
+              "render options: frames: must be an integer in [1, 1000], got 0");
     EXPECT_EQ(error(rasterOption("warmup"), 1.5),
-              "render options: warmup: must be an integer in [0, 1000]");
+              "render options: warmup: must be an integer in [0, 1000], got 1.5");
     EXPECT_EQ(error(compareOption("boundary_radius"), 65),
-              "render options: boundary_radius: must be an integer in [0, 64]");
+              "render options: boundary_radius: must be an integer in [0, 64], got 65");
     EXPECT_EQ(error(rasterOption("frames"), kDefaultFrames), "");
 }
 

@@ -68,13 +68,13 @@ TEST(TraceOptionTable, ChecksNameTheFieldAndWhatIsValid) {
         return std::string();
     };
     EXPECT_EQ(error("max_spp", {8, ""}),
-              "trace options: max_spp: must be an integer in [16, 1048576]");
+              "trace options: max_spp: must be an integer in [16, 1048576], got 8");
     EXPECT_EQ(error("max_spp", {100.5, ""}),
-              "trace options: max_spp: must be an integer in [16, 1048576]");
+              "trace options: max_spp: must be an integer in [16, 1048576], got 100.5");
     EXPECT_EQ(error("target_error", {0.6, ""}),
-              "trace options: target_error: must be in [0.0001, 0.5]");
+              "trace options: target_error: must be in [0.0001, 0.5], got 0.6");
     EXPECT_EQ(error("target_error", {NAN, ""}),
-              "trace options: target_error: must be in [0.0001, 0.5]");
+              "trace options: target_error: must be in [0.0001, 0.5], got nan");
     EXPECT_EQ(error("bound_max_sides", {100, ""}),
               "trace options: bound_max_sides: 100 is not a power of two in [32, 16384]");
     EXPECT_EQ(error("bound_max_sides", {16, ""}),
@@ -84,10 +84,12 @@ TEST(TraceOptionTable, ChecksNameTheFieldAndWhatIsValid) {
               "trace options: penumbra: \"exakt\" is not a method (sampled, exact, both or auto)");
     EXPECT_EQ(error("exact_pixels", {0, "some"}),
               "trace options: exact_pixels: \"some\" is not penumbra or all");
-    EXPECT_EQ(error("width", {0, ""}), "trace options: width: must be an integer in [1, 16384]");
+    EXPECT_EQ(error("width", {0, ""}),
+              "trace options: width: must be an integer in [1, 16384], got 0");
     EXPECT_EQ(error("width", {0, ""}, true), "") << "the API's 0: the scene camera's";
-    EXPECT_EQ(error("width", {-1, ""}, true),
-              "trace options: width: must be an integer in [1, 16384] or 0 (the scene camera's)");
+    EXPECT_EQ(
+        error("width", {-1, ""}, true),
+        "trace options: width: must be an integer in [1, 16384] or 0 (the scene camera's), got -1");
     // The table's names are the oracle's: each parses, and the oracle's names are the table's.
     for (size_t k = 0; k < traceOption("penumbra").names.size(); ++k)
         EXPECT_EQ(penumbraMethodName(

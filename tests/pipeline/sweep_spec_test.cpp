@@ -168,7 +168,7 @@ TEST_F(SweepSpec, MistakesNameTheFileAndTheField) {
         {spec(R"(, "techniques": [{"name": "shadow"}], "oracle": {"sed": 1})"),
          "oracle.sed: unknown key"},
         {spec(R"(, "techniques": [{"name": "shadow"}], "oracle": {"target_error": 2})"),
-         "oracle.target_error: must be in [0.0001, 0.5]"},
+         "oracle.target_error: must be in [0.0001, 0.5], got 2"},
         {spec(R"(, "techniques": [{"name": "nope"}])"), "techniques[0].name: unknown technique"},
         {spec(R"(, "techniques": [{"name": "shadow", "params": {"alpha": [1, "x"]}}])"),
          "techniques[0].params.alpha[1]: expected a number, got a string"},
