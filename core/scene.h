@@ -60,6 +60,15 @@ struct CameraPath {
     PathInterpolation interpolation = PathInterpolation::Linear;
 };
 
+// scene_format 5: the scene as a sequence of frames on one clock (docs/scene-format.md#sequence).
+// Frame i is at t = i / fps seconds; glTF animations, light_paths and (in a sequence) camera_path
+// are all read on that clock. core/scene_pose.h poses the scene at a time.
+struct Sequence {
+    int frames = 0;         // >= 1
+    double fps = 0.0;       // > 0
+    std::string animation;  // the glTF animation that plays; empty: every clip
+};
+
 // How a texture repeats outside [0, 1] (glTF sampler wrapS / wrapT), and how it is read.
 enum class TextureWrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 enum class TextureFilter : uint8_t { Nearest, Bilinear };
@@ -136,6 +145,7 @@ struct Scene {
     std::string contentHash;     // hash of the scene file and every file it references
     CameraDesc camera;
     std::optional<CameraPath> cameraPath;  // scene_format 2 only; for compare --frames-path
+    std::optional<Sequence> sequence;      // scene_format 5 only; core/scene_pose.h
     std::vector<MeshPrimitive> meshes;
     std::vector<GeometrySource> geometry;
     std::vector<Light> lights;

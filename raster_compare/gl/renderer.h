@@ -23,6 +23,9 @@ struct RasterOptions {
     // Another camera than the scene's (a frame of compare --frames-path); width and height above
     // still override its size.
     std::optional<CameraDesc> camera;
+    // A sequence's frame (compare --sequence): techniques with temporal=on rotate their taps by it
+    // (docs/techniques.md#temporal); 0 outside a sequence.
+    int frameIndex = 0;
     int frames = kDefaultFrames;  // timed frames (median and quartiles reported)
     int warmup = kDefaultWarmup;  // untimed frames first
     // Before its timed frames, each technique's work is counted in one frame of its counting

@@ -29,6 +29,7 @@
 #include "core/scene.h"
 #include "raster_compare/gl/params.h"
 #include "raster_compare/gl/raster_result.h"
+#include "raster_compare/gl/shadow_history.h"
 
 namespace so {
 
@@ -123,6 +124,9 @@ class Technique {
     // Its visibility pass can write what its own depth comparison saw into the light's target
     // (location 2), when LightSetup::depthProbe asks (LightTechnique::probeDepth).
     virtual bool probesDepth() const { return false; }
+    // A technique that builds its shadow over frames (temporal=on): the history that resolves its
+    // jittered V across a sequence (shadow_history.h); none where every frame stands alone.
+    virtual std::optional<HistorySettings> history() const { return std::nullopt; }
     virtual std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const = 0;
 
   private:
