@@ -173,6 +173,7 @@ struct LoadLimits {
     int maxNodeDepth = 256;
     size_t maxLights = 64;
     size_t maxPathKeyframes = 10000;  // camera_path keyframes or poses
+    int maxSequenceFrames = 100000;   // sequence.frames
 };
 
 // Loads a scene file (.json, see docs/scene-format.md) or a bare .gltf/.glb. Throws InputError

@@ -30,10 +30,10 @@ namespace {
 using Reader = JsonReader;
 
 // The newest version read; every older one still loads. 2 added camera_path, 3 geometry[i].dynamic,
-// 4 polygon lights; a light type that came with a newer version says so (LightKind::sceneFormat),
+// 4 polygon lights, 5 sequence (glTF animations, light_paths); a light type that came with a newer version says so (LightKind::sceneFormat),
 // and that version is then the newest.
 int newestSceneFormat() {
-    int newest = 4;
+    int newest = 5;
     for (const LightKind* k : allLightKinds()) newest = std::max(newest, k->sceneFormat());
     return newest;
 }
@@ -374,6 +374,23 @@ void checkLightFormats(const json& root, const Reader& r, int format) {
 // What a scene file and a scene made in memory share once their meshes are in: the camera, the
 // lights, the checks on the whole and the camera path. `geometryField` names the meshes' source
 // in errors ("geometry" of a file, "meshes" in memory).
+// sequence (scene_format 5): {"frames": N, "fps": F, "animation": "NAME"}; frame i is at i / F s.
+Sequence parseSequence(const json& j, const Reader& r, const LoadLimits& limits) {
+    r.requireObject(j, "sequence");
+    r.checkKeys(j, "sequence", {"frames", "fps", "animation"});
+    Sequence sequence;
+    if (!j.contains("frames")) r.fail("sequence.frames", "missing");
+    sequence.frames = r.integer(j["frames"], "sequence.frames", 1, limits.maxSequenceFrames);
+    if (!j.contains("fps")) r.fail("sequence.fps", "missing");
+    sequence.fps = r.numberIn(j["fps"], "sequence.fps", 1e-3, 1e6);
+    if (j.contains("animation")) {
+        sequence.animation = r.string(j["animation"], "sequence.animation");
+        if (sequence.animation.empty())
+            r.fail("sequence.animation", "empty (leave the key out to play every clip)");
+    }
+    return sequence;
+}
+
 void finishScene(const json& root, const Reader& r, const LoadLimits& limits,
                  const std::string& geometryField, Scene& scene) {
     bool cameraGiven = false;
@@ -395,6 +412,7 @@ void finishScene(const json& root, const Reader& r, const LoadLimits& limits,
     // The path is part of the description's text, so the content hash already covers it.
     if (root.contains("camera_path"))
         scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
+    if (root.contains("sequence")) scene.sequence = parseSequence(root["sequence"], r, limits);
 }
 
 Scene loadSceneJson(const std::filesystem::path& path, const std::string& display,
@@ -405,7 +423,8 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     json root = parseStrict(text, r);
     r.requireObject(root, "");
     r.checkKeys(root, "",
-                {"scene_format", "geometry", "camera", "camera_path", "lights", "effects"});
+                {"scene_format", "geometry", "camera", "camera_path", "lights", "effects",
+                 "sequence"});
     if (!root.contains("scene_format"))
         r.fail("scene_format",
                "missing (this tool reads 1 to " + std::to_string(newestSceneFormat()) + ")");
@@ -417,6 +436,8 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     if (root.contains("camera_path") && format < 2)
         r.fail("camera_path",
                "needs scene_format 2 (the file says " + std::to_string(format) + ")");
+    if (root.contains("sequence") && format < 5)
+        r.fail("sequence", "needs scene_format 5 (the file says " + std::to_string(format) + ")");
     checkLightFormats(root, r, format);
 
     Scene scene;
