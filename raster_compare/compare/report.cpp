@@ -494,11 +494,7 @@ void writeImages(std::ostream& o, const ReportInput& in, size_t li, ImageSink& s
     const bool area = hasPenumbra(in, li);
     o << "<h3>Images</h3><p class=\"muted\">Click an image for a 1:1, 2x or 4x view; F flips it "
          "with the oracle's at the same place.</p>";
-    if (area)
-        o << "<p class=\"note\">An area light: the oracle's V is an estimate with a 95% interval "
-             "per pixel (V &plusmn; 2.36 &middot; stderr, docs/oracle.md). A technique's "
-             "difference within that interval is not counted as error; the magnitude map "
-             "shows the error beyond it.</p>";
+    if (area) o << oracleCertaintyNote(in.oracle, in.lights[li]);
     const std::string oracleId = "oracle-" + std::to_string(li);
     o << "<table class=\"images\"><thead><tr><th class=\"text\">technique</th><th "
          "class=\"text\">render</th><th class=\"text\">errors by class"
@@ -594,6 +590,37 @@ void writeTail(std::ostream& o, const ReportInput& in, const nlohmann::json& lig
 }
 
 }  // namespace
+
+std::string oracleCertaintyNote(const ChannelImage& oracle, const std::string& light) {
+    const std::string stdErrName = ch::lightChannel(light, ch::kStdErr);
+    const std::string exactName = ch::lightChannel(light, ch::kExact);
+    const float* stdErr = oracle.has(stdErrName) ? oracle.channel(stdErrName) : nullptr;
+    const float* exact = oracle.has(exactName) ? oracle.channel(exactName) : nullptr;
+    size_t sampled = 0, exactPixels = 0;
+    for (size_t i = 0; i < oracle.pixelCount(); ++i) {
+        if (exact && exact[i] > 0.5f)
+            ++exactPixels;
+        else if (stdErr && stdErr[i] > 0.0f)
+            ++sampled;
+    }
+    const std::string interval =
+        "an estimate with a 95% interval per pixel (V &plusmn; 2.36 &middot; stderr, "
+        "docs/oracle.md); a technique's difference within that interval is not counted as error, "
+        "and the magnitude map shows the error beyond it";
+    std::ostringstream s;
+    s << "<p class=\"note\">An area light: ";
+    if (exactPixels == 0)
+        s << "the oracle's V is " << interval << ".</p>";
+    else if (sampled == 0)
+        s << "the oracle's exact pass gave V at all " << exactPixels
+          << " pixels it applied to, without sampling error (docs/oracle.md, \"Exact "
+             "penumbrae\"); no pixel of this light carries a sampling interval.</p>";
+    else
+        s << "the oracle's exact pass gave V without sampling error at " << exactPixels
+          << " pixels (docs/oracle.md, \"Exact penumbrae\"); at the other " << sampled
+          << " penumbra pixels it is " << interval << ".</p>";
+    return s.str();
+}
 
 void writeReport(const std::string& path, const ReportInput& in) {
     const std::filesystem::path page(path);

@@ -74,4 +74,9 @@ struct ReportInput {
 
 void writeReport(const std::string& path, const ReportInput& in);
 
+// The images section's note on an area light's oracle V: an estimate with a 95% interval where
+// it was sampled, V without sampling error where the exact pass gave it (channel `exact`), or
+// both, with the pixel counts, so that an exact penumbra is not called an estimate.
+std::string oracleCertaintyNote(const ChannelImage& oracle, const std::string& light);
+
 }  // namespace so
