@@ -44,8 +44,8 @@ def main():
     # scene: the shipped scenes and every scene of the loader tests.
     for f in sorted((ROOT / "scenes").glob("*.scene.json")):
         write("scene", f.name, f.read_bytes())
-    for f in sorted((ROOT / "tests/data/broken_scene").glob("*.json")):
-        write("scene", "broken-" + f.name, f.read_bytes())
+    # tests/data/broken_scene/ is a seed folder of its own (scripts/fuzz, the replay test), so a
+    # new broken scene needs no copy here.
     write("scene", "valid-scene.json", (ROOT / "tests/data/valid/scene.json").read_bytes())
     write("scene", "valid-path_keyframes.json",
           (ROOT / "tests/data/valid/path_keyframes.json").read_bytes())
@@ -261,11 +261,21 @@ DICT_EXTRA = {"sweep": ["a.scene.json", "b.scene.json", "sub/c.scene.json",
                        "KHR_materials_variants", "normalized"]}
 
 
-def write_dicts(harnesses=("scene", "gltf", "gate", "index", "sweep")):
-    """tests/fuzz/<harness>.dict: libFuzzer dictionaries of the JSON keys of each corpus."""
+# Seed folders read in place besides tests/fuzz/corpus/<harness>/ (scripts/fuzz copies them into
+# its working corpus; the replay test runs them).
+EXTRA_SEEDS = {"scene": [ROOT / "tests/data/broken_scene"]}
+
+
+def write_dicts(out_dir, harnesses=("scene", "gltf", "gate", "index", "sweep")):
+    """<out_dir>/<harness>.dict: libFuzzer dictionaries of the JSON keys of each corpus, written by
+    scripts/fuzz before each run, so that a new key or light type joins without a step to forget."""
+    out_dir.mkdir(parents=True, exist_ok=True)
     for h in harnesses:
         found = set()
-        for f in (CORPUS / h).iterdir():
+        files = list((CORPUS / h).iterdir())
+        for d in EXTRA_SEEDS.get(h, []):
+            files += sorted(d.glob("*.json"))
+        for f in files:
             data = f.read_bytes()[1:] if h == "gltf" else f.read_bytes()
             for part in data.split(b"\0"):
                 try:
@@ -275,9 +285,9 @@ def write_dicts(harnesses=("scene", "gltf", "gate", "index", "sweep")):
         found.update(DICT_EXTRA.get(h, []))
         words = sorted(k for k in found
                        if 0 < len(k) <= 40 and re.fullmatch(r"[A-Za-z0-9_.:/*?# -]+", k))
-        with open(CORPUS.parent / (h + ".dict"), "w") as out:
+        with open(out_dir / (h + ".dict"), "w") as out:
             out.write("# libFuzzer dictionary for fuzz_%s: the keys and short string values of its"
-                      " seed corpus\n# (written by tests/fuzz/make_corpus.py).\n" % h)
+                      " seeds\n# (written by tests/fuzz/make_corpus.py --dicts).\n" % h)
             for w in words:
                 out.write('"\\"%s\\""\n' % w)
 
@@ -292,5 +302,10 @@ def small_metrics():
 
 
 if __name__ == "__main__":
-    main()
-    write_dicts()
+    import sys
+    if len(sys.argv) == 3 and sys.argv[1] == "--dicts":
+        write_dicts(pathlib.Path(sys.argv[2]))
+    elif len(sys.argv) == 1:
+        main()
+    else:
+        sys.exit("usage: make_corpus.py [--dicts OUT_DIR]")
