@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 
 namespace so {
 
@@ -125,13 +126,10 @@ void checkOption(const OptionSpec& spec, const OptionValue& v, const std::string
     if (spec.type == OptionType::Name) {
         for (const std::string& n : spec.names)
             if (v.text == n) return;
-        // "penumbra or all"; "a method (sampled, exact, both or auto)"
-        std::string list;
-        for (size_t k = 0; k < spec.names.size(); ++k)
-            list += (k == 0 ? "" : k + 1 == spec.names.size() ? " or " : ", ") + spec.names[k];
+        // The JSON reader's wording for a name not in a list (docs/scene-format.md, "One wording").
         throwInputError(file, field,
-                        "\"" + printable(v.text, 40) + "\" is not " +
-                            (spec.names.size() > 2 ? "a method (" + list + ")" : list));
+                        "unknown value \"" + printable(v.text, 40) +
+                            "\" (valid: " + JsonReader::list(spec.names) + ")");
     }
     const double x = v.number;
     if (allowUnsetZero && spec.unsetZero && x == 0.0) return;

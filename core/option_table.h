@@ -82,8 +82,8 @@ OptionSpec zeroMeans(OptionSpec s, std::string text);
 OptionSpec sameResult(OptionSpec s);
 
 // Throws InputError(file, field, why) unless `v` is valid for `spec`: in range, an integer, a
-// power of two, or one of its names ("\"x\" is not penumbra or all"; `allowUnsetZero` where the
-// surface gives 0 for the default).
+// power of two, or one of its names ("unknown value \"x\" (valid: penumbra, all)";
+// `allowUnsetZero` where the surface gives 0 for the default).
 void checkOption(const OptionSpec& spec, const OptionValue& v, const std::string& file,
                  const std::string& field, bool allowUnsetZero);
 

@@ -12,6 +12,7 @@
 
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "core/progress.h"
 #include "oracle/lights/area_light_kind.h"
 #include "oracle/polygon_visibility.h"
@@ -33,14 +34,16 @@ PenumbraMethod parsePenumbraMethod(const std::string& text, const std::string& f
                                    const std::string& field) {
     for (size_t k = 0; k < kMethodNames.size(); ++k)
         if (text == kMethodNames[k]) return PenumbraMethod(k);
-    throwInputError(
-        file, field,
-        "\"" + printable(text, 40) + "\" is not a method (sampled, exact, both or auto)");
+    // The JSON reader's wording for a name not in a list (docs/scene-format.md, "One wording").
+    throwInputError(file, field,
+                    "unknown value \"" + printable(text, 40) + "\" (valid: " +
+                        JsonReader::list({kMethodNames.begin(), kMethodNames.end()}) + ")");
 }
 
 bool parseExactPixels(const std::string& text, const std::string& file, const std::string& field) {
     if (text == "penumbra" || text == "all") return text == "all";
-    throwInputError(file, field, "\"" + printable(text, 40) + "\" is not penumbra or all");
+    throwInputError(file, field,
+                    "unknown value \"" + printable(text, 40) + "\" (valid: penumbra, all)");
 }
 
 std::span<const StatField<ExactPenumbraStats>> ExactPenumbraStats::fields() {

@@ -42,7 +42,7 @@ std::string listOf(const std::vector<double>& values) {
 std::string namesOf(const ParamSpec& spec) {
     std::string s;
     for (const std::string& n : spec.names) s += (s.empty() ? "" : ", ") + n;
-    return s + " (or their numbers, 0.." + std::to_string(spec.names.size() - 1) + ")";
+    return s + ", or their numbers 0.." + std::to_string(spec.names.size() - 1);
 }
 
 void validate(const std::string& file, const ParamSpec& spec, double v) {
@@ -88,10 +88,11 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
         const double v = named != spec->names.end() ? double(named - spec->names.begin())
                                                     : std::strtod(text.c_str(), &end);
         if (named == spec->names.end() && (text.empty() || *end != '\0' || !std::isfinite(v)))
-            throwInputError(
-                file, key,
-                "\"" + printable(text, 40) + "\" is not " +
-                    (spec->names.empty() ? std::string("a number") : "one of " + namesOf(*spec)));
+            // A name not in the list in the JSON reader's words (docs/scene-format.md).
+            throwInputError(file, key,
+                            spec->names.empty() ? "\"" + printable(text, 40) + "\" is not a number"
+                                                : "unknown value \"" + printable(text, 40) +
+                                                      "\" (valid: " + namesOf(*spec) + ")");
         validate(file, *spec, v);
         values.values_[key] = v;
     }

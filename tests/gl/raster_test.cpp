@@ -719,8 +719,8 @@ TEST(Raster, MethodParametersTakeNamesAndTheirNumbers) {
                 createTechnique(t->name, {p.name + "=sideways"});
                 ADD_FAILURE() << t->name << " accepted " << p.name << "=sideways";
             } catch (const InputError& e) {
-                EXPECT_NE(std::string(e.what()).find("\"sideways\" is not one of " + p.names[0] +
-                                                     ", " + p.names[1]),
+                EXPECT_NE(std::string(e.what()).find("unknown value \"sideways\" (valid: " +
+                                                     p.names[0] + ", " + p.names[1]),
                           std::string::npos)
                     << e.what();
             }

@@ -551,7 +551,7 @@ TEST(ExactPenumbra, CommandLineFlags) {
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_EQ(
         bad.stderrText,
-        "command line: --penumbra: \"exakt\" is not a method (sampled, exact, both or auto)\n");
+        "command line: --penumbra: unknown value \"exakt\" (valid: sampled, exact, both, auto)\n");
     EXPECT_EQ(run("trace " + scene + " --out " + out + " --exact-pixels some").exitCode, 2);
     const RunResult ok = run("trace " + scene + " --out " + out +
                              " --width 48 --height 36 --quiet --penumbra both --exact-pixels all");

@@ -81,9 +81,9 @@ TEST(TraceOptionTable, ChecksNameTheFieldAndWhatIsValid) {
               "trace options: bound_max_sides: 16 is not a power of two in [32, 16384]");
     EXPECT_EQ(error("bound_max_sides", {64, ""}), "");
     EXPECT_EQ(error("penumbra", {0, "exakt"}),
-              "trace options: penumbra: \"exakt\" is not a method (sampled, exact, both or auto)");
+              "trace options: penumbra: unknown value \"exakt\" (valid: sampled, exact, both, auto)");
     EXPECT_EQ(error("exact_pixels", {0, "some"}),
-              "trace options: exact_pixels: \"some\" is not penumbra or all");
+              "trace options: exact_pixels: unknown value \"some\" (valid: penumbra, all)");
     EXPECT_EQ(error("width", {0, ""}),
               "trace options: width: must be an integer in [1, 16384], got 0");
     EXPECT_EQ(error("width", {0, ""}, true), "") << "the API's 0: the scene camera's";
