@@ -125,7 +125,7 @@ def scene(path, gltf, extra=None):
     doc = {"scene_format": 5, "geometry": [{"file": gltf}],
            "camera": {"eye": [0, 6, 7], "target": [0, 0, 0], "vfov_deg": 45,
                       "width": 64, "height": 64},
-           "lights": [{"name": "sun", "type": "directional", "direction": [-0.4, -1, -0.3]}],
+           "lights": [{"name": "sun", "type": "directional", "direction": [-0.8, -1, -0.2]}],
            "sequence": {"frames": 16, "fps": 30}}
     doc.update(extra or {})
     doc = {k: v for k, v in doc.items() if v is not None}
