@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@
 #include "core/lights/light.h"
 
 namespace so {
+
+struct MeshAnimation;  // core/gltf_animation.h
 
 // Axis-aligned box in world space. Empty until a point is added.
 struct Bounds3d {
@@ -69,6 +72,22 @@ struct Sequence {
     std::string animation;  // the glTF animation that plays; empty: every clip
 };
 
+// A light moving on the sequence's clock (scene_format 5, `light_paths`; core/light_path.h): keys
+// at t seconds, strictly increasing, each with the same fields: a position (every light but a
+// directional one; an area light moves rigidly, its centre there) and/or a direction (directional
+// and spot lights; unit).
+struct LightKeyframe {
+    double t = 0.0;
+    std::optional<glm::dvec3> wsPosition;
+    std::optional<glm::dvec3> wsDirection;
+};
+
+struct LightPath {
+    std::string light;                     // the name of the light it moves
+    std::vector<LightKeyframe> keyframes;  // at least 2
+    PathInterpolation interpolation = PathInterpolation::Linear;
+};
+
 // How a texture repeats outside [0, 1] (glTF sampler wrapS / wrapT), and how it is read.
 enum class TextureWrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 enum class TextureFilter : uint8_t { Nearest, Bilinear };
@@ -118,6 +137,10 @@ struct MeshPrimitive {
     // The glTF material's doubleSided (false without a material, and for meshes made in memory).
     // Nothing traced reads it: the oracle's rays meet both sides; `export` keeps it for engines.
     bool doubleSided = false;
+    // In a scene with a sequence, a primitive under a node that a played glTF animation moves:
+    // how it moves (core/gltf_animation.h); null for a still one. wsPositions are its pose at
+    // t = 0. Shared, immutable: copies of the scene share it.
+    std::shared_ptr<const MeshAnimation> animation;
     size_t triangleCount() const { return indices.size() / 3; }
 };
 
@@ -146,6 +169,7 @@ struct Scene {
     CameraDesc camera;
     std::optional<CameraPath> cameraPath;  // scene_format 2 only; for compare --frames-path
     std::optional<Sequence> sequence;      // scene_format 5 only; core/scene_pose.h
+    std::vector<LightPath> lightPaths;     // scene_format 5, with a sequence; at most one a light
     std::vector<MeshPrimitive> meshes;
     std::vector<GeometrySource> geometry;
     std::vector<Light> lights;
@@ -172,8 +196,9 @@ struct LoadLimits {
     uint64_t maxTotalImagePixels = uint64_t(1) << 28;  // all alpha textures of a scene
     int maxNodeDepth = 256;
     size_t maxLights = 64;
-    size_t maxPathKeyframes = 10000;  // camera_path keyframes or poses
-    int maxSequenceFrames = 100000;   // sequence.frames
+    size_t maxPathKeyframes = 10000;                // camera_path keyframes or poses
+    int maxSequenceFrames = 100000;                 // sequence.frames
+    uint64_t maxAnimationKeys = uint64_t(1) << 20;  // keys of the played glTF clips, all together
 };
 
 // Loads a scene file (.json, see docs/scene-format.md) or a bare .gltf/.glb. Throws InputError
