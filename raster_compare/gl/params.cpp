@@ -47,15 +47,33 @@ std::string namesOf(const ParamSpec& spec) {
 
 void validate(const std::string& file, const ParamSpec& spec, double v) {
     if (spec.integer && v != std::floor(v)) throwInputError(file, spec.name, "must be an integer");
-    if (v < spec.min || v > spec.max) {
+    if (v < spec.min || v > spec.max || (spec.maxExclusive && v == spec.max)) {
         std::ostringstream os;
-        os << v << " is out of range [" << spec.min << ", " << spec.max << "]";
+        os << v << " is out of range [" << spec.min << ", " << spec.max
+           << (spec.maxExclusive ? ")" : "]");
         throwInputError(file, spec.name, os.str());
     }
     if (!spec.allowed.empty()) {
         for (double a : spec.allowed)
             if (a == v) return;
         throwInputError(file, spec.name, "must be one of " + listOf(spec.allowed));
+    }
+}
+
+// Every given parameter whose table entry needs another setting has it (ParamSpec::needs).
+void checkNeeds(const std::string& file, const ParamTable& table, const ParamValues& values) {
+    for (const ParamSpec& s : table) {
+        if (s.needs.empty() || !values.given(s.name)) continue;
+        const size_t eq = s.needs.find('=');
+        const std::string key = s.needs.substr(0, eq), text = s.needs.substr(eq + 1);
+        for (const ParamSpec& other : table) {
+            if (other.name != key) continue;
+            const auto named = std::find(other.names.begin(), other.names.end(), text);
+            const double wanted = named != other.names.end() ? double(named - other.names.begin())
+                                                             : std::strtod(text.c_str(), nullptr);
+            if (values.real(key) != wanted)
+                throwInputError(file, s.name, "has no effect without " + s.needs);
+        }
     }
 }
 
@@ -95,7 +113,9 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
                                                       "\" (valid: " + namesOf(*spec) + ")");
         validate(file, *spec, v);
         values.values_[key] = v;
+        values.given_.insert(key);
     }
+    checkNeeds(file, table, values);
     return values;
 }
 
