@@ -80,8 +80,9 @@ TEST(TraceOptionTable, ChecksNameTheFieldAndWhatIsValid) {
     EXPECT_EQ(error("bound_max_sides", {16, ""}),
               "trace options: bound_max_sides: 16 is not a power of two in [32, 16384]");
     EXPECT_EQ(error("bound_max_sides", {64, ""}), "");
-    EXPECT_EQ(error("penumbra", {0, "exakt"}),
-              "trace options: penumbra: unknown value \"exakt\" (valid: sampled, exact, both, auto)");
+    EXPECT_EQ(
+        error("penumbra", {0, "exakt"}),
+        "trace options: penumbra: unknown value \"exakt\" (valid: sampled, exact, both, auto)");
     EXPECT_EQ(error("exact_pixels", {0, "some"}),
               "trace options: exact_pixels: unknown value \"some\" (valid: penumbra, all)");
     EXPECT_EQ(error("width", {0, ""}),
