@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include <tiny_gltf.h>
 
 #include "core/error.h"
+#include "core/gltf_animation.h"
 #include "core/gltf_loader.h"
 
 namespace so::gltf_detail {
@@ -43,6 +45,12 @@ struct Context {
     bool readAlphaTextures = true;
     // KHR_mesh_quantization is used: POSITION and TEXCOORD_n may be integers (normalized or not).
     bool meshQuantization = false;
+    // A scene with a sequence plays the file's animations (gltf_animation_load.h): the clip named
+    // (empty: every clip), and, once read, the nodes they move by node index (null: a still node).
+    bool playAnimations = false;
+    std::string animationClip;
+    std::vector<std::shared_ptr<const AnimatedNode>> animatedNodes;
+    bool animates(size_t node) const { return node < animatedNodes.size() && animatedNodes[node]; }
 };
 
 [[noreturn]] void fail(const Context& ctx, const std::string& field, const std::string& message);

@@ -38,6 +38,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "core/gltf_alpha.h"
+#include "core/gltf_animation_load.h"
 #include "core/gltf_detail.h"
 #include "core/gltf_draco.h"
 #include "core/gltf_extensions.h"
@@ -555,12 +556,21 @@ void checkNodeGraph(const Context& ctx, const tinygltf::Model& model) {
 struct Instance {
     size_t node;
     glm::dmat4 world;
+    int64_t link = -1;  // into the ChainLink list, when animations play
+};
+
+// The path from a root down to one node instance, one link a visit (a node reached along several
+// paths has several), kept only when animations play: a moving primitive's chain is read from it.
+struct ChainLink {
+    size_t node;
+    int64_t parent;  // -1 at a root
+    bool moving;     // this node or an ancestor on the path is animated
 };
 
 // Calls visit(Instance) in traversal order. Instances are not stored: only what they produce is.
 template <typename Visit>
 void traverse(const Context& ctx, const tinygltf::Model& model, const Json& doc,
-              const glm::dmat4& wsFromFile, Visit&& visit) {
+              const glm::dmat4& wsFromFile, std::vector<ChainLink>* links, Visit&& visit) {
     std::vector<int> roots;
     if (model.scenes.empty()) {
         std::vector<char> isChild(model.nodes.size(), 0);
@@ -584,8 +594,11 @@ void traverse(const Context& ctx, const tinygltf::Model& model, const Json& doc,
                          std::to_string(model.nodes.size()) + " nodes)");
     }
     std::vector<glm::dmat4> local(model.nodes.size());
-    for (size_t i = 0; i < model.nodes.size(); ++i)
+    for (size_t i = 0; i < model.nodes.size(); ++i) {
         local[i] = localTransform(ctx, model.nodes[i], i);
+        // An animated node is drawn as the animation poses it at t = 0.
+        if (ctx.animates(i)) local[i] = ctx.animatedNodes[i]->localAt(0.0);
+    }
 
     // Shared subtrees multiply (a chain of nodes each listing the next twice expands to 2^depth
     // instances), so the number of node instances is counted first, in topological order with
@@ -621,10 +634,11 @@ void traverse(const Context& ctx, const tinygltf::Model& model, const Json& doc,
         size_t node;
         int depth;
         glm::dmat4 parent;
+        int64_t parentLink;
     };
     std::vector<Item> stack;
     for (auto it = roots.rbegin(); it != roots.rend(); ++it)
-        stack.push_back({size_t(*it), 1, wsFromFile});
+        stack.push_back({size_t(*it), 1, wsFromFile, -1});
     while (!stack.empty()) {
         Item item = stack.back();
         stack.pop_back();
@@ -635,10 +649,17 @@ void traverse(const Context& ctx, const tinygltf::Model& model, const Json& doc,
                      " levels");
         glm::dmat4 world = item.parent * local[item.node];
         if (!allFinite(world)) fail(ctx, field, "world transform is not finite");
-        visit(Instance{item.node, world});
+        int64_t link = -1;
+        if (links) {
+            const bool parentMoving =
+                item.parentLink >= 0 && (*links)[size_t(item.parentLink)].moving;
+            links->push_back({item.node, item.parentLink, parentMoving || ctx.animates(item.node)});
+            link = int64_t(links->size() - 1);
+        }
+        visit(Instance{item.node, world, link});
         const auto& children = model.nodes[item.node].children;
         for (auto it = children.rbegin(); it != children.rend(); ++it)
-            stack.push_back({size_t(*it), item.depth + 1, world});
+            stack.push_back({size_t(*it), item.depth + 1, world, link});
     }
 }
 
@@ -737,6 +758,7 @@ struct PlannedPrimitive {
     int mode;
     uint64_t elements;  // index count, or vertex count when not indexed
     uint64_t triangles;
+    std::shared_ptr<MeshAnimation> animation;  // a moving primitive's chain (no positions yet)
 };
 
 std::string primField(size_t mesh, size_t prim) {
@@ -803,6 +825,14 @@ MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Json
             fail(ctx, idx("nodes", inst.node),
                  "world position of " + field + " vertex " + std::to_string(i) + " is not finite");
         out.wsPositions[size_t(i)] = p;
+    }
+    if (pp.animation) {
+        auto animation = std::make_shared<MeshAnimation>(*pp.animation);
+        animation->lsPositions.resize(size_t(pp.positions.count));
+        for (uint64_t i = 0; i < pp.positions.count; ++i)
+            for (int c = 0; c < 3; ++c)
+                animation->lsPositions[size_t(i)][c] = readComponent(pp.positions, i, c);
+        out.animation = std::move(animation);
     }
 
     std::vector<uint32_t> elements(size_t(pp.elements));
@@ -900,7 +930,7 @@ std::optional<PlannedPrimitive> planPrimitive(const Context& ctx, const tinygltf
         ++counts.nonTriangle;
         return std::nullopt;
     }
-    PlannedPrimitive pp{inst, meshIndex, k, {}, std::nullopt, prim.mode, 0, 0};
+    PlannedPrimitive pp{inst, meshIndex, k, {}, std::nullopt, prim.mode, 0, 0, nullptr};
     auto pos = prim.attributes.find("POSITION");
     if (pos == prim.attributes.end()) fail(ctx, field + ".attributes", "no POSITION");
     pp.positions = checkedAccessor(
@@ -981,29 +1011,81 @@ void alphaWarnings(const GltfAlpha& alpha, const tinygltf::Model& model, GltfCon
                                " primitive(s) with alphaMode BLEND read as MASK at cutoff 0.5");
 }
 
+// The chain of a node instance under a moving node: every node from its root down, the still
+// ones (made once, in `still`) at their own local transform. A skinned mesh there is refused:
+// rigid motion would move its bind pose, not what its author animated.
+std::shared_ptr<MeshAnimation> meshAnimation(
+    const Context& ctx, const tinygltf::Model& model, const std::vector<ChainLink>& links,
+    const Instance& inst, const glm::dmat4& wsFromFile,
+    std::vector<std::shared_ptr<const AnimatedNode>>& still) {
+    if (inst.link < 0 || !links[size_t(inst.link)].moving) return nullptr;
+    if (model.nodes[inst.node].skin >= 0)
+        fail(ctx, idx("nodes", inst.node) + ".skin",
+             "an animation moves this skinned mesh: skinning and morph targets are not supported "
+             "yet");
+    auto animation = std::make_shared<MeshAnimation>();
+    animation->wsFromFile = wsFromFile;
+    for (int64_t l = inst.link; l >= 0; l = links[size_t(l)].parent) {
+        const size_t node = links[size_t(l)].node;
+        if (ctx.animates(node)) {
+            animation->chain.push_back(ctx.animatedNodes[node]);
+            continue;
+        }
+        if (!still[node]) {
+            auto n = std::make_shared<AnimatedNode>();
+            n->restLocal = localTransform(ctx, model.nodes[node], node);
+            still[node] = std::move(n);
+        }
+        animation->chain.push_back(still[node]);
+    }
+    std::reverse(animation->chain.begin(), animation->chain.end());
+    return animation;
+}
+
+// A scene with a sequence: the played clips' nodes, and whether the clip named is in the file.
+void readAnimations(Context& ctx, const tinygltf::Model& model, const Json& doc) {
+    if (!ctx.playAnimations) return;
+    GltfContent& out = *ctx.out;
+    out.animationNames = animationNames(model);
+    out.animationClipFound =
+        ctx.animationClip.empty() ||
+        std::any_of(model.animations.begin(), model.animations.end(),
+                    [&](const tinygltf::Animation& a) { return a.name == ctx.animationClip; });
+    ctx.animatedNodes = playedAnimations(ctx, model, doc, ctx.animationClip);
+}
+
 void convert(Context& ctx, const tinygltf::Model& model, const Json& doc,
              const glm::dmat4& wsFromFile) {
     GltfContent& out = *ctx.out;
     checkBufferViews(ctx, model);
     checkNodeIndices(ctx, model);
     checkNodeGraph(ctx, model);
+    readAnimations(ctx, model, doc);
+    std::vector<ChainLink> links;
+    std::vector<std::shared_ptr<const AnimatedNode>> stillNodes(model.nodes.size());
+    const bool anyMoving = std::any_of(ctx.animatedNodes.begin(), ctx.animatedNodes.end(),
+                                       [](const auto& n) { return n != nullptr; });
 
     // Pass 1: validate and count everything, so that limits are checked before allocating.
     std::vector<PlannedPrimitive> plan;
     PlanCounts counts;
     bool cameraSeen = false;
     std::set<std::string> lightNames;
-    traverse(ctx, model, doc, wsFromFile, [&](const Instance& inst) {
+    traverse(ctx, model, doc, wsFromFile, anyMoving ? &links : nullptr, [&](const Instance& inst) {
         const tinygltf::Node& node = model.nodes[inst.node];
         addCamera(ctx, model, inst, out.camera, cameraSeen);
         addLight(ctx, model, inst, lightNames);
         if (node.mesh < 0) return;
         counts.skinsOrMorphs |= node.skin >= 0 || !node.weights.empty();
         const size_t primitives = model.meshes[size_t(node.mesh)].primitives.size();
+        std::shared_ptr<MeshAnimation> animation =
+            anyMoving ? meshAnimation(ctx, model, links, inst, wsFromFile, stillNodes) : nullptr;
         for (size_t k = 0; k < primitives; ++k)
             if (std::optional<PlannedPrimitive> pp =
-                    planPrimitive(ctx, model, doc, inst, k, counts))
+                    planPrimitive(ctx, model, doc, inst, k, counts)) {
+                pp->animation = animation;
                 addToPlan(ctx, *pp, plan, counts);
+            }
     });
     planWarnings(counts, out);
 
@@ -1045,10 +1127,12 @@ tinygltf::Model parseWithTinygltf(Context& ctx, const std::vector<unsigned char>
 }  // namespace
 
 GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
-                     const glm::dmat4& wsFromFile, const LoadLimits& limits,
-                     bool readAlphaTextures) {
+                     const glm::dmat4& wsFromFile, const LoadLimits& limits, bool readAlphaTextures,
+                     const Sequence* sequence) {
     GltfContent content;
     Context ctx;
+    ctx.playAnimations = sequence != nullptr;
+    if (sequence) ctx.animationClip = sequence->animation;
     ctx.displayName = displayName;
     ctx.limits = limits;
     ctx.readAlphaTextures = readAlphaTextures;

@@ -25,6 +25,10 @@ struct GltfContent {
     // extensions"), sorted.
     std::vector<std::string> gltfExtensionsIgnored;
     std::vector<std::string> warnings;
+    // The file's animation names ("animations[i]" when unnamed), and whether the clip that the
+    // sequence names is among them; read only for a scene with a sequence.
+    std::vector<std::string> animationNames;
+    bool animationClipFound = false;
     std::vector<std::filesystem::path> filesRead;  // for the content hash
     uint64_t bytesRead = 0;
 };
@@ -32,9 +36,11 @@ struct GltfContent {
 // Loads the default scene of a glTF file, applying `wsFromFile` (the scene file's placement) after
 // the node transforms. `displayName` is the name used in error messages. Without
 // `readAlphaTextures` (a scene without the "alpha" effect) alpha-tested materials keep their mask
-// but no texture: their images are neither read nor decoded, and a warning names them.
+// but no texture: their images are neither read nor decoded, and a warning names them. With a
+// `sequence` the file's animations play (its clip, or every clip): the moving primitives get a
+// MeshAnimation and are posed at t = 0; without one, the file loads in its nodes' own TRS.
 GltfContent loadGltf(const std::filesystem::path& path, const std::string& displayName,
                      const glm::dmat4& wsFromFile, const LoadLimits& limits,
-                     bool readAlphaTextures = true);
+                     bool readAlphaTextures = true, const Sequence* sequence = nullptr);
 
 }  // namespace so

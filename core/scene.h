@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@
 #include "core/lights/light.h"
 
 namespace so {
+
+struct MeshAnimation;  // core/gltf_animation.h
 
 // Axis-aligned box in world space. Empty until a point is added.
 struct Bounds3d {
@@ -118,6 +121,10 @@ struct MeshPrimitive {
     // The glTF material's doubleSided (false without a material, and for meshes made in memory).
     // Nothing traced reads it: the oracle's rays meet both sides; `export` keeps it for engines.
     bool doubleSided = false;
+    // In a scene with a sequence, a primitive under a node that a played glTF animation moves:
+    // how it moves (core/gltf_animation.h); null for a still one. wsPositions are its pose at
+    // t = 0. Shared, immutable: copies of the scene share it.
+    std::shared_ptr<const MeshAnimation> animation;
     size_t triangleCount() const { return indices.size() / 3; }
 };
 
@@ -172,8 +179,9 @@ struct LoadLimits {
     uint64_t maxTotalImagePixels = uint64_t(1) << 28;  // all alpha textures of a scene
     int maxNodeDepth = 256;
     size_t maxLights = 64;
-    size_t maxPathKeyframes = 10000;  // camera_path keyframes or poses
-    int maxSequenceFrames = 100000;   // sequence.frames
+    size_t maxPathKeyframes = 10000;                // camera_path keyframes or poses
+    int maxSequenceFrames = 100000;                 // sequence.frames
+    uint64_t maxAnimationKeys = uint64_t(1) << 22;  // keys of the played glTF clips, all together
 };
 
 // Loads a scene file (.json, see docs/scene-format.md) or a bare .gltf/.glb. Throws InputError

@@ -30,8 +30,8 @@ namespace {
 using Reader = JsonReader;
 
 // The newest version read; every older one still loads. 2 added camera_path, 3 geometry[i].dynamic,
-// 4 polygon lights, 5 sequence (glTF animations, light_paths); a light type that came with a newer version says so (LightKind::sceneFormat),
-// and that version is then the newest.
+// 4 polygon lights, 5 sequence (glTF animations, light_paths); a light type that came with a newer
+// version says so (LightKind::sceneFormat), and that version is then the newest.
 int newestSceneFormat() {
     int newest = 5;
     for (const LightKind* k : allLightKinds()) newest = std::max(newest, k->sceneFormat());
@@ -412,7 +412,21 @@ void finishScene(const json& root, const Reader& r, const LoadLimits& limits,
     // The path is part of the description's text, so the content hash already covers it.
     if (root.contains("camera_path"))
         scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
-    if (root.contains("sequence")) scene.sequence = parseSequence(root["sequence"], r, limits);
+    if (root.contains("sequence") && !scene.sequence)
+        scene.sequence = parseSequence(root["sequence"], r, limits);
+}
+
+// A sequence naming a clip: some geometry file must have it (the error lists the clips there are).
+void checkClipFound(const Scene& scene, const std::vector<GltfContent>& files, const Reader& r) {
+    if (!scene.sequence || scene.sequence->animation.empty()) return;
+    std::string names;
+    for (const GltfContent& g : files) {
+        if (g.animationClipFound) return;
+        for (const std::string& n : g.animationNames) names += (names.empty() ? "" : ", ") + n;
+    }
+    r.fail("sequence.animation",
+           "no glTF animation named \"" + printable(scene.sequence->animation, 60) +
+               "\" (the geometry has " + (names.empty() ? std::string("none") : names) + ")");
 }
 
 Scene loadSceneJson(const std::filesystem::path& path, const std::string& display,
@@ -422,9 +436,9 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         readFileCapped(path, display, std::min<uint64_t>(limits.maxFileBytes, 64u << 20));
     json root = parseStrict(text, r);
     r.requireObject(root, "");
-    r.checkKeys(root, "",
-                {"scene_format", "geometry", "camera", "camera_path", "lights", "effects",
-                 "sequence"});
+    r.checkKeys(
+        root, "",
+        {"scene_format", "geometry", "camera", "camera_path", "lights", "effects", "sequence"});
     if (!root.contains("scene_format"))
         r.fail("scene_format",
                "missing (this tool reads 1 to " + std::to_string(newestSceneFormat()) + ")");
@@ -447,8 +461,11 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     std::filesystem::path folder = path.parent_path();
     uint64_t totalBytes = text.size();
 
-    // Effects first: they decide what the geometry's files must hold (alpha textures).
+    // Effects first: they decide what the geometry's files must hold (alpha textures); the
+    // sequence too: it decides whether the files' animations play.
     scene.effects = parseEffects(root, r);
+    if (root.contains("sequence")) scene.sequence = parseSequence(root["sequence"], r, limits);
+    std::vector<GltfContent> loaded;  // only what checkClipFound reads is kept
 
     if (!root.contains("geometry")) r.fail("geometry", "missing");
     const json& jg = root["geometry"];
@@ -480,7 +497,8 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         std::error_code ec;
         if (!std::filesystem::is_regular_file(file, ec))
             r.fail(f + ".file", "\"" + printable(rel, 60) + "\": no such file");
-        GltfContent g = loadGltf(file, gltfDisplay, wsFromFile, limits, scene.hasEffect("alpha"));
+        GltfContent g = loadGltf(file, gltfDisplay, wsFromFile, limits, scene.hasEffect("alpha"),
+                                 scene.sequence ? &*scene.sequence : nullptr);
         for (MeshPrimitive& m : g.meshes) m.dynamic = dynamic;
         scene.geometry.push_back({std::filesystem::absolute(file, ec), translate, scale});
         for (const auto& fr : g.filesRead) {
@@ -488,7 +506,11 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
             hasher.addFile(fr, relName);
         }
         addGltf(scene, g, totalBytes, limits, display);
+        loaded.emplace_back();
+        loaded.back().animationNames = std::move(g.animationNames);
+        loaded.back().animationClipFound = g.animationClipFound;
     }
+    checkClipFound(scene, loaded, r);
     if (jg.empty())
         scene.stats.warnings.push_back("the scene has no geometry: every pixel is background");
 

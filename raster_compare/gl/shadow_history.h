@@ -7,8 +7,13 @@
 // Ray-traced shadows with a denoiser plug into the same reprojection.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "core/scene.h"
@@ -34,10 +39,28 @@ class ShadowHistory {
     ShadowHistory(HistorySettings settings, std::string light);
     // The current frame's V of the light resolved with the history (width * height, top row
     // first), kept with the frame's geometry as the next frame's history. The first frame is its
-    // own V. `scene` is the scene with its motion (not a posed frame): meshMotion reads it.
+    // own V, and so is every pixel that missed, was off screen or hidden in the previous frame
+    // (the previous pixel it lands in saw another mesh, or the same mesh elsewhere: a position
+    // more than half a pixel's footprint away, plus 4 footprints per pixel of distance from that
+    // pixel's centre for oblique surfaces), and every frame with weight 0. Elsewhere: history = the
+    // previous resolved V at the point's previous position (meshMotion, then the previous camera),
+    // bilinear over the matching texels; with clamp, clamped to [min, max] of the current V over
+    // the 3x3 pixels around that hit; resolved = weight * history + (1 - weight) * current.
+    // Deterministic, one thread. `image` needs the channels A, P.*, id.mesh (world positions, as
+    // raster.exr holds them) and the light's V. `scene` is the scene with its motion (not a posed
+    // frame): meshMotion reads it.
     std::vector<float> resolve(const Scene& scene, const HistoryFrame& current);
 
   private:
+    // The previous resolved V at image position imagePos of the previous frame (pixel units,
+    // (0,0) its top-left corner): bilinear over the texels that saw mesh `mesh` within a tolerance
+    // of wsPrevious (the point where it stood then); none when off screen or when the pixel it
+    // falls in does not match.
+    std::optional<float> sample(const glm::dvec2& imagePos, long mesh,
+                                const glm::dvec3& wsPrevious) const;
+    // meshMotion(scene, mesh, t, t_), computed once per mesh and frame.
+    const glm::dmat4& motionToPrevious(const Scene& scene, size_t mesh, double t);
+
     HistorySettings settings_;
     std::string light_;
     // The previous frame: its resolved V, geometry, camera and time (none before the first).
@@ -46,6 +69,8 @@ class ShadowHistory {
     CameraDesc camera_;
     double t_ = 0.0;
     bool have_ = false;
+    std::vector<glm::dmat4> motions_;  // this frame's motion per mesh, where motionKnown_
+    std::vector<char> motionKnown_;
 };
 
 }  // namespace so
