@@ -30,7 +30,8 @@ std::vector<OptionSpec> makeTable() {
         "judge the scene's `sequence` (scene_format 5) frame by frame: the oracle of every frame "
         "(cached per frame), every technique rendered over the frames in order, keeping its "
         "history, for metrics.json's `sequence` ([metrics.md](metrics.md#sequence)); the row's "
-        "other metrics describe the last frame; techniques only, not `--image`; in a sweep spec `true` or "
+        "other metrics describe the last frame; techniques only, not `--image`; in a sweep spec "
+        "`true` or "
         "`false`"));
     t.back().excludes = {"frames_path"};
     return t;

@@ -579,8 +579,8 @@ void writeSequenceChart(std::ostream& o, const ReportInput& in, size_t li) {
           << "\" text-anchor=\"end\">" << num(e, 3) << "</text>";
     }
     for (int f = 0; f < frames; f += std::max(1, frames / 8))
-        o << "<text x=\"" << x(f) << "\" y=\"" << kH - kBottom + 14
-          << "\" text-anchor=\"middle\">" << f << "</text>";
+        o << "<text x=\"" << x(f) << "\" y=\"" << kH - kBottom + 14 << "\" text-anchor=\"middle\">"
+          << f << "</text>";
     o << "<line class=\"axis\" x1=\"" << kLeft << "\" x2=\"" << kW - kRight << "\" y1=\"" << y(0)
       << "\" y2=\"" << y(0) << "\"/><text class=\"label\" x=\"" << (kLeft + kW - kRight) / 2
       << "\" y=\"" << kH - 4 << "\" text-anchor=\"middle\">frame</text><text class=\"label\" "

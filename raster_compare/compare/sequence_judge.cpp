@@ -18,8 +18,8 @@ void SequenceJudge::add(const SequenceFrame& in) {
     ErrorMaps maps;
     metrics_.maePerFrame.push_back(
         computeLightMetrics(*f.oracle, *f.raster, light_, options_, &maps).mae);
-    if (previous_) metrics_.flicker.add(compareFramePair(*previous_, f, light_, {}, nullptr,
-                                                         in.motion));
+    if (previous_)
+        metrics_.flicker.add(compareFramePair(*previous_, f, light_, {}, nullptr, in.motion));
     previous_ = f;
 
     // The truth's V now, NaN where the oracle missed (no surface to compare with).

@@ -112,9 +112,8 @@ FramePairFlicker compareFramePair(const TemporalFrame& prev, const TemporalFrame
         bool moved = false;
         const glm::dvec3 wsP =
             previousPoint(motion, b.mo[i], glm::dvec3(b.Px[i], b.Py[i], b.Pz[i]), moved);
-        const long j = still && !moved
-                           ? i
-                           : trackedPixel(prevCamera, wsP, a.w, a.h, options.trackRadius);
+        const long j =
+            still && !moved ? i : trackedPixel(prevCamera, wsP, a.w, a.h, options.trackRadius);
         if (j < 0 || !a.counted(size_t(j)) || a.mo[j] != b.mo[i] || a.po[j] != b.po[i]) continue;
         ++out.tracked;
         const double dVo = std::abs(double(b.Vo[i]) - double(a.Vo[j]));

@@ -43,9 +43,9 @@ void checkOptions(const CompareOptions& options, const std::vector<TechniqueSpec
                         "one or the other: " + n.sequence + " judges the scene's own sequence, " +
                             n.framesPath + " its camera path");
     if (options.sequence && (!options.images.empty() || !options.pointsPath.empty()))
-        throwInputError(n.source, n.sequence,
-                        "an image is one frame: " + n.sequence + " works with " + n.technique +
-                            " only");
+        throwInputError(
+            n.source, n.sequence,
+            "an image is one frame: " + n.sequence + " works with " + n.technique + " only");
     if (options.pathFrames > 0 && !options.images.empty())
         throwInputError(
             n.source, n.framesPath,

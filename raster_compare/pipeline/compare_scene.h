@@ -81,10 +81,10 @@ struct CompareCallbacks {
 // What a comparison of one scene produced, typed: the command writes it, a sweep task makes its
 // row from it.
 struct CompareRun {
-    Scene scene;  // as loaded (with its motion, in a sequence)
+    Scene scene;                  // as loaded (with its motion, in a sequence)
     OracleOptions oracleOptions;  // the options', at the comparison's image size
-    CachedOracle oracle;  // in a sequence, its last frame's
-    bool atPoints = false;  // the oracle at --points' G-buffer
+    CachedOracle oracle;          // in a sequence, its last frame's
+    bool atPoints = false;        // the oracle at --points' G-buffer
     Comparison comparison;
     std::filesystem::path out;  // the output folder, made; empty when options.outDir is
 };

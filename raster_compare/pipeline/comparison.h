@@ -110,9 +110,9 @@ struct Comparison {
     // Per light: where the oracle's exact penumbra pass gave V, what it cost (the report's chart).
     std::vector<std::optional<OracleExactPoint>> oracleExact;
     MetricOptions metricOptions;  // what the metrics used (the contact threshold in world units)
-    std::optional<PathFlicker> path;  // pathFrames > 0
+    std::optional<PathFlicker> path;         // pathFrames > 0
     std::optional<SequenceResult> sequence;  // ComparisonOptions::sequence
-    std::optional<GlInfo> gl;         // when a technique was rendered
+    std::optional<GlInfo> gl;                // when a technique was rendered
     // The GL driver's and the camera path's oracle cache's warnings, for the caller to print.
     std::vector<std::string> warnings;
 };

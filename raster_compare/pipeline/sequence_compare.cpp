@@ -102,8 +102,8 @@ SequenceResult measureSequence(const Scene& scene, const std::vector<const Techn
                               image.channel(channels::lightChannel(scene.lights[li].name,
                                                                    channels::kVisibility)));
                 }
-                judges[k][li].add({{frame.camera, &frame.oracle, &image},
-                                   motion ? &*motion : nullptr});
+                judges[k][li].add(
+                    {{frame.camera, &frame.oracle, &image}, motion ? &*motion : nullptr});
             }
         progress.advance(1);
     }

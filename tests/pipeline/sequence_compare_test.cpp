@@ -62,8 +62,8 @@ json compareSequence(const fs::path& scene, const std::vector<std::string>& tech
     o.useCache = false;
     o.raster.frames = 1;
     o.raster.warmup = 0;
-    o.names = {"test", "technique", "image", "points", "frames_path", "verify", "size", "out",
-               "sequence"};
+    o.names = {"test",   "technique", "image", "points",  "frames_path",
+               "verify", "size",      "out",   "sequence"};
     const CompareRun run = compareScene(o);
     return metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
 }
@@ -144,11 +144,11 @@ TEST(CompareSequence, WithoutASequenceOrWithFramesPathIsAOneLineError) {
     EXPECT_EQ(log, file.string() +
                        ": sequence: missing: --sequence needs the scene's sequence (scene_format "
                        "5, docs/scene-format.md)\n");
-    EXPECT_EQ(runCli("compare " + (kAnim / "sliding_box.scene.json").string() +
-                         " --sequence --frames-path 3 --technique pcf --out " +
-                         (dir / "out").string(),
-                     &log),
-              2);
+    EXPECT_EQ(
+        runCli("compare " + (kAnim / "sliding_box.scene.json").string() +
+                   " --sequence --frames-path 3 --technique pcf --out " + (dir / "out").string(),
+               &log),
+        2);
     EXPECT_NE(log.find("--frames-path"), std::string::npos) << log;
     EXPECT_NE(log.find("--sequence"), std::string::npos) << log;
     fs::remove_all(dir);
