@@ -112,7 +112,8 @@ TEST(CompareSequence, StillBoxHasTheSameFrameSixteenTimesAndNoLag) {
     REQUIRE_GL();
     const fs::path dir = fs::temp_directory_path() / ("so_seq_still_" + std::to_string(::getpid()));
     const json m = compareSequence(writeStillScene(dir), {"pcf"});
-    const json& pcf = sunRows(m).at("pcf");
+    const std::map<std::string, json> rows = sunRows(m);
+    const json& pcf = rows.at("pcf");
     expectSixteenFrames(pcf);
     const json& s = pcf["sequence"];
     // Nothing moves and pcf has no history or jitter: every frame is the first.
