@@ -130,6 +130,11 @@ static Runner addTrace(CLI::App& app) {
     traceCmd->add_option("--tile", o->tile,
                          "I/N: trace only band I of N bands of rows (0 <= I < N <= 4096), for "
                          "`trace-merge` to join; not with --verify");
+    traceCmd->add_option("--frame", o->frame,
+                         "K: the oracle at frame K of the scene's sequence (t = K / fps)");
+    traceCmd->add_option("--frames", o->frames,
+                         "A:B: the oracle at frames A to B (both included) of the sequence, each "
+                         "into DIR/frame_NNNN/");
     traceCmd->add_option(
         "--points", o->pointsPath,
         "GBUFFER.exr: the oracle at a renderer's own surface points (P, N, A), one "

@@ -1,6 +1,8 @@
 #include "cli/trace_command.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -8,6 +10,7 @@
 #include "cli/progress_bar.h"
 #include "core/error.h"
 #include "core/gbuffer.h"
+#include "core/scene_pose.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/points.h"
@@ -149,14 +152,11 @@ int runTracePoints(const TraceCommandOptions& options) {
 
 }  // namespace
 
-int runTraceCommand(const TraceCommandOptions& options) {
-    if (!options.pointsPath.empty()) return runTracePoints(options);
-    using Clock = std::chrono::steady_clock;
-    const std::optional<TileSpec> tile = tileOf(options);
-    auto t0 = Clock::now();
-    Scene scene = loadScene(options.scenePath);
-    const double loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    printSceneWarnings(options.scenePath, scene);
+namespace {
+
+// One trace of `scene` (the file's, or one frame of its sequence) into `outDir`.
+int traceScene(const TraceCommandOptions& options, const std::optional<TileSpec>& tile,
+               const Scene& scene, double loadSeconds, const std::string& outDir) {
     if (scene.stats.degenerateTriangles)
         std::cerr << "warning: " << options.scenePath << ": " << scene.stats.degenerateTriangles
                   << " degenerate (zero-area) triangles (kept, they cannot be hit)\n";
@@ -176,7 +176,7 @@ int runTraceCommand(const TraceCommandOptions& options) {
     }
     const RowBand rows = oracle.rows.value_or(RowBand{0, cam.height});
 
-    const std::filesystem::path out = makeOutputDir(options.outDir, "--out");
+    const std::filesystem::path out = makeOutputDir(outDir, "--out");
     OracleResult result =
         namingFlag("verify", "--verify", [&] { return runOracle(scene, oracle); });
 
@@ -194,6 +194,86 @@ int runTraceCommand(const TraceCommandOptions& options) {
     for (const std::string& p : files.previews) std::cout << "  " << p << "\n";
     printOracleCost(result.stats);
     return reportVerification(result.stats, options.scenePath, files.json);
+}
+
+// A frame number of --frame or --frames: decimal digits only.
+int frameNumber(const std::string& text, const std::string& whole, const char* flag,
+                const char* form) {
+    if (text.empty() || text.size() > 9 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
+        throwInputError("command line", flag, "\"" + printable(whole, 40) + "\" is not " + form);
+    return std::stoi(text);
+}
+
+// --frame K or --frames A:B, checked against the scene's sequence: the first and last frame.
+std::pair<int, int> frameRange(const TraceCommandOptions& options, const Scene& scene) {
+    const bool one = !options.frame.empty();
+    const char* flag = one ? "--frame" : "--frames";
+    if (one && !options.frames.empty())
+        throwInputError("command line", "--frame", "cannot be used with --frames");
+    if (!options.pointsPath.empty())
+        throwInputError("command line", flag, "cannot be used with --points");
+    if (!scene.sequence)
+        throwInputError(options.scenePath, "sequence",
+                        std::string("the scene has no sequence (scene_format 5) for ") + flag);
+    std::pair<int, int> range;
+    if (one) {
+        range.first = range.second = frameNumber(options.frame, options.frame, flag, "K (e.g. 8)");
+    } else {
+        const size_t colon = options.frames.find(':');
+        const char* form = "A:B (e.g. 0:15)";
+        if (colon == std::string::npos)
+            throwInputError("command line", flag,
+                            "\"" + printable(options.frames, 40) + "\" is not " + form);
+        range = {frameNumber(options.frames.substr(0, colon), options.frames, flag, form),
+                 frameNumber(options.frames.substr(colon + 1), options.frames, flag, form)};
+        if (range.first > range.second)
+            throwInputError("command line", flag, "A must not be after B in A:B");
+    }
+    if (range.second >= scene.sequence->frames)
+        throwInputError("command line", flag,
+                        "frame " + std::to_string(range.second) + " is past the sequence's " +
+                            std::to_string(scene.sequence->frames) + " frames (0 to " +
+                            std::to_string(scene.sequence->frames - 1) + ")");
+    return range;
+}
+
+// --frame / --frames: each frame posed and traced like any scene; the exit code is the worst.
+int traceFrames(const TraceCommandOptions& options, const std::optional<TileSpec>& tile,
+                const Scene& scene, double loadSeconds) {
+    const auto [first, last] = frameRange(options, scene);
+    int code = 0;
+    for (int k = first; k <= last; ++k) {
+        const double t = sequenceTime(*scene.sequence, k);
+        std::string outDir = options.outDir;
+        if (!options.frames.empty()) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%04d", k);
+            outDir = (std::filesystem::path(options.outDir) / name).string();
+        }
+        if (options.progress)
+            std::cerr << "frame " << k << " (t = " << t << " s), " << (k - first + 1) << " of "
+                      << (last - first + 1) << "\n";
+        code =
+            std::max(code, traceScene(options, tile, sceneAtTime(scene, t), loadSeconds, outDir));
+    }
+    return code;
+}
+
+}  // namespace
+
+int runTraceCommand(const TraceCommandOptions& options) {
+    if (!options.pointsPath.empty() && options.frame.empty() && options.frames.empty())
+        return runTracePoints(options);
+    using Clock = std::chrono::steady_clock;
+    const std::optional<TileSpec> tile = tileOf(options);
+    auto t0 = Clock::now();
+    Scene scene = loadScene(options.scenePath);
+    const double loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    printSceneWarnings(options.scenePath, scene);
+    if (!options.frame.empty() || !options.frames.empty())
+        return traceFrames(options, tile, scene, loadSeconds);
+    return traceScene(options, tile, scene, loadSeconds, options.outDir);
 }
 
 }  // namespace so

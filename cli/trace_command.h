@@ -23,6 +23,11 @@ struct TraceCommandOptions {
     // --no-previews: false. The PNG previews are the only images trace encodes, so without them
     // OpenImageIO's module (~0.2 s to load, docs/benchmarks.md) is never loaded.
     bool previews = true;
+    // --frame K: the scene of a sequence at frame K (core/scene_pose.h), written into outDir;
+    // --frames A:B: frames A to B, both included, each into outDir/frame_NNNN/. Empty: the scene as
+    // loaded. Parsed and checked by runTraceCommand.
+    std::string frame;
+    std::string frames;
 };
 
 // Returns the process exit code; InputError propagates to main (exit 2).

@@ -72,6 +72,22 @@ struct Sequence {
     std::string animation;  // the glTF animation that plays; empty: every clip
 };
 
+// A light moving on the sequence's clock (scene_format 5, `light_paths`; core/light_path.h): keys
+// at t seconds, strictly increasing, each with the same fields: a position (every light but a
+// directional one; an area light moves rigidly, its centre there) and/or a direction (directional
+// and spot lights; unit).
+struct LightKeyframe {
+    double t = 0.0;
+    std::optional<glm::dvec3> wsPosition;
+    std::optional<glm::dvec3> wsDirection;
+};
+
+struct LightPath {
+    std::string light;                     // the name of the light it moves
+    std::vector<LightKeyframe> keyframes;  // at least 2
+    PathInterpolation interpolation = PathInterpolation::Linear;
+};
+
 // How a texture repeats outside [0, 1] (glTF sampler wrapS / wrapT), and how it is read.
 enum class TextureWrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 enum class TextureFilter : uint8_t { Nearest, Bilinear };
@@ -153,6 +169,7 @@ struct Scene {
     CameraDesc camera;
     std::optional<CameraPath> cameraPath;  // scene_format 2 only; for compare --frames-path
     std::optional<Sequence> sequence;      // scene_format 5 only; core/scene_pose.h
+    std::vector<LightPath> lightPaths;     // scene_format 5, with a sequence; at most one a light
     std::vector<MeshPrimitive> meshes;
     std::vector<GeometrySource> geometry;
     std::vector<Light> lights;

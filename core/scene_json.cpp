@@ -18,6 +18,7 @@
 #include "core/gltf_loader.h"
 #include "core/hash.h"
 #include "core/json_reader.h"
+#include "core/light_path.h"
 #include "core/lights/light_kind.h"
 #include "core/lights/make_light.h"
 #include "core/read_file.h"
@@ -414,6 +415,11 @@ void finishScene(const json& root, const Reader& r, const LoadLimits& limits,
         scene.cameraPath = parseCameraPath(root["camera_path"], r, limits, scene.camera);
     if (root.contains("sequence") && !scene.sequence)
         scene.sequence = parseSequence(root["sequence"], r, limits);
+    if (root.contains("light_paths")) {
+        if (!scene.sequence)
+            r.fail("light_paths", "needs a sequence (the clock its keys' t are read on)");
+        scene.lightPaths = parseLightPaths(root["light_paths"], r, limits, scene.lights);
+    }
 }
 
 // A sequence naming a clip: some geometry file must have it (the error lists the clips there are).
@@ -436,9 +442,9 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
         readFileCapped(path, display, std::min<uint64_t>(limits.maxFileBytes, 64u << 20));
     json root = parseStrict(text, r);
     r.requireObject(root, "");
-    r.checkKeys(
-        root, "",
-        {"scene_format", "geometry", "camera", "camera_path", "lights", "effects", "sequence"});
+    r.checkKeys(root, "",
+                {"scene_format", "geometry", "camera", "camera_path", "lights", "effects",
+                 "sequence", "light_paths"});
     if (!root.contains("scene_format"))
         r.fail("scene_format",
                "missing (this tool reads 1 to " + std::to_string(newestSceneFormat()) + ")");
@@ -450,8 +456,9 @@ Scene loadSceneJson(const std::filesystem::path& path, const std::string& displa
     if (root.contains("camera_path") && format < 2)
         r.fail("camera_path",
                "needs scene_format 2 (the file says " + std::to_string(format) + ")");
-    if (root.contains("sequence") && format < 5)
-        r.fail("sequence", "needs scene_format 5 (the file says " + std::to_string(format) + ")");
+    for (const char* key : {"sequence", "light_paths"})
+        if (root.contains(key) && format < 5)
+            r.fail(key, "needs scene_format 5 (the file says " + std::to_string(format) + ")");
     checkLightFormats(root, r, format);
 
     Scene scene;

@@ -7,6 +7,7 @@
 
 #include "core/camera_path.h"
 #include "core/gltf_animation.h"
+#include "core/light_path.h"
 
 namespace so {
 
@@ -16,7 +17,7 @@ double sequenceTime(const Sequence& sequence, int frame) {
 
 bool sceneMoves(const Scene& scene) {
     if (!scene.sequence) return false;
-    if (scene.cameraPath) return true;
+    if (scene.cameraPath || !scene.lightPaths.empty()) return true;
     for (const MeshPrimitive& m : scene.meshes)
         if (m.animation) return true;
     return false;
@@ -33,6 +34,10 @@ Scene sceneAtTime(const Scene& scene, double t) {
             mesh.wsPositions[i] = glm::dvec3(wsFromLs * glm::dvec4(ls[i], 1.0));
         mesh.animation.reset();
     }
+    for (const LightPath& path : scene.lightPaths)
+        for (Light& light : posed.lights)
+            if (light.name == path.light) light = lightAt(path, light, t);
+    posed.lightPaths.clear();
     if (scene.cameraPath) posed.camera = cameraAt(*scene.cameraPath, scene.camera, t);
     posed.sequence.reset();
     posed.cameraPath.reset();

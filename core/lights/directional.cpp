@@ -10,6 +10,8 @@ class DirectionalLightKind final : public LightKind {
     LightType type() const override { return LightType::Directional; }
     const char* name() const override { return "directional"; }
     bool isDirectional() const override { return true; }
+    bool pathMovesPosition() const override { return false; }
+    bool pathTurnsDirection() const override { return true; }
     std::vector<std::string> keys() const override { return {"direction"}; }
     void parse(const json& j, const JsonReader& r, const std::string& f,
                Light& light) const override {

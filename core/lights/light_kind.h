@@ -41,6 +41,10 @@ class LightKind {
     // The scene_format this type came with (1: from the start): an older file naming it is an
     // error, and core/scene_writer.h writes no older version for a scene holding it.
     virtual int sceneFormat() const { return 1; }
+    // What a light path's keys may set (core/light_path.h): a position (all but directional
+    // lights; an area light moves rigidly) and a direction (directional and spot lights).
+    virtual bool pathMovesPosition() const { return true; }
+    virtual bool pathTurnsDirection() const { return false; }
     // The keys it takes besides "name" and "type" (unknown ones are an error).
     virtual std::vector<std::string> keys() const = 0;
     // Reads j's keys (j is the light object at `field`, e.g. "lights[2]") into `light`, whose name

@@ -14,6 +14,7 @@ class SpotLightKind final : public LightKind {
     LightType type() const override { return LightType::Spot; }
     const char* name() const override { return "spot"; }
     bool hasCone() const override { return true; }
+    bool pathTurnsDirection() const override { return true; }
     std::vector<std::string> keys() const override {
         return {"position", "direction", "outer_cone_deg", "inner_cone_deg"};
     }

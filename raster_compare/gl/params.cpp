@@ -47,9 +47,10 @@ std::string namesOf(const ParamSpec& spec) {
 
 void validate(const std::string& file, const ParamSpec& spec, double v) {
     if (spec.integer && v != std::floor(v)) throwInputError(file, spec.name, "must be an integer");
-    if (v < spec.min || v > spec.max) {
+    if (v < spec.min || v > spec.max || (spec.maxExclusive && v == spec.max)) {
         std::ostringstream os;
-        os << v << " is out of range [" << spec.min << ", " << spec.max << "]";
+        os << v << " is out of range [" << spec.min << ", " << spec.max
+           << (spec.maxExclusive ? ")" : "]");
         throwInputError(file, spec.name, os.str());
     }
     if (!spec.allowed.empty()) {
@@ -94,6 +95,7 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
                     (spec->names.empty() ? std::string("a number") : "one of " + namesOf(*spec)));
         validate(file, *spec, v);
         values.values_[key] = v;
+        values.given_.insert(key);
     }
     return values;
 }

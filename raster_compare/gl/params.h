@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@ struct ParamSpec {
     // A parameter that picks a method: the names of its values 0, 1, ... (made by methodParam).
     // A setting gives the name ("pattern=poisson") or, as before names, the number.
     std::vector<std::string> names = {};
+    // The range is [min, max): max itself is out of range (a blend weight below 1).
+    bool maxExclusive = false;
 };
 using ParamTable = std::vector<ParamSpec>;
 
@@ -51,12 +54,16 @@ class ParamValues {
     int integer(const std::string& name) const;
     const std::map<std::string, double>& all() const { return values_; }
     std::map<std::string, ParamSetting> settings() const;
+    // Whether the setting named the parameter (else it holds its default): for a parameter that
+    // means nothing unless another is on, which is then an error rather than silently ignored.
+    bool given(const std::string& name) const { return given_.count(name) > 0; }
 
   private:
     friend ParamValues parseParams(const std::string&, const ParamTable&,
                                    const std::vector<std::string>&);
     std::map<std::string, double> values_;
     std::map<std::string, bool> integer_;
+    std::set<std::string> given_;
 };
 
 // Parses "key=value" settings against the table; unknown keys, non-numbers, non-integers and

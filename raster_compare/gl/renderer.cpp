@@ -71,8 +71,8 @@ std::optional<Bounds3d> receiverBounds(const CameraPass& camera,
 
 std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camera,
                                     const Technique& technique,
-                                    const std::optional<Bounds3d>& lsReceivers,
-                                    SetUpShares& shared) {
+                                    const std::optional<Bounds3d>& lsReceivers, SetUpShares& shared,
+                                    int frameIndex) {
     static const std::optional<Bounds3d> notAsked;
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     // The depth probe is a diagnostic, no part of the technique's work: not in the counted frame.
@@ -82,7 +82,7 @@ std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camer
         lights.push_back({&light, LightTarget(camera, probe && technique.probesDepth()),
                           technique.setUp({light, gpu, camera,
                                            technique.needsReceiverBounds() ? lsReceivers : notAsked,
-                                           &shared, probe})});
+                                           &shared, probe, frameIndex})});
     return lights;
 }
 
@@ -93,11 +93,12 @@ std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camer
 std::map<std::string, PassWork> countWork(const GpuScene& gpu, const CameraPass& camera,
                                           const Technique& technique,
                                           const std::optional<Bounds3d>& lsReceivers,
-                                          SetUpShares& shared, const GlContext& gl) {
+                                          SetUpShares& shared, int frameIndex,
+                                          const GlContext& gl) {
     std::vector<FrameLight> lights;
     {
         const CountingBuild counting;
-        lights = setUpLights(gpu, camera, technique, lsReceivers, shared);
+        lights = setUpLights(gpu, camera, technique, lsReceivers, shared, frameIndex);
     }
     gl.throwIfError("technique " + technique.name() + ", counting build set-up");
     WorkCounter counter;
@@ -277,14 +278,16 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
         std::map<std::string, PassWork> work;
         SetUpShares shared;  // the counted instance's set-up, for the timed one
         if (options.countWork)
-            work = countWork(gpu, camera, *techniques[i], lsReceivers, shared, gl);
-        TechniqueFrames t{i,
-                          techniques[i],
-                          setUpLights(gpu, camera, *techniques[i], lsReceivers, shared),
-                          {},
-                          {},
-                          0,
-                          std::move(work)};
+            work =
+                countWork(gpu, camera, *techniques[i], lsReceivers, shared, options.frameIndex, gl);
+        TechniqueFrames t{
+            i,
+            techniques[i],
+            setUpLights(gpu, camera, *techniques[i], lsReceivers, shared, options.frameIndex),
+            {},
+            {},
+            0,
+            std::move(work)};
         // The scene's upload and camera pass (first technique), then this technique's set-up.
         gl.throwIfError("technique " + techniques[i]->name() + ", set-up");
         for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();

@@ -173,10 +173,14 @@ class ShadowMapLight final : public LightTechnique {
     // otherwise), run instead of visibilityProg_ while probing.
     GlProgram probeProg_;
     bool probing_ = false;
+    int frameIndex_ = 0;  // LightSetup::frameIndex: u_frameIndex of the visibility programs
 };
 
 ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightSetup& setup)
-    : technique_(technique), light_(setup.light), scene_(setup.scene) {
+    : technique_(technique),
+      light_(setup.light),
+      scene_(setup.scene),
+      frameIndex_(setup.frameIndex) {
     if (isDirectional(light_) && technique.cascades().count > 1)
         cam_ = fitCascades(light_, scene_.lsBounds(), technique.resolution(),
                            cascadeView(setup.camera), technique.cascades());
@@ -375,6 +379,7 @@ GlProgram ShadowMapLight::createVisibilityProgram(const CameraPass& camera, bool
     setLightCameraUniforms(vp, camera, cam_);
     setInt(vp, "u_map", 0);
     setFloat(vp, "u_receiverMesh", receiver_);
+    setInt(vp, "u_frameIndex", frameIndex_);  // read only by temporal=on's taps
     if (cam_.kind == LightCamera::Kind::Cascades) setCascadeUniforms(vp, camera);
     technique_.setLightUniforms(vp, light_, scene_.frame());
     return program;

@@ -59,6 +59,9 @@ struct LightSetup {
     // the counted frame (the probe is a diagnostic, no part of a technique's work). The light's
     // target then has one if the technique probesDepth().
     bool depthProbe = false;
+    // The sequence's frame (RasterOptions::frameIndex): what techniques with temporal=on turn
+    // their taps by (u_frameIndex); 0 outside a sequence.
+    int frameIndex = 0;
 };
 
 class LightTarget;

@@ -28,7 +28,9 @@ std::string range(const ParamSpec& p) {
         for (double a : p.allowed) s += (s.empty() ? "" : ", ") + number(a);
         return s;
     }
-    return number(p.min) + ".." + number(p.max) + (p.integer ? " (integer)" : "");
+    return number(p.min) + ".." + number(p.max) +
+           (p.maxExclusive ? " (below " + number(p.max) + ")" : "") +
+           (p.integer ? " (integer)" : "");
 }
 
 std::string markdown() {
@@ -72,6 +74,7 @@ std::string json() {
             if (!p.allowed.empty()) j["allowed"] = p.allowed;
             if (!p.names.empty()) j["names"] = p.names;  // value k is names[k]
             if (p.quality) j["quality"] = true;
+            if (p.maxExclusive) j["max_exclusive"] = true;  // max itself is out of range
             params.push_back(j);
         }
         all.push_back({{"name", t->name},

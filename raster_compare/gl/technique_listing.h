@@ -10,7 +10,7 @@ namespace so {
 enum class ListingFormat { Text, Json, Markdown };
 
 // `techniques --json`'s format_version (its --help says it from here).
-inline constexpr int kTechniquesJsonFormat = 3;
+inline constexpr int kTechniquesJsonFormat = 4;
 
 std::string techniquesListing(ListingFormat format);
 

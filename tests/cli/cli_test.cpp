@@ -169,7 +169,7 @@ TEST(Docs, TechniqueTablesMatchTheCode) {
 // The listing as JSON: every technique with its parameters, ranges and defaults.
 TEST(Cli, TechniquesListingAsJson) {
     const nlohmann::json j = nlohmann::json::parse(runStdout("techniques --json"));
-    EXPECT_EQ(j["format_version"], 3);
+    EXPECT_EQ(j["format_version"], 4);
     std::vector<std::string> names;
     for (const auto& t : j["techniques"]) {
         names.push_back(t["name"]);
@@ -177,6 +177,8 @@ TEST(Cli, TechniquesListingAsJson) {
         for (const auto& p : t["parameters"]) {
             EXPECT_LE(p["min"].get<double>(), p["default"].get<double>()) << t["name"] << p;
             EXPECT_LE(p["default"].get<double>(), p["max"].get<double>()) << t["name"] << p;
+            if (p.value("max_exclusive", false))
+                EXPECT_LT(p["default"].get<double>(), p["max"].get<double>()) << t["name"] << p;
         }
     }
     for (const char* name : {"basic", "pcf", "vsm", "evsm", "hw-pcf"})

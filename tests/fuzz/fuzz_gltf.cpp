@@ -4,7 +4,9 @@
 //                written beside it as b.bin, the buffer file the JSON may reference;
 //   bit 1 clear: loaded with loadGltf, and every file it read must lie inside the glTF's folder
 //                (a canary file outside it, ../outside.bin, must never be read);
-//   bit 1 set:   loaded with loadScene, as `shadow-oracle` does for a bare .gltf/.glb.
+//   bit 1 set:   loaded with loadScene, as `shadow-oracle` does for a bare .gltf/.glb;
+//   bit 2 set:   (with loadGltf) as a scene with a sequence loads it: its animations play, and
+//                the moving meshes are posed at a few times (core/gltf_animation.h).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -13,6 +15,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "core/gltf_animation.h"
 #include "core/gltf_loader.h"
 #include "core/scene.h"
 #include "tests/fuzz/fuzz_common.h"
@@ -76,9 +79,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (mode & 2) {
             so::loadScene(path, so::fuzz::fuzzLimits());
         } else {
-            so::GltfContent g = so::loadGltf(path, path.filename().string(), glm::dmat4(1.0),
-                                             so::fuzz::fuzzLimits());
+            const so::Sequence sequence{4, 30.0, ""};
+            so::GltfContent g =
+                so::loadGltf(path, path.filename().string(), glm::dmat4(1.0),
+                             so::fuzz::fuzzLimits(), true, (mode & 4) ? &sequence : nullptr);
             checkFilesInside(g);
+            for (const so::MeshPrimitive& m : g.meshes)
+                if (m.animation)
+                    for (double t : {-1.0, 0.0, 0.04, 1e9}) (void)m.animation->worldAt(t);
         }
     });
     return 0;

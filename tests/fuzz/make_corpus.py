@@ -70,6 +70,10 @@ def main():
         rel = f.relative_to(ASSIMP if ASSIMP in f.parents else ROOT)
         name = re.sub(r"[^A-Za-z0-9_.-]", "_", str(rel))
         write("gltf", name, data)
+    # Animated files as a scene with a sequence loads them (mode bit 2: the animations play).
+    for f in sorted((ROOT / "tests/data/anim").glob("*.gltf")) + sorted(
+            (ROOT / "tests/data/broken_scene").glob("anim_*.gltf")):
+        write("gltf", "anim-" + f.name, gltf_input(f, 4))
     # The same through loadScene, for a few.
     for f in [ROOT / "tests/data/gltf/lights_camera.gltf", ROOT / "tests/data/gltf/triangle.glb",
               ROOT / "tests/data/gltf/two_nodes.gltf", ROOT / "tests/data/gltf/strip_fan.gltf"]:

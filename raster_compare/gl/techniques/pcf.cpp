@@ -1,9 +1,17 @@
 // pcf: percentage-closer filtering: the binary depth test averaged over a kernel x kernel grid of
 // texels around the lookup (the tests are averaged, never the depths), or over a 16-tap Poisson
 // disk of radius kernel / 2 + 1/2, with the slope-scaled bias of slope-bias times
-// (1 + kernel / 2): the outer taps see the receiver's plane that many texels away.
+// (1 + kernel / 2): the outer taps see the receiver's plane that many texels away. With
+// temporal=on (docs/techniques.md#temporal) the same number of taps lie on a Vogel disk turned
+// per pixel and frame by interleaved gradient noise, over the area of the pattern it replaces
+// (the grid's square: radius (2 (kernel / 2) + 1) / sqrt(pi) texels; the Poisson disk's radius),
+// and a ShadowHistory resolves them over frames.
+#include <cmath>
+#include <numbers>
+
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/temporal_taps.h"
 
 namespace so {
 namespace {
@@ -16,23 +24,33 @@ class Pcf final : public ShadowMapTechnique {
             methodParam("pattern", 0, {"grid", "poisson"},
                         "grid: kernel x kernel taps; poisson: a 16-tap Poisson disk")};
         for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
+        for (const ParamSpec& s : TemporalTaps::params()) own.push_back(s);
         return shadowMapParams(own);
     }
     explicit Pcf(const ParamValues& v)
         : ShadowMapTechnique(v),
           radius_(v.integer("kernel") / 2),
           poisson_(v.integer("pattern") == 1),
-          bias_(v) {}
+          bias_(v),
+          temporal_("pcf", v) {}
     const char* glsl() const override { return shaders::pcf_glsl; }
     std::string shaderDefines() const override {
-        return std::string(poisson_ ? "#define POISSON\n" : "") + "#define PCF_RADIUS " +
-               std::to_string(radius_) + "\n" + bias_.defines();
+        std::string d = std::string(poisson_ ? "#define POISSON\n" : "") + "#define PCF_RADIUS " +
+                        std::to_string(radius_) + "\n" + bias_.defines() + temporal_.defines();
+        if (!temporal_.on) return d;  // off: the defines it always had, the same shader
+        const int side = 2 * radius_ + 1;
+        const int taps = poisson_ ? 16 : side * side;
+        const double diskTexels = poisson_ ? radius_ + 0.5 : side / std::sqrt(std::numbers::pi);
+        return d + "#define PCF_TAPS " + std::to_string(taps) + "\n" +
+               glslDefine("PCF_DISK_TEXELS", diskTexels);
     }
+    std::optional<HistorySettings> history() const override { return temporal_.history(); }
 
   private:
     int radius_;  // texels from the centre tap
     bool poisson_;
     SlopeBias bias_;
+    TemporalTaps temporal_;
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 // pcf (pcf.cpp): the depth test averaged over a grid of (2 PCF_RADIUS + 1)^2 texels, or over a
-// 16-tap Poisson disk (POISSON), with the slope bias spread over the kernel.
+// 16-tap Poisson disk (POISSON), with the slope bias spread over the kernel; with TEMPORAL, as many
+// taps (PCF_TAPS) on a Vogel disk of PCF_DISK_TEXELS texels turned per pixel and frame.
 #ifdef POISSON
 // 16 points of a Poisson disk in the unit disk.
 const vec2 kPoisson[16] = vec2[](vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
@@ -15,7 +16,12 @@ float techniqueVisibility(Receiver r) {
     if (m.outside) return 1.0;
     float dRef = m.d - slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0 + float(PCF_RADIUS));
     float lit = 0.0;
-#ifdef POISSON
+#if defined(TEMPORAL)
+    float turn = tapRotation();
+    for (int k = 0; k < PCF_TAPS; ++k)
+        lit += depthTapAt(m, vogelTap(k, PCF_TAPS, turn) * PCF_DISK_TEXELS, dRef);
+    return lit / float(PCF_TAPS);
+#elif defined(POISSON)
     for (int k = 0; k < 16; ++k) lit += depthTapAt(m, kPoisson[k] * (float(PCF_RADIUS) + 0.5), dRef);
     return lit / 16.0;
 #else

@@ -15,6 +15,8 @@
 // sphere: r sqrt(pi)), or `light_size` world units when >= 0 (for directional lights: the tangent
 // of its angular diameter); point, spot and directional lights have none, which makes pcss a hard
 // test. Assumes what Fernando's derivation does: blockers, receiver and light in parallel planes.
+// With temporal=on (docs/techniques.md#temporal) both spirals turn per pixel and per frame
+// (interleaved gradient noise offset by the frame index), and a ShadowHistory resolves them.
 #include <cmath>
 #include <numbers>
 
@@ -25,6 +27,7 @@
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/temporal_taps.h"
 
 namespace so {
 namespace {
@@ -47,6 +50,7 @@ class Pcss final : public ShadowMapTechnique {
              "count no nearer the light than d_receiver / (1 + penumbra_max); directional lights "
              "ignore it"}};
         for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
+        for (const ParamSpec& s : TemporalTaps::params()) own.push_back(s);
         return shadowMapParams(own);
     }
     explicit Pcss(const ParamValues& v)
@@ -56,14 +60,17 @@ class Pcss final : public ShadowMapTechnique {
           filterSamples_(v.integer("filter_samples")),
           rotated_(v.integer("pattern") == 1),
           penumbraMax_(v.real("penumbra_max")),
-          bias_(v) {}
+          bias_(v),
+          temporal_("pcss", v) {}
     const char* glsl() const override { return shaders::pcss_glsl; }
     std::string shaderDefines() const override {
         return "#define BLOCKER_SAMPLES " + std::to_string(blockerSamples_) +
                "\n#define FILTER_SAMPLES " + std::to_string(filterSamples_) + "\n" +
                glslDefine("PENUMBRA_MAX", penumbraMax_) +
-               (rotated_ ? "#define PATTERN_ROTATED\n" : "") + bias_.defines();
+               (rotated_ ? "#define PATTERN_ROTATED\n" : "") + bias_.defines() +
+               temporal_.defines();
     }
+    std::optional<HistorySettings> history() const override { return temporal_.history(); }
     void setLightUniforms(GLuint program, const Light& light,
                           const LocalFrame& frame) const override {
         const double size = lightSize_ >= 0.0 ? lightSize_ : lightWidth(light);
@@ -77,6 +84,7 @@ class Pcss final : public ShadowMapTechnique {
     bool rotated_;
     double penumbraMax_;
     SlopeBias bias_;
+    TemporalTaps temporal_;
 };
 
 }  // namespace

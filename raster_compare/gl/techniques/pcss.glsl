@@ -3,14 +3,14 @@
 uniform float u_lightSize;  // local units; directional: tan of the angular size
 
 // Point k of n on a golden-angle spiral filling the unit disk; with PATTERN_ROTATED the spiral is
-// turned per pixel by interleaved gradient noise (Jimenez 2014), fixed per pixel (deterministic).
+// turned per pixel by interleaved gradient noise (Jimenez 2014), fixed per pixel (deterministic);
+// with TEMPORAL turned per pixel and per frame (shadow_map.frag's tapRotation).
 vec2 spiral(int k, int n) {
-    float r = sqrt((float(k) + 0.5) / float(n));
-    float a = float(k) * 2.39996323;
-#ifdef PATTERN_ROTATED
-    a += 6.28318531 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+#if defined(PATTERN_ROTATED) || defined(TEMPORAL)
+    return vogelTap(k, n, tapRotation());
+#else
+    return vogelTap(k, n, 0.0);
 #endif
-    return r * vec2(cos(a), sin(a));
 }
 
 // The texels the light's width spans at the receiver's depth dR, seen through a point at depth d

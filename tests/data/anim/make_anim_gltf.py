@@ -128,6 +128,7 @@ def scene(path, gltf, extra=None):
            "lights": [{"name": "sun", "type": "directional", "direction": [-0.4, -1, -0.3]}],
            "sequence": {"frames": 16, "fps": 30}}
     doc.update(extra or {})
+    doc = {k: v for k, v in doc.items() if v is not None}
     path.write_text(json.dumps(doc, indent=1) + "\n")
 
 
@@ -146,6 +147,32 @@ def main():
     for name, how in broken.items():
         sliding_box(BROKEN / (name + ".gltf"), **how)
         scene(BROKEN / (name + ".json"), name + ".gltf")
+    lamp = {"name": "lamp", "type": "point", "position": [0, 4, 0]}
+    sun = {"name": "sun", "type": "directional", "direction": [-0.4, -1, -0.3]}
+    two_keys = [{"t": 0, "position": [0, 4, 0]}, {"t": 1, "position": [1, 4, 0]}]
+    light_paths = {
+        "light_path_no_light": {"light_paths": {"moon": {"keyframes": two_keys}}},
+        "light_path_direction_on_point": {
+            "lights": [lamp], "light_paths": {"lamp": {"keyframes": [
+                {"t": 0, "direction": [0, -1, 0]}, {"t": 1, "direction": [1, -1, 0]}]}}},
+        "light_path_position_on_sun": {"light_paths": {"sun": {"keyframes": two_keys}}},
+        "light_path_zero_direction": {"light_paths": {"sun": {"keyframes": [
+            {"t": 0, "direction": [0, -1, 0]}, {"t": 1, "direction": [0, 0, 0]}]}}},
+        "light_path_times": {"lights": [lamp], "light_paths": {"lamp": {"keyframes": [
+            {"t": 1, "position": [0, 4, 0]}, {"t": 1, "position": [1, 4, 0]}]}}},
+        "light_path_one_key": {"lights": [lamp], "light_paths": {"lamp": {
+            "keyframes": two_keys[:1]}}},
+        "light_path_mixed_keys": {"lights": [lamp, sun], "light_paths": {"lamp": {"keyframes": [
+            {"t": 0, "position": [0, 4, 0]}, {"t": 1}]}}},
+        "light_path_interpolation": {"lights": [lamp], "light_paths": {"lamp": {
+            "keyframes": two_keys, "interpolation": "cubic"}}},
+        "light_path_no_sequence": {"lights": [lamp], "sequence": None,
+                                   "light_paths": {"lamp": {"keyframes": two_keys}}},
+        "light_path_format_4": {"scene_format": 4, "sequence": None, "lights": [lamp],
+                                "light_paths": {"lamp": {"keyframes": two_keys}}},
+    }
+    for name, extra in light_paths.items():
+        scene(BROKEN / (name + ".json"), "tri.gltf", extra)
     sliding_box(BROKEN / "anim_clip.gltf")
     scene(BROKEN / "anim_clip_unknown.json", "anim_clip.gltf",
           {"sequence": {"frames": 4, "fps": 30, "animation": "jump"}})

@@ -1,0 +1,31 @@
+// temporal=on|off, history and clamp (docs/techniques.md#temporal): the parameters of a filtering
+// technique whose taps turn every frame (interleaved gradient noise over a Vogel disk, as three.js
+// r182 does for PCF and PCSS), its jittered V resolved over frames by a ShadowHistory. Shared by
+// pcf and pcss, as SlopeBias is.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "raster_compare/gl/params.h"
+#include "raster_compare/gl/shadow_history.h"
+
+namespace so {
+
+struct TemporalTaps {
+    // temporal (off, on), history in [0, 1), clamp (off, on).
+    static ParamTable params();
+    // history or clamp given with temporal=off is an InputError naming the technique and the key:
+    // they would do nothing.
+    TemporalTaps(const std::string& technique, const ParamValues& values);
+    // "#define TEMPORAL\n" when on (shaders/shadow_map.frag's tapRotation), else nothing: off
+    // compiles the very shader it did before.
+    std::string defines() const;
+    // The history's settings when on; none otherwise (Technique::history).
+    std::optional<HistorySettings> history() const;
+
+    bool on = false;
+    HistorySettings settings;
+};
+
+}  // namespace so
