@@ -124,6 +124,45 @@ TEST(CompareSequence, StillBoxHasTheSameFrameSixteenTimesAndNoLag) {
     fs::remove_all(dir);
 }
 
+// The "done when", moving: pcf, its rotated taps alone (history=0), with their history
+// (temporal=on) and with a history that neither clamps nor lets go (history=0.9,clamp=off). Every
+// row has its 16 frames; the unclamped history keeps the box's old shadow where the truth has
+// moved on, so its error on the pixels whose truth just changed is the larger.
+TEST(CompareSequence, OnTheSlidingBoxAnUnclampedHistoryLagsBehindTheJitterAlone) {
+    REQUIRE_GL();
+    const std::string jitter = "pcf:temporal=on,history=0",
+                      unclamped = "pcf:temporal=on,history=0.9,clamp=off";
+    const json m = compareSequence(kAnim / "sliding_box.scene.json",
+                                   {"pcf", jitter, "pcf:temporal=on", unclamped});
+    const std::map<std::string, json> rows = sunRows(m);
+    ASSERT_EQ(rows.size(), 4u);
+    for (const auto& [label, row] : rows) {
+        SCOPED_TRACE(label);
+        expectSixteenFrames(row);
+    }
+    const json &a = rows.at(jitter)["sequence"], &b = rows.at(unclamped)["sequence"];
+    ASSERT_TRUE(a["lag_mae"].is_number() && b["lag_mae"].is_number()) << a << b;
+    EXPECT_EQ(a["lag_pixels"], b["lag_pixels"]) << "the same truth, the same pixels";
+    EXPECT_GT(b["lag_mae"].get<double>(), a["lag_mae"].get<double>());
+}
+
+// The "done when", held still: nothing moves, so the truth never changes, and what changes
+// from frame to frame is the technique's own: its rotated taps alone flicker; their history
+// resolves them and flickers less.
+TEST(CompareSequence, OnTheStillBoxTheHistoryFlickersLessThanTheJitterAlone) {
+    REQUIRE_GL();
+    const fs::path dir =
+        fs::temp_directory_path() / ("so_seq_jitter_" + std::to_string(::getpid()));
+    const std::string jitter = "pcf:temporal=on,history=0", history = "pcf:temporal=on";
+    const json m = compareSequence(writeStillScene(dir), {jitter, history});
+    const std::map<std::string, json> rows = sunRows(m);
+    const json &a = rows.at(jitter)["sequence"], &b = rows.at(history)["sequence"];
+    EXPECT_EQ(a["tracked_pairs"], b["tracked_pairs"]) << "the same view, the same pairs";
+    EXPECT_GT(a["flickering_pairs"].get<size_t>(), 0u) << a;
+    EXPECT_GT(a["flicker_rate"].get<double>(), b["flicker_rate"].get<double>()) << a << b;
+    fs::remove_all(dir);
+}
+
 int runCli(const std::string& args, std::string* output) {
     const std::string log = "/tmp/so_seq_" + std::to_string(::getpid()) + ".log";
     const int status =
