@@ -170,7 +170,7 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "last frame mae"},
     {"sequence.flicker_rate", U::Share, B::Lower, S::Sequence,
      "share of pixel pairs of consecutive frames, tracked through the camera's and the meshes' "
-     "known motion, whose V flips where the oracle's does not",
+     "known motion, whose V changes by more than 0.1 where the oracle's does not",
      "sequence flicker"},
     {"sequence.tracked_pairs", U::Count, B::None, S::Sequence,
      "pixel pairs tracked, summed over the sequence's frame pairs"},

@@ -10,6 +10,17 @@ namespace so {
 
 namespace ch = channels;
 
+namespace {
+
+// A sequence's flicker counts a change of V by more than kSequenceFlickerJump, not only a flip.
+TemporalOptions flickerOptions() {
+    TemporalOptions o;
+    o.rasterJump = kSequenceFlickerJump;
+    return o;
+}
+
+}  // namespace
+
 SequenceJudge::SequenceJudge(std::string light, MetricOptions options)
     : light_(std::move(light)), options_(options) {}
 
@@ -19,7 +30,8 @@ void SequenceJudge::add(const SequenceFrame& in) {
     metrics_.maePerFrame.push_back(
         computeLightMetrics(*f.oracle, *f.raster, light_, options_, &maps).mae);
     if (previous_)
-        metrics_.flicker.add(compareFramePair(*previous_, f, light_, {}, nullptr, in.motion));
+        metrics_.flicker.add(
+            compareFramePair(*previous_, f, light_, flickerOptions(), nullptr, in.motion));
     previous_ = f;
 
     // The truth's V now, NaN where the oracle missed (no surface to compare with).

@@ -19,6 +19,12 @@ namespace so {
 // V at the same pixel in one of the kLagFrames frames before.
 inline constexpr double kLagJump = 0.5;
 inline constexpr int kLagFrames = 4;
+// flicker_rate's change of the technique's V (TemporalOptions::rasterJump): a tenth of the light,
+// where temporal_flicker_rate asks for a flip (0.5). The error of rotated taps is grey-level noise
+// that changes V by fractions from frame to frame, seldom across 0.5: measured on the still box of
+// tests/pipeline/sequence_compare_test.cpp, pcf's jittered taps (history=0) change 1154 tracked
+// pairs by more than 0.1 and none by more than 0.5.
+inline constexpr double kSequenceFlickerJump = 0.1;
 
 struct SequenceMetrics {
     std::vector<double> maePerFrame;  // mae (docs/metrics.md) of each frame, in order
