@@ -53,8 +53,10 @@ fs::path writeStillScene(const fs::path& dir) {
     return writeScene(dir, "still.scene.json", {"floor.gltf", "box.gltf"}, true);
 }
 
-// metrics.json of `compare SCENE --sequence` with these techniques, one untimed frame each.
-json compareSequence(const fs::path& scene, const std::vector<std::string>& techniques) {
+// metrics.json of `compare SCENE --sequence` with these techniques, one untimed frame each; with
+// `out`, its output folder written there too.
+json compareSequence(const fs::path& scene, const std::vector<std::string>& techniques,
+                     const fs::path& out = {}) {
     CompareOptions o;
     o.scenePath = scene.string();
     o.techniques = techniques;
@@ -64,7 +66,10 @@ json compareSequence(const fs::path& scene, const std::vector<std::string>& tech
     o.raster.warmup = 0;
     o.names = {"test",   "technique", "image", "points",  "frames_path",
                "verify", "size",      "out",   "sequence"};
-    const CompareRun run = compareScene(o);
+    o.outDir = out.string();
+    o.embedImages = true;
+    CompareRun run = compareScene(o);
+    if (!out.empty()) writeCompareRun(o, run);
     return metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
 }
 
@@ -92,8 +97,21 @@ void expectSixteenFrames(const json& row) {
 
 TEST(CompareSequence, SlidingBoxJudgesEveryFrameAgainstItsOwnOracle) {
     REQUIRE_GL();
-    const json m = compareSequence(kAnim / "sliding_box.scene.json", {"pcf"});
+    const fs::path out = fs::temp_directory_path() / ("so_seq_slide_" + std::to_string(::getpid()));
+    const json m = compareSequence(kAnim / "sliding_box.scene.json", {"pcf"}, out);
     EXPECT_EQ(m["options"]["sequence_frames"], 16);
+    // The report draws the error per frame, a line per technique; the CSV has the sequence's
+    // metrics but its per-frame series.
+    std::ifstream page(out / "report.html");
+    const std::string html(std::istreambuf_iterator<char>(page), {});
+    const size_t chart = html.find("<div class=\"sequence-box\" id=\"sequence-0\">");
+    ASSERT_NE(chart, std::string::npos);
+    EXPECT_NE(html.find("<polyline class=\"series\"", chart), std::string::npos);
+    std::ifstream csvFile(out / "metrics.csv");
+    const std::string csv(std::istreambuf_iterator<char>(csvFile), {});
+    EXPECT_NE(csv.find(",sequence.lag_mae,"), std::string::npos);
+    EXPECT_EQ(csv.find("mae_per_frame"), std::string::npos);
+    fs::remove_all(out);
     const std::map<std::string, json> rows = sunRows(m);
     ASSERT_EQ(rows.size(), 1u);
     const json& pcf = rows.at("pcf");
