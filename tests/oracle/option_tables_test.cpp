@@ -136,7 +136,9 @@ TEST(Docs, RasterAndCompareOptionTablesMatchTheCode) {
         for (size_t i = 0; i < kind.table->rows.size(); ++i) {
             const OptionSpec& s = kind.table->rows[i];
             EXPECT_EQ(j["options"][i]["key"], s.key);
-            if (s.type != OptionType::Name) {
+            if (s.type == OptionType::Flag) {
+                EXPECT_EQ(j["options"][i]["default"].get<bool>(), s.defaultValue.number != 0.0);
+            } else if (s.type != OptionType::Name) {
                 EXPECT_EQ(j["options"][i]["default"].get<double>(), s.defaultValue.number);
             }
         }

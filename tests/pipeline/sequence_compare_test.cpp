@@ -69,8 +69,11 @@ json compareSequence(const fs::path& scene, const std::vector<std::string>& tech
     o.outDir = out.string();
     o.embedImages = true;
     CompareRun run = compareScene(o);
+    // Before the output is written: writing it takes the rows' images.
+    const json metrics =
+        metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
     if (!out.empty()) writeCompareRun(o, run);
-    return metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
+    return metrics;
 }
 
 // The sun's row of each technique, by label.
