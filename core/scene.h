@@ -198,7 +198,7 @@ struct LoadLimits {
     size_t maxLights = 64;
     size_t maxPathKeyframes = 10000;                // camera_path keyframes or poses
     int maxSequenceFrames = 100000;                 // sequence.frames
-    uint64_t maxAnimationKeys = uint64_t(1) << 22;  // keys of the played glTF clips, all together
+    uint64_t maxAnimationKeys = uint64_t(1) << 20;  // keys of the played glTF clips, all together
 };
 
 // Loads a scene file (.json, see docs/scene-format.md) or a bare .gltf/.glb. Throws InputError

@@ -6,6 +6,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/camera_path.h"
+#include "core/error.h"
 #include "core/gltf_animation.h"
 #include "core/light_path.h"
 
@@ -30,8 +31,20 @@ Scene sceneAtTime(const Scene& scene, double t) {
         if (!mesh.animation) continue;
         const glm::dmat4 wsFromLs = mesh.animation->worldAt(t);
         const std::vector<glm::dvec3>& ls = mesh.animation->lsPositions;
-        for (size_t i = 0; i < ls.size(); ++i)
-            mesh.wsPositions[i] = glm::dvec3(wsFromLs * glm::dvec4(ls[i], 1.0));
+        for (size_t i = 0; i < ls.size(); ++i) {
+            const glm::dvec3 p(wsFromLs * glm::dvec4(ls[i], 1.0));
+            // Finite keys can still overflow (a huge scale times a huge translation): one line,
+            // not a NaN that the bounds check below would not see.
+            if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) {
+                char text[200];
+                std::snprintf(text, sizeof text,
+                              "at t = %.6g the animation moves vertex %zu of %s to a non-finite "
+                              "place",
+                              t, i, printable(mesh.name, 80).c_str());
+                throwInputError(scene.path.string(), "animations", text);
+            }
+            mesh.wsPositions[i] = p;
+        }
         mesh.animation.reset();
     }
     for (const LightPath& path : scene.lightPaths)

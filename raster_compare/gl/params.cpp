@@ -60,6 +60,23 @@ void validate(const std::string& file, const ParamSpec& spec, double v) {
     }
 }
 
+// Every given parameter whose table entry needs another setting has it (ParamSpec::needs).
+void checkNeeds(const std::string& file, const ParamTable& table, const ParamValues& values) {
+    for (const ParamSpec& s : table) {
+        if (s.needs.empty() || !values.given(s.name)) continue;
+        const size_t eq = s.needs.find('=');
+        const std::string key = s.needs.substr(0, eq), text = s.needs.substr(eq + 1);
+        for (const ParamSpec& other : table) {
+            if (other.name != key) continue;
+            const auto named = std::find(other.names.begin(), other.names.end(), text);
+            const double wanted = named != other.names.end() ? double(named - other.names.begin())
+                                                             : std::strtod(text.c_str(), nullptr);
+            if (values.real(key) != wanted)
+                throwInputError(file, s.name, "has no effect without " + s.needs);
+        }
+    }
+}
+
 }  // namespace
 
 ParamValues parseParams(const std::string& technique, const ParamTable& table,
@@ -97,6 +114,7 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
         values.values_[key] = v;
         values.given_.insert(key);
     }
+    checkNeeds(file, table, values);
     return values;
 }
 

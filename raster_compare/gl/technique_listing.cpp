@@ -75,6 +75,7 @@ std::string json() {
             if (!p.names.empty()) j["names"] = p.names;  // value k is names[k]
             if (p.quality) j["quality"] = true;
             if (p.maxExclusive) j["max_exclusive"] = true;  // max itself is out of range
+            if (!p.needs.empty()) j["needs"] = p.needs;     // "key=value" it needs
             params.push_back(j);
         }
         all.push_back({{"name", t->name},

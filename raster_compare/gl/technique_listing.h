@@ -1,5 +1,5 @@
 // Every registered technique with its family, summary and parameter table (names, defaults,
-// ranges, meaning), as text, JSON (`techniques --json`, format_version 3) or the Markdown of
+// ranges, meaning), as text, JSON (`techniques --json`, format_version 4) or the Markdown of
 // docs/techniques.md (generated from the tables; a test fails when the document differs).
 #pragma once
 

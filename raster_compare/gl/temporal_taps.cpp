@@ -1,7 +1,5 @@
 #include "raster_compare/gl/temporal_taps.h"
 
-#include "core/error.h"
-
 namespace so {
 
 ParamTable TemporalTaps::params() {
@@ -13,24 +11,20 @@ ParamTable TemporalTaps::params() {
                          "temporal=on: the history's weight in each resolved frame (exponential "
                          "blend); 0: the jitter alone, each frame on its own"};
     history.maxExclusive = true;
+    history.needs = "temporal=on";
+    ParamSpec clamp = methodParam("clamp", 1, {"off", "on"},
+                                  "temporal=on: the history clamped to the current frame's 3x3 "
+                                  "neighbourhood (against ghosting)");
+    clamp.needs = "temporal=on";
     return {methodParam("temporal", 0, {"off", "on"},
                         "on: the taps turn every frame (a Vogel disk rotated per pixel by "
                         "interleaved gradient noise offset by the frame index), resolved by a "
                         "reprojected history (docs/techniques.md#temporal)"),
-            history,
-            methodParam("clamp", 1, {"off", "on"},
-                        "temporal=on: the history clamped to the current frame's 3x3 "
-                        "neighbourhood (against ghosting)")};
+            history, clamp};
 }
 
-TemporalTaps::TemporalTaps(const std::string& technique, const ParamValues& v)
-    : on(v.integer("temporal") == 1), settings{v.real("history"), v.integer("clamp") == 1} {
-    if (on) return;
-    for (const char* key : {"history", "clamp"})
-        if (v.given(key))
-            throwInputError("technique " + technique, key,
-                            "has no effect with temporal=off (set temporal=on)");
-}
+TemporalTaps::TemporalTaps(const ParamValues& v)
+    : on(v.integer("temporal") == 1), settings{v.real("history"), v.integer("clamp") == 1} {}
 
 std::string TemporalTaps::defines() const {
     return on ? "#define TEMPORAL\n" : "";

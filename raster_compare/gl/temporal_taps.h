@@ -13,11 +13,10 @@
 namespace so {
 
 struct TemporalTaps {
-    // temporal (off, on), history in [0, 1), clamp (off, on).
+    // temporal (off, on), history in [0, 1), clamp (off, on); history and clamp need temporal=on
+    // (ParamSpec::needs: given with temporal=off, an InputError naming the technique and the key).
     static ParamTable params();
-    // history or clamp given with temporal=off is an InputError naming the technique and the key:
-    // they would do nothing.
-    TemporalTaps(const std::string& technique, const ParamValues& values);
+    explicit TemporalTaps(const ParamValues& values);
     // "#define TEMPORAL\n" when on (shaders/shadow_map.frag's tapRotation), else nothing: off
     // compiles the very shader it did before.
     std::string defines() const;

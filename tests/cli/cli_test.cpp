@@ -177,8 +177,9 @@ TEST(Cli, TechniquesListingAsJson) {
         for (const auto& p : t["parameters"]) {
             EXPECT_LE(p["min"].get<double>(), p["default"].get<double>()) << t["name"] << p;
             EXPECT_LE(p["default"].get<double>(), p["max"].get<double>()) << t["name"] << p;
-            if (p.value("max_exclusive", false))
+            if (p.value("max_exclusive", false)) {
                 EXPECT_LT(p["default"].get<double>(), p["max"].get<double>()) << t["name"] << p;
+            }
         }
     }
     for (const char* name : {"basic", "pcf", "vsm", "evsm", "hw-pcf"})

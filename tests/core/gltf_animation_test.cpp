@@ -186,5 +186,22 @@ TEST(GltfAnimation, TheClipNamedPlaysAndAnUnknownOneIsAnError) {
     }
 }
 
+// The keys of the clips that play are bounded (the sliding box's clip has 2).
+TEST(GltfAnimation, KeysBeyondTheLimitAreAnError) {
+    const fs::path path =
+        writeScene("limit", "sliding_box.gltf", R"(, "sequence": {"frames": 2, "fps": 30})");
+    LoadLimits limits;
+    limits.maxAnimationKeys = 2;
+    EXPECT_NO_THROW(loadScene(path, limits));
+    limits.maxAnimationKeys = 1;
+    try {
+        loadScene(path, limits);
+        ADD_FAILURE() << "loaded";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("over maxAnimationKeys (1)"), std::string::npos)
+            << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace so

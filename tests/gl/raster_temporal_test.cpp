@@ -81,10 +81,9 @@ TEST(TemporalTaps, OnTurnsWithTheFrameAndRepeatsItself) {
 // grid's square, close to pcf's own grid: on an edge a box and a disk of one area differ by a few
 // hundredths. With 49 taps (kernel 7) measured here: frame to frame 0.016, mean to mean 0.007,
 // mean to grid 0.034 (mean |dV| over the penumbra). Not with 9 (kernel 3: 0.074, 0.043, 0.099):
-// the noise's frame offset (5.588238 pixels) turns every pixel by about 0.616 of a turn a frame,
-// within 0.002 of the golden angle that separates the Vogel disk's taps, so each frame's disk is
-// nearly the last one with its taps shifted by one, and few taps converge slowly
-// (docs/techniques.md #temporal).
+// the frame offset (5.588238 pixels) advances each pixel's angle by 0.598 or 0.616 of a turn a
+// frame, a sequence that averages out more slowly than independent angles for few taps
+// (docs/techniques.md#temporal).
 TEST(TemporalTaps, TheMeanOverFramesConvergesToTheStillFilter) {
     REQUIRE_GL();
     const Scene s = smallPenumbraSquare();

@@ -681,8 +681,13 @@ TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
         for (const ParamSpec& p : t->params) {
             EXPECT_THROW(create({p.name + "=" + std::to_string(p.max * 2 + 1)}), InputError)
                 << t->name << " " << p.name;
-            EXPECT_NO_THROW(create({p.name + "=" + std::to_string(p.defaultValue)}))
-                << t->name << " " << p.name;
+            // A parameter that needs another setting is given with it (ParamSpec::needs).
+            std::vector<std::string> settings = {p.name + "=" + std::to_string(p.defaultValue)};
+            if (!p.needs.empty()) {
+                EXPECT_THROW(create(settings), InputError) << t->name << " " << p.name;
+                settings.insert(settings.begin(), p.needs);
+            }
+            EXPECT_NO_THROW(create(settings)) << t->name << " " << p.name;
         }
         try {
             create({"bogus=1"});
@@ -708,15 +713,20 @@ TEST(Raster, MethodParametersTakeNamesAndTheirNumbers) {
             ++named;
             EXPECT_EQ(p.min, 0.0) << t->name << " " << p.name;
             EXPECT_EQ(p.max, double(p.names.size() - 1)) << t->name << " " << p.name;
+            const auto with = [&](const std::string& setting) {
+                return p.needs.empty() ? std::vector<std::string>{setting}
+                                       : std::vector<std::string>{p.needs, setting};
+            };
             for (size_t k = 0; k < p.names.size(); ++k) {
-                const auto byName = createTechnique(t->name, {p.name + "=" + p.names[k]});
-                const auto byNumber = createTechnique(t->name, {p.name + "=" + std::to_string(k)});
+                const auto byName = createTechnique(t->name, with(p.name + "=" + p.names[k]));
+                const auto byNumber =
+                    createTechnique(t->name, with(p.name + "=" + std::to_string(k)));
                 EXPECT_EQ(byName->values().real(p.name), double(k)) << t->name << " " << p.name;
                 EXPECT_EQ(byName->values().all(), byNumber->values().all()) << t->name;
                 EXPECT_EQ(paramValueText(p, double(k)), p.names[k]);
             }
             try {
-                createTechnique(t->name, {p.name + "=sideways"});
+                createTechnique(t->name, with(p.name + "=sideways"));
                 ADD_FAILURE() << t->name << " accepted " << p.name << "=sideways";
             } catch (const InputError& e) {
                 EXPECT_NE(std::string(e.what()).find("\"sideways\" is not one of " + p.names[0] +

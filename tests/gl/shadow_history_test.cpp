@@ -36,15 +36,16 @@ double footprintAt(double wsZ) {
     return 2.0 * (5.0 - wsZ) * std::tan(20.0 * std::numbers::pi / 180.0) / kHeight;
 }
 
-// A frame that sees the plane z = wsZ everywhere, mesh `mesh(x, y)`, V `v(x, y)`; where `hit` is
-// false the pixel missed (A 0, V 0).
+// A frame that sees the plane through (0, 0, wsZ) with normal wsNormal (z = wsZ by default)
+// everywhere, mesh `mesh(x, y)`, V `v(x, y)`; where `hit` is false the pixel missed (A 0, V 0).
 struct PlaneFrame {
     ChannelImage image{kWidth, kHeight};
     CameraDesc camera;
     PlaneFrame(
         const CameraDesc& cam, double wsZ, const std::function<float(int, int)>& v,
         const std::function<float(int, int)>& mesh = [](int, int) { return 0.0f; },
-        const std::function<bool(int, int)>& hit = [](int, int) { return true; })
+        const std::function<bool(int, int)>& hit = [](int, int) { return true; },
+        const glm::dvec3& wsNormal = {0.0, 0.0, 1.0})
         : camera(cam) {
         float* a = image.addChannel(channels::kHit);
         float* p[3] = {image.addChannel(channels::kPX), image.addChannel(channels::kPY),
@@ -57,8 +58,9 @@ struct PlaneFrame {
                 if (!hit(x, y)) continue;
                 const size_t i = size_t(y) * kWidth + size_t(x);
                 const Ray3d ray = c.generateRay(x, y);
-                const glm::dvec3 ws =
-                    ray.origin + ray.direction * ((wsZ - ray.origin.z) / ray.direction.z);
+                const double t = glm::dot(wsNormal, glm::dvec3(0.0, 0.0, wsZ) - ray.origin) /
+                                 glm::dot(wsNormal, ray.direction);
+                const glm::dvec3 ws = ray.origin + ray.direction * t;
                 for (int k = 0; k < 3; ++k) p[k][i] = float(ws[k]);
                 a[i] = 1.0f;
                 id[i] = mesh(x, y);
@@ -160,6 +162,28 @@ TEST(ShadowHistory, AnotherMeshOrAnotherPlaceIsADisocclusion) {
     r = near.resolve(scene,
                      PlaneFrame(frontCamera(), -0.1 * footprintAt(0.0), constant(0.0f)).frame(1));
     for (float v : r) EXPECT_NEAR(v, w, 1e-5);
+}
+
+// A plane turned 45 degrees about x, seen at 25 to 67 degrees from its normal: a camera moved up
+// by 0.45 of a pixel finds each point in a texel whose own point lies up to 0.45 / cos 67 degrees,
+// about 1.2 footprints, away along the slope. Every pixel keeps its history (the oblique
+// allowance); a flat tolerance of half a footprint would drop most of them.
+TEST(ShadowHistory, AnObliqueSurfaceKeepsItsHistoryUnderASmallMotion) {
+    const Scene scene = twoMeshScene();
+    const double w = 0.9;
+    const glm::dvec3 tilted = glm::normalize(glm::dvec3(0.0, 1.0, 1.0));
+    const auto any = [](int, int) { return 0.0f; };
+    const auto all = [](int, int) { return true; };
+    ShadowHistory history({w, false}, kLight);
+    history.resolve(scene,
+                    PlaneFrame(frontCamera(), 0.0, constant(1.0f), any, all, tilted).frame(0));
+    CameraDesc up = frontCamera();
+    up.wsEye.y += 0.45 * footprintAt(0.0);
+    up.wsTarget.y += 0.45 * footprintAt(0.0);
+    const std::vector<float> r =
+        history.resolve(scene, PlaneFrame(up, 0.0, constant(0.0f), any, all, tilted).frame(1));
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) EXPECT_NEAR(at(r, x, y), w, 1e-5) << x << ", " << y;
 }
 
 TEST(ShadowHistory, TheClampBoundsABrightHistoryOverADarkNeighbourhood) {

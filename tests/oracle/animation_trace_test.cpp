@@ -52,7 +52,7 @@ fs::path staticScene(double t) {
         "geometry": [{"file": "floor.gltf"}, {"file": "box.gltf", "translate": [)"
                                       << std::to_string(x) << R"(, 0, 0]}],
         "camera": {"eye": [0, 6, 7], "target": [0, 0, 0], "vfov_deg": 45, "width": 64, "height": 64},
-        "lights": [{"name": "sun", "type": "directional", "direction": [-0.4, -1, -0.3]}]})";
+        "lights": [{"name": "sun", "type": "directional", "direction": [-0.8, -1, -0.2]}]})";
     return dir / "scene.json";
 }
 
@@ -69,11 +69,12 @@ TEST(AnimationTrace, FrameEightIsTheStaticSceneWithTheBoxWhereTheAnimationPutsIt
     const std::vector<float> frame8 = sunVisibility(out / "oracle.exr");
     EXPECT_GE(agreement(frame8, sunVisibility(outStill / "oracle.exr")), 0.999);
 
-    // The comparison can fail: frame 0's box is elsewhere, and its shadow with it.
+    // The comparison can fail: frame 0's box is elsewhere, and its shadow with it (over ten
+    // times the 0.1% the frames may differ by).
     const fs::path out0 = tempDir("frame0");
     r = run("trace " + scene.string() + " --frame 0 --quiet --no-previews --out " + out0.string());
     ASSERT_EQ(r.exitCode, 0) << r.stderrText;
-    EXPECT_LT(agreement(frame8, sunVisibility(out0 / "oracle.exr")), 0.97);
+    EXPECT_LT(agreement(frame8, sunVisibility(out0 / "oracle.exr")), 0.99);
 }
 
 TEST(AnimationTrace, ARangeWritesOneFolderAFrameAndVerifiesEach) {

@@ -32,7 +32,7 @@ class Pcf final : public ShadowMapTechnique {
           radius_(v.integer("kernel") / 2),
           poisson_(v.integer("pattern") == 1),
           bias_(v),
-          temporal_("pcf", v) {}
+          temporal_(v) {}
     const char* glsl() const override { return shaders::pcf_glsl; }
     std::string shaderDefines() const override {
         std::string d = std::string(poisson_ ? "#define POISSON\n" : "") + "#define PCF_RADIUS " +

@@ -61,7 +61,7 @@ class Pcss final : public ShadowMapTechnique {
           rotated_(v.integer("pattern") == 1),
           penumbraMax_(v.real("penumbra_max")),
           bias_(v),
-          temporal_("pcss", v) {}
+          temporal_(v) {}
     const char* glsl() const override { return shaders::pcss_glsl; }
     std::string shaderDefines() const override {
         return "#define BLOCKER_SAMPLES " + std::to_string(blockerSamples_) +

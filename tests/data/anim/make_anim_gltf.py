@@ -66,7 +66,7 @@ class Builder:
         v = self.accessor(values, "VEC%d" % width, len(values) // width)
         return {"input": t, "output": v, "interpolation": interpolation}
 
-    def write(self, path, nodes, roots, animations=()):
+    def write(self, path, nodes, roots, animations=(), extra=None):
         doc = {"asset": {"version": "2.0", "generator": "tests/data/anim/make_anim_gltf.py"},
                "scene": 0, "scenes": [{"nodes": roots}], "nodes": nodes, "meshes": self.meshes,
                "accessors": self.accessors, "bufferViews": self.views,
@@ -74,6 +74,7 @@ class Builder:
                             "base64," + base64.b64encode(bytes(self.data)).decode()}]}
         if animations:
             doc["animations"] = list(animations)
+        doc.update(extra or {})
         path.write_text(json.dumps(doc, indent=1) + "\n")
 
 
@@ -98,7 +99,11 @@ def sliding_box(path, **broken):
         anim["samplers"][0]["interpolation"] = "CUBICSPLINE"
     if "matrix" in broken:
         nodes[1]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
-    b.write(path, nodes, [0, 1], [anim])
+    if "skinned" in broken:  # a skinned box as the moving node's child
+        nodes[1].pop("mesh")
+        nodes[1]["children"] = [2]
+        nodes.append({"name": "skinned", "mesh": box, "skin": 0})
+    b.write(path, nodes, [0, 1], [anim], {"skins": [{"joints": [1]}]} if "skinned" in broken else {})
 
 
 def static_parts():
@@ -125,7 +130,7 @@ def scene(path, gltf, extra=None):
     doc = {"scene_format": 5, "geometry": [{"file": gltf}],
            "camera": {"eye": [0, 6, 7], "target": [0, 0, 0], "vfov_deg": 45,
                       "width": 64, "height": 64},
-           "lights": [{"name": "sun", "type": "directional", "direction": [-0.4, -1, -0.3]}],
+           "lights": [{"name": "sun", "type": "directional", "direction": [-0.8, -1, -0.2]}],
            "sequence": {"frames": 16, "fps": 30}}
     doc.update(extra or {})
     doc = {k: v for k, v in doc.items() if v is not None}
@@ -143,6 +148,7 @@ def main():
         "anim_times": {"times": [0.5, 0.5]},
         "anim_cubic_count": {"cubic_count": True},
         "anim_matrix": {"matrix": True},
+        "anim_skinned": {"skinned": True},
     }
     for name, how in broken.items():
         sliding_box(BROKEN / (name + ".gltf"), **how)
