@@ -40,6 +40,8 @@ CompareCallbacks printingCallbacks() {
     c.progress = [](const ProgressUpdate& u) {
         if (u.stage == "camera path frames")
             std::cerr << "camera path: frame " << u.done << " of " << u.total << "\n";
+        if (u.stage == "sequence frames")
+            std::cerr << "sequence: frame " << u.done << " of " << u.total << "\n";
         return true;
     };
     c.renderingGroup = [](const std::vector<std::string>& labels) {
@@ -64,8 +66,8 @@ int printCompareSummary(const CompareOptions& options, const CompareRun& run,
 
 // The command's errors name its flags.
 const CompareOptionNames kCompareFlags = {
-    "command line", "--technique",          "--image", "--points", "--frames-path",
-    "--verify",     "--width and --height", "--out"};
+    "command line", "--technique",          "--image", "--points",  "--frames-path",
+    "--verify",     "--width and --height", "--out",   "--sequence"};
 
 int runCompareCommand(CompareOptions options) {
     options.names = kCompareFlags;

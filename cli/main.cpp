@@ -91,6 +91,13 @@ static std::shared_ptr<OptionFlags> addTableOptions(CLI::App* cmd, const so::Opt
                 },
                 help);
             opt->check(CLI::Range(s.min, s.max));
+        } else if (s.type == so::OptionType::Flag) {
+            opt = cmd->add_flag_function(
+                s.cli,
+                [f, key](int64_t) {
+                    f->values[key] = {1.0, ""};
+                },
+                help);
         } else {
             opt = cmd->add_option_function<std::string>(
                 s.cli,

@@ -22,6 +22,18 @@ std::vector<OptionSpec> makeTable() {
                       "oracle and every technique once per frame, for `temporal_flicker_rate` "
                       "([metrics.md](metrics.md)); techniques only, not `--image`"),
         "0 (off)"));
+    t.back().excludes = {"sequence"};
+    t.push_back(flagOption(
+        "sequence", kSurfaceCompare | kSurfaceSweep,
+        "judge the scene's sequence frame by frame: every technique over its frames, each against "
+        "that frame's oracle, history kept (docs/metrics.md#sequence)",
+        "judge the scene's `sequence` (scene_format 5) frame by frame: the oracle of every frame "
+        "(cached per frame), every technique rendered over the frames in order, keeping its "
+        "history, for metrics.json's `sequence` ([metrics.md](metrics.md#sequence)); the row's "
+        "other metrics describe the last frame; techniques only, not `--image`; in a sweep spec "
+        "`true` or "
+        "`false`"));
+    t.back().excludes = {"frames_path"};
     return t;
 }
 

@@ -48,6 +48,7 @@ std::string docNumber(double v) {
 }
 
 std::string valueText(const OptionSpec& s, const OptionValue& v) {
+    if (s.type == OptionType::Flag) return v.number != 0.0 ? "on" : "off";
     return s.type == OptionType::Name ? v.text : numberText(v.number);
 }
 
@@ -64,6 +65,7 @@ std::string rangeText(const OptionSpec& s) {
         for (const std::string& n : s.names) range += (range.empty() ? "" : ", ") + n;
         return range;
     }
+    if (s.type == OptionType::Flag) return "on (given) or off";
     range = docNumber(s.min) + " .. " + docNumber(s.max);
     return s.powerOfTwo ? "a power of two, " + range : range;
 }
@@ -78,6 +80,8 @@ const char* optionTypeName(OptionType t) {
             return "real";
         case OptionType::Name:
             return "name";
+        case OptionType::Flag:
+            return "flag";
     }
     return "?";
 }
@@ -98,6 +102,11 @@ OptionSpec realOption(const std::string& key, double def, double min, double max
                       std::string help, std::string doc) {
     return numberOption(OptionType::Real, key, def, min, max, surfaces, std::move(help),
                         std::move(doc));
+}
+
+OptionSpec flagOption(const std::string& key, unsigned surfaces, std::string help,
+                      std::string doc) {
+    return numberOption(OptionType::Flag, key, 0, 0, 1, surfaces, std::move(help), std::move(doc));
 }
 
 OptionSpec nameOption(const std::string& key, const std::string& def,
@@ -133,7 +142,7 @@ void checkOption(const OptionSpec& spec, const OptionValue& v, const std::string
     }
     const double x = v.number;
     if (allowUnsetZero && spec.unsetZero && x == 0.0) return;
-    const bool integer = spec.type == OptionType::Integer;
+    const bool integer = spec.type == OptionType::Integer || spec.type == OptionType::Flag;
     const std::string range = "[" + numberText(spec.min) + ", " + numberText(spec.max) + "]";
     if (spec.powerOfTwo) {
         const bool ok = x >= spec.min && x <= spec.max && x == std::floor(x) &&
@@ -199,6 +208,8 @@ std::string optionsJson(const OptionTable& table) {
             j["default"] = int64_t(s.defaultValue.number);
         else if (s.type == OptionType::Real)
             j["default"] = s.defaultValue.number;
+        else if (s.type == OptionType::Flag)
+            j["default"] = s.defaultValue.number != 0.0;
         else
             j["default"] = s.defaultValue.text;
         if (s.type == OptionType::Name) {

@@ -18,8 +18,9 @@ enum class OptionType : unsigned char {
     Integer,
     Real,
     Name,  // picks a method: one of `names`
+    Flag,  // on (1) or off (0): a command-line flag without a value
 };
-const char* optionTypeName(OptionType t);  // "integer", "real", "name"
+const char* optionTypeName(OptionType t);  // "integer", "real", "name", "flag"
 
 // Where an option is offered (bits of OptionSpec::surfaces).
 enum OptionSurface : unsigned {
@@ -73,6 +74,8 @@ OptionSpec integerOption(const std::string& key, double def, double min, double 
                          unsigned surfaces, std::string help, std::string doc);
 OptionSpec realOption(const std::string& key, double def, double min, double max, unsigned surfaces,
                       std::string help, std::string doc);
+// Off by default; the command line gives it as a bare flag.
+OptionSpec flagOption(const std::string& key, unsigned surfaces, std::string help, std::string doc);
 OptionSpec nameOption(const std::string& key, const std::string& def,
                       std::vector<std::string> names, unsigned surfaces, std::string help,
                       std::string doc);

@@ -67,6 +67,9 @@ IndexLightMetrics parseLight(const json& m, const std::string& light, const Json
     out.penumbraMae = optionalNumber(m, "penumbra_mae", r, field);
     out.frameMs =
         optionalNumber(optionalObject(m, "cost", r, field), "frame_ms", r, field + ".cost");
+    const json& sequence = optionalObject(m, "sequence", r, field);
+    out.sequenceMaeMean = optionalNumber(sequence, "mae_mean", r, field + ".sequence");
+    out.sequenceLagMae = optionalNumber(sequence, "lag_mae", r, field + ".sequence");
     return out;
 }
 
@@ -112,6 +115,10 @@ const std::vector<MetricSpec>& metricSpecs() {
         {tableEntry("light_bleeding_rate"), "Light bleeding",
          &IndexLightMetrics::lightBleedingRate},
         {tableEntry("penumbra_mae"), "Penumbra error", &IndexLightMetrics::penumbraMae},
+        {tableEntry("sequence.mae_mean"), "Error over a sequence (mean of its frames)",
+         &IndexLightMetrics::sequenceMaeMean},
+        {tableEntry("sequence.lag_mae"), "Lag and ghosting in a sequence",
+         &IndexLightMetrics::sequenceLagMae},
     };
     return specs;
 }

@@ -23,6 +23,8 @@ struct IndexLightMetrics {
     std::optional<double> lightBleedingRate;
     std::optional<double> penumbraMae;
     std::optional<double> frameMs;  // cost.frame_ms: median over the timed frames
+    // compare --sequence only (docs/metrics.md#sequence): sequence.mae_mean, sequence.lag_mae.
+    std::optional<double> sequenceMaeMean, sequenceLagMae;
 };
 
 // One technique setting of a compare run.

@@ -159,6 +159,30 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
     {"temporal_flickering_pairs", U::Count, B::None, S::FramesPath,
      "pixel pairs that flicker, summed over the frame pairs"},
     {"temporal_frames", U::Count, B::None, S::FramesPath, "frames along the camera path"},
+    {"sequence.frames", U::Count, B::None, S::Sequence,
+     "frames of the scene's sequence, each judged against its own oracle (mae_per_frame, a "
+     "series, is in metrics.json only)",
+     "sequence frames"},
+    {"sequence.mae_mean", U::V, B::Lower, S::Sequence, "mae averaged over the sequence's frames",
+     "sequence mae"},
+    {"sequence.mae_last", U::V, B::Lower, S::Sequence,
+     "mae of the sequence's last frame (the frame the row's other metrics describe)",
+     "last frame mae"},
+    {"sequence.flicker_rate", U::Share, B::Lower, S::Sequence,
+     "share of pixel pairs of consecutive frames, tracked through the camera's and the meshes' "
+     "known motion, whose V changes by more than 0.1 where the oracle's does not",
+     "sequence flicker"},
+    {"sequence.tracked_pairs", U::Count, B::None, S::Sequence,
+     "pixel pairs tracked, summed over the sequence's frame pairs"},
+    {"sequence.flickering_pairs", U::Count, B::None, S::Sequence,
+     "pixel pairs that flicker, summed over the sequence's frame pairs"},
+    {"sequence.lag_mae", U::V, B::Lower, S::Sequence,
+     "mean error over the counted pixels whose oracle V changed by more than 0.5 within the 4 "
+     "frames before, pooled over the frames (null where the truth never changed): lag and "
+     "ghosting",
+     "lag mae"},
+    {"sequence.lag_pixels", U::Count, B::None, S::Sequence,
+     "pixel-frames lag_mae is the mean over"},
 });
 
 // Levenshtein distance, for suggestions on a misspelled limit.
@@ -278,6 +302,8 @@ const char* scopeName(MetricScope s) {
             return "with `aliasing_pred`";
         case S::FramesPath:
             return "`--frames-path`";
+        case S::Sequence:
+            return "`--sequence`";
         case S::BakedTechniques:
             return "baked techniques";
     }

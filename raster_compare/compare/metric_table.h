@@ -46,6 +46,7 @@ enum class MetricScope {
     OccluderDistance,    // the oracle has NAME.occ_dist (the contact effect)
     AliasingPrediction,  // the raster has NAME.aliasing_pred
     FramesPath,          // compare --frames-path; absent from the row otherwise
+    Sequence,            // compare --sequence; absent from the row otherwise
     BakedTechniques      // techniques that bake before the first frame (lightmap)
 };
 

@@ -469,6 +469,7 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
     }
     LightMetrics m;
     const std::vector<uint8_t> counted = countedPixels(p, m);
+    if (maps) maps->counted = counted;
     const std::vector<uint8_t> bo = boundaries(p.Ao, p.Vo, p.w, p.h),
                                br = boundaries(p.Ar, p.Vr, p.w, p.h);
     const std::vector<float> toOracleBoundary = distanceTo(bo, p.w, p.h),
@@ -492,7 +493,7 @@ void flatten(const nlohmann::json& j, const std::string& prefix,
         const std::string name = prefix.empty() ? it.key() : prefix + "." + it.key();
         if (it->is_object())
             flatten(*it, name, out);
-        else
+        else if (!it->is_array())  // a series (sequence.mae_per_frame) is no one metric
             out.emplace_back(name, *it);
     }
 }
@@ -533,6 +534,7 @@ nlohmann::json TechniqueCost::toJson() const {
 nlohmann::json LightComparison::toJson() const {
     nlohmann::json j = metrics.toJson();
     if (temporal) temporal->addToJson(j);
+    if (sequence) j["sequence"] = sequence->toJson();
     j["cost"] = cost.toJson();
     return j;
 }

@@ -16,6 +16,7 @@
 #include "core/work_counts.h"
 #include "raster_compare/compare/artifacts.h"
 #include "raster_compare/compare/penumbra_width.h"
+#include "raster_compare/compare/sequence_metrics.h"
 #include "raster_compare/compare/temporal.h"
 
 namespace so {
@@ -85,6 +86,8 @@ struct ErrorMaps {
     // The one class each wrong pixel is drawn as (1 + its Artifact; 0: not a wrong pixel): the
     // classes in order of precedence, so these add up to the false-shadow and false-lit pixels.
     std::vector<uint8_t> shown;
+    // 1 where the pixel counts (counted_pixels: both hit the same triangle, facing the light).
+    std::vector<uint8_t> counted;
     std::vector<float>& of(Artifact a) { return classes[size_t(a)]; }
     const std::vector<float>& of(Artifact a) const { return classes[size_t(a)]; }
 };
@@ -126,7 +129,9 @@ struct LightComparison {
     ErrorMaps maps;
     // compare --frames-path only: along the scene's camera path (temporal.h).
     std::optional<TemporalFlicker> temporal;
-    nlohmann::json toJson() const;  // metrics with "cost" (and the temporal ones)
+    // compare --sequence only: over the scene's sequence (sequence_metrics.h).
+    std::optional<SequenceMetrics> sequence;
+    nlohmann::json toJson() const;  // metrics with "cost" (and the temporal and sequence ones)
 };
 
 // The metrics of a row by their public names: nested ones joined by a dot

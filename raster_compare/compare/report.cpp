@@ -73,6 +73,11 @@ const std::vector<Column>& columns() {
          }},
         {"temporal_flicker_rate",
          [](L l) { return l.temporal ? l.temporal->rate() : std::nullopt; }},
+        {"sequence.mae_mean",
+         [](L l) { return l.sequence ? std::optional(l.sequence->maeMean()) : std::nullopt; }},
+        {"sequence.flicker_rate",
+         [](L l) { return l.sequence ? l.sequence->flicker.rate() : std::nullopt; }},
+        {"sequence.lag_mae", [](L l) { return l.sequence ? l.sequence->lagMae() : std::nullopt; }},
         {"false_shadow_rate", [](L l) { return std::optional(l.metrics.falseShadowRate); }, false},
         {"false_lit_rate", [](L l) { return std::optional(l.metrics.falseLitRate); }, false},
         {"cost.frame_ms", [](L l) { return median(l.cost.frameMs); }},
@@ -543,6 +548,56 @@ void writeFlickerStrip(std::ostream& o, const ReportInput& in, size_t li, ImageS
     o << "</div>";
 }
 
+// compare --sequence: every technique's mae at each frame of the sequence, one line each, drawn
+// as SVG on the server (no script): frames along x, mae from 0 up along y.
+void writeSequenceChart(std::ostream& o, const ReportInput& in, size_t li) {
+    if (in.sequenceFrames == 0) return;
+    static const char* kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                     "#e69f00", "#56b4e9", "#000000", "#999999"};
+    constexpr double kW = 640, kH = 260, kLeft = 56, kRight = 16, kTop = 12, kBottom = 36;
+    const int frames = in.sequenceFrames;
+    double top = 0.0;
+    for (const ReportTechnique& t : in.techniques)
+        if (const auto& s = t.lights[li].sequence)
+            for (double e : s->maePerFrame) top = std::max(top, e);
+    top = top > 0.0 ? top * 1.1 : 1.0;
+    const auto x = [&](int f) {
+        return kLeft + (kW - kLeft - kRight) * (frames > 1 ? double(f) / (frames - 1) : 0.5);
+    };
+    const auto y = [&](double e) { return kH - kBottom - (kH - kTop - kBottom) * e / top; };
+    o << "<h3>Error per frame</h3><div class=\"sequence-box\" id=\"sequence-" << li
+      << "\"><svg class=\"chart\" viewBox=\"0 0 " << kW << " " << kH << "\" width=\"" << kW
+      << "\" height=\"" << kH << "\" role=\"img\" aria-label=\"mae per frame\">";
+    for (int k = 0; k <= 4; ++k) {
+        const double e = top * k / 4.0;
+        o << "<line class=\"grid\" x1=\"" << kLeft << "\" x2=\"" << kW - kRight << "\" y1=\""
+          << y(e) << "\" y2=\"" << y(e) << "\"/><text x=\"" << kLeft - 4 << "\" y=\"" << y(e) + 4
+          << "\" text-anchor=\"end\">" << num(e, 3) << "</text>";
+    }
+    for (int f = 0; f < frames; f += std::max(1, frames / 8))
+        o << "<text x=\"" << x(f) << "\" y=\"" << kH - kBottom + 14 << "\" text-anchor=\"middle\">"
+          << f << "</text>";
+    o << "<line class=\"axis\" x1=\"" << kLeft << "\" x2=\"" << kW - kRight << "\" y1=\"" << y(0)
+      << "\" y2=\"" << y(0) << "\"/><text class=\"label\" x=\"" << (kLeft + kW - kRight) / 2
+      << "\" y=\"" << kH - 4 << "\" text-anchor=\"middle\">frame</text><text class=\"label\" "
+      << "x=\"12\" y=\"" << kTop + 8 << "\">mae</text>";
+    std::ostringstream legend;
+    size_t colour = 0;
+    for (const ReportTechnique* t : byFamily(in)) {
+        const auto& s = t->lights[li].sequence;
+        if (!s) continue;
+        const char* c = kColours[colour++ % std::size(kColours)];
+        o << "<polyline class=\"series\" stroke=\"" << c << "\" points=\"";
+        for (size_t f = 0; f < s->maePerFrame.size(); ++f)
+            o << (f ? " " : "") << x(int(f)) << "," << y(s->maePerFrame[f]);
+        o << "\"><title>" << html(t->label) << "</title></polyline>";
+        legend << "<span><i style=\"background:" << c << "\"></i>" << html(t->label) << "</span>";
+    }
+    o << "</svg><div class=\"legend\">" << legend.str() << "</div><p class=\"caption muted\">mae "
+      << "of each of the " << frames << " frames against that frame's oracle "
+      << "(docs/metrics.md#sequence); the rows above judge the last frame.</p></div>";
+}
+
 void writeHead(std::ostream& o, const ReportInput& in) {
     o << "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>shadow-oracle "
          "report: "
@@ -569,9 +624,12 @@ void writeTail(std::ostream& o, const ReportInput& in, const nlohmann::json& lig
     std::vector<size_t> lights;
     for (size_t li = 0; li < in.lights.size(); ++li) lights.push_back(li);
     std::vector<const Column*> cols;
-    // A run without a camera path has no temporal metric at all: no empty column for it.
+    // A run without a camera path (a sequence) has no temporal (sequence) metric at all: no empty
+    // column for it.
     for (const Column& c : columns())
-        if (in.pathFrames > 0 || c.key.rfind("temporal_", 0) != 0) cols.push_back(&c);
+        if ((in.pathFrames > 0 || c.key.rfind("temporal_", 0) != 0) &&
+            (in.sequenceFrames > 0 || c.key.rfind("sequence.", 0) != 0))
+            cols.push_back(&c);
     writeMetricTable(o, "class=\"sortable\" id=\"metrics\"", byFamily(in), lights, cols, in);
     o << "<h2 id=\"provenance\">Provenance</h2><table class=\"provenance\">";
     for (const auto& [key, value] : in.provenance)
@@ -639,6 +697,7 @@ void writeReport(const std::string& path, const ReportInput& in) {
         o << "</div>";
         writeImages(o, in, li, sink);
         writeFlickerStrip(o, in, li, sink);
+        writeSequenceChart(o, in, li);
         o << "</section>";
     }
     writeTail(o, in, lights);

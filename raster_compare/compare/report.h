@@ -1,7 +1,8 @@
 // The HTML report of a comparison (docs/report.md): per light first a sortable summary of the
 // techniques and a chart of error against cost (the error and the cost chosen on the page, Pareto
 // front and quality curves drawn), then the images as a grid (rows: techniques; columns: render,
-// error maps, worst region) with a zoom view that flips with the oracle; all metrics, and the
+// error maps, worst region) with a zoom view that flips with the oracle; in a sequence, each
+// technique's error per frame; all metrics, and the
 // provenance. No network: style and script inline; images embedded or in a folder beside it.
 #pragma once
 
@@ -70,6 +71,9 @@ struct ReportInput {
     std::vector<std::optional<OracleExactPoint>> oracleExact;  // per light, where it applied
     int pathFrames = 0;  // compare --frames-path N: N, else 0 (no temporal metrics)
     std::vector<std::optional<FlickerStrip>> flickerStrips;  // per light when pathFrames > 0
+    // compare --sequence: its frames (each technique's LightComparison::sequence has its error per
+    // frame, drawn per light), else 0.
+    int sequenceFrames = 0;
 };
 
 void writeReport(const std::string& path, const ReportInput& in);

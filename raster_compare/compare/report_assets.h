@@ -22,6 +22,7 @@ td.text,th.text{text-align:left}td.best{font-weight:700;background:#e3f1e3}td.be
 .caption{font-size:12px;color:#444;max-width:640px;margin:4px 0}
 table.images td,table.images th{vertical-align:top;text-align:left;white-space:normal}table.images th{max-width:250px}.summary-col{flex:1 1 100%;min-width:0}.summary-wrap{max-width:100%;overflow-x:auto}table.images img{display:block;width:240px;image-rendering:pixelated;cursor:zoom-in}
 table.images img.crop{width:128px;display:inline-block;margin-right:4px}table.images tr:target{outline:3px solid #d55e00}
+.sequence-box{background:#fff;border-radius:6px;padding:8px;box-shadow:0 1px 3px #0002;display:inline-block}.chart .series{fill:none;stroke-width:1.6}
 .flicker-strip{display:flex;flex-wrap:wrap;gap:8px}.flicker-strip figure{margin:0}.flicker-strip img{display:block;width:240px;image-rendering:pixelated}
 .legend span{display:inline-block;margin:2px 10px 2px 0;font-size:12px}.legend i{display:inline-block;width:11px;height:11px;margin-right:4px;vertical-align:-1px;box-shadow:0 0 0 1px #0006}
 .note{background:#fff;border-left:4px solid #0072b2;padding:6px 10px;max-width:900px;font-size:13px}

@@ -58,6 +58,18 @@ long trackedPixel(const Camera& prevCamera, const glm::dvec3& wsP, int w, int h,
     return long(fy) * w + long(fx);
 }
 
+// Where the point wsP of mesh `mesh` in the next frame was in the previous one; `moved` says
+// whether that differs from wsP (so that a still pixel is matched to itself, without rounding).
+glm::dvec3 previousPoint(const MeshMotions* motion, float mesh, const glm::dvec3& wsP,
+                         bool& moved) {
+    moved = false;
+    if (!motion || !(mesh >= 0.0f) || size_t(mesh) >= motion->size()) return wsP;
+    const glm::dmat4& prevFromNext = (*motion)[size_t(mesh)];
+    if (prevFromNext == glm::dmat4(1.0)) return wsP;
+    moved = true;
+    return glm::dvec3(prevFromNext * glm::dvec4(wsP, 1.0));
+}
+
 }  // namespace
 
 std::optional<double> TemporalFlicker::rate() const {
@@ -89,7 +101,7 @@ void TemporalFlicker::addToJson(nlohmann::json& row) const {
 
 FramePairFlicker compareFramePair(const TemporalFrame& prev, const TemporalFrame& next,
                                   const std::string& light, const TemporalOptions& options,
-                                  std::vector<uint8_t>* mask) {
+                                  std::vector<uint8_t>* mask, const MeshMotions* motion) {
     const FramePlanes a(prev, light), b(next, light);
     const Camera prevCamera(prev.camera);
     const bool still = sameCamera(prev.camera, next.camera) && a.w == b.w && a.h == b.h;
@@ -97,8 +109,11 @@ FramePairFlicker compareFramePair(const TemporalFrame& prev, const TemporalFrame
     if (mask) mask->assign(size_t(b.w) * size_t(b.h), 0);
     for (long i = 0; i < long(b.w) * b.h; ++i) {
         if (!b.counted(size_t(i))) continue;
-        const glm::dvec3 wsP(b.Px[i], b.Py[i], b.Pz[i]);
-        const long j = still ? i : trackedPixel(prevCamera, wsP, a.w, a.h, options.trackRadius);
+        bool moved = false;
+        const glm::dvec3 wsP =
+            previousPoint(motion, b.mo[i], glm::dvec3(b.Px[i], b.Py[i], b.Pz[i]), moved);
+        const long j =
+            still && !moved ? i : trackedPixel(prevCamera, wsP, a.w, a.h, options.trackRadius);
         if (j < 0 || !a.counted(size_t(j)) || a.mo[j] != b.mo[i] || a.po[j] != b.po[i]) continue;
         ++out.tracked;
         const double dVo = std::abs(double(b.Vo[i]) - double(a.Vo[j]));

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/image.h"
@@ -57,15 +58,23 @@ struct TemporalFlicker {
     void addToJson(nlohmann::json& row) const;
 };
 
-// Tracks every pixel x of `next` that the oracle sees hit into `prev`: its world point P projected
-// through prev's camera to the pixel x' holding it (x' = x when both cameras are equal). Tracked:
+// The known motion of the meshes between two frames (compare --sequence): prevFromNext[m] maps a
+// world point of mesh m (id.mesh) as it stands in the next frame to where that point was in the
+// previous one (core/scene_pose.h's meshMotion(scene, m, tNext, tPrev)). A mesh beyond its end
+// does not move.
+using MeshMotions = std::vector<glm::dmat4>;
+
+// Tracks every pixel x of `next` that the oracle sees hit into `prev`: its world point P, moved
+// back by its mesh's motion when `motion` is given, projected through prev's camera to the pixel
+// x' holding it (x' = x when both cameras are equal and the mesh did not move). Tracked:
 // x' inside, both pixels counted as computeLightMetrics counts (both images hit, the raster sees
 // the oracle's mesh and triangle, facing the light) and on the same mesh and triangle in both
 // frames. Flickering: the raster's V changes by more than rasterJump and the oracle's by no more
 // than its tolerance. `mask`, if given, gets next's pixels: 1 tracked, 2 flickering, 0 neither.
 FramePairFlicker compareFramePair(const TemporalFrame& prev, const TemporalFrame& next,
                                   const std::string& light, const TemporalOptions& options = {},
-                                  std::vector<uint8_t>* mask = nullptr);
+                                  std::vector<uint8_t>* mask = nullptr,
+                                  const MeshMotions* motion = nullptr);
 
 // Over all consecutive pairs of `frames` (at least 2 for any pair).
 TemporalFlicker computeTemporalFlicker(const std::vector<TemporalFrame>& frames,

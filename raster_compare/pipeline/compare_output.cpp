@@ -136,6 +136,7 @@ void writeReportFile(const fs::path& path, const std::string& scenePath, const S
         report.pathFrames = comparison.path->frames;
         report.flickerStrips = std::move(comparison.path->strips);
     }
+    if (comparison.sequence) report.sequenceFrames = comparison.sequence->frames;
     writeReport(path.string(), report);
 }
 

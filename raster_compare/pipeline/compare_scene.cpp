@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/gbuffer.h"
+#include "core/scene_pose.h"
 #include "oracle/points.h"
 #include "raster_compare/pipeline/option_errors.h"
 
@@ -37,6 +38,14 @@ void checkOptions(const CompareOptions& options, const std::vector<TechniqueSpec
         if (options.raster.width > 0 || options.raster.height > 0)
             throwInputError(n.source, n.points, "the image is the G-buffer's size: drop " + n.size);
     }
+    if (options.sequence && options.pathFrames > 0)
+        throwInputError(n.source, n.sequence,
+                        "one or the other: " + n.sequence + " judges the scene's own sequence, " +
+                            n.framesPath + " its camera path");
+    if (options.sequence && (!options.images.empty() || !options.pointsPath.empty()))
+        throwInputError(
+            n.source, n.sequence,
+            "an image is one frame: " + n.sequence + " works with " + n.technique + " only");
     if (options.pathFrames > 0 && !options.images.empty())
         throwInputError(
             n.source, n.framesPath,
@@ -69,9 +78,15 @@ CachedOracle oracleFor(const CompareOptions& options, const CompareCallbacks& ca
     return oracle;
 }
 
+// The index of a sequence's last frame.
+int lastFrame(const Scene& scene) {
+    return scene.sequence->frames - 1;
+}
+
+// `scene`: as loaded, with its motion.
 ComparisonOptions comparisonOptions(const CompareOptions& options,
                                     const CompareCallbacks& callbacks,
-                                    const OracleOptions& oracleOptions) {
+                                    const OracleOptions& oracleOptions, const Scene& scene) {
     ComparisonOptions c;
     c.raster = options.raster;
     c.boundaryRadius = options.boundaryRadius;
@@ -79,6 +94,10 @@ ComparisonOptions comparisonOptions(const CompareOptions& options,
     c.pathFrames = options.pathFrames;
     c.pathOracle = oracleOptions;
     c.pathCache = {options.cacheDir, options.useCache};
+    if (options.sequence) {
+        c.raster.frameIndex = lastFrame(scene);  // the timed frames are the last frame's
+        c.sequence = &scene;
+    }
     c.progress = callbacks.progress;
     c.renderingGroup = callbacks.renderingGroup;
     return c;
@@ -93,6 +112,7 @@ const std::map<std::string, CompareSetter>& compareSetters() {
          [](CompareOptions& o, const OptionValue& v) { o.boundaryRadius = int(v.number); }},
         {"frames_path",
          [](CompareOptions& o, const OptionValue& v) { o.pathFrames = int(v.number); }},
+        {"sequence", [](CompareOptions& o, const OptionValue& v) { o.sequence = v.number != 0.0; }},
     };
     return kSetters;
 }
@@ -124,12 +144,21 @@ CompareRun compareScene(const CompareOptions& options, const CompareCallbacks& c
                         "missing: " + options.names.framesPath +
                             " needs the scene's camera path (scene_format 2, "
                             "docs/scene-format.md)");
+    if (options.sequence && !scene.sequence)
+        throwInputError(options.scenePath, "sequence",
+                        "missing: " + options.names.sequence +
+                            " needs the scene's sequence (scene_format 5, docs/scene-format.md)");
+    // In a sequence, the ordinary comparison is the last frame's: the scene posed there.
+    const Scene posed = options.sequence
+                            ? sceneAtTime(scene, sequenceTime(*scene.sequence, lastFrame(scene)))
+                            : Scene();
+    const Scene& compared = options.sequence ? posed : scene;
     run.oracleOptions = options.oracle;
     if (options.raster.width > 0) run.oracleOptions.width = options.raster.width;
     if (options.raster.height > 0) run.oracleOptions.height = options.raster.height;
     std::optional<GBuffer> points;
     if (!options.pointsPath.empty()) points = readGBuffer(options.pointsPath);
-    const CameraDesc camera = effectiveCamera(scene, run.oracleOptions);
+    const CameraDesc camera = effectiveCamera(compared, run.oracleOptions);
     const int width = points ? points->width : camera.width,
               height = points ? points->height : camera.height;
     std::vector<ImageInput> images;
@@ -140,9 +169,10 @@ CompareRun compareScene(const CompareOptions& options, const CompareCallbacks& c
 
     run.atPoints = points.has_value();
     run.oracle =
-        oracleFor(options, callbacks, scene, run.oracleOptions, points ? &*points : nullptr);
-    run.comparison = compareWithOracle(scene, run.oracle, techniques, images,
-                                       comparisonOptions(options, callbacks, run.oracleOptions));
+        oracleFor(options, callbacks, compared, run.oracleOptions, points ? &*points : nullptr);
+    run.comparison =
+        compareWithOracle(compared, run.oracle, techniques, images,
+                          comparisonOptions(options, callbacks, run.oracleOptions, scene));
     warnAll(callbacks, run.comparison.warnings);
     return run;
 }

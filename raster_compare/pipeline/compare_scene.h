@@ -32,6 +32,7 @@ struct CompareOptionNames {
     std::string verify;      // "--verify"
     std::string size;        // "--width and --height"
     std::string out;         // "--out"
+    std::string sequence;    // "--sequence"
 };
 
 struct CompareOptions {
@@ -55,6 +56,9 @@ struct CompareOptions {
     // --frames-path N (>= 2): the scene's camera path in N frames, for temporal_flicker_rate;
     // 0: none.
     int pathFrames = 0;
+    // --sequence: the scene's sequence judged frame by frame (sequence_compare.h); the comparison's
+    // other metrics describe its last frame, the scene posed there. Not with pathFrames.
+    bool sequence = false;
     // report.html and the copy of the oracle it shows; a sweep's task writes neither (its report
     // is sweep-merge's, docs/sweep.md).
     bool writeReport = true;
@@ -77,10 +81,10 @@ struct CompareCallbacks {
 // What a comparison of one scene produced, typed: the command writes it, a sweep task makes its
 // row from it.
 struct CompareRun {
-    Scene scene;
+    Scene scene;                  // as loaded (with its motion, in a sequence)
     OracleOptions oracleOptions;  // the options', at the comparison's image size
-    CachedOracle oracle;
-    bool atPoints = false;  // the oracle at --points' G-buffer
+    CachedOracle oracle;          // in a sequence, its last frame's
+    bool atPoints = false;        // the oracle at --points' G-buffer
     Comparison comparison;
     std::filesystem::path out;  // the output folder, made; empty when options.outDir is
 };

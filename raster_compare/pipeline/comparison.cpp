@@ -83,6 +83,7 @@ struct Job {
     MetricOptions metricOptions;
     const std::vector<std::vector<std::pair<double, double>>>& oracleCurves;
     const PathFlicker* path;
+    const SequenceResult* sequence;
 };
 
 // What the light's own passes and the visibility pass cost (docs/metrics.md, cost).
@@ -153,7 +154,8 @@ void describeSetting(ReportTechnique& rt, const TechniqueRun& run) {
 // Every light of one row measured against the oracle.
 void measureLights(const Job& job, ReportTechnique& rt, const ChannelImage& image,
                    const std::function<TechniqueCost(size_t li, double oracleSeconds)>& costOf,
-                   const std::vector<TemporalFlicker>* temporal) {
+                   const std::vector<TemporalFlicker>* temporal,
+                   const std::vector<SequenceMetrics>* sequence) {
     for (size_t li = 0; li < job.scene.lights.size(); ++li) {
         LightComparison lc;
         lc.light = job.scene.lights[li].name;
@@ -161,6 +163,7 @@ void measureLights(const Job& job, ReportTechnique& rt, const ChannelImage& imag
             computeLightMetrics(job.oracle.image, image, lc.light, job.metricOptions, &lc.maps);
         lc.cost = costOf(li, job.oracle.stats.lights[li].seconds());
         if (temporal) lc.temporal = (*temporal)[li];
+        if (sequence) lc.sequence = (*sequence)[li];
         if (lc.metrics.penumbraMae)
             lc.cost.oracleMsAtEqualError =
                 oracleMsAtError(job.oracleCurves[li], *lc.metrics.penumbraMae);
@@ -179,10 +182,14 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     rt.fileLabel = run.spec.fileLabel;
     describeSetting(rt, run);
     job.metricOptions.filteredTechnique = run.technique->filtered();
+    // In a sequence the row judges its last frame as the sequence saw it, history resolved; the
+    // timed render gave the costs.
+    if (job.sequence) r.image = job.sequence->lastImages[index];
     measureLights(
         job, rt, r.image,
         [&](size_t li, double oracleSeconds) { return techniqueCost(r.stats, li, oracleSeconds); },
-        job.path ? &job.path->flicker[index] : nullptr);
+        job.path ? &job.path->flicker[index] : nullptr,
+        job.sequence ? &job.sequence->metrics[index] : nullptr);
     rt.image = std::move(r.image);
     row.stats = std::move(r.stats);
     return row;
@@ -238,7 +245,7 @@ ComparedRow compareImage(Job job, const ImageInput& in) {
     job.metricOptions.filteredTechnique = false;
     measureLights(
         job, rt, image, [&](size_t, double oracleSeconds) { return imageCost(in, oracleSeconds); },
-        nullptr);
+        nullptr, nullptr);
     rt.image = std::move(image);
     return row;
 }
@@ -312,6 +319,16 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
         // Degenerate interpolated poses are input errors too: found before any work.
         sampleCameraPath(*scene.cameraPath, scene.camera, options.pathFrames);
     }
+    if (options.sequence) {
+        if (!images.empty() || options.pathFrames > 0)
+            throwInputError("comparison", "sequence",
+                            "a sequence is judged with techniques only (no images, no camera "
+                            "path frames)");
+        if (!options.sequence->sequence)
+            throwInputError(options.sequence->path.string(), "sequence",
+                            "missing: judging a sequence needs one (scene_format 5, "
+                            "docs/scene-format.md)");
+    }
     std::optional<GlContext> ownGl;
     if (!runs.empty() && !gl) gl = &ownGl.emplace();
 
@@ -333,11 +350,23 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
         out.path = measurePathFlicker(scene, list, labels, options.pathOracle, options.pathCache,
                                       options.raster, *gl, options.pathFrames, options.progress);
     }
-    const Job job{scene, oracle, out.metricOptions, out.oracleCurves,
-                  out.path ? &*out.path : nullptr};
+    if (options.sequence) {
+        std::vector<const Technique*> list;
+        for (const TechniqueRun& run : runs) list.push_back(run.technique.get());
+        out.sequence =
+            measureSequence(*options.sequence, list, options.pathOracle, options.pathCache,
+                            options.raster, out.metricOptions, *gl, options.progress);
+    }
+    const Job job{scene,
+                  oracle,
+                  out.metricOptions,
+                  out.oracleCurves,
+                  out.path ? &*out.path : nullptr,
+                  out.sequence ? &*out.sequence : nullptr};
     if (!runs.empty()) renderAll(job, runs, options, *gl, out.rows);
     for (const ImageInput& in : images) out.rows.push_back(compareImage(job, in));
     if (out.path) out.warnings = out.path->warnings;
+    if (out.sequence) out.warnings = out.sequence->warnings;
     if (gl)
         for (std::string& w : gl->takeWarnings()) out.warnings.push_back(std::move(w));
     return out;
@@ -366,6 +395,7 @@ nlohmann::json metricsHeaderJson(const Scene& scene, const std::string& sceneFil
     nlohmann::json options = {{"boundary_radius_px", boundaryRadius},
                               {"contact_threshold", comparison.metricOptions.contactThreshold}};
     if (comparison.path) options["frames_path"] = comparison.path->frames;
+    if (comparison.sequence) options["sequence_frames"] = comparison.sequence->frames;
     return {{"schema_version", kMetricsSchemaVersion},
             {"tool", toolJson()},
             {"scene",

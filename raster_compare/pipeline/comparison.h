@@ -21,6 +21,7 @@
 #include "raster_compare/gl/raster_result.h"
 #include "raster_compare/gl/renderer.h"
 #include "raster_compare/pipeline/path_flicker.h"
+#include "raster_compare/pipeline/sequence_compare.h"
 
 namespace so {
 
@@ -76,6 +77,11 @@ struct ComparisonOptions {
     int pathFrames = 0;
     OracleOptions pathOracle;
     OracleCacheOptions pathCache;
+    // compare --sequence: the scene with its motion (the `scene` compared is then its last frame,
+    // posed): every technique also over the sequence's frames (sequence_compare.h), each frame's
+    // oracle from `pathOracle` and `pathCache`; each row's image is the sequence's last frame as
+    // judged (its history resolved). Not with pathFrames or images. Null: no sequence.
+    const Scene* sequence = nullptr;
     // Before each group of techniques is rendered together: their labels (the CLI says so).
     std::function<void(const std::vector<std::string>&)> renderingGroup;
     // The camera path's frames ("camera path frames") and the techniques rendered
@@ -104,8 +110,9 @@ struct Comparison {
     // Per light: where the oracle's exact penumbra pass gave V, what it cost (the report's chart).
     std::vector<std::optional<OracleExactPoint>> oracleExact;
     MetricOptions metricOptions;  // what the metrics used (the contact threshold in world units)
-    std::optional<PathFlicker> path;  // pathFrames > 0
-    std::optional<GlInfo> gl;         // when a technique was rendered
+    std::optional<PathFlicker> path;         // pathFrames > 0
+    std::optional<SequenceResult> sequence;  // ComparisonOptions::sequence
+    std::optional<GlInfo> gl;                // when a technique was rendered
     // The GL driver's and the camera path's oracle cache's warnings, for the caller to print.
     std::vector<std::string> warnings;
 };

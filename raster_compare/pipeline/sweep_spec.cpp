@@ -68,6 +68,8 @@ OptionValue optionValue(const OptionSpec& spec, const Json& v, const std::string
     OptionValue out;
     if (spec.type == OptionType::Name) {
         out.text = string(v, file, field);
+    } else if (spec.type == OptionType::Flag) {
+        out.number = boolean(v, file, field) ? 1.0 : 0.0;
     } else {
         out.number = number(v, file, field);
     }

@@ -92,7 +92,8 @@ CompareOptions taskCompareOptions(const fs::path& dir, const SweepPlan& plan, co
     c.writeReport = false;
     // Errors name the spec's keys: a task runs what the spec says, not a command line.
     c.names = {spec,          "techniques",    "images",           "points",
-               "frames_path", "oracle.verify", "width and height", "keep_outputs"};
+               "frames_path", "oracle.verify", "width and height", "keep_outputs",
+               "sequence"};
     return c;
 }
 

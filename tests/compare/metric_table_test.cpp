@@ -50,6 +50,11 @@ json fullRow(bool hard) {
     if (!hard) l.cost.oracleMsAtEqualError = 50.0;
     l.temporal = TemporalFlicker{};
     l.temporal->add({100, 3});
+    l.sequence = SequenceMetrics{};
+    l.sequence->maePerFrame = {0.1, 0.2};
+    l.sequence->flicker.add({100, 3});
+    l.sequence->lagPixels = 10;
+    l.sequence->lagAbsSum = 2.0;
     return l.toJson();
 }
 

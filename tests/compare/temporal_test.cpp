@@ -138,6 +138,31 @@ TEST(TemporalFlicker, MovingCameraTracksSurfacePoints) {
     EXPECT_GT(s.flickering, size_t(kH)) << "at least a column per pair flips";
 }
 
+// compare --sequence: a mesh that slides under a still camera is tracked through its known motion
+// (MeshMotions). A shadow that stays on the screen while the surface slides under it flips at the
+// tracked points; without the motion, pixel x is matched with pixel x and sees nothing.
+TEST(TemporalFlicker, MovingMeshIsTrackedThroughItsMotion) {
+    const CameraDesc cam = lookingDown(0.0);
+    const double step = 0.13;  // world units per frame along x: about a pixel
+    const VFunc screen = [](const glm::dvec3&, int x, int) { return x > kW / 2 ? 1.0f : 0.0f; };
+    std::vector<Frame> f;
+    for (int k = 0; k < 3; ++k) f.push_back(makeFrame(cam, kLit, screen));
+    // The plane's point at x in the next frame was at x - step in the previous one.
+    const MeshMotions motion = {glm::dmat4(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+                                           0.0, -step, 0.0, 0.0, 1.0)};
+    const std::vector<TemporalFrame> t = frames(f);
+    const FramePairFlicker without = compareFramePair(t[0], t[1], "key");
+    EXPECT_EQ(without.tracked, size_t(kW * kH));
+    EXPECT_EQ(without.flickering, 0u);
+    const FramePairFlicker with = compareFramePair(t[0], t[1], "key", {}, nullptr, &motion);
+    EXPECT_GT(with.tracked, size_t(kW * kH) / 2);
+    EXPECT_LT(with.tracked, size_t(kW * kH)) << "the column entering from the left is new";
+    EXPECT_GE(with.flickering, size_t(kH)) << "the column under the screen's edge flips";
+    // A mesh beyond the motion's list does not move: tracked as without it.
+    const MeshMotions none;
+    EXPECT_EQ(compareFramePair(t[0], t[1], "key", {}, nullptr, &none).flickering, 0u);
+}
+
 TEST(TemporalFlicker, ChangedSurfacesAreNotTracked) {
     const CameraDesc cam = lookingDown(0.0);
     // In frame 1, a 4 x 2 block shows another triangle, and the raster's V changes there.

@@ -111,7 +111,8 @@ TEST(OptionTables, CommandLineOffersAndChecksTheTablesOptions) {
     const std::string out = (fs::temp_directory_path() / "so_option_tables").string();
     for (const OptionTable* table : {&rasterOptionTable(), &compareOptionTable()})
         for (const OptionSpec& s : table->rows) {
-            if (!(s.surfaces & kSurfaceCompare)) continue;
+            // A flag takes no value to be out of range.
+            if (!(s.surfaces & kSurfaceCompare) || s.type == OptionType::Flag) continue;
             const test::RunResult r =
                 run("compare no_such.scene.json --technique shadow --out " + out + " " + s.cli +
                     " " + std::to_string(int64_t(s.max) + 1));
@@ -135,7 +136,9 @@ TEST(Docs, RasterAndCompareOptionTablesMatchTheCode) {
         for (size_t i = 0; i < kind.table->rows.size(); ++i) {
             const OptionSpec& s = kind.table->rows[i];
             EXPECT_EQ(j["options"][i]["key"], s.key);
-            if (s.type != OptionType::Name) {
+            if (s.type == OptionType::Flag) {
+                EXPECT_EQ(j["options"][i]["default"].get<bool>(), s.defaultValue.number != 0.0);
+            } else if (s.type != OptionType::Name) {
                 EXPECT_EQ(j["options"][i]["default"].get<double>(), s.defaultValue.number);
             }
         }

@@ -385,7 +385,9 @@ TEST_F(SweepSpec, RasterAndCompareTableSweepKeysAreTheSpecsKeys) {
             const auto spec = [&](const std::string& value) {
                 return head + ", \"" + s.key + "\": " + value + "}";
             };
-            const std::string def = nlohmann::json(int64_t(s.max)).dump();
+            // A flag is a JSON boolean; any other row a number.
+            const bool flag = s.type == OptionType::Flag;
+            const std::string def = flag ? "true" : nlohmann::json(int64_t(s.max)).dump();
             if (!(s.surfaces & kSurfaceSweep)) {
                 EXPECT_NE(error(spec(def)).find(s.key + ": unknown key"), std::string::npos)
                     << s.key;
@@ -393,8 +395,9 @@ TEST_F(SweepSpec, RasterAndCompareTableSweepKeysAreTheSpecsKeys) {
             }
             ++offered;
             EXPECT_EQ(error(spec(def)), "") << s.key;
-            const std::string e = error(spec("-1"));
-            EXPECT_NE(e.find(": " + s.key + ": must be an integer in"), std::string::npos)
+            const std::string e = error(spec(flag ? "1" : "-1"));
+            EXPECT_NE(e.find(": " + s.key + (flag ? ": " : ": must be an integer in")),
+                      std::string::npos)
                 << s.key << " -> " << e;
             const SweepSettings settings =
                 plan(R"([{"name": "shadow"}])", R"(["scenes/a.scene.json"])",
@@ -405,7 +408,7 @@ TEST_F(SweepSpec, RasterAndCompareTableSweepKeysAreTheSpecsKeys) {
             ASSERT_EQ(values.count(s.key), 1u) << s.key;
             EXPECT_EQ(values.at(s.key).number, s.max) << s.key;
         }
-    EXPECT_GE(offered, 2u);  // frames, boundary_radius
+    EXPECT_GE(offered, 3u);  // frames, boundary_radius, sequence
 }
 
 }  // namespace

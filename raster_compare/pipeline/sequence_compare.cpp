@@ -1,0 +1,119 @@
+#include "raster_compare/pipeline/sequence_compare.h"
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <optional>
+
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/scene_pose.h"
+#include "raster_compare/compare/sequence_judge.h"
+#include "raster_compare/gl/shadow_history.h"
+
+namespace so {
+
+namespace {
+
+// One frame's images; two of them alternate, so that the judges' pointers to the frame before
+// stay valid while the next is made.
+struct SequenceFrameImages {
+    CameraDesc camera;
+    double t = 0.0;
+    ChannelImage oracle;
+    std::vector<ChannelImage> rasters;  // per technique
+};
+
+void renderFrame(const Scene& posed, const std::vector<const Technique*>& techniques,
+                 const OracleOptions& oracle, const OracleCacheOptions& cache,
+                 const RasterOptions& raster, const GlContext& gl, int frameIndex,
+                 SequenceFrameImages& frame, std::vector<std::string>& warnings) {
+    // The posed scene's camera is the frame's (its camera_path moved it): no other camera.
+    OracleOptions o = oracle;
+    o.camera.reset();
+    frame.camera = effectiveCamera(posed, o);
+    CachedOracle traced = traceOrLoad(posed, o, cache);
+    frame.oracle = std::move(traced.image);
+    for (std::string& w : traced.warnings) warnings.push_back(std::move(w));
+    // One untimed frame per technique: only the images matter here (the timed frames and the
+    // work are the ordinary comparison's, on the last frame).
+    RasterOptions r = raster;
+    r.camera.reset();
+    r.frameIndex = frameIndex;
+    r.frames = 1;
+    r.warmup = 0;
+    r.countWork = false;
+    frame.rasters.assign(techniques.size(), ChannelImage());
+    renderInterleaved(posed, techniques, r, gl, {nullptr, [&](size_t i, RasterResult&& result) {
+                                                     frame.rasters[i] = std::move(result.image);
+                                                 }});
+}
+
+// Where each mesh's points of frame t were at tPrev.
+MeshMotions motionSince(const Scene& scene, double t, double tPrev) {
+    MeshMotions motion(scene.meshes.size());
+    for (size_t m = 0; m < motion.size(); ++m) motion[m] = meshMotion(scene, m, t, tPrev);
+    return motion;
+}
+
+}  // namespace
+
+SequenceResult measureSequence(const Scene& scene, const std::vector<const Technique*>& techniques,
+                               const OracleOptions& oracle, const OracleCacheOptions& cache,
+                               const RasterOptions& raster, const MetricOptions& metricOptions,
+                               const GlContext& gl, const ProgressCallback& progressCallback) {
+    if (!scene.sequence)
+        throwInputError(scene.path.string(), "sequence",
+                        "missing: judging a sequence needs one (scene_format 5, "
+                        "docs/scene-format.md)");
+    const Sequence& sequence = *scene.sequence;
+    SequenceResult out;
+    out.frames = sequence.frames;
+    // Per technique and light: its judge, and its history where the technique has one.
+    std::vector<std::vector<SequenceJudge>> judges(techniques.size());
+    std::vector<std::vector<std::unique_ptr<ShadowHistory>>> histories(techniques.size());
+    for (size_t k = 0; k < techniques.size(); ++k) {
+        MetricOptions m = metricOptions;
+        m.filteredTechnique = techniques[k]->filtered();
+        const std::optional<HistorySettings> history = techniques[k]->history();
+        for (const Light& light : scene.lights) {
+            judges[k].emplace_back(light.name, m);
+            histories[k].push_back(history ? std::make_unique<ShadowHistory>(*history, light.name)
+                                           : nullptr);
+        }
+    }
+    std::array<SequenceFrameImages, 2> slots;
+    Progress progress("sequence frames", uint64_t(sequence.frames), progressCallback);
+    for (int f = 0; f < sequence.frames; ++f) {
+        SequenceFrameImages& frame = slots[size_t(f) % 2];
+        frame.t = sequenceTime(sequence, f);
+        renderFrame(sceneAtTime(scene, frame.t), techniques, oracle, cache, raster, gl, f, frame,
+                    out.warnings);
+        const std::optional<MeshMotions> motion =
+            f > 0 ? std::optional(motionSince(scene, frame.t, slots[size_t(f + 1) % 2].t))
+                  : std::nullopt;
+        for (size_t k = 0; k < techniques.size(); ++k)
+            for (size_t li = 0; li < scene.lights.size(); ++li) {
+                ChannelImage& image = frame.rasters[k];
+                if (histories[k][li]) {
+                    const std::vector<float> resolved =
+                        histories[k][li]->resolve(scene, {&image, frame.camera, frame.t});
+                    std::copy(resolved.begin(), resolved.end(),
+                              image.channel(channels::lightChannel(scene.lights[li].name,
+                                                                   channels::kVisibility)));
+                }
+                judges[k][li].add(
+                    {{frame.camera, &frame.oracle, &image}, motion ? &*motion : nullptr});
+            }
+        progress.advance(1);
+    }
+    SequenceFrameImages& last = slots[size_t(sequence.frames - 1) % 2];
+    out.metrics.resize(techniques.size());
+    for (size_t k = 0; k < techniques.size(); ++k) {
+        for (const SequenceJudge& judge : judges[k]) out.metrics[k].push_back(judge.metrics());
+        out.lastImages.push_back(std::move(last.rasters[k]));
+    }
+    return out;
+}
+
+}  // namespace so

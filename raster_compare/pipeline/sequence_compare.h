@@ -1,0 +1,39 @@
+// A sequence judged frame by frame (compare --sequence, docs/metrics.md#sequence): for frame k of
+// the scene's sequence, at t_k = sequenceTime(k), the scene posed at t_k (core/scene_pose.h), its
+// oracle traced or read from the oracle cache (each frame cached on its own, as the camera path's
+// frames of path_flicker.h), every technique rendered on it with RasterOptions::frameIndex = k and,
+// where the technique carries a history (Technique::history()), each light's V resolved by that
+// technique's ShadowHistory, in place, so that every metric sees the resolved shadow. Each
+// technique and light is judged by a SequenceJudge (sequence_judge.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/progress.h"
+#include "oracle/oracle_cache.h"
+#include "raster_compare/compare/metrics.h"
+#include "raster_compare/gl/renderer.h"
+
+namespace so {
+
+class GlContext;
+
+struct SequenceResult {
+    int frames = 0;
+    std::vector<std::vector<SequenceMetrics>> metrics;  // [technique][light]
+    // Per technique, the last frame's image as judged (V resolved where the technique has a
+    // history): the image the row's ordinary metrics measure (docs/metrics.md#sequence).
+    std::vector<ChannelImage> lastImages;
+    std::vector<std::string> warnings;  // the frames' oracle cache's (CachedOracle::warnings)
+};
+
+// `scene` has its motion (not a posed frame). Throws InputError (the scene file, sequence) when it
+// has no sequence. `metricOptions` as the comparison's (each technique's filtered() is set here).
+// `progress` counts frames ("sequence frames") and can cancel.
+SequenceResult measureSequence(const Scene& scene, const std::vector<const Technique*>& techniques,
+                               const OracleOptions& oracle, const OracleCacheOptions& cache,
+                               const RasterOptions& raster, const MetricOptions& metricOptions,
+                               const GlContext& gl, const ProgressCallback& progress = {});
+
+}  // namespace so
