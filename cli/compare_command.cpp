@@ -32,9 +32,10 @@ int verifyExitCode(const CompareOptions& options, const OracleStats& stats) {
 
 }  // namespace
 
-CompareCallbacks printingCallbacks() {
+CompareCallbacks printingCallbacks(bool progress) {
     CompareCallbacks c;
     c.warning = [](const std::string& w) { std::cerr << "warning: " << w << "\n"; };
+    if (!progress) return c;
     // The camera path's frames, a line each as they are done; the techniques' own progress is the
     // "rendering" lines below.
     c.progress = [](const ProgressUpdate& u) {
@@ -69,9 +70,9 @@ const CompareOptionNames kCompareFlags = {
     "command line", "--technique",          "--image", "--points",  "--frames-path",
     "--verify",     "--width and --height", "--out",   "--sequence"};
 
-int runCompareCommand(CompareOptions options) {
+int runCompareCommand(CompareOptions options, bool progress) {
     options.names = kCompareFlags;
-    CompareRun run = compareScene(options, printingCallbacks());
+    CompareRun run = compareScene(options, printingCallbacks(progress));
     return printCompareSummary(options, run, writeCompareRun(options, run));
 }
 

@@ -15,15 +15,16 @@ namespace so {
 // or path.
 ImageSpec parseImageSpec(const std::string& text);
 
-// The command's callbacks: warnings on stderr ("warning: ..."), the camera path's frames and the
-// groups of techniques a line each as they are done.
-CompareCallbacks printingCallbacks();
+// The command's callbacks: warnings on stderr ("warning: ..."), the camera path's and the
+// sequence's frames and the groups of techniques a line each as they are done; without
+// `progress` (--quiet) the warnings alone.
+CompareCallbacks printingCallbacks(bool progress = true);
 
 // What was compared and the files written (writeCompareRun), on stdout; the oracle's --verify
 // count. Returns the exit code: 3 when --verify found disagreements.
 int printCompareSummary(const CompareOptions& options, const CompareRun& run,
                         const CompareOutputFiles& files);
 // `shadow-oracle compare`: compareScene, writeCompareRun and the summary.
-int runCompareCommand(CompareOptions options);
+int runCompareCommand(CompareOptions options, bool progress = true);
 
 }  // namespace so

@@ -242,8 +242,10 @@ static Runner addCompare(CLI::App& app) {
     compareCmd->add_flag("--embed-images", o->embedImages,
                          "report.html with its images inside (one file); default: PNGs in "
                          "report_images/ beside it");
+    auto progress = std::make_shared<bool>(true);
+    addQuiet(compareCmd, *progress);
 
-    return [o, noCache, encoding, images, traceOptions, rasterOptions, compareOptions] {
+    return [o, noCache, encoding, images, traceOptions, rasterOptions, compareOptions, progress] {
         so::applyTraceOptions(traceOptions->values, kCliNaming, o->oracle);
         so::applyRasterOptions(rasterOptions->values, kCliNaming, o->raster);
         so::applyCompareOptions(compareOptions->values, kCliNaming, *o);
@@ -253,7 +255,7 @@ static Runner addCompare(CLI::App& app) {
         o->useCache = !*noCache;
         for (const std::string& text : *images) o->images.push_back(so::parseImageSpec(text));
         o->imageEncoding = so::parseImageEncoding(*encoding, "command line", "--image-encoding");
-        return so::runCompareCommand(*o);
+        return so::runCompareCommand(*o, *progress);
     };
 }
 

@@ -113,6 +113,26 @@ TEST(ComparePath, RowsCarryTemporalFlickerAndTheReportItsStrip) {
     fs::remove_all(dir);
 }
 
+TEST(ComparePath, QuietLeavesOutTheProgressLines) {
+    REQUIRE_GL();
+    const fs::path dir =
+        fs::temp_directory_path() / ("so_path_quiet_" + std::to_string(::getpid()));
+    const fs::path scene = writeScene(dir, true);
+    const std::string args = scene.string() +
+                             " --width 32 --height 24 --frames 1 --warmup 0 --frames-path 2 "
+                             "--no-cache --technique basic:resolution=64 --out " +
+                             (dir / "out").string();
+    std::string loud, quiet;
+    ASSERT_EQ(runCompare(args, &loud), 0) << loud;
+    ASSERT_EQ(runCompare(args + " --quiet", &quiet), 0) << quiet;
+    EXPECT_NE(loud.find("camera path: frame 2 of 2"), std::string::npos) << loud;
+    EXPECT_NE(loud.find("rendering basic"), std::string::npos) << loud;
+    EXPECT_EQ(quiet.find("camera path: frame"), std::string::npos) << quiet;
+    EXPECT_EQ(quiet.find("rendering"), std::string::npos) << quiet;
+    EXPECT_NE(quiet.find("compared "), std::string::npos) << "the summary stays: " << quiet;
+    fs::remove_all(dir);
+}
+
 TEST(ComparePath, NoPathOrTooFewFramesIsAOneLineError) {
     REQUIRE_GL();
     const fs::path dir = fs::temp_directory_path() / ("so_path_err_" + std::to_string(::getpid()));
