@@ -31,6 +31,14 @@ void JsonReader::requireArray(const json& j, const std::string& field) const {
     if (!j.is_array()) wrongType(j, field, "an array");
 }
 
+void JsonReader::requireArraySize(const json& j, const std::string& field, size_t min,
+                                  size_t limit) const {
+    requireArray(j, field);
+    if (j.size() < min) fail(field, "needs at least " + std::to_string(min) + " entries");
+    if (j.size() > limit)
+        fail(field, std::to_string(j.size()) + " entries, limit is " + std::to_string(limit));
+}
+
 void JsonReader::checkKeys(const json& j, const std::string& field,
                            const std::vector<std::string>& allowed,
                            const std::string& context) const {

@@ -51,6 +51,9 @@ class JsonReader {
 
     void requireObject(const json& j, const std::string& field) const;
     void requireArray(const json& j, const std::string& field) const;
+    // An array of `min` to `limit` entries ("needs at least 2 entries", "20001 entries, limit is
+    // 10000"): a keyframe list.
+    void requireArraySize(const json& j, const std::string& field, size_t min, size_t limit) const;
 
     void checkKeys(const json& j, const std::string& field,
                    std::initializer_list<const char*> allowed,

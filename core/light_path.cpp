@@ -41,11 +41,7 @@ LightPath parsePath(const json& j, const JsonReader& r, const LoadLimits& limits
     const std::string list = f + ".keyframes";
     if (!j.contains("keyframes")) r.fail(list, "missing");
     const json& jk = j["keyframes"];
-    r.requireArray(jk, list);
-    if (jk.size() < 2) r.fail(list, "needs at least 2 entries");
-    if (jk.size() > limits.maxPathKeyframes)
-        r.fail(list, std::to_string(jk.size()) + " entries, limit is " +
-                         std::to_string(limits.maxPathKeyframes));
+    r.requireArraySize(jk, list, 2, limits.maxPathKeyframes);
     for (size_t i = 0; i < jk.size(); ++i) {
         const std::string fk = JsonReader::index(list, i);
         LightKeyframe k = parseKey(jk[i], r, fk, kind);

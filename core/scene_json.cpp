@@ -237,11 +237,7 @@ CameraPath parseCameraPath(const json& j, const Reader& r, const LoadLimits& lim
     path.file = r.file();
     const std::string list = keyed ? "camera_path.keyframes" : "camera_path.poses";
     const json& jk = keyed ? j["keyframes"] : j["poses"];
-    r.requireArray(jk, list);
-    if (jk.size() < 2) r.fail(list, "needs at least 2 entries");
-    if (jk.size() > limits.maxPathKeyframes)
-        r.fail(list, std::to_string(jk.size()) + " entries, limit is " +
-                         std::to_string(limits.maxPathKeyframes));
+    r.requireArraySize(jk, list, 2, limits.maxPathKeyframes);
     for (size_t i = 0; i < jk.size(); ++i) {
         const std::string f = Reader::index(list, i);
         CameraKeyframe k = parsePathPose(jk[i], r, f, keyed, base);
