@@ -554,7 +554,7 @@ void writeSequenceChart(std::ostream& o, const ReportInput& in, size_t li) {
     if (in.sequenceFrames == 0) return;
     static const char* kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
                                      "#e69f00", "#56b4e9", "#000000", "#999999"};
-    constexpr double kW = 640, kH = 260, kLeft = 56, kRight = 16, kTop = 12, kBottom = 36;
+    constexpr double kW = 640, kH = 260, kLeft = 68, kRight = 16, kTop = 12, kBottom = 36;
     const int frames = in.sequenceFrames;
     double top = 0.0;
     for (const ReportTechnique& t : in.techniques)
@@ -579,8 +579,11 @@ void writeSequenceChart(std::ostream& o, const ReportInput& in, size_t li) {
           << f << "</text>";
     o << "<line class=\"axis\" x1=\"" << kLeft << "\" x2=\"" << kW - kRight << "\" y1=\"" << y(0)
       << "\" y2=\"" << y(0) << "\"/><text class=\"label\" x=\"" << (kLeft + kW - kRight) / 2
-      << "\" y=\"" << kH - 4 << "\" text-anchor=\"middle\">frame</text><text class=\"label\" "
-      << "x=\"12\" y=\"" << kTop + 8 << "\">mae</text>";
+      << "\" y=\"" << kH - 4
+      << "\" text-anchor=\"middle\">frame</text><text class=\"label\" "
+      // Upright beside the tick labels, so that it never overlaps the top one.
+      << "transform=\"rotate(-90)\" x=\"" << -(kTop + kH - kBottom) / 2
+      << "\" y=\"12\" text-anchor=\"middle\">mae</text>";
     std::ostringstream legend;
     size_t colour = 0;
     for (const ReportTechnique* t : byFamily(in)) {
