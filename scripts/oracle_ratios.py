@@ -106,9 +106,13 @@ def table(figures):
 def sentence(figures):
     hard = [e["median"] for k, e in figures["lights"].items() if k.startswith("hard.")]
     area = [e["median"] for k, e in figures["lights"].items() if k.startswith("area.")]
-    return (f"Its hard pass runs at {min(hard):.2f} to {max(hard):.2f} of a plain Embree "
-            f"`rtcOccluded16` loop over the same rays and its sampled area pass at {min(area):.2f} "
-            f"to {max(area):.2f} (medians of {figures['runs']} runs, {figures['date']}: "
+    def span(values):  # "0.84" where the lights agree, else "0.84 to 0.88"
+        lo, hi = f"{min(values):.2f}", f"{max(values):.2f}"
+        return lo if lo == hi else f"{lo} to {hi}"
+
+    return (f"Its hard pass runs at {span(hard)} of a plain Embree "
+            f"`rtcOccluded16` loop over the same rays and its sampled area pass at {span(area)} "
+            f"(medians of {figures['runs']} runs, {figures['date']}: "
             "[docs/benchmarks.md](docs/benchmarks.md#the-oracle-against-plain-embree), written by "
             "`scripts/oracle-ratios`).")
 
