@@ -3,6 +3,7 @@
 #include "core/camera_path.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "raster_compare/pipeline/frame_images.h"
 
 namespace so {
 
@@ -11,12 +12,7 @@ namespace ch = channels;
 namespace {
 
 // One frame's images, kept until the next frame is measured against it.
-struct PathFrame {
-    CameraDesc camera;
-    ChannelImage oracle;
-    std::vector<ChannelImage> rasters;  // per technique
-    std::vector<std::string> warnings;  // its oracle cache's
-};
+using PathFrame = FrameImages;
 
 std::vector<float> plane(const ChannelImage& image, const std::string& light) {
     const float* v = image.channel(ch::lightChannel(light, ch::kVisibility));
@@ -31,25 +27,13 @@ struct WorstPair {
 
 PathFrame renderFrame(const Scene& scene, const std::vector<const Technique*>& techniques,
                       const OracleOptions& oracle, const OracleCacheOptions& cache,
-                      const RasterOptions& raster, const GlContext& gl, const CameraDesc& pose) {
-    PathFrame frame;
+                      const RasterOptions& raster, const GlContext& gl, const CameraDesc& pose,
+                      std::vector<std::string>& warnings) {
     OracleOptions o = oracle;
     o.camera = pose;
-    frame.camera = effectiveCamera(scene, o);
-    CachedOracle traced = traceOrLoad(scene, o, cache);
-    frame.oracle = std::move(traced.image);
-    frame.warnings = std::move(traced.warnings);
-    // One untimed frame per technique: only the images matter here.
     RasterOptions r = raster;
     r.camera = pose;
-    r.frames = 1;
-    r.warmup = 0;
-    r.countWork = false;  // V only: the work is counted on the scene's own camera
-    frame.rasters.resize(techniques.size());
-    renderInterleaved(scene, techniques, r, gl, {nullptr, [&](size_t i, RasterResult&& result) {
-                                                     frame.rasters[i] = std::move(result.image);
-                                                 }});
-    return frame;
+    return renderFrameImages(scene, techniques, o, cache, r, gl, warnings);
 }
 
 void measurePair(const PathFrame& prev, const PathFrame& next, const Scene& scene,
@@ -99,9 +83,8 @@ PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Techn
     PathFrame prev;
     Progress progress("camera path frames", uint64_t(frames), progressCallback);
     for (int f = 0; f < frames; ++f) {
-        PathFrame next =
-            renderFrame(scene, techniques, oracle, cache, raster, gl, poses[size_t(f)]);
-        for (std::string& w : next.warnings) out.warnings.push_back(std::move(w));
+        PathFrame next = renderFrame(scene, techniques, oracle, cache, raster, gl, poses[size_t(f)],
+                                     out.warnings);
         if (f > 0) measurePair(prev, next, scene, labels, f - 1, out, worst);
         prev = std::move(next);
         progress.advance(1);

@@ -10,44 +10,17 @@
 #include "core/scene_pose.h"
 #include "raster_compare/compare/sequence_judge.h"
 #include "raster_compare/gl/shadow_history.h"
+#include "raster_compare/pipeline/frame_images.h"
 
 namespace so {
 
 namespace {
 
-// One frame's images; two of them alternate, so that the judges' pointers to the frame before
-// stay valid while the next is made.
-struct SequenceFrameImages {
-    CameraDesc camera;
+// One frame's images and time; two of them alternate, so that the judges' pointers to the frame
+// before stay valid while the next is made.
+struct SequenceFrameImages : FrameImages {
     double t = 0.0;
-    ChannelImage oracle;
-    std::vector<ChannelImage> rasters;  // per technique
 };
-
-void renderFrame(const Scene& posed, const std::vector<const Technique*>& techniques,
-                 const OracleOptions& oracle, const OracleCacheOptions& cache,
-                 const RasterOptions& raster, const GlContext& gl, int frameIndex,
-                 SequenceFrameImages& frame, std::vector<std::string>& warnings) {
-    // The posed scene's camera is the frame's (its camera_path moved it): no other camera.
-    OracleOptions o = oracle;
-    o.camera.reset();
-    frame.camera = effectiveCamera(posed, o);
-    CachedOracle traced = traceOrLoad(posed, o, cache);
-    frame.oracle = std::move(traced.image);
-    for (std::string& w : traced.warnings) warnings.push_back(std::move(w));
-    // One untimed frame per technique: only the images matter here (the timed frames and the
-    // work are the ordinary comparison's, on the last frame).
-    RasterOptions r = raster;
-    r.camera.reset();
-    r.frameIndex = frameIndex;
-    r.frames = 1;
-    r.warmup = 0;
-    r.countWork = false;
-    frame.rasters.assign(techniques.size(), ChannelImage());
-    renderInterleaved(posed, techniques, r, gl, {nullptr, [&](size_t i, RasterResult&& result) {
-                                                     frame.rasters[i] = std::move(result.image);
-                                                 }});
-}
 
 // Where each mesh's points of frame t were at tPrev.
 MeshMotions motionSince(const Scene& scene, double t, double tPrev) {
@@ -87,8 +60,14 @@ SequenceResult measureSequence(const Scene& scene, const std::vector<const Techn
     for (int f = 0; f < sequence.frames; ++f) {
         SequenceFrameImages& frame = slots[size_t(f) % 2];
         frame.t = sequenceTime(sequence, f);
-        renderFrame(sceneAtTime(scene, frame.t), techniques, oracle, cache, raster, gl, f, frame,
-                    out.warnings);
+        // The posed scene's camera is the frame's (its camera_path moved it): no other camera.
+        OracleOptions o = oracle;
+        o.camera.reset();
+        RasterOptions r = raster;
+        r.camera.reset();
+        r.frameIndex = f;
+        static_cast<FrameImages&>(frame) = renderFrameImages(
+            sceneAtTime(scene, frame.t), techniques, o, cache, r, gl, out.warnings);
         const std::optional<MeshMotions> motion =
             f > 0 ? std::optional(motionSince(scene, frame.t, slots[size_t(f + 1) % 2].t))
                   : std::nullopt;

@@ -1,0 +1,30 @@
+// One frame of a comparison that moves (compare --frames-path, compare --sequence): the oracle of
+// the frame, traced or read from the oracle cache, and every technique rendered once, untimed
+// (only the images matter there: the timed frames and the work are the ordinary comparison's).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "oracle/oracle_cache.h"
+#include "raster_compare/gl/renderer.h"
+
+namespace so {
+
+class GlContext;
+
+struct FrameImages {
+    CameraDesc camera;  // the oracle's effective camera for `oracle`'s options
+    ChannelImage oracle;
+    std::vector<ChannelImage> rasters;  // per technique
+};
+
+// `oracle` and `raster` as the frame wants them (its camera, its frame index); the raster frames
+// are set to one untimed frame without a counted one. The oracle cache's warnings are appended to
+// `warnings`.
+FrameImages renderFrameImages(const Scene& scene, const std::vector<const Technique*>& techniques,
+                              const OracleOptions& oracle, const OracleCacheOptions& cache,
+                              RasterOptions raster, const GlContext& gl,
+                              std::vector<std::string>& warnings);
+
+}  // namespace so
