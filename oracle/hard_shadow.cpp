@@ -29,6 +29,11 @@ namespace {
 constexpr float kTieCos = 1.0f / 262144.0f;        // 2^-18
 constexpr float kTiePosition = 1.0f / 1048576.0f;  // 2^-20, times (1 + |l|)
 
+// The packet loops' clones (setupPacket, traceTile): see setupPacket.
+#ifndef SO_HARD_CLONES  // -DSO_HARD_CLONES= builds the default clone alone (a check of the bits)
+#define SO_HARD_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+
 }  // namespace
 
 HardLight makeHardLight(const Light& light, const LocalFrame& frame) {
@@ -62,8 +67,9 @@ struct LaneScratch {
     alignas(64) float tieBehind[16];  // |behindDot| below this: decide exactly
 };
 
-void setupDirectional(const HardLight& light, PacketSetup& ps, LaneScratch& ls, const float* nx,
-                      const float* ny, const float* nz) {
+[[gnu::always_inline]] inline void setupDirectional(const HardLight& light, PacketSetup& ps,
+                                                    LaneScratch& ls, const float* nx,
+                                                    const float* ny, const float* nz) {
     const glm::vec3 d = light.lsDirectionF;
     for (int k = 0; k < 16; ++k) {
         ps.cosine[k] = -(nx[k] * d.x + ny[k] * d.y + nz[k] * d.z);
@@ -84,8 +90,8 @@ void setupDirectional(const HardLight& light, PacketSetup& ps, LaneScratch& ls, 
 // which the doubled margin allows.
 // kOneSided: the emitter-side values, which point and spot lights do not need.
 template <bool kOneSided>
-void setupPositional(const HardLight& light, const SurfaceBuffer& sb, size_t base, PacketSetup& ps,
-                     LaneScratch& ls) {
+[[gnu::always_inline]] inline void setupPositional(const HardLight& light, const SurfaceBuffer& sb,
+                                                   size_t base, PacketSetup& ps, LaneScratch& ls) {
     const float* px = &sb.lsPointX[base];
     const float* py = &sb.lsPointY[base];
     const float* pz = &sb.lsPointZ[base];
@@ -133,8 +139,9 @@ __m128i selectBytes(__m128i mask, ShadowRayKind a, __m128i b) {
 // byte-and-float loops lane by lane). NaN compares false: a NaN cosine (a point at the light
 // itself) faces away, and is a tie.
 template <bool kOneSided>
-uint32_t classifyPacket(const SurfaceBuffer& sb, size_t base, const HardLight& light,
-                        const LaneScratch& ls, PacketSetup& ps) {
+[[gnu::always_inline]] inline uint32_t classifyPacket(const SurfaceBuffer& sb, size_t base,
+                                                      const HardLight& light, const LaneScratch& ls,
+                                                      PacketSetup& ps) {
     const bool spot = light.spot;
     const __m128i missBytes = _mm_cmpeq_epi8(
         _mm_loadu_si128(reinterpret_cast<const __m128i*>(&sb.hit[base])), _mm_setzero_si128());
@@ -207,10 +214,10 @@ void resolveTies(const Accel& accel, const SurfaceBuffer& sb, size_t base, const
     }
 }
 
-}  // namespace
-
-void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const HardLight& light,
-                 PacketSetup& ps) {
+// The packet's setup, inlined into both of its callers' clones (below).
+[[gnu::always_inline]] inline void setupPacketLanes(const Accel& accel, const SurfaceBuffer& sb,
+                                                    size_t base, const HardLight& light,
+                                                    PacketSetup& ps) {
     // Branch-free loops over the 16 lanes, so the compiler vectorises them: this setup runs once
     // per shadow ray and is what separates the oracle from a bare Embree loop (bench/).
     LaneScratch ls;
@@ -223,6 +230,16 @@ void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base, const
     const uint32_t ties = light.oneSided ? classifyPacket<true>(sb, base, light, ls, ps)
                                          : classifyPacket<false>(sb, base, light, ls, ps);
     if (ties) resolveTies(accel, sb, base, light, ties, ls, ps);
+}
+
+}  // namespace
+
+// Once for AVX2 (eight lanes at a time) and once for any x86-64, chosen at run time: neither
+// enables fused multiply-add and every operation rounds the same IEEE way, so both give the same
+// bits (the oracle's determinism does not depend on the CPU).
+SO_HARD_CLONES void setupPacket(const Accel& accel, const SurfaceBuffer& sb, size_t base,
+                                const HardLight& light, PacketSetup& ps) {
+    setupPacketLanes(accel, sb, base, light, ps);
 }
 
 ShadowRaySetup setupShadowRay(const Accel& accel, const SurfaceBuffer& sb, size_t slot,
@@ -467,11 +484,12 @@ uint64_t decideNearField(const SurfaceBuffer& sb, size_t base, bool closest, Har
 }
 
 // One tile: setup, trace (any hit, or the closest with the contact effect), write.
-void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light, int tx, int ty,
-               HardPacket& p, const HardShadowPlanes& out, HardShadowStats& st) {
+SO_HARD_CLONES void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light,
+                              int tx, int ty, HardPacket& p, const HardShadowPlanes& out,
+                              HardShadowStats& st) {
     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
     const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
-    setupPacket(accel, sb, base, light, p.ps);
+    setupPacketLanes(accel, sb, base, light, p.ps);
     const int cols = std::min(SurfaceBuffer::kTile, sb.width - x0);
     const int rows = std::min(SurfaceBuffer::kTile, sb.height - y0);
     const int active = classifyLanes(p, cols, rows);
