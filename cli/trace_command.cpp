@@ -132,8 +132,8 @@ int runTracePoints(const TraceCommandOptions& options) {
         namingFlag("verify", "--verify", [&] { return runOracleAtPoints(scene, gbuffer, oracle); });
     const OraclePointsStats& points = *result.points;
 
-    TraceOutputOptions output{options.scenePath, loadSeconds, options.previews, std::nullopt,
-                              oracle.progress};
+    TraceOutputOptions output{options.scenePath, loadSeconds,     options.previews,
+                              std::nullopt,      oracle.progress, std::nullopt};
     const TraceOutputFiles files = writeTraceOutput(out, scene, oracle, result, output);
 
     std::cout << "traced " << options.scenePath << " at the points of " << options.pointsPath
@@ -156,7 +156,8 @@ namespace {
 
 // One trace of `scene` (the file's, or one frame of its sequence) into `outDir`.
 int traceScene(const TraceCommandOptions& options, const std::optional<TileSpec>& tile,
-               const Scene& scene, double loadSeconds, const std::string& outDir) {
+               const Scene& scene, double loadSeconds, const std::string& outDir,
+               const std::optional<SequenceFrame>& frame = std::nullopt) {
     if (scene.stats.degenerateTriangles)
         std::cerr << "warning: " << options.scenePath << ": " << scene.stats.degenerateTriangles
                   << " degenerate (zero-area) triangles (kept, they cannot be hit)\n";
@@ -181,7 +182,7 @@ int traceScene(const TraceCommandOptions& options, const std::optional<TileSpec>
         namingFlag("verify", "--verify", [&] { return runOracle(scene, oracle); });
 
     TraceOutputOptions output{options.scenePath, loadSeconds, options.previews, tile,
-                              oracle.progress};
+                              oracle.progress,   frame};
     const TraceOutputFiles files = writeTraceOutput(out, scene, oracle, result, output);
 
     std::cout << "traced " << options.scenePath << " (" << scene.stats.triangles << " triangles, "
@@ -254,8 +255,8 @@ int traceFrames(const TraceCommandOptions& options, const std::optional<TileSpec
         if (options.progress)
             std::cerr << "frame " << k << " (t = " << t << " s), " << (k - first + 1) << " of "
                       << (last - first + 1) << "\n";
-        code =
-            std::max(code, traceScene(options, tile, sceneAtTime(scene, t), loadSeconds, outDir));
+        code = std::max(code, traceScene(options, tile, sceneAtTime(scene, t), loadSeconds, outDir,
+                                         SequenceFrame{k, t}));
     }
     return code;
 }

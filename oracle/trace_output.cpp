@@ -76,6 +76,10 @@ nlohmann::json oracleJson(const TraceOutputOptions& output, const Scene& scene,
           {"openimageio", imageLibrary.empty() ? nlohmann::json() : nlohmann::json(imageLibrary)}}},
     };
     j.update(toJson(stats));
+    // Which pose of the sequence this is: frames of one scene share its file and differ here.
+    j["sequence_frame"] =
+        output.frame ? nlohmann::json{{"index", output.frame->index}, {"t", output.frame->t}}
+                     : nlohmann::json();
     j["phases_seconds"]["load"] = output.loadSeconds;
     j["phases_seconds"]["write"] = writeSeconds;
     j["libraries"]["tbb"] = j["tbb"]["version"];

@@ -17,7 +17,7 @@
 namespace so {
 
 // oracle.json's format_version (docs/oracle.md lists what each version added).
-inline constexpr int kOracleJsonFormatVersion = 13;
+inline constexpr int kOracleJsonFormatVersion = 14;
 
 // `trace --tile I/N`: band I of N bands of rows (tileRows).
 struct TileSpec {
@@ -31,6 +31,12 @@ inline constexpr const char* kTileAttribute = "shadowOracle/tile";
 // trace-merge joins only tiles whose options are equal.
 nlohmann::json tracedOptionsJson(const OracleOptions& options, const CameraDesc& camera);
 
+// A frame of the scene's sequence (`trace --frame K`): oracle.json's sequence_frame.
+struct SequenceFrame {
+    int index = 0;   // K
+    double t = 0.0;  // seconds: K / fps
+};
+
 // What oracle.json says beyond the result itself.
 struct TraceOutputOptions {
     std::string scenePath;     // scene.file: the path as the caller gave it
@@ -39,6 +45,8 @@ struct TraceOutputOptions {
     // The band this result is (options.rows is its tileRows); none: the whole image.
     std::optional<TileSpec> tile;
     ProgressCallback progress;  // "writing <dir>/oracle.exr"
+    // The sequence's frame the scene was posed at; none: the scene as its file has it.
+    std::optional<SequenceFrame> frame;
 };
 
 struct TraceOutputFiles {

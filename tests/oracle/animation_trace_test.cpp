@@ -6,6 +6,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli_run.h"
 
@@ -92,10 +93,21 @@ TEST(AnimationTrace, ARangeWritesOneFolderAFrameAndVerifiesEach) {
          at = r.stdoutText.find("verified ", at + 1))
         ++verified;
     EXPECT_EQ(verified, 2u) << r.stdoutText;
+    // Each frame's oracle.json says which frame and time it is.
+    const nlohmann::json j8 =
+        nlohmann::json::parse(std::ifstream(out / "frame_0008" / "oracle.json"));
+    EXPECT_EQ(j8["sequence_frame"]["index"], 8);
+    EXPECT_DOUBLE_EQ(j8["sequence_frame"]["t"].get<double>(), 8.0 / 30.0);
     const fs::path one = tempDir("one");
     r = run("trace " + scene.string() + " --frame 8 --quiet --no-previews --out " + one.string());
     ASSERT_EQ(r.exitCode, 0) << r.stderrText;
     EXPECT_EQ(sunVisibility(out / "frame_0008" / "oracle.exr"), sunVisibility(one / "oracle.exr"));
+    // A scene traced as its file has it is no frame.
+    const fs::path plain = tempDir("plain");
+    r = run("trace " + scene.string() + " --quiet --no-previews --out " + plain.string());
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+    EXPECT_TRUE(
+        nlohmann::json::parse(std::ifstream(plain / "oracle.json"))["sequence_frame"].is_null());
 }
 
 TEST(AnimationTrace, BadFramesExitTwoWithOneLine) {
