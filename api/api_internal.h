@@ -2,6 +2,7 @@
 // translation of the libraries' exceptions into the API's.
 #pragma once
 
+#include <optional>
 #include <utility>
 
 #include "core/compare_option_table.h"
@@ -10,6 +11,7 @@
 #include "core/progress.h"
 #include "core/scene.h"
 #include "oracle/oracle_cache.h"
+#include "oracle/trace_output.h"
 #include "raster_compare/gl/renderer.h"
 #include "raster_compare/pipeline/comparison.h"
 #include "shadow_oracle/shadow_oracle.h"
@@ -19,6 +21,8 @@ namespace shadow_oracle {
 struct Scene::Data {
     so::Scene scene;
     double loadSeconds = 0.0;  // oracle.json's phases_seconds.load (writeTraceOutput)
+    // Scene::atFrame's pose: oracle.json's sequence_frame (writeTraceOutput).
+    std::optional<so::SequenceFrame> frame;
 };
 
 struct TraceResult::Data {

@@ -39,6 +39,7 @@ std::vector<std::string> writeTraceOutput(const Scene& scene, const TraceResult&
         output.scenePath = s.path.string();
         output.loadSeconds = scene.data().loadSeconds;
         output.previews = previews;
+        output.frame = scene.data().frame;
         const so::TraceOutputFiles files = so::writeTraceOutput(outDir, s, data.options, r, output);
         return withPreviews({files.exr.string(), files.json.string()}, files.previews);
     });

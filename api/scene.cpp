@@ -2,6 +2,7 @@
 #include <chrono>
 
 #include "api/api_internal.h"
+#include "core/scene_pose.h"
 
 namespace shadow_oracle {
 
@@ -11,7 +12,7 @@ Scene Scene::load(const std::string& path) {
         so::Scene scene = so::loadScene(path);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        return Scene(std::make_shared<const Data>(Data{std::move(scene), seconds}));
+        return Scene(std::make_shared<const Data>(Data{std::move(scene), seconds, std::nullopt}));
     });
 }
 
@@ -34,7 +35,7 @@ Scene Scene::fromMeshes(const std::vector<Mesh>& meshes, const std::string& desc
             prims.push_back(std::move(p));
         }
         return Scene(std::make_shared<const Data>(
-            Data{so::sceneFromMemory(description, std::move(prims)), 0.0}));
+            Data{so::sceneFromMemory(description, std::move(prims)), 0.0, std::nullopt}));
     });
 }
 
@@ -67,6 +68,32 @@ uint64_t Scene::triangles() const {
 
 std::vector<std::string> Scene::warnings() const {
     return data_->scene.stats.warnings;
+}
+
+int Scene::frames() const {
+    return data_->scene.sequence ? data_->scene.sequence->frames : 0;
+}
+
+double Scene::fps() const {
+    return data_->scene.sequence ? data_->scene.sequence->fps : 0.0;
+}
+
+Scene Scene::atFrame(int k) const {
+    return detail::translated([&] {
+        const so::Scene& scene = data_->scene;
+        const std::string file = scene.path.empty() ? "(scene in memory)" : scene.path.string();
+        if (!scene.sequence)
+            so::throwInputError(file, "frame",
+                                "the scene has no sequence (scene_format 5, docs/scene-format.md)");
+        if (k < 0 || k >= scene.sequence->frames)
+            so::throwInputError(file, "frame",
+                                "frame " + std::to_string(k) + " is outside the sequence's " +
+                                    std::to_string(scene.sequence->frames) + " frames (0 to " +
+                                    std::to_string(scene.sequence->frames - 1) + ")");
+        const double t = so::sequenceTime(*scene.sequence, k);
+        return Scene(std::make_shared<const Data>(
+            Data{so::sceneAtTime(scene, t), data_->loadSeconds, so::SequenceFrame{k, t}}));
+    });
 }
 
 }  // namespace shadow_oracle

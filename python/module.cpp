@@ -242,6 +242,16 @@ void bindScene(py::module_& m) {
         .def_property_readonly("camera_size", &so::Scene::cameraSize)
         .def_property_readonly("triangles", &so::Scene::triangles)
         .def_property_readonly("warnings", &so::Scene::warnings)
+        .def_property_readonly("frames", &so::Scene::frames,
+                               "the sequence's frame count (0 without a sequence)")
+        .def_property_readonly("fps", &so::Scene::fps, "the sequence's frames per second")
+        .def(
+            "at_frame",
+            [](const so::Scene& s, int k) {
+                py::gil_scoped_release release;
+                return s.atFrame(k);
+            },
+            py::arg("k"), "The scene posed at frame k of its sequence (t = k / fps).")
         .def("__repr__", [](const so::Scene& s) {
             return "<shadow_oracle.Scene " + (s.path().empty() ? "in memory" : s.path()) + ", " +
                    std::to_string(s.triangles()) + " triangles, " +

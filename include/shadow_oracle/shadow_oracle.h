@@ -31,7 +31,7 @@
 namespace shadow_oracle {
 
 // This header's version: a change that breaks a caller raises it (docs/api.md).
-inline constexpr int kApiVersion = 2;
+inline constexpr int kApiVersion = 3;
 // "<tool version> <git revision>", as in every file the tool writes.
 SHADOW_ORACLE_API std::string version();
 
@@ -104,6 +104,15 @@ class SHADOW_ORACLE_API Scene {
     std::pair<int, int> cameraSize() const;  // the scene camera's width and height
     uint64_t triangles() const;
     std::vector<std::string> warnings() const;  // what the loader said, one line each
+    // An animated scene's sequence (scene_format 5, docs/scene-format.md "Sequence"): its frame
+    // count (0 without a sequence) and frames per second (0 without).
+    int frames() const;
+    double fps() const;
+    // The scene posed at frame k of its sequence (t = k / fps): meshes, lights and camera where
+    // the animations and paths put them, a still scene of its own (trace, render, compare and the
+    // writers take it as any; oracle.json records the frame). An Error naming "frame" where k is
+    // outside [0, frames()) or the scene has no sequence.
+    Scene atFrame(int k) const;
 
     struct Data;  // the implementation's
     const Data& data() const { return *data_; }

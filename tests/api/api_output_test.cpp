@@ -128,6 +128,45 @@ TEST(ApiOutput, TraceFolderIsTheCommands) {
     EXPECT_TRUE(readJson(bare / "oracle.json")["libraries"]["png"].is_null());
 }
 
+// An animated scene's frame through the API (Scene::atFrame) is the command's `trace --frame`:
+// the same oracle.exr byte for byte and the same oracle.json, sequence_frame included; a frame
+// outside the sequence, or a scene without one, is an Error naming "frame".
+TEST(ApiOutput, FrameOfASequenceIsTraceFrame) {
+    const std::string anim = std::string(SO_SCENES_DIR) + "/sliding_box/sliding_box.scene.json";
+    const soa::Scene scene = soa::Scene::load(anim);
+    ASSERT_EQ(scene.frames(), 16);
+    EXPECT_EQ(scene.fps(), 30.0);
+    const fs::path cli = freshDir("frame_cli"), api = freshDir("frame_api");
+    const auto r = cli::run("trace " + anim + " --frame 9 --width 64 --height 48 --quiet --out " +
+                            cli.string());
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+    soa::TraceOptions t;
+    t.width = 64;
+    t.height = 48;
+    const soa::Scene frame9 = scene.atFrame(9);
+    EXPECT_NE(frame9.hash(), scene.hash());
+    soa::writeTraceOutput(frame9, soa::trace(frame9, t), api.string());
+    expectSameBytes(cli / "oracle.exr", api / "oracle.exr");
+    const nlohmann::json a = readJson(api / "oracle.json"), c = readJson(cli / "oracle.json");
+    EXPECT_EQ(withoutTimes(a), withoutTimes(c));
+    EXPECT_EQ(a["sequence_frame"]["index"], 9);
+    // Frame 0 is another pose: the check above can fail.
+    const fs::path api0 = freshDir("frame_api0");
+    soa::writeTraceOutput(scene.atFrame(0), soa::trace(scene.atFrame(0), t), api0.string());
+    EXPECT_NE(cli::readBytes(api0 / "oracle.exr"), cli::readBytes(api / "oracle.exr"));
+    for (int bad : {-1, 16}) {
+        try {
+            scene.atFrame(bad);
+            ADD_FAILURE() << "frame " << bad << " was accepted";
+        } catch (const soa::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(": frame: "), std::string::npos) << e.what();
+        }
+    }
+    const soa::Scene still = soa::Scene::load(kScene);
+    EXPECT_EQ(still.frames(), 0);
+    EXPECT_THROW(still.atFrame(0), soa::Error);
+}
+
 // A renderer's image judged by the command (--image) and by the API (in memory): the same folder.
 // No GL: images alone need none. Then gate and index read the API's folder as the command's.
 TEST(ApiOutput, CompareFolderIsTheCommandsAndGateAndIndexReadIt) {

@@ -52,6 +52,24 @@ def test_trace_equals_the_cli_oracle_bit_for_bit(tmp_path, name, options, cli_op
     assert oracle.stats["lights"][0]["name"] == stats["lights"][0]["name"]
 
 
+def test_a_frame_of_a_sequence_is_trace_frame(tmp_path):
+    """Scene.at_frame(k) is the scene posed where `trace --frame k` poses it: the same V."""
+    path = os.path.join(SCENES, "sliding_box", "sliding_box.scene.json")
+    scene = so.load_scene(path)
+    assert (scene.frames, scene.fps) == (16, 30.0)
+    run_cli("trace", path, "--frame", "5", "--out", str(tmp_path), "--width", "64", "--height",
+            "48", "--quiet")
+    cli = so.read_exr(str(tmp_path / "oracle.exr"))
+    frame = so.trace(scene.at_frame(5), width=64, height=48)
+    for channel, plane in cli.items():
+        assert np.array_equal(frame.images[channel], plane, equal_nan=True), channel
+    first = so.trace(scene.at_frame(0), width=64, height=48)
+    assert not np.array_equal(first.V["sun"], frame.V["sun"])
+    with pytest.raises(so.Error, match=": frame: "):
+        scene.at_frame(16)
+    assert so.load_scene(scene_path("contact_box")).frames == 0
+
+
 def without_costs(results):
     """A metrics.json's rows without what depends on the run's timing."""
     rows = []
