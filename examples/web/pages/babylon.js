@@ -18,8 +18,7 @@ import { RenderTargetTexture } from '@babylonjs/core/Materials/Textures/renderTa
 import { Texture } from '@babylonjs/core/Materials/Textures/texture.js';
 import { ShadowGenerator, CascadedShadowGenerator } from '@babylonjs/core/Lights/Shadows/index.js';
 import { DirectionalLight } from '@babylonjs/core/Lights/directionalLight.js';
-import { SpotLight } from '@babylonjs/core/Lights/spotLight.js';
-import '@babylonjs/core/Lights/pointLight.js';
+import { PointLight } from '@babylonjs/core/Lights/pointLight.js';
 import '@babylonjs/loaders/glTF/index.js';
 import { floatsToBase64, channelTopDown, requireWebGL2, readSettings, medianMs } from './common.js';
 
@@ -36,6 +35,9 @@ const kModes = {
   'pcss': (g) => { g.useContactHardeningShadow = true; },
   'cascaded': () => {},
 };
+// Babylon.js's filter setter turns PCF and PCSS into Poisson sampling on a point light (a cube
+// map: shadowGenerator.js, "PCF on cubemap would also be expensive"): these modes refuse points.
+const kPoissonOnCubes = ['pcf-low', 'pcf-medium', 'pcf-high', 'pcss'];
 function pcf(g, quality) {
   g.usePercentageCloserFiltering = true;
   g.filteringQuality = quality;
@@ -97,7 +99,7 @@ function createCamera(scene, c) {
   return camera;
 }
 
-/** White Lambert in place of a glTF material, keeping what shapes the shadow: side and alpha test. */
+/** White Lambert in place of a glTF material, keeping what shapes the shadow: side, two-sided lighting and alpha test. */
 function whiteMaterial(scene, original) {
   const m = new StandardMaterial(`white ${original ? original.name : ''}`, scene);
   m.diffuseColor = Color3.White();
@@ -107,8 +109,16 @@ function whiteMaterial(scene, original) {
   if (!original) return m;
   m.backFaceCulling = original.backFaceCulling;
   m.sideOrientation = original.sideOrientation;
+  // The loader lights a doubleSided material's back faces with the flipped normal: the oracle's
+  // two-sided cos, not 0 (a back face seen from the camera would read as shadow).
+  m.twoSidedLighting = original.twoSidedLighting === true;
   if (original.transparencyMode === Material.MATERIAL_ALPHATEST && original.albedoTexture) {
-    m.opacityTexture = original.albedoTexture; // its alpha channel, tested against alphaCutOff
+    // The cutout's alpha, tested against alphaCutOff, as opacityTexture: the base colour texture's
+    // RGB as diffuseTexture would tint the unshadowed render (black in the holes). Babylon's shadow
+    // generator reads material.getAlphaTestTexture() for its alpha test, the diffuse texture for a
+    // StandardMaterial (the albedo for the loader's own PBRMaterial, what a user gets): a cutout in
+    // opacityTexture alone is drawn opaque into the map. kCutoutsInMap makes the generator read it.
+    m.opacityTexture = original.albedoTexture;
     m.transparencyMode = Material.MATERIAL_ALPHATEST;
     m.alphaCutOff = original.alphaCutOff;
   }
@@ -152,10 +162,11 @@ function findLight(scene, name) {
 }
 
 /**
- * A spot's shadow depth range fitted to the scene's box as seen from the light, as a user sets
- * shadowMinZ/shadowMaxZ (Babylon's default is the camera's planes, meant for the camera).
+ * A spot's or a point light's shadow depth range fitted to the scene's box as seen from the
+ * light, as a user sets shadowMinZ/shadowMaxZ (Babylon's default is the camera's near and far
+ * planes, meant for the camera: casters nearer the light than the camera's near are clipped).
  */
-function fitSpotDepth(light, bounds) {
+function fitLocalDepth(light, bounds) {
   const p = light.getAbsolutePosition();
   let far = 0;
   for (let i = 0; i < 8; ++i) {
@@ -177,14 +188,20 @@ function createGenerator(scene, light, modeName, s, bounds) {
     // in light space, padded by shadowOrthoScale 0.1) plus autoCalcShadowZBounds for the depth.
     light.autoUpdateExtends = true;
     light.autoCalcShadowZBounds = true;
-  } else if (light instanceof SpotLight) {
-    fitSpotDepth(light, bounds);
+  } else {
+    fitLocalDepth(light, bounds); // spot and point lights alike
+  }
+  if (light instanceof PointLight && kPoissonOnCubes.includes(modeName)) {
+    throw new Error(`${modeName}: Babylon.js runs Poisson sampling instead on a point light's cube map (shadowGenerator.js), so a ${modeName} row would be mislabelled; light "${light.name}" is a point light (use --mode poisson)`);
   }
   const useFloat = s.usefullFloatFirst === true;
   const gen = modeName === 'cascaded'
     ? new CascadedShadowGenerator(s.mapSize, light, useFloat)
     : new ShadowGenerator(s.mapSize, light, useFloat);
   kModes[modeName](gen);
+  // The generator's alpha test through the white material's opacityTexture, where the page put the
+  // glTF cutout (whiteMaterial): the texture a user's glTF material gives getAlphaTestTexture().
+  gen.useOpacityTextureForTransparentShadow = true;
   for (const [key, value] of Object.entries(s)) {
     if (key !== 'mapSize' && key !== 'usefullFloatFirst') gen[key] = value;
   }
