@@ -75,7 +75,7 @@ function assemble(result, view, o, browserVersion) {
     renderer: `${result.renderer} (${browserVersion}, SwiftShader)`,
     frame_ms: frameMs,
     memory_bytes: Math.round(result.memoryBytes),
-    params: checkParams({ mode: result.mode || o.mode || 'default', ...result.params }),
+    params: checkParams({ mode: result.mode || o.mode || 'default', ...(o.preset ? { preset: o.preset } : {}), ...result.params }),
   };
   return { channels, cost };
 }
@@ -91,7 +91,7 @@ function writeAtomically(files) {
 
 /** One render; `shared.browser`, where given, is used and left open (a sweep's), else one is started. */
 async function render(o, log, shared) {
-  const modeName = o.mode || 'default';
+  const modeName = o.preset || o.mode || 'default'; // the image's name: ENGINE-PRESET or ENGINE-MODE
   fs.mkdirSync(o.out, { recursive: true });
   const exrPath = path.join(o.out, `${o.engine}-${modeName}.exr`);
   // A failed run leaves no image at all, not the last run's under this run's name.
@@ -107,7 +107,7 @@ async function render(o, log, shared) {
     const view = readView(exported.dir, o);
     const job = {
       glbUrl: `${server.url}/scene/scene.glb`, view, width: view.camera.width, height: view.camera.height,
-      mode: o.mode, settings: o.settings, lights: view.lights.map((l) => l.name),
+      mode: o.mode, preset: o.preset, settings: o.settings, lights: view.lights.map((l) => l.name),
     };
     const pageUrl = `${server.url}/web/pages/${o.engine}.html`;
     const { result, browserVersion } = await runPage({ browser, pageUrl, job, timeoutS: o.timeoutS, log });
@@ -144,7 +144,7 @@ export async function main(argv, shared = null) {
     return 0;
   } catch (e) {
     const message = String(e && e.message ? e.message : e).split('\n')[0]; // one line, whatever threw
-    process.stderr.write(`render: ${o.engine} ${o.mode || 'default'} ${o.scene}: ${message}\n`);
+    process.stderr.write(`render: ${o.engine} ${o.preset || o.mode || 'default'} ${o.scene}: ${message}\n`);
     return 1;
   }
 }

@@ -4,19 +4,37 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { CSM } from 'three/addons/csm/CSM.js';
-import { floatsToBase64, channelTopDown, requireWebGL2, readSettings, medianMs } from './common.js';
+import { floatsToBase64, channelTopDown, requireWebGL2, readSettings, medianMs, resolveJob, mergeLightParams,
+  distanceToBox, farthestCornerDistance } from './common.js';
 
 // Modes: three.js's renderer.shadowMap.type values, and the CSM add-on (directional lights only).
 const kModes = {
-  basic: { type: THREE.BasicShadowMap, typeName: 'BasicShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'shadowSide'] },
-  pcf: { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'shadowSide'] },
-  vsm: { type: THREE.VSMShadowMap, typeName: 'VSMShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'blurSamples', 'shadowSide'] },
+  basic: { type: THREE.BasicShadowMap, typeName: 'BasicShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'shadowSide', 'fitCamera'] },
+  pcf: { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'shadowSide', 'fitCamera'] },
+  vsm: { type: THREE.VSMShadowMap, typeName: 'VSMShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'blurSamples', 'shadowSide', 'fitCamera'] },
   csm: { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'cascades', 'shadowSide'] },
+};
+// --preset (README.md, "Presets"): `default` is three.js's defaults (PCFShadowMap, bias 0, a 512
+// map; a spot's or point's shadow camera near 0.5, far 500); `typical` what three.js's official
+// examples set per light: webgl_lights_hemisphere.html (directional: 2048 map, bias -0.0001),
+// webgl_lights_spotlight.html (spot: 1024 map, bias -0.003, the shadow camera's near and far set
+// around the scene, 2 and 10 there) and webgl_shadowmap_pointlight.html (point: bias -0.005, the
+// light's distance, and so the shadow camera's far, set to the scene, 20 there).
+const kPresets = {
+  default: { mode: 'pcf', settings: {} },
+  typical: {
+    mode: 'pcf',
+    settings: {
+      directional: { mapSize: 2048, bias: -0.0001 },
+      spot: { mapSize: 1024, bias: -0.003, fitCamera: true },
+      point: { bias: -0.005, fitCamera: true },
+    },
+  },
 };
 const kDefaultMode = 'pcf'; // WebGLRenderer's shadowMap.type default
 const kSettingKinds = {
   bias: 'number', normalBias: 'number', mapSize: 'integer', radius: 'number', blurSamples: 'integer',
-  cascades: 'integer', shadowSide: ['front', 'back', 'double'],
+  cascades: 'integer', shadowSide: ['front', 'back', 'double'], fitCamera: 'boolean',
 };
 const kSides = { front: THREE.FrontSide, back: THREE.BackSide, double: THREE.DoubleSide };
 const kMaxMapSize = 8192;
@@ -26,10 +44,10 @@ async function threeVersion() {
   return r.ok ? (await r.json()).version : `r${THREE.REVISION}`;
 }
 
-function parseSettings(job, modeName) {
+function parseSettings(settings, modeName) {
   const mode = kModes[modeName];
   const kinds = Object.fromEntries(mode.settings.map((k) => [k, kSettingKinds[k]]));
-  const s = readSettings(job.settings, kinds, `three.js mode ${modeName}`);
+  const s = readSettings(settings, kinds, `three.js mode ${modeName}`);
   if (s.mapSize !== undefined && (s.mapSize < 1 || s.mapSize > kMaxMapSize)) throw new Error(`setting mapSize=${s.mapSize}: outside 1..${kMaxMapSize}`);
   if (s.blurSamples !== undefined && (s.blurSamples < 1 || s.blurSamples > 64)) throw new Error(`setting blurSamples=${s.blurSamples}: outside 1..64`);
   if (s.cascades !== undefined && (s.cascades < 1 || s.cascades > 4)) throw new Error(`setting cascades=${s.cascades}: outside 1..4`);
@@ -51,7 +69,7 @@ function makeCamera(view) {
 }
 
 /** Every mesh white Lambert, flat shaded (the geometric normal), keeping its side and alpha test. */
-function whiteLambert(scene, shadowSide) {
+function whiteLambert(scene) {
   const materials = [];
   scene.traverse((o) => {
     if (!o.isMesh) return;
@@ -61,7 +79,6 @@ function whiteLambert(scene, shadowSide) {
       color: 0xffffff, flatShading: true, side: old.side, alphaTest: old.alphaTest,
       map: cutout ? old.map : null, opacity: cutout ? old.opacity : 1,
     });
-    if (shadowSide) o.material.shadowSide = kSides[shadowSide];
     o.castShadow = true;
     materials.push(o.material);
   });
@@ -105,6 +122,20 @@ function fitDirectional(scene, light, bounds) {
   return dir;
 }
 
+/**
+ * A spot's or point light's shadow camera near and far around the scene's box (`fitCamera`), as
+ * three.js's examples set them for theirs: far just past the farthest corner, near half the way to
+ * the box (a hundredth of far where the light is inside it). three.js's own are 0.5 and 500.
+ */
+function fitLocalCamera(light, bounds) {
+  const p = light.getWorldPosition(new THREE.Vector3()).toArray();
+  const far = 1.01 * farthestCornerDistance(p, bounds);
+  const cam = light.shadow.camera;
+  cam.near = Math.max(0.5 * distanceToBox(p, bounds), 0.01 * far);
+  cam.far = far;
+  cam.updateProjectionMatrix();
+}
+
 function applyShadowSettings(shadow, s) {
   if (s.bias !== undefined) shadow.bias = s.bias;
   if (s.normalBias !== undefined) shadow.normalBias = s.normalBias;
@@ -122,8 +153,9 @@ function shadowBytes(modeName, light, shadow, cascades) {
   return (modeName === 'csm' ? cascades : 1) * perTexel * texels;
 }
 
-function effectiveParams(modeName, shadow, s, cascades) {
+function effectiveParams(modeName, shadow, s, cascades, light) {
   const p = { shadowMap: kModes[modeName].typeName, mapSize: shadow.mapSize.x, bias: shadow.bias, normalBias: shadow.normalBias };
+  if (!light.isDirectionalLight && modeName !== 'csm') Object.assign(p, { near: shadow.camera.near, far: shadow.camera.far });
   if (modeName === 'pcf' || modeName === 'vsm') p.radius = shadow.radius;
   if (modeName === 'vsm') p.blurSamples = shadow.blurSamples;
   if (modeName === 'csm') p.cascades = cascades;
@@ -168,9 +200,13 @@ class LightRender {
 }
 
 function renderOneLight(ctx, name) {
-  const { scene, camera, view, modeName, s, materials, renderer } = ctx;
+  const { scene, camera, view, job, materials, renderer } = ctx;
   const light = findLight(scene, name);
   const typeName = light.isDirectionalLight ? 'directional' : light.isSpotLight ? 'spot' : 'point';
+  const modeName = job.modeFor(typeName);
+  const s = parseSettings(job.settingsFor(typeName), modeName);
+  renderer.shadowMap.type = kModes[modeName].type;
+  for (const m of materials) m.shadowSide = s.shadowSide ? kSides[s.shadowSide] : null;
   if (modeName === 'vsm' && light.isPointLight) throw new Error(`vsm: light "${name}" is a point light, and three.js has no VSM for point lights (it warns and draws no shadow)`);
   if (modeName === 'csm' && !light.isDirectionalLight) throw new Error(`csm: the CSM add-on shadows directional lights only; light "${name}" is a ${typeName} light`);
   light.visible = true;
@@ -192,12 +228,13 @@ function renderOneLight(ctx, name) {
   if (!csm) {
     light.castShadow = true;
     applyShadowSettings(light.shadow, s);
+    if (s.fitCamera && !light.isDirectionalLight) fitLocalCamera(light, view.scene.bounds);
   }
   const r = new LightRender(renderer, scene, camera, view.camera.width, view.camera.height).run(before);
   const cascades = csm ? csm.cascades : 1;
   const out = {
     bytes: shadowBytes(modeName, light, shadow, cascades),
-    params: effectiveParams(modeName, shadow, s, cascades),
+    params: effectiveParams(modeName, shadow, s, cascades, light),
     result: { shadowed: floatsToBase64(r.shadowed), unshadowed: floatsToBase64(r.unshadowed), frameMs: r.frameMs },
   };
   light.visible = false;
@@ -208,12 +245,14 @@ function renderOneLight(ctx, name) {
 
 window.renderVisibility = async (job) => {
   const glRenderer = requireWebGL2();
-  const modeName = job.mode === null ? kDefaultMode : job.mode;
-  if (!kModes[modeName]) throw new Error(`unknown mode "${job.mode}" for three.js (known: ${Object.keys(kModes).join(', ')})`);
-  const s = parseSettings(job, modeName);
+  const resolved = resolveJob(job, kPresets, kDefaultMode, 'three.js');
+  for (const type of ['directional', 'spot', 'point']) {
+    const modeName = resolved.modeFor(type);
+    if (!kModes[modeName]) throw new Error(`unknown mode "${modeName}" for three.js (known: ${Object.keys(kModes).join(', ')})`);
+    parseSettings(resolved.settingsFor(type), modeName); // a bad setting fails before any render
+  }
   const renderer = new THREE.WebGLRenderer({ antialias: false });
   renderer.shadowMap.enabled = true;
-  renderer.shadowMap.type = kModes[modeName].type;
   renderer.toneMapping = THREE.NoToneMapping;
   renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
   let gltf;
@@ -227,17 +266,18 @@ window.renderVisibility = async (job) => {
   scene.environment = null;
   scene.updateMatrixWorld(true);
   scene.traverse((o) => { if (o.isLight) o.visible = false; });
-  const materials = whiteLambert(scene, s.shadowSide);
-  const ctx = { scene, camera: makeCamera(job.view), view: job.view, modeName, s, materials, renderer };
+  const materials = whiteLambert(scene);
+  const ctx = { scene, camera: makeCamera(job.view), view: job.view, job: resolved, materials, renderer };
   const lights = {};
   let memoryBytes = 0;
-  let params = null;
+  const params = [];
   for (const name of job.lights) {
     const one = renderOneLight(ctx, name);
     lights[name] = one.result;
     memoryBytes += one.bytes;
-    params = params || one.params;
+    params.push([name, one.params]);
   }
   renderer.dispose();
-  return { renderer: `three.js ${await threeVersion()}`, glRenderer, mode: modeName, params, memoryBytes, lights };
+  // Every preset of this page runs one mode on every light.
+  return { renderer: `three.js ${await threeVersion()}`, glRenderer, mode: resolved.modeFor('directional'), params: mergeLightParams(params), memoryBytes, lights };
 };
