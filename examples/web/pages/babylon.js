@@ -20,7 +20,8 @@ import { ShadowGenerator, CascadedShadowGenerator } from '@babylonjs/core/Lights
 import { DirectionalLight } from '@babylonjs/core/Lights/directionalLight.js';
 import { PointLight } from '@babylonjs/core/Lights/pointLight.js';
 import '@babylonjs/loaders/glTF/index.js';
-import { floatsToBase64, channelTopDown, requireWebGL2, readSettings, medianMs } from './common.js';
+import { floatsToBase64, channelTopDown, requireWebGL2, readSettings, medianMs, resolveJob, mergeLightParams,
+  distanceToBox, farthestCornerDistance } from './common.js';
 
 // Modes: the generator's own filter switches. `default` is a bare ShadowGenerator.
 const kModes = {
@@ -38,6 +39,19 @@ const kModes = {
 // Babylon.js's filter setter turns PCF and PCSS into Poisson sampling on a point light (a cube
 // map: shadowGenerator.js, "PCF on cubemap would also be expensive"): these modes refuse points.
 const kPoissonOnCubes = ['pcf-low', 'pcf-medium', 'pcf-high', 'pcss'];
+// --preset (README.md, "Presets"): `default` is a bare ShadowGenerator (FILTER_NONE, bias
+// 0.00005, a half-float map of the documentation's 1024); `typical` what Babylon's shadows
+// documentation (doc.babylonjs.com/features/featuresDeepDive/lights/shadows) sets: 1024 maps,
+// usePercentageCloserFiltering (its filteringQuality default, QUALITY_HIGH) where Babylon runs it
+// (Poisson sampling on a point light's cube, as the filter setter turns it), and the
+// troubleshooting section's shadowGenerator.bias = 0.01.
+const kPresets = {
+  default: { mode: 'default', settings: {} },
+  typical: {
+    mode: { directional: 'pcf-high', spot: 'pcf-high', point: 'poisson' },
+    settings: { directional: { bias: 0.01 }, spot: { bias: 0.01 }, point: { bias: 0.01 } },
+  },
+};
 function pcf(g, quality) {
   g.usePercentageCloserFiltering = true;
   g.filteringQuality = quality;
@@ -57,8 +71,9 @@ const kCascadedOnly = ['numCascades', 'lambda', 'stabilizeCascades', 'cascadeBle
 const kDefaultMapSize = 1024;
 const kMaxMapSize = 8192;
 
-function parseSettings(job, modeName) {
-  const s = readSettings(job.settings, kSettingKinds, `babylon mode ${modeName}`);
+function parseSettings(settings, modeName) {
+  if (!Object.hasOwn(kModes, modeName)) throw new Error(`unknown mode "${modeName}" for babylon (known: ${Object.keys(kModes).join(', ')})`);
+  const s = readSettings(settings, kSettingKinds, `babylon mode ${modeName}`);
   const mapSize = s.mapSize === undefined ? kDefaultMapSize : s.mapSize;
   if (mapSize < 16 || mapSize > kMaxMapSize) throw new Error(`setting mapSize=${mapSize}: outside 16..${kMaxMapSize}`);
   for (const k of kCascadedOnly) {
@@ -167,15 +182,12 @@ function findLight(scene, name) {
  * planes, meant for the camera: casters nearer the light than the camera's near are clipped).
  */
 function fitLocalDepth(light, bounds) {
-  const p = light.getAbsolutePosition();
-  let far = 0;
-  for (let i = 0; i < 8; ++i) {
-    const c = new Vector3(i & 1 ? bounds.max[0] : bounds.min[0], i & 2 ? bounds.max[1] : bounds.min[1],
-      i & 4 ? bounds.max[2] : bounds.min[2]);
-    far = Math.max(far, Vector3.Distance(p, c));
-  }
-  light.shadowMinZ = 1e-3 * far;
-  light.shadowMaxZ = 1.01 * far;
+  const p = light.getAbsolutePosition().asArray();
+  const far = 1.01 * farthestCornerDistance(p, bounds);
+  // No caster is nearer the light than the box: half that distance keeps a PCF map's non-linear
+  // depth usable (a near of far / 1000 squeezes it against 1, where any bias removes the shadow).
+  light.shadowMinZ = Math.max(0.5 * distanceToBox(p, bounds), 0.01 * far);
+  light.shadowMaxZ = far;
 }
 
 function createGenerator(scene, light, modeName, s, bounds) {
@@ -210,9 +222,15 @@ function createGenerator(scene, light, modeName, s, bounds) {
 }
 
 /** The settings in effect: the generator's own numbers, after Babylon's clamping. */
-function effectiveParams(gen, s) {
+// ShadowGenerator.FILTER_* by value: the filter that runs, whatever was asked.
+const kFilterNames = { 0: 'none', 1: 'exponential', 2: 'poisson', 3: 'blur-exponential', 4: 'close-exponential',
+  5: 'blur-close-exponential', 6: 'pcf', 7: 'pcss' };
+
+function effectiveParams(gen, s, light) {
   const p = { generator: gen.getClassName(), mapSize: s.mapSize, usefullFloatFirst: s.usefullFloatFirst === true,
-    bias: gen.bias, normalBias: gen.normalBias, filter: gen.filter, depthScale: gen.depthScale,
+    bias: gen.bias, normalBias: gen.normalBias, filter: kFilterNames[gen.filter] || String(gen.filter), depthScale: gen.depthScale,
+    shadowMinZ: light.shadowMinZ === undefined ? 'camera' : light.shadowMinZ,
+    shadowMaxZ: light.shadowMaxZ === undefined ? 'camera' : light.shadowMaxZ,
     forceBackFacesOnly: gen.forceBackFacesOnly };
   if (gen.usePercentageCloserFiltering || gen.useContactHardeningShadow) p.filteringQuality = gen.filteringQuality;
   if (gen.useContactHardeningShadow) p.contactHardeningLightSizeUVRatio = gen.contactHardeningLightSizeUVRatio;
@@ -297,9 +315,13 @@ class LightRender {
   }
 }
 
+const lightKind = (light) => (light instanceof DirectionalLight ? 'directional' : light instanceof PointLight ? 'point' : 'spot');
+
 async function renderOneLight(ctx, name) {
-  const { scene, engine, view, modeName, s, target } = ctx;
+  const { scene, engine, view, job, target } = ctx;
   const light = findLight(scene, name);
+  const modeName = job.modeFor(lightKind(light));
+  const s = parseSettings(job.settingsFor(lightKind(light)), modeName);
   light.setEnabled(true);
   light.intensity = 1;
   const before = new Set(engine.getLoadedTexturesCache());
@@ -309,7 +331,8 @@ async function renderOneLight(ctx, name) {
   const r = await target.run(light);
   const out = {
     bytes: newTextureBytes(engine, before),
-    params: effectiveParams(gen, s),
+    mode: modeName,
+    params: effectiveParams(gen, s, light),
     result: { shadowed: floatsToBase64(r.shadowed), unshadowed: floatsToBase64(r.unshadowed), frameMs: r.frameMs },
   };
   gen.dispose();
@@ -319,24 +342,26 @@ async function renderOneLight(ctx, name) {
 
 window.renderVisibility = async (job) => {
   const glRenderer = requireWebGL2();
-  const modeName = job.mode === null ? 'default' : job.mode;
-  if (!Object.hasOwn(kModes, modeName)) throw new Error(`unknown mode "${job.mode}" for babylon (known: ${Object.keys(kModes).join(', ')})`);
-  const s = parseSettings(job, modeName);
+  const resolved = resolveJob(job, kPresets, 'default', 'babylon');
+  for (const kind of ['directional', 'spot', 'point']) parseSettings(resolved.settingsFor(kind), resolved.modeFor(kind));
   if (!job.view.scene || !job.view.scene.bounds) throw new Error('view.json has no scene.bounds');
   const engine = createEngine(job.width, job.height);
   try {
     const scene = await loadScene(engine, job);
-    const ctx = { scene, engine, view: job.view, modeName, s, target: new LightRender(scene, job.width, job.height) };
+    const ctx = { scene, engine, view: job.view, job: resolved, target: new LightRender(scene, job.width, job.height) };
     const lights = {};
     let memoryBytes = 0;
-    let params = null;
+    const params = [];
     for (const name of job.lights) {
       const one = await renderOneLight(ctx, name);
       lights[name] = one.result;
       memoryBytes += one.bytes;
-      params = params || one.params;
+      params.push([name, { mode: one.mode, ...one.params }]);
     }
-    return { renderer: `babylon.js ${Engine.Version}`, glRenderer, mode: modeName, params, memoryBytes, lights };
+    const merged = mergeLightParams(params);
+    const mode = merged.mode;
+    delete merged.mode; // the cost file's mode is the first light's; a later light's differing one stays as LIGHT.mode
+    return { renderer: `babylon.js ${Engine.Version}`, glRenderer, mode, params: merged, memoryBytes, lights };
   } finally {
     engine.dispose();
   }
