@@ -3,7 +3,7 @@
 // no tone mapping or gamma, one light at a time, rendered into an RGBA32F render target with the
 // light's castShadows on and off. The driver divides.
 import * as pc from 'playcanvas';
-import { floatsToBase64, requireWebGL2, readSettings, medianMs } from './common.js';
+import { floatsToBase64, requireWebGL2, readSettings, medianMs, resolveJob } from './common.js';
 
 // Modes: the light's shadowType (32-bit maps: PCF, PCSS; VSM at 16 and 32 bits); `cascades` is
 // PCF3 with PlayCanvas's largest cascade count, directional lights only. `clustered`: the mode
@@ -20,6 +20,16 @@ const kModes = {
   cascades: { shadowType: pc.SHADOW_PCF3_32F, numCascades: 4, clustered: true },
 };
 const kDefaultMode = 'pcf3'; // the Light's shadowType default, SHADOW_PCF3_32F
+// --preset (README.md, "Presets"): `default` is the light component's defaults on clustered
+// lighting (PCF3, shadowBias 0.05, normalOffsetBias 0, 1024 maps, a 2048 atlas for local
+// lights); `typical` what the Editor and @playcanvas/web-components set on a new light
+// (web-components src/components/light-component.ts: shadowBias 0.2, normalOffsetBias 0.05,
+// shadowResolution 1024, shadowType pcf3-32f), the same on every kind of light.
+const kTypical = { shadowBias: 0.2, normalOffsetBias: 0.05, shadowResolution: 1024 };
+const kPresets = {
+  default: { mode: 'pcf3', settings: {} },
+  typical: { mode: 'pcf3', settings: { directional: kTypical, spot: kTypical, point: kTypical } },
+};
 // `--set` names: the light component's own properties.
 const kSettingKinds = {
   shadowBias: 'number', normalOffsetBias: 'number', shadowResolution: 'integer', numCascades: 'integer',
@@ -31,8 +41,9 @@ const kSettingKinds = {
 const kSceneSettings = ['clusteredLighting', 'shadowAtlasResolution'];
 const kMaxResolution = 8192;
 
-function parseSettings(job, modeName) {
-  const s = readSettings(job.settings, kSettingKinds, `playcanvas mode ${modeName}`);
+function parseSettings(settings, modeName) {
+  if (!Object.hasOwn(kModes, modeName)) throw new Error(`unknown mode "${modeName}" for playcanvas (known: ${Object.keys(kModes).join(', ')})`);
+  const s = readSettings(settings, kSettingKinds, `playcanvas mode ${modeName}`);
   if (s.shadowResolution !== undefined && (s.shadowResolution < 16 || s.shadowResolution > kMaxResolution)) {
     throw new Error(`setting shadowResolution=${s.shadowResolution}: outside 16..${kMaxResolution}`);
   }
@@ -275,9 +286,10 @@ async function renderOneLight(ctx, name) {
 
 window.renderVisibility = async (job) => {
   const glRenderer = requireWebGL2();
-  const modeName = job.mode === null ? kDefaultMode : job.mode;
-  if (!Object.hasOwn(kModes, modeName)) throw new Error(`unknown mode "${job.mode}" for playcanvas (known: ${Object.keys(kModes).join(', ')})`);
-  const s = parseSettings(job, modeName);
+  // Every preset of this page sets one mode and the same settings on every kind of light.
+  const resolved = resolveJob(job, kPresets, kDefaultMode, 'playcanvas');
+  const modeName = resolved.modeFor('directional');
+  const s = parseSettings(resolved.settingsFor('directional'), modeName);
   if (!job.view.scene || !job.view.scene.bounds) throw new Error('view.json has no scene.bounds');
   const app = createApp(job.width, job.height, modeName, s);
   try {
