@@ -113,3 +113,15 @@ export function farthestCornerDistance(p, bounds) {
   }
   return far;
 }
+
+/** medianMs for a `frame()` that returns a promise (a WebGPU frame ends with an async readback). */
+export async function medianMsAsync(frame, n = 5) {
+  const times = [];
+  for (let i = 0; i < n; ++i) {
+    const t0 = performance.now();
+    await frame();
+    times.push(performance.now() - t0);
+  }
+  times.sort((a, b) => a - b);
+  return times[n >> 1];
+}
