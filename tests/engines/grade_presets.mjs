@@ -1,7 +1,7 @@
 // tests/engines/presets.sh's checks on compare's metrics.json of the box and the grate
 // (docs/metrics.md), with the figures.
 //   node grade_presets.mjs BOX_METRICS_JSON GRATE_METRICS_JSON
-// - three.js, Babylon.js and PlayCanvas at `--preset typical`: every light of both scenes agrees
+// - three.js (WebGL and WebGPU), Babylon.js and PlayCanvas at `--preset typical`: every light of both scenes agrees
 //   with the oracle on at least 95% of the counted pixels (the issue's bar: what their own examples
 //   and editors set must draw a closed box's and a cutout grate's shadows);
 // - Babylon.js's grate under the sun: aliasing under 0.15 (its cutout reaches the shadow map);

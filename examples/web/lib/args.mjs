@@ -1,7 +1,9 @@
 // The command line of examples/web/render (README.md). Bad usage throws UsageError: one line, exit 2.
 export class UsageError extends Error {}
 
-export const kEngines = ['three', 'babylon', 'playcanvas', 'filament'];
+export const kEngines = ['three', 'babylon', 'playcanvas', 'filament', 'three-webgpu'];
+/** The engines whose pages need Chromium's WebGPU flags (browser.mjs, kWebGPUArgs). */
+export const isWebGPUEngine = (engine) => engine.endsWith('-webgpu');
 // --preset: `default` is the engine's API defaults plus the minimum steps to get any shadow;
 // `typical` what its own editor, components or official examples set (README.md, "Presets").
 export const kPresets = ['default', 'typical'];

@@ -5,7 +5,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync, spawnSync } from 'node:child_process';
-import { parseArgs, UsageError, kUsage } from './args.mjs';
+import { parseArgs, UsageError, kUsage, isWebGPUEngine } from './args.mjs';
 import { serve } from './server.mjs';
 import { findChromium, launchBrowser, runPage, kWebRoot } from './browser.mjs';
 import { decodeFloats, visibility, checkParams } from './visibility.mjs';
@@ -72,7 +72,7 @@ function assemble(result, view, o, browserVersion) {
   const cost = {
     // The page's milliseconds are SwiftShader's (software WebGL2 in headless Chromium), not a GPU's
     // and not llvmpipe's: the renderer string says so wherever the row is shown.
-    renderer: `${result.renderer} (${browserVersion}, SwiftShader)`,
+    renderer: `${result.renderer} (${browserVersion}, SwiftShader${isWebGPUEngine(o.engine) ? ' Vulkan via WebGPU' : ''})`,
     frame_ms: frameMs,
     memory_bytes: Math.round(result.memoryBytes),
     params: checkParams({ mode: result.mode || o.mode || 'default', ...(o.preset ? { preset: o.preset } : {}), ...result.params }),
@@ -98,7 +98,9 @@ async function render(o, log, shared) {
   for (const stale of [exrPath, `${exrPath}.json`]) fs.rmSync(stale, { force: true });
   const pageFile = path.join(kWebRoot, 'pages', `${o.engine}.html`);
   if (!fs.existsSync(pageFile)) throw new Error(`no page ${pageFile} for this engine`);
-  const browser = shared && shared.browser ? shared.browser : await launchBrowser(findChromium(o.chromium));
+  // A sweep's shared browser has no WebGPU flags: a WebGPU engine gets a browser of its own.
+  const useShared = shared && shared.browser && !isWebGPUEngine(o.engine);
+  const browser = useShared ? shared.browser : await launchBrowser(findChromium(o.chromium), isWebGPUEngine(o.engine));
   let exported = null;
   let server = null;
   try {
@@ -120,7 +122,7 @@ async function render(o, log, shared) {
   } finally {
     if (server) await server.close();
     if (exported && exported.temporary) fs.rmSync(exported.dir, { recursive: true, force: true });
-    if (browser !== (shared && shared.browser)) await browser.close().catch(() => {});
+    if (!useShared) await browser.close().catch(() => {});
   }
 }
 

@@ -5,7 +5,6 @@
 // makes 'three' three.webgpu.js there); each passes a backend (renderVisibilityWith).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { CSM } from 'three/addons/csm/CSM.js';
 import { floatsToBase64, channelTopDown, readSettings, medianMsAsync, resolveJob, mergeLightParams,
   distanceToBox, farthestCornerDistance } from './common.js';
 
@@ -57,10 +56,15 @@ function parseSettings(settings, modeName) {
 }
 
 /** The camera of view.json's OpenGL matrices as they are; nothing re-derives them from a fov. */
-function makeCamera(view) {
+function makeCamera(view, backend) {
   const c = view.camera;
   const camera = new THREE.PerspectiveCamera(c.vfov_deg, c.width / c.height, c.near, c.far);
   camera.projectionMatrix.fromArray(c.proj_gl);
+  if (backend.clipDepthZeroToOne) {
+    // WebGPU's clip depth is 0..1, OpenGL's -1..1: z' = (z + w) / 2, the same frustum.
+    camera.projectionMatrix.premultiply(new THREE.Matrix4().set(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0.5, 0.5, 0, 0, 0, 1));
+    camera.coordinateSystem = THREE.WebGPUCoordinateSystem;
+  }
   camera.projectionMatrixInverse.copy(camera.projectionMatrix).invert();
   camera.updateProjectionMatrix = () => {}; // the CSM add-on calls it: keep the file's projection
   camera.matrixAutoUpdate = false;
@@ -166,13 +170,15 @@ function effectiveParams(modeName, shadow, s, cascades, light) {
 }
 
 class LightRender {
-  constructor(backend, renderer, scene, camera, width, height) {
-    Object.assign(this, { backend, renderer, scene, camera, width, height });
+  constructor(backend, renderer, scene, camera, light, width, height) {
+    Object.assign(this, { backend, renderer, scene, camera, light, width, height });
     this.target = backend.createTarget(width, height);
   }
 
   frame(receive, before) {
-    this.scene.traverse((o) => { if (o.isMesh) o.receiveShadow = receive; });
+    const byLight = this.backend.toggleCastShadow; // the node materials do not rebuild on receiveShadow
+    if (byLight) this.light.castShadow = receive;
+    this.scene.traverse((o) => { if (o.isMesh) o.receiveShadow = byLight || receive; });
     if (before) before();
     this.renderer.setRenderTarget(this.target);
     this.renderer.render(this.scene, this.camera);
@@ -216,6 +222,8 @@ async function renderOneLight(ctx, name) {
     const dir = fitDirectional(scene, light, view.scene.bounds);
     if (modeName === 'csm') {
       light.visible = false; // the add-on lights the scene with its own cascade lights
+      // Imported here: the add-on patches WebGLRenderer's ShaderChunk, which three.webgpu.js lacks.
+      const { CSM } = await import('three/addons/csm/CSM.js');
       csm = new CSM({ camera, parent: scene, lightDirection: dir, lightIntensity: 1, cascades: s.cascades, shadowMapSize: s.mapSize, shadowBias: s.bias });
       for (const cl of csm.lights) applyShadowSettings(cl.shadow, { normalBias: s.normalBias });
       for (const m of materials) csm.setupMaterial(m);
@@ -228,7 +236,7 @@ async function renderOneLight(ctx, name) {
     applyShadowSettings(light.shadow, s);
     if (s.fitCamera && !light.isDirectionalLight) fitLocalCamera(light, view.scene.bounds);
   }
-  const r = await new LightRender(backend, renderer, scene, camera, view.camera.width, view.camera.height).run(before);
+  const r = await new LightRender(backend, renderer, scene, camera, light, view.camera.width, view.camera.height).run(before);
   const cascades = csm ? csm.cascades : 1;
   const out = {
     bytes: shadowBytes(modeName, light, shadow, cascades),
@@ -244,7 +252,8 @@ async function renderOneLight(ctx, name) {
 /**
  * The page's renderVisibility on `backend`: {label (after the version in `renderer`), create() -> {renderer, info} (async; shadows
  * on, no tone mapping, linear output), createTarget(width, height), read(renderer, target, width,
- * height) -> RGBA Float32Array, rows bottom first (async), refuses: {mode: reason}}.
+ * height) -> RGBA Float32Array, rows bottom first (async), refuses: {mode: reason}, toggleCastShadow:
+ * shadow on and off by the light's castShadow instead of every mesh's receiveShadow}.
  */
 export async function renderVisibilityWith(job, backend) {
   const resolved = resolveJob(job, kPresets, kDefaultMode, 'three.js');
@@ -260,13 +269,15 @@ export async function renderVisibilityWith(job, backend) {
   } catch (e) {
     throw new Error(`GLTFLoader cannot load ${job.glbUrl}: ${e.message || e}`);
   }
-  const scene = gltf.scene;
+  // A Scene around the glTF's root Group: WebGPURenderer's shadows need one (WebGLRenderer takes either).
+  const scene = new THREE.Scene();
+  scene.add(gltf.scene);
   scene.background = null;
   scene.environment = null;
   scene.updateMatrixWorld(true);
   scene.traverse((o) => { if (o.isLight) o.visible = false; });
   const materials = whiteLambert(scene);
-  const ctx = { scene, camera: makeCamera(job.view), view: job.view, job: resolved, materials, renderer, backend };
+  const ctx = { scene, camera: makeCamera(job.view, backend), view: job.view, job: resolved, materials, renderer, backend };
   const lights = {};
   let memoryBytes = 0;
   const params = [];
