@@ -14,6 +14,10 @@ const kModes = {
   pcf: { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'shadowSide', 'fitCamera'] },
   vsm: { type: THREE.VSMShadowMap, typeName: 'VSMShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'blurSamples', 'shadowSide', 'fitCamera'] },
   csm: { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'cascades', 'shadowSide'] },
+  // The soft shadows React Three Fiber users add (drei's <SoftShadows/>): @pmndrs/vanilla's pcss()
+  // patches three's shadowmap_pars_fragment chunk; its defaults size 25, focus 0, samples 10.
+  'pmndrs-pcss': { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap + @pmndrs/vanilla pcss', pmndrs: true,
+    settings: ['bias', 'normalBias', 'mapSize', 'shadowSide', 'fitCamera', 'size', 'focus', 'samples'] },
 };
 // --preset (README.md, "Presets"): `default` is three.js's defaults (PCFShadowMap, bias 0, a 512
 // map; a spot's or point's shadow camera near 0.5, far 500); `typical` what three.js's official
@@ -36,6 +40,7 @@ const kDefaultMode = 'pcf'; // WebGLRenderer's shadowMap.type default
 const kSettingKinds = {
   bias: 'number', normalBias: 'number', mapSize: 'integer', radius: 'number', blurSamples: 'integer',
   cascades: 'integer', shadowSide: ['front', 'back', 'double'], fitCamera: 'boolean',
+  size: 'number', focus: 'number', samples: 'integer',
 };
 const kSides = { front: THREE.FrontSide, back: THREE.BackSide, double: THREE.DoubleSide };
 const kMaxMapSize = 8192;
@@ -129,6 +134,18 @@ function fitDirectional(scene, light, bounds) {
 }
 
 /**
+ * @pmndrs/vanilla 1.25.0's pcss() on three's shader chunks, once per page (the chunks are global),
+ * with the light's size, focus and samples (its defaults 25, 0, 10).
+ */
+async function patchPmndrsPcss(ctx, s) {
+  if (ctx.pmndrs) return;
+  if (!ctx.backend.shaderChunks) throw new Error('pmndrs-pcss: @pmndrs/vanilla patches WebGLRenderer\'s shader chunks; this renderer has none');
+  const { pcss } = await import('@pmndrs/vanilla/core/pcss.js');
+  ctx.pmndrs = { size: s.size ?? 25, focus: s.focus ?? 0, samples: s.samples ?? 10 };
+  pcss(ctx.pmndrs);
+}
+
+/**
  * A spot's or point light's shadow camera near and far around the scene's box (`fitCamera`), as
  * three.js's examples set them for theirs: far just past the farthest corner, near half the way to
  * the box (a hundredth of far where the light is inside it). three.js's own are 0.5 and 500.
@@ -165,6 +182,7 @@ function effectiveParams(modeName, shadow, s, cascades, light) {
   if (modeName === 'pcf' || modeName === 'vsm') p.radius = shadow.radius;
   if (modeName === 'vsm') p.blurSamples = shadow.blurSamples;
   if (modeName === 'csm') p.cascades = cascades;
+  if (kModes[modeName].pmndrs) Object.assign(p, { size: s.size ?? 25, focus: s.focus ?? 0, samples: s.samples ?? 10 });
   p.shadowSide = s.shadowSide || 'default';
   return p;
 }
@@ -193,6 +211,8 @@ class LightRender {
   async run(before) {
     this.frame(true, before);
     const shadowed = await this.read();
+    const failed = this.backend.shaderErrors && this.backend.shaderErrors();
+    if (failed) throw new Error(`a shader failed to compile: ${failed}`);
     const frameMs = await medianMsAsync(async () => {
       this.frame(true, before);
       await this.backend.read(this.renderer, this.target, 1, 1); // waits for the frame
@@ -209,6 +229,7 @@ async function renderOneLight(ctx, name) {
   const modeName = job.modeFor(typeName);
   if (backend.refuses && backend.refuses[modeName]) throw new Error(`${modeName}: ${backend.refuses[modeName]}`);
   const s = parseSettings(job.settingsFor(typeName), modeName);
+  if (kModes[modeName].pmndrs) await patchPmndrsPcss(ctx, s);
   renderer.shadowMap.type = kModes[modeName].type;
   for (const m of materials) m.shadowSide = s.shadowSide ? kSides[s.shadowSide] : null;
   if (modeName === 'vsm' && light.isPointLight) throw new Error(`vsm: light "${name}" is a point light, and three.js has no VSM for point lights (it warns and draws no shadow)`);
