@@ -1,9 +1,14 @@
 // The command line of examples/web/render (README.md). Bad usage throws UsageError: one line, exit 2.
 export class UsageError extends Error {}
 
-export const kEngines = ['three', 'babylon', 'playcanvas', 'filament'];
+export const kEngines = ['three', 'babylon', 'playcanvas', 'filament', 'three-webgpu', 'babylon-webgpu'];
+/** The engines whose pages need Chromium's WebGPU flags (browser.mjs, kWebGPUArgs). */
+export const isWebGPUEngine = (engine) => engine.endsWith('-webgpu');
+// --preset: `default` is the engine's API defaults plus the minimum steps to get any shadow;
+// `typical` what its own editor, components or official examples set (README.md, "Presets").
+export const kPresets = ['default', 'typical'];
 
-export const kUsage = `usage: render SCENE --engine ${kEngines.join('|')} [--mode MODE] [--set KEY=VALUE]...
+export const kUsage = `usage: render SCENE --engine ${kEngines.join('|')} [--mode MODE | --preset ${kPresets.join('|')}] [--set KEY=VALUE]...
               [--width W --height H] --out DIR [--tool PATH] [--export-dir DIR] [--chromium PATH]
               [--timeout SECONDS] [--quiet]`;
 
@@ -21,9 +26,9 @@ function positiveInt(option, text, max) {
 }
 
 export function parseArgs(argv) {
-  const o = { settings: {}, mode: null, width: null, height: null, timeoutS: 180, quiet: false };
+  const o = { settings: {}, mode: null, preset: null, width: null, height: null, timeoutS: 180, quiet: false };
   const positional = [];
-  const takes = new Set(['--engine', '--mode', '--set', '--width', '--height', '--out', '--tool', '--export-dir', '--chromium', '--timeout']);
+  const takes = new Set(['--engine', '--mode', '--preset', '--set', '--width', '--height', '--out', '--tool', '--export-dir', '--chromium', '--timeout']);
   for (let i = 0; i < argv.length; ++i) {
     const a = argv[i];
     if (a === '--help' || a === '-h') return { help: true };
@@ -34,6 +39,7 @@ export function parseArgs(argv) {
     const v = argv[++i];
     if (a === '--engine') o.engine = v;
     else if (a === '--mode') o.mode = v;
+    else if (a === '--preset') o.preset = v;
     else if (a === '--set') {
       const eq = v.indexOf('=');
       if (eq < 1) throw new UsageError(`--set ${v}: expected KEY=VALUE`);
@@ -54,6 +60,8 @@ export function parseArgs(argv) {
   if (!o.engine) throw new UsageError('--engine is required');
   if (!kEngines.includes(o.engine)) throw new UsageError(`--engine ${o.engine}: not one of ${kEngines.join(', ')}`);
   if (o.mode !== null && !/^[A-Za-z0-9_.-]{1,64}$/.test(o.mode)) throw new UsageError(`--mode ${o.mode}: 1 to 64 of A-Z a-z 0-9 _ . -`);
+  if (o.preset !== null && !kPresets.includes(o.preset)) throw new UsageError(`--preset ${o.preset}: not one of ${kPresets.join(', ')}`);
+  if (o.preset !== null && o.mode !== null) throw new UsageError('--mode and --preset exclude each other (a preset names its mode)');
   if (!o.out) throw new UsageError('--out is required');
   if ((o.width === null) !== (o.height === null)) throw new UsageError('--width and --height go together');
   return o;

@@ -6,6 +6,11 @@ import { execFileSync } from 'node:child_process';
 // The flags that give WebGL2 on SwiftShader headless here (/work/shared/notes/wave4.md): without
 // --enable-unsafe-swiftshader Chromium still falls back but warns that a later version will refuse.
 export const kChromiumArgs = ['--no-sandbox', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'];
+// WebGPU on SwiftShader's Vulkan (/work/shared/notes/wave5.md, "WebGPU headless"): without the
+// Vulkan flags navigator.gpu.requestAdapter() returns no adapter. Only the WebGPU engines' pages
+// get them, so the WebGL pages run as they always have.
+export const kWebGPUArgs = ['--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-vulkan=swiftshader',
+  '--use-webgpu-adapter=swiftshader', '--use-angle=swiftshader'];
 
 export function findChromium(given) {
   if (given) {
@@ -33,11 +38,11 @@ function firstLine(message) {
   return String(message).split('\n')[0].replace(/^(Error|TypeError|ReferenceError): /, '');
 }
 
-/** Debian's chromium, headless, with WebGL2 on SwiftShader. */
-export async function launchBrowser(chromium) {
+/** Debian's chromium, headless, with WebGL2 on SwiftShader (and WebGPU where `webgpu`). */
+export async function launchBrowser(chromium, webgpu = false) {
   const puppeteer = await loadPuppeteer();
   try {
-    return await puppeteer.launch({ executablePath: chromium, headless: true, args: kChromiumArgs });
+    return await puppeteer.launch({ executablePath: chromium, headless: true, args: [...kChromiumArgs, ...(webgpu ? kWebGPUArgs : [])] });
   } catch (e) {
     throw new Error(`cannot start ${chromium}: ${firstLine(e.message)}`);
   }

@@ -42,7 +42,9 @@ export function readGrids(file, engine) {
     if (typeof e.name !== 'string' || !/^[A-Za-z0-9_.-]{1,64}$/.test(e.name)) fail(file, `${f}.name`, 'must be 1 to 64 of A-Z a-z 0-9 _ - .');
     if (names.has(e.name)) fail(file, `${f}.name`, `"${e.name}" twice`);
     names.add(e.name);
-    if (e.mode !== null && typeof e.mode !== 'string') fail(file, `${f}.mode`, 'must be a string or null');
+    if (e.mode !== undefined && e.mode !== null && typeof e.mode !== 'string') fail(file, `${f}.mode`, 'must be a string or null');
+    if (e.preset !== undefined && !['default', 'typical'].includes(e.preset)) fail(file, `${f}.preset`, 'must be default or typical');
+    if (e.preset !== undefined && e.mode) fail(file, `${f}.preset`, 'a preset names its mode: give preset or mode, not both');
     for (const [k, v] of Object.entries(e.grid || {})) {
       if (!Array.isArray(v) || !v.length || !v.every(Number.isFinite)) fail(file, `${f}.grid.${k}`, 'must be a non-empty list of numbers');
     }

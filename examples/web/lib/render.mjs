@@ -5,7 +5,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync, spawnSync } from 'node:child_process';
-import { parseArgs, UsageError, kUsage } from './args.mjs';
+import { parseArgs, UsageError, kUsage, isWebGPUEngine } from './args.mjs';
 import { serve } from './server.mjs';
 import { findChromium, launchBrowser, runPage, kWebRoot } from './browser.mjs';
 import { decodeFloats, visibility, checkParams } from './visibility.mjs';
@@ -72,10 +72,10 @@ function assemble(result, view, o, browserVersion) {
   const cost = {
     // The page's milliseconds are SwiftShader's (software WebGL2 in headless Chromium), not a GPU's
     // and not llvmpipe's: the renderer string says so wherever the row is shown.
-    renderer: `${result.renderer} (${browserVersion}, SwiftShader)`,
+    renderer: `${result.renderer} (${browserVersion}, SwiftShader${isWebGPUEngine(o.engine) ? ' Vulkan via WebGPU' : ''})`,
     frame_ms: frameMs,
     memory_bytes: Math.round(result.memoryBytes),
-    params: checkParams({ mode: result.mode || o.mode || 'default', ...result.params }),
+    params: checkParams({ mode: result.mode || o.mode || 'default', ...(o.preset ? { preset: o.preset } : {}), ...result.params }),
   };
   return { channels, cost };
 }
@@ -91,14 +91,16 @@ function writeAtomically(files) {
 
 /** One render; `shared.browser`, where given, is used and left open (a sweep's), else one is started. */
 async function render(o, log, shared) {
-  const modeName = o.mode || 'default';
+  const modeName = o.preset || o.mode || 'default'; // the image's name: ENGINE-PRESET or ENGINE-MODE
   fs.mkdirSync(o.out, { recursive: true });
   const exrPath = path.join(o.out, `${o.engine}-${modeName}.exr`);
   // A failed run leaves no image at all, not the last run's under this run's name.
   for (const stale of [exrPath, `${exrPath}.json`]) fs.rmSync(stale, { force: true });
   const pageFile = path.join(kWebRoot, 'pages', `${o.engine}.html`);
   if (!fs.existsSync(pageFile)) throw new Error(`no page ${pageFile} for this engine`);
-  const browser = shared && shared.browser ? shared.browser : await launchBrowser(findChromium(o.chromium));
+  // A sweep's shared browser has no WebGPU flags: a WebGPU engine gets a browser of its own.
+  const useShared = shared && shared.browser && !isWebGPUEngine(o.engine);
+  const browser = useShared ? shared.browser : await launchBrowser(findChromium(o.chromium), isWebGPUEngine(o.engine));
   let exported = null;
   let server = null;
   try {
@@ -107,7 +109,7 @@ async function render(o, log, shared) {
     const view = readView(exported.dir, o);
     const job = {
       glbUrl: `${server.url}/scene/scene.glb`, view, width: view.camera.width, height: view.camera.height,
-      mode: o.mode, settings: o.settings, lights: view.lights.map((l) => l.name),
+      mode: o.mode, preset: o.preset, settings: o.settings, lights: view.lights.map((l) => l.name),
     };
     const pageUrl = `${server.url}/web/pages/${o.engine}.html`;
     const { result, browserVersion } = await runPage({ browser, pageUrl, job, timeoutS: o.timeoutS, log });
@@ -120,7 +122,7 @@ async function render(o, log, shared) {
   } finally {
     if (server) await server.close();
     if (exported && exported.temporary) fs.rmSync(exported.dir, { recursive: true, force: true });
-    if (browser !== (shared && shared.browser)) await browser.close().catch(() => {});
+    if (!useShared) await browser.close().catch(() => {});
   }
 }
 
@@ -144,7 +146,7 @@ export async function main(argv, shared = null) {
     return 0;
   } catch (e) {
     const message = String(e && e.message ? e.message : e).split('\n')[0]; // one line, whatever threw
-    process.stderr.write(`render: ${o.engine} ${o.mode || 'default'} ${o.scene}: ${message}\n`);
+    process.stderr.write(`render: ${o.engine} ${o.preset || o.mode || 'default'} ${o.scene}: ${message}\n`);
     return 1;
   }
 }

@@ -60,7 +60,7 @@ function exportScenes(o) {
 // the sweep prints them, so that the spec's path pattern finds it.
 function imagePath(entry, engine, settings, scenePart) {
   const dirs = Object.entries(settings).map(([k, v]) => `${k}_${v === null ? `{${k}}` : shortestNumber(v)}`);
-  return path.join('renders', scenePart, entry.name, ...dirs, `${engine}-${entry.mode || 'default'}.exr`);
+  return path.join('renders', scenePart, entry.name, ...dirs, `${engine}-${entry.preset || entry.mode || 'default'}.exr`);
 }
 
 function covers(entry, view) {
@@ -81,7 +81,7 @@ async function renderEntry(o, engine, entry, views, shared) {
       const exr = path.join(o.out, imagePath(entry, engine, settings, stem(scene)));
       if (!o.force && fs.existsSync(exr)) continue;
       const sets = Object.entries({ ...entry.set, ...settings }).flatMap(([k, v]) => ['--set', `${k}=${v}`]);
-      const mode = entry.mode ? ['--mode', entry.mode] : [];
+      const mode = entry.preset ? ['--preset', entry.preset] : entry.mode ? ['--mode', entry.mode] : [];
       const rc = await renderMain([scene, '--engine', engine, ...mode, ...sets, '--quiet',
         '--export-dir', path.join(o.out, 'exports', stem(scene)), '--out', path.dirname(exr)], shared);
       if (rc !== 0) { // render said why on stderr
@@ -102,7 +102,9 @@ function writeSpec(o, images) {
     sweep_format: 1, name: 'web-engines', scenes: o.scenes.map(rel), width: o.width, height: o.height, frames: o.frames,
     techniques: o.techniques.map((t) => {
       const [name, params] = t.split(':');
-      return { name, params: Object.fromEntries((params ? params.split(',') : []).map((kv) => kv.split('=')).map(([k, v]) => [k, Number(v)])) };
+      // KEY=V or KEY=V1|V2|...: a list, swept (the matched baselines: slope-bias:resolution=512|1024|2048).
+      const value = (v) => (v.includes('|') ? v.split('|').map(Number) : Number(v));
+      return { name, params: Object.fromEntries((params ? params.split(',') : []).map((kv) => kv.split('=')).map(([k, v]) => [k, value(v)])) };
     }),
     images: images.map(({ engine, entry, scenes }) => ({
       name: entry.name,

@@ -60,3 +60,68 @@ export function medianMs(frame, n = 5) {
   times.sort((a, b) => a - b);
   return times[n >> 1];
 }
+
+/**
+ * The mode and each light's settings a job asks for. With `job.preset`, `presets[job.preset]`
+ * gives `mode` (a mode name, or {directional, spot, point: mode name}) and `settings`
+ * ({directional, spot, point: {name: value}}), which the job's --set override; without one,
+ * `job.mode` (null: `defaultMode`) and the job's settings for every light.
+ */
+export function resolveJob(job, presets, defaultMode, engine) {
+  const given = job.settings || {};
+  if (job.preset === undefined || job.preset === null) {
+    const modeName = job.mode === null ? defaultMode : job.mode;
+    return { preset: null, modeFor: () => modeName, settingsFor: () => given };
+  }
+  if (!Object.hasOwn(presets, job.preset)) throw new Error(`unknown preset "${job.preset}" for ${engine} (known: ${Object.keys(presets).join(', ')})`);
+  const p = presets[job.preset];
+  return {
+    preset: job.preset,
+    modeFor: (type) => (typeof p.mode === 'string' ? p.mode : p.mode[type]),
+    settingsFor: (type) => ({ ...((p.settings && p.settings[type]) || {}), ...given }),
+  };
+}
+
+/**
+ * One params object for the cost file from each light's: the first light's as they are, and
+ * where a later light's value differs (a preset's per-light settings), `LIGHT.name` beside them.
+ */
+export function mergeLightParams(perLight) {
+  const out = { ...perLight[0][1] };
+  for (const [light, params] of perLight.slice(1)) {
+    for (const [k, v] of Object.entries(params)) if (out[k] !== v) out[`${light}.${k}`] = v;
+  }
+  return out;
+}
+
+/** The distance from point p ([x, y, z]) to the box `bounds` ({min, max}); 0 inside it. */
+export function distanceToBox(p, bounds) {
+  let d2 = 0;
+  for (let i = 0; i < 3; ++i) {
+    const d = Math.max(bounds.min[i] - p[i], 0, p[i] - bounds.max[i]);
+    d2 += d * d;
+  }
+  return Math.sqrt(d2);
+}
+
+/** The distance from point p to the farthest corner of the box `bounds`. */
+export function farthestCornerDistance(p, bounds) {
+  let far = 0;
+  for (let i = 0; i < 8; ++i) {
+    const c = [i & 1 ? bounds.max[0] : bounds.min[0], i & 2 ? bounds.max[1] : bounds.min[1], i & 4 ? bounds.max[2] : bounds.min[2]];
+    far = Math.max(far, Math.hypot(c[0] - p[0], c[1] - p[1], c[2] - p[2]));
+  }
+  return far;
+}
+
+/** medianMs for a `frame()` that returns a promise (a WebGPU frame ends with an async readback). */
+export async function medianMsAsync(frame, n = 5) {
+  const times = [];
+  for (let i = 0; i < n; ++i) {
+    const t0 = performance.now();
+    await frame();
+    times.push(performance.now() - t0);
+  }
+  times.sort((a, b) => a - b);
+  return times[n >> 1];
+}

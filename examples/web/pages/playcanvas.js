@@ -3,30 +3,47 @@
 // no tone mapping or gamma, one light at a time, rendered into an RGBA32F render target with the
 // light's castShadows on and off. The driver divides.
 import * as pc from 'playcanvas';
-import { floatsToBase64, requireWebGL2, readSettings, medianMs } from './common.js';
+import { floatsToBase64, requireWebGL2, readSettings, medianMs, resolveJob } from './common.js';
 
 // Modes: the light's shadowType (32-bit maps: PCF, PCSS; VSM at 16 and 32 bits); `cascades` is
-// PCF3 with PlayCanvas's largest cascade count, directional lights only.
+// PCF3 with PlayCanvas's largest cascade count, directional lights only. `clustered`: the mode
+// runs on PlayCanvas 2's default clustered lighting, whose spot and omni shadows come from one
+// atlas filtered by scene.lighting.shadowType (PCF1/3/5 only: the clustered shader chunk's
+// CLUSTER_SHADOW_TYPE_PCF*), set to the mode's; VSM and PCSS need forward lighting.
 const kModes = {
-  pcf1: { shadowType: pc.SHADOW_PCF1_32F },
-  pcf3: { shadowType: pc.SHADOW_PCF3_32F },
-  pcf5: { shadowType: pc.SHADOW_PCF5_32F },
-  vsm16: { shadowType: pc.SHADOW_VSM_16F },
-  vsm32: { shadowType: pc.SHADOW_VSM_32F },
-  pcss: { shadowType: pc.SHADOW_PCSS_32F },
-  cascades: { shadowType: pc.SHADOW_PCF3_32F, numCascades: 4 },
+  pcf1: { shadowType: pc.SHADOW_PCF1_32F, clustered: true },
+  pcf3: { shadowType: pc.SHADOW_PCF3_32F, clustered: true },
+  pcf5: { shadowType: pc.SHADOW_PCF5_32F, clustered: true },
+  vsm16: { shadowType: pc.SHADOW_VSM_16F, clustered: false },
+  vsm32: { shadowType: pc.SHADOW_VSM_32F, clustered: false },
+  pcss: { shadowType: pc.SHADOW_PCSS_32F, clustered: false },
+  cascades: { shadowType: pc.SHADOW_PCF3_32F, numCascades: 4, clustered: true },
 };
 const kDefaultMode = 'pcf3'; // the Light's shadowType default, SHADOW_PCF3_32F
+// --preset (README.md, "Presets"): `default` is the light component's defaults on clustered
+// lighting (PCF3, shadowBias 0.05, normalOffsetBias 0, 1024 maps, a 2048 atlas for local
+// lights); `typical` what the Editor and @playcanvas/web-components set on a new light
+// (web-components src/components/light-component.ts: shadowBias 0.2, normalOffsetBias 0.05,
+// shadowResolution 1024, shadowType pcf3-32f), the same on every kind of light.
+const kTypical = { shadowBias: 0.2, normalOffsetBias: 0.05, shadowResolution: 1024 };
+const kPresets = {
+  default: { mode: 'pcf3', settings: {} },
+  typical: { mode: 'pcf3', settings: { directional: kTypical, spot: kTypical, point: kTypical } },
+};
 // `--set` names: the light component's own properties.
 const kSettingKinds = {
   shadowBias: 'number', normalOffsetBias: 'number', shadowResolution: 'integer', numCascades: 'integer',
   cascadeDistribution: 'number', shadowDistance: 'number', penumbraSize: 'number', penumbraFalloff: 'number',
   shadowSamples: 'integer', shadowBlockerSamples: 'integer', vsmBlurSize: 'integer', vsmBias: 'number',
+  // The scene's, not the light's: clustered lighting off (forward), and the clustered atlas's size.
+  clusteredLighting: 'boolean', shadowAtlasResolution: 'integer',
 };
+const kSceneSettings = ['clusteredLighting', 'shadowAtlasResolution'];
 const kMaxResolution = 8192;
 
-function parseSettings(job, modeName) {
-  const s = readSettings(job.settings, kSettingKinds, `playcanvas mode ${modeName}`);
+function parseSettings(settings, modeName) {
+  if (!Object.hasOwn(kModes, modeName)) throw new Error(`unknown mode "${modeName}" for playcanvas (known: ${Object.keys(kModes).join(', ')})`);
+  const s = readSettings(settings, kSettingKinds, `playcanvas mode ${modeName}`);
   if (s.shadowResolution !== undefined && (s.shadowResolution < 16 || s.shadowResolution > kMaxResolution)) {
     throw new Error(`setting shadowResolution=${s.shadowResolution}: outside 16..${kMaxResolution}`);
   }
@@ -36,10 +53,16 @@ function parseSettings(job, modeName) {
     if (s[k] !== undefined && (s[k] < 1 || s[k] > 64)) throw new Error(`setting ${k}=${s[k]}: outside 1..64`);
   }
   if (s.shadowDistance !== undefined && !(s.shadowDistance > 0)) throw new Error(`setting shadowDistance=${s.shadowDistance}: not > 0`);
+  if (s.clusteredLighting === true && !kModes[modeName].clustered) {
+    throw new Error(`setting clusteredLighting=true: mode ${modeName} needs forward lighting (clustered shadows are PCF1/3/5 only)`);
+  }
+  if (s.shadowAtlasResolution !== undefined && (s.shadowAtlasResolution < 32 || s.shadowAtlasResolution > kMaxResolution)) {
+    throw new Error(`setting shadowAtlasResolution=${s.shadowAtlasResolution}: outside 32..${kMaxResolution}`);
+  }
   return s;
 }
 
-function createApp(width, height) {
+function createApp(width, height, modeName, s) {
   const canvas = document.getElementById('canvas');
   canvas.width = width;
   canvas.height = height;
@@ -47,10 +70,17 @@ function createApp(width, height) {
   if (!app.graphicsDevice.isWebGL2) throw new Error('PlayCanvas did not get a WebGL2 device');
   app.setCanvasResolution(pc.RESOLUTION_FIXED, width, height);
   app.autoRender = false;
-  // Forward lighting, not PlayCanvas 2's default clustered lighting: clustered spot and omni
-  // shadows come from one shared atlas with the scene's lighting.shadowType, and each light's own
-  // shadowType, shadowResolution and biases would not apply.
-  app.scene.clusteredLightingEnabled = false;
+  // PlayCanvas 2's default, clustered lighting, wherever the mode runs on it: spot and omni
+  // shadows then come from one shared atlas (scene.lighting.shadowAtlasResolution, 2048) filtered
+  // by scene.lighting.shadowType, while each light's own biases still apply (the clustered
+  // light data packs shadowBias and normalOffsetBias). Directional lights are never clustered.
+  const clustered = kModes[modeName].clustered && s.clusteredLighting !== false;
+  app.scene.clusteredLightingEnabled = clustered;
+  if (clustered) {
+    app.scene.lighting.shadowsEnabled = true;
+    app.scene.lighting.shadowType = kModes[modeName].shadowType;
+    if (s.shadowAtlasResolution !== undefined) app.scene.lighting.shadowAtlasResolution = s.shadowAtlasResolution;
+  }
   app.scene.ambientLight = new pc.Color(0, 0, 0);
   app.scene.skyboxIntensity = 0;
   app.scene.exposure = 1;
@@ -60,7 +90,10 @@ function createApp(width, height) {
 
 /**
  * The camera of view.json's OpenGL matrices as they are, through PlayCanvas's custom-matrix
- * hooks: pc.Mat4 is column-major, as view.json.
+ * hooks: pc.Mat4 is column-major, as view.json. The entity also carries the view's position,
+ * rotation, vertical fov and aspect: PlayCanvas fits a directional light's shadow (and its
+ * cascades) to the frustum of the camera entity (getFrustumCorners reads fov and aspectRatio),
+ * not to the projection hook's matrix.
  */
 function createCamera(app, c) {
   const projection = new pc.Mat4().set(c.proj_gl);
@@ -73,6 +106,11 @@ function createCamera(app, c) {
   entity.camera.calculateProjection = (m) => m.copy(projection);
   entity.camera.calculateTransform = (m) => m.copy(worldFromView);
   entity.setPosition(c.eye[0], c.eye[1], c.eye[2]);
+  entity.setRotation(new pc.Quat().setFromMat4(worldFromView));
+  entity.camera.fov = (2 * Math.atan(1 / c.proj_gl[5]) * 180) / Math.PI; // proj_gl[5] = 1 / tan(fovY / 2)
+  entity.camera.horizontalFov = false;
+  entity.camera.aspectRatioMode = pc.ASPECT_MANUAL;
+  entity.camera.aspectRatio = c.proj_gl[5] / c.proj_gl[0];
   app.root.addChild(entity);
   return entity;
 }
@@ -87,7 +125,7 @@ function loadContainer(app, url) {
   });
 }
 
-/** White Lambert in place of a glTF material, keeping what shapes the shadow: cull mode and alpha test. */
+/** White Lambert in place of a glTF material, keeping what shapes the shadow: cull mode, two-sided lighting and alpha test. */
 function whiteMaterial(original) {
   const m = new pc.StandardMaterial();
   m.diffuse = new pc.Color(1, 1, 1);
@@ -97,6 +135,9 @@ function whiteMaterial(original) {
   m.useSkybox = false;
   m.useFog = false;
   m.cull = original.cull;
+  // The loader lights a doubleSided material's back faces with the flipped normal: the oracle's
+  // two-sided cos, not 0 (a back face seen from the camera would read as shadow).
+  m.twoSidedLighting = original.twoSidedLighting === true;
   if (original.alphaTest > 0 && original.opacityMap) {
     m.opacityMap = original.opacityMap;
     m.opacityMapChannel = original.opacityMapChannel;
@@ -153,14 +194,20 @@ function setUpLight(light, modeName, s, view) {
   }
   light.shadowType = mode.shadowType;
   if (mode.numCascades) light.numCascades = mode.numCascades;
-  for (const [k, v] of Object.entries(s)) light[k] = v;
+  for (const [k, v] of Object.entries(s)) if (!kSceneSettings.includes(k)) light[k] = v;
   light.shadowUpdateMode = pc.SHADOWUPDATE_REALTIME;
   light.intensity = 1;
   light.enabled = true;
 }
 
-function effectiveParams(light) {
-  const p = { shadowType: pc.shadowTypeInfo.get(light.shadowType).name, shadowResolution: light.shadowResolution,
+/** A clustered spot or omni light: its shadow is a tile of the scene's atlas. */
+const inAtlas = (light, scene) => scene.clusteredLightingEnabled && light.type !== 'directional';
+
+function effectiveParams(light, scene) {
+  const atlas = inAtlas(light, scene);
+  const p = { lighting: scene.clusteredLightingEnabled ? 'clustered' : 'forward',
+    shadowType: pc.shadowTypeInfo.get(atlas ? scene.lighting.shadowType : light.shadowType).name,
+    shadowResolution: atlas ? scene.lighting.shadowAtlasResolution : light.shadowResolution,
     shadowBias: light.shadowBias, normalOffsetBias: light.normalOffsetBias };
   if (light.type === 'directional') Object.assign(p, { shadowDistance: light.shadowDistance, numCascades: light.numCascades, cascadeDistribution: light.cascadeDistribution });
   const kind = pc.shadowTypeInfo.get(light.shadowType);
@@ -176,7 +223,8 @@ function effectiveParams(light) {
  * a depth buffer, and a second map of the same kind for its blur. An omni light has six faces; a
  * directional light's cascades share its one shadowResolution^2 map.
  */
-function shadowBytes(light) {
+function shadowBytes(light, scene) {
+  if (inAtlas(light, scene)) return scene.lighting.shadowAtlasResolution ** 2 * 4; // one 32-bit depth atlas
   const kind = pc.shadowTypeInfo.get(light.shadowType);
   const perTexel = kind.pcf ? 4 : kind.pcss ? 8 : light.shadowType === pc.SHADOW_VSM_16F ? 2 * (8 + 4) : 2 * (16 + 4);
   return light.shadowResolution ** 2 * perTexel * (light.type === 'omni' ? 6 : 1);
@@ -228,8 +276,8 @@ async function renderOneLight(ctx, name) {
   setUpLight(light, modeName, s, view);
   const r = await target.run(light);
   const out = {
-    bytes: shadowBytes(light),
-    params: effectiveParams(light),
+    bytes: shadowBytes(light, app.scene),
+    params: effectiveParams(light, app.scene),
     result: { shadowed: floatsToBase64(r.shadowed), unshadowed: floatsToBase64(r.unshadowed), frameMs: r.frameMs },
   };
   light.enabled = false;
@@ -238,11 +286,12 @@ async function renderOneLight(ctx, name) {
 
 window.renderVisibility = async (job) => {
   const glRenderer = requireWebGL2();
-  const modeName = job.mode === null ? kDefaultMode : job.mode;
-  if (!Object.hasOwn(kModes, modeName)) throw new Error(`unknown mode "${job.mode}" for playcanvas (known: ${Object.keys(kModes).join(', ')})`);
-  const s = parseSettings(job, modeName);
+  // Every preset of this page sets one mode and the same settings on every kind of light.
+  const resolved = resolveJob(job, kPresets, kDefaultMode, 'playcanvas');
+  const modeName = resolved.modeFor('directional');
+  const s = parseSettings(resolved.settingsFor('directional'), modeName);
   if (!job.view.scene || !job.view.scene.bounds) throw new Error('view.json has no scene.bounds');
-  const app = createApp(job.width, job.height);
+  const app = createApp(job.width, job.height, modeName, s);
   try {
     const container = await loadContainer(app, job.glbUrl);
     const root = container.instantiateRenderEntity();

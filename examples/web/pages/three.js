@@ -1,243 +1,38 @@
-// three.js's shadows as a user ships them (README.md, "three.js"): the glb through GLTFLoader,
-// every mesh white Lambert, one light at a time, rendered into a float target with each mesh's
-// receiveShadow on (shadowed) and off (unshadowed). The driver divides.
+// three.js on WebGLRenderer (README.md, "three.js"): pages/three-common.js does the work.
 import * as THREE from 'three';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { CSM } from 'three/addons/csm/CSM.js';
-import { floatsToBase64, channelTopDown, requireWebGL2, readSettings, medianMs } from './common.js';
+import { requireWebGL2 } from './common.js';
+import { renderVisibilityWith } from './three-common.js';
 
-// Modes: three.js's renderer.shadowMap.type values, and the CSM add-on (directional lights only).
-const kModes = {
-  basic: { type: THREE.BasicShadowMap, typeName: 'BasicShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'shadowSide'] },
-  pcf: { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'shadowSide'] },
-  vsm: { type: THREE.VSMShadowMap, typeName: 'VSMShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'radius', 'blurSamples', 'shadowSide'] },
-  csm: { type: THREE.PCFShadowMap, typeName: 'PCFShadowMap', settings: ['bias', 'normalBias', 'mapSize', 'cascades', 'shadowSide'] },
-};
-const kDefaultMode = 'pcf'; // WebGLRenderer's shadowMap.type default
-const kSettingKinds = {
-  bias: 'number', normalBias: 'number', mapSize: 'integer', radius: 'number', blurSamples: 'integer',
-  cascades: 'integer', shadowSide: ['front', 'back', 'double'],
-};
-const kSides = { front: THREE.FrontSide, back: THREE.BackSide, double: THREE.DoubleSide };
-const kMaxMapSize = 8192;
+const shaderErrors = [];
 
-async function threeVersion() {
-  const r = await fetch('/web/node_modules/three/package.json');
-  return r.ok ? (await r.json()).version : `r${THREE.REVISION}`;
-}
-
-function parseSettings(job, modeName) {
-  const mode = kModes[modeName];
-  const kinds = Object.fromEntries(mode.settings.map((k) => [k, kSettingKinds[k]]));
-  const s = readSettings(job.settings, kinds, `three.js mode ${modeName}`);
-  if (s.mapSize !== undefined && (s.mapSize < 1 || s.mapSize > kMaxMapSize)) throw new Error(`setting mapSize=${s.mapSize}: outside 1..${kMaxMapSize}`);
-  if (s.blurSamples !== undefined && (s.blurSamples < 1 || s.blurSamples > 64)) throw new Error(`setting blurSamples=${s.blurSamples}: outside 1..64`);
-  if (s.cascades !== undefined && (s.cascades < 1 || s.cascades > 4)) throw new Error(`setting cascades=${s.cascades}: outside 1..4`);
-  return s;
-}
-
-/** The camera of view.json's OpenGL matrices as they are; nothing re-derives them from a fov. */
-function makeCamera(view) {
-  const c = view.camera;
-  const camera = new THREE.PerspectiveCamera(c.vfov_deg, c.width / c.height, c.near, c.far);
-  camera.projectionMatrix.fromArray(c.proj_gl);
-  camera.projectionMatrixInverse.copy(camera.projectionMatrix).invert();
-  camera.updateProjectionMatrix = () => {}; // the CSM add-on calls it: keep the file's projection
-  camera.matrixAutoUpdate = false;
-  camera.matrixWorldAutoUpdate = false;
-  camera.matrixWorldInverse.fromArray(c.view_gl);
-  camera.matrixWorld.copy(camera.matrixWorldInverse).invert();
-  return camera;
-}
-
-/** Every mesh white Lambert, flat shaded (the geometric normal), keeping its side and alpha test. */
-function whiteLambert(scene, shadowSide) {
-  const materials = [];
-  scene.traverse((o) => {
-    if (!o.isMesh) return;
-    const old = o.material;
-    const cutout = old.alphaTest > 0;
-    o.material = new THREE.MeshLambertMaterial({
-      color: 0xffffff, flatShading: true, side: old.side, alphaTest: old.alphaTest,
-      map: cutout ? old.map : null, opacity: cutout ? old.opacity : 1,
-    });
-    if (shadowSide) o.material.shadowSide = kSides[shadowSide];
-    o.castShadow = true;
-    materials.push(o.material);
-  });
-  return materials;
-}
-
-function findLight(scene, name) {
-  const found = [];
-  scene.traverse((o) => { if (o.isLight && (o.name === name || (o.parent && o.parent.name === name))) found.push(o); });
-  if (found.length !== 1) throw new Error(`the glb has ${found.length} KHR_lights_punctual lights named "${name}", expected 1`);
-  return found[0];
-}
-
-/**
- * A directional light's shadow camera fitted to the scene's bounds, as a user would: the light
- * placed outside the bounds along its direction, the orthographic box the bounds' eight corners in
- * its view (three.js's own default box is 10 x 10 units around the light's position).
- */
-function fitDirectional(scene, light, bounds) {
-  const from = light.getWorldPosition(new THREE.Vector3());
-  const dir = light.target.getWorldPosition(new THREE.Vector3()).sub(from).normalize();
-  const box = new THREE.Box3(new THREE.Vector3(...bounds.min), new THREE.Vector3(...bounds.max));
-  const center = box.getCenter(new THREE.Vector3());
-  const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-6);
-  scene.attach(light);
-  scene.attach(light.target);
-  light.position.copy(center).addScaledVector(dir, -2 * radius);
-  light.target.position.copy(center);
-  const cam = light.shadow.camera;
-  cam.position.copy(light.position);
-  cam.lookAt(center);
-  cam.updateMatrixWorld();
-  const ls = new THREE.Box3();
-  for (let i = 0; i < 8; ++i) {
-    const p = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z);
-    ls.expandByPoint(p.applyMatrix4(cam.matrixWorldInverse));
-  }
-  const pad = 1e-4 * radius;
-  Object.assign(cam, { left: ls.min.x - pad, right: ls.max.x + pad, bottom: ls.min.y - pad, top: ls.max.y + pad, near: -ls.max.z - pad, far: -ls.min.z + pad });
-  cam.updateProjectionMatrix();
-  return dir;
-}
-
-function applyShadowSettings(shadow, s) {
-  if (s.bias !== undefined) shadow.bias = s.bias;
-  if (s.normalBias !== undefined) shadow.normalBias = s.normalBias;
-  if (s.mapSize !== undefined) shadow.mapSize.set(s.mapSize, s.mapSize);
-  if (s.radius !== undefined) shadow.radius = s.radius;
-  if (s.blurSamples !== undefined) shadow.blurSamples = s.blurSamples;
-}
-
-/** Bytes of the maps three.js r187 allocates (WebGLShadowMap.js) for one light's shadow. */
-function shadowBytes(modeName, light, shadow, cascades) {
-  const texels = shadow.mapSize.x * shadow.mapSize.y;
-  if (modeName === 'vsm') return 12 * texels; // RG16F map + 32-bit float depth + RG16F blur pass
-  const perTexel = 8; // RGBA8 colour attachment + 32-bit depth texture
-  if (light.isPointLight) return 6 * perTexel * texels; // a cube
-  return (modeName === 'csm' ? cascades : 1) * perTexel * texels;
-}
-
-function effectiveParams(modeName, shadow, s, cascades) {
-  const p = { shadowMap: kModes[modeName].typeName, mapSize: shadow.mapSize.x, bias: shadow.bias, normalBias: shadow.normalBias };
-  if (modeName === 'pcf' || modeName === 'vsm') p.radius = shadow.radius;
-  if (modeName === 'vsm') p.blurSamples = shadow.blurSamples;
-  if (modeName === 'csm') p.cascades = cascades;
-  p.shadowSide = s.shadowSide || 'default';
-  return p;
-}
-
-class LightRender {
-  constructor(renderer, scene, camera, width, height) {
-    Object.assign(this, { renderer, scene, camera, width, height });
-    this.target = new THREE.WebGLRenderTarget(width, height, {
+const kWebGL = {
+  label: '', // the renderer string stays `three.js VERSION`, as before WebGPU
+  async create() {
+    const info = requireWebGL2();
+    const renderer = new THREE.WebGLRenderer({ antialias: false });
+    renderer.shadowMap.enabled = true;
+    renderer.toneMapping = THREE.NoToneMapping;
+    renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
+    // A program that fails to link is reported here (three.js only logs it and draws nothing).
+    renderer.debug.onShaderError = (gl, program, vs, fs) => {
+      const log = (gl.getShaderInfoLog(fs) || gl.getShaderInfoLog(vs) || gl.getProgramInfoLog(program) || 'no log').trim();
+      shaderErrors.push(log.split('\n')[0]);
+    };
+    return { renderer, info };
+  },
+  createTarget(width, height) {
+    return new THREE.WebGLRenderTarget(width, height, {
       type: THREE.FloatType, format: THREE.RGBAFormat, minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter,
       depthBuffer: true, generateMipmaps: false,
     });
-    this.pixels = new Float32Array(4 * width * height);
-  }
-
-  frame(receive, before) {
-    this.scene.traverse((o) => { if (o.isMesh) o.receiveShadow = receive; });
-    if (before) before();
-    this.renderer.setRenderTarget(this.target);
-    this.renderer.render(this.scene, this.camera);
-  }
-
-  read() {
-    this.renderer.readRenderTargetPixels(this.target, 0, 0, this.width, this.height, this.pixels);
-    return channelTopDown(this.pixels, this.width, this.height, 0);
-  }
-
-  /** Shadowed and unshadowed radiance, and the shadowed frame's median time (compile excluded). */
-  run(before) {
-    const one = new Float32Array(4);
-    this.frame(true, before);
-    const shadowed = this.read();
-    const frameMs = medianMs(() => {
-      this.frame(true, before);
-      this.renderer.readRenderTargetPixels(this.target, 0, 0, 1, 1, one); // waits for the frame
-    });
-    this.frame(false, before);
-    return { shadowed, unshadowed: this.read(), frameMs };
-  }
-}
-
-function renderOneLight(ctx, name) {
-  const { scene, camera, view, modeName, s, materials, renderer } = ctx;
-  const light = findLight(scene, name);
-  const typeName = light.isDirectionalLight ? 'directional' : light.isSpotLight ? 'spot' : 'point';
-  if (modeName === 'vsm' && light.isPointLight) throw new Error(`vsm: light "${name}" is a point light, and three.js has no VSM for point lights (it warns and draws no shadow)`);
-  if (modeName === 'csm' && !light.isDirectionalLight) throw new Error(`csm: the CSM add-on shadows directional lights only; light "${name}" is a ${typeName} light`);
-  light.visible = true;
-  light.intensity = 1;
-  let before = null;
-  let shadow = light.shadow;
-  let csm = null;
-  if (light.isDirectionalLight) {
-    const dir = fitDirectional(scene, light, view.scene.bounds);
-    if (modeName === 'csm') {
-      light.visible = false; // the add-on lights the scene with its own cascade lights
-      csm = new CSM({ camera, parent: scene, lightDirection: dir, lightIntensity: 1, cascades: s.cascades, shadowMapSize: s.mapSize, shadowBias: s.bias });
-      for (const cl of csm.lights) applyShadowSettings(cl.shadow, { normalBias: s.normalBias });
-      for (const m of materials) csm.setupMaterial(m);
-      shadow = csm.lights[0].shadow;
-      before = () => csm.update();
-    }
-  }
-  if (!csm) {
-    light.castShadow = true;
-    applyShadowSettings(light.shadow, s);
-  }
-  const r = new LightRender(renderer, scene, camera, view.camera.width, view.camera.height).run(before);
-  const cascades = csm ? csm.cascades : 1;
-  const out = {
-    bytes: shadowBytes(modeName, light, shadow, cascades),
-    params: effectiveParams(modeName, shadow, s, cascades),
-    result: { shadowed: floatsToBase64(r.shadowed), unshadowed: floatsToBase64(r.unshadowed), frameMs: r.frameMs },
-  };
-  light.visible = false;
-  light.castShadow = false;
-  if (csm) csm.remove();
-  return out;
-}
-
-window.renderVisibility = async (job) => {
-  const glRenderer = requireWebGL2();
-  const modeName = job.mode === null ? kDefaultMode : job.mode;
-  if (!kModes[modeName]) throw new Error(`unknown mode "${job.mode}" for three.js (known: ${Object.keys(kModes).join(', ')})`);
-  const s = parseSettings(job, modeName);
-  const renderer = new THREE.WebGLRenderer({ antialias: false });
-  renderer.shadowMap.enabled = true;
-  renderer.shadowMap.type = kModes[modeName].type;
-  renderer.toneMapping = THREE.NoToneMapping;
-  renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
-  let gltf;
-  try {
-    gltf = await new GLTFLoader().loadAsync(job.glbUrl);
-  } catch (e) {
-    throw new Error(`GLTFLoader cannot load ${job.glbUrl}: ${e.message || e}`);
-  }
-  const scene = gltf.scene;
-  scene.background = null;
-  scene.environment = null;
-  scene.updateMatrixWorld(true);
-  scene.traverse((o) => { if (o.isLight) o.visible = false; });
-  const materials = whiteLambert(scene, s.shadowSide);
-  const ctx = { scene, camera: makeCamera(job.view), view: job.view, modeName, s, materials, renderer };
-  const lights = {};
-  let memoryBytes = 0;
-  let params = null;
-  for (const name of job.lights) {
-    const one = renderOneLight(ctx, name);
-    lights[name] = one.result;
-    memoryBytes += one.bytes;
-    params = params || one.params;
-  }
-  renderer.dispose();
-  return { renderer: `three.js ${await threeVersion()}`, glRenderer, mode: modeName, params, memoryBytes, lights };
+  },
+  shaderErrors: () => shaderErrors[0],
+  shaderChunks: true, // THREE.ShaderChunk: what @pmndrs/vanilla's pcss patches
+  async read(renderer, target, width, height) {
+    const rgba = new Float32Array(4 * width * height);
+    renderer.readRenderTargetPixels(target, 0, 0, width, height, rgba);
+    return rgba;
+  },
 };
+
+window.renderVisibility = (job) => renderVisibilityWith(job, kWebGL);

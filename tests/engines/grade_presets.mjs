@@ -1,0 +1,38 @@
+// tests/engines/presets.sh's checks on compare's metrics.json of the box and the grate
+// (docs/metrics.md), with the figures.
+//   node grade_presets.mjs BOX_METRICS_JSON GRATE_METRICS_JSON
+// - three.js (WebGL and WebGPU), Babylon.js and PlayCanvas at `--preset typical`: every light of both scenes agrees
+//   with the oracle on at least 95% of the counted pixels (the issue's bar: what their own examples
+//   and editors set must draw a closed box's and a cutout grate's shadows);
+// - Babylon.js's grate under the sun: aliasing under 0.15 (its cutout reaches the shadow map);
+// - Filament: the sun at 95% too. Its spot is printed, not held: 1.53.4's wasm build binds no
+//   shadow option (README.md, "Filament"), so its typical is its default, whose spot map (16-bit
+//   depth over the range Filament picks) misses part of the floor (measured 89% and 93%).
+import fs from 'node:fs';
+
+const scenes = { box: process.argv[2], grate: process.argv[3] };
+let failed = 0;
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failed += 1;
+}
+const agree = (m) => 1 - m.false_lit_rate - m.false_shadow_rate;
+for (const [scene, file] of Object.entries(scenes)) {
+  const metrics = JSON.parse(fs.readFileSync(file, 'utf8'));
+  for (const r of metrics.results) {
+    for (const [light, m] of Object.entries(r.lights)) {
+      const what = `${r.label} typical, ${scene} ${light}: mae ${m.mae.toFixed(4)}, agree ${(100 * agree(m)).toFixed(1)}%, ` +
+        `aliasing ${m.aliasing_rate.toFixed(3)}, acne ${m.acne_rate.toFixed(3)}, ${m.counted_pixels} counted pixels`;
+      const held = r.label !== 'filament' || light === 'sun';
+      if (!held) {
+        console.log(`     ${what} (not held: no binding sets Filament's shadow options)`);
+        continue;
+      }
+      check(m.counted_pixels > 1000 && agree(m) >= 0.95, `${what} (>= 95%, > 1000 pixels)`);
+      if (r.label === 'babylon' && scene === 'grate' && light === 'sun') {
+        check(m.aliasing_rate < 0.15, `babylon typical, grate sun: aliasing ${m.aliasing_rate.toFixed(3)} (< 0.15: the cutout reaches the map)`);
+      }
+    }
+  }
+}
+process.exit(failed ? 1 : 0);
