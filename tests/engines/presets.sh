@@ -9,6 +9,9 @@
 # all engines; grade_presets.mjs on the two metrics.json. This is the check that catches a page
 # that draws a cutout opaque into the map, lights a double-sided back face as shadow, or clips a
 # local light's casters: each of those takes an engine below 95% here.
+# Galacean shadows only its directional sun: it renders sun-only copies of the two scenes
+# (box_sun, grate_sun), and its render of the box with the spot must be refused (exit 1, a line
+# naming the spot) rather than an unshadowed image.
 # Exit 0: passed; 1: failed; 77: skipped (no chromium, node or examples/web/node_modules), the
 # reason on one line of stdout.
 set -uo pipefail
@@ -24,7 +27,7 @@ ENGINES=(three babylon playcanvas filament three-webgpu)
 
 source "$HERE/../lib/browser_checks.sh"
 find_chromium
-for m in puppeteer-core three @babylonjs/core playcanvas filament; do
+for m in puppeteer-core three @babylonjs/core playcanvas filament @galacean/engine; do
   [ -d "$WEB/node_modules/$m" ] || skip "examples/web/node_modules/$m is missing (npm ci --prefix examples/web)"
 done
 [ -x "$CLI" ] || fail "no CLI at $CLI (build the shadow-oracle target)"
@@ -47,14 +50,17 @@ node -e '
     Object.assign(s.camera, { width: 64, height: 48 });
     Object.assign(s, { lights, effects });
     fs.writeFileSync(`${work}/${to}.scene.json`, JSON.stringify(s, null, 1));
+    fs.writeFileSync(`${work}/${to}_sun.scene.json`, JSON.stringify({ ...s, lights: [lights[0]] }, null, 1));
   }
 ' "$SCENES" "$WORK" || fail "cannot write the scenes"
 
 start=$SECONDS
-for scene in box grate; do
+# render_compare SCENE ENGINE...: each engine's typical render of WORK/SCENE.scene.json, one compare over them.
+render_compare() {
+  local scene=$1 engine images=()
+  shift
   "$CLI" export "$WORK/$scene.scene.json" --out "$WORK/export_$scene" > /dev/null || fail "shadow-oracle export $scene exited $?"
-  images=()
-  for engine in "${ENGINES[@]}"; do
+  for engine in "$@"; do
     echo "== render $engine --preset typical on $scene"
     "$WEB/render" "$WORK/$scene.scene.json" --engine "$engine" --preset typical --export-dir "$WORK/export_$scene" \
       --chromium "$chromium" --quiet --out "$WORK/renders_$scene" || fail "render $engine on $scene exited $?"
@@ -62,7 +68,17 @@ for scene in box grate; do
   done
   "$CLI" compare "$WORK/$scene.scene.json" "${images[@]}" --out "$WORK/report_$scene" > "$WORK/compare_$scene.log" 2>&1 ||
     { cat "$WORK/compare_$scene.log"; fail "shadow-oracle compare on $scene exited $?"; }
-done
-node "$HERE/grade_presets.mjs" "$WORK/report_box/metrics.json" "$WORK/report_grate/metrics.json" ||
+}
+for scene in box grate; do render_compare "$scene" "${ENGINES[@]}"; done
+for scene in box_sun grate_sun; do render_compare "$scene" galacean; done
+echo "== render galacean --preset typical on box (a spot: refused)"
+refusal=$("$WEB/render" "$WORK/box.scene.json" --engine galacean --preset typical --export-dir "$WORK/export_box" \
+  --chromium "$chromium" --quiet --out "$WORK/renders_box" 2>&1)
+rc=$?
+{ [ $rc -eq 1 ] && grep -q 'light "spot"' <<< "$refusal" && [ ! -e "$WORK/renders_box/galacean-typical.exr" ]; } ||
+  fail "galacean on a scene with a spot: expected exit 1, no image and a line naming the spot; got exit $rc: $refusal"
+echo "ok   galacean refuses the spot: ${refusal#render: }"
+node "$HERE/grade_presets.mjs" "$WORK/report_box/metrics.json" "$WORK/report_grate/metrics.json" \
+  "$WORK/report_box_sun/metrics.json" "$WORK/report_grate_sun/metrics.json" ||
   fail "an engine at its typical preset disagrees with the oracle (above)"
-echo "engines_presets: passed in $((SECONDS - start)) s (reports in $WORK/report_box, $WORK/report_grate)"
+echo "engines_presets: passed in $((SECONDS - start)) s (reports in $WORK/report_*)"

@@ -1,7 +1,7 @@
 // The command line of examples/web/render (README.md). Bad usage throws UsageError: one line, exit 2.
 export class UsageError extends Error {}
 
-export const kEngines = ['three', 'babylon', 'playcanvas', 'filament', 'three-webgpu', 'babylon-webgpu'];
+export const kEngines = ['three', 'babylon', 'playcanvas', 'filament', 'three-webgpu', 'babylon-webgpu', 'galacean'];
 /** The engines whose pages need Chromium's WebGPU flags (browser.mjs, kWebGPUArgs). */
 export const isWebGPUEngine = (engine) => engine.endsWith('-webgpu');
 // --preset: `default` is the engine's API defaults plus the minimum steps to get any shadow;
