@@ -272,10 +272,20 @@ class LightRender {
     this.target.clearColor = new Color4(0, 0, 0, 0);
   }
 
-  /** scene.render() draws the shadow maps (and the canvas); then the float target. */
+  /**
+   * scene.render() draws the shadow maps (and the canvas); then the float target; between the
+   * engine's beginFrame and endFrame, as its render loop calls them. WebGPU needs them: endFrame
+   * submits the frame's command encoders and beginFrame takes the canvas's texture of this frame.
+   * Without them a submit referenced the canvas texture of an earlier frame ("Destroyed texture
+   * ... used in a submit"), the whole submit was rejected with it, and the shadow maps drawn in it
+   * never reached the GPU: directional and point lights read as shadowed everywhere.
+   */
   frame() {
+    const engine = this.scene.getEngine();
+    engine.beginFrame();
     this.scene.render();
     this.target.render();
+    engine.endFrame();
   }
 
   /**
