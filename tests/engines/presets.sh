@@ -23,7 +23,7 @@ fail() { echo "FAIL engines_presets: $*"; exit 1; }
 CLI=$1 SCENES=$(cd "$2" && pwd) WORK=$3
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 WEB=$(cd "$HERE/../../examples/web" && pwd)
-ENGINES=(three babylon playcanvas filament three-webgpu)
+ENGINES=(three babylon playcanvas filament three-webgpu babylon-webgpu)
 
 source "$HERE/../lib/browser_checks.sh"
 find_chromium
