@@ -8,6 +8,8 @@
 //   MAP_TEXEL_BYTES (a map texel's bytes) and MAP_FILTER_TEXELS (the texels a filtered lookup
 //   reads: 4 bilinear, 1 point-sampled), for the work counts' SO_TAP (gl_program.h).
 //   DEPTH_PROBE with MAP_DEPTH: location 2 says what the pixel's own comparison saw (below).
+//   CONTACT: screen-space contact shadows (shaders/contact_shadow.glsl, after the technique's
+//   file), V the minimum of the map's and theirs.
 // Depths are compared as linear distances along the map's view axis, so biases are lengths:
 // in texels, the world size of one shadow-map texel at the receiver.
 in vec3 v_lsPosition;
@@ -64,6 +66,10 @@ struct Receiver {
     float texel;
 };
 float techniqueVisibility(Receiver r);  // the technique's file
+#ifdef CONTACT
+// 0 where the march toward the light (l, at most maxLength) meets a surface the camera saw.
+float contactVisibility(vec3 p, vec3 l, float maxLength);  // shaders/contact_shadow.glsl
+#endif
 
 // Taps that turn per pixel (pcss's pattern=rotated) and, with TEMPORAL (temporal=on of pcf and
 // pcss, docs/techniques.md#temporal), per frame: interleaved gradient noise (Jimenez 2014) at the
@@ -93,7 +99,9 @@ vec2 vogelTap(int k, int n, float rotation) {
 // false shadow by its cause (docs/metrics.md): the linear depth the map holds at the receiver's
 // own texel (the centre tap, whatever kernel the technique filters over; +inf beyond the map),
 // the receiver's own linear depth (before any bias or offset), and one map texel's size there,
-// all in local units; -1, -1, 0 where nothing is compared. A diagnostic: the counting build has
+// all in local units; -1, -1, 0 where nothing is compared; and the map's own V (before contact
+// shadows, which a screen-space pass adds: compare classes their false shadows as screen-space
+// bleed, not acne), 0 where nothing is compared. A diagnostic: the counting build has
 // no probe, so its lookup is no tap of the technique's work.
 layout(location = 2) out vec4 o_depthProbe;
 #endif
@@ -251,10 +259,10 @@ float slopeBias(Receiver r, float alpha, float minTexels, float maxTexels, float
 }
 
 #ifdef DEPTH_PROBE
-void writeDepthProbe(vec3 p, float texel) {
+void writeDepthProbe(vec3 p, float texel, float mapVisibility) {
     MapPoint m = mapPoint(p);
     float stored = m.outside ? uintBitsToFloat(0x7f800000u) : storedDepthAt(m, vec2(0.0));
-    o_depthProbe = vec4(stored, m.d, texel, 0.0);
+    o_depthProbe = vec4(stored, m.d, texel, mapVisibility);
 }
 #endif
 
@@ -287,8 +295,10 @@ void main() {
     if (dot(n, p - u_lsEye) > 0.0) n = -n;
 #ifdef LIGHT_ORTHO
     vec3 l = -u_lsLightDirection;
+    float toLight = uintBitsToFloat(0x7f800000u);
 #else
     vec3 l = normalize(u_lsLightPosition - p);
+    float toLight = distance(u_lsLightPosition, p);
 #endif
     float ndotl = dot(n, l);
     vec3 toEye = u_lsEye - p;
@@ -312,14 +322,18 @@ void main() {
     }
 #endif
 #ifdef CASCADES
-    o_visibility = cascadedVisibility(p, n, ndotl, pixel);
+    float mapVisibility = cascadedVisibility(p, n, ndotl, pixel);
     float texel = u_cascadeTexel[g_cascade];  // the cascade looked up last
 #else
     float texel = texelWorld(receiverDepth(p));
     o_aliasing = (texel / max(ndotl, 1e-3)) / pixel;
-    o_visibility = techniqueVisibility(Receiver(p, n, ndotl, texel));
+    float mapVisibility = techniqueVisibility(Receiver(p, n, ndotl, texel));
+#endif
+    o_visibility = mapVisibility;
+#ifdef CONTACT
+    if (mapVisibility > 0.0) o_visibility = min(mapVisibility, contactVisibility(p, l, toLight));
 #endif
 #ifdef DEPTH_PROBE
-    writeDepthProbe(p, texel);
+    writeDepthProbe(p, texel, mapVisibility);
 #endif
 }
