@@ -1,5 +1,7 @@
 #include "raster_compare/gl/shadow_map.h"
 
+#include <algorithm>
+
 #include <glm/matrix.hpp>
 
 #include "core/lights/light_kind.h"
@@ -70,6 +72,19 @@ SlopeBias::SlopeBias(const ParamValues& v)
 std::string SlopeBias::defines() const {
     return glslDefine("SLOPE_ALPHA", alpha) + glslDefine("SLOPE_MIN", minTexels) +
            glslDefine("SLOPE_MAX", maxTexels);
+}
+
+ParamTable DepthPrecision::params() {
+    return {{"epsilon", 2.0, 0.0, 1e6, false,
+             "margin for the depth buffer's rounding, in steps of its last bit at the receiver's "
+             "depth (a 32-bit float's mantissa counts 24 bits)"}};
+}
+
+DepthPrecision::DepthPrecision(const ParamValues& v) : steps(v.real("epsilon")) {}
+
+std::string DepthPrecision::defines(int depthBits) const {
+    return "#define RECEIVER_PLANE\n#define DEPTH_BITS " + std::to_string(std::min(depthBits, 24)) +
+           "\n" + glslDefine("DEPTH_STEPS", steps);
 }
 
 void setLightCameraUniforms(GLuint program, const CameraPass& camera, const LightCamera& lc) {

@@ -103,6 +103,16 @@ struct SlopeBias {
     double alpha, minTexels, maxTexels;
 };
 
+// The depth buffer's rounding, the one margin the receiver-plane biases keep (receiver-plane,
+// adaptive-bias, oriented-bias): `epsilon` steps of the map's last depth bit at the receiver's
+// depth. Its #defines turn on shaders/shadow_map.frag's receiver-plane helpers.
+struct DepthPrecision {
+    static ParamTable params();
+    explicit DepthPrecision(const ParamValues& values);
+    std::string defines(int depthBits) const;
+    double steps;
+};
+
 // The uniforms of a visibility frame that come from the camera pass and the light's camera
 // (shaders/shadow_map.frag's, which the adaptive map's frame shares): u_clipFromLocal, u_lsEye,
 // u_pixelScale, u_lsLight*, u_cosOuter, u_lightClipFromLocal, u_lightViewFromLocal, u_near, u_far,
