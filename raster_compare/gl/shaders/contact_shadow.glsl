@@ -5,10 +5,12 @@
 // steps' banding becomes noise. Each sample is projected into the camera pass's image: the
 // surface seen there (u_contactPosition, w 1 where one was hit) shadows the sample when the sample
 // lies behind it along the camera's ray by less than u_contactThickness (the depth buffer is
-// taken to be that thick), and behind the surface's tangent plane (its camera-facing normal,
-// u_contactNormal): a receiver on a plane, or on a lit curved surface, is never shadowed by its own
-// neighbouring pixels, whose centres lie at another depth than the sample's projection (the
-// steep-slope self-shadowing of bevyengine/bevy 25355). A sample beyond the image has no surface
+// taken to be that thick) and, where that surface is of the receiver's own mesh (the camera pass's
+// mesh id, u_contactNormal's w), behind its tangent plane (its camera-facing normal): a receiver on
+// a plane, or on a lit curved surface, is never shadowed by its own neighbouring pixels, whose
+// centres lie at another depth than the sample's projection (the steep-slope self-shadowing of
+// bevyengine/bevy 25355); another mesh's surface, the caster at a contact, shadows by depth alone
+// (its tangent plane at a curved foot would turn the sample away). A sample beyond the image has no surface
 // to be compared with: the march stops there, lit (a caster off screen casts no contact shadow).
 uniform sampler2D u_contactPosition;
 uniform sampler2D u_contactNormal;
@@ -20,6 +22,8 @@ float contactVisibility(vec3 p, vec3 l, float maxLength) {
     float len = min(u_contactDistance, maxLength);
     float start = tapRotation() / 6.28318531;
     ivec2 size = textureSize(u_contactPosition, 0);
+    SO_TAP(1, NORMAL_TEXEL_BYTES);
+    float ownMesh = texelFetch(u_contactNormal, ivec2(gl_FragCoord.xy), 0).w;
     for (int i = 0; i < CONTACT_STEPS; ++i) {
         vec3 q = p + l * (len * (float(i) + start) / float(CONTACT_STEPS));
         vec4 c = u_clipFromLocal * vec4(q, 1.0);
@@ -33,8 +37,8 @@ float contactVisibility(vec3 p, vec3 l, float maxLength) {
         float behind = distance(q, u_lsEye) - distance(s.xyz, u_lsEye);
         if (behind <= 0.0 || behind >= u_contactThickness) continue;
         SO_TAP(1, NORMAL_TEXEL_BYTES);
-        vec3 n = texelFetch(u_contactNormal, ij, 0).xyz;
-        if (dot(q - s.xyz, n) < 0.0) return 0.0;
+        vec4 n = texelFetch(u_contactNormal, ij, 0);  // w: its mesh
+        if (n.w != ownMesh || dot(q - s.xyz, n.xyz) < 0.0) return 0.0;
     }
     return 1.0;
 }
