@@ -127,9 +127,9 @@ def untuned(defaults):
                          if acne is not None else "")
         rows.append(f"| `{scene}` | {light} | " + " | ".join(cells) + " |")
     none = [t for t in methods if clean[t]]
-    verdict = (", ".join(none) if none else "none of them") + \
-        " has neither acne nor peter-panning at its default on every shipped scene and light " \
-        "(n/a: no `contact` effect, peter-panning not measured)."
+    verdict = ("free of both acne and peter-panning at its default on every shipped scene and "
+               "light: " + (", ".join(none) if none else "none of them") +
+               " (n/a: no `contact` effect, peter-panning not measured).")
     return ("\nThe biases that need no tuning (docs/techniques.md#biases-that-need-no-tuning), at "
             "their defaults, in the same sweep: " + verdict + "\n\n" + "\n".join(rows) + "\n")
 
