@@ -72,8 +72,12 @@ def bias(tool, out):
                     "--quiet"], check=True, stdout=subprocess.DEVNULL)
     seconds = time.perf_counter() - t0
     m = json.load(open(os.path.join(d, "metrics.json")))
-    best = {}
+    best, defaults = {}, {}
     for r in m["results"]:
+        if r.get("technique") != "slope-bias":  # the biases that need no tuning, at defaults
+            for light, v in r["lights"].items():
+                defaults.setdefault((r["task"]["scene"], light), {})[r["technique"]] = v
+            continue
         for light, v in r["lights"].items():
             key = (r["task"]["scene"], light)
             b = best.setdefault(key, {"free": 0, "total": 0, "best": None})
@@ -101,7 +105,33 @@ def bias(tool, out):
             f"({m['finished']} finished) in {seconds:.0f} s on {gl}. The report "
             f"(out/sweeps/bias/report.html) draws the whole alpha x min grid; here its answer, "
             "ties on peter-panning to the first setting in the spec's order.\n\n"
-            + "\n".join(rows) + "\n")
+            + "\n".join(rows) + "\n" + untuned(defaults))
+
+
+# The biases that need no tuning at their defaults: acne and peter-panning per scene and light,
+# and which of them has neither on every one.
+def untuned(defaults):
+    methods = sorted({t for v in defaults.values() for t in v})
+    if not methods:
+        return ""
+    rows = ["| scene | light | " + " | ".join(f"{t}: acne, peter-panning" for t in methods) + " |",
+            "|---|---|" + "---|" * len(methods)]
+    clean = {t: True for t in methods}
+    for (scene, light), by in sorted(defaults.items()):
+        cells = []
+        for t in methods:
+            v = by.get(t, {})
+            acne, pp = v.get("acne_rate"), v.get("peter_panning_rate")
+            clean[t] &= acne == 0 and (pp is None or pp == 0)
+            cells.append(f"{acne:.4f}, " + ("n/a" if pp is None else f"{pp:.4f}")
+                         if acne is not None else "")
+        rows.append(f"| `{scene}` | {light} | " + " | ".join(cells) + " |")
+    none = [t for t in methods if clean[t]]
+    verdict = ("free of both acne and peter-panning at its default on every shipped scene and "
+               "light: " + (", ".join(none) if none else "none of them") +
+               " (n/a: no `contact` effect, peter-panning not measured).")
+    return ("\nThe biases that need no tuning (docs/techniques.md#biases-that-need-no-tuning), at "
+            "their defaults, in the same sweep: " + verdict + "\n\n" + "\n".join(rows) + "\n")
 
 
 def replace(doc, marker, body):

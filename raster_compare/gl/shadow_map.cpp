@@ -1,5 +1,7 @@
 #include "raster_compare/gl/shadow_map.h"
 
+#include <algorithm>
+
 #include <glm/matrix.hpp>
 
 #include "core/lights/light_kind.h"
@@ -42,6 +44,7 @@ ParamTable shadowMapParams(ParamTable own) {
         {"blend", 0.1, 0.0, 0.5, false,
          "cascades: fraction of each one's depth range over which it fades into the next"},
     };
+    for (ParamSpec& s : ContactShadows::params()) p.push_back(std::move(s));
     // The resolution is the family's quality parameter unless the technique names its own.
     p[0].quality = qualityParam(own) == nullptr;
     for (ParamSpec& s : own) p.push_back(std::move(s));
@@ -54,7 +57,8 @@ ShadowMapTechnique::ShadowMapTechnique(const ParamValues& v)
       depthBits_(v.integer("depth_format")),
       fitToReceivers_(v.integer("fit") == 1),
       cascades_{v.integer("cascades"), v.real("split_lambda"), v.integer("snap") == 1},
-      blend_(v.real("blend")) {}
+      blend_(v.real("blend")),
+      contact_(v) {}
 
 ParamTable SlopeBias::params() {
     return {{"alpha", 1.0, 0.0, 100.0, false, "slope factor"},
@@ -68,6 +72,19 @@ SlopeBias::SlopeBias(const ParamValues& v)
 std::string SlopeBias::defines() const {
     return glslDefine("SLOPE_ALPHA", alpha) + glslDefine("SLOPE_MIN", minTexels) +
            glslDefine("SLOPE_MAX", maxTexels);
+}
+
+ParamTable DepthPrecision::params() {
+    return {{"epsilon", 2.0, 0.0, 1e6, false,
+             "margin for the depth buffer's rounding, in steps of its last bit at the receiver's "
+             "depth (a 32-bit float's mantissa counts 24 bits)"}};
+}
+
+DepthPrecision::DepthPrecision(const ParamValues& v) : steps(v.real("epsilon")) {}
+
+std::string DepthPrecision::defines(int depthBits) const {
+    return "#define RECEIVER_PLANE\n#define DEPTH_BITS " + std::to_string(std::min(depthBits, 24)) +
+           "\n" + glslDefine("DEPTH_STEPS", steps);
 }
 
 void setLightCameraUniforms(GLuint program, const CameraPass& camera, const LightCamera& lc) {
@@ -128,9 +145,15 @@ class ShadowMapLight final : public LightTechnique {
         probing_ = on && probeProg_.get() != 0;
         return probeProg_.get() != 0;
     }
+    // With contact shadows, the map's own V (the probe's fourth value) is the V before a
+    // screen-space pass, as blur's is: their false shadows are screen-space bleed, not acne.
     std::optional<DepthComparison> readDepthComparison(const LightTarget& own) const override {
         if (probeProg_.get() == 0 || !own.hasDepthProbe()) return std::nullopt;
-        return DepthComparison{own.readDepthProbe(), {}};
+        DepthComparison c{own.readDepthProbe(), {}};
+        if (technique_.contact().on)
+            for (size_t i = 3; i < c.probe.size(); i += 4)
+                c.unfilteredVisibility.push_back(c.probe[i]);
+        return c;
     }
 
   private:
@@ -145,6 +168,7 @@ class ShadowMapLight final : public LightTechnique {
     const ShadowMapTechnique& technique_;
     const Light& light_;
     const GpuScene& scene_;
+    const CameraPass& camera_;  // contact shadows read its images
     LightCamera cam_;
     GlTexture map_;
     std::vector<GlFramebuffer> mapFbos_;  // one per face
@@ -180,6 +204,7 @@ ShadowMapLight::ShadowMapLight(const ShadowMapTechnique& technique, const LightS
     : technique_(technique),
       light_(setup.light),
       scene_(setup.scene),
+      camera_(setup.camera),
       frameIndex_(setup.frameIndex) {
     if (isDirectional(light_) && technique.cascades().count > 1)
         cam_ = fitCascades(light_, scene_.lsBounds(), technique.resolution(),
@@ -369,13 +394,16 @@ std::string mapDefines(const ShadowMapTechnique& technique, GLuint map) {
 
 GlProgram ShadowMapLight::createVisibilityProgram(const CameraPass& camera, bool probe) const {
     const std::string defines =
-        scene_.alphaDefines() + ("#define VISIBILITY_PASS\n" + lightCameraDefines(cam_) +
-                                 mapDefines(technique_, map_.get()) + technique_.shaderDefines() +
-                                 (probe ? "#define DEPTH_PROBE\n" : ""));
-    GlProgram program =
-        buildProgram(defines, shaders::scene_vert,
-                     {shaders::alpha_test_glsl, shaders::shadow_map_frag, technique_.glsl()});
+        scene_.alphaDefines() +
+        ("#define VISIBILITY_PASS\n" + lightCameraDefines(cam_) +
+         mapDefines(technique_, map_.get()) + technique_.shaderDefines() +
+         (probe ? "#define DEPTH_PROBE\n" : "") + technique_.contact().defines(camera));
+    std::vector<const char*> sources = {shaders::alpha_test_glsl, shaders::shadow_map_frag,
+                                        technique_.glsl()};
+    if (technique_.contact().on) sources.push_back(shaders::contact_shadow_glsl);
+    GlProgram program = buildProgram(defines, shaders::scene_vert, sources);
     const GLuint vp = program.get();
+    technique_.contact().setUniforms(vp, scene_.frame());
     setLightCameraUniforms(vp, camera, cam_);
     setInt(vp, "u_map", 0);
     setFloat(vp, "u_receiverMesh", receiver_);
@@ -455,6 +483,7 @@ void ShadowMapLight::renderVisibility(PassClock& clock) {
     const GLuint program = probing_ ? probeProg_.get() : visibilityProg_.get();
     glUseProgram(program);
     glBindTextureUnit(0, map_.get());
+    technique_.contact().bindCameraImages(camera_);
     scene_.draw(program, receiver_ >= 0);
     clock.end();
 }

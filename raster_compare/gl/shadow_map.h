@@ -9,7 +9,8 @@
 // Every technique of the family has the common parameters resolution, depth_format and fit, and
 // the cascades' cascades, split_lambda, snap and blend (shadowMapParams): any technique's lookup
 // runs inside cascades, which are a layout of the family's map, like a cube map's faces. Lengths
-// are in texels at the receiver (of the cascade looked up).
+// are in texels at the receiver (of the cascade looked up). And every one has screen-space contact
+// shadows, contact=on (contact_shadows.h), whose lengths are world units.
 #pragma once
 
 #include <array>
@@ -20,6 +21,7 @@
 
 #include "core/local_frame.h"
 
+#include "raster_compare/gl/contact_shadows.h"
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/technique.h"
 
@@ -61,6 +63,7 @@ class ShadowMapTechnique : public Technique {
     // range over which it fades into the next.
     const CascadeSettings& cascades() const { return cascades_; }
     double cascadeBlend() const { return blend_; }
+    const ContactShadows& contact() const { return contact_; }
 
     // The technique's choices.
     virtual MapStorage storage() const { return MapStorage::Depth; }
@@ -88,6 +91,7 @@ class ShadowMapTechnique : public Technique {
     bool fitToReceivers_;
     CascadeSettings cascades_;
     double blend_;
+    ContactShadows contact_;
 };
 
 // The slope-scaled bias shared by slope-bias, pcf and hw-pcf: its parameters (alpha, min, max, in
@@ -97,6 +101,16 @@ struct SlopeBias {
     explicit SlopeBias(const ParamValues& values);
     std::string defines() const;
     double alpha, minTexels, maxTexels;
+};
+
+// The depth buffer's rounding, the one margin the receiver-plane biases keep (receiver-plane,
+// adaptive-bias, oriented-bias): `epsilon` steps of the map's last depth bit at the receiver's
+// depth. Its #defines turn on shaders/shadow_map.frag's receiver-plane helpers.
+struct DepthPrecision {
+    static ParamTable params();
+    explicit DepthPrecision(const ParamValues& values);
+    std::string defines(int depthBits) const;
+    double steps;
 };
 
 // The uniforms of a visibility frame that come from the camera pass and the light's camera

@@ -8,6 +8,10 @@
 //   MAP_TEXEL_BYTES (a map texel's bytes) and MAP_FILTER_TEXELS (the texels a filtered lookup
 //   reads: 4 bilinear, 1 point-sampled), for the work counts' SO_TAP (gl_program.h).
 //   DEPTH_PROBE with MAP_DEPTH: location 2 says what the pixel's own comparison saw (below).
+//   RECEIVER_PLANE with MAP_DEPTH (DEPTH_BITS, DEPTH_STEPS): the receiver plane's helpers below;
+//   SCREEN_DERIVATIVES: g_dpdx, g_dpdy;
+//   CONTACT: screen-space contact shadows (shaders/contact_shadow.glsl, after the technique's
+//   file), V the minimum of the map's and theirs.
 // Depths are compared as linear distances along the map's view axis, so biases are lengths:
 // in texels, the world size of one shadow-map texel at the receiver.
 in vec3 v_lsPosition;
@@ -64,6 +68,10 @@ struct Receiver {
     float texel;
 };
 float techniqueVisibility(Receiver r);  // the technique's file
+#ifdef CONTACT
+// 0 where the march toward the light (l, at most maxLength) meets a surface the camera saw.
+float contactVisibility(vec3 p, vec3 l, float maxLength);  // shaders/contact_shadow.glsl
+#endif
 
 // Taps that turn per pixel (pcss's pattern=rotated) and, with TEMPORAL (temporal=on of pcf and
 // pcss, docs/techniques.md#temporal), per frame: interleaved gradient noise (Jimenez 2014) at the
@@ -93,7 +101,9 @@ vec2 vogelTap(int k, int n, float rotation) {
 // false shadow by its cause (docs/metrics.md): the linear depth the map holds at the receiver's
 // own texel (the centre tap, whatever kernel the technique filters over; +inf beyond the map),
 // the receiver's own linear depth (before any bias or offset), and one map texel's size there,
-// all in local units; -1, -1, 0 where nothing is compared. A diagnostic: the counting build has
+// all in local units; -1, -1, 0 where nothing is compared; and the map's own V (before contact
+// shadows, which a screen-space pass adds: compare classes their false shadows as screen-space
+// bleed, not acne), 0 where nothing is compared. A diagnostic: the counting build has
 // no probe, so its lookup is no tap of the technique's work.
 layout(location = 2) out vec4 o_depthProbe;
 #endif
@@ -205,6 +215,75 @@ float depthTest(vec3 q, float bias) {
     if (m.outside) return 1.0;
     return depthTap(m, ivec2(0), m.d - bias);
 }
+
+#ifdef RECEIVER_PLANE
+// ---- The receiver's plane in the map (receiver-plane, adaptive-bias, oriented-bias) ----------
+// Where q falls in m's map, in texels from m's own point, in the frame storedDepthAt's offsets
+// use (2D maps: the map's texel grid; cube maps: m's face plane along m.t1, m.t2, m.step apart).
+vec2 texelOffsetOf(MapPoint m, vec3 q) {
+#ifdef LIGHT_CUBE
+    vec3 axis = abs(m.v.x) >= abs(m.v.y) && abs(m.v.x) >= abs(m.v.z) ? vec3(sign(m.v.x), 0, 0)
+                : abs(m.v.y) >= abs(m.v.z)                         ? vec3(0, sign(m.v.y), 0)
+                                                                   : vec3(0, 0, sign(m.v.z));
+    vec3 w = q - u_lsLightPosition;
+    vec3 onFace = w * (m.d / max(dot(w, axis), 1e-30)) - m.v;
+    return vec2(dot(onFace, m.t1), dot(onFace, m.t2)) / m.step;
+#else
+    return (mapPoint(q).uv - m.uv) * vec2(MAP_SIZE);
+#endif
+}
+// The offset in texels (that frame) from m's point to the centre of the texel it looks up: where
+// the map sampled whatever it holds there. Cube maps: the face and its s, t axes as GL 4.5's table
+// 8.19 gives them.
+vec2 ownTexelCentre(MapPoint m) {
+#ifdef LIGHT_CUBE
+    vec3 a = abs(m.v), sAxis, tAxis;
+    if (a.x >= a.y && a.x >= a.z) sAxis = vec3(0, 0, -sign(m.v.x)), tAxis = vec3(0, -1, 0);
+    else if (a.y >= a.z) sAxis = vec3(1, 0, 0), tAxis = vec3(0, 0, sign(m.v.y));
+    else sAxis = vec3(sign(m.v.z), 0, 0), tAxis = vec3(0, -1, 0);
+    vec2 st = 0.5 * (vec2(dot(m.v, sAxis), dot(m.v, tAxis)) / m.d + 1.0);
+    float size = float(textureSize(u_map, 0).x);
+    vec2 ds = (floor(st * size) + 0.5) / size - st;
+    vec3 toCentre = 2.0 * m.d * (ds.x * sAxis + ds.y * tAxis);
+    return vec2(dot(toCentre, m.t1), dot(toCentre, m.t2)) / m.step;
+#else
+    vec2 coord = m.uv * vec2(MAP_SIZE);
+    return floor(coord) + 0.5 - coord;
+#endif
+}
+// The receiver's depth change per texel of offset, of the plane through p spanned by e1 and e2
+// (world lengths about a texel: the differences are then well conditioned): the 2x2 system of
+// where p + e1 and p + e2 fall and how deep they lie. An edge-on plane has none: huge.
+vec2 receiverPlaneGradient(MapPoint m, vec3 p, vec3 e1, vec3 e2) {
+    vec2 a = texelOffsetOf(m, p + e1), b = texelOffsetOf(m, p + e2);
+    vec2 dd = vec2(receiverDepth(p + e1), receiverDepth(p + e2)) - m.d;
+    float det = a.x * b.y - a.y * b.x;
+    if (abs(det) < 1e-6 * length(a) * length(b)) return vec2(1e30);
+    // g . a = dd.x, g . b = dd.y
+    return vec2(dd.x * b.y - dd.y * a.y, a.x * dd.y - b.x * dd.x) / det;
+}
+// Two tangents of the receiver's plane, one texel long, from its geometric normal.
+void planeTangents(Receiver r, out vec3 e1, out vec3 e2) {
+    vec3 h = abs(r.n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0);
+    e1 = normalize(cross(r.n, h)) * r.texel;
+    e2 = cross(r.n, e1);
+}
+// The rounding of what a receiver-plane comparison compares, as a length at linear depth d on a
+// plane of gradient g (per texel): the stored depth (DEPTH_BITS, a 32-bit float's mantissa
+// counting 24, through linearDepth's slope there), the receiver's own depth (a float: 2^-23 of
+// it) and where it falls in the map (a float uv: 2^-23 of the map's side in texels, times the
+// plane's slope: at a grazing light this term dominates); DEPTH_STEPS of their sum.
+float depthPrecision(float d, vec2 g) {
+    float step = exp2(-float(DEPTH_BITS)), ulp = exp2(-23.0);
+#ifdef LIGHT_ORTHO
+    float stored = step * (u_far - u_near);
+#else
+    float stored = step * d * d * (u_far - u_near) / (u_near * u_far);
+#endif
+    float where = (abs(g.x) + abs(g.y)) * ulp * float(textureSize(u_map, 0).x);
+    return DEPTH_STEPS * (stored + ulp * abs(d) + where);
+}
+#endif  // RECEIVER_PLANE
 #elif defined(MAP_HW_COMPARE)
 // The sampler's own comparison (and its implementation-defined filter) at depth d - bias.
 float hardwareTest(vec3 q, float bias) {
@@ -251,10 +330,10 @@ float slopeBias(Receiver r, float alpha, float minTexels, float maxTexels, float
 }
 
 #ifdef DEPTH_PROBE
-void writeDepthProbe(vec3 p, float texel) {
+void writeDepthProbe(vec3 p, float texel, float mapVisibility) {
     MapPoint m = mapPoint(p);
     float stored = m.outside ? uintBitsToFloat(0x7f800000u) : storedDepthAt(m, vec2(0.0));
-    o_depthProbe = vec4(stored, m.d, texel, 0.0);
+    o_depthProbe = vec4(stored, m.d, texel, mapVisibility);
 }
 #endif
 
@@ -277,7 +356,17 @@ float cascadedVisibility(vec3 p, vec3 n, float ndotl, float pixel) {
 }
 #endif
 
+#ifdef SCREEN_DERIVATIVES
+// The receiver's position one pixel right and one up, less its own (receiver-plane): taken before
+// any branch, where derivatives are defined.
+vec3 g_dpdx, g_dpdy;
+#endif
+
 void main() {
+#ifdef SCREEN_DERIVATIVES
+    g_dpdx = dFdx(v_lsPosition);
+    g_dpdy = dFdy(v_lsPosition);
+#endif
     alphaTest();
 #ifdef DEPTH_PROBE
     o_depthProbe = vec4(-1.0, -1.0, 0.0, 0.0);
@@ -287,8 +376,10 @@ void main() {
     if (dot(n, p - u_lsEye) > 0.0) n = -n;
 #ifdef LIGHT_ORTHO
     vec3 l = -u_lsLightDirection;
+    float toLight = uintBitsToFloat(0x7f800000u);
 #else
     vec3 l = normalize(u_lsLightPosition - p);
+    float toLight = distance(u_lsLightPosition, p);
 #endif
     float ndotl = dot(n, l);
     vec3 toEye = u_lsEye - p;
@@ -312,14 +403,18 @@ void main() {
     }
 #endif
 #ifdef CASCADES
-    o_visibility = cascadedVisibility(p, n, ndotl, pixel);
+    float mapVisibility = cascadedVisibility(p, n, ndotl, pixel);
     float texel = u_cascadeTexel[g_cascade];  // the cascade looked up last
 #else
     float texel = texelWorld(receiverDepth(p));
     o_aliasing = (texel / max(ndotl, 1e-3)) / pixel;
-    o_visibility = techniqueVisibility(Receiver(p, n, ndotl, texel));
+    float mapVisibility = techniqueVisibility(Receiver(p, n, ndotl, texel));
+#endif
+    o_visibility = mapVisibility;
+#ifdef CONTACT
+    if (mapVisibility > 0.0) o_visibility = min(mapVisibility, contactVisibility(p, l, toLight));
 #endif
 #ifdef DEPTH_PROBE
-    writeDepthProbe(p, texel);
+    writeDepthProbe(p, texel, mapVisibility);
 #endif
 }
