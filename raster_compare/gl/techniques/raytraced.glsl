@@ -1,0 +1,184 @@
+// raytraced (raytraced.cpp): the denoisers' full-screen passes over the traced V. Every texture is
+// in GL's row order; every fetch is a tap of the work counts (SO_TAP), with the texel bytes
+// defined by raytraced.cpp (RAW_, ACCUM_, FILTER_, POSITION_ and NORMAL_TEXEL_BYTES). Defines:
+// PASS_TEMPORAL (reprojected accumulation of V and its first two moments), PASS_VARIANCE (V and
+// its variance: temporal from the moments, spatial over 7 x 7 for young histories), PASS_ATROUS
+// (one a-trous level, step u_step), PASS_RESOLVE (V into the light's target).
+uniform sampler2D u_position;
+uniform sampler2D u_normal;
+
+vec4 positionAt(ivec2 q) {
+    SO_TAP(1, POSITION_TEXEL_BYTES);
+    return texelFetch(u_position, q, 0);
+}
+vec3 normalAt(ivec2 q) {
+    SO_TAP(1, NORMAL_TEXEL_BYTES);
+    return normalize(texelFetch(u_normal, q, 0).xyz);
+}
+bool inside(ivec2 q, ivec2 size) {
+    return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+}
+
+#if defined(PASS_TEMPORAL)
+uniform sampler2D u_raw;
+uniform sampler2D u_prevHistory;   // RGBA: V, first moment, second moment, history length
+uniform sampler2D u_prevPosition;  // the previous frame's local positions (its frame)
+uniform mat4 u_prevClipFromLocal;
+uniform float u_prevScale;  // previous local = local * u_prevScale + u_prevOffset
+uniform vec3 u_prevOffset;
+uniform vec3 u_lsEye;
+uniform float u_pixelScale;
+uniform float u_alpha;
+uniform int u_haveHistory;
+layout(location = 0) out vec4 o_accum;
+
+// The previous frame's history at the point, bilinear over the texels that saw the same surface
+// (within one pixel footprint of its tangent plane, four along it); w 0 where none did.
+vec4 reprojected(vec3 lsP, vec3 n) {
+    vec3 prevLs = lsP * u_prevScale + u_prevOffset;
+    float footprint = u_pixelScale * length(lsP - u_lsEye) * u_prevScale;
+    vec4 clip = u_prevClipFromLocal * vec4(prevLs, 1.0);
+    if (clip.w <= 0.0) return vec4(0.0);
+    ivec2 size = textureSize(u_prevHistory, 0);
+    vec2 px = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(px));
+    vec2 f = px - vec2(base);
+    vec4 sum = vec4(0.0);
+    float wsum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1), q = base + o;
+        if (!inside(q, size)) continue;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        SO_TAP(1, POSITION_TEXEL_BYTES);
+        vec4 pp = texelFetch(u_prevPosition, q, 0);
+        vec3 d = pp.xyz - prevLs;
+        if (pp.w == 0.0 || w <= 0.0 || abs(dot(d, n)) > footprint || length(d) > 4.0 * footprint)
+            continue;
+        SO_TAP(1, ACCUM_TEXEL_BYTES);
+        sum += w * texelFetch(u_prevHistory, q, 0);
+        wsum += w;
+    }
+    return wsum > 1e-3 ? vec4(sum.xyz / wsum, sum.w / wsum) : vec4(0.0);
+}
+
+void main() {
+    ivec2 ij = ivec2(gl_FragCoord.xy);
+    vec4 pos = positionAt(ij);
+    if (pos.w == 0.0) {
+        o_accum = vec4(0.0);
+        return;
+    }
+    SO_TAP(1, RAW_TEXEL_BYTES);
+    float v = texelFetch(u_raw, ij, 0).r;
+    vec4 hist = u_haveHistory != 0 ? reprojected(pos.xyz, normalAt(ij)) : vec4(0.0);
+    if (hist.w < 0.5) {
+        o_accum = vec4(v, v, v * v, 1.0);
+        return;
+    }
+    // SVGF 4.1: an exponential moving average, the first frames of a history averaged equally.
+    float len = min(round(hist.w) + 1.0, 1024.0);
+    float a = max(u_alpha, 1.0 / len);
+    o_accum = vec4(mix(hist.x, v, a), mix(hist.y, v, a), mix(hist.z, v * v, a), len);
+}
+
+#elif defined(PASS_VARIANCE)
+uniform sampler2D u_accum;
+uniform float u_sigmaNormal;
+layout(location = 0) out vec2 o_filter;
+void main() {
+    ivec2 ij = ivec2(gl_FragCoord.xy);
+    vec4 pos = positionAt(ij);
+    if (pos.w == 0.0) {
+        o_filter = vec2(0.0);
+        return;
+    }
+    SO_TAP(1, ACCUM_TEXEL_BYTES);
+    vec4 acc = texelFetch(u_accum, ij, 0);
+    if (acc.w >= 4.0) {
+        o_filter = vec2(acc.x, max(acc.z - acc.y * acc.y, 0.0));
+        return;
+    }
+    // SVGF 4.2: too young a history for temporal moments: the moments over 7 x 7 neighbours on
+    // the same surface (normal stop), and the variance from them, boosted as the history is short.
+    vec3 n = normalAt(ij);
+    ivec2 size = textureSize(u_accum, 0);
+    vec2 m = vec2(0.0);
+    float wsum = 0.0;
+    for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) {
+            ivec2 q = ij + ivec2(dx, dy);
+            if (!inside(q, size) || positionAt(q).w == 0.0) continue;
+            float w = pow(max(dot(n, normalAt(q)), 0.0), u_sigmaNormal);
+            SO_TAP(1, ACCUM_TEXEL_BYTES);
+            m += w * texelFetch(u_accum, q, 0).yz;
+            wsum += w;
+        }
+    m /= max(wsum, 1e-6);
+    o_filter = vec2(acc.x, max(m.y - m.x * m.x, 0.0) * 4.0 / acc.w);
+}
+
+#elif defined(PASS_ATROUS)
+uniform sampler2D u_filter;  // RG: V and its variance
+uniform int u_step;
+uniform float u_sigmaLuminance, u_sigmaNormal, u_sigmaDepth;
+uniform vec3 u_lsEye;
+uniform float u_pixelScale;
+layout(location = 0) out vec2 o_filter;
+void main() {
+    ivec2 ij = ivec2(gl_FragCoord.xy);
+    vec4 pos = positionAt(ij);
+    if (pos.w == 0.0) {
+        o_filter = vec2(0.0);
+        return;
+    }
+    ivec2 size = textureSize(u_filter, 0);
+    vec3 n = normalAt(ij);
+    SO_TAP(1, FILTER_TEXEL_BYTES);
+    vec2 c = texelFetch(u_filter, ij, 0).xy;
+    // The luminance stop's scale: the variance blurred over 3 x 3 (SVGF 4.2, eq. 5).
+    float var = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = clamp(ij + ivec2(dx, dy), ivec2(0), size - 1);
+            SO_TAP(1, FILTER_TEXEL_BYTES);
+            var += texelFetch(u_filter, q, 0).y * (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
+        }
+    float lumScale = u_sigmaLuminance * sqrt(max(var, 0.0)) + 1e-6;
+    // Depth stop: the neighbour's distance from this pixel's tangent plane, against the change
+    // one pixel's footprint per pixel of distance would make (SVGF's depth gradient, in world
+    // terms).
+    float footprint = u_pixelScale * length(pos.xyz - u_lsEye);
+    const float h[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
+    vec2 sum = vec2(c.x, c.y);
+    float wsum = 1.0;
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+            if (dx == 0 && dy == 0) continue;
+            ivec2 q = ij + ivec2(dx, dy) * u_step;
+            if (!inside(q, size)) continue;
+            vec4 pq = positionAt(q);
+            if (pq.w == 0.0) continue;
+            SO_TAP(1, FILTER_TEXEL_BYTES);
+            vec2 f = texelFetch(u_filter, q, 0).xy;
+            float wn = pow(max(dot(n, normalAt(q)), 0.0), u_sigmaNormal);
+            float wz = abs(dot(n, pq.xyz - pos.xyz)) /
+                       (u_sigmaDepth * footprint * float(u_step) * length(vec2(dx, dy)) + 1e-9);
+            float wl = abs(c.x - f.x) / lumScale;
+            float w = h[abs(dx)] * h[abs(dy)] / (h[0] * h[0]) * wn * exp(-wz - wl);
+            sum += vec2(w * f.x, w * w * f.y);
+            wsum += w;
+        }
+    o_filter = vec2(sum.x / wsum, sum.y / (wsum * wsum));
+}
+
+#elif defined(PASS_RESOLVE)
+uniform sampler2D u_result;  // R: V
+layout(location = 0) out float o_visibility;
+layout(location = 1) out float o_aliasing;
+void main() {
+    ivec2 ij = ivec2(gl_FragCoord.xy);
+    SO_TAP(1, RESULT_TEXEL_BYTES);
+    o_visibility = clamp(texelFetch(u_result, ij, 0).r, 0.0, 1.0);
+    o_aliasing = 0.0;
+}
+#endif
