@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/alpha_mask.h"
 #include "core/lights/light_kind.h"
 #include "core/sobol.h"
 #include "raster_compare/gl/lights/raster_light_kind.h"
@@ -24,6 +25,29 @@ namespace {
 void onEmbreeError(void* user, RTCError code, const char* text) {
     auto* first = static_cast<std::string*>(user);
     if (first->empty()) first->assign("Embree error " + std::to_string(int(code)) + ": " + text);
+}
+
+// An alpha-tested mesh's mask, for Embree's filter: a hit where the mask cuts the surface away is
+// no hit, as for the oracle's rays (core/alpha_mask.h).
+struct AlphaFilter {
+    const MeshPrimitive* mesh = nullptr;
+    const AlphaTexture* texture = nullptr;
+};
+
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* f = static_cast<const AlphaFilter*>(args->geometryUserPtr);
+    for (unsigned k = 0; k < args->N; ++k) {
+        if (args->valid[k] == 0) continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, k);
+        const float u = RTCHitN_u(args->hit, args->N, k), v = RTCHitN_v(args->hit, args->N, k);
+        const std::vector<glm::vec2>& uvs = f->mesh->uvs;
+        glm::vec2 uv = glm::vec2(0.0f);
+        if (!uvs.empty()) {
+            const uint32_t* tri = &f->mesh->indices[3 * size_t(prim)];
+            uv = (1.0f - u - v) * uvs[tri[0]] + u * uvs[tri[1]] + v * uvs[tri[2]];
+        }
+        if (!alphaKeeps(*f->mesh->alpha, f->texture, uv)) args->valid[k] = 0;
+    }
 }
 
 // The light's sample k of the pixel's sequence, local frame; `lsEmitNormal` the emitter's normal
@@ -43,6 +67,7 @@ struct ShadowRayTracer::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     LocalFrame frame;
+    std::vector<AlphaFilter> filters;  // one per alpha-tested mesh: the filters' user data
 
     void throwIfError() {
         if (!error.empty()) throw std::runtime_error(error);
@@ -58,7 +83,11 @@ ShadowRayTracer::ShadowRayTracer(const Scene& scene, const LocalFrame& frame)
     // Set right after the device, so that no error is missed.
     rtcSetDeviceErrorFunction(m.device, onEmbreeError, &m.error);
     m.scene = rtcNewScene(m.device);
-    for (const MeshPrimitive& mesh : scene.meshes) {
+    size_t alphaTested = 0;
+    for (size_t i = 0; i < scene.meshes.size(); ++i) alphaTested += scene.alphaTested(i) ? 1 : 0;
+    m.filters.reserve(alphaTested);  // no reallocation: the geometries point into it
+    for (size_t meshIndex = 0; meshIndex < scene.meshes.size(); ++meshIndex) {
+        const MeshPrimitive& mesh = scene.meshes[meshIndex];
         if (mesh.indices.empty()) continue;
         RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
@@ -73,6 +102,13 @@ ShadowRayTracer::ShadowRayTracer(const Scene& scene, const LocalFrame& frame)
             v[3 * i] = float(ls.x), v[3 * i + 1] = float(ls.y), v[3 * i + 2] = float(ls.z);
         }
         std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+        if (scene.alphaTested(meshIndex)) {
+            const int t = mesh.alpha->texture;
+            m.filters.push_back({&mesh, t >= 0 ? &scene.alphaTextures[size_t(t)] : nullptr});
+            rtcSetGeometryUserData(g, &m.filters.back());
+            rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+            rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
+        }
         rtcCommitGeometry(g);
         rtcAttachGeometry(m.scene, g);
         rtcReleaseGeometry(g);  // the scene keeps its own reference

@@ -11,7 +11,8 @@
 // sum(G), G = cos(receiver) cos(emitter) / r^2 (one-sided for rect, disk and polygon lights),
 // samples uniform by area (raster_compare/gl/lights/). Point, spot and directional lights: every
 // ray goes to the light's one point (direction), V = 0 where the surface faces away (and outside
-// a spot's cone), as the oracle's hard shadow. Alpha-tested meshes are opaque here.
+// a spot's cone), as the oracle's hard shadow. Alpha-tested meshes cut their masks' holes (an
+// Embree filter evaluating core/alpha_mask.h at each candidate hit, as the oracle's).
 #pragma once
 
 #include <cstdint>
@@ -49,6 +50,7 @@ struct ShadowRayFrame {
 class ShadowRayTracer {
   public:
     // Builds the BVH of `scene`'s meshes in `frame` (the raster path's local frame), for any light.
+    // `scene` must outlive it (the alpha masks' filters read its meshes).
     ShadowRayTracer(const Scene& scene, const LocalFrame& frame);
     ~ShadowRayTracer();
     ShadowRayTracer(const ShadowRayTracer&) = delete;
