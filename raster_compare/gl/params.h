@@ -28,7 +28,8 @@ struct ParamSpec {
     // The range is [min, max): max itself is out of range (a blend weight below 1).
     bool maxExclusive = false;
     // "key=value": the setting this parameter means nothing without (history and clamp need
-    // temporal=on). Given without it, an InputError rather than silently doing nothing.
+    // temporal=on); "key=a|b": any of those values. Given without it, an InputError rather than
+    // silently doing nothing.
     std::string needs = {};
 };
 using ParamTable = std::vector<ParamSpec>;

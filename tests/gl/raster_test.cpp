@@ -458,7 +458,7 @@ TEST(Compare, EndToEndOnTheContactScene) {
         2u);
     EXPECT_EQ(count("\"quality\":512"), 1u);
     // A budget table per cost axis (times, memory, work), frame time's shown.
-    EXPECT_EQ(count("<table class=\"budget\">"), 10u);
+    EXPECT_EQ(count("<table class=\"budget\">"), 11u);  // work.rays_traced the 11th
     EXPECT_EQ(count("<div class=\"budget-box\" data-cost=\"frame_ms\">"), 1u);
     EXPECT_EQ(count("<div class=\"budget-box\" data-cost=\"work.bytes_moved\" hidden>"), 1u);
     EXPECT_NE(report.find("id=\"metrics\">"), std::string::npos);

@@ -15,6 +15,14 @@
 //   `sigma_normal`), the depth (`sigma_depth`; the distance from the pixel's tangent plane in
 //   pixel footprints, SVGF's depth gradient in world terms) and V scaled by the 3 x 3-blurred
 //   standard deviation (`sigma_luminance`); the first level's output is the next frame's history.
+// - `ffx`: the design of AMD's FidelityFX Shadow Denoiser (MIT; GPUOpen-Effects/FidelityFX-
+//   Denoiser, ffx-shadows-dnsr; written here from its description, for one ray a pixel): tile
+//   classification (8 x 4 tiles, its ray masks' size: a tile whose rays and its neighbour tiles'
+//   rays all agree skips the filters and restarts its history), a temporal pass (running mean and
+//   variance of the rays with their count, the history clamped to a 17 x 17 Gaussian
+//   neighbourhood's mean +- one standard deviation, the variance boosted over the first 16 frames,
+//   the new frame weighing 1 down to 0.05 as the count reaches 32), then three a-trous passes of a
+//   3 x 3 kernel at steps 1, 2, 4 with the svgf stops; the first pass's output is the history.
 // The history lives across the renders of a sequence (compare --sequence, RasterOptions::
 // frameIndex): frame f reads what frame f - 1 left, so a repeated render of a frame (warm-up,
 // timed frames) gives the same image. Moving meshes restart their history (the raster path is not
@@ -37,7 +45,7 @@
 namespace so {
 namespace {
 
-enum class Denoiser { None, Temporal, Svgf };
+enum class Denoiser { None, Temporal, Svgf, Ffx };
 
 // What frame f of a light left for frame f + 1, on the CPU (GL objects do not outlive a render).
 struct RayHistoryFrame {
@@ -77,6 +85,10 @@ class Raytraced final : public Technique {
   public:
     static constexpr const char* kFamily = "ray tracing";
     static ParamTable params() {
+        const auto needs = [](ParamSpec spec, const char* setting) {
+            spec.needs = setting;
+            return spec;
+        };
         return {
             {"spp",
              1,
@@ -84,61 +96,34 @@ class Raytraced final : public Technique {
              256,
              true,
              "shadow rays per pixel and frame, to points of a per-pixel scrambled Sobol sequence "
-             "on the light (issue 53: 1, 2, 4 ...; the FidelityFX denoiser is built for 1)",
+             "on the light (issue 53: 1, 2, 4 ...; FidelityFX's denoiser is built for 1)",
              {},
              true},
-            methodParam("denoiser", 0, {"none", "temporal", "svgf"},
+            methodParam("denoiser", 0, {"none", "temporal", "svgf", "ffx"},
                         "none: the rays' estimate; temporal: a reprojected exponential history; "
                         "svgf: Schied et al. HPG 2017, temporal moments and variance-guided "
-                        "a-trous"),
-            {"alpha", 0.2, 0.01, 1, false,
-             "temporal, svgf: the new frame's weight in the exponential history (SVGF section "
-             "4.1: 0.2); a history younger than 1 / alpha frames averages them equally"},
-            {"levels",
-             5,
-             1,
-             8,
-             true,
-             "svgf: a-trous levels, steps 1, 2, 4, ... (SVGF 4.2: 5)",
-             {},
-             false,
-             {},
-             false,
-             "denoiser=svgf"},
-            {"sigma_luminance",
-             4,
-             0.01,
-             1000,
-             false,
-             "svgf: V stop, in standard deviations of the 3 x 3-blurred variance (SVGF 4.2: 4)",
-             {},
-             false,
-             {},
-             false,
-             "denoiser=svgf"},
-            {"sigma_normal",
-             128,
-             1,
-             1024,
-             false,
-             "svgf: normal stop, the power of the normals' cosine (SVGF 4.2: 128)",
-             {},
-             false,
-             {},
-             false,
-             "denoiser=svgf"},
-            {"sigma_depth",
-             1,
-             0.01,
-             1000,
-             false,
-             "svgf: depth stop, the distance from the pixel's tangent plane in pixel footprints "
-             "per pixel of distance (SVGF 4.2: 1, on its depth gradient)",
-             {},
-             false,
-             {},
-             false,
-             "denoiser=svgf"}};
+                        "a-trous; ffx: AMD FidelityFX Shadow Denoiser's design, tile "
+                        "classification, temporal moments, three a-trous passes"),
+            needs({"alpha", 0.2, 0.01, 1, false,
+                   "temporal, svgf: the new frame's weight in the exponential history (SVGF "
+                   "section 4.1: 0.2); a history younger than 1 / alpha frames averages them "
+                   "equally"},
+                  "denoiser=temporal|svgf"),
+            needs({"levels", 5, 1, 8, true,
+                   "svgf: a-trous levels, steps 1, 2, 4, ... (SVGF 4.2: 5; ffx runs 3, its "
+                   "FidelityFX passes)"},
+                  "denoiser=svgf"),
+            needs({"sigma_luminance", 4, 0.01, 1000, false,
+                   "svgf, ffx: V stop, in standard deviations of the 3 x 3-blurred variance "
+                   "(SVGF 4.2: 4)"},
+                  "denoiser=svgf|ffx"),
+            needs({"sigma_normal", 128, 1, 1024, false,
+                   "svgf, ffx: normal stop, the power of the normals' cosine (SVGF 4.2: 128)"},
+                  "denoiser=svgf|ffx"),
+            needs({"sigma_depth", 1, 0.01, 1000, false,
+                   "svgf, ffx: depth stop, the distance from the pixel's tangent plane in pixel "
+                   "footprints per pixel of distance (SVGF 4.2: 1, on its depth gradient)"},
+                  "denoiser=svgf|ffx")};
     }
     explicit Raytraced(const ParamValues& v)
         : Technique(v),
@@ -185,10 +170,11 @@ class RaytracedLight final : public LightTechnique {
     uint64_t memoryBytes() const override;
 
   private:
-    GlProgram program(const char* pass) const;
+    GlProgram program(const char* pass, const std::string& defines = "") const;
     void trace(PassClock& clock);
+    void classify(PassClock& clock);
     void temporal(PassClock& clock, const std::optional<RayHistoryFrame>& before);
-    GLuint svgf(PassClock& clock);
+    GLuint atrous(PassClock& clock, int levels);
     void drawInto(const ScreenTarget& target, const GlProgram& p) const;
     void keepHistory(GLuint firstLevel);
 
@@ -201,7 +187,12 @@ class RaytracedLight final : public LightTechnique {
     int W_, H_;
     std::vector<float> position_, normal_;  // this frame's G-buffer, GL row order
     ScreenTarget raw_, accum_, prevHistory_, prevPosition_, filterA_, filterB_;
-    GlProgram temporalProg_, varianceProg_, atrousProg_, resolveProg_;
+    // ffx: one texel per 8 x 4 tile (1: skipped), and the temporal pass's two outputs (accum_,
+    // filterA_).
+    int tilesW_, tilesH_;
+    ScreenTarget tiles_;
+    GlFramebuffer ffxTemporalFbo_;
+    GlProgram classifyProg_, temporalProg_, varianceProg_, atrousProg_, resolveProg_;
     uint64_t lastRays_ = 0, lastPixels_ = 0;
 };
 
@@ -222,7 +213,10 @@ RaytracedLight::RaytracedLight(const Raytraced& technique, const LightSetup& set
       prevHistory_(GL_RGBA32F, W_, H_),
       prevPosition_(GL_RGBA32F, W_, H_),
       filterA_(GL_RG32F, W_, H_),
-      filterB_(GL_RG32F, W_, H_) {
+      filterB_(GL_RG32F, W_, H_),
+      tilesW_((W_ + 7) / 8),
+      tilesH_((H_ + 3) / 4),
+      tiles_(GL_R32F, tilesW_, tilesH_) {
     const std::string key = "raytraced.bvh";
     if (setup.shared && setup.shared->count(key))
         tracer_ = std::static_pointer_cast<const SharedTracer>(setup.shared->at(key));
@@ -232,13 +226,23 @@ RaytracedLight::RaytracedLight(const Raytraced& technique, const LightSetup& set
     }
     resolveProg_ = program("PASS_RESOLVE");
     if (t_.denoiser == Denoiser::None) return;
-    temporalProg_ = program("PASS_TEMPORAL");
-    const GLuint tp = temporalProg_.get();
-    setFloat(tp, "u_alpha", t_.alpha);
-    if (t_.denoiser != Denoiser::Svgf) return;
-    varianceProg_ = program("PASS_VARIANCE");
-    setFloat(varianceProg_.get(), "u_sigmaNormal", t_.sigmaNormal);
-    atrousProg_ = program("PASS_ATROUS");
+    const bool ffx = t_.denoiser == Denoiser::Ffx;
+    temporalProg_ = program("PASS_TEMPORAL", ffx ? "#define FFX\n" : "");
+    setFloat(temporalProg_.get(), "u_alpha", t_.alpha);
+    if (t_.denoiser == Denoiser::Temporal) return;
+    if (ffx) {
+        classifyProg_ = program("PASS_CLASSIFY");
+        ffxTemporalFbo_ = makeFramebuffer();
+        const GLuint fbo = ffxTemporalFbo_.get();
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, accum_.texture.get(), 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, filterA_.texture.get(), 0);
+        const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(fbo, 2, both);
+    } else {
+        varianceProg_ = program("PASS_VARIANCE");
+        setFloat(varianceProg_.get(), "u_sigmaNormal", t_.sigmaNormal);
+    }
+    atrousProg_ = program("PASS_ATROUS", ffx ? "#define TILE_SKIP\n#define KERNEL_3X3\n" : "");
     const GLuint ap = atrousProg_.get();
     setFloat(ap, "u_sigmaLuminance", t_.sigmaLuminance);
     setFloat(ap, "u_sigmaNormal", t_.sigmaNormal);
@@ -246,13 +250,14 @@ RaytracedLight::RaytracedLight(const Raytraced& technique, const LightSetup& set
 }
 
 // One pass's program, its samplers on fixed units: 0 the pass's input, 1 position, 2 normal,
-// 3 and 4 the previous frame's history and positions.
-GlProgram RaytracedLight::program(const char* pass) const {
+// 3 and 4 the previous frame's history and positions, 5 ffx's tiles.
+GlProgram RaytracedLight::program(const char* pass, const std::string& defines) const {
     const auto bytes = [](const char* name, GLuint texture) {
         return "#define " + std::string(name) + " " + std::to_string(texelBytes(texture)) + "\n";
     };
     GlProgram p = buildProgram(
-        "#define " + std::string(pass) + "\n" + camera_.texelBytesDefines() +
+        "#define " + std::string(pass) + "\n" + defines + camera_.texelBytesDefines() +
+            bytes("TILE_TEXEL_BYTES", tiles_.texture.get()) +
             bytes("RAW_TEXEL_BYTES", raw_.texture.get()) +
             bytes("ACCUM_TEXEL_BYTES", accum_.texture.get()) +
             bytes("FILTER_TEXEL_BYTES", filterA_.texture.get()) +
@@ -265,6 +270,7 @@ GlProgram RaytracedLight::program(const char* pass) const {
     setInt(g, "u_normal", 2);
     setInt(g, "u_prevHistory", 3);
     setInt(g, "u_prevPosition", 4);
+    setInt(g, "u_tiles", 5);
     setVec3(g, "u_lsEye", camera_.lsEye());
     setFloat(g, "u_pixelScale", camera_.pixelScale());
     return p;
@@ -277,9 +283,11 @@ std::vector<std::string> RaytracedLight::passNames() const {
         case Denoiser::Temporal:
             return {"trace", "temporal", "resolve"};
         case Denoiser::Svgf:
+            return {"trace", "temporal", "variance", "atrous", "resolve"};
+        case Denoiser::Ffx:
             break;
     }
-    return {"trace", "temporal", "variance", "atrous", "resolve"};
+    return {"trace", "classify", "temporal", "atrous", "resolve"};
 }
 
 // The G-buffer read back, the rays traced, their estimate uploaded.
@@ -331,21 +339,34 @@ void RaytracedLight::temporal(PassClock& clock, const std::optional<RayHistoryFr
     glBindTextureUnit(2, camera_.normalTexture());
     glBindTextureUnit(3, prevHistory_.texture.get());
     glBindTextureUnit(4, prevPosition_.texture.get());
-    drawInto(accum_, temporalProg_);
+    if (t_.denoiser == Denoiser::Ffx) {
+        glBindTextureUnit(5, tiles_.texture.get());
+        glBindFramebuffer(GL_FRAMEBUFFER, ffxTemporalFbo_.get());
+        glUseProgram(temporalProg_.get());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    } else {
+        drawInto(accum_, temporalProg_);
+    }
     clock.end();
 }
 
-// SVGF's variance and a-trous levels; returns the texture holding the result, and keeps the
-// first level's output as the history's V.
-GLuint RaytracedLight::svgf(PassClock& clock) {
-    clock.begin("variance");
-    glBindTextureUnit(0, accum_.texture.get());
-    drawInto(filterA_, varianceProg_);
+// ffx: which 8 x 4 tiles skip the filters, drawn one fragment per tile.
+void RaytracedLight::classify(PassClock& clock) {
+    clock.begin("classify");
+    glViewport(0, 0, tilesW_, tilesH_);
+    glBindTextureUnit(0, raw_.texture.get());
+    drawInto(tiles_, classifyProg_);
+    glViewport(0, 0, W_, H_);
     clock.end();
+}
+
+// The a-trous levels over filterA_ (V and its variance); returns the texture holding the result,
+// and keeps the first level's output as the history's V.
+GLuint RaytracedLight::atrous(PassClock& clock, int levels) {
     const ScreenTarget* in = &filterA_;
     const ScreenTarget* out = &filterB_;
     GLuint firstLevel = 0;
-    for (int level = 0; level < t_.levels; ++level) {
+    for (int level = 0; level < levels; ++level) {
         clock.begin("atrous");
         setInt(atrousProg_.get(), "u_step", 1 << level);
         glBindTextureUnit(0, in->texture.get());
@@ -353,9 +374,8 @@ GLuint RaytracedLight::svgf(PassClock& clock) {
         clock.end();
         if (level == 0) firstLevel = out->texture.get();
         std::swap(in, out);
-        if (level == 0 && t_.levels > 1) keepHistory(firstLevel);
+        if (level == 0) keepHistory(firstLevel);
     }
-    if (t_.levels == 1) keepHistory(firstLevel);
     return in->texture.get();
 }
 
@@ -389,13 +409,26 @@ void RaytracedLight::renderVisibility(PassClock& clock) {
     glBindTextureUnit(1, camera_.positionTexture());
     glBindTextureUnit(2, camera_.normalTexture());
     GLuint result = raw_.texture.get();
-    if (t_.denoiser != Denoiser::None) {
+    if (t_.denoiser == Denoiser::Ffx) classify(clock);
+    if (t_.denoiser != Denoiser::None)
         temporal(clock, t_.store.before(light_.name, frameIndex_, W_, H_));
-        result = accum_.texture.get();
-        if (t_.denoiser == Denoiser::Svgf)
-            result = svgf(clock);
-        else
+    switch (t_.denoiser) {
+        case Denoiser::None:
+            break;
+        case Denoiser::Temporal:
+            result = accum_.texture.get();
             keepHistory(0);
+            break;
+        case Denoiser::Svgf:
+            clock.begin("variance");
+            glBindTextureUnit(0, accum_.texture.get());
+            drawInto(filterA_, varianceProg_);
+            clock.end();
+            result = atrous(clock, t_.levels);
+            break;
+        case Denoiser::Ffx:
+            result = atrous(clock, 3);  // FidelityFX's three passes
+            break;
     }
     clock.begin("resolve");
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
@@ -415,8 +448,9 @@ RasterLightStats RaytracedLight::describe() const {
 
 uint64_t RaytracedLight::memoryBytes() const {
     // raw and two filter targets RG32F; accumulation and the previous frame's history and
-    // positions RGBA32F.
-    return uint64_t(W_) * uint64_t(H_) * (3 * 8 + 3 * 16);
+    // positions RGBA32F; the tiles R32F.
+    return uint64_t(W_) * uint64_t(H_) * (3 * 8 + 3 * 16) +
+           uint64_t(tilesW_) * uint64_t(tilesH_) * 4;
 }
 
 }  // namespace

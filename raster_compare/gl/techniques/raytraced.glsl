@@ -3,7 +3,10 @@
 // defined by raytraced.cpp (RAW_, ACCUM_, FILTER_, POSITION_ and NORMAL_TEXEL_BYTES). Defines:
 // PASS_TEMPORAL (reprojected accumulation of V and its first two moments), PASS_VARIANCE (V and
 // its variance: temporal from the moments, spatial over 7 x 7 for young histories), PASS_ATROUS
-// (one a-trous level, step u_step), PASS_RESOLVE (V into the light's target).
+// (one a-trous level, step u_step; with KERNEL_3X3 the 3 x 3 kernel), PASS_CLASSIFY (ffx: one
+// texel per 8 x 4 tile, 1 where the tile skips the filter), PASS_RESOLVE (V into the light's
+// target); FFX (with PASS_TEMPORAL: FidelityFX's temporal pass, writing the moments and V with its
+// variance), TILE_SKIP (the passes of ffx pass skipped tiles' rays through).
 uniform sampler2D u_position;
 uniform sampler2D u_normal;
 
@@ -61,6 +64,67 @@ vec4 reprojected(vec3 lsP, vec3 n) {
     return wsum > 1e-3 ? vec4(sum.xyz / wsum, sum.w / wsum) : vec4(0.0);
 }
 
+#ifdef FFX
+uniform sampler2D u_tiles;
+layout(location = 1) out vec2 o_filter;  // V and its variance, for the a-trous passes
+
+// The rays' mean and second moment over 17 x 17 pixels, Gaussian-weighted (sigma 4): FidelityFX's
+// local neighbourhood (its 1-bit masks make the second moment the mean; spp > 1 needs both).
+vec2 neighbourhood(ivec2 ij) {
+    ivec2 size = textureSize(u_raw, 0);
+    vec2 m = vec2(0.0);
+    float wsum = 0.0;
+    for (int dy = -8; dy <= 8; ++dy)
+        for (int dx = -8; dx <= 8; ++dx) {
+            ivec2 q = ij + ivec2(dx, dy);
+            if (!inside(q, size)) continue;
+            float w = exp(-float(dx * dx + dy * dy) / 32.0);
+            SO_TAP(1, RAW_TEXEL_BYTES);
+            float r = texelFetch(u_raw, q, 0).r;
+            m += w * vec2(r, r * r);
+            wsum += w;
+        }
+    return m / wsum;
+}
+
+// FidelityFX's temporal pass: moments as a running mean and sum of squared deviations (Welford)
+// with their sample count, the history clamped to the neighbourhood's mean +- one standard
+// deviation, the variance boosted over the first 16 frames, and the new frame weighing from 1 down
+// to 0.05 as the count reaches 32. A skipped tile starts again from its rays.
+void main() {
+    ivec2 ij = ivec2(gl_FragCoord.xy);
+    vec4 pos = positionAt(ij);
+    if (pos.w == 0.0) {
+        o_accum = vec4(0.0);
+        o_filter = vec2(0.0);
+        return;
+    }
+    SO_TAP(1, RAW_TEXEL_BYTES);
+    float v = texelFetch(u_raw, ij, 0).r;
+    SO_TAP(1, TILE_TEXEL_BYTES);
+    if (texelFetch(u_tiles, ij / ivec2(8, 4), 0).r > 0.5) {
+        o_accum = vec4(v, v, 0.0, 1.0);
+        o_filter = vec2(v, 0.0);
+        return;
+    }
+    vec4 hist = u_haveHistory != 0 ? reprojected(pos.xyz, normalAt(ij)) : vec4(0.0);
+    float n = hist.w < 0.5 ? 1.0 : round(hist.w) + 1.0;
+    float oldMean = hist.w < 0.5 ? 0.0 : hist.y, oldS = hist.w < 0.5 ? 0.0 : hist.z;
+    float mean = oldMean + (v - oldMean) / n;
+    float s = oldS + (v - oldMean) * (v - mean);
+    float variance = n > 1.0 ? s / (n - 1.0) : 1.0;
+    vec2 local = neighbourhood(ij);
+    float spatialVariance = max(local.y - local.x * local.x, 0.0);
+    float sigma = sqrt(spatialVariance);
+    float previous = hist.w < 0.5 ? v : hist.x;
+    float clamped = clamp(previous, local.x - sigma, local.x + sigma);
+    if (n < 16.0) variance = max(variance, spatialVariance) * max(16.0 - n, 1.0);
+    float historyWeight = sqrt(max(32.0 - n, 0.0) / 32.0);
+    float result = mix(clamped, v, mix(0.05, 1.0, historyWeight));
+    o_accum = vec4(result, mean, s, n);
+    o_filter = vec2(result, variance);
+}
+#else
 void main() {
     ivec2 ij = ivec2(gl_FragCoord.xy);
     vec4 pos = positionAt(ij);
@@ -80,6 +144,7 @@ void main() {
     float a = max(u_alpha, 1.0 / len);
     o_accum = vec4(mix(hist.x, v, a), mix(hist.y, v, a), mix(hist.z, v * v, a), len);
 }
+#endif
 
 #elif defined(PASS_VARIANCE)
 uniform sampler2D u_accum;
@@ -117,9 +182,34 @@ void main() {
     o_filter = vec2(acc.x, max(m.y - m.x * m.x, 0.0) * 4.0 / acc.w);
 }
 
+#elif defined(PASS_CLASSIFY)
+uniform sampler2D u_raw;
+layout(location = 0) out float o_skip;
+// FidelityFX's tile classification, one fragment per 8 x 4 tile (its 32-bit ray mask; loops here
+// where its HLSL has wave intrinsics): a tile whose rays, and those of the tiles around it, all
+// agree (all lit or all shadowed) is skipped by the temporal and spatial filters.
+void main() {
+    ivec2 tile = ivec2(gl_FragCoord.xy);
+    ivec2 size = textureSize(u_raw, 0);
+    bool anyLit = false, anyShadowed = false;
+    for (int y = -4; y < 8; ++y)
+        for (int x = -8; x < 16; ++x) {
+            ivec2 q = tile * ivec2(8, 4) + ivec2(x, y);
+            if (!inside(q, size) || positionAt(q).w == 0.0) continue;
+            SO_TAP(1, RAW_TEXEL_BYTES);
+            float r = texelFetch(u_raw, q, 0).r;
+            anyLit = anyLit || r > 0.0;
+            anyShadowed = anyShadowed || r < 1.0;
+        }
+    o_skip = anyLit && anyShadowed ? 0.0 : 1.0;
+}
+
 #elif defined(PASS_ATROUS)
 uniform sampler2D u_filter;  // RG: V and its variance
 uniform int u_step;
+#ifdef TILE_SKIP
+uniform sampler2D u_tiles;
+#endif
 uniform float u_sigmaLuminance, u_sigmaNormal, u_sigmaDepth;
 uniform vec3 u_lsEye;
 uniform float u_pixelScale;
@@ -135,6 +225,13 @@ void main() {
     vec3 n = normalAt(ij);
     SO_TAP(1, FILTER_TEXEL_BYTES);
     vec2 c = texelFetch(u_filter, ij, 0).xy;
+#ifdef TILE_SKIP
+    SO_TAP(1, TILE_TEXEL_BYTES);
+    if (texelFetch(u_tiles, ij / ivec2(8, 4), 0).r > 0.5) {
+        o_filter = c;
+        return;
+    }
+#endif
     // The luminance stop's scale: the variance blurred over 3 x 3 (SVGF 4.2, eq. 5).
     float var = 0.0;
     for (int dy = -1; dy <= 1; ++dy)
@@ -148,11 +245,17 @@ void main() {
     // one pixel's footprint per pixel of distance would make (SVGF's depth gradient, in world
     // terms).
     float footprint = u_pixelScale * length(pos.xyz - u_lsEye);
+#ifdef KERNEL_3X3
+    const int R = 1;
+    const float h[3] = float[3](1.0 / 2.0, 1.0 / 4.0, 0.0);
+#else
+    const int R = 2;
     const float h[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
+#endif
     vec2 sum = vec2(c.x, c.y);
     float wsum = 1.0;
-    for (int dy = -2; dy <= 2; ++dy)
-        for (int dx = -2; dx <= 2; ++dx) {
+    for (int dy = -R; dy <= R; ++dy)
+        for (int dx = -R; dx <= R; ++dx) {
             if (dx == 0 && dy == 0) continue;
             ivec2 q = ij + ivec2(dx, dy) * u_step;
             if (!inside(q, size)) continue;
