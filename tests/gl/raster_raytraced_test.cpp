@@ -82,15 +82,18 @@ TEST(Raytraced, SvgfConvergesOnStillFrames) {
         penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=temporal"}, 16));
     const double ffx =
         penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=ffx"}, 16));
+    const double penumbra =
+        penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=penumbra"}, 16));
     const double pcss = penumbraMae(renderOneFrame(p.scene, "pcss", {}, false).image);
     std::printf(
-        "[ raytraced ] 16 still frames, penumbra mae: none %.4f, temporal %.4f, "
-        "svgf %.4f, ffx %.4f; pcss %.4f\n",
-        none, temporal, svgf, ffx, pcss);
+        "[ raytraced ] 16 still frames, penumbra mae: none %.4f, temporal %.4f, svgf %.4f, "
+        "ffx %.4f, penumbra %.4f; pcss %.4f\n",
+        none, temporal, svgf, ffx, penumbra, pcss);
     EXPECT_GT(none, 2.0 * svgf);
     EXPECT_LT(svgf, pcss);
     EXPECT_LT(temporal, none);
     EXPECT_LT(ffx, 0.5 * none);
+    EXPECT_LT(penumbra, temporal);  // the spatial filter removes what the history left
 }
 
 // Every pixel that sees the light's side traces spp rays: at least the lit pixels times spp, at

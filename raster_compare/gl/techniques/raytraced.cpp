@@ -23,6 +23,11 @@
 //   neighbourhood's mean +- one standard deviation, the variance boosted over the first 16 frames,
 //   the new frame weighing 1 down to 0.05 as the count reaches 32), then three a-trous passes of a
 //   3 x 3 kernel at steps 1, 2, 4 with the svgf stops; the first pass's output is the history.
+// - `penumbra`: Ray Tracing Gems, chapter 13 (Boksansky, Wimmer, Bittner, "Ray Traced Shadows:
+//   Maintaining Real-Time Frame Rates", 2019): the temporal history, filtered over a disk whose
+//   radius is the penumbra's estimated half-width in pixels: w = light size x d_blocker /
+//   (d_light - d_blocker) by similar triangles, d_blocker the mean distance of the blocked rays
+//   around the pixel (the rays trace closest hits for it), at most `max_radius` pixels.
 // The history lives across the renders of a sequence (compare --sequence, RasterOptions::
 // frameIndex): frame f reads what frame f - 1 left, so a repeated render of a frame (warm-up,
 // timed frames) gives the same image. Moving meshes restart their history (the raster path is not
@@ -36,6 +41,7 @@
 #include "raster_compare/gl/camera_pass.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
+#include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_rays.h"
@@ -45,7 +51,7 @@
 namespace so {
 namespace {
 
-enum class Denoiser { None, Temporal, Svgf, Ffx };
+enum class Denoiser { None, Temporal, Svgf, Ffx, Penumbra };
 
 // What frame f of a light left for frame f + 1, on the CPU (GL objects do not outlive a render).
 struct RayHistoryFrame {
@@ -99,16 +105,18 @@ class Raytraced final : public Technique {
              "on the light (issue 53: 1, 2, 4 ...; FidelityFX's denoiser is built for 1)",
              {},
              true},
-            methodParam("denoiser", 0, {"none", "temporal", "svgf", "ffx"},
+            methodParam("denoiser", 0, {"none", "temporal", "svgf", "ffx", "penumbra"},
                         "none: the rays' estimate; temporal: a reprojected exponential history; "
                         "svgf: Schied et al. HPG 2017, temporal moments and variance-guided "
                         "a-trous; ffx: AMD FidelityFX Shadow Denoiser's design, tile "
-                        "classification, temporal moments, three a-trous passes"),
+                        "classification, temporal moments, three a-trous passes; penumbra: "
+                        "the temporal history filtered over a disk as wide as the penumbra "
+                        "estimated from the blocker distance (Ray Tracing Gems chapter 13)"),
             needs({"alpha", 0.2, 0.01, 1, false,
                    "temporal, svgf: the new frame's weight in the exponential history (SVGF "
                    "section 4.1: 0.2); a history younger than 1 / alpha frames averages them "
                    "equally"},
-                  "denoiser=temporal|svgf"),
+                  "denoiser=temporal|svgf|penumbra"),
             needs({"levels", 5, 1, 8, true,
                    "svgf: a-trous levels, steps 1, 2, 4, ... (SVGF 4.2: 5; ffx runs 3, its "
                    "FidelityFX passes)"},
@@ -119,11 +127,27 @@ class Raytraced final : public Technique {
                   "denoiser=svgf|ffx"),
             needs({"sigma_normal", 128, 1, 1024, false,
                    "svgf, ffx: normal stop, the power of the normals' cosine (SVGF 4.2: 128)"},
-                  "denoiser=svgf|ffx"),
+                  "denoiser=svgf|ffx|penumbra"),
             needs({"sigma_depth", 1, 0.01, 1000, false,
                    "svgf, ffx: depth stop, the distance from the pixel's tangent plane in pixel "
                    "footprints per pixel of distance (SVGF 4.2: 1, on its depth gradient)"},
-                  "denoiser=svgf|ffx")};
+                  "denoiser=svgf|ffx"),
+            needs({"max_radius", 16, 0, 64, false,
+                   "penumbra: the filter's largest radius in pixels (Ray Tracing Gems 13: the "
+                   "kernel is bounded for its cost)"},
+                  "denoiser=penumbra"),
+            needs({"radius_scale", 0.25, 0.01, 4, false,
+                   "penumbra: the filter's radius in half-widths of the estimated penumbra (a "
+                   "disk as wide as the penumbra blurs its ends: 0.25 measured best on lambert.h's "
+                   "rect light over a square, 16 frames at 1 ray)"},
+                  "denoiser=penumbra"),
+            needs({"taps", 32, 4, 256, true,
+                   "penumbra: taps of the disk filter, on a golden-angle spiral"},
+                  "denoiser=penumbra"),
+            needs({"search_radius", 8, 1, 32, true,
+                   "penumbra: half-width in pixels of the window whose blocked rays give the "
+                   "blocker distance (every other pixel)"},
+                  "denoiser=penumbra")};
     }
     explicit Raytraced(const ParamValues& v)
         : Technique(v),
@@ -133,7 +157,11 @@ class Raytraced final : public Technique {
           levels(v.integer("levels")),
           sigmaLuminance(v.real("sigma_luminance")),
           sigmaNormal(v.real("sigma_normal")),
-          sigmaDepth(v.real("sigma_depth")) {}
+          sigmaDepth(v.real("sigma_depth")),
+          maxRadius(v.real("max_radius")),
+          radiusScale(v.real("radius_scale")),
+          taps(v.integer("taps")),
+          searchRadius(v.integer("search_radius")) {}
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override;
 
     int spp;
@@ -141,6 +169,8 @@ class Raytraced final : public Technique {
     double alpha;
     int levels;
     double sigmaLuminance, sigmaNormal, sigmaDepth;
+    double maxRadius, radiusScale;
+    int taps, searchRadius;
     mutable RayHistoryStore store;
 };
 
@@ -192,7 +222,7 @@ class RaytracedLight final : public LightTechnique {
     int tilesW_, tilesH_;
     ScreenTarget tiles_;
     GlFramebuffer ffxTemporalFbo_;
-    GlProgram classifyProg_, temporalProg_, varianceProg_, atrousProg_, resolveProg_;
+    GlProgram classifyProg_, temporalProg_, varianceProg_, atrousProg_, penumbraProg_, resolveProg_;
     uint64_t lastRays_ = 0, lastPixels_ = 0;
 };
 
@@ -230,6 +260,21 @@ RaytracedLight::RaytracedLight(const Raytraced& technique, const LightSetup& set
     temporalProg_ = program("PASS_TEMPORAL", ffx ? "#define FFX\n" : "");
     setFloat(temporalProg_.get(), "u_alpha", t_.alpha);
     if (t_.denoiser == Denoiser::Temporal) return;
+    if (t_.denoiser == Denoiser::Penumbra) {
+        penumbraProg_ = program("PASS_PENUMBRA",
+                                "#define SEARCH_RADIUS " + std::to_string(t_.searchRadius) +
+                                    "\n#define PENUMBRA_TAPS " + std::to_string(t_.taps) + "\n");
+        const GLuint pp = penumbraProg_.get();
+        setInt(pp, "u_raw", 3);  // beside the accumulation on unit 0
+        const LocalFrame& frame = setup.scene.frame();
+        setFloat(pp, "u_lsLightSize",
+                 isAreaLight(light_) ? frame.lsLength(lightWidth(light_)) : 0.0);
+        setVec3(pp, "u_lsLightCenter", frame.lsFromWs(light_.wsPosition));
+        setFloat(pp, "u_maxRadius", t_.maxRadius);
+        setFloat(pp, "u_radiusScale", t_.radiusScale);
+        setFloat(pp, "u_sigmaNormal", t_.sigmaNormal);
+        return;
+    }
     if (ffx) {
         classifyProg_ = program("PASS_CLASSIFY");
         ffxTemporalFbo_ = makeFramebuffer();
@@ -284,6 +329,8 @@ std::vector<std::string> RaytracedLight::passNames() const {
             return {"trace", "temporal", "resolve"};
         case Denoiser::Svgf:
             return {"trace", "temporal", "variance", "atrous", "resolve"};
+        case Denoiser::Penumbra:
+            return {"trace", "temporal", "penumbra", "resolve"};
         case Denoiser::Ffx:
             break;
     }
@@ -302,6 +349,7 @@ void RaytracedLight::trace(PassClock& clock) {
     ShadowRaySettings settings;
     settings.spp = t_.spp;
     settings.frameIndex = frameIndex_;
+    settings.hitDistance = t_.denoiser == Denoiser::Penumbra;
     const ShadowRayFrame frame =
         tracer_->tracer.trace({W_, H_, position_.data(), normal_.data()}, light_, settings);
     glTextureSubImage2D(raw_.texture.get(), 0, 0, 0, W_, H_, GL_RG, GL_FLOAT,
@@ -428,6 +476,15 @@ void RaytracedLight::renderVisibility(PassClock& clock) {
             break;
         case Denoiser::Ffx:
             result = atrous(clock, 3);  // FidelityFX's three passes
+            break;
+        case Denoiser::Penumbra:
+            clock.begin("penumbra");
+            glBindTextureUnit(0, accum_.texture.get());
+            glBindTextureUnit(3, raw_.texture.get());
+            drawInto(filterA_, penumbraProg_);
+            clock.end();
+            keepHistory(0);
+            result = filterA_.texture.get();
             break;
     }
     clock.begin("resolve");

@@ -5,7 +5,8 @@
 // its variance: temporal from the moments, spatial over 7 x 7 for young histories), PASS_ATROUS
 // (one a-trous level, step u_step; with KERNEL_3X3 the 3 x 3 kernel), PASS_CLASSIFY (ffx: one
 // texel per 8 x 4 tile, 1 where the tile skips the filter), PASS_RESOLVE (V into the light's
-// target); FFX (with PASS_TEMPORAL: FidelityFX's temporal pass, writing the moments and V with its
+// target), PASS_PENUMBRA (a disk whose radius follows the estimated penumbra; SEARCH_RADIUS and
+// PENUMBRA_TAPS defined); FFX (with PASS_TEMPORAL: FidelityFX's temporal pass, writing the moments and V with its
 // variance), TILE_SKIP (the passes of ffx pass skipped tiles' rays through).
 uniform sampler2D u_position;
 uniform sampler2D u_normal;
@@ -272,6 +273,71 @@ void main() {
             wsum += w;
         }
     o_filter = vec2(sum.x / wsum, sum.y / (wsum * wsum));
+}
+
+#elif defined(PASS_PENUMBRA)
+uniform sampler2D u_accum;  // x: V accumulated over time
+uniform sampler2D u_raw;    // y: this frame's mean blocker distance (0: no ray was blocked)
+uniform float u_lsLightSize;
+uniform vec3 u_lsLightCenter;
+uniform float u_maxRadius;
+uniform float u_radiusScale;
+uniform float u_sigmaNormal;
+uniform vec3 u_lsEye;
+uniform float u_pixelScale;
+layout(location = 0) out vec2 o_filter;
+// Ray Tracing Gems, chapter 13 (Boksansky, Wimmer, Bittner 2019): the penumbra's size from the
+// blocker distance by similar triangles, w = light size x d_blocker / (d_light - d_blocker), sets
+// the filter's radius. The blocker distance is the mean of the blocked rays' distances over the
+// pixels around (a penumbra's lit side has none of its own), the filter a disk of PENUMBRA_TAPS
+// taps on a golden-angle spiral with a normal and tangent-plane stop.
+void main() {
+    ivec2 ij = ivec2(gl_FragCoord.xy);
+    vec4 pos = positionAt(ij);
+    if (pos.w == 0.0) {
+        o_filter = vec2(0.0);
+        return;
+    }
+    ivec2 size = textureSize(u_accum, 0);
+    vec3 n = normalAt(ij);
+    float footprint = u_pixelScale * length(pos.xyz - u_lsEye);
+    float blocker = 0.0, blockers = 0.0;
+    for (int dy = -SEARCH_RADIUS; dy <= SEARCH_RADIUS; dy += 2)
+        for (int dx = -SEARCH_RADIUS; dx <= SEARCH_RADIUS; dx += 2) {
+            ivec2 q = ij + ivec2(dx, dy);
+            if (!inside(q, size)) continue;
+            SO_TAP(1, RAW_TEXEL_BYTES);
+            float h = texelFetch(u_raw, q, 0).y;
+            if (h > 0.0) {
+                blocker += h;
+                blockers += 1.0;
+            }
+        }
+    SO_TAP(1, ACCUM_TEXEL_BYTES);
+    float v = texelFetch(u_accum, ij, 0).x;
+    if (blockers == 0.0) {
+        o_filter = vec2(v, 0.0);
+        return;
+    }
+    blocker /= blockers;
+    float dLight = length(u_lsLightCenter - pos.xyz);
+    float width = u_lsLightSize * blocker / max(dLight - blocker, 1e-6);
+    float radius = min(u_radiusScale * 0.5 * width / footprint, u_maxRadius);
+    float sum = v, wsum = 1.0;
+    for (int k = 1; k < PENUMBRA_TAPS; ++k) {
+        float r = radius * sqrt(float(k) / float(PENUMBRA_TAPS));
+        float a = float(k) * 2.39996323;
+        ivec2 q = ij + ivec2(round(r * vec2(cos(a), sin(a))));
+        if (!inside(q, size) || q == ij) continue;
+        vec4 pq = positionAt(q);
+        if (pq.w == 0.0) continue;
+        float w = pow(max(dot(n, normalAt(q)), 0.0), u_sigmaNormal) *
+                  exp(-abs(dot(n, pq.xyz - pos.xyz)) / (footprint * max(r, 1.0)));
+        SO_TAP(1, ACCUM_TEXEL_BYTES);
+        sum += w * texelFetch(u_accum, q, 0).x;
+        wsum += w;
+    }
+    o_filter = vec2(sum / wsum, radius);
 }
 
 #elif defined(PASS_RESOLVE)
