@@ -51,7 +51,9 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
 }
 
 // The light's sample k of the pixel's sequence, local frame; `lsEmitNormal` the emitter's normal
-// there (zero for lights that are a point or a direction).
+// there (zero for lights that are a point or a direction). A sphere's samples are uniform by area
+// over the cap the point p sees (the same ratio estimate as over the whole sphere, whose other
+// samples have G = 0: at one ray a pixel most pixels would otherwise get none).
 struct LightSample {
     glm::dvec3 lsPoint{0.0}, lsEmitNormal{0.0};
 };
@@ -130,8 +132,8 @@ struct PixelTrace {
 };
 
 // The light's sample for the pixel's own scrambled sequence at index `index`.
-LightSample sampleLight(const Light& light, const LocalFrame& frame, uint32_t index,
-                        uint32_t seed) {
+LightSample sampleLight(const Light& light, const LocalFrame& frame, const glm::dvec3& lsP,
+                        uint32_t index, uint32_t seed) {
     LightSample s;
     const RasterAreaLightKind* area = rasterAreaLightKind(light.type);
     if (!area) {
@@ -140,7 +142,25 @@ LightSample sampleLight(const Light& light, const LocalFrame& frame, uint32_t in
     }
     float u = 0.0f, v = 0.0f;
     sobol2D(index, seed, u, v);
-    const glm::dvec3 ws = area->samplePoint(light, double(u), double(v));
+    glm::dvec3 ws = area->samplePoint(light, double(u), double(v));
+    if (!isOneSided(light)) {
+        // cos(theta) from the axis towards p, uniform over the sphere, mapped affinely onto
+        // [r / D, 1]: uniform by area over the cap that p sees (inside the sphere, none: the
+        // oracle's V is 0 there, and so is G here).
+        const glm::dvec3 toP = frame.wsFromLs(lsP) - light.wsPosition;
+        const double D = glm::length(toP), r = light.radius;
+        if (D > r && r > 0.0) {
+            const glm::dvec3 axis = toP / D;
+            const glm::dvec3 radial = (ws - light.wsPosition) / r;
+            const double cosT = glm::dot(radial, axis);
+            glm::dvec3 tangent = radial - cosT * axis;
+            const double sinT = glm::length(tangent);
+            tangent = sinT > 1e-12 ? tangent / sinT : glm::dvec3(0.0);
+            const double k = r / D, cosCap = k + (1.0 - k) * std::abs(cosT);
+            const double sinCap = std::sqrt(std::max(0.0, 1.0 - cosCap * cosCap));
+            ws = light.wsPosition + r * (cosCap * axis + sinCap * tangent);
+        }
+    }
     s.lsPoint = frame.lsFromWs(ws);
     s.lsEmitNormal =
         isOneSided(light) ? light.wsEmitNormal() : glm::normalize(ws - light.wsPosition);
@@ -159,7 +179,7 @@ PixelTrace tracePixel(RTCScene scene, const Light& light, const LocalFrame& fram
     int hits = 0;
     for (int s = 0; s < settings.spp; ++s) {
         const LightSample ls = sampleLight(
-            light, frame, uint32_t(settings.frameIndex) * uint32_t(settings.spp) + uint32_t(s),
+            light, frame, lsP, uint32_t(settings.frameIndex) * uint32_t(settings.spp) + uint32_t(s),
             pixelSeed);
         glm::dvec3 d = directional ? -light.wsDirection : ls.lsPoint - origin;
         const double dist = directional ? std::numeric_limits<double>::infinity() : glm::length(d);

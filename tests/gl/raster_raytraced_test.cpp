@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "core/channels.h"
+#include "core/error.h"
 #include "core/scene.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
@@ -116,6 +117,17 @@ TEST(Raytraced, CountsItsRays) {
     EXPECT_LE(rays, uint64_t(r.image.pixelCount()) * uint64_t(spp));
 }
 
+// A denoiser's parameter without its denoiser is an error, not silently ignored; one shared by
+// several denoisers ("key=a|b") is taken with any of them.
+TEST(Raytraced, ParametersNeedTheirDenoiser) {
+    EXPECT_THROW(createTechnique("raytraced", {"alpha=0.3"}), InputError);
+    EXPECT_THROW(createTechnique("raytraced", {"denoiser=temporal", "sigma_depth=2"}), InputError);
+    EXPECT_THROW(createTechnique("raytraced", {"denoiser=ffx", "levels=3"}), InputError);
+    EXPECT_NO_THROW(createTechnique("raytraced", {"denoiser=svgf", "alpha=0.3", "levels=3"}));
+    EXPECT_NO_THROW(createTechnique("raytraced", {"denoiser=ffx", "sigma_depth=2"}));
+    EXPECT_NO_THROW(createTechnique("raytraced", {"denoiser=penumbra", "alpha=0.5", "taps=8"}));
+}
+
 // The tracer alone, on a G-buffer made in memory (the floor's points under the occluder): the same
 // bits at 1 and 2 threads, another frame index another sample pattern, and the mean over frames
 // near the closed form.
@@ -159,6 +171,37 @@ TEST(ShadowRays, SameAtAnyThreadCountAndAdvancesWithTheFrame) {
     err /= double(mean.size());
     std::printf("[ shadow rays ] mean over 256 rays against the closed form: mae %.4f\n", err);
     EXPECT_LT(err, 0.01);
+}
+
+// A sphere light over an open floor: every ray reaches it, so one ray a pixel must give V = 1
+// everywhere. Sampled over the whole sphere, the part each point cannot see (G = 0) left most
+// pixels without a sample, V = 0: the samples are uniform over the cap the point sees.
+TEST(ShadowRays, OneRayAtASphereLightSeesItFromEveryPixel) {
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, 0}, {8, 0, 0}, {0, 0, -8}, 2, "floor"));
+    Light sphere;
+    sphere.name = "globe";
+    sphere.type = LightType::Sphere;
+    sphere.wsPosition = {0.0, 2.0, 0.0};
+    sphere.radius = 0.5;
+    s.lights = {sphere};
+    finalizeScene(s);
+    const LocalFrame frame = LocalFrame::fit(s.wsBounds);
+    const int W = 16, H = 16;
+    std::vector<float> position(4 * W * H), normal(4 * W * H);
+    for (int i = 0; i < W * H; ++i) {
+        const glm::dvec3 ls =
+            frame.lsFromWs({-3.0 + 6.0 * (i % W) / W, 0.0, -3.0 + 6.0 * (i / W) / H});
+        for (int c = 0; c < 3; ++c) position[4 * i + c] = float(ls[c]);
+        position[4 * i + 3] = 1.0f;
+        normal[4 * i + 1] = 1.0f;
+    }
+    const ShadowRayTracer tracer(s, frame);
+    for (int f = 0; f < 4; ++f) {
+        const ShadowRayFrame r =
+            tracer.trace({W, H, position.data(), normal.data()}, sphere, {1, f, false, 1});
+        for (int i = 0; i < W * H; ++i) ASSERT_EQ(r.visibilityAndHit[2 * i], 1.0f) << i;
+    }
 }
 
 }  // namespace

@@ -514,6 +514,6 @@ uint64_t RaytracedLight::memoryBytes() const {
 
 SO_REGISTER_TECHNIQUE(Raytraced, "raytraced",
                       "shadow rays from the G-buffer traced by Embree (spp a frame), denoised: "
-                      "none, temporal or svgf");
+                      "none, temporal, svgf, ffx or penumbra");
 
 }  // namespace so
