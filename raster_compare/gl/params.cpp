@@ -163,6 +163,10 @@ std::string paramValueText(const ParamSpec& spec, double v) {
     return buf;
 }
 
+std::string neededSetting(const ParamSpec& spec) {
+    return spec.needs.substr(0, spec.needs.find('|'));
+}
+
 const ParamSpec* qualityParam(const ParamTable& table) {
     for (const ParamSpec& p : table)
         if (p.quality) return &p;

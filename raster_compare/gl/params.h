@@ -40,6 +40,10 @@ ParamSpec methodParam(std::string name, int defaultIndex, std::vector<std::strin
 // The name of value v of a method parameter, or its number ("2048", "0.5") for any other.
 std::string paramValueText(const ParamSpec& spec, double v);
 
+// A setting that meets spec.needs: its first alternative ("denoiser=svgf" of
+// "denoiser=svgf|ffx"); empty when it needs none.
+std::string neededSetting(const ParamSpec& spec);
+
 // The table's quality parameter, or null.
 const ParamSpec* qualityParam(const ParamTable& table);
 
