@@ -19,6 +19,8 @@ struct WorkCounts {
     uint64_t bytesMoved = 0;
     uint64_t drawCalls = 0;
     uint64_t passes = 0;  // passes run (a pass run per sample counts per sample)
+    // Shadow rays traced (the raytraced family's, the work RT cores do on a GPU); 0 elsewhere.
+    uint64_t raysTraced = 0;
 
     WorkCounts& operator+=(const WorkCounts& o) {
         fragments += o.fragments;
@@ -27,6 +29,7 @@ struct WorkCounts {
         bytesMoved += o.bytesMoved;
         drawCalls += o.drawCalls;
         passes += o.passes;
+        raysTraced += o.raysTraced;
         return *this;
     }
     bool operator==(const WorkCounts&) const = default;

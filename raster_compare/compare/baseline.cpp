@@ -66,6 +66,7 @@ const std::vector<BaselineMetric>& baselineMetricTable() {
         {m("cost.work.bytes_moved"), false, kExact, N::None},
         {m("cost.work.draw_calls"), false, kExact, N::None},
         {m("cost.work.passes"), false, kExact, N::None},
+        {m("cost.work.rays_traced"), false, kExact, N::None},
     };
     return table;
 }

@@ -145,6 +145,9 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "draw calls of the light's passes in a frame", "draw calls"},
     {"cost.work.passes", U::Count, B::Lower, S::All,
      "passes the light runs in a frame (a pass per sample counts per sample)", "passes"},
+    {"cost.work.rays_traced", U::Count, B::Lower, S::All,
+     "shadow rays traced for the light in a frame (the raytraced family; 0 elsewhere)",
+     "rays traced"},
     {"cost.oracle_seconds", U::Seconds, B::None, S::All, "what the ground truth of the light cost"},
     {"cost.oracle_ms_at_equal_error", U::Ms, B::None, S::AreaLights,
      "the oracle's time until its penumbra's mean 95% half-width came down to this technique's "

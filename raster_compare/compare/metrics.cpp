@@ -518,7 +518,8 @@ nlohmann::json TechniqueCost::toJson() const {
                                        {"texels_written", work->texelsWritten},
                                        {"bytes_moved", work->bytesMoved},
                                        {"draw_calls", work->drawCalls},
-                                       {"passes", work->passes}}
+                                       {"passes", work->passes},
+                                       {"rays_traced", work->raysTraced}}
                       : nlohmann::json(nullptr)}};
     for (const auto& [key, t] :
          {std::pair{"shadow_map", shadowMapMs}, std::pair{"visibility", visibilityMs},

@@ -96,6 +96,7 @@ const std::vector<Column>& columns() {
         {"cost.work.bytes_moved", [](L l) { return workCount(l, &WorkCounts::bytesMoved); }},
         {"cost.work.draw_calls", [](L l) { return workCount(l, &WorkCounts::drawCalls); }, false},
         {"cost.work.passes", [](L l) { return workCount(l, &WorkCounts::passes); }, false},
+        {"cost.work.rays_traced", [](L l) { return workCount(l, &WorkCounts::raysTraced); }, false},
         {"cost.oracle_ms_at_equal_error", [](L l) { return l.cost.oracleMsAtEqualError; }, false},
     };
     return cols;
@@ -194,7 +195,7 @@ std::vector<ChartChoice> chartChoices(const ReportInput& in, size_t li, bool cos
     static const std::vector<std::string> cost = {
         "frame_ms",        "shadow_map_ms",     "visibility_ms",       "memory_bytes",
         "work.fragments",  "work.texture_taps", "work.texels_written", "work.bytes_moved",
-        "work.draw_calls", "work.passes"};
+        "work.draw_calls", "work.passes",       "work.rays_traced"};
     std::vector<ChartChoice> out;
     for (const std::string& key : costs ? cost : errors) {
         const Column& c = findColumn(costs ? "cost." + key : key);

@@ -81,7 +81,7 @@ const std::vector<Cost>& costs() {
         for (const char* key :
              {"cost.frame_ms", "cost.memory_bytes", "cost.work.fragments", "cost.work.texture_taps",
               "cost.work.texels_written", "cost.work.bytes_moved", "cost.work.draw_calls",
-              "cost.work.passes"}) {
+              "cost.work.passes", "cost.work.rays_traced"}) {
             const MetricInfo* m = findMetric(key);
             SO_CHECK(m != nullptr);
             out.push_back({key, metricLabel(*m), displayUnit(*m), displayScale(*m)});

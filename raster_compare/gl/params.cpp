@@ -65,14 +65,26 @@ void checkNeeds(const std::string& file, const ParamTable& table, const ParamVal
     for (const ParamSpec& s : table) {
         if (s.needs.empty() || !values.given(s.name)) continue;
         const size_t eq = s.needs.find('=');
-        const std::string key = s.needs.substr(0, eq), text = s.needs.substr(eq + 1);
+        const std::string key = s.needs.substr(0, eq);
+        // "key=a|b": any of the values will do.
+        std::vector<std::string> texts;
+        for (size_t from = eq + 1;;) {
+            const size_t bar = s.needs.find('|', from);
+            texts.push_back(s.needs.substr(from, bar == std::string::npos ? bar : bar - from));
+            if (bar == std::string::npos) break;
+            from = bar + 1;
+        }
         for (const ParamSpec& other : table) {
             if (other.name != key) continue;
-            const auto named = std::find(other.names.begin(), other.names.end(), text);
-            const double wanted = named != other.names.end() ? double(named - other.names.begin())
-                                                             : std::strtod(text.c_str(), nullptr);
-            if (values.real(key) != wanted)
-                throwInputError(file, s.name, "has no effect without " + s.needs);
+            bool met = false;
+            for (const std::string& text : texts) {
+                const auto named = std::find(other.names.begin(), other.names.end(), text);
+                const double wanted = named != other.names.end()
+                                          ? double(named - other.names.begin())
+                                          : std::strtod(text.c_str(), nullptr);
+                met = met || values.real(key) == wanted;
+            }
+            if (!met) throwInputError(file, s.name, "has no effect without " + s.needs);
         }
     }
 }
@@ -149,6 +161,10 @@ std::string paramValueText(const ParamSpec& spec, double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", v);
     return buf;
+}
+
+std::string neededSetting(const ParamSpec& spec) {
+    return spec.needs.substr(0, spec.needs.find('|'));
 }
 
 const ParamSpec* qualityParam(const ParamTable& table) {

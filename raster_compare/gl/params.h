@@ -28,7 +28,8 @@ struct ParamSpec {
     // The range is [min, max): max itself is out of range (a blend weight below 1).
     bool maxExclusive = false;
     // "key=value": the setting this parameter means nothing without (history and clamp need
-    // temporal=on). Given without it, an InputError rather than silently doing nothing.
+    // temporal=on); "key=a|b": any of those values. Given without it, an InputError rather than
+    // silently doing nothing.
     std::string needs = {};
 };
 using ParamTable = std::vector<ParamSpec>;
@@ -38,6 +39,10 @@ ParamSpec methodParam(std::string name, int defaultIndex, std::vector<std::strin
                       std::string doc);
 // The name of value v of a method parameter, or its number ("2048", "0.5") for any other.
 std::string paramValueText(const ParamSpec& spec, double v);
+
+// A setting that meets spec.needs: its first alternative ("denoiser=svgf" of
+// "denoiser=svgf|ffx"); empty when it needs none.
+std::string neededSetting(const ParamSpec& spec);
 
 // The table's quality parameter, or null.
 const ParamSpec* qualityParam(const ParamTable& table);

@@ -4,6 +4,7 @@
 // (WorkCounter, work_counter.h). A technique sees neither: it names its passes to a PassClock.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -20,6 +21,8 @@ class PassRecorder {
     virtual ~PassRecorder() = default;
     virtual void begin(const std::string& pass) = 0;
     virtual void end() = 0;
+    // Shadow rays the current pass traced on the CPU (the raytraced family): counted work.
+    virtual void addRays(uint64_t /*rays*/) {}
 };
 
 class PassTimer final : public PassRecorder {
@@ -49,6 +52,8 @@ class PassClock {
         : recorder_(recorder), light_(std::move(light)) {}
     void begin(const std::string& pass) { recorder_.begin(light_ + "." + pass); }
     void end() { recorder_.end(); }
+    // Inside begin() ... end(): the pass traced `rays` shadow rays (work counts' rays_traced).
+    void addRays(uint64_t rays) { recorder_.addRays(rays); }
 
   private:
     PassRecorder& recorder_;

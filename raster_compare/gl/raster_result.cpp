@@ -50,6 +50,7 @@ nlohmann::json toJson(const PassWork& w) {
             {"bytes_moved", c.bytesMoved},
             {"draw_calls", c.drawCalls},
             {"passes", c.passes},
+            {"rays_traced", c.raysTraced},
             {"tap_bytes", w.tapBytes},
             {"target_bytes_read", w.targetBytesRead},
             {"target_bytes_written", w.targetBytesWritten},

@@ -231,6 +231,11 @@ void WorkCounter::begin(const std::string& pass) {
         if (pipeline_[i].get()) glBeginQuery(kPipelineQueries[i], pipeline_[i].get());
 }
 
+void WorkCounter::addRays(uint64_t rays) {
+    SO_CHECK(!pass_.empty());
+    current_.counts.raysTraced += rays;
+}
+
 void WorkCounter::end() {
     SO_CHECK(!pass_.empty());
     for (size_t i = 0; i < kPipelineQueries.size(); ++i)

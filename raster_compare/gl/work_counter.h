@@ -47,6 +47,7 @@ class WorkCounter final : public PassRecorder {
 
     void begin(const std::string& pass) override;
     void end() override;
+    void addRays(uint64_t rays) override;
 
     // Summed over the frame by pass name ("<light>.<pass>", "camera"); a pass run several times
     // (accumulate's per sample) is the sum of its runs, `passes` how many.

@@ -458,7 +458,7 @@ TEST(Compare, EndToEndOnTheContactScene) {
         2u);
     EXPECT_EQ(count("\"quality\":512"), 1u);
     // A budget table per cost axis (times, memory, work), frame time's shown.
-    EXPECT_EQ(count("<table class=\"budget\">"), 10u);
+    EXPECT_EQ(count("<table class=\"budget\">"), 11u);  // work.rays_traced the 11th
     EXPECT_EQ(count("<div class=\"budget-box\" data-cost=\"frame_ms\">"), 1u);
     EXPECT_EQ(count("<div class=\"budget-box\" data-cost=\"work.bytes_moved\" hidden>"), 1u);
     EXPECT_NE(report.find("id=\"metrics\">"), std::string::npos);
@@ -685,7 +685,7 @@ TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
             std::vector<std::string> settings = {p.name + "=" + std::to_string(p.defaultValue)};
             if (!p.needs.empty()) {
                 EXPECT_THROW(create(settings), InputError) << t->name << " " << p.name;
-                settings.insert(settings.begin(), p.needs);
+                settings.insert(settings.begin(), neededSetting(p));
             }
             EXPECT_NO_THROW(create(settings)) << t->name << " " << p.name;
         }
@@ -715,7 +715,7 @@ TEST(Raster, MethodParametersTakeNamesAndTheirNumbers) {
             EXPECT_EQ(p.max, double(p.names.size() - 1)) << t->name << " " << p.name;
             const auto with = [&](const std::string& setting) {
                 return p.needs.empty() ? std::vector<std::string>{setting}
-                                       : std::vector<std::string>{p.needs, setting};
+                                       : std::vector<std::string>{neededSetting(p), setting};
             };
             for (size_t k = 0; k < p.names.size(); ++k) {
                 const auto byName = createTechnique(t->name, with(p.name + "=" + p.names[k]));

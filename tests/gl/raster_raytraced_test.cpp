@@ -1,0 +1,208 @@
+// The raytraced family (issue 53): shadow rays from the raster path's G-buffer, traced by Embree,
+// and their denoisers. One ray at a point light is the exact hard shadow (the plumbing against the
+// oracle); on a rect light over a parallel occluder (lambert.h's closed-form scene) 16 still
+// frames of svgf converge where the raw rays stay noisy; rays are counted as work; the rays are
+// the same at any thread count. Label "gl" (the tracer's own test needs no GL).
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/channels.h"
+#include "core/error.h"
+#include "core/scene.h"
+#include "gl_test_context.h"
+#include "raster_compare/compare/metrics.h"
+#include "raster_compare/gl/shadow_rays.h"
+#include "test_scenes.h"
+
+namespace so::test {
+namespace {
+
+// Frames 0 .. frames - 1 of one technique object, as a sequence renders them: its history carries
+// from each frame to the next. The last frame's image.
+ChannelImage lastOfStillFrames(const Scene& s, const std::string& technique,
+                               const std::vector<std::string>& settings, int frames) {
+    std::string why;
+    const std::unique_ptr<Technique> t = createTechnique(technique, settings);
+    RasterOptions o;
+    o.frames = 1;
+    o.warmup = 0;
+    o.countWork = false;
+    ChannelImage last;
+    for (int f = 0; f < frames; ++f) {
+        o.frameIndex = f;
+        last = renderRaster(s, *t, o, *glContext(why)).image;
+    }
+    return last;
+}
+
+// A point light over a square tilted 20 degrees, 1 above a floor: a hard shadow with slanted
+// edges across the pixel grid.
+TEST(Raytraced, OneRayAtAPointLightIsTheOraclesHardShadow) {
+    REQUIRE_GL();
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, 0}, {12, 0, 0}, {0, 0, -12}, 4, "floor"));
+    const double a = 20.0 * 3.14159265358979 / 180.0;
+    s.meshes.push_back(
+        makeGrid({0.2, 1.0, 0.1}, {2 * std::cos(a), 2 * std::sin(a), 0}, {0, 0, -2}, 1, "square"));
+    Light point;
+    point.name = "lamp";
+    point.type = LightType::Point;
+    point.wsPosition = {0.5, 4.0, 0.5};
+    s.lights = {point};
+    s.effects = {"hard"};
+    aimCamera(s, {0.0, 6.0, 5.0}, {0.0, 0.0, 0.0}, 40, 64, 64);
+    finalizeScene(s);
+    const ChannelImage oracle = runQuiet(s);
+    const ChannelImage rt = renderOneFrame(s, "raytraced", {"spp=1", "denoiser=none"}, false).image;
+    const LightMetrics m = computeLightMetrics(oracle, rt, "lamp", {});
+    std::printf("[ raytraced ] point light over a tilted square: mae %.5f\n", m.mae);
+    EXPECT_LE(m.mae, 0.002);
+}
+
+// lambert.h's rect light over a parallel square: 16 still frames. The raw single ray stays a coin
+// flip per pixel in the penumbra; svgf's temporal moments and a-trous converge towards the exact
+// penumbra, past pcss's approximation.
+TEST(Raytraced, SvgfConvergesOnStillFrames) {
+    REQUIRE_GL();
+    const PenumbraScene p = makePenumbraScene(64, 64);
+    const ChannelImage oracle = runQuiet(p.scene);
+    const auto penumbraMae = [&](const ChannelImage& image) {
+        const LightMetrics m = computeLightMetrics(oracle, image, "panel", {});
+        EXPECT_TRUE(m.penumbraMae.has_value());
+        return m.penumbraMae.value_or(1.0);
+    };
+    const double none =
+        penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=none"}, 16));
+    const double svgf =
+        penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=svgf"}, 16));
+    const double temporal =
+        penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=temporal"}, 16));
+    const double ffx =
+        penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=ffx"}, 16));
+    const double penumbra =
+        penumbraMae(lastOfStillFrames(p.scene, "raytraced", {"spp=1", "denoiser=penumbra"}, 16));
+    const double pcss = penumbraMae(renderOneFrame(p.scene, "pcss", {}, false).image);
+    std::printf(
+        "[ raytraced ] 16 still frames, penumbra mae: none %.4f, temporal %.4f, svgf %.4f, "
+        "ffx %.4f, penumbra %.4f; pcss %.4f\n",
+        none, temporal, svgf, ffx, penumbra, pcss);
+    EXPECT_GT(none, 2.0 * svgf);
+    EXPECT_LT(svgf, pcss);
+    EXPECT_LT(temporal, none);
+    EXPECT_LT(ffx, 0.5 * none);
+    EXPECT_LT(penumbra, temporal);  // the spatial filter removes what the history left
+}
+
+// Every pixel that sees the light's side traces spp rays: at least the lit pixels times spp, at
+// most all the pixels times spp.
+TEST(Raytraced, CountsItsRays) {
+    REQUIRE_GL();
+    const PenumbraScene p = makePenumbraScene(48, 48);
+    const int spp = 2;
+    const RasterResult r = renderOneFrame(p.scene, "raytraced", {"spp=2"}, true);
+    ASSERT_EQ(r.stats.lights.size(), 1u);
+    ASSERT_TRUE(r.stats.lights[0].work.has_value());
+    const uint64_t rays = r.stats.lights[0].work->counts.raysTraced;
+    const float* v = r.image.channel(channels::lightChannel("panel", channels::kVisibility));
+    uint64_t lit = 0;
+    for (size_t i = 0; i < r.image.pixelCount(); ++i) lit += v[i] > 0.0f ? 1 : 0;
+    std::printf("[ raytraced ] %llu rays, %llu lit pixels at spp %d\n", (unsigned long long)rays,
+                (unsigned long long)lit, spp);
+    EXPECT_GT(lit, 0u);
+    EXPECT_GE(rays, lit * uint64_t(spp));
+    EXPECT_LE(rays, uint64_t(r.image.pixelCount()) * uint64_t(spp));
+}
+
+// A denoiser's parameter without its denoiser is an error, not silently ignored; one shared by
+// several denoisers ("key=a|b") is taken with any of them.
+TEST(Raytraced, ParametersNeedTheirDenoiser) {
+    EXPECT_THROW(createTechnique("raytraced", {"alpha=0.3"}), InputError);
+    EXPECT_THROW(createTechnique("raytraced", {"denoiser=temporal", "sigma_depth=2"}), InputError);
+    EXPECT_THROW(createTechnique("raytraced", {"denoiser=ffx", "levels=3"}), InputError);
+    EXPECT_NO_THROW(createTechnique("raytraced", {"denoiser=svgf", "alpha=0.3", "levels=3"}));
+    EXPECT_NO_THROW(createTechnique("raytraced", {"denoiser=ffx", "sigma_depth=2"}));
+    EXPECT_NO_THROW(createTechnique("raytraced", {"denoiser=penumbra", "alpha=0.5", "taps=8"}));
+}
+
+// The tracer alone, on a G-buffer made in memory (the floor's points under the occluder): the same
+// bits at 1 and 2 threads, another frame index another sample pattern, and the mean over frames
+// near the closed form.
+TEST(ShadowRays, SameAtAnyThreadCountAndAdvancesWithTheFrame) {
+    const PenumbraScene p = makePenumbraScene(8, 8);
+    const LocalFrame frame = LocalFrame::fit(p.scene.wsBounds);
+    const int W = 24, H = 16;
+    std::vector<float> position(4 * W * H), normal(4 * W * H);
+    std::vector<glm::dvec3> wsPoints;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const glm::dvec3 ws(-2.0 + 4.0 * (x + 0.5) / W, 0.0, -1.5 + 3.0 * (y + 0.5) / H);
+            const glm::dvec3 ls = frame.lsFromWs(ws);
+            const size_t i = size_t(y * W + x);
+            for (int c = 0; c < 3; ++c) position[4 * i + c] = float(ls[c]);
+            position[4 * i + 3] = 1.0f;
+            normal[4 * i + 1] = 1.0f;
+            wsPoints.push_back(ws);
+        }
+    const ShadowRayTracer tracer(p.scene, frame);
+    ShadowRaySettings one{4, 3, false, 1}, two{4, 3, false, 2};
+    const ShadowRayGBuffer g{W, H, position.data(), normal.data()};
+    const ShadowRayFrame a = tracer.trace(g, p.scene.lights[0], one);
+    EXPECT_EQ(a.visibilityAndHit, tracer.trace(g, p.scene.lights[0], two).visibilityAndHit);
+    EXPECT_EQ(a.raysTraced, uint64_t(4 * W * H));
+    ShadowRaySettings later = one;
+    later.frameIndex = 4;
+    EXPECT_NE(a.visibilityAndHit, tracer.trace(g, p.scene.lights[0], later).visibilityAndHit);
+    // 64 frames of 4 rays: 256 points of one Sobol sequence per pixel.
+    std::vector<double> mean(size_t(W * H), 0.0);
+    for (int f = 0; f < 64; ++f) {
+        ShadowRaySettings s = one;
+        s.frameIndex = f;
+        const ShadowRayFrame r = tracer.trace(g, p.scene.lights[0], s);
+        for (size_t i = 0; i < mean.size(); ++i) mean[i] += r.visibilityAndHit[2 * i] / 64.0;
+    }
+    double err = 0.0;
+    for (size_t i = 0; i < mean.size(); ++i)
+        err += std::abs(mean[i] -
+                        exactRectLightRectOccluderV(wsPoints[i], {0, 1, 0}, p.light, p.occluder));
+    err /= double(mean.size());
+    std::printf("[ shadow rays ] mean over 256 rays against the closed form: mae %.4f\n", err);
+    EXPECT_LT(err, 0.01);
+}
+
+// A sphere light over an open floor: every ray reaches it, so one ray a pixel must give V = 1
+// everywhere. Sampled over the whole sphere, the part each point cannot see (G = 0) left most
+// pixels without a sample, V = 0: the samples are uniform over the cap the point sees.
+TEST(ShadowRays, OneRayAtASphereLightSeesItFromEveryPixel) {
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, 0}, {8, 0, 0}, {0, 0, -8}, 2, "floor"));
+    Light sphere;
+    sphere.name = "globe";
+    sphere.type = LightType::Sphere;
+    sphere.wsPosition = {0.0, 2.0, 0.0};
+    sphere.radius = 0.5;
+    s.lights = {sphere};
+    finalizeScene(s);
+    const LocalFrame frame = LocalFrame::fit(s.wsBounds);
+    const int W = 16, H = 16;
+    std::vector<float> position(4 * W * H), normal(4 * W * H);
+    for (int i = 0; i < W * H; ++i) {
+        const glm::dvec3 ls =
+            frame.lsFromWs({-3.0 + 6.0 * (i % W) / W, 0.0, -3.0 + 6.0 * (i / W) / H});
+        for (int c = 0; c < 3; ++c) position[4 * i + c] = float(ls[c]);
+        position[4 * i + 3] = 1.0f;
+        normal[4 * i + 1] = 1.0f;
+    }
+    const ShadowRayTracer tracer(s, frame);
+    for (int f = 0; f < 4; ++f) {
+        const ShadowRayFrame r =
+            tracer.trace({W, H, position.data(), normal.data()}, sphere, {1, f, false, 1});
+        for (int i = 0; i < W * H; ++i) ASSERT_EQ(r.visibilityAndHit[2 * i], 1.0f) << i;
+    }
+}
+
+}  // namespace
+}  // namespace so::test
