@@ -66,6 +66,19 @@ render_compare() {
       --chromium "$chromium" --quiet --out "$WORK/renders_$scene" || fail "render $engine on $scene exited $?"
     images+=(--image "$engine=$WORK/renders_$scene/$engine-typical.exr")
   done
+  # A reference with no shadow at all (V = 1 for every light): its false-lit rate is the share of
+  # the counted pixels the oracle shadows, against which grade_presets.mjs checks that each
+  # engine drew its shadow (a missing shadow can agree on 95% where the shadow is small).
+  node --input-type=module -e '
+    import fs from "node:fs";
+    import { encodeExr } from "'"$WEB"'/lib/exr.mjs";
+    const [sceneFile, out] = process.argv.slice(1);
+    const s = JSON.parse(fs.readFileSync(sceneFile, "utf8"));
+    const n = s.camera.width * s.camera.height;
+    const channels = Object.fromEntries(s.lights.map((l) => [`${l.name}.V`, new Float32Array(n).fill(1)]));
+    fs.writeFileSync(out, encodeExr(s.camera.width, s.camera.height, channels));
+  ' "$WORK/$scene.scene.json" "$WORK/unshadowed_$scene.exr" || fail "cannot write the unshadowed image of $scene"
+  images+=(--image "unshadowed=$WORK/unshadowed_$scene.exr")
   "$CLI" compare "$WORK/$scene.scene.json" "${images[@]}" --out "$WORK/report_$scene" > "$WORK/compare_$scene.log" 2>&1 ||
     { cat "$WORK/compare_$scene.log"; fail "shadow-oracle compare on $scene exited $?"; }
 }
