@@ -149,7 +149,9 @@ def standin_table(rows, types, point_rows):
         p = point.get((scene_name(r), r["light"], r["label"]))
         lines.append((scene_name(r), r["light"], r["label"], "| " + " | ".join(
             [scene_name(r), f"{r['light']} ({t})", r["label"], cell(num(r["mae"])),
-             cell(p) if p is not None else "(no point-truth sweep given)"]) + " |"))
+             cell(p) if p is not None else
+             # A setting the point sweep could not render is left out there (its log says why).
+             "(not rendered in the point-truth sweep)" if point_rows else "(no point-truth sweep given)"]) + " |"))
     return head + "\n".join(l for *_, l in sorted(lines))
 
 
