@@ -300,7 +300,7 @@ int countLanes(__m128i bytes, ShadowRayKind kind) {
     return _mm_cvtsi128_si32(sums) + _mm_extract_epi16(sums, 4);
 }
 
-int classifyLanes(HardPacket& p, int cols, int rows) {
+[[gnu::always_inline]] inline int classifyLanes(HardPacket& p, int cols, int rows) {
     alignas(16) ShadowRayKind kinds[16];
     std::memcpy(kinds, p.ps.kind, sizeof kinds);
     if (cols < SurfaceBuffer::kTile || rows < SurfaceBuffer::kTile)  // the image's edge
@@ -322,7 +322,8 @@ int classifyLanes(HardPacket& p, int cols, int rows) {
 
 // Whether a traced lane leaves within its origin triangle's tangency bound (offset.h), where only
 // the origin filter keeps it from hitting that triangle (a NaN cosine counts as within).
-bool needsOriginFilter(const SurfaceBuffer& sb, size_t base, const HardPacket& p) {
+[[gnu::always_inline]] inline bool needsOriginFilter(const SurfaceBuffer& sb, size_t base,
+                                                     const HardPacket& p) {
     __m128 near = _mm_setzero_ps();
     for (int g = 0; g < 16; g += 4) {
         const __m128 clear = _mm_cmpge_ps(_mm_load_ps(p.ps.cosine + g),
@@ -334,7 +335,7 @@ bool needsOriginFilter(const SurfaceBuffer& sb, size_t base, const HardPacket& p
     return _mm_movemask_ps(near) != 0;
 }
 
-void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
+[[gnu::always_inline]] inline void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
     RTCRay16& ray = p.rayHit.ray;
     for (int k = 0; k < 16; ++k) {
         ray.org_x[k] = sb.lsOriginX[base + size_t(k)];
@@ -352,8 +353,9 @@ void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
 // V and cos of one tile, written row by row (each tile row is contiguous in the image); with
 // `occDist` (the contact effect) the closest occluder's distance too. Embree sets tfar to -inf on
 // a hit; lanes not traced get V = 0. Returns the occluded rays.
-uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, size_t width,
-                   int cols, int rows, const HardShadowPlanes& out) {
+[[gnu::always_inline]] inline uint64_t writeTile(const HardPacket& p, const LocalFrame& frame,
+                                                 size_t row0, size_t width, int cols, int rows,
+                                                 const HardShadowPlanes& out) {
     const RTCRay16& ray = p.rayHit.ray;
     alignas(64) float lit[16];
     if (out.occDist) {
@@ -398,47 +400,11 @@ uint64_t writeTile(const HardPacket& p, const LocalFrame& frame, size_t row0, si
     return uint64_t(occluded);
 }
 
-// The traced lanes whose near field the pass decides (near_field.h): those whose cosine does not
-// rule it out at once against the slot's sine bound, both within their float errors: the cosine's
-// own is far under 1e-5 (kTieCos), the direction's a few ulp (1e-5 is far above) plus, for a
-// positional light, the rounding of the surface point and the light's position to float over the
-// distance (the tie test's bound, 4x wider; +inf at the light itself). Four lanes at a time
-// (sse_lanes.h). Embree starts the lanes beyond their near field; their triangles are fetched into
-// the cache meanwhile, for decideNearField after the trace. Sets nearLanes; returns their number.
-uint64_t markNearLanes(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light,
-                       size_t base, HardPacket& p) {
-    p.nearLanes = 0;
-    const NearFields& f = sb.nearFields;
-    if (!accel.filters() || !f.built()) return 0;
-    // Most tiles at once: the lowest cosine of a traced lane, less the largest error, against
-    // the largest bound of the tile's slots (-inf where none has a near field).
-    const float tileBound = f.tileSineBound[base / 16];
-    if (tileBound == -std::numeric_limits<float>::infinity()) return 0;
-    const bool directional = light.directional;
-    const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-    __m128 lowestCos = inf, nearestEnd = inf, unordered = _mm_setzero_ps();
-    for (int g = 0; g < 16; g += 4) {
-        const __m128 valid = laneMask4(p.valid, g), cos = _mm_load_ps(p.ps.cosine + g);
-        const __m128 end = _mm_load_ps(p.ps.tfar + g);
-        lowestCos =
-            _mm_min_ps(lowestCos, _mm_or_ps(_mm_and_ps(valid, cos), _mm_andnot_ps(valid, inf)));
-        nearestEnd =
-            _mm_min_ps(nearestEnd, _mm_or_ps(_mm_and_ps(valid, end), _mm_andnot_ps(valid, inf)));
-        unordered = _mm_or_ps(unordered, _mm_and_ps(valid, _mm_cmpunord_ps(cos, end)));
-    }
-    const float tileError =
-        directional ? 2e-5f : 2e-5f + 4.0f * light.lsTieScale / horizontalMin(nearestEnd);
-    if (_mm_movemask_ps(unordered) == 0 && horizontalMin(lowestCos) - tileError > tileBound)
-        return 0;
-    const __m128 fixedError = _mm_set1_ps(2e-5f), tie = _mm_set1_ps(4.0f * light.lsTieScale);
-    for (int g = 0; g < 16; g += 4) {
-        __m128 error = fixedError;
-        if (!directional) error = _mm_add_ps(error, _mm_div_ps(tie, _mm_load_ps(p.ps.tfar + g)));
-        const __m128 sine = _mm_sub_ps(_mm_load_ps(p.ps.cosine + g), error);
-        // Not ruled out: NaN compares false, so it stays.
-        const __m128 open = _mm_cmpngt_ps(sine, _mm_loadu_ps(&f.sineBound[base + size_t(g)]));
-        p.nearLanes |= uint32_t(_mm_movemask_ps(_mm_and_ps(open, laneMask4(p.valid, g)))) << g;
-    }
+// The open lanes' near fields: the empty ones dropped (a NaN cosine leaves a lane open whatever
+// its bound), the others started beyond their ball with their triangles fetched into the cache
+// meanwhile, for decideNearField after the trace. Rare (a few lanes in a thousand on the bench's
+// terrain): out of line. Returns the lanes kept.
+[[gnu::noinline]] uint64_t fetchNearLanes(const NearFields& f, size_t base, HardPacket& p) {
     for (int k = 0; k < 16; ++k) {
         if (!(p.nearLanes >> k & 1u)) continue;
         const size_t s = base + size_t(k);
@@ -452,6 +418,35 @@ uint64_t markNearLanes(const Accel& accel, const SurfaceBuffer& sb, const HardLi
         for (size_t byte = 0; byte < bytes; byte += 64) _mm_prefetch(first + byte, _MM_HINT_T0);
     }
     return uint64_t(setBits16(p.nearLanes));
+}
+
+// The traced lanes whose near field the pass decides (near_field.h): those whose cosine does not
+// rule it out at once against the slot's sine bound, both within their float errors: the cosine's
+// own is far under 1e-5 (kTieCos), the direction's a few ulp (1e-5 is far above) plus, for a
+// positional light, the rounding of the surface point and the light's position to float over the
+// distance (the tie test's bound, 4x wider; +inf at the light itself). Lane by lane, four at a
+// time, with no test of the tile first: the bounds' line is fetched with the tile's
+// (prefetchTile), and a tile-wide bound would cost a load and a reduction on every tile to spare
+// these few compares. Sets nearLanes; returns their number.
+[[gnu::always_inline]] inline uint64_t markNearLanes(const Accel& accel, const SurfaceBuffer& sb,
+                                                     const HardLight& light, size_t base,
+                                                     HardPacket& p) {
+    p.nearLanes = 0;
+    const NearFields& f = sb.nearFields;
+    if (!accel.filters() || !f.built()) return 0;
+    const __m128 fixedError = _mm_set1_ps(2e-5f), tie = _mm_set1_ps(4.0f * light.lsTieScale);
+    const bool directional = light.directional;
+    uint32_t open = 0;
+    for (int g = 0; g < 16; g += 4) {
+        __m128 error = fixedError;
+        if (!directional) error = _mm_add_ps(error, _mm_div_ps(tie, _mm_load_ps(p.ps.tfar + g)));
+        const __m128 sine = _mm_sub_ps(_mm_load_ps(p.ps.cosine + g), error);
+        // Not ruled out: NaN compares false, so it stays. An empty field's bound is -inf.
+        const __m128 notOut = _mm_cmpngt_ps(sine, _mm_loadu_ps(&f.sineBound[base + size_t(g)]));
+        open |= uint32_t(_mm_movemask_ps(_mm_and_ps(notOut, laneMask4(p.valid, g)))) << g;
+    }
+    p.nearLanes = open;
+    return open ? fetchNearLanes(f, base, p) : 0;
 }
 
 // The lanes whose near field the pass decides, after Embree traced them from beyond it: all their
@@ -483,15 +478,45 @@ uint64_t decideNearField(const SurfaceBuffer& sb, size_t base, bool closest, Har
     return changed;
 }
 
+// The next tile's lines of every per-slot array the pass reads (a tile's 16 slots are one 64-byte
+// line of each), fetched while Embree traces this one: a tile touches a dozen such streams
+// between two traces, more than the hardware prefetcher follows once the traversal has run.
+[[gnu::always_inline]] inline void prefetchTile(const SurfaceBuffer& sb, size_t base) {
+    if (base >= sb.hit.size()) return;
+    const auto line = [&](const void* p) {
+        _mm_prefetch(static_cast<const char*>(p), _MM_HINT_T0);
+    };
+    line(&sb.lsPointX[base]), line(&sb.lsPointY[base]), line(&sb.lsPointZ[base]);
+    line(&sb.lsNormalX[base]), line(&sb.lsNormalY[base]), line(&sb.lsNormalZ[base]);
+    line(&sb.lsOriginX[base]), line(&sb.lsOriginY[base]), line(&sb.lsOriginZ[base]);
+    line(&sb.originId[base]), line(&sb.tangentCos[base]), line(&sb.hit[base]);
+    const NearFields& f = sb.nearFields;
+    if (f.built()) line(&f.sineBound[base]);
+}
+
+// The next tile's rows of V and cos (a line holds four tiles' rows: mostly already here), so that
+// writeTile's stores find their lines.
+[[gnu::always_inline]] inline void prefetchOutput(const HardShadowPlanes& out, size_t row0,
+                                                  size_t width, int rows) {
+    for (int r = 0; r < rows; ++r) {
+        _mm_prefetch(reinterpret_cast<const char*>(out.V + row0 + size_t(r) * width), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(out.cosine + row0 + size_t(r) * width),
+                     _MM_HINT_T0);
+    }
+}
+
 // One tile: setup, trace (any hit, or the closest with the contact effect), write.
 SO_HARD_CLONES void traceTile(const Accel& accel, const SurfaceBuffer& sb, const HardLight& light,
                               int tx, int ty, HardPacket& p, const HardShadowPlanes& out,
                               HardShadowStats& st) {
     const size_t base = (size_t(ty) * size_t(sb.tilesX) + size_t(tx)) * 16;
     const int x0 = tx * SurfaceBuffer::kTile, y0 = ty * SurfaceBuffer::kTile;
-    setupPacketLanes(accel, sb, base, light, p.ps);
     const int cols = std::min(SurfaceBuffer::kTile, sb.width - x0);
     const int rows = std::min(SurfaceBuffer::kTile, sb.height - y0);
+    prefetchTile(sb, base + 16);
+    if (tx + 1 < sb.tilesX)
+        prefetchOutput(out, size_t(y0) * size_t(sb.width) + size_t(x0 + 4), size_t(sb.width), rows);
+    setupPacketLanes(accel, sb, base, light, p.ps);
     const int active = classifyLanes(p, cols, rows);
     if (active) {
         fillRays(sb, base, p);
