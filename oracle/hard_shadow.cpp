@@ -273,16 +273,24 @@ struct HardPacket {
     // (nearTnear), decideNearField tests its triangles in double.
     uint32_t nearLanes = 0;
 
-    explicit HardPacket(const Accel& accel) : ctx(accel.shadowContext(/*coherent=*/true)) {
+    // A directional light's direction is every lane's, on every tile: set here once (Embree reads
+    // a ray's direction and never writes it), so that fillRays copies positional lights' alone.
+    HardPacket(const Accel& accel, const HardLight& light)
+        : ctx(accel.shadowContext(/*coherent=*/true)), directional(light.directional) {
         RTCRay16& ray = rayHit.ray;
         for (int k = 0; k < 16; ++k) {
             ray.tnear[k] = 0.0f;
             ray.time[k] = 0.0f;
             ray.mask[k] = 0xFFFFFFFFu;
             ray.flags[k] = 0;
+            ray.dir_x[k] = -light.lsDirectionF.x;
+            ray.dir_y[k] = -light.lsDirectionF.y;
+            ray.dir_z[k] = -light.lsDirectionF.z;
         }
     }
+    bool directional;
 };
+;
 
 // The tile's valid mask from the setup: lanes outside the image (the last tile row or column)
 // are padding, neither traced nor written. Returns the number of rays to trace.
@@ -341,12 +349,14 @@ int countLanes(__m128i bytes, ShadowRayKind kind) {
         ray.org_x[k] = sb.lsOriginX[base + size_t(k)];
         ray.org_y[k] = sb.lsOriginY[base + size_t(k)];
         ray.org_z[k] = sb.lsOriginZ[base + size_t(k)];
+        ray.tfar[k] = p.ps.tfar[k];
+        ray.id[k] = sb.originId[base + size_t(k)];  // skipped by the filter
+    }
+    if (p.directional) return;
+    for (int k = 0; k < 16; ++k) {
         ray.dir_x[k] = p.ps.dirX[k];
         ray.dir_y[k] = p.ps.dirY[k];
         ray.dir_z[k] = p.ps.dirZ[k];
-        ray.tnear[k] = 0.0f;
-        ray.tfar[k] = p.ps.tfar[k];
-        ray.id[k] = sb.originId[base + size_t(k)];  // skipped by the filter
     }
 }
 
@@ -491,7 +501,9 @@ uint64_t decideNearField(const SurfaceBuffer& sb, size_t base, bool closest, Har
     line(&sb.lsOriginX[base]), line(&sb.lsOriginY[base]), line(&sb.lsOriginZ[base]);
     line(&sb.originId[base]), line(&sb.tangentCos[base]), line(&sb.hit[base]);
     const NearFields& f = sb.nearFields;
-    if (f.built()) line(&f.sineBound[base]);
+    // The near field's bounds, and where an open lane's starts and ends (fetchNearLanes): the
+    // open lanes are few, but each would otherwise wait on two lines from memory.
+    if (f.built()) line(&f.sineBound[base]), line(&f.tnear[base]), line(&f.begin[base]);
 }
 
 // The next tile's rows of V and cos (a line holds four tiles' rows: mostly already here), so that
@@ -531,8 +543,12 @@ SO_HARD_CLONES void traceTile(const Accel& accel, const SurfaceBuffer& sb, const
         } else {
             rtcOccluded16(p.valid, accel.rtcScene(), &p.ctx.rtc, &p.rayHit.ray);
         }
-        if (p.nearLanes)
+        if (p.nearLanes) {
             st.nearFieldOccluded += decideNearField(sb, base, out.occDist != nullptr, p);
+            for (int k = 0; k < 16;
+                 ++k)  // fillRays leaves tnear: 0 but where fetchNearLanes set it
+                if (p.nearLanes >> k & 1u) p.rayHit.ray.tnear[k] = 0.0f;
+        }
     }
     st.raysOccluded += writeTile(p, accel.frame(), size_t(y0) * size_t(sb.width) + size_t(x0),
                                  size_t(sb.width), cols, rows, out);
@@ -554,7 +570,7 @@ HardShadowStats traceHardShadows(const Accel& accel, const SurfaceBuffer& sb,
     forEachTileRow(
         sb.tilesY,
         [&] {
-            return Scratch{partial.local(), HardPacket(accel)};
+            return Scratch{partial.local(), HardPacket(accel, light)};
         },
         [&](int ty, Scratch& c) {
             for (int tx = 0; tx < sb.tilesX; ++tx)
