@@ -315,17 +315,22 @@ int countLanes(__m128i bytes, ShadowRayKind kind) {
         for (int k = 0; k < 16; ++k)
             if ((k & 3) >= cols || (k >> 2) >= rows) kinds[k] = ShadowRayKind::Padding;
     const __m128i bytes = laneBytes(kinds);
-    for (int kind = 0; kind < int(ShadowRayKind::Count); ++kind)
-        p.counts[kind] += uint64_t(countLanes(bytes, ShadowRayKind(kind)));
     // valid: -1 on traced lanes, the byte compare widened to 32 bits.
     const __m128i traced = _mm_cmpeq_epi8(bytes, _mm_set1_epi8(char(ShadowRayKind::Traced)));
+    const int tracedMask = _mm_movemask_epi8(traced);
+    if (tracedMask == 0xFFFF) {  // most tiles: every lane traced, no other kind to count
+        p.counts[int(ShadowRayKind::Traced)] += 16;
+    } else {
+        for (int kind = 0; kind < int(ShadowRayKind::Count); ++kind)
+            p.counts[kind] += uint64_t(countLanes(bytes, ShadowRayKind(kind)));
+    }
     const __m128i lo = _mm_unpacklo_epi8(traced, traced), hi = _mm_unpackhi_epi8(traced, traced);
     __m128i* valid = reinterpret_cast<__m128i*>(p.valid);
     _mm_store_si128(valid + 0, _mm_unpacklo_epi16(lo, lo));
     _mm_store_si128(valid + 1, _mm_unpackhi_epi16(lo, lo));
     _mm_store_si128(valid + 2, _mm_unpacklo_epi16(hi, hi));
     _mm_store_si128(valid + 3, _mm_unpackhi_epi16(hi, hi));
-    return countLanes(bytes, ShadowRayKind::Traced);
+    return setBits16(uint32_t(tracedMask));
 }
 
 // Whether a traced lane leaves within its origin triangle's tangency bound (offset.h), where only
