@@ -353,9 +353,12 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
     if (options.sequence) {
         std::vector<const Technique*> list;
         for (const TechniqueRun& run : runs) list.push_back(run.technique.get());
-        out.sequence =
-            measureSequence(*options.sequence, list, options.pathOracle, options.pathCache,
-                            options.raster, out.metricOptions, *gl, options.progress);
+        // The comparison's oracle is the last frame's where it was traced as the frames are: not
+        // at a G-buffer's points, and with the posed scene's own camera.
+        const bool sameAsLast = !oracle.atPoints && !options.pathOracle.camera;
+        out.sequence = measureSequence(*options.sequence, list, options.pathOracle,
+                                       options.pathCache, options.raster, out.metricOptions, *gl,
+                                       options.progress, sameAsLast ? &oracle.image : nullptr);
     }
     const Job job{scene,
                   oracle,

@@ -1,16 +1,23 @@
 #include "raster_compare/pipeline/frame_images.h"
 
+#include "core/error.h"
+
 namespace so {
 
 FrameImages renderFrameImages(const Scene& scene, const std::vector<const Technique*>& techniques,
                               const OracleOptions& oracle, const OracleCacheOptions& cache,
                               RasterOptions raster, const GlContext& gl,
-                              std::vector<std::string>& warnings) {
+                              std::vector<std::string>& warnings, const ChannelImage* traced) {
     FrameImages frame;
     frame.camera = effectiveCamera(scene, oracle);
-    CachedOracle traced = traceOrLoad(scene, oracle, cache);
-    frame.oracle = std::move(traced.image);
-    for (std::string& w : traced.warnings) warnings.push_back(std::move(w));
+    if (traced) {
+        SO_CHECK(traced->width() == frame.camera.width && traced->height() == frame.camera.height);
+        frame.oracle = *traced;
+    } else {
+        CachedOracle loaded = traceOrLoad(scene, oracle, cache);
+        frame.oracle = std::move(loaded.image);
+        for (std::string& w : loaded.warnings) warnings.push_back(std::move(w));
+    }
     raster.frames = 1;
     raster.warmup = 0;
     raster.countWork = false;  // V only: the work is counted by the ordinary comparison

@@ -21,10 +21,12 @@ struct FrameImages {
 
 // `oracle` and `raster` as the frame wants them (its camera, its frame index); the raster frames
 // are set to one untimed frame without a counted one. The oracle cache's warnings are appended to
-// `warnings`.
+// `warnings`. `traced`: this frame's oracle for these options, already in hand (the ordinary
+// comparison's, for a sequence's last frame), copied instead of traced again.
 FrameImages renderFrameImages(const Scene& scene, const std::vector<const Technique*>& techniques,
                               const OracleOptions& oracle, const OracleCacheOptions& cache,
                               RasterOptions raster, const GlContext& gl,
-                              std::vector<std::string>& warnings);
+                              std::vector<std::string>& warnings,
+                              const ChannelImage* traced = nullptr);
 
 }  // namespace so

@@ -34,7 +34,8 @@ MeshMotions motionSince(const Scene& scene, double t, double tPrev) {
 SequenceResult measureSequence(const Scene& scene, const std::vector<const Technique*>& techniques,
                                const OracleOptions& oracle, const OracleCacheOptions& cache,
                                const RasterOptions& raster, const MetricOptions& metricOptions,
-                               const GlContext& gl, const ProgressCallback& progressCallback) {
+                               const GlContext& gl, const ProgressCallback& progressCallback,
+                               const ChannelImage* lastOracle) {
     if (!scene.sequence)
         throwInputError(scene.path.string(), "sequence",
                         "missing: judging a sequence needs one (scene_format 5, "
@@ -66,8 +67,9 @@ SequenceResult measureSequence(const Scene& scene, const std::vector<const Techn
         RasterOptions r = raster;
         r.camera.reset();
         r.frameIndex = f;
-        static_cast<FrameImages&>(frame) = renderFrameImages(
-            sceneAtTime(scene, frame.t), techniques, o, cache, r, gl, out.warnings);
+        static_cast<FrameImages&>(frame) =
+            renderFrameImages(sceneAtTime(scene, frame.t), techniques, o, cache, r, gl,
+                              out.warnings, f == sequence.frames - 1 ? lastOracle : nullptr);
         const std::optional<MeshMotions> motion =
             f > 0 ? std::optional(motionSince(scene, frame.t, slots[size_t(f + 1) % 2].t))
                   : std::nullopt;

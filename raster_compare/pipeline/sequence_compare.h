@@ -30,10 +30,13 @@ struct SequenceResult {
 
 // `scene` has its motion (not a posed frame). Throws InputError (the scene file, sequence) when it
 // has no sequence. `metricOptions` as the comparison's (each technique's filtered() is set here).
-// `progress` counts frames ("sequence frames") and can cancel.
+// `progress` counts frames ("sequence frames") and can cancel. `lastOracle`: the last frame's
+// oracle for these options where the caller has it (the ordinary comparison's): not traced twice
+// (compare --sequence --no-cache).
 SequenceResult measureSequence(const Scene& scene, const std::vector<const Technique*>& techniques,
                                const OracleOptions& oracle, const OracleCacheOptions& cache,
                                const RasterOptions& raster, const MetricOptions& metricOptions,
-                               const GlContext& gl, const ProgressCallback& progress = {});
+                               const GlContext& gl, const ProgressCallback& progress = {},
+                               const ChannelImage* lastOracle = nullptr);
 
 }  // namespace so
