@@ -4,13 +4,16 @@
 
 #include "cli/output.h"
 #include "cli/progress_bar.h"
+#include "cli/sequence_frames.h"
 #include "raster_compare/export/export_folder.h"
 
 namespace so {
 
 int runExportCommand(const ExportCommandOptions& options) {
-    const Scene scene = loadScene(options.scenePath);
-    printSceneWarnings(options.scenePath, scene);
+    const Scene loaded = loadScene(options.scenePath);
+    printSceneWarnings(options.scenePath, loaded);
+    const std::optional<Scene> posed = sceneAtFrameOption(loaded, options.scenePath, options.frame);
+    const Scene& scene = posed ? *posed : loaded;
     const std::filesystem::path out = makeOutputDir(options.outDir, "--out");
     ProgressBar bar(options.progress);
     OracleOptions oracle = options.oracle;

@@ -169,6 +169,9 @@ static Runner addView(CLI::App& app) {
     viewCmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     addImageSize(viewCmd, o->oracle.width, o->oracle.height);
     addTraceOptionInt(viewCmd, "threads", o->oracle.threads);
+    viewCmd->add_option(
+        "--frame", o->frame,
+        "K: the scene posed at frame K of its sequence (t = K / fps), as trace --frame");
     addQuiet(viewCmd, o->progress);
     return [o] { return so::runViewCommand(*o); };
 }
@@ -183,6 +186,9 @@ static Runner addExport(CLI::App& app) {
     cmd->add_option("--out", o->outDir, "output folder (created if missing)")->required();
     addImageSize(cmd, o->oracle.width, o->oracle.height);
     addTraceOptionInt(cmd, "threads", o->oracle.threads);
+    cmd->add_option(
+        "--frame", o->frame,
+        "K: the scene posed at frame K of its sequence (t = K / fps), as trace --frame");
     addQuiet(cmd, o->progress);
     return [o] { return so::runExportCommand(*o); };
 }

@@ -8,6 +8,7 @@
 
 #include "cli/output.h"
 #include "cli/progress_bar.h"
+#include "cli/sequence_frames.h"
 #include "core/error.h"
 #include "core/gbuffer.h"
 #include "core/scene_pose.h"
@@ -197,46 +198,12 @@ int traceScene(const TraceCommandOptions& options, const std::optional<TileSpec>
     return reportVerification(result.stats, options.scenePath, files.json);
 }
 
-// A frame number of --frame or --frames: decimal digits only.
-int frameNumber(const std::string& text, const std::string& whole, const char* flag,
-                const char* form) {
-    if (text.empty() || text.size() > 9 ||
-        text.find_first_not_of("0123456789") != std::string::npos)
-        throwInputError("command line", flag, "\"" + printable(whole, 40) + "\" is not " + form);
-    return std::stoi(text);
-}
-
 // --frame K or --frames A:B, checked against the scene's sequence: the first and last frame.
 std::pair<int, int> frameRange(const TraceCommandOptions& options, const Scene& scene) {
-    const bool one = !options.frame.empty();
-    const char* flag = one ? "--frame" : "--frames";
-    if (one && !options.frames.empty())
-        throwInputError("command line", "--frame", "cannot be used with --frames");
     if (!options.pointsPath.empty())
-        throwInputError("command line", flag, "cannot be used with --points");
-    if (!scene.sequence)
-        throwInputError(options.scenePath, "sequence",
-                        std::string("the scene has no sequence (scene_format 5) for ") + flag);
-    std::pair<int, int> range;
-    if (one) {
-        range.first = range.second = frameNumber(options.frame, options.frame, flag, "K (e.g. 8)");
-    } else {
-        const size_t colon = options.frames.find(':');
-        const char* form = "A:B (e.g. 0:15)";
-        if (colon == std::string::npos)
-            throwInputError("command line", flag,
-                            "\"" + printable(options.frames, 40) + "\" is not " + form);
-        range = {frameNumber(options.frames.substr(0, colon), options.frames, flag, form),
-                 frameNumber(options.frames.substr(colon + 1), options.frames, flag, form)};
-        if (range.first > range.second)
-            throwInputError("command line", flag, "A must not be after B in A:B");
-    }
-    if (range.second >= scene.sequence->frames)
-        throwInputError("command line", flag,
-                        "frame " + std::to_string(range.second) + " is past the sequence's " +
-                            std::to_string(scene.sequence->frames) + " frames (0 to " +
-                            std::to_string(scene.sequence->frames - 1) + ")");
-    return range;
+        throwInputError("command line", options.frame.empty() ? "--frames" : "--frame",
+                        "cannot be used with --points");
+    return sequenceFrameRange(scene, options.scenePath, options.frame, options.frames);
 }
 
 // --frame / --frames: each frame posed and traced like any scene; the exit code is the worst.

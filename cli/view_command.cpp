@@ -1,6 +1,7 @@
 #include "cli/view_command.h"
 
 #include "cli/progress_bar.h"
+#include "cli/sequence_frames.h"
 
 #include <iostream>
 
@@ -10,8 +11,10 @@
 namespace so {
 
 int runViewCommand(const ViewCommandOptions& options) {
-    const Scene scene = loadScene(options.scenePath);
-    printSceneWarnings(options.scenePath, scene);
+    const Scene loaded = loadScene(options.scenePath);
+    printSceneWarnings(options.scenePath, loaded);
+    const std::optional<Scene> posed = sceneAtFrameOption(loaded, options.scenePath, options.frame);
+    const Scene& scene = posed ? *posed : loaded;
     const std::filesystem::path out = makeOutputDir(options.outDir, "--out");
     ProgressBar bar(options.progress);
     OracleOptions oracle = options.oracle;

@@ -12,6 +12,8 @@ struct ViewCommandOptions {
     std::string scenePath;
     std::string outDir;
     OracleOptions oracle;  // width, height, threads
+    // --frame K: the scene of a sequence posed at frame K (core/scene_pose.h); empty: as loaded.
+    std::string frame;
     bool progress = true;  // --quiet: false
 };
 

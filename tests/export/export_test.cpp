@@ -20,6 +20,7 @@
 #include "cli_run.h"
 #include "core/channels.h"
 #include "core/scene.h"
+#include "core/scene_pose.h"
 #include "oracle/oracle.h"
 
 namespace {
@@ -146,9 +147,13 @@ struct RoundTrip {
     size_t areaPixelsDiffer = 0;
 };
 
-RoundTrip roundTrip(const std::string& scene, const std::string& name) {
-    const fs::path out = exportScene(scene, name);
-    const so::Scene original = so::loadScene(scene);
+// frame >= 0: export --frame, against the scene posed at that frame of its sequence.
+RoundTrip roundTrip(const std::string& scene, const std::string& name, int frame = -1) {
+    const fs::path out =
+        exportScene(scene, name, frame >= 0 ? "--frame " + std::to_string(frame) : "");
+    const so::Scene loaded = so::loadScene(scene);
+    const so::Scene original =
+        frame >= 0 ? so::sceneAtTime(loaded, so::sequenceTime(*loaded.sequence, frame)) : loaded;
     const so::Scene exported = so::loadScene(out / "scene.scene.json");
     EXPECT_EQ(exported.effects, original.effects);
     EXPECT_EQ(exported.lights.size(), original.lights.size());
@@ -188,6 +193,32 @@ TEST(Export, WebpTextureRoundTrip) {  // a bare glTF whose mask is a WebP image
     EXPECT_EQ(g["extensionsRequired"], json::array({"EXT_texture_webp"}));
     EXPECT_EQ(g["images"][0]["mimeType"], "image/webp");
     EXPECT_EQ(g["textures"][0]["extensions"]["EXT_texture_webp"]["source"], 0);
+}
+
+// export --frame K of a sequence: the scene posed at frame K (the box has slid, so its triangles
+// are not frame 0's), the same hard-light V bit for bit; a scene without a sequence, or a frame
+// past its end, is a one-line error naming the flag or field.
+TEST(Export, SequenceFrameRoundTrip) {
+    const std::string scene = SO_SCENES_DIR "/sliding_box/sliding_box.scene.json";
+    roundTrip(scene, "sliding_box_9", 9);
+    const so::Scene atRest = so::loadScene(scene),
+                    exported = so::loadScene(fs::temp_directory_path() /
+                                             "so_export_test_sliding_box_9/scene.scene.json");
+    EXPECT_FALSE(exported.sequence.has_value()) << "a posed frame, not the animation";
+    bool moved = false;
+    for (size_t m = 0; m < atRest.meshes.size(); ++m)
+        moved = moved || exported.meshes[m].wsPositions != atRest.meshes[m].wsPositions;
+    EXPECT_TRUE(moved) << "frame 9 is not the scene at rest";
+    for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+             {"export " SO_SCENES_DIR "/contact_box.scene.json --frame 2", "sequence"},
+             {"export " + scene + " --frame 999", "--frame"},
+             {"export " + scene + " --frame x", "--frame"}}) {
+        const auto r = run(args + " --out " +
+                           (fs::temp_directory_path() / "so_export_bad").string() + " --quiet");
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(std::count(r.stderrText.begin(), r.stderrText.end(), '\n'), 1) << r.stderrText;
+        EXPECT_NE(r.stderrText.find(says), std::string::npos) << r.stderrText;
+    }
 }
 
 const json& nodeNamed(const json& gltf, const std::string& name) {
