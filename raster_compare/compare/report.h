@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,7 +22,11 @@ namespace so {
 
 struct ReportTechnique {
     std::string label;
-    std::string family;  // TechniqueInfo::family: the report groups by it
+    std::string family;     // TechniqueInfo::family: the report groups by it
+    std::string technique;  // its name ("pcf"); empty for an image
+    // Every parameter, defaults included, as numbers (a method's index): the contact pairs'
+    // (contact_pairs.h); empty for an image.
+    std::map<std::string, double> settings;
     // Settings that differ only in the technique's quality parameter share `curve` (TradeoffPoint);
     // `quality` is its value, none for a technique without one.
     std::string curve;

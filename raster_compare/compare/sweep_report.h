@@ -26,6 +26,9 @@ struct SweepRow {
     // (docs/metrics.md): "acne_rate", "peter_panning_rate", "mae", "cost.frame_ms",
     // "cost.memory_bytes", ... A metric that is null (not applicable) is absent.
     std::map<std::string, double> metrics;
+    // Every parameter of the setting, defaults included, as numbers (compare's metrics.json
+    // `parameters`): what the contact pairs compare (contact_pairs.h).
+    std::map<std::string, double> parameters;
 };
 
 struct SweepFailure {
