@@ -1,6 +1,7 @@
 // The HTML report of a comparison (docs/report.md): per light first a sortable summary of the
 // techniques and a chart of error against cost (the error and the cost chosen on the page, Pareto
-// front and quality curves drawn), then the images as a grid (rows: techniques; columns: render,
+// front and quality curves drawn), contact=on against contact=off where both ran
+// (contact_pairs.h), then the images as a grid (rows: techniques; columns: render,
 // error maps, worst region) with a zoom view that flips with the oracle; in a sequence, each
 // technique's error per frame; all metrics, and the
 // provenance. No network: style and script inline; images embedded or in a folder beside it.
