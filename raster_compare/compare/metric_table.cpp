@@ -43,7 +43,8 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "acne"},
     {"screen_bleed_rate", U::Share, B::Lower, S::ScreenSpaceFilter,
      "share of counted pixels, fully lit in the oracle, that are false shadow though their own "
-     "depth comparison lit them: a screen-space pass carried a neighbour's shadow over",
+     "depth comparison lit them and a screen-space pass darkened them: it carried a "
+     "neighbour's shadow over",
      "screen-space bleed"},
     {"penumbra_spread_rate", U::Share, B::Lower, S::AreaLights,
      "share of counted pixels wrong just outside the oracle's penumbra where the technique's own "

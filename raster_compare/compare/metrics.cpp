@@ -313,8 +313,10 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, bool spread,
     auto set = [&](Artifact a, bool v) { is[size_t(a)] = v; };
     // Where the raster says what its own depth comparison saw: a false shadow that its comparison
     // gave (the map at its texel holding its own surface) is acne; one its comparison did not
-    // give, but a screen-space pass carried over from a neighbour, is screen-space bleed.
-    const bool ownLit = p.VU && p.VU[i] > 0.5f;
+    // give, but a screen-space pass carried over from a neighbour, is screen-space bleed. The pass
+    // must have darkened the pixel: a filtered map's own partial V (pcf's kernel) above 0.5, which
+    // no pass touched, is judged as it is without V_unfiltered (contact=on keeps acne as off).
+    const bool ownLit = p.VU && p.VU[i] > 0.5f && p.Vr[i] < p.VU[i];
     if (fullyLit && toOracleBoundary > float(options.boundaryRadius)) {
         ++t.acneEligible;
         // A penumbra reaching too far is not a surface shadowing itself.

@@ -13,6 +13,7 @@
 #include "core/channels.h"
 #include "core/error.h"
 #include "raster_compare/compare/artifacts.h"
+#include "raster_compare/compare/contact_pairs.h"
 #include "raster_compare/compare/html.h"
 #include "raster_compare/compare/metric_table.h"
 #include "raster_compare/compare/report_assets.h"
@@ -340,6 +341,15 @@ void writeSummary(std::ostream& o, const ReportInput& in, size_t li) {
     o << "<div class=\"summary-wrap\">";
     writeMetricTable(o, "class=\"sortable summary\"", byFamily(in), {li}, cols, in);
     o << "</div></div>";
+}
+
+// Light li's contact=on settings against their contact=off ones (contact_pairs.h).
+std::vector<ContactPair> contactPairs(const ReportInput& in, size_t li) {
+    std::vector<ContactSetting> settings;
+    for (const ReportTechnique& t : in.techniques)
+        settings.push_back(
+            {t.label, t.technique, t.settings, contactRatesOf(t.lights[li].metrics)});
+    return pairContactSettings(settings);
 }
 
 // The data the script draws one light's chart from (report_assets.h).
@@ -699,6 +709,7 @@ void writeReport(const std::string& path, const ReportInput& in) {
         writeSummary(o, in, li);
         writeChartBox(o, in, li, lights.back());
         o << "</div>";
+        writeContactTable(o, contactPairs(in, li));
         writeImages(o, in, li, sink);
         writeFlickerStrip(o, in, li, sink);
         writeSequenceChart(o, in, li);

@@ -1,12 +1,14 @@
 // The HTML report of a comparison (docs/report.md): per light first a sortable summary of the
 // techniques and a chart of error against cost (the error and the cost chosen on the page, Pareto
-// front and quality curves drawn), then the images as a grid (rows: techniques; columns: render,
+// front and quality curves drawn), contact=on against contact=off where both ran
+// (contact_pairs.h), then the images as a grid (rows: techniques; columns: render,
 // error maps, worst region) with a zoom view that flips with the oracle; in a sequence, each
 // technique's error per frame; all metrics, and the
 // provenance. No network: style and script inline; images embedded or in a folder beside it.
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,7 +23,11 @@ namespace so {
 
 struct ReportTechnique {
     std::string label;
-    std::string family;  // TechniqueInfo::family: the report groups by it
+    std::string family;     // TechniqueInfo::family: the report groups by it
+    std::string technique;  // its name ("pcf"); empty for an image
+    // Every parameter, defaults included, as numbers (a method's index): the contact pairs'
+    // (contact_pairs.h); empty for an image.
+    std::map<std::string, double> settings;
     // Settings that differ only in the technique's quality parameter share `curve` (TradeoffPoint);
     // `quality` is its value, none for a technique without one.
     std::string curve;

@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "raster_compare/compare/artifacts.h"
 #include "raster_compare/compare/colour_scale.h"
+#include "raster_compare/compare/contact_pairs.h"
 #include "raster_compare/compare/html.h"
 #include "raster_compare/compare/metric_table.h"
 #include "raster_compare/compare/tradeoff.h"
@@ -764,6 +765,10 @@ void writeGroup(std::ostream& o, const Group& g, size_t gi, const SweepReportInp
       << html(g.light) << "</h2><p class=\"muted\">" << g.rows.size() << " settings of "
       << techniquesOf(g.rows).size() << " techniques.</p>";
     writeVerdicts(o, g);
+    std::vector<ContactSetting> settings;
+    for (const SweepRow* r : g.rows)
+        settings.push_back({r->label, r->technique, r->parameters, contactRatesOf(r->metrics)});
+    writeContactTable(o, pairContactSettings(settings));
     writeFronts(o, g, in, colours);
     writeBudgets(o, g, in.errorBudgets);
     writeHeatMaps(o, g);

@@ -1,6 +1,7 @@
 // The HTML report of a sweep (docs/sweep.md, "The report"): per scene and light, the Pareto front
 // of each artifact's error against frame time and against memory over every setting swept, the
-// cheapest setting per technique at a few error budgets, heat maps over the two-parameter grids
+// cheapest setting per technique at a few error budgets, contact=on against contact=off where
+// both ran (contact_pairs.h), heat maps over the two-parameter grids
 // (e.g. slope-bias alpha x min coloured by acne and by peter-panning), and the failed tasks with
 // their logs. Self-contained: style and script inline, no images, no network.
 #pragma once
@@ -26,6 +27,9 @@ struct SweepRow {
     // (docs/metrics.md): "acne_rate", "peter_panning_rate", "mae", "cost.frame_ms",
     // "cost.memory_bytes", ... A metric that is null (not applicable) is absent.
     std::map<std::string, double> metrics;
+    // Every parameter of the setting, defaults included, as numbers (compare's metrics.json
+    // `parameters`): what the contact pairs compare (contact_pairs.h).
+    std::map<std::string, double> parameters;
 };
 
 struct SweepFailure {

@@ -179,6 +179,8 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     ReportTechnique& rt = row.report;
     rt.label = run.spec.label;
     rt.family = findTechnique(run.spec.name).family;
+    rt.technique = run.spec.name;
+    rt.settings = run.technique->values().all();
     rt.fileLabel = run.spec.fileLabel;
     describeSetting(rt, run);
     job.metricOptions.filteredTechnique = run.technique->filtered();

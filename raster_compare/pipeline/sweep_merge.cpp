@@ -130,7 +130,9 @@ void addLight(Tables& t, const SweepPlan& plan, const std::vector<std::string>& 
     // The wide table as compare's: every parameter of the setting, defaults included.
     for (const auto& [name, value] : parameters.items())
         wide.emplace_back("param." + name, value.dump());
-    SweepRow row{task.id, scene, light, task.technique, task.label, task.swept, {}};
+    SweepRow row{task.id, scene, light, task.technique, task.label, task.swept, {}, {}};
+    for (const auto& [name, value] : parameters.items())
+        if (value.is_number()) row.parameters[name] = value.get<double>();
     for (const auto& [metric, value] : flatMetrics(metrics)) {
         const std::string text = value.is_null() ? "" : value.dump();
         t.csv << csvField(scene) << ',' << csvField(light) << ',' << csvField(task.technique) << ','

@@ -189,5 +189,24 @@ TEST(AcneByCause, ScreenSpaceBleedWhereItsOwnComparisonLit) {
     }
 }
 
+// A filtered map's own partial V (pcf's kernel: 0.6 at a pixel the oracle lights) that no
+// screen-space pass touched (V equal to V_unfiltered) is the comparison's own false shadow: acne,
+// as without V_unfiltered, not bleed; the march darkening the same pixel to 0 makes it bleed.
+TEST(AcneByCause, AFilteredMapsOwnPartialVIsNotBleed) {
+    for (float finalV : {0.6f, 0.0f}) {
+        Pair p = makePair(1.0f, true, true);
+        // An area light (stderr 0: exact): a V of 0.6 where the oracle says 1 is a false shadow.
+        p.oracle.addChannel(ch::lightChannel("L", ch::kStdErr), 0.0f);
+        paint(p, 0.3f, 0.6f);
+        for (const auto& [x, y] : kFalse) at(p.raster, ch::kVisibility, x, y) = finalV;
+        const LightMetrics m = computeLightMetrics(p.oracle, p.raster, "L", {});
+        const bool bleed = finalV < 0.6f;
+        ASSERT_TRUE(m.screenBleedRate);
+        EXPECT_DOUBLE_EQ(*m.screenBleedRate, bleed ? double(kFalseCount) / double(kW * kH) : 0.0);
+        EXPECT_DOUBLE_EQ(m.acneRate,
+                         bleed ? 0.0 : double(kFalseCount) / double(acneEligible(p.oracle)));
+    }
+}
+
 }  // namespace
 }  // namespace so
