@@ -54,7 +54,11 @@ ParamTable VirtualMapSettings::params(const std::string& needs, bool poolIsQuali
                     "then ask for finer pages only near the shadow edges found there; off: by "
                     "footprint alone"),
     };
-    for (ParamSpec& s : p) s.needs = needs;
+    if (needs.empty()) return p;
+    for (ParamSpec& s : p) {
+        s.needs = needs;
+        s.doc = needs + ": " + s.doc;  // the tables in docs/ show no `needs` column
+    }
     return p;
 }
 

@@ -14,8 +14,18 @@
 // rays to a local light run all the way to it. Defaults are Unreal's for directional lights:
 // RayCountDirectional 7, SamplesPerRayDirectional 8, RayLengthScaleDirectional 1.5. With
 // temporal=on the light points and the samples' fraction turn per frame (interleaved gradient
-// noise offset by the frame index, as pcf's taps) and a ShadowHistory resolves them. On the plain
-// map only: `map=adaptive` (the virtual shadow map's pages) is not built.
+// noise offset by the frame index, as pcf's taps) and a ShadowHistory resolves them.
+// map=plain (the default) marches through the family's one map (techniques/smrt.glsl; cascades
+// and contact=on as for any of the family). map=adaptive marches through the adaptive technique's
+// virtual shadow map (virtual_shadow_map_light.h, its parameters virtual_size, page_size, pool_mb,
+// density, refine; passes mark, pages, refine, visibility; shaders/smrt_virtual.frag): each sample
+// of a ray is looked up in the finest resident page at or coarser than the level the receiver
+// pixel needs, the bias in that page's texels. Pages are asked for by the receivers alone, as
+// Unreal does; a sample whose page is not resident reads the finest resident coarser one, and
+// the coarsest (one page over the whole map) always is. Directional and spot lights only: point
+// and area lights fall back, as adaptive's do, to a cube map of 32-bit depth in the pool's memory,
+// here smrt with map=plain (counts cube_fallback = 1, cube_resolution). The march itself is one
+// file for both (techniques/smrt_rays.glsl).
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -96,7 +106,10 @@ ParamTable Smrt::params() {
     for (ParamSpec& s : TemporalTaps::params()) own.push_back(std::move(s));
     ParamTable p = shadowMapParams(own);
     for (ParamSpec& s : p)
-        if (plainMapOnly(s.name) && s.needs.empty()) s.needs = "map=plain";
+        if (plainMapOnly(s.name) && s.needs.empty()) {
+            s.needs = "map=plain";
+            s.doc = "map=plain: " + s.doc;
+        }
     return p;
 }
 
