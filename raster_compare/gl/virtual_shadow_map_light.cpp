@@ -100,10 +100,10 @@ std::string settingText(const std::string& key, double v) {
 namespace {
 
 // A directional or spot light: the virtual map and its passes.
-class AdaptiveLight final : public LightTechnique {
+class VirtualMapLight final : public LightTechnique {
   public:
-    AdaptiveLight(const VirtualMapSettings& settings, const SlopeBias& bias,
-                  VirtualVisibility visibility, const LightSetup& setup, const LightCamera& cam);
+    VirtualMapLight(const VirtualMapSettings& settings, const SlopeBias& bias,
+                    VirtualVisibility visibility, const LightSetup& setup, const LightCamera& cam);
     std::vector<std::string> passNames() const override {
         return {"mark", "pages", "refine", "visibility"};
     }
@@ -126,7 +126,7 @@ class AdaptiveLight final : public LightTechnique {
     void uploadTable();
     void renderPages(size_t first);
 
-    const VirtualMapSettings& t_;
+    const VirtualMapSettings& map_;
     const SlopeBias& bias_;
     const VirtualVisibility visibility_;
     const GpuScene& scene_;
@@ -141,10 +141,10 @@ class AdaptiveLight final : public LightTechnique {
     int64_t meshDraws_ = 0;           // the last frame's page draws of a mesh
 };
 
-AdaptiveLight::AdaptiveLight(const VirtualMapSettings& settings, const SlopeBias& bias,
-                             VirtualVisibility visibility, const LightSetup& setup,
-                             const LightCamera& cam)
-    : t_(settings),
+VirtualMapLight::VirtualMapLight(const VirtualMapSettings& settings, const SlopeBias& bias,
+                                 VirtualVisibility visibility, const LightSetup& setup,
+                                 const LightCamera& cam)
+    : map_(settings),
       bias_(bias),
       visibility_(std::move(visibility)),
       scene_(setup.scene),
@@ -152,9 +152,9 @@ AdaptiveLight::AdaptiveLight(const VirtualMapSettings& settings, const SlopeBias
       cam_(cam) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    const int poolSide = std::max(t_.poolColumns, t_.poolRows) * t_.layout.pageSize;
+    const int poolSide = std::max(map_.poolColumns, map_.poolRows) * map_.layout.pageSize;
     if (poolSide > maxSize)
-        throwInputError("technique " + t_.technique, "pool_mb",
+        throwInputError("technique " + map_.technique, "pool_mb",
                         "the pool's side of " + std::to_string(poolSide) +
                             " texels exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxSize));
     createTargets();
@@ -162,32 +162,32 @@ AdaptiveLight::AdaptiveLight(const VirtualMapSettings& settings, const SlopeBias
     computeMeshRects();
 }
 
-void AdaptiveLight::createTargets() {
+void VirtualMapLight::createTargets() {
     markDepth_ = makeTexture2D(GL_DEPTH_COMPONENT32F, camera_.width(), camera_.height());
     markFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(markFbo_.get(), GL_DEPTH_ATTACHMENT, markDepth_.get(), 0);
     glNamedFramebufferDrawBuffer(markFbo_.get(), GL_NONE);
-    const int tw = t_.layout.tableWidth(), th = t_.layout.tableHeight();
+    const int tw = map_.layout.tableWidth(), th = map_.layout.tableHeight();
     requests_ = makeTexture2D(GL_R32UI, tw, th);
     pageTable_ = makeTexture2D(GL_R32I, tw, th);
-    const int ps = t_.layout.pageSize;
-    pool_ = makeTexture2D(GL_DEPTH_COMPONENT32F, t_.poolColumns * ps, t_.poolRows * ps);
+    const int ps = map_.layout.pageSize;
+    pool_ = makeTexture2D(GL_DEPTH_COMPONENT32F, map_.poolColumns * ps, map_.poolRows * ps);
     poolFbo_ = makeFramebuffer();
     glNamedFramebufferTexture(poolFbo_.get(), GL_DEPTH_ATTACHMENT, pool_.get(), 0);
     glNamedFramebufferDrawBuffer(poolFbo_.get(), GL_NONE);
 }
 
-void AdaptiveLight::createPrograms(const LightSetup& setup) {
+void VirtualMapLight::createPrograms(const LightSetup& setup) {
     depthProg_ = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
                               {shaders::alpha_test_glsl, shaders::depth_frag});
     const std::string defines =
         scene_.alphaDefines() +
         std::string(cam_.kind == LightCamera::Kind::Ortho ? "#define LIGHT_ORTHO\n"
                                                           : "#define LIGHT_SPOT\n") +
-        "#define VIRTUAL_SIZE " + std::to_string(t_.layout.virtualSize) + "\n#define PAGE_SIZE " +
-        std::to_string(t_.layout.pageSize) + "\n#define LEVELS " +
-        std::to_string(t_.layout.levels()) + "\n#define POOL_COLUMNS " +
-        std::to_string(t_.poolColumns) + "\n" + glslDefine("DENSITY", t_.density) +
+        "#define VIRTUAL_SIZE " + std::to_string(map_.layout.virtualSize) + "\n#define PAGE_SIZE " +
+        std::to_string(map_.layout.pageSize) + "\n#define LEVELS " +
+        std::to_string(map_.layout.levels()) + "\n#define POOL_COLUMNS " +
+        std::to_string(map_.poolColumns) + "\n" + glslDefine("DENSITY", map_.density) +
         bias_.defines() + "#define TABLE_TEXEL_BYTES " +
         std::to_string(texelBytes(pageTable_.get())) + "\n#define POOL_TEXEL_BYTES " +
         std::to_string(texelBytes(pool_.get())) + "\n";
@@ -211,17 +211,17 @@ void AdaptiveLight::createPrograms(const LightSetup& setup) {
     if (visibility_.setUniforms) visibility_.setUniforms(visibilityProg_.get(), setup);
 }
 
-void AdaptiveLight::setShadingUniforms(GLuint p) const {
+void VirtualMapLight::setShadingUniforms(GLuint p) const {
     setLightCameraUniforms(p, camera_, cam_);
     std::vector<GLint> rows;
-    for (int l = 0; l < t_.layout.levels(); ++l) rows.push_back(t_.layout.tableRow(l));
+    for (int l = 0; l < map_.layout.levels(); ++l) rows.push_back(map_.layout.tableRow(l));
     glProgramUniform1iv(p, glGetUniformLocation(p, "u_levelRow"), GLsizei(rows.size()),
                         rows.data());
 }
 
 // Each mesh's light-space bounds projected on the map; a mesh with a corner behind a spot light
 // (w <= 0) may cover any page.
-void AdaptiveLight::computeMeshRects() {
+void VirtualMapLight::computeMeshRects() {
     const Scene& scene = scene_.scene();
     const glm::dmat4 clipFromLocal = cam_.clipFromLocal(0);
     for (const MeshPrimitive& m : scene.meshes) {
@@ -243,16 +243,16 @@ void AdaptiveLight::computeMeshRects() {
     }
 }
 
-void AdaptiveLight::renderLightPasses(PassClock& clock) {
+void VirtualMapLight::renderLightPasses(PassClock& clock) {
     clock.begin("mark");
     renderMarkDepth();
     const std::vector<uint32_t> pixels = markPages(markProg_.get());
     clock.end();
     clock.begin("pages");
-    allocation_ = allocatePages(t_.layout, pixels, t_.poolPages());
+    allocation_ = allocatePages(map_.layout, pixels, map_.poolPages());
     footprintRequested_ = allocation_.requested;
-    const bool refine = t_.refine && allocation_.dropped > 0;
-    if (refine) allocation_ = allocatePages(t_.layout, pixels, std::max(1, t_.poolPages() / 2));
+    const bool refine = map_.refine && allocation_.dropped > 0;
+    if (refine) allocation_ = allocatePages(map_.layout, pixels, std::max(1, map_.poolPages() / 2));
     uploadTable();
     renderPages(0);
     clock.end();
@@ -260,20 +260,21 @@ void AdaptiveLight::renderLightPasses(PassClock& clock) {
     if (refine) {
         const PageAllocation base = allocation_;
         const std::vector<uint32_t> edges = markPages(edgesProg_.get());
-        allocation_ = allocatePages(t_.layout, edges, t_.poolPages(), &base);
+        allocation_ = allocatePages(map_.layout, edges, map_.poolPages(), &base);
         uploadTable();
         renderPages(base.pages.size());
     }
     clock.end();
 }
 
-void AdaptiveLight::uploadTable() {
-    glTextureSubImage2D(pageTable_.get(), 0, 0, 0, t_.layout.tableWidth(), t_.layout.tableHeight(),
-                        GL_RED_INTEGER, GL_INT, allocation_.table.data());
+void VirtualMapLight::uploadTable() {
+    glTextureSubImage2D(pageTable_.get(), 0, 0, 0, map_.layout.tableWidth(),
+                        map_.layout.tableHeight(), GL_RED_INTEGER, GL_INT,
+                        allocation_.table.data());
 }
 
 // The camera's depth, so that the mark passes see only visible surfaces.
-void AdaptiveLight::renderMarkDepth() {
+void VirtualMapLight::renderMarkDepth() {
     const float far = 0.0f;  // the camera's reversed depth
     glBindFramebuffer(GL_FRAMEBUFFER, markFbo_.get());
     glViewport(0, 0, camera_.width(), camera_.height());
@@ -286,7 +287,7 @@ void AdaptiveLight::renderMarkDepth() {
 
 // The camera's visible lit pixels counted into the pages they need (the edge program: those the
 // resident pages do not settle), read back. Over renderMarkDepth's depth.
-std::vector<uint32_t> AdaptiveLight::markPages(GLuint markProgram) {
+std::vector<uint32_t> VirtualMapLight::markPages(GLuint markProgram) {
     const uint32_t zero = 0;
     glClearTexImage(requests_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glBindFramebuffer(GL_FRAMEBUFFER, markFbo_.get());
@@ -300,7 +301,8 @@ std::vector<uint32_t> AdaptiveLight::markPages(GLuint markProgram) {
     scene_.draw(markProgram, false);
     glDepthMask(GL_TRUE);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    std::vector<uint32_t> pixels(size_t(t_.layout.tableWidth()) * size_t(t_.layout.tableHeight()));
+    std::vector<uint32_t> pixels(size_t(map_.layout.tableWidth()) *
+                                 size_t(map_.layout.tableHeight()));
     glGetTextureImage(requests_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
                       GLsizei(pixels.size() * sizeof(uint32_t)), pixels.data());
     return pixels;
@@ -319,8 +321,8 @@ glm::dmat4 pageFromClip(int pagesPerSide, int x, int y) {
 }
 
 // Renders the allocation's pages from `first` on.
-void AdaptiveLight::renderPages(size_t first) {
-    const int ps = t_.layout.pageSize;
+void VirtualMapLight::renderPages(size_t first) {
+    const int ps = map_.layout.pageSize;
     const float one = 1.0f;
     glBindFramebuffer(GL_FRAMEBUFFER, poolFbo_.get());
     glUseProgram(depthProg_.get());
@@ -330,11 +332,12 @@ void AdaptiveLight::renderPages(size_t first) {
     if (first == 0) meshDraws_ = 0;
     for (size_t i = first; i < allocation_.pages.size(); ++i) {
         const PageSlot& page = allocation_.pages[i];
-        const int ox = (page.slot % t_.poolColumns) * ps, oy = (page.slot / t_.poolColumns) * ps;
+        const int ox = (page.slot % map_.poolColumns) * ps,
+                  oy = (page.slot / map_.poolColumns) * ps;
         glViewport(ox, oy, ps, ps);
         glScissor(ox, oy, ps, ps);
         glClearNamedFramebufferfv(poolFbo_.get(), GL_DEPTH, 0, &one);
-        const int n = t_.layout.pagesPerSide(page.level);
+        const int n = map_.layout.pagesPerSide(page.level);
         setMat4(depthProg_.get(), "u_clipFromLocal",
                 pageFromClip(n, page.x, page.y) * lightClipFromLocal);
         // The page's square in normalised device coordinates, against each mesh's.
@@ -350,7 +353,7 @@ void AdaptiveLight::renderPages(size_t first) {
     glDisable(GL_SCISSOR_TEST);
 }
 
-void AdaptiveLight::renderVisibility(PassClock& clock) {
+void VirtualMapLight::renderVisibility(PassClock& clock) {
     clock.begin("visibility");
     glUseProgram(visibilityProg_.get());
     glBindTextureUnit(0, pageTable_.get());
@@ -359,7 +362,7 @@ void AdaptiveLight::renderVisibility(PassClock& clock) {
     clock.end();
 }
 
-RasterLightStats AdaptiveLight::describe() const {
+RasterLightStats VirtualMapLight::describe() const {
     const LocalFrame& frame = scene_.frame();
     RasterLightStats s;
     const bool ortho = cam_.kind == LightCamera::Kind::Ortho;
@@ -377,19 +380,19 @@ RasterLightStats AdaptiveLight::describe() const {
                 {"pages_rendered", int64_t(allocation_.pages.size())},
                 {"pages_dropped", allocation_.dropped},
                 {"finest_level_rendered", allocation_.finestLevel},
-                {"levels", t_.layout.levels()},
+                {"levels", map_.layout.levels()},
                 {"levels_marked", allocation_.levelsMarked},
-                {"pool_pages", t_.poolPages()},
+                {"pool_pages", map_.poolPages()},
                 {"page_mesh_draws", meshDraws_}};
     return s;
 }
 
 // The pool (32-bit depth), the request counts and the page table (32 bits a cell each), and the
 // mark pass's depth buffer (32-bit float, the camera's size).
-uint64_t AdaptiveLight::memoryBytes() const {
-    const uint64_t ps = uint64_t(t_.layout.pageSize);
-    const uint64_t cells = uint64_t(t_.layout.tableWidth()) * uint64_t(t_.layout.tableHeight());
-    return uint64_t(t_.poolPages()) * ps * ps * kPoolTexelBytes + cells * 4 * 2 +
+uint64_t VirtualMapLight::memoryBytes() const {
+    const uint64_t ps = uint64_t(map_.layout.pageSize);
+    const uint64_t cells = uint64_t(map_.layout.tableWidth()) * uint64_t(map_.layout.tableHeight());
+    return uint64_t(map_.poolPages()) * ps * ps * kPoolTexelBytes + cells * 4 * 2 +
            uint64_t(camera_.width()) * uint64_t(camera_.height()) * 4;
 }
 
@@ -442,7 +445,7 @@ std::unique_ptr<LightTechnique> setUpVirtualShadowMap(
                                            setup.lsReceivers ? &*setup.lsReceivers : nullptr);
     if (cam.kind == LightCamera::Kind::Cube)
         return std::make_unique<CubeFallbackLight>(settings, setup, fallback, fallbackProbes);
-    return std::make_unique<AdaptiveLight>(settings, bias, std::move(visibility), setup, cam);
+    return std::make_unique<VirtualMapLight>(settings, bias, std::move(visibility), setup, cam);
 }
 
 }  // namespace so
