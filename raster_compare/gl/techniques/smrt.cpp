@@ -30,6 +30,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/error.h"
 #include "core/lights/light_kind.h"
 #include "raster_compare/gl/gl_program.h"
 #include "raster_compare/gl/gpu_scene.h"
@@ -43,9 +44,10 @@ namespace so {
 namespace {
 
 // The shadow-map family's parameters that describe the one plain map: map=adaptive has none.
+constexpr const char* kPlainMapOnly[] = {"resolution", "depth_format", "cascades", "split_lambda",
+                                         "snap",       "blend",        "contact"};
 bool plainMapOnly(const std::string& name) {
-    for (const char* n :
-         {"resolution", "depth_format", "cascades", "split_lambda", "snap", "blend", "contact"})
+    for (const char* n : kPlainMapOnly)
         if (name == n) return true;
     return false;
 }
@@ -61,7 +63,13 @@ class Smrt final : public ShadowMapTechnique {
           adaptive_(v.integer("map") == 1),
           map_(v, "smrt"),
           bias_(v),
-          temporal_(v) {}
+          temporal_(v) {
+        // Not ParamSpec::needs, which names a setting other than the default.
+        if (adaptive_)
+            for (const char* name : kPlainMapOnly)
+                if (v.given(name))
+                    throwInputError("technique smrt", name, "has no effect with map=adaptive");
+    }
     const char* glsl() const override {
         // The march, then its lookups in the plain map.
         static const std::string source = std::string(shaders::smrt_rays_glsl) + shaders::smrt_glsl;
@@ -106,10 +114,7 @@ ParamTable Smrt::params() {
     for (ParamSpec& s : TemporalTaps::params()) own.push_back(std::move(s));
     ParamTable p = shadowMapParams(own);
     for (ParamSpec& s : p)
-        if (plainMapOnly(s.name) && s.needs.empty()) {
-            s.needs = "map=plain";
-            s.doc = "map=plain: " + s.doc;
-        }
+        if (plainMapOnly(s.name)) s.doc = "map=plain: " + s.doc;
     return p;
 }
 
