@@ -18,7 +18,8 @@
 // (perspective, cropped in clip space). Point and area lights fall back to a plain slope-bias cube
 // map of the pool's memory (counts: cube_fallback = 1). The passes live in
 // virtual_shadow_map_light.h, which smrt's map=adaptive shares.
-#include "core/error.h"
+#include <utility>
+
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
 #include "raster_compare/gl/virtual_shadow_map_light.h"
