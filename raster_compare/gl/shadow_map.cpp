@@ -398,8 +398,8 @@ GlProgram ShadowMapLight::createVisibilityProgram(const CameraPass& camera, bool
         ("#define VISIBILITY_PASS\n" + lightCameraDefines(cam_) +
          mapDefines(technique_, map_.get()) + technique_.shaderDefines() +
          (probe ? "#define DEPTH_PROBE\n" : "") + technique_.contact().defines(camera));
-    std::vector<const char*> sources = {shaders::alpha_test_glsl, shaders::shadow_map_frag,
-                                        technique_.glsl()};
+    std::vector<const char*> sources = {shaders::alpha_test_glsl, shaders::taps_glsl,
+                                        shaders::shadow_map_frag, technique_.glsl()};
     if (technique_.contact().on) sources.push_back(shaders::contact_shadow_glsl);
     GlProgram program = buildProgram(defines, shaders::scene_vert, sources);
     const GLuint vp = program.get();

@@ -55,7 +55,9 @@ class ShadowMapTechnique : public Technique {
     // A depth map's visibility pass says what the pixel's own comparison saw
     // (docs/exr-channels.md); moment maps compare no depth.
     bool probesDepth() const final { return storage() == MapStorage::Depth; }
-    std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const final;
+    // One plain map per light; a technique may look up another map instead (smrt:map=adaptive,
+    // the virtual shadow map's pages) and call this for the plain one.
+    std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override;
 
     int resolution() const { return resolution_; }
     int depthBits() const { return depthBits_; }

@@ -17,7 +17,7 @@ struct TemporalTaps {
     // (ParamSpec::needs: given with temporal=off, an InputError naming the technique and the key).
     static ParamTable params();
     explicit TemporalTaps(const ParamValues& values);
-    // "#define TEMPORAL\n" when on (shaders/shadow_map.frag's tapRotation), else nothing: off
+    // "#define TEMPORAL\n" when on (shaders/taps.glsl's tapRotation), else nothing: off
     // compiles the very shader it did before.
     std::string defines() const;
     // The history's settings when on; none otherwise (Technique::history).

@@ -168,31 +168,12 @@ TEST(Adaptive, ReproducesSlopeBiasWhenEveryPageIsAtLevelZero) {
     }
 }
 
-// A long receiver seen from near the ground, a low sun, posts casting long shadows.
-Scene grazingScene(int width, int height) {
-    Scene s;
-    s.meshes.push_back(makeGrid({0, 0, -60}, {40, 0, 0}, {0, 0, -128}, 16, "ground"));
-    for (int k = 0; k < 12; ++k) {
-        const double z = -4.0 - 10.0 * k, x = (k % 3 - 1) * 4.0;
-        s.meshes.push_back(makeBox({x - 0.5, 0, z - 0.5}, {x + 0.5, 3, z + 0.5}, "post"));
-    }
-    s.camera.wsEye = {0.5, 1.5, 2.0};
-    s.camera.wsTarget = {0.0, 0.0, -40.0};
-    s.camera.vfovDeg = 45.0;
-    s.camera.width = width;
-    s.camera.height = height;
-    s.lights = {directionalLight("sun", glm::normalize(glm::dvec3(0.8, -0.5, 0.3)))};
-    s.effects = {"hard"};
-    finalizeScene(s);
-    return s;
-}
-
 // The texel used follows the pixel's footprint: with every page resident the predicted aliasing
 // stays within (1/2, 1] of 1/density wherever the virtual map is fine enough, while a plain map's
 // varies many-fold over the same pixels; and V stays right.
 TEST(Adaptive, TexelsFollowTheFootprintAtAGrazingView) {
     REQUIRE_GL();
-    Scene s = grazingScene(320, 240);
+    Scene s = makeGroundPostsScene(320, 240);
     RasterResult a = renderOneFrame(s, "adaptive", {"virtual_size=65536", "pool_mb=256"});
     RasterResult b = renderOneFrame(s, "slope-bias", {"resolution=4096"});
     const RasterLightStats& st = lightStats(a, "sun");
@@ -226,7 +207,7 @@ TEST(Adaptive, TexelsFollowTheFootprintAtAGrazingView) {
 // back to coarser resident pages, and V is still a sound, if coarser, shadow.
 TEST(Adaptive, ASmallPoolDropsPagesAndFallsBackToCoarserOnes) {
     REQUIRE_GL();
-    Scene s = grazingScene(320, 240);
+    Scene s = makeGroundPostsScene(320, 240);
     RasterResult a = renderOneFrame(s, "adaptive", {"virtual_size=65536", "pool_mb=1", "refine=0"});
     const RasterLightStats& st = lightStats(a, "sun");
     EXPECT_EQ(st.counts.at("pool_pages"), 16);
@@ -247,7 +228,7 @@ TEST(Adaptive, ASmallPoolDropsPagesAndFallsBackToCoarserOnes) {
 // first half's pages put a shadow edge: fewer pages asked for, and V as good or better.
 TEST(Adaptive, EdgeRefinementAsksOnlyNearShadowEdges) {
     REQUIRE_GL();
-    Scene s = grazingScene(320, 240);
+    Scene s = makeGroundPostsScene(320, 240);
     RasterResult plain = renderOneFrame(s, "adaptive", {"pool_mb=1", "refine=0"});
     RasterResult refined = renderOneFrame(s, "adaptive", {"pool_mb=1", "refine=1"});
     const RasterLightStats& st = lightStats(refined, "sun");

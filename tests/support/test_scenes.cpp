@@ -93,6 +93,25 @@ void aimCamera(Scene& scene, const glm::dvec3& eye, const glm::dvec3& target, do
     scene.camera.height = height;
 }
 
+// A long receiver seen from near the ground, a low sun, posts casting long shadows.
+Scene makeGroundPostsScene(int width, int height) {
+    Scene s;
+    s.meshes.push_back(makeGrid({0, 0, -60}, {40, 0, 0}, {0, 0, -128}, 16, "ground"));
+    for (int k = 0; k < 12; ++k) {
+        const double z = -4.0 - 10.0 * k, x = (k % 3 - 1) * 4.0;
+        s.meshes.push_back(makeBox({x - 0.5, 0, z - 0.5}, {x + 0.5, 3, z + 0.5}, "post"));
+    }
+    s.camera.wsEye = {0.5, 1.5, 2.0};
+    s.camera.wsTarget = {0.0, 0.0, -40.0};
+    s.camera.vfovDeg = 45.0;
+    s.camera.width = width;
+    s.camera.height = height;
+    s.lights = {directionalLight("sun", glm::normalize(glm::dvec3(0.8, -0.5, 0.3)))};
+    s.effects = {"hard"};
+    finalizeScene(s);
+    return s;
+}
+
 PenumbraScene makePenumbraScene(int w, int h) {
     PenumbraScene s;
     Scene& sc = s.scene;

@@ -37,6 +37,10 @@ struct PenumbraScene {
 };
 PenumbraScene makePenumbraScene(int width, int height);
 
+// A long receiver (the ground, mesh 0) seen from near it toward the horizon, a low sun ("sun"),
+// twelve posts casting long shadows: the adaptive map's scene (its texel density follows the view).
+Scene makeGroundPostsScene(int width, int height);
+
 // Applies p -> p * scale + translate to every position in the scene (meshes, camera, lights), and
 // scales the area lights' extents.
 Scene transformScene(const Scene& scene, double scale, const glm::dvec3& translate);

@@ -16,52 +16,16 @@
 //     in that level's texels (slope-bias's parameters), linear depths compared.
 // Directional lights (orthographic, fitted as fitLightCamera fits a plain map) and spot lights
 // (perspective, cropped in clip space). Point and area lights fall back to a plain slope-bias cube
-// map of the pool's memory (counts: cube_fallback = 1).
-#include <algorithm>
-#include <bit>
-#include <cmath>
-#include <sstream>
+// map of the pool's memory (counts: cube_fallback = 1). The passes live in
+// virtual_shadow_map_light.h, which smrt's map=adaptive shares.
+#include <utility>
 
-#include <glm/ext/matrix_transform.hpp>
-#include <glm/matrix.hpp>
-
-#include "core/error.h"
-#include "raster_compare/gl/camera_pass.h"
-#include "raster_compare/gl/gl_program.h"
-#include "raster_compare/gl/gpu_scene.h"
-#include "raster_compare/gl/light_camera.h"
-#include "raster_compare/gl/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
-#include "raster_compare/gl/virtual_shadow_map.h"
-#include "raster_compare/gl/work_counter.h"
+#include "raster_compare/gl/virtual_shadow_map_light.h"
 
 namespace so {
 namespace {
-
-constexpr uint64_t kMiB = uint64_t(1) << 20;
-constexpr uint64_t kPoolTexelBytes = 4;  // GL_DEPTH_COMPONENT32F
-
-std::vector<double> powersOfTwo(int lo, int hi) {
-    std::vector<double> v;
-    for (int p = lo; p <= hi; p *= 2) v.push_back(p);
-    return v;
-}
-
-// The physical pool: the largest grid of pages within the budget that is about square.
-struct PoolShape {
-    int columns = 0, rows = 0;
-    int pages() const { return columns * rows; }
-};
-
-PoolShape poolShape(int poolMb, int pageSize) {
-    const uint64_t fit =
-        uint64_t(poolMb) * kMiB / (uint64_t(pageSize) * uint64_t(pageSize) * kPoolTexelBytes);
-    PoolShape s;
-    s.columns = int(std::floor(std::sqrt(double(fit))));
-    s.rows = s.columns > 0 ? int(fit / uint64_t(s.columns)) : 0;
-    return s;
-}
 
 class Adaptive final : public Technique {
   public:
@@ -69,401 +33,35 @@ class Adaptive final : public Technique {
     // ShadowMapTechnique, whose single-map setUp this does not share.
     static constexpr const char* kFamily = "virtual shadow map";
     static ParamTable params();
-    explicit Adaptive(const ParamValues& v);
+    explicit Adaptive(const ParamValues& v)
+        : Technique(v), map_(v, "adaptive"), bias_(v), fit_(v.integer("fit") == 1) {}
     bool needsReceiverBounds() const override { return fit_; }
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override;
 
-    VirtualMapLayout layout;
-    int poolMb;
-    PoolShape pool;
-    double density;
-    bool refine;
-    SlopeBias bias;
-
   private:
+    VirtualMapSettings map_;
+    SlopeBias bias_;
     bool fit_;
 };
 
 ParamTable Adaptive::params() {
-    ParamTable p = {
-        {"virtual_size", 65536, 256, 65536, true, "side of the virtual map's level 0 in texels",
-         powersOfTwo(256, 65536)},
-        {"page_size", 128, 32, 1024, true, "side of a page in texels (at most virtual_size)",
-         powersOfTwo(32, 1024)},
-        {"pool_mb",
-         16,
-         1,
-         1024,
-         true,
-         "memory of the physical page pool in MiB (32-bit depth): the largest about square grid "
-         "of pages that fits",
-         {},
-         true},
-        {"density", 1.0, 1.0 / 64.0, 1024.0, false,
-         "texels wanted across a pixel's footprint (at n.l): pages are asked for at the coarsest "
-         "level with predicted aliasing <= 1/density"},
-        methodParam("refine", 1, {"off", "on"},
-                    "on: when the pool cannot hold every page asked for, fill half of it first, "
-                    "then ask for finer pages only near the shadow edges found there; off: by "
-                    "footprint alone"),
-        fitParam(),
-    };
+    ParamTable p = VirtualMapSettings::params();
+    p.push_back(fitParam());
     for (ParamSpec& s : SlopeBias::params()) p.push_back(std::move(s));
     return p;
 }
 
-Adaptive::Adaptive(const ParamValues& v)
-    : Technique(v),
-      layout{v.integer("virtual_size"), v.integer("page_size")},
-      poolMb(v.integer("pool_mb")),
-      density(v.real("density")),
-      refine(v.integer("refine") == 1),
-      bias(v),
-      fit_(v.integer("fit") == 1) {
-    if (layout.pageSize > layout.virtualSize)
-        throwInputError("technique adaptive", "page_size",
-                        "page_size " + std::to_string(layout.pageSize) +
-                            " is larger than virtual_size " + std::to_string(layout.virtualSize));
-    pool = poolShape(poolMb, layout.pageSize);
-    if (pool.pages() < 1)
-        throwInputError("technique adaptive", "pool_mb",
-                        "a pool of " + std::to_string(poolMb) + " MiB holds no page of " +
-                            std::to_string(layout.pageSize) + "^2 32-bit texels");
-}
-
-// A directional or spot light: the virtual map and its passes.
-class AdaptiveLight final : public LightTechnique {
-  public:
-    AdaptiveLight(const Adaptive& technique, const LightSetup& setup, const LightCamera& cam);
-    std::vector<std::string> passNames() const override {
-        return {"mark", "pages", "refine", "visibility"};
-    }
-    void renderLightPasses(PassClock& clock) override;
-    void renderVisibility(PassClock& clock) override;
-    RasterLightStats describe() const override;
-    uint64_t memoryBytes() const override;
-
-  private:
-    // A mesh's footprint on the virtual map, in normalised device coordinates.
-    struct NdcRect {
-        glm::dvec2 lo, hi;
-    };
-    void createTargets();
-    void createPrograms();
-    void setShadingUniforms(GLuint program) const;
-    void computeMeshRects();
-    void renderMarkDepth();
-    std::vector<uint32_t> markPages(GLuint markProgram);
-    void uploadTable();
-    void renderPages(size_t first);
-
-    const Adaptive& t_;
-    const GpuScene& scene_;
-    const CameraPass& camera_;
-    LightCamera cam_;
-    GlTexture markDepth_, requests_, pageTable_, pool_;
-    GlFramebuffer markFbo_, poolFbo_;
-    GlProgram depthProg_, markProg_, edgesProg_, visibilityProg_;
-    std::vector<NdcRect> meshRects_;
-    PageAllocation allocation_;       // the last frame's
-    int64_t footprintRequested_ = 0;  // the last frame's requests before edge refinement
-    int64_t meshDraws_ = 0;           // the last frame's page draws of a mesh
-};
-
-AdaptiveLight::AdaptiveLight(const Adaptive& technique, const LightSetup& setup,
-                             const LightCamera& cam)
-    : t_(technique), scene_(setup.scene), camera_(setup.camera), cam_(cam) {
-    GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    const int poolSide = std::max(t_.pool.columns, t_.pool.rows) * t_.layout.pageSize;
-    if (poolSide > maxSize)
-        throwInputError("technique adaptive", "pool_mb",
-                        "the pool's side of " + std::to_string(poolSide) +
-                            " texels exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxSize));
-    createTargets();
-    createPrograms();
-    computeMeshRects();
-}
-
-void AdaptiveLight::createTargets() {
-    markDepth_ = makeTexture2D(GL_DEPTH_COMPONENT32F, camera_.width(), camera_.height());
-    markFbo_ = makeFramebuffer();
-    glNamedFramebufferTexture(markFbo_.get(), GL_DEPTH_ATTACHMENT, markDepth_.get(), 0);
-    glNamedFramebufferDrawBuffer(markFbo_.get(), GL_NONE);
-    const int tw = t_.layout.tableWidth(), th = t_.layout.tableHeight();
-    requests_ = makeTexture2D(GL_R32UI, tw, th);
-    pageTable_ = makeTexture2D(GL_R32I, tw, th);
-    const int ps = t_.layout.pageSize;
-    pool_ = makeTexture2D(GL_DEPTH_COMPONENT32F, t_.pool.columns * ps, t_.pool.rows * ps);
-    poolFbo_ = makeFramebuffer();
-    glNamedFramebufferTexture(poolFbo_.get(), GL_DEPTH_ATTACHMENT, pool_.get(), 0);
-    glNamedFramebufferDrawBuffer(poolFbo_.get(), GL_NONE);
-}
-
-void AdaptiveLight::createPrograms() {
-    depthProg_ = buildProgram(scene_.alphaDefines(), shaders::scene_vert,
-                              {shaders::alpha_test_glsl, shaders::depth_frag});
-    const std::string defines =
-        scene_.alphaDefines() +
-        std::string(cam_.kind == LightCamera::Kind::Ortho ? "#define LIGHT_ORTHO\n"
-                                                          : "#define LIGHT_SPOT\n") +
-        "#define VIRTUAL_SIZE " + std::to_string(t_.layout.virtualSize) + "\n#define PAGE_SIZE " +
-        std::to_string(t_.layout.pageSize) + "\n#define LEVELS " +
-        std::to_string(t_.layout.levels()) + "\n#define POOL_COLUMNS " +
-        std::to_string(t_.pool.columns) + "\n" + glslDefine("DENSITY", t_.density) +
-        t_.bias.defines() + "#define TABLE_TEXEL_BYTES " +
-        std::to_string(texelBytes(pageTable_.get())) + "\n#define POOL_TEXEL_BYTES " +
-        std::to_string(texelBytes(pool_.get())) + "\n";
-    markProg_ = buildProgram(
-        defines, shaders::scene_vert,
-        {shaders::alpha_test_glsl, shaders::adaptive_glsl, shaders::adaptive_mark_frag});
-    // The edge test looks two texels around the pixel's: a coarse page's edge lies within about a
-    // texel of the true one, so a pixel whose 5 x 5 texels agree is settled.
-    edgesProg_ = buildProgram(
-        defines + "#define MARK_EDGES\n#define EDGE_RADIUS 2\n", shaders::scene_vert,
-        {shaders::alpha_test_glsl, shaders::adaptive_glsl, shaders::adaptive_mark_frag});
-    visibilityProg_ = buildProgram(
-        defines, shaders::scene_vert,
-        {shaders::alpha_test_glsl, shaders::adaptive_glsl, shaders::adaptive_visibility_frag});
-    for (GLuint p : {markProg_.get(), edgesProg_.get(), visibilityProg_.get()}) {
-        setShadingUniforms(p);
-        setInt(p, "u_pageTable", 0);
-        setInt(p, "u_pool", 1);
-    }
-}
-
-void AdaptiveLight::setShadingUniforms(GLuint p) const {
-    setLightCameraUniforms(p, camera_, cam_);
-    std::vector<GLint> rows;
-    for (int l = 0; l < t_.layout.levels(); ++l) rows.push_back(t_.layout.tableRow(l));
-    glProgramUniform1iv(p, glGetUniformLocation(p, "u_levelRow"), GLsizei(rows.size()),
-                        rows.data());
-}
-
-// Each mesh's light-space bounds projected on the map; a mesh with a corner behind a spot light
-// (w <= 0) may cover any page.
-void AdaptiveLight::computeMeshRects() {
-    const Scene& scene = scene_.scene();
-    const glm::dmat4 clipFromLocal = cam_.clipFromLocal(0);
-    for (const MeshPrimitive& m : scene.meshes) {
-        Bounds3d ls;
-        for (const glm::dvec3& p : m.wsPositions) ls.extend(scene_.frame().lsFromWs(p));
-        NdcRect r{glm::dvec2(1e300), glm::dvec2(-1e300)};
-        for (int k = 0; k < 8 && !ls.empty(); ++k) {
-            const glm::dvec4 c =
-                clipFromLocal * glm::dvec4((k & 1) ? ls.hi.x : ls.lo.x, (k & 2) ? ls.hi.y : ls.lo.y,
-                                           (k & 4) ? ls.hi.z : ls.lo.z, 1.0);
-            if (c.w <= 1e-12) {
-                r = {glm::dvec2(-1e300), glm::dvec2(1e300)};
-                break;
-            }
-            r.lo = glm::min(r.lo, glm::dvec2(c) / c.w);
-            r.hi = glm::max(r.hi, glm::dvec2(c) / c.w);
-        }
-        meshRects_.push_back(r);
-    }
-}
-
-void AdaptiveLight::renderLightPasses(PassClock& clock) {
-    clock.begin("mark");
-    renderMarkDepth();
-    const std::vector<uint32_t> pixels = markPages(markProg_.get());
-    clock.end();
-    clock.begin("pages");
-    allocation_ = allocatePages(t_.layout, pixels, t_.pool.pages());
-    footprintRequested_ = allocation_.requested;
-    const bool refine = t_.refine && allocation_.dropped > 0;
-    if (refine) allocation_ = allocatePages(t_.layout, pixels, std::max(1, t_.pool.pages() / 2));
-    uploadTable();
-    renderPages(0);
-    clock.end();
-    clock.begin("refine");
-    if (refine) {
-        const PageAllocation base = allocation_;
-        const std::vector<uint32_t> edges = markPages(edgesProg_.get());
-        allocation_ = allocatePages(t_.layout, edges, t_.pool.pages(), &base);
-        uploadTable();
-        renderPages(base.pages.size());
-    }
-    clock.end();
-}
-
-void AdaptiveLight::uploadTable() {
-    glTextureSubImage2D(pageTable_.get(), 0, 0, 0, t_.layout.tableWidth(), t_.layout.tableHeight(),
-                        GL_RED_INTEGER, GL_INT, allocation_.table.data());
-}
-
-// The camera's depth, so that the mark passes see only visible surfaces.
-void AdaptiveLight::renderMarkDepth() {
-    const float far = 0.0f;  // the camera's reversed depth
-    glBindFramebuffer(GL_FRAMEBUFFER, markFbo_.get());
-    glViewport(0, 0, camera_.width(), camera_.height());
-    glClearNamedFramebufferfv(markFbo_.get(), GL_DEPTH, 0, &far);
-    glDepthFunc(GL_GREATER);
-    glUseProgram(depthProg_.get());
-    setMat4(depthProg_.get(), "u_clipFromLocal", camera_.clipFromLocal());
-    scene_.draw(depthProg_.get(), false);
-}
-
-// The camera's visible lit pixels counted into the pages they need (the edge program: those the
-// resident pages do not settle), read back. Over renderMarkDepth's depth.
-std::vector<uint32_t> AdaptiveLight::markPages(GLuint markProgram) {
-    const uint32_t zero = 0;
-    glClearTexImage(requests_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, markFbo_.get());
-    glViewport(0, 0, camera_.width(), camera_.height());
-    glDepthMask(GL_FALSE);
-    glDepthFunc(GL_EQUAL);
-    glUseProgram(markProgram);
-    glBindImageTexture(0, requests_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindTextureUnit(0, pageTable_.get());
-    glBindTextureUnit(1, pool_.get());
-    scene_.draw(markProgram, false);
-    glDepthMask(GL_TRUE);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    std::vector<uint32_t> pixels(size_t(t_.layout.tableWidth()) * size_t(t_.layout.tableHeight()));
-    glGetTextureImage(requests_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                      GLsizei(pixels.size() * sizeof(uint32_t)), pixels.data());
-    return pixels;
-}
-
-// The light's clip space cropped to one page: that page's square of normalised device
-// coordinates mapped onto [-1, 1]^2 (x' = n x - (2 i + 1 - n) w, so perspective divides alike).
-glm::dmat4 pageFromClip(int pagesPerSide, int x, int y) {
-    const double n = pagesPerSide;
-    glm::dmat4 m(1.0);
-    m[0][0] = n;
-    m[1][1] = n;
-    m[3][0] = -(2.0 * x + 1.0 - n);
-    m[3][1] = -(2.0 * y + 1.0 - n);
-    return m;
-}
-
-// Renders the allocation's pages from `first` on.
-void AdaptiveLight::renderPages(size_t first) {
-    const int ps = t_.layout.pageSize;
-    const float one = 1.0f;
-    glBindFramebuffer(GL_FRAMEBUFFER, poolFbo_.get());
-    glUseProgram(depthProg_.get());
-    glDepthFunc(GL_LESS);
-    glEnable(GL_SCISSOR_TEST);
-    const glm::dmat4 lightClipFromLocal = cam_.clipFromLocal(0);
-    if (first == 0) meshDraws_ = 0;
-    for (size_t i = first; i < allocation_.pages.size(); ++i) {
-        const PageSlot& page = allocation_.pages[i];
-        const int ox = (page.slot % t_.pool.columns) * ps, oy = (page.slot / t_.pool.columns) * ps;
-        glViewport(ox, oy, ps, ps);
-        glScissor(ox, oy, ps, ps);
-        glClearNamedFramebufferfv(poolFbo_.get(), GL_DEPTH, 0, &one);
-        const int n = t_.layout.pagesPerSide(page.level);
-        setMat4(depthProg_.get(), "u_clipFromLocal",
-                pageFromClip(n, page.x, page.y) * lightClipFromLocal);
-        // The page's square in normalised device coordinates, against each mesh's.
-        const glm::dvec2 lo = glm::dvec2(-1.0 + 2.0 * page.x / n, -1.0 + 2.0 * page.y / n);
-        const glm::dvec2 hi = lo + 2.0 / n;
-        for (size_t m = 0; m < meshRects_.size(); ++m) {
-            const NdcRect& r = meshRects_[m];
-            if (r.hi.x < lo.x || r.hi.y < lo.y || r.lo.x > hi.x || r.lo.y > hi.y) continue;
-            scene_.drawMesh(depthProg_.get(), m);
-            ++meshDraws_;
-        }
-    }
-    glDisable(GL_SCISSOR_TEST);
-}
-
-void AdaptiveLight::renderVisibility(PassClock& clock) {
-    clock.begin("visibility");
-    glUseProgram(visibilityProg_.get());
-    glBindTextureUnit(0, pageTable_.get());
-    glBindTextureUnit(1, pool_.get());
-    scene_.draw(visibilityProg_.get(), false);
-    clock.end();
-}
-
-RasterLightStats AdaptiveLight::describe() const {
-    const LocalFrame& frame = scene_.frame();
-    RasterLightStats s;
-    const bool ortho = cam_.kind == LightCamera::Kind::Ortho;
-    s.map = ortho ? "orthographic" : "perspective";
-    s.clipFromWorld = {cam_.clipFromLocal(0) * glm::inverse(scene_.wsFromLs())};
-    s.wsNear = frame.wsLength(cam_.near);
-    s.wsFar = frame.wsLength(cam_.far);
-    s.fovYDeg = cam_.fovYDeg;
-    // Level 0's texel: the finest the map can give.
-    s.texelSizeIsAbsolute = ortho;
-    s.texelSize = ortho ? frame.wsLength(cam_.texelScale) : cam_.texelScale;
-    s.counts = {{"pages_marked", allocation_.marked},
-                {"pages_requested_by_footprint", footprintRequested_},
-                {"pages_requested", allocation_.requested},
-                {"pages_rendered", int64_t(allocation_.pages.size())},
-                {"pages_dropped", allocation_.dropped},
-                {"finest_level_rendered", allocation_.finestLevel},
-                {"levels", t_.layout.levels()},
-                {"levels_marked", allocation_.levelsMarked},
-                {"pool_pages", t_.pool.pages()},
-                {"page_mesh_draws", meshDraws_}};
-    return s;
-}
-
-// The pool (32-bit depth), the request counts and the page table (32 bits a cell each), and the
-// mark pass's depth buffer (32-bit float, the camera's size).
-uint64_t AdaptiveLight::memoryBytes() const {
-    const uint64_t ps = uint64_t(t_.layout.pageSize);
-    const uint64_t cells = uint64_t(t_.layout.tableWidth()) * uint64_t(t_.layout.tableHeight());
-    return uint64_t(t_.pool.pages()) * ps * ps * kPoolTexelBytes + cells * 4 * 2 +
-           uint64_t(camera_.width()) * uint64_t(camera_.height()) * 4;
-}
-
-// Point and area lights: a slope-bias cube map of 32-bit depth in (about) the pool's memory, its
-// passes ("shadow_map", "visibility") as slope-bias reports them.
-class CubeFallbackLight final : public LightTechnique {
-  public:
-    CubeFallbackLight(const Adaptive& technique, const LightSetup& setup);
-    std::vector<std::string> passNames() const override { return light_->passNames(); }
-    void renderLightPasses(PassClock& clock) override { light_->renderLightPasses(clock); }
-    void renderVisibility(PassClock& clock) override { light_->renderVisibility(clock); }
-    RasterLightStats describe() const override;
-    uint64_t memoryBytes() const override { return light_->memoryBytes(); }
-
-  private:
-    int resolution_;
-    std::unique_ptr<Technique> slopeBias_;  // outlives light_, which refers to it
-    std::unique_ptr<LightTechnique> light_;
-};
-
-std::string setting(const char* key, double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << key << "=" << v;
-    return s.str();
-}
-
-CubeFallbackLight::CubeFallbackLight(const Adaptive& t, const LightSetup& setup) {
-    // Six faces of 4-byte texels.
-    const double side = std::sqrt(double(uint64_t(t.poolMb) * kMiB) / 24.0);
-    resolution_ = std::clamp(int(side), 16, 16384);
-    slopeBias_ = createTechnique(
-        "slope-bias",
-        {setting("resolution", resolution_), "depth_format=32", setting("alpha", t.bias.alpha),
-         setting("min", t.bias.minTexels), setting("max", t.bias.maxTexels)});
-    // Without the depth probe: adaptive's target has none.
-    light_ = slopeBias_->setUp({setup.light, setup.scene, setup.camera, setup.lsReceivers});
-}
-
-RasterLightStats CubeFallbackLight::describe() const {
-    RasterLightStats s = light_->describe();
-    s.counts["cube_fallback"] = 1;
-    s.counts["cube_resolution"] = resolution_;
-    return s;
-}
-
 std::unique_ptr<LightTechnique> Adaptive::setUp(const LightSetup& setup) const {
-    const LightCamera cam =
-        fitLightCamera(setup.light, setup.scene.frame(), setup.scene.lsBounds(), layout.virtualSize,
-                       setup.lsReceivers ? &*setup.lsReceivers : nullptr);
-    if (cam.kind == LightCamera::Kind::Cube)
-        return std::make_unique<CubeFallbackLight>(*this, setup);
-    return std::make_unique<AdaptiveLight>(*this, setup, cam);
+    VirtualVisibility visibility;
+    visibility.frag = shaders::adaptive_visibility_frag;
+    // Point and area lights: a slope-bias cube map of the pool's memory.
+    const CubeFallback slopeBias = [this](int resolution) {
+        return createTechnique(
+            "slope-bias", {settingText("resolution", resolution), "depth_format=32",
+                           settingText("alpha", bias_.alpha), settingText("min", bias_.minTexels),
+                           settingText("max", bias_.maxTexels)});
+    };
+    return setUpVirtualShadowMap(map_, bias_, std::move(visibility), setup, slopeBias, false);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // adaptive (adaptive.cpp): what its mark frame (shaders/adaptive_mark.frag) and visibility frame
-// (shaders/adaptive_visibility.frag) share, so both pick the same page for a pixel: the receiver
+// (shaders/adaptive_visibility.frag), and smrt's frame over the same pages
+// (shaders/smrt_virtual.frag), share, so all pick the same page for a pixel: the receiver
 // as shadow_map.frag's main sees it, the level of the virtual map its footprint needs, the level's
 // texel and page, the resident page that serves it and the slope-scaled depth test. Defines:
 // LIGHT_ORTHO or LIGHT_SPOT; VIRTUAL_SIZE, PAGE_SIZE, LEVELS, DENSITY (texels wanted across the
@@ -51,10 +52,8 @@ Shading shade() {
     return s;
 }
 
-// Where the receiver falls in the virtual map: uv over the whole map, its linear depth d, level 0's
-// texel size there, and the level it needs: the coarsest whose texel is at most
-// pixel * n.l / DENSITY, which keeps the predicted aliasing (texel / n.l) / pixel at or below
-// 1 / DENSITY.
+// Where a point falls in the virtual map: uv over the whole map, its linear depth d, level 0's
+// texel size there, and the level it is looked up at.
 struct VirtualPoint {
     bool outside;
     vec2 uv;
@@ -63,17 +62,26 @@ struct VirtualPoint {
     int level;
 };
 
-VirtualPoint virtualPoint(Shading s) {
+// Any point (smrt's samples along a ray: shaders/smrt_virtual.frag), at level 0.
+VirtualPoint virtualPointAt(vec3 p) {
     VirtualPoint v;
-    vec4 c = u_lightClipFromLocal * vec4(s.p, 1.0);
+    vec4 c = u_lightClipFromLocal * vec4(p, 1.0);
     v.uv = c.xy / c.w * 0.5 + 0.5;
-    v.d = -(u_lightViewFromLocal * vec4(s.p, 1.0)).z;
+    v.d = -(u_lightViewFromLocal * vec4(p, 1.0)).z;
     v.outside = any(lessThan(v.uv, vec2(0.0))) || any(greaterThan(v.uv, vec2(1.0))) || v.d > u_far;
 #ifdef LIGHT_ORTHO
     v.texel0 = u_texelScale;
 #else
     v.texel0 = v.d * u_texelScale;
 #endif
+    v.level = 0;
+    return v;
+}
+
+// The receiver, at the level it needs: the coarsest whose texel is at most pixel * n.l / DENSITY,
+// which keeps the predicted aliasing (texel / n.l) / pixel at or below 1 / DENSITY.
+VirtualPoint virtualPoint(Shading s) {
+    VirtualPoint v = virtualPointAt(s.p);
     float wanted = s.pixel * max(s.ndotl, 1e-3) / DENSITY;
     v.level = int(clamp(floor(log2(wanted / v.texel0)), 0.0, float(LEVELS - 1)));
     return v;

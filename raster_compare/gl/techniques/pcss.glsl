@@ -4,7 +4,7 @@ uniform float u_lightSize;  // local units; directional: tan of the angular size
 
 // Point k of n on a golden-angle spiral filling the unit disk; with PATTERN_ROTATED the spiral is
 // turned per pixel by interleaved gradient noise (Jimenez 2014), fixed per pixel (deterministic);
-// with TEMPORAL turned per pixel and per frame (shadow_map.frag's tapRotation).
+// with TEMPORAL turned per pixel and per frame (shaders/taps.glsl's tapRotation).
 vec2 spiral(int k, int n) {
 #if defined(PATTERN_ROTATED) || defined(TEMPORAL)
     return vogelTap(k, n, tapRotation());

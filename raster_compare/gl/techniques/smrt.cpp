@@ -14,57 +14,139 @@
 // rays to a local light run all the way to it. Defaults are Unreal's for directional lights:
 // RayCountDirectional 7, SamplesPerRayDirectional 8, RayLengthScaleDirectional 1.5. With
 // temporal=on the light points and the samples' fraction turn per frame (interleaved gradient
-// noise offset by the frame index, as pcf's taps) and a ShadowHistory resolves them. On the plain
-// map only: `map=adaptive` (the virtual shadow map's pages) is not built.
+// noise offset by the frame index, as pcf's taps) and a ShadowHistory resolves them.
+// map=plain (the default) marches through the family's one map (techniques/smrt.glsl; cascades
+// and contact=on as for any of the family). map=adaptive marches through the adaptive technique's
+// virtual shadow map (virtual_shadow_map_light.h, its parameters virtual_size, page_size, pool_mb,
+// density, refine; passes mark, pages, refine, visibility; shaders/smrt_virtual.frag): each sample
+// of a ray is looked up in the finest resident page at or coarser than the level the receiver
+// pixel needs, the bias in that page's texels. Pages are asked for by the receivers alone, as
+// Unreal does; a sample whose page is not resident reads the finest resident coarser one, and
+// the coarsest (one page over the whole map) always is. Directional and spot lights only: point
+// and area lights fall back, as adaptive's do, to a cube map of 32-bit depth in the pool's memory,
+// here smrt with map=plain (counts cube_fallback = 1, cube_resolution). The march itself is one
+// file for both (techniques/smrt_rays.glsl).
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
+#include "core/error.h"
 #include "core/lights/light_kind.h"
 #include "raster_compare/gl/gl_program.h"
+#include "raster_compare/gl/gpu_scene.h"
 #include "raster_compare/gl/light_camera.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_map.h"
 #include "raster_compare/gl/temporal_taps.h"
+#include "raster_compare/gl/virtual_shadow_map_light.h"
 
 namespace so {
 namespace {
 
+// The shadow-map family's parameters that describe the one plain map: map=adaptive has none.
+constexpr const char* kPlainMapOnly[] = {"resolution", "depth_format", "cascades", "split_lambda",
+                                         "snap",       "blend",        "contact"};
+bool plainMapOnly(const std::string& name) {
+    for (const char* n : kPlainMapOnly)
+        if (name == n) return true;
+    return false;
+}
+
 class Smrt final : public ShadowMapTechnique {
   public:
-    static ParamTable params() {
-        ParamTable own = {
-            {"rays", 7, 1, 64, true, "rays per pixel toward points on the light", {}, true},
-            {"samples_per_ray", 8, 1, 64, true, "depth-map samples along each ray"},
-            {"ray_length_scale", 1.5, 0.0, 1000.0, false,
-             "directional lights: ray length in receiver-to-camera distances"}};
-        for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
-        for (const ParamSpec& s : TemporalTaps::params()) own.push_back(s);
-        return shadowMapParams(own);
-    }
+    static ParamTable params();
     explicit Smrt(const ParamValues& v)
         : ShadowMapTechnique(v),
           rays_(v.integer("rays")),
           samples_(v.integer("samples_per_ray")),
           lengthScale_(v.real("ray_length_scale")),
+          adaptive_(v.integer("map") == 1),
+          map_(v, "smrt"),
           bias_(v),
-          temporal_(v) {}
-    const char* glsl() const override { return shaders::smrt_glsl; }
-    std::string shaderDefines() const override {
-        return "#define SMRT_RAYS " + std::to_string(rays_) + "\n#define SMRT_SAMPLES " +
-               std::to_string(samples_) + "\n" + glslDefine("SMRT_LENGTH_SCALE", lengthScale_) +
-               bias_.defines() + temporal_.defines();
+          temporal_(v) {
+        // Not ParamSpec::needs, which names a setting other than the default.
+        if (adaptive_)
+            for (const char* name : kPlainMapOnly)
+                if (v.given(name))
+                    throwInputError("technique smrt", name, "has no effect with map=adaptive");
     }
+    const char* glsl() const override {
+        // The march, then its lookups in the plain map.
+        static const std::string source = std::string(shaders::smrt_rays_glsl) + shaders::smrt_glsl;
+        return source.c_str();
+    }
+    std::string shaderDefines() const override { return rayDefines() + bias_.defines(); }
     std::optional<HistorySettings> history() const override { return temporal_.history(); }
     void setLightUniforms(GLuint program, const Light& light,
                           const LocalFrame& frame) const override;
+    std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override;
 
   private:
+    std::string rayDefines() const {
+        return "#define SMRT_RAYS " + std::to_string(rays_) + "\n#define SMRT_SAMPLES " +
+               std::to_string(samples_) + "\n" + glslDefine("SMRT_LENGTH_SCALE", lengthScale_) +
+               temporal_.defines();
+    }
+    std::vector<std::string> plainSettings(int cubeResolution) const;
+
     int rays_, samples_;
     double lengthScale_;
+    bool adaptive_;           // map=adaptive
+    VirtualMapSettings map_;  // map=adaptive's pages (read, and checked, either way)
     SlopeBias bias_;
     TemporalTaps temporal_;
 };
+
+ParamTable Smrt::params() {
+    ParamTable own = {
+        {"rays", 7, 1, 64, true, "rays per pixel toward points on the light", {}, true},
+        {"samples_per_ray", 8, 1, 64, true, "depth-map samples along each ray"},
+        {"ray_length_scale", 1.5, 0.0, 1000.0, false,
+         "directional lights: ray length in receiver-to-camera distances"},
+        methodParam("map", 0, {"plain", "adaptive"},
+                    "the depth map the rays are marched through: plain (resolution, cascades, "
+                    "contact) or adaptive, the virtual shadow map's pages (adaptive's parameters; "
+                    "point and area lights fall back to map=plain on a cube map of the pool's "
+                    "memory)")};
+    for (ParamSpec& s : VirtualMapSettings::params("map=adaptive", false))
+        own.push_back(std::move(s));
+    for (ParamSpec& s : SlopeBias::params()) own.push_back(std::move(s));
+    for (ParamSpec& s : TemporalTaps::params()) own.push_back(std::move(s));
+    ParamTable p = shadowMapParams(own);
+    for (ParamSpec& s : p)
+        if (plainMapOnly(s.name)) s.doc = "map=plain: " + s.doc;
+    return p;
+}
+
+// map=plain's settings for a point or area light's fallback: every one given except the virtual
+// map's, with the cube map's side and 32-bit depth as the pool's.
+std::vector<std::string> Smrt::plainSettings(int cubeResolution) const {
+    const ParamTable virtualMap = VirtualMapSettings::params();
+    std::vector<std::string> settings = {settingText("resolution", cubeResolution),
+                                         "depth_format=32"};
+    for (const auto& [name, value] : values().all()) {
+        bool skip = name == "map" || !values().given(name);
+        for (const ParamSpec& s : virtualMap) skip = skip || s.name == name;
+        if (!skip) settings.push_back(settingText(name, value));
+    }
+    return settings;
+}
+
+std::unique_ptr<LightTechnique> Smrt::setUp(const LightSetup& setup) const {
+    if (!adaptive_) return ShadowMapTechnique::setUp(setup);
+    VirtualVisibility visibility;
+    visibility.frag = shaders::smrt_virtual_frag;
+    visibility.includes = {shaders::taps_glsl, shaders::smrt_rays_glsl};
+    visibility.defines = rayDefines();
+    visibility.setUniforms = [this](GLuint program, const LightSetup& s) {
+        setInt(program, "u_frameIndex", s.frameIndex);  // read only by temporal=on's turn
+        setLightUniforms(program, s.light, s.scene.frame());
+    };
+    const CubeFallback plain = [this](int resolution) {
+        return createTechnique("smrt", plainSettings(resolution));
+    };
+    return setUpVirtualShadowMap(map_, bias_, std::move(visibility), setup, plain, true);
+}
 
 // The light's shape, local units: u_smrtShape 0 none, 1 the rectangle u_lsLightU x u_lsLightV
 // (full edges), 2 the disk spanned by them (radius half of each), 3 a disk of diameter

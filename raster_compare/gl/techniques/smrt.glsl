@@ -1,70 +1,19 @@
-// smrt (smrt.cpp): SMRT_RAYS rays from the receiver toward points on the light, each sampled
-// SMRT_SAMPLES times through the depth map as a height field; V the share with no blocked sample.
-uniform int u_smrtShape;  // 0 none, 1 rectangle, 2 disk (u, v), 3 disk of u_smrtWidth facing p
-uniform vec3 u_lsLightU;
-uniform vec3 u_lsLightV;
-uniform float u_smrtWidth;
-
-// Point k of the light's shape for a ray, `turn` in [0, 1) turning the set per pixel and frame.
-vec3 lightPoint(vec3 p, int k, float turn) {
-    vec3 centre = u_lsLightPosition;
-    if (u_smrtShape == 1) {
-        // A Fibonacci lattice over the square (k / n along u, the golden ratio's multiples along
-        // v: n distinct, even steps on either edge's axis), shifted round the torus by the turn.
-        vec2 s = fract(vec2((float(k) + 0.5) / float(SMRT_RAYS), (float(k) + 0.5) * 0.618034) +
-                       vec2(turn, 0.618034 * turn)) - 0.5;
-        return centre + s.x * u_lsLightU + s.y * u_lsLightV;
-    }
-    vec2 d = vogelTap(k, SMRT_RAYS, 6.28318531 * turn);
-    if (u_smrtShape == 2) return centre + 0.5 * (d.x * u_lsLightU + d.y * u_lsLightV);
-    if (u_smrtShape == 3) {
-        vec3 w = normalize(p - centre);
-        vec3 a = normalize(cross(w, abs(w.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
-        return centre + 0.5 * u_smrtWidth * (d.x * a + d.y * cross(w, a));
-    }
-    return centre;
+// smrt (smrt.cpp) on the plain map (map=plain), after shaders/shadow_map.frag and
+// techniques/smrt_rays.glsl: each sample of a ray is looked up in the one depth map.
+HeightSample heightSample(vec3 q) {
+    HeightSample s;
+    MapPoint m = mapPoint(q);
+    s.covered = !m.outside;
+    if (!s.covered) return s;
+    s.d = m.d;
+    s.texel = texelWorld(m.d);
+    s.stored = storedDepthAt(m, vec2(0.0));
+    return s;
 }
 
-// Whether the segment from p to `target` crosses the depth map's height field: a sample behind
-// the stored depth by less than the ray climbs to the next sample (the ray passed through the
-// occluder's surface in that step; further behind, it ran under the occluder's shadow from the
-// centre and came out beside it).
-bool rayBlocked(Receiver r, vec3 target, float h) {
-    vec3 w = target - r.p;
-    for (int j = 0; j < SMRT_SAMPLES; ++j) {
-        float t = (float(j) + h) / float(SMRT_SAMPLES);
-        float tNext = min((float(j + 1) + h) / float(SMRT_SAMPLES), 1.0);
-        vec3 q = r.p + w * (t * t);
-        MapPoint m = mapPoint(q);
-        if (m.outside) continue;
-        float climb = abs(m.d - receiverDepth(r.p + w * (tNext * tNext)));
-        float texel = texelWorld(m.d);
-        float bias = slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0) * (texel / r.texel);
-        float behind = m.d - bias - storedDepthAt(m, vec2(0.0));
-        if (behind > 0.0 && behind < climb + texel) return true;
-    }
-    return false;
-}
+float mapDepth(vec3 q) { return receiverDepth(q); }
 
 float techniqueVisibility(Receiver r) {
     if (mapPoint(r.p).outside) return 1.0;
-    // One set of light points for every pixel (a smooth, stepped penumbra, as pcss's spiral); with
-    // TEMPORAL turned per pixel and frame, the history resolving the noise.
-#ifdef TEMPORAL
-    float turn = tapRotation() / 6.28318531;
-#else
-    float turn = 0.0;
-#endif
-    int lit = 0;
-    for (int k = 0; k < SMRT_RAYS; ++k) {
-#ifdef LIGHT_ORTHO
-        vec3 target = r.p - u_lsLightDirection * (SMRT_LENGTH_SCALE * distance(r.p, u_lsEye));
-#else
-        vec3 target = lightPoint(r.p, k, turn);
-#endif
-        // Each ray its own fraction of a step (a golden-ratio walk from the pixel's turn).
-        float h = fract(turn + 0.618034 * float(k)) * 0.999 + 0.0005;
-        if (!rayBlocked(r, target, h)) ++lit;
-    }
-    return float(lit) / float(SMRT_RAYS);
+    return smrtVisibility(r.p, slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0), r.texel);
 }
