@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -40,21 +41,26 @@ LightMetrics penumbraMetrics(const Scene& s, const ChannelImage& oracle, const s
     return m;
 }
 
+// At two sizes: before smrt's crossing test (smrt_rays.glsl) it passed at 128 x 96 (1.46 times
+// pcss) and failed at 160 x 120 (1.51).
 TEST(Smrt, PenumbraOfARectLightOverAParallelOccluder) {
     REQUIRE_GL();
-    const Scene s = makePenumbraScene(128, 96).scene;
-    const ChannelImage o = runQuiet(s);
-    const LightMetrics smrt = penumbraMetrics(s, o, "smrt"),
-                       adaptive = penumbraMetrics(s, o, "smrt", {"map=adaptive"}),
-                       hard = penumbraMetrics(s, o, "slope-bias"),
-                       pcss = penumbraMetrics(s, o, "pcss");
-    ASSERT_TRUE(hard.penumbraMae && pcss.penumbraMae && hard.penumbraWidth);
-    for (const LightMetrics* m : {&smrt, &adaptive}) {
-        const char* map = m == &smrt ? "plain" : "adaptive";
-        ASSERT_TRUE(m->penumbraMae && m->penumbraWidth) << map;
-        EXPECT_LT(*m->penumbraMae, *hard.penumbraMae) << map;
-        EXPECT_LT(m->penumbraWidth->mean, hard.penumbraWidth->mean) << map;
-        EXPECT_LE(*m->penumbraMae, 1.5 * *pcss.penumbraMae) << map;
+    for (const auto& [width, height] : {std::pair{128, 96}, std::pair{160, 120}}) {
+        SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height));
+        const Scene s = makePenumbraScene(width, height).scene;
+        const ChannelImage o = runQuiet(s);
+        const LightMetrics smrt = penumbraMetrics(s, o, "smrt"),
+                           adaptive = penumbraMetrics(s, o, "smrt", {"map=adaptive"}),
+                           hard = penumbraMetrics(s, o, "slope-bias"),
+                           pcss = penumbraMetrics(s, o, "pcss");
+        ASSERT_TRUE(hard.penumbraMae && pcss.penumbraMae && hard.penumbraWidth);
+        for (const LightMetrics* m : {&smrt, &adaptive}) {
+            const char* map = m == &smrt ? "plain" : "adaptive";
+            ASSERT_TRUE(m->penumbraMae && m->penumbraWidth) << map;
+            EXPECT_LT(*m->penumbraMae, *hard.penumbraMae) << map;
+            EXPECT_LT(m->penumbraWidth->mean, hard.penumbraWidth->mean) << map;
+            EXPECT_LE(*m->penumbraMae, 1.5 * *pcss.penumbraMae) << map;
+        }
     }
 }
 
