@@ -77,6 +77,8 @@ class Accel {
     // Whether its queries may run the origin filter (and the passes decide near fields): false
     // for the benchmarks' plain scene, whose passes then trace bare.
     bool filters() const { return filters_; }
+    // Whether some mesh is alpha-tested: its geometry filter reads every ray's id, on every query.
+    bool alphaTested() const { return !alphaGeometries_.empty(); }
 
     // Alpha tests (core/alpha_mask.h) run by this thread's filter calls so far, over all Accels:
     // a pass reads it before and after its work on each thread (alpha_tests in oracle.json).

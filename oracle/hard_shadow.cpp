@@ -348,15 +348,19 @@ int countLanes(__m128i bytes, ShadowRayKind kind) {
     return _mm_movemask_ps(near) != 0;
 }
 
-[[gnu::always_inline]] inline void fillRays(const SurfaceBuffer& sb, size_t base, HardPacket& p) {
+// The traced lanes' rays. `ids`: the origin triangles' ids too, which only a filter reads (the
+// origin filter, or an alpha-tested mesh's): a 4-byte stream a pixel spared where none runs.
+[[gnu::always_inline]] inline void fillRays(const SurfaceBuffer& sb, size_t base, bool ids,
+                                            HardPacket& p) {
     RTCRay16& ray = p.rayHit.ray;
     for (int k = 0; k < 16; ++k) {
         ray.org_x[k] = sb.lsOriginX[base + size_t(k)];
         ray.org_y[k] = sb.lsOriginY[base + size_t(k)];
         ray.org_z[k] = sb.lsOriginZ[base + size_t(k)];
         ray.tfar[k] = p.ps.tfar[k];
-        ray.id[k] = sb.originId[base + size_t(k)];  // skipped by the filter
     }
+    if (ids)
+        for (int k = 0; k < 16; ++k) ray.id[k] = sb.originId[base + size_t(k)];
     if (p.directional) return;
     for (int k = 0; k < 16; ++k) {
         ray.dir_x[k] = p.ps.dirX[k];
@@ -506,7 +510,7 @@ uint64_t decideNearField(const SurfaceBuffer& sb, size_t base, bool closest, Har
     line(&sb.lsPointX[base]), line(&sb.lsPointY[base]), line(&sb.lsPointZ[base]);
     line(&sb.lsNormalX[base]), line(&sb.lsNormalY[base]), line(&sb.lsNormalZ[base]);
     line(&sb.lsOriginX[base]), line(&sb.lsOriginY[base]), line(&sb.lsOriginZ[base]);
-    line(&sb.originId[base]), line(&sb.tangentCos[base]), line(&sb.hit[base]);
+    line(&sb.tangentCos[base]), line(&sb.hit[base]);
     const NearFields& f = sb.nearFields;
     // The near field's bounds, and where an open lane's starts and ends (fetchNearLanes): the
     // open lanes are few, but each would otherwise wait on two lines from memory.
@@ -538,9 +542,9 @@ SO_HARD_CLONES void traceTile(const Accel& accel, const SurfaceBuffer& sb, const
     setupPacketLanes(accel, sb, base, light, p.ps);
     const int active = classifyLanes(p, cols, rows);
     if (active) {
-        fillRays(sb, base, p);
-        st.nearFieldPixels += markNearLanes(accel, sb, light, base, p);
         const bool filter = needsOriginFilter(sb, base, p);
+        fillRays(sb, base, filter || accel.alphaTested(), p);
+        st.nearFieldPixels += markNearLanes(accel, sb, light, base, p);
         p.ctx.originFilter(filter);
         p.raysFiltered += filter ? uint64_t(active) : 0;
         if (out.occDist) {
