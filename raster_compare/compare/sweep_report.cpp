@@ -158,11 +158,26 @@ std::string shortLabel(const SweepRow& r) {
 }
 
 // The swept values, "alpha=2, min=0.5": what a person changes in the spec.
+// A swept parameter's value as the row's label writes it: a name for a parameter that picks a
+// method ("denoiser=svgf", which `swept` holds as its index), else the number.
+std::string sweptValue(const SweepRow& r, const std::string& name, double value) {
+    const size_t colon = r.label.find(':');
+    if (colon != std::string::npos) {
+        const std::string settings = "," + r.label.substr(colon + 1) + ",";
+        const size_t at = settings.find("," + name + "=");
+        if (at != std::string::npos) {
+            const size_t from = at + name.size() + 2;
+            return settings.substr(from, settings.find(',', from) - from);
+        }
+    }
+    return num(value);
+}
+
 std::string sweptName(const SweepRow& r) {
     if (r.swept.empty()) return shortLabel(r);
     std::string s;
     for (const auto& [name, value] : r.swept)
-        s += (s.empty() ? "" : ", ") + name + "=" + num(value);
+        s += (s.empty() ? "" : ", ") + name + "=" + sweptValue(r, name, value);
     return s;
 }
 
@@ -538,6 +553,13 @@ const SweepRow* cellAt(const Grid& g, std::vector<double> key) {
     return it == g.at.end() ? nullptr : it->second;
 }
 
+// Axis k's value v as the labels write it (sweptValue), from any row that has it.
+std::string axisText(const Grid& g, size_t k, double v) {
+    for (const auto& [key, r] : g.at)
+        if (key[k] == v) return sweptValue(*r, g.params[k], v);
+    return num(v);
+}
+
 // Two parameters: the first down, the second across, one metric's values as colours.
 std::string heatMap(const Grid& g, const std::string& technique, const std::string& metric) {
     const std::vector<double> values = gridValues(g, metric);
@@ -550,10 +572,10 @@ std::string heatMap(const Grid& g, const std::string& technique, const std::stri
       << "\" data-metric=\"" << html(metric) << "\"><thead><tr><th "
       << "class=\"corner\">" << html(g.params[0]) << " &darr; " << html(g.params[1])
       << " &rarr;</th>";
-    for (double b : g.values[1]) o << "<th>" << num(b) << "</th>";
+    for (double b : g.values[1]) o << "<th>" << html(axisText(g, 1, b)) << "</th>";
     o << "</tr></thead><tbody>";
     for (double a : g.values[0]) {
-        o << "<tr><th>" << num(a) << "</th>";
+        o << "<tr><th>" << html(axisText(g, 0, a)) << "</th>";
         for (double b : g.values[1]) o << heatCell(cellAt(g, {a, b}), metric, scale, lowest);
         o << "</tr>";
     }
@@ -570,7 +592,7 @@ std::string sweepTable(const Grid& g, const std::string& technique,
     for (const std::string& m : metrics) o << "<th>" << html(metricName(m)) << "</th>";
     o << "</tr></thead><tbody>";
     for (double a : g.values[0]) {
-        o << "<tr><th>" << num(a) << "</th>";
+        o << "<tr><th>" << html(axisText(g, 0, a)) << "</th>";
         for (const std::string& m : metrics) {
             const std::vector<double> values = gridValues(g, m);
             const double lowest =

@@ -212,6 +212,22 @@ TEST(SweepReport, NamesTheAcneFreeSettingWithTheLeastPeterPanning) {
         << "nothing swept: no sentence";
 }
 
+// A parameter that picks a method by name is swept as its index: the sentence and the table
+// write the name the label has.
+TEST(SweepReport, NamedParametersAreWrittenByName) {
+    SweepReportInput in = sweep();
+    in.rows.push_back(row("key", "raytraced", "raytraced:denoiser=none,spp=1", {{"denoiser", 0}},
+                          0.0, 0.01, 0.05, 1.0, 1.0));
+    in.rows.push_back(row("key", "raytraced", "raytraced:denoiser=svgf,spp=1", {{"denoiser", 2}},
+                          0.0, 0.002, 0.03, 2.0, 1.0));
+    const std::string key = section(writeAndRead(in), 0);
+    EXPECT_NE(key.find("raytraced: denoiser=svgf has no acne and the least peter-panning"),
+              std::string::npos);
+    const std::string table =
+        between(key, "<table class=\"heat one\" data-technique=\"raytraced\">", "</table>");
+    EXPECT_EQ(matches(table, "<tr><th>([^<]*)</th>"), (std::vector<std::string>{"none", "svgf"}));
+}
+
 TEST(SweepReport, EscapesUserTextAndListsFailedTasksWithTheirLogs) {
     const std::string page = writeAndRead(sweep());
     EXPECT_EQ(page.find("<script>alert"), std::string::npos);
