@@ -10,6 +10,8 @@
 // variance), TILE_SKIP (the passes of ffx pass skipped tiles' rays through).
 uniform sampler2D u_position;
 uniform sampler2D u_normal;
+uniform vec3 u_lsEye;
+uniform float u_pixelScale;
 
 vec4 positionAt(ivec2 q) {
     SO_TAP(1, POSITION_TEXEL_BYTES);
@@ -18,6 +20,11 @@ vec4 positionAt(ivec2 q) {
 vec3 normalAt(ivec2 q) {
     SO_TAP(1, NORMAL_TEXEL_BYTES);
     return normalize(texelFetch(u_normal, q, 0).xyz);
+}
+// One pixel's footprint at the local point lsP: how far apart neighbouring pixels' surfaces lie
+// there (the tangent-plane stops' unit).
+float footprintAt(vec3 lsP) {
+    return u_pixelScale * length(lsP - u_lsEye);
 }
 bool inside(ivec2 q, ivec2 size) {
     return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
@@ -30,8 +37,6 @@ uniform sampler2D u_prevPosition;  // the previous frame's local positions (its 
 uniform mat4 u_prevClipFromLocal;
 uniform float u_prevScale;  // previous local = local * u_prevScale + u_prevOffset
 uniform vec3 u_prevOffset;
-uniform vec3 u_lsEye;
-uniform float u_pixelScale;
 uniform float u_alpha;
 uniform int u_haveHistory;
 layout(location = 0) out vec4 o_accum;
@@ -40,7 +45,7 @@ layout(location = 0) out vec4 o_accum;
 // (within one pixel footprint of its tangent plane, four along it); w 0 where none did.
 vec4 reprojected(vec3 lsP, vec3 n) {
     vec3 prevLs = lsP * u_prevScale + u_prevOffset;
-    float footprint = u_pixelScale * length(lsP - u_lsEye) * u_prevScale;
+    float footprint = footprintAt(lsP) * u_prevScale;
     vec4 clip = u_prevClipFromLocal * vec4(prevLs, 1.0);
     if (clip.w <= 0.0) return vec4(0.0);
     ivec2 size = textureSize(u_prevHistory, 0);
@@ -212,8 +217,6 @@ uniform int u_step;
 uniform sampler2D u_tiles;
 #endif
 uniform float u_sigmaLuminance, u_sigmaNormal, u_sigmaDepth;
-uniform vec3 u_lsEye;
-uniform float u_pixelScale;
 layout(location = 0) out vec2 o_filter;
 void main() {
     ivec2 ij = ivec2(gl_FragCoord.xy);
@@ -245,7 +248,7 @@ void main() {
     // Depth stop: the neighbour's distance from this pixel's tangent plane, against the change
     // one pixel's footprint per pixel of distance would make (SVGF's depth gradient, in world
     // terms).
-    float footprint = u_pixelScale * length(pos.xyz - u_lsEye);
+    float footprint = footprintAt(pos.xyz);
 #ifdef KERNEL_3X3
     const int R = 1;
     const float h[3] = float[3](1.0 / 2.0, 1.0 / 4.0, 0.0);
@@ -283,8 +286,6 @@ uniform vec3 u_lsLightCenter;
 uniform float u_maxRadius;
 uniform float u_radiusScale;
 uniform float u_sigmaNormal;
-uniform vec3 u_lsEye;
-uniform float u_pixelScale;
 layout(location = 0) out vec2 o_filter;
 // Ray Tracing Gems, chapter 13 (Boksansky, Wimmer, Bittner 2019): the penumbra's size from the
 // blocker distance by similar triangles, w = light size x d_blocker / (d_light - d_blocker), sets
@@ -300,7 +301,7 @@ void main() {
     }
     ivec2 size = textureSize(u_accum, 0);
     vec3 n = normalAt(ij);
-    float footprint = u_pixelScale * length(pos.xyz - u_lsEye);
+    float footprint = footprintAt(pos.xyz);
     float blocker = 0.0, blockers = 0.0;
     for (int dy = -SEARCH_RADIUS; dy <= SEARCH_RADIUS; dy += 2)
         for (int dx = -SEARCH_RADIUS; dx <= SEARCH_RADIUS; dx += 2) {
