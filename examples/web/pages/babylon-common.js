@@ -21,7 +21,7 @@ import { ShadowGenerator, CascadedShadowGenerator } from '@babylonjs/core/Lights
 import { DirectionalLight } from '@babylonjs/core/Lights/directionalLight.js';
 import { PointLight } from '@babylonjs/core/Lights/pointLight.js';
 import '@babylonjs/loaders/glTF/index.js';
-import { floatsToBase64, channelTopDown, readSettings, medianMsAsync, resolveJob, mergeLightParams,
+import { floatsToBase64, channelTopDown, readSettings, medianMsAsync, resolveJob, mergeLightParams, renderEachLight,
   distanceToBox, farthestCornerDistance } from './common.js';
 
 // Modes: the generator's own filter switches. `default` is a bare ShadowGenerator.
@@ -363,16 +363,11 @@ export async function renderVisibilityWith(job, backend) {
   try {
     const scene = await loadScene(engine, job);
     const ctx = { scene, engine, view: job.view, job: resolved, target: new LightRender(scene, job.width, job.height, backend) };
-    const lights = {};
-    let memoryBytes = 0;
-    const params = [];
-    for (const name of job.lights) {
+    const { lights, memoryBytes, perLight } = await renderEachLight(job.lights, async (name) => {
       const one = await renderOneLight(ctx, name);
-      lights[name] = one.result;
-      memoryBytes += one.bytes;
-      params.push([name, { mode: one.mode, ...one.params }]);
-    }
-    const merged = mergeLightParams(params);
+      return { ...one, params: { mode: one.mode, ...one.params } };
+    });
+    const merged = mergeLightParams(perLight);
     const mode = merged.mode;
     delete merged.mode; // the cost file's mode is the first light's; a later light's differing one stays as LIGHT.mode
     return { renderer: `babylon.js ${Engine.Version}${backend.label ? ' ' + backend.label : ''}`, glRenderer: info, mode,

@@ -94,6 +94,24 @@ export function mergeLightParams(perLight) {
   return out;
 }
 
+/**
+ * Each light of `names` rendered in turn by `renderOne(name)`, which resolves to { result, bytes,
+ * params }: the job's `lights` (name -> result), the shadow memory summed over them, and the
+ * per-light params as mergeLightParams takes them.
+ */
+export async function renderEachLight(names, renderOne) {
+  const lights = {};
+  let memoryBytes = 0;
+  const perLight = [];
+  for (const name of names) {
+    const one = await renderOne(name);
+    lights[name] = one.result;
+    memoryBytes += one.bytes;
+    perLight.push([name, one.params]);
+  }
+  return { lights, memoryBytes, perLight };
+}
+
 /** The distance from point p ([x, y, z]) to the box `bounds` ({min, max}); 0 inside it. */
 export function distanceToBox(p, bounds) {
   let d2 = 0;

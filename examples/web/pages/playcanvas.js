@@ -3,7 +3,7 @@
 // no tone mapping or gamma, one light at a time, rendered into an RGBA32F render target with the
 // light's castShadows on and off. The driver divides.
 import * as pc from 'playcanvas';
-import { floatsToBase64, requireWebGL2, readSettings, medianMs, resolveJob } from './common.js';
+import { floatsToBase64, requireWebGL2, readSettings, medianMs, resolveJob, renderEachLight } from './common.js';
 
 // Modes: the light's shadowType (32-bit maps: PCF, PCSS; VSM at 16 and 32 bits); `cascades` is
 // PCF3 with PlayCanvas's largest cascade count, directional lights only. `clustered`: the mode
@@ -301,15 +301,9 @@ window.renderVisibility = async (job) => {
     for (const c of root.findComponents('camera')) c.enabled = false;
     const camera = createCamera(app, job.view.camera);
     const ctx = { app, root, view: job.view, modeName, s, target: new LightRender(app, camera, job.width, job.height) };
-    const lights = {};
-    let memoryBytes = 0;
-    let params = null;
-    for (const name of job.lights) {
-      const one = await renderOneLight(ctx, name);
-      lights[name] = one.result;
-      memoryBytes += one.bytes;
-      params = params || one.params;
-    }
+    const { lights, memoryBytes, perLight } = await renderEachLight(job.lights, (name) => renderOneLight(ctx, name));
+    // The first light's params: every light of a page's mode is set alike.
+    const params = perLight.length ? perLight[0][1] : null;
     return { renderer: `playcanvas ${pc.version}`, glRenderer, mode: modeName, params, memoryBytes, lights };
   } finally {
     app.destroy();

@@ -5,7 +5,7 @@
 // makes 'three' three.webgpu.js there); each passes a backend (renderVisibilityWith).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { floatsToBase64, channelTopDown, readSettings, medianMsAsync, resolveJob, mergeLightParams,
+import { floatsToBase64, channelTopDown, readSettings, medianMsAsync, resolveJob, mergeLightParams, renderEachLight,
   distanceToBox, farthestCornerDistance } from './common.js';
 
 // Modes: three.js's renderer.shadowMap.type values, and the CSM add-on (directional lights only).
@@ -299,17 +299,9 @@ export async function renderVisibilityWith(job, backend) {
   scene.traverse((o) => { if (o.isLight) o.visible = false; });
   const materials = whiteLambert(scene);
   const ctx = { scene, camera: makeCamera(job.view, backend), view: job.view, job: resolved, materials, renderer, backend };
-  const lights = {};
-  let memoryBytes = 0;
-  const params = [];
-  for (const name of job.lights) {
-    const one = await renderOneLight(ctx, name);
-    lights[name] = one.result;
-    memoryBytes += one.bytes;
-    params.push([name, one.params]);
-  }
+  const { lights, memoryBytes, perLight } = await renderEachLight(job.lights, (name) => renderOneLight(ctx, name));
   renderer.dispose();
   // Every preset of this page runs one mode on every light.
   return { renderer: `three.js ${await threeVersion()}${backend.label ? ' ' + backend.label : ''}`, glRenderer: info, mode: resolved.modeFor('directional'),
-    params: mergeLightParams(params), memoryBytes, lights };
+    params: mergeLightParams(perLight), memoryBytes, lights };
 }
