@@ -137,13 +137,19 @@ std::string shortest(double value) {
 // The curve key and quality value of a setting (TradeoffPoint): the name and every parameter but
 // the quality one; and every parameter as the report shows it.
 void describeSetting(ReportTechnique& rt, const TechniqueRun& run) {
-    const ParamSpec* q = qualityParam(findTechnique(run.spec.name).params);
+    const ParamTable& table = findTechnique(run.spec.name).params;
+    const ParamSpec* q = qualityParam(table);
     rt.curve = run.spec.name;
     for (const auto& [key, value] : run.technique->values().all()) {
         char text[48];
-        std::snprintf(text, sizeof text, "%s%s=%.10g", rt.parameters.empty() ? "" : " ",
-                      key.c_str(), value);
-        rt.parameters += text;
+        std::snprintf(text, sizeof text, "%.10g", value);
+        // A parameter that picks a method by name is written by its name ("contact=on", not 1).
+        const auto spec = std::find_if(table.begin(), table.end(),
+                                       [&](const ParamSpec& p) { return p.name == key; });
+        const bool named =
+            spec != table.end() && value >= 0.0 && value < double(spec->names.size());
+        rt.parameters += (rt.parameters.empty() ? "" : " ") + key + "=" +
+                         (named ? spec->names[size_t(value)] : std::string(text));
         if (q && key == q->name)
             rt.quality = value;
         else
