@@ -12,7 +12,7 @@
 #include "core/scene.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/trace_output.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/pipeline/comparison.h"
 #include "shadow_oracle/shadow_oracle.h"
 

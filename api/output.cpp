@@ -1,9 +1,9 @@
 // The API's output folders: the files the trace, raster and compare commands write, through the
-// same library writers (oracle/trace_output.h, raster_compare/gl/raster_output.h,
+// same library writers (oracle/trace_output.h, raster_compare/gl/render/raster_output.h,
 // raster_compare/pipeline/compare_output.h).
 #include "api/api_internal.h"
 #include "oracle/trace_output.h"
-#include "raster_compare/gl/raster_output.h"
+#include "raster_compare/gl/render/raster_output.h"
 #include "raster_compare/pipeline/compare_output.h"
 
 namespace shadow_oracle {

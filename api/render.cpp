@@ -3,9 +3,9 @@
 
 #include "api/api_internal.h"
 #include "core/trace_option_table.h"
-#include "raster_compare/gl/gl_context.h"
-#include "raster_compare/gl/raster_options.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/context/gl_context.h"
+#include "raster_compare/gl/render/raster_options.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique_listing.h"
 
 namespace shadow_oracle {

@@ -31,8 +31,8 @@
 #include "core/lights/light_kind.h"
 #include "core/scene.h"
 #include "raster_compare/compare/penumbra_width.h"
-#include "raster_compare/gl/gl_context.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/context/gl_context.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique.h"
 
 using namespace so;

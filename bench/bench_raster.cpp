@@ -20,8 +20,8 @@
 #include <CLI/CLI.hpp>
 
 #include "core/scene.h"
-#include "raster_compare/gl/gl_context.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/context/gl_context.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique.h"
 
 using namespace so;

@@ -26,8 +26,8 @@
 #include "core/version.h"
 #include "oracle/oracle.h"
 #include "oracle/trace_options.h"
-#include "raster_compare/gl/gl_context.h"
-#include "raster_compare/gl/raster_options.h"
+#include "raster_compare/gl/context/gl_context.h"
+#include "raster_compare/gl/render/raster_options.h"
 #include "raster_compare/gl/technique.h"
 #include "raster_compare/gl/technique_listing.h"
 

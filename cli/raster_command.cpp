@@ -4,8 +4,8 @@
 
 #include "cli/output.h"
 #include "core/error.h"
-#include "raster_compare/gl/gl_context.h"
-#include "raster_compare/gl/raster_output.h"
+#include "raster_compare/gl/context/gl_context.h"
+#include "raster_compare/gl/render/raster_output.h"
 #include "raster_compare/pipeline/option_errors.h"
 
 namespace so {

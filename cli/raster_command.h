@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique.h"
 
 namespace so {

@@ -2,7 +2,7 @@
 // of their defaults (RasterOptions' initialisers take the constants below, which the rows use),
 // their checks on every surface (`raster` and `compare`'s options, the API's RenderOptions and
 // CompareOptions, the sweep spec's top-level keys), of `shadow-oracle raster-options` and of
-// docs/cli.md's table. raster_compare/gl/raster_options.h writes checked values into
+// docs/cli.md's table. raster_compare/gl/render/raster_options.h writes checked values into
 // RasterOptions; RasterOptionTable.* holds the API's and Python's spelling of the defaults to the
 // rows.
 #pragma once

@@ -14,7 +14,7 @@
 #include "core/scene_writer.h"
 #include "core/tool_info.h"
 #include "oracle/primary_image.h"
-#include "raster_compare/gl/light_camera.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 
 namespace so {
 

@@ -28,8 +28,8 @@
 
 #include "core/scene.h"
 #include "raster_compare/gl/params.h"
-#include "raster_compare/gl/raster_result.h"
-#include "raster_compare/gl/shadow_history.h"
+#include "raster_compare/gl/render/raster_result.h"
+#include "raster_compare/gl/time/shadow_history.h"
 
 namespace so {
 

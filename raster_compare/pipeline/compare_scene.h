@@ -14,7 +14,7 @@
 #include "core/progress.h"
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/pipeline/compare_output.h"
 #include "raster_compare/pipeline/comparison.h"
 

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "core/tool_info.h"
 #include "raster_compare/compare/tradeoff.h"
-#include "raster_compare/gl/gl_context.h"
+#include "raster_compare/gl/context/gl_context.h"
 
 namespace so {
 

@@ -18,8 +18,8 @@
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "raster_compare/compare/report.h"
-#include "raster_compare/gl/raster_result.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/raster_result.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/pipeline/path_flicker.h"
 #include "raster_compare/pipeline/sequence_compare.h"
 

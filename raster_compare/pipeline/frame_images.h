@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "oracle/oracle_cache.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 
 namespace so {
 

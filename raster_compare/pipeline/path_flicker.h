@@ -12,7 +12,7 @@
 #include "oracle/oracle_cache.h"
 #include "raster_compare/compare/report.h"
 #include "raster_compare/compare/temporal.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 
 namespace so {
 

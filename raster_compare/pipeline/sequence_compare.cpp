@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/scene_pose.h"
 #include "raster_compare/compare/sequence_judge.h"
-#include "raster_compare/gl/shadow_history.h"
+#include "raster_compare/gl/time/shadow_history.h"
 #include "raster_compare/pipeline/frame_images.h"
 
 namespace so {

@@ -13,7 +13,7 @@
 #include "core/progress.h"
 #include "oracle/oracle_cache.h"
 #include "raster_compare/compare/metrics.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 
 namespace so {
 

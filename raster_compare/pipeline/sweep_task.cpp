@@ -6,7 +6,7 @@
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/trace_options.h"
-#include "raster_compare/gl/raster_options.h"
+#include "raster_compare/gl/render/raster_options.h"
 
 namespace so {
 

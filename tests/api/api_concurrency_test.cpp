@@ -3,7 +3,7 @@
 // render and compare two scenes with two techniques at the same time, and every image, work count
 // and metric that does not measure time equals a lone call's bit for bit. The GL path's one
 // process-wide table (libepoxy's, with the work counter's wrappers) and the one EGL display are
-// what this holds (raster_compare/gl/work_counter.h, gl_context.cpp).
+// what this holds (raster_compare/gl/context/work_counter.h, gl_context.cpp).
 #include <cstring>
 #include <latch>
 #include <string>

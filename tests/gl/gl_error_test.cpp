@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_context.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique.h"
 #include "test_scenes.h"
 

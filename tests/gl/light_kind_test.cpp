@@ -12,7 +12,7 @@
 #include "core/lights/light_kind.h"
 #include "core/lights/make_light.h"
 #include "oracle/lights/area_light_kind.h"
-#include "raster_compare/gl/light_camera.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/lights/raster_light_kind.h"
 
 namespace so {

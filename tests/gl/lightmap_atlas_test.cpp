@@ -1,4 +1,4 @@
-// The lightmap's atlas on its own, without GL (raster_compare/gl/lightmap_atlas.h): coplanar
+// The lightmap's atlas on its own, without GL (raster_compare/gl/lightmaps/lightmap_atlas.h): coplanar
 // connected triangles share a chart of exactly their size, a curved mesh gets one chart per
 // triangle, a fold is split, TEXCOORD_1 is kept and scaled to the density; and in every atlas no
 // two triangles cover one texel centre, every triangle lies inside its chart, every chart inside
@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
-#include "raster_compare/gl/lightmap_atlas.h"
+#include "raster_compare/gl/lightmaps/lightmap_atlas.h"
 
 namespace so {
 namespace {

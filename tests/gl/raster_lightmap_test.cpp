@@ -22,7 +22,7 @@
 #include "core/lights/make_light.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique.h"
 #include "test_scenes.h"
 

@@ -1,4 +1,4 @@
-// The raster option table's values written into RasterOptions (raster_compare/gl/raster_options.h):
+// The raster option table's values written into RasterOptions (raster_compare/gl/render/raster_options.h):
 // every row has its setter, each writes its own field, and RasterOptions{} holds the rows'
 // defaults. No GL.
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "raster_compare/gl/raster_options.h"
+#include "raster_compare/gl/render/raster_options.h"
 
 namespace so {
 namespace {

@@ -15,7 +15,7 @@
 #include "core/scene.h"
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
-#include "raster_compare/gl/shadow_rays.h"
+#include "raster_compare/gl/rays/shadow_rays.h"
 #include "test_scenes.h"
 
 namespace so::test {

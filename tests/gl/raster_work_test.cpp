@@ -8,7 +8,7 @@
 
 #include "core/channels.h"
 #include "gl_test_context.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique.h"
 #include "test_scenes.h"
 

@@ -1,4 +1,4 @@
-// ShadowHistory (raster_compare/gl/shadow_history.h) on frames made in memory, no GL: a plane
+// ShadowHistory (raster_compare/gl/time/shadow_history.h) on frames made in memory, no GL: a plane
 // facing the camera, its V painted per pixel. Closed forms: a still frame keeps a constant, a step
 // decays geometrically, weight 0 is the current V, a camera moved by one pixel moves the history
 // by one pixel, another mesh or another place is a disocclusion, and the clamp bounds a ghost.
@@ -13,7 +13,7 @@
 
 #include "core/camera.h"
 #include "core/channels.h"
-#include "raster_compare/gl/shadow_history.h"
+#include "raster_compare/gl/time/shadow_history.h"
 
 namespace so {
 namespace {

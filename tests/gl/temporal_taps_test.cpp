@@ -1,4 +1,4 @@
-// temporal=on|off, history and clamp of pcf and pcss (raster_compare/gl/temporal_taps.h): what
+// temporal=on|off, history and clamp of pcf and pcss (raster_compare/gl/time/temporal_taps.h): what
 // the settings give Technique::history(), and the settings that are errors. No GL.
 #include <string>
 #include <vector>

@@ -9,8 +9,8 @@
 
 #include <vector>
 
-#include "raster_compare/gl/gl_context.h"
-#include "raster_compare/gl/renderer.h"
+#include "raster_compare/gl/context/gl_context.h"
+#include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/technique.h"
 
 namespace so::test {

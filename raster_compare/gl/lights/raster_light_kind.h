@@ -16,7 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/scene.h"
-#include "raster_compare/gl/light_camera.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 
 namespace so {
 

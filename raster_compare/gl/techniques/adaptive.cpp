@@ -21,8 +21,8 @@
 #include <utility>
 
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
-#include "raster_compare/gl/virtual_shadow_map_light.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/virtual_shadow_map_light.h"
 
 namespace so {
 namespace {

@@ -6,7 +6,7 @@
 // DepthPrecision), is compared with the map. The bias can be either sign: it is the plane's own
 // depth change between the receiver and the texel's centre, nothing tuned.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

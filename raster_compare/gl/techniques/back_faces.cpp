@@ -6,7 +6,7 @@
 #include <epoxy/gl.h>
 
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -3,7 +3,7 @@
 // receiver behind its own stored surface. Parameters: only the family's (resolution, depth_format,
 // fit).
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -1,7 +1,7 @@
 // bias: a constant depth bias, in texels at the receiver: lit where receiver depth - bias <= stored
 // depth.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -5,9 +5,9 @@
 // of the pixel's, so the blur does not run across silhouettes. The penumbra's width is the
 // radius everywhere, whatever the distance from occluder to receiver: what the metrics measure.
 // radius=0 is the hard shadow itself (tested).
-#include "raster_compare/gl/camera_pass.h"
-#include "raster_compare/gl/gl_program.h"
-#include "raster_compare/gl/pass_timer.h"
+#include "raster_compare/gl/context/camera_pass.h"
+#include "raster_compare/gl/context/gl_program.h"
+#include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/technique.h"
 

@@ -4,7 +4,7 @@
 // `vsm:cascades=2`; this entry is slope-bias with four cascades by default, the setting engines
 // ship. Its shader is slope-bias's.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

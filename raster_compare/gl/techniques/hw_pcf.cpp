@@ -4,7 +4,7 @@
 // (GL 4.5 core, 8.22: how a depth-compare lookup is filtered is up to the implementation). Same
 // slope bias as slope-bias, applied to the reference depth.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -6,7 +6,7 @@
 // chart `dilate` texels into its padding; per frame one visibility pass reads the atlas with
 // `filter`. The bake's time is `bake_ms`, apart from the frame's. A mesh marked dynamic casts no
 // shadow here (docs/scene-format.md): a lightmap cannot shadow what moves.
-#include "raster_compare/gl/lightmap.h"
+#include "raster_compare/gl/lightmaps/lightmap.h"
 #include "raster_compare/gl/shaders.h"
 
 namespace so {

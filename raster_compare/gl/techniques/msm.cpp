@@ -7,7 +7,7 @@
 // occluders overlap at different depths, at twice the storage of VSM's two moments; with
 // `bleed_reduction` like VSM's.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -2,7 +2,7 @@
 // it is projected into the map (Holbert, "Normal Offset Shadows", GDC 2011), plus an optional small
 // constant bias.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -9,7 +9,7 @@
 // oriented: on a curved surface, whose stored texel need not lie on the receiver's tangent plane,
 // it keeps that half-texel margin.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

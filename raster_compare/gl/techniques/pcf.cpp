@@ -10,8 +10,8 @@
 #include <numbers>
 
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
-#include "raster_compare/gl/temporal_taps.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
+#include "raster_compare/gl/time/temporal_taps.h"
 
 namespace so {
 namespace {

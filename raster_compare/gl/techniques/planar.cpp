@@ -7,7 +7,7 @@
 // without it overlapping projected triangles darken twice, visible with alpha < 1, and the shadow
 // runs off the receiver's edges) and `alpha` (the shadow's opacity). Casters below the plane or
 // beyond a point light are clipped (w <= 0), not projected into false shadows.
-#include "raster_compare/gl/planar_shadow.h"
+#include "raster_compare/gl/volumes/planar_shadow.h"
 
 namespace so {
 namespace {

@@ -6,7 +6,7 @@
 // the caster stands above the receiver, as a penumbra does. Same receiver rules and limits as
 // `planar` (only the receiver gets a shadow); the stencil is always on, so each projection darkens
 // a pixel once. Its penumbra follows the height, not the light's size: what the metrics measure.
-#include "raster_compare/gl/planar_shadow.h"
+#include "raster_compare/gl/volumes/planar_shadow.h"
 
 namespace so {
 namespace {

@@ -8,7 +8,7 @@
 // a triangle's edge or a silhouette they span two surfaces (adaptive-bias takes the plane from the
 // geometric normal instead).
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -6,10 +6,10 @@
 // count). Receivers behind a spot light would take a back-projected shadow; they are masked (lit).
 // The receiver is a mesh index (`receiver`, as id.mesh) or the largest planar mesh. The texture is
 // stored as the shadow-map family's moment map (RGBA32F, opacity in the first channel).
-#include "raster_compare/gl/gpu_scene.h"
-#include "raster_compare/gl/receiver_plane.h"
+#include "raster_compare/gl/context/gpu_scene.h"
+#include "raster_compare/gl/volumes/receiver_plane.h"
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -2,7 +2,7 @@
 // eps = clamp(alpha * tan(acos(n.l)), min, max) texels. Within one
 // texel a receiver tilted by theta spans tan(theta) texels of depth, which is what causes acne.
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

@@ -32,13 +32,13 @@
 
 #include "core/error.h"
 #include "core/lights/light_kind.h"
-#include "raster_compare/gl/gl_program.h"
-#include "raster_compare/gl/gpu_scene.h"
-#include "raster_compare/gl/light_camera.h"
+#include "raster_compare/gl/context/gl_program.h"
+#include "raster_compare/gl/context/gpu_scene.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
-#include "raster_compare/gl/temporal_taps.h"
-#include "raster_compare/gl/virtual_shadow_map_light.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
+#include "raster_compare/gl/time/temporal_taps.h"
+#include "raster_compare/gl/shadow_maps/virtual_shadow_map_light.h"
 
 namespace so {
 namespace {

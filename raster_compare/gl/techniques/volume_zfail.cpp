@@ -4,7 +4,7 @@
 // camera anywhere, inside a shadow included; the price is drawing the caps. Alpha-tested casters
 // cast opaque shadows: the volumes and their caps are built from whole triangles, and the caps
 // are drawn without the alpha test so that they close the sides (docs/techniques.md).
-#include "raster_compare/gl/shadow_volume.h"
+#include "raster_compare/gl/volumes/shadow_volume.h"
 
 namespace so {
 namespace {

@@ -7,7 +7,7 @@
 // them, but the camera pass sees the receiver through its holes, and z-pass, which relies on the
 // caster to hide where the eye's ray enters its volume, then misses that entry: V there is
 // inverted (lit inside the caster's shadow, shadowed outside it; docs/techniques.md).
-#include "raster_compare/gl/shadow_volume.h"
+#include "raster_compare/gl/volumes/shadow_volume.h"
 
 namespace so {
 namespace {

@@ -5,7 +5,7 @@
 // linstep(bleed_reduction, 1, p_max) (Donnelly and Lauritzen,
 // "Variance Shadow Maps", I3D 2006; the reduction from GPU Gems 3, chapter 8).
 #include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_map.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
 
 namespace so {
 namespace {

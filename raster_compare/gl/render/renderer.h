@@ -1,0 +1,57 @@
+// The raster path's render: the scene on the GPU, the camera pass, and per light the technique's
+// own passes writing that light's V into the shared frame; every pass timed with GL timer queries
+// over several frames after a warm-up. Same scene model and camera as the oracle: pixel (x, y)
+// here is the oracle's pixel (x, y).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/raster_option_table.h"
+#include "core/scene.h"
+#include "raster_compare/gl/render/raster_result.h"
+#include "raster_compare/gl/technique.h"
+
+namespace so {
+
+class GlContext;
+
+struct RasterOptions {
+    int width = 0, height = 0;  // 0: the scene camera's
+    // Another camera than the scene's (a frame of compare --frames-path); width and height above
+    // still override its size.
+    std::optional<CameraDesc> camera;
+    // A sequence's frame (compare --sequence): techniques with temporal=on rotate their taps by it
+    // (docs/techniques.md#temporal); 0 outside a sequence.
+    int frameIndex = 0;
+    int frames = kDefaultFrames;  // timed frames (median and quartiles reported)
+    int warmup = kDefaultWarmup;  // untimed frames first
+    // Before its timed frames, each technique's work is counted in one frame of its counting
+    // build (work_counter.h; docs/metrics.md, "Work"), which never runs in the timed frames.
+    bool countWork = true;
+    // Techniques rendered together take turns frame by frame, so that background load falls on
+    // all alike; a group holds at most this much estimated GL memory (the next starts after).
+    uint64_t interleaveBudgetBytes = uint64_t(2) << 30;
+};
+
+struct InterleavedCallbacks {
+    // A group of techniques (indices into the list) is about to be rendered together.
+    std::function<void(const std::vector<size_t>&)> groupStarts;
+    // A technique's result, as soon as its group is done (its GL objects are freed after).
+    std::function<void(size_t, RasterResult&&)> done;
+};
+
+// Renders every technique of the list on the scene, in groups whose frames interleave. A GL error
+// throws GlError (GlContext::throwIfError) after the technique's set-up or frame that caused it;
+// the GL driver's warnings wait in the context for the caller (GlContext::takeWarnings).
+void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& techniques,
+                       const RasterOptions& options, const GlContext& gl,
+                       const InterleavedCallbacks& callbacks);
+
+// One technique alone.
+RasterResult renderRaster(const Scene& scene, const Technique& technique,
+                          const RasterOptions& options, const GlContext& gl);
+
+}  // namespace so
