@@ -863,7 +863,8 @@ MeshPrimitive build(const Context& ctx, const tinygltf::Model& model, const Json
     alpha.apply(prim, pp.positions.count, field, out);
     if (prim.material >= 0 && size_t(prim.material) < model.materials.size())
         out.doubleSided = model.materials[size_t(prim.material)].doubleSided;
-    // A lightmap's coordinates, when the file has them (raster_compare/gl/lightmaps/lightmap_atlas.h).
+    // A lightmap's coordinates, when the file has them
+    // (raster_compare/gl/lightmaps/lightmap_atlas.h).
     if (auto uv1 = prim.attributes.find("TEXCOORD_1"); uv1 != prim.attributes.end())
         out.lightmapUvs = readTexCoords(ctx, model, doc, uv1->second, "TEXCOORD_1",
                                         pp.positions.count, field, glm::dmat3(1.0));

@@ -128,8 +128,9 @@ struct MeshPrimitive {
     std::optional<AlphaMask> alpha;
     std::vector<glm::vec2> uvs;
     // The glTF's TEXCOORD_1 per vertex, when the primitive has it: a lightmap's coordinates
-    // (raster_compare/gl/lightmaps/lightmap_atlas.h); empty otherwise. Read for every primitive, checked like
-    // the other attributes (VEC2 float or normalized unsigned byte or short, finite, one a vertex).
+    // (raster_compare/gl/lightmaps/lightmap_atlas.h); empty otherwise. Read for every primitive,
+    // checked like the other attributes (VEC2 float or normalized unsigned byte or short, finite,
+    // one a vertex).
     std::vector<glm::vec2> lightmapUvs;
     // Its scene-file entry says "dynamic": true (scene_format 3): the object moves, so a lightmap
     // does not bake it (its shadows are left out). The oracle and every other technique ignore it.

@@ -1,7 +1,7 @@
 // Work a pass does in one frame, counted exactly (docs/metrics.md, "Work"): what a GPU's time
 // follows, beside the milliseconds of whatever renderer measured them (llvmpipe, a CPU
-// rasterizer, here). The raster path counts it (raster_compare/gl/context/work_counter.h); metrics.json
-// carries it per light under cost.work, raster.json per pass.
+// rasterizer, here). The raster path counts it (raster_compare/gl/context/work_counter.h);
+// metrics.json carries it per light under cost.work, raster.json per pass.
 #pragma once
 
 #include <cstdint>

@@ -12,8 +12,8 @@
 #include "core/lights/light_kind.h"
 #include "core/lights/make_light.h"
 #include "oracle/lights/area_light_kind.h"
-#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/lights/raster_light_kind.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 
 namespace so {
 namespace {

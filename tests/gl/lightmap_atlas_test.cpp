@@ -1,7 +1,7 @@
-// The lightmap's atlas on its own, without GL (raster_compare/gl/lightmaps/lightmap_atlas.h): coplanar
-// connected triangles share a chart of exactly their size, a curved mesh gets one chart per
-// triangle, a fold is split, TEXCOORD_1 is kept and scaled to the density; and in every atlas no
-// two triangles cover one texel centre, every triangle lies inside its chart, every chart inside
+// The lightmap's atlas on its own, without GL (raster_compare/gl/lightmaps/lightmap_atlas.h):
+// coplanar connected triangles share a chart of exactly their size, a curved mesh gets one chart
+// per triangle, a fold is split, TEXCOORD_1 is kept and scaled to the density; and in every atlas
+// no two triangles cover one texel centre, every triangle lies inside its chart, every chart inside
 // the atlas with its padding clear of the others, and the same input gives the same atlas.
 #include <algorithm>
 #include <cmath>

@@ -14,8 +14,8 @@
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/gl/render/renderer.h"
-#include "raster_compare/gl/technique.h"
 #include "raster_compare/gl/shadow_maps/virtual_shadow_map.h"
+#include "raster_compare/gl/technique.h"
 #include "test_scenes.h"
 
 namespace so::test {

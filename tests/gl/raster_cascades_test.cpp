@@ -16,8 +16,8 @@
 #include "gl_test_context.h"
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/compare/temporal.h"
-#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/render/renderer.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/technique.h"
 #include "test_scenes.h"
 

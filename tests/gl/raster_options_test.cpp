@@ -1,6 +1,6 @@
-// The raster option table's values written into RasterOptions (raster_compare/gl/render/raster_options.h):
-// every row has its setter, each writes its own field, and RasterOptions{} holds the rows'
-// defaults. No GL.
+// The raster option table's values written into RasterOptions
+// (raster_compare/gl/render/raster_options.h): every row has its setter, each writes its own field,
+// and RasterOptions{} holds the rows' defaults. No GL.
 #include <algorithm>
 #include <string>
 #include <vector>

@@ -28,8 +28,8 @@
 #include "raster_compare/gl/context/gl_context.h"
 #include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
-#include "raster_compare/gl/volumes/shadow_volume_geometry.h"
 #include "raster_compare/gl/technique.h"
+#include "raster_compare/gl/volumes/shadow_volume_geometry.h"
 #include "test_scenes.h"
 
 namespace so::test {

@@ -8,8 +8,8 @@
 
 #include "core/geometry_channels.h"
 #include "raster_compare/gl/context/gl_program.h"
-#include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/context/work_counter.h"
+#include "raster_compare/gl/shaders.h"
 
 namespace so {
 

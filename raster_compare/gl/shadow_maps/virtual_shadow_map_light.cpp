@@ -12,10 +12,10 @@
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
-#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/context/pass_timer.h"
-#include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/context/work_counter.h"
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 
 namespace so {
 namespace {

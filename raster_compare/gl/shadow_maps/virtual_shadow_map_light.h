@@ -14,8 +14,8 @@
 
 #include "raster_compare/gl/params.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
-#include "raster_compare/gl/technique.h"
 #include "raster_compare/gl/shadow_maps/virtual_shadow_map.h"
+#include "raster_compare/gl/technique.h"
 
 namespace so {
 

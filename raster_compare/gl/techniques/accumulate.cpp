@@ -17,12 +17,12 @@
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
+#include "raster_compare/gl/context/pass_timer.h"
+#include "raster_compare/gl/context/work_counter.h"
 #include "raster_compare/gl/lights/light_samples.h"
 #include "raster_compare/gl/lights/raster_light_kind.h"
-#include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/technique.h"
-#include "raster_compare/gl/context/work_counter.h"
 
 namespace so {
 namespace {

@@ -24,8 +24,8 @@
 
 #include "core/lights/light_kind.h"
 #include "raster_compare/gl/context/gl_program.h"
-#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
 #include "raster_compare/gl/time/temporal_taps.h"
 

@@ -26,14 +26,14 @@
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
-#include "raster_compare/gl/shadow_maps/light_camera.h"
-#include "raster_compare/gl/volumes/light_facing.h"
 #include "raster_compare/gl/context/pass_timer.h"
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
+#include "raster_compare/gl/technique.h"
+#include "raster_compare/gl/volumes/light_facing.h"
 #include "raster_compare/gl/volumes/planar_shadow.h"
 #include "raster_compare/gl/volumes/receiver_plane.h"
-#include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/volumes/shadow_volume_geometry.h"
-#include "raster_compare/gl/technique.h"
 
 namespace so {
 namespace {

@@ -41,12 +41,12 @@
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
-#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/context/pass_timer.h"
-#include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/rays/shadow_rays.h"
-#include "raster_compare/gl/technique.h"
 #include "raster_compare/gl/context/work_counter.h"
+#include "raster_compare/gl/rays/shadow_rays.h"
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
+#include "raster_compare/gl/technique.h"
 
 namespace so {
 namespace {

@@ -7,9 +7,9 @@
 // The receiver is a mesh index (`receiver`, as id.mesh) or the largest planar mesh. The texture is
 // stored as the shadow-map family's moment map (RGBA32F, opacity in the first channel).
 #include "raster_compare/gl/context/gpu_scene.h"
-#include "raster_compare/gl/volumes/receiver_plane.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
+#include "raster_compare/gl/volumes/receiver_plane.h"
 
 namespace so {
 namespace {

@@ -34,11 +34,11 @@
 #include "core/lights/light_kind.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
-#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
-#include "raster_compare/gl/time/temporal_taps.h"
 #include "raster_compare/gl/shadow_maps/virtual_shadow_map_light.h"
+#include "raster_compare/gl/time/temporal_taps.h"
 
 namespace so {
 namespace {

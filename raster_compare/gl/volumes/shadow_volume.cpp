@@ -11,9 +11,9 @@
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
-#include "raster_compare/gl/volumes/light_facing.h"
 #include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/volumes/light_facing.h"
 #include "raster_compare/gl/volumes/shadow_volume_geometry.h"
 
 namespace so {
