@@ -60,33 +60,37 @@ void validate(const std::string& file, const ParamSpec& spec, double v) {
     }
 }
 
+// Whether the values meet spec.needs ("key=a|b": any of the values will do); true without needs.
+bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values) {
+    if (spec.needs.empty()) return true;
+    const size_t eq = spec.needs.find('=');
+    const std::string key = spec.needs.substr(0, eq);
+    std::vector<std::string> texts;
+    for (size_t from = eq + 1;;) {
+        const size_t bar = spec.needs.find('|', from);
+        texts.push_back(spec.needs.substr(from, bar == std::string::npos ? bar : bar - from));
+        if (bar == std::string::npos) break;
+        from = bar + 1;
+    }
+    for (const ParamSpec& other : table) {
+        if (other.name != key) continue;
+        bool met = false;
+        for (const std::string& text : texts) {
+            const auto named = std::find(other.names.begin(), other.names.end(), text);
+            const double wanted = named != other.names.end() ? double(named - other.names.begin())
+                                                             : std::strtod(text.c_str(), nullptr);
+            met = met || values.real(key) == wanted;
+        }
+        return met;
+    }
+    return true;
+}
+
 // Every given parameter whose table entry needs another setting has it (ParamSpec::needs).
 void checkNeeds(const std::string& file, const ParamTable& table, const ParamValues& values) {
-    for (const ParamSpec& s : table) {
-        if (s.needs.empty() || !values.given(s.name)) continue;
-        const size_t eq = s.needs.find('=');
-        const std::string key = s.needs.substr(0, eq);
-        // "key=a|b": any of the values will do.
-        std::vector<std::string> texts;
-        for (size_t from = eq + 1;;) {
-            const size_t bar = s.needs.find('|', from);
-            texts.push_back(s.needs.substr(from, bar == std::string::npos ? bar : bar - from));
-            if (bar == std::string::npos) break;
-            from = bar + 1;
-        }
-        for (const ParamSpec& other : table) {
-            if (other.name != key) continue;
-            bool met = false;
-            for (const std::string& text : texts) {
-                const auto named = std::find(other.names.begin(), other.names.end(), text);
-                const double wanted = named != other.names.end()
-                                          ? double(named - other.names.begin())
-                                          : std::strtod(text.c_str(), nullptr);
-                met = met || values.real(key) == wanted;
-            }
-            if (!met) throwInputError(file, s.name, "has no effect without " + s.needs);
-        }
-    }
+    for (const ParamSpec& s : table)
+        if (values.given(s.name) && !needsMet(s, table, values))
+            throwInputError(file, s.name, "has no effect without " + s.needs);
 }
 
 }  // namespace
@@ -128,6 +132,12 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
         values.given_.insert(key);
     }
     checkNeeds(file, table, values);
+    // The parameters of the axes' plug-ins that were not chosen.
+    for (const ParamSpec& s : table)
+        if (s.axisParam && !needsMet(s, table, values)) {
+            values.values_.erase(s.name);
+            values.integer_.erase(s.name);
+        }
     return values;
 }
 

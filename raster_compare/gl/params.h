@@ -31,6 +31,10 @@ struct ParamSpec {
     // temporal=on); "key=a|b": any of those values. Given without it, an InputError rather than
     // silently doing nothing.
     std::string needs = {};
+    // A parameter of one plug-in of an axis (a bias's, depth_bias.h): while another plug-in is
+    // chosen (its `needs` unmet) it is left out of the values, so raster.json and metrics.json list
+    // only the chosen plug-in's parameters.
+    bool axisParam = false;
 };
 using ParamTable = std::vector<ParamSpec>;
 

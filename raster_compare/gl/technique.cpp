@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "core/error.h"
 
@@ -10,15 +12,75 @@ namespace so {
 
 namespace {
 
+// "key=value" as its key and value's text.
+std::pair<std::string, std::string> splitSetting(const std::string& setting) {
+    const size_t eq = setting.find('=');
+    return {setting.substr(0, eq), eq == std::string::npos ? "" : setting.substr(eq + 1)};
+}
+
+// Whether spec.needs ("key=a|b") is met by the fixed setting of its key: true, false, or
+// nothing when its key is not fixed.
+std::optional<bool> needsMetBy(const ParamSpec& spec, const std::vector<std::string>& fixed) {
+    if (spec.needs.empty()) return std::nullopt;
+    const auto [key, values] = splitSetting(spec.needs);
+    for (const std::string& f : fixed) {
+        const auto [fixedKey, fixedValue] = splitSetting(f);
+        if (fixedKey != key) continue;
+        for (size_t from = 0;;) {
+            const size_t bar = values.find('|', from);
+            if (values.substr(from, bar == std::string::npos ? bar : bar - from) == fixedValue)
+                return true;
+            if (bar == std::string::npos) return false;
+            from = bar + 1;
+        }
+    }
+    return std::nullopt;
+}
+
+// An alias's table from its target's: the fixed parameters left out, those needing another
+// choice of them dropped, those needing this one no longer needing it, and the old names kept.
+ParamTable aliasTable(const TechniqueAlias& alias, const ParamTable& target) {
+    ParamTable table;
+    for (ParamSpec s : target) {
+        bool fixedHere = false;
+        for (const std::string& f : alias.fixed)
+            fixedHere = fixedHere || splitSetting(f).first == s.name;
+        const std::optional<bool> met = needsMetBy(s, alias.fixed);
+        if (fixedHere || met == false) continue;
+        if (met == true) s.needs.clear(), s.axisParam = false;
+        for (const auto& [old, current] : alias.renames)
+            if (s.name == current) s.name = old;
+        table.push_back(std::move(s));
+    }
+    return table;
+}
+
+// Fills in every alias's family, table and create from its target (an alias of an alias, or of
+// a name not registered, is a slip in the code: std::invalid_argument).
+void resolveAliases(std::map<std::string, TechniqueInfo>& byName) {
+    for (auto& [name, info] : byName) {
+        if (!info.alias) continue;
+        const auto target = byName.find(info.alias->target);
+        if (target == byName.end() || target->second.alias)
+            throw std::invalid_argument("technique alias \"" + name + "\": no technique \"" +
+                                        info.alias->target + "\"");
+        info.family = target->second.family;
+        info.params = aliasTable(*info.alias, target->second.params);
+        info.create = target->second.create;
+    }
+}
+
 // Built on first use from the generated list (thread-safe: a function-local static). Never
 // modified afterwards, so the pointers allTechniques hands out stay valid.
 const std::map<std::string, TechniqueInfo>& registry() {
-    static const TechniqueRegistry r = [] {
+    static const std::map<std::string, TechniqueInfo> r = [] {
         TechniqueRegistry built;
         registerBuiltInTechniques(built);
-        return built;
+        std::map<std::string, TechniqueInfo> byName = built.byName();
+        resolveAliases(byName);
+        return byName;
     }();
-    return r.byName();
+    return r;
 }
 
 }  // namespace
@@ -47,10 +109,34 @@ const TechniqueInfo& findTechnique(const std::string& name) {
                     "unknown technique \"" + printable(name, 40) + "\" (valid: " + valid + ")");
 }
 
+std::string aliasExpansion(const TechniqueInfo& info) {
+    if (!info.alias) return "";
+    std::string s = info.alias->target;
+    for (size_t i = 0; i < info.alias->fixed.size(); ++i)
+        s += (i ? "," : ":") + info.alias->fixed[i];
+    return s;
+}
+
 std::unique_ptr<Technique> createTechnique(const std::string& name,
                                            const std::vector<std::string>& settings) {
     const TechniqueInfo& info = findTechnique(name);
-    std::unique_ptr<Technique> t = info.create(parseParams(info.name, info.params, settings));
+    if (!info.alias) {
+        std::unique_ptr<Technique> t = info.create(parseParams(info.name, info.params, settings));
+        t->name_ = info.name;
+        return t;
+    }
+    // Checked against the alias's own table first, so that errors name its keys; then its
+    // settings under the target's names, with the fixed ones.
+    parseParams(info.name, info.params, settings);
+    std::vector<std::string> expanded = info.alias->fixed;
+    for (const std::string& setting : settings) {
+        auto [key, value] = splitSetting(setting);
+        for (const auto& [old, current] : info.alias->renames)
+            if (key == old) key = current;
+        expanded.push_back(key + "=" + value);
+    }
+    const TechniqueInfo& target = findTechnique(info.alias->target);
+    std::unique_ptr<Technique> t = target.create(parseParams(info.name, target.params, expanded));
     t->name_ = info.name;
     return t;
 }

@@ -139,10 +139,24 @@ class Technique {
     ParamValues values_;
 };
 
+// A name for a technique with some of its settings fixed: the bias techniques are the one-tap
+// filter with a bias (slope-bias = basic:bias=slope, receiver-plane = basic:bias=receiver-plane),
+// kept as names so that every setting, spec and baseline that uses them still runs and gives the
+// same numbers. Its table is the target's without the fixed parameters and without those that only
+// another choice of them uses; `renames` keeps the names its parameters had before they moved into
+// the target's axis (`bias:bias=2` is `basic:bias=constant,depth_texels=2`).
+struct TechniqueAlias {
+    std::string target;                                        // "basic"
+    std::vector<std::string> fixed;                            // {"bias=constant"}
+    std::vector<std::pair<std::string, std::string>> renames;  // {its name, the target's}
+};
+
 struct TechniqueInfo {
     std::string name, summary, family;
     ParamTable params;
     std::function<std::unique_ptr<Technique>(const ParamValues&)> create;
+    // An alias's expansion; its create is the target's, given the target's values.
+    std::optional<TechniqueAlias> alias = {};
 };
 
 // Techniques by name.
@@ -157,9 +171,13 @@ class TechniqueRegistry {
 };
 
 // Generated (technique_list.cpp): calls soRegister_<Class> of every registration line in
-// techniques/*.cpp, and how many lines there are.
+// techniques/*.cpp (SO_REGISTER_TECHNIQUE and SO_REGISTER_TECHNIQUE_ALIAS), and how many lines
+// there are.
 void registerBuiltInTechniques(TechniqueRegistry& registry);
 extern const size_t kBuiltInTechniqueCount;
+
+// Its expansion: "basic:bias=slope" for slope-bias; empty for a technique that is no alias.
+std::string aliasExpansion(const TechniqueInfo& info);
 
 // Every registered technique, by family and then name. The first call builds the registry (a
 // duplicate name throws std::invalid_argument here, and again on every later call).
@@ -182,5 +200,13 @@ std::unique_ptr<Technique> createTechnique(const std::string& name,
                       }});                                                                 \
     }                                                                                      \
     void soRegister_##Class(::so::TechniqueRegistry& registry)
+
+// An alias (TechniqueAlias): SO_REGISTER_TECHNIQUE_ALIAS(Id, "slope-bias", "summary", "basic",
+// {"bias=slope"}, {}); its table and create are the target's, made when the registry is built.
+#define SO_REGISTER_TECHNIQUE_ALIAS(Id, name, summary, ...)                           \
+    void soRegister_##Id(::so::TechniqueRegistry& registry) {                         \
+        registry.add({name, summary, "", {}, {}, ::so::TechniqueAlias{__VA_ARGS__}}); \
+    }                                                                                 \
+    void soRegister_##Id(::so::TechniqueRegistry& registry)
 
 }  // namespace so

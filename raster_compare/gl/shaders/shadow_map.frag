@@ -8,7 +8,9 @@
 //   MAP_TEXEL_BYTES (a map texel's bytes) and MAP_FILTER_TEXELS (the texels a filtered lookup
 //   reads: 4 bilinear, 1 point-sampled), for the work counts' SO_TAP (gl_program.h).
 //   DEPTH_PROBE with MAP_DEPTH: location 2 says what the pixel's own comparison saw (below).
-//   RECEIVER_PLANE with MAP_DEPTH (DEPTH_BITS, DEPTH_STEPS): the receiver plane's helpers below;
+//   RECEIVER_PLANE (DEPTH_BITS, DEPTH_STEPS): the receiver plane's helpers below, for any map;
+//   the depth bias's file (biases/*.glsl, bias=NAME: shadow_maps/depth_bias.h) follows this one,
+//   before the technique's; BIAS_SPREAD, how far the filter's taps reach (texels);
 //   SCREEN_DERIVATIVES: g_dpdx, g_dpdy;
 //   CONTACT: screen-space contact shadows (shaders/contact_shadow.glsl, after the technique's
 //   file), V the minimum of the map's and theirs.
@@ -188,15 +190,43 @@ float storedDepthAt(MapPoint m, vec2 o) {
 }
 // The depth test there.
 float depthTapAt(MapPoint m, vec2 o, float dRef) { return dRef <= storedDepthAt(m, o) ? 1.0 : 0.0; }
-// The plain depth test with a bias (a length): lit where depth - bias <= the stored depth.
-float depthTest(vec3 q, float bias) {
-    MapPoint m = mapPoint(q);
-    if (m.outside) return 1.0;
-    return depthTap(m, ivec2(0), m.d - bias);
+#elif defined(MAP_HW_COMPARE)
+// The sampler's own comparison (and its implementation-defined filter) at linear depth dRef.
+float hardwareTap(MapPoint m, float dRef) {
+    SO_TAP(MAP_FILTER_TEXELS, MAP_TEXEL_BYTES);
+#ifdef LIGHT_CUBE
+    return texture(u_map, vec4(m.v, windowDepth(dRef)));
+#elif defined(CASCADES)
+    return texture(u_map, vec4(m.uv, float(g_cascade), windowDepth(dRef)));
+#else
+    return texture(u_map, vec3(m.uv, windowDepth(dRef)));
+#endif
 }
+#elif defined(MAP_MOMENTS)
+// The moments at the point, bilinearly filtered (and blurred).
+vec4 momentsAt(MapPoint m) {
+    SO_TAP(MAP_FILTER_TEXELS, MAP_TEXEL_BYTES);
+#ifdef LIGHT_CUBE
+    return texture(u_map, m.v);
+#elif defined(CASCADES)
+    return texture(u_map, vec3(m.uv, float(g_cascade)));
+#else
+    return texture(u_map, m.uv);
+#endif
+}
+// The one-sided Chebyshev bound, shared by the moment techniques.
+float chebyshev(vec2 m, float t, float minVariance) {
+    if (t <= m.x) return 1.0;
+    float variance = max(m.y - m.x * m.x, minVariance);
+    float d = t - m.x;
+    return variance / (variance + d * d);
+}
+// Light-bleeding reduction: p below `amount` counts as shadow, the rest rescaled to [0, 1].
+float reduceBleeding(float p, float amount) { return clamp((p - amount) / (1.0 - amount), 0.0, 1.0); }
+#endif
 
 #ifdef RECEIVER_PLANE
-// ---- The receiver's plane in the map (receiver-plane, adaptive-bias, oriented-bias) ----------
+// ---- The receiver's plane in the map (the receiver-plane, adaptive and oriented biases) ----
 // Where q falls in m's map, in texels from m's own point, in the frame storedDepthAt's offsets
 // use (2D maps: the map's texel grid; cube maps: m's face plane along m.t1, m.t2, m.step apart).
 vec2 texelOffsetOf(MapPoint m, vec3 q) {
@@ -229,6 +259,13 @@ vec2 ownTexelCentre(MapPoint m) {
     vec2 coord = m.uv * vec2(MAP_SIZE);
     return floor(coord) + 0.5 - coord;
 #endif
+}
+// The offset in texels from m's point to the centre of the texel a tap o texels away reads: the
+// texel centres lie at ownTexelCentre(m) plus whole texels, and a tap reads the one nearest it (o
+// = 0: exactly ownTexelCentre(m)).
+vec2 tapTexelCentre(MapPoint m, vec2 o) {
+    vec2 own = ownTexelCentre(m);
+    return own + floor(o - own + 0.5);
 }
 // The receiver's depth change per texel of offset, of the plane through p spanned by e1 and e2
 // (world lengths about a texel: the differences are then well conditioned): the 2x2 system of
@@ -263,44 +300,14 @@ float depthPrecision(float d, vec2 g) {
     return DEPTH_STEPS * (stored + ulp * abs(d) + where);
 }
 #endif  // RECEIVER_PLANE
-#elif defined(MAP_HW_COMPARE)
-// The sampler's own comparison (and its implementation-defined filter) at depth d - bias.
-float hardwareTest(vec3 q, float bias) {
-    MapPoint m = mapPoint(q);
-    if (m.outside) return 1.0;
-    SO_TAP(MAP_FILTER_TEXELS, MAP_TEXEL_BYTES);
-#ifdef LIGHT_CUBE
-    return texture(u_map, vec4(m.v, windowDepth(m.d - bias)));
-#elif defined(CASCADES)
-    return texture(u_map, vec4(m.uv, float(g_cascade), windowDepth(m.d - bias)));
-#else
-    return texture(u_map, vec3(m.uv, windowDepth(m.d - bias)));
-#endif
-}
-#elif defined(MAP_MOMENTS)
-// The moments at the point, bilinearly filtered (and blurred).
-vec4 momentsAt(MapPoint m) {
-    SO_TAP(MAP_FILTER_TEXELS, MAP_TEXEL_BYTES);
-#ifdef LIGHT_CUBE
-    return texture(u_map, m.v);
-#elif defined(CASCADES)
-    return texture(u_map, vec3(m.uv, float(g_cascade)));
-#else
-    return texture(u_map, m.uv);
-#endif
-}
-// The one-sided Chebyshev bound, shared by the moment techniques.
-float chebyshev(vec2 m, float t, float minVariance) {
-    if (t <= m.x) return 1.0;
-    float variance = max(m.y - m.x * m.x, minVariance);
-    float d = t - m.x;
-    return variance / (variance + d * d);
-}
-// Light-bleeding reduction: p below `amount` counts as shadow, the rest rescaled to [0, 1].
-float reduceBleeding(float p, float amount) { return clamp((p - amount) / (1.0 - amount), 0.0, 1.0); }
+
+// How many texels a filter's outer taps reach (the slope bias grows with it); a filter that reaches
+// further defines it (pcf).
+#ifndef BIAS_SPREAD
+#define BIAS_SPREAD 1.0
 #endif
 
-// The slope-scaled bias (slope-bias, pcf, hw-pcf), as a length:
+// The slope-scaled bias (bias=slope, smrt, adaptive), as a length:
 // clamp(alpha tan(theta), min, max) texels, times `spread` (a filter's outer taps see the
 // receiver's plane that many texels deeper).
 float slopeBias(Receiver r, float alpha, float minTexels, float maxTexels, float spread) {

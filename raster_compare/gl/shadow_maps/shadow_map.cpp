@@ -51,6 +51,11 @@ ParamTable shadowMapParams(ParamTable own) {
     return p;
 }
 
+ParamTable withBiasAxis(ParamTable own, const std::string& defaultBias) {
+    for (ParamSpec& s : biasAxisParams(defaultBias)) own.push_back(std::move(s));
+    return own;
+}
+
 ShadowMapTechnique::ShadowMapTechnique(const ParamValues& v)
     : Technique(v),
       resolution_(v.integer("resolution")),
@@ -58,19 +63,20 @@ ShadowMapTechnique::ShadowMapTechnique(const ParamValues& v)
       fitToReceivers_(v.integer("fit") == 1),
       cascades_{v.integer("cascades"), v.real("split_lambda"), v.integer("snap") == 1},
       blend_(v.real("blend")),
-      contact_(v) {}
+      contact_(v),
+      bias_(v.all().count("bias") ? createDepthBias(v) : nullptr) {}
 
 ParamTable SlopeBias::params() {
-    return {{"alpha", 1.0, 0.0, 100.0, false, "slope factor"},
+    return {{"slope_factor", 1.0, 0.0, 100.0, false, "slope factor"},
             {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
             {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
 }
 
 SlopeBias::SlopeBias(const ParamValues& v)
-    : alpha(v.real("alpha")), minTexels(v.real("min")), maxTexels(v.real("max")) {}
+    : factor(v.real("slope_factor")), minTexels(v.real("min")), maxTexels(v.real("max")) {}
 
 std::string SlopeBias::defines() const {
-    return glslDefine("SLOPE_ALPHA", alpha) + glslDefine("SLOPE_MIN", minTexels) +
+    return glslDefine("SLOPE_FACTOR", factor) + glslDefine("SLOPE_MIN", minTexels) +
            glslDefine("SLOPE_MAX", maxTexels);
 }
 
@@ -397,9 +403,12 @@ GlProgram ShadowMapLight::createVisibilityProgram(const CameraPass& camera, bool
         scene_.alphaDefines() +
         ("#define VISIBILITY_PASS\n" + lightCameraDefines(cam_) +
          mapDefines(technique_, map_.get()) + technique_.shaderDefines() +
+         (technique_.depthBias() ? technique_.depthBias()->defines(technique_.depthBits()) : "") +
          (probe ? "#define DEPTH_PROBE\n" : "") + technique_.contact().defines(camera));
     std::vector<const char*> sources = {shaders::alpha_test_glsl, shaders::taps_glsl,
-                                        shaders::shadow_map_frag, technique_.glsl()};
+                                        shaders::shadow_map_frag};
+    if (technique_.depthBias()) sources.push_back(technique_.depthBias()->glsl());
+    sources.push_back(technique_.glsl());
     if (technique_.contact().on) sources.push_back(shaders::contact_shadow_glsl);
     GlProgram program = buildProgram(defines, shaders::scene_vert, sources);
     const GLuint vp = program.get();
@@ -432,6 +441,7 @@ void ShadowMapLight::renderLightPasses(PassClock& clock) {
     glUseProgram(depthProg_.get());
     glDepthFunc(GL_LESS);
     technique_.beginMapPass();
+    if (technique_.depthBias()) technique_.depthBias()->beginMapPass();
     for (int f = 0; f < cam_.faces; ++f) {
         if (technique_.storage() == MapStorage::Moments) {
             renderMomentFace(f);
@@ -444,6 +454,7 @@ void ShadowMapLight::renderLightPasses(PassClock& clock) {
         scene_.draw(depthProg_.get(), false);
     }
     if (cubeBlur_) blurCubeAcrossFaces();
+    if (technique_.depthBias()) technique_.depthBias()->endMapPass();
     technique_.endMapPass();
     clock.end();
 }

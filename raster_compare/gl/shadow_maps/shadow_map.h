@@ -22,6 +22,7 @@
 #include "core/local_frame.h"
 
 #include "raster_compare/gl/shadow_maps/contact_shadows.h"
+#include "raster_compare/gl/shadow_maps/depth_bias.h"
 #include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/technique.h"
 
@@ -42,6 +43,9 @@ enum class MapStorage {
 ParamSpec fitParam();
 // The common parameters first, then the technique's own.
 ParamTable shadowMapParams(ParamTable own);
+// The technique's own parameters, then the depth bias axis (`bias`, defaulting to `defaultBias`,
+// and every bias's parameters: depth_bias.h), for a filter that takes any bias.
+ParamTable withBiasAxis(ParamTable own, const std::string& defaultBias);
 
 class ShadowMapTechnique : public Technique {
   public:
@@ -66,6 +70,9 @@ class ShadowMapTechnique : public Technique {
     const CascadeSettings& cascades() const { return cascades_; }
     double cascadeBlend() const { return blend_; }
     const ContactShadows& contact() const { return contact_; }
+    // The depth bias its table's `bias` chose (withBiasAxis); null for a technique without the
+    // axis (smrt and adaptive keep the slope bias; the shadow texture needs none).
+    const DepthBias* depthBias() const { return bias_.get(); }
 
     // The technique's choices.
     virtual MapStorage storage() const { return MapStorage::Depth; }
@@ -94,19 +101,21 @@ class ShadowMapTechnique : public Technique {
     CascadeSettings cascades_;
     double blend_;
     ContactShadows contact_;
+    std::unique_ptr<DepthBias> bias_;
 };
 
-// The slope-scaled bias shared by slope-bias, pcf and hw-pcf: its parameters (alpha, min, max, in
-// texels), read from the values, and their #defines.
+// The slope-scaled bias (bias=slope, biases/slope_bias.cpp; and smrt and adaptive, which take no
+// other bias): its parameters (slope_factor, min, max, in texels), read from the values, and their
+// #defines.
 struct SlopeBias {
     static ParamTable params();
     explicit SlopeBias(const ParamValues& values);
     std::string defines() const;
-    double alpha, minTexels, maxTexels;
+    double factor, minTexels, maxTexels;
 };
 
-// The depth buffer's rounding, the one margin the receiver-plane biases keep (receiver-plane,
-// adaptive-bias, oriented-bias): `epsilon` steps of the map's last depth bit at the receiver's
+// The depth buffer's rounding, the one margin the receiver-plane biases keep (bias=receiver-plane,
+// adaptive, oriented): `epsilon` steps of the map's last depth bit at the receiver's
 // depth. Its #defines turn on shaders/shadow_map.frag's receiver-plane helpers.
 struct DepthPrecision {
     static ParamTable params();

@@ -57,9 +57,10 @@ std::unique_ptr<LightTechnique> Adaptive::setUp(const LightSetup& setup) const {
     // Point and area lights: a slope-bias cube map of the pool's memory.
     const CubeFallback slopeBias = [this](int resolution) {
         return createTechnique(
-            "slope-bias", {settingText("resolution", resolution), "depth_format=32",
-                           settingText("alpha", bias_.alpha), settingText("min", bias_.minTexels),
-                           settingText("max", bias_.maxTexels)});
+            "slope-bias",
+            {settingText("resolution", resolution), "depth_format=32",
+             settingText("slope_factor", bias_.factor), settingText("min", bias_.minTexels),
+             settingText("max", bias_.maxTexels)});
     };
     return setUpVirtualShadowMap(map_, bias_, std::move(visibility), setup, slopeBias, false);
 }

@@ -4,7 +4,7 @@
 // as shadow_map.frag's main sees it, the level of the virtual map its footprint needs, the level's
 // texel and page, the resident page that serves it and the slope-scaled depth test. Defines:
 // LIGHT_ORTHO or LIGHT_SPOT; VIRTUAL_SIZE, PAGE_SIZE, LEVELS, DENSITY (texels wanted across the
-// pixel's footprint, at n.l), POOL_COLUMNS; SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX (slope-bias's);
+// pixel's footprint, at n.l), POOL_COLUMNS; SLOPE_FACTOR, SLOPE_MIN, SLOPE_MAX (slope-bias's);
 // TABLE_TEXEL_BYTES, POOL_TEXEL_BYTES (the work counts' SO_TAP).
 in vec3 v_lsPosition;
 flat in vec3 v_lsFaceNormal;
@@ -141,5 +141,5 @@ float storedDepth(int slot, ivec2 texel) {
 // slope-bias's bias as a length, for a texel of that size.
 float slopeBias(Shading s, float texel) {
     float tanTheta = sqrt(max(0.0, 1.0 - s.ndotl * s.ndotl)) / s.ndotl;
-    return clamp(SLOPE_ALPHA * tanTheta, SLOPE_MIN, SLOPE_MAX) * texel;
+    return clamp(SLOPE_FACTOR * tanTheta, SLOPE_MIN, SLOPE_MAX) * texel;
 }

@@ -1,7 +1,8 @@
-// basic: the plain depth compare, no bias at all. Lit where the receiver's light-space depth is at
-// most the stored depth. Shows acne wherever depth quantisation or the texel footprint puts the
-// receiver behind its own stored surface. Parameters: only the family's (resolution, depth_format,
-// fit).
+// basic: one depth compare at the receiver's own texel, with no bias by default: lit where the
+// receiver's light-space depth is at most the stored depth, which shows acne wherever depth
+// quantisation or the texel footprint puts the receiver behind its own stored surface. Any bias of
+// the axis (`bias=NAME`, biases/) applies; the bias techniques are names for it
+// (slope-bias = basic:bias=slope, receiver-plane = basic:bias=receiver-plane, ...).
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
 
@@ -10,14 +11,15 @@ namespace {
 
 class Basic final : public ShadowMapTechnique {
   public:
-    static ParamTable params() { return shadowMapParams({}); }
+    static ParamTable params() { return shadowMapParams(withBiasAxis({}, "none")); }
     explicit Basic(const ParamValues& v) : ShadowMapTechnique(v) {}
     const char* glsl() const override { return shaders::basic_glsl; }
 };
 
 }  // namespace
 
-SO_REGISTER_TECHNIQUE(Basic, "basic",
-                      "plain depth compare: lit where receiver depth <= stored depth, no bias");
+SO_REGISTER_TECHNIQUE(
+    Basic, "basic",
+    "one depth compare at the receiver's texel, with the bias it is given (none by default)");
 
 }  // namespace so

@@ -1,8 +1,9 @@
-// cascades: cascaded shadow maps for directional lights, with slope-bias's lookup in each. The
+// cascades: cascaded shadow maps for directional lights, with basic's lookup in each at its bias
+// (`bias`, by default the slope bias: slope-bias's lookup). The
 // cascades themselves belong to the whole shadow-map family (shadow_map.h: the parameters
 // cascades, split_lambda, snap, blend), so any technique's lookup runs in them: `pcf:cascades=4`,
 // `vsm:cascades=2`; this entry is slope-bias with four cascades by default, the setting engines
-// ship. Its shader is slope-bias's.
+// ship. Its shader is basic's.
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
 
@@ -12,17 +13,13 @@ namespace {
 class Cascades final : public ShadowMapTechnique {
   public:
     static ParamTable params() {
-        ParamTable table = shadowMapParams(SlopeBias::params());
+        ParamTable table = shadowMapParams(withBiasAxis({}, "slope"));
         for (ParamSpec& p : table)
             if (p.name == "cascades") p.defaultValue = 4;
         return table;
     }
-    explicit Cascades(const ParamValues& v) : ShadowMapTechnique(v), bias_(v) {}
-    const char* glsl() const override { return shaders::slope_bias_glsl; }
-    std::string shaderDefines() const override { return bias_.defines(); }
-
-  private:
-    SlopeBias bias_;
+    explicit Cascades(const ParamValues& v) : ShadowMapTechnique(v) {}
+    const char* glsl() const override { return shaders::basic_glsl; }
 };
 
 }  // namespace

@@ -13,8 +13,9 @@ class Esm final : public ShadowMapTechnique {
   public:
     static ParamTable params() {
         return shadowMapParams(
-            {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},
-             {"c", 80.0, 1.0, 88.0, false, "exponent"}});
+            withBiasAxis({{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},
+                          {"c", 80.0, 1.0, 88.0, false, "exponent"}},
+                         "none"));
     }
     explicit Esm(const ParamValues& v)
         : ShadowMapTechnique(v), blur_(v.integer("blur")), c_(v.real("c")) {}

@@ -13,12 +13,13 @@ namespace {
 class Evsm final : public ShadowMapTechnique {
   public:
     static ParamTable params() {
-        return shadowMapParams(
+        return shadowMapParams(withBiasAxis(
             {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},
              {"c_pos", 40.0, 1.0, 42.0, false, "positive exponent"},
              {"c_neg", 5.0, 1.0, 42.0, false, "negative exponent"},
              {"min_variance", 1e-6, 0.0, 0.01, false, "variance floor, before the warp"},
-             {"bleed_reduction", 0.2, 0.0, 0.99, false, "light-bleeding cut-off"}});
+             {"bleed_reduction", 0.2, 0.0, 0.99, false, "light-bleeding cut-off"}},
+            "none"));
     }
     explicit Evsm(const ParamValues& v)
         : ShadowMapTechnique(v),

@@ -6,10 +6,12 @@ vec4 momentsOf(float t) {
 }
 #else
 float techniqueVisibility(Receiver r) {
+    r.p = biasedPoint(r);
     MapPoint m = mapPoint(r.p);
     if (m.outside) return 1.0;
+    float d = biasedDepth(biasState(r, m), r, m, vec2(0.0), m.d);  // the bias (biases/)
     vec4 moments = momentsAt(m);
-    float t = normalisedDepth(m.d);
+    float t = normalisedDepth(d);
     float p = exp(EVSM_CPOS * t), n = -exp(-EVSM_CNEG * t);
     float vp = chebyshev(moments.xy, p, MIN_VARIANCE * EVSM_CPOS * EVSM_CPOS * p * p);
     float vn = chebyshev(moments.zw, n, MIN_VARIANCE * EVSM_CNEG * EVSM_CNEG * n * n);

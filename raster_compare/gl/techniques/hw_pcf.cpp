@@ -1,8 +1,8 @@
 // hw-pcf: the sampler's own depth comparison with GL_LINEAR filtering (sampler2DShadow /
 // samplerCubeShadow): on most implementations a bilinear 2x2 PCF, but GL leaves the filter to the
 // implementation, which is why it is a technique of its own rather than a pcf setting
-// (GL 4.5 core, 8.22: how a depth-compare lookup is filtered is up to the implementation). Same
-// slope bias as slope-bias, applied to the reference depth.
+// (GL 4.5 core, 8.22: how a depth-compare lookup is filtered is up to the implementation). The
+// reference depth is its bias's (`bias`, biases/; by default slope-bias's).
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
 
@@ -11,14 +11,10 @@ namespace {
 
 class HwPcf final : public ShadowMapTechnique {
   public:
-    static ParamTable params() { return shadowMapParams(SlopeBias::params()); }
-    explicit HwPcf(const ParamValues& v) : ShadowMapTechnique(v), bias_(v) {}
+    static ParamTable params() { return shadowMapParams(withBiasAxis({}, "slope")); }
+    explicit HwPcf(const ParamValues& v) : ShadowMapTechnique(v) {}
     MapStorage storage() const override { return MapStorage::DepthHardwareCompare; }
     const char* glsl() const override { return shaders::hw_pcf_glsl; }
-    std::string shaderDefines() const override { return bias_.defines(); }
-
-  private:
-    SlopeBias bias_;
 };
 
 }  // namespace

@@ -1,4 +1,7 @@
-// hw-pcf (hw_pcf.cpp): the sampler's compare at the slope-biased depth.
+// hw-pcf (hw_pcf.cpp): the sampler's compare at the depth its bias gives.
 float techniqueVisibility(Receiver r) {
-    return hardwareTest(r.p, slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0));
+    r.p = biasedPoint(r);
+    MapPoint m = mapPoint(r.p);
+    if (m.outside) return 1.0;
+    return hardwareTap(m, biasedDepth(biasState(r, m), r, m, vec2(0.0), m.d));
 }

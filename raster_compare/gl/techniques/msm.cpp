@@ -15,11 +15,12 @@ namespace {
 class Msm final : public ShadowMapTechnique {
   public:
     static ParamTable params() {
-        return shadowMapParams(
+        return shadowMapParams(withBiasAxis(
             {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},
              {"moment_bias", 3e-5, 0.0, 0.1, false,
               "weight of (0.5, 0.5, 0.5, 0.5) mixed into the moments (float32: about 3e-5)"},
-             {"bleed_reduction", 0.0, 0.0, 0.99, false, "light-bleeding cut-off"}});
+             {"bleed_reduction", 0.0, 0.0, 0.99, false, "light-bleeding cut-off"}},
+            "none"));
     }
     explicit Msm(const ParamValues& v)
         : ShadowMapTechnique(v),

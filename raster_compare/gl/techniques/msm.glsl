@@ -35,8 +35,10 @@ float hamburger4(vec4 moments, float z) {
     return 1.0 - clamp(shadow, 0.0, 1.0);
 }
 float techniqueVisibility(Receiver r) {
+    r.p = biasedPoint(r);
     MapPoint m = mapPoint(r.p);
     if (m.outside) return 1.0;
-    return reduceBleeding(hamburger4(momentsAt(m), normalisedDepth(m.d)), BLEED_REDUCTION);
+    float d = biasedDepth(biasState(r, m), r, m, vec2(0.0), m.d);  // the bias (biases/)
+    return reduceBleeding(hamburger4(momentsAt(m), normalisedDepth(d)), BLEED_REDUCTION);
 }
 #endif

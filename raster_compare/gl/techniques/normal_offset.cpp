@@ -1,33 +1,12 @@
-// normal-offset: the lookup point moves along the geometric normal by k * texel * (1 - n.l) before
-// it is projected into the map (Holbert, "Normal Offset Shadows", GDC 2011), plus an optional small
-// constant bias.
-#include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_maps/shadow_map.h"
+// normal-offset: basic with the normal offset (bias=normal-offset, biases/normal_offset_bias.cpp),
+// its parameters under the names they had, `k` and `bias`.
+#include "raster_compare/gl/technique.h"
 
 namespace so {
-namespace {
 
-class NormalOffset final : public ShadowMapTechnique {
-  public:
-    static ParamTable params() {
-        return shadowMapParams({{"k", 1.5, 0.0, 100.0, false, "offset along the normal in texels"},
-                                {"bias", 0.1, 0.0, 1000.0, false, "constant bias in texels"}});
-    }
-    explicit NormalOffset(const ParamValues& v)
-        : ShadowMapTechnique(v), kTexels_(v.real("k")), biasTexels_(v.real("bias")) {}
-    const char* glsl() const override { return shaders::normal_offset_glsl; }
-    std::string shaderDefines() const override {
-        return glslDefine("NORMAL_OFFSET_TEXELS", kTexels_) +
-               glslDefine("BIAS_TEXELS", biasTexels_);
-    }
-
-  private:
-    double kTexels_, biasTexels_;
-};
-
-}  // namespace
-
-SO_REGISTER_TECHNIQUE(NormalOffset, "normal-offset",
-                      "lookup moved along the normal by k texels (1 - n.l)");
+SO_REGISTER_TECHNIQUE_ALIAS(NormalOffsetAlias, "normal-offset",
+                            "lookup moved along the normal by k texels (1 - n.l)", "basic",
+                            {"bias=normal-offset"},
+                            {{"k", "normal_texels"}, {"bias", "normal_depth_texels"}});
 
 }  // namespace so

@@ -1,34 +1,11 @@
-// oriented-bias: a depth bias set by the receiver's orientation to the map's texel grid, after
-// Final Fantasy XVI's oriented depth bias (Square Enix, "FINAL FANTASY XVI Shadow Techniques",
-// 2023, p. 28, as bevyengine/bevy 16075 cites it). The receiver's tangent plane (its geometric
-// normal) gives its depth gradient per texel along each of the map's axes; the texel the lookup
-// reads sampled that plane at most half a texel away along each, so the bias is the most the plane
-// can rise over that distance, |g_u| / 2 + |g_v| / 2, plus the depth buffer's rounding
-// (DepthPrecision): the least bias that is never acne on a plane, with no slope factor to tune.
-// Unlike adaptive-bias it does not use where the texel's centre lies, only how the plane is
-// oriented: on a curved surface, whose stored texel need not lie on the receiver's tangent plane,
-// it keeps that half-texel margin.
-#include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_maps/shadow_map.h"
+// oriented-bias: basic with the oriented depth bias (bias=oriented, biases/oriented_bias.cpp).
+#include "raster_compare/gl/technique.h"
 
 namespace so {
-namespace {
 
-class OrientedBias final : public ShadowMapTechnique {
-  public:
-    static ParamTable params() { return shadowMapParams(DepthPrecision::params()); }
-    explicit OrientedBias(const ParamValues& v) : ShadowMapTechnique(v), precision_(v) {}
-    const char* glsl() const override { return shaders::oriented_bias_glsl; }
-    std::string shaderDefines() const override { return precision_.defines(depthBits()); }
-
-  private:
-    DepthPrecision precision_;
-};
-
-}  // namespace
-
-SO_REGISTER_TECHNIQUE(OrientedBias, "oriented-bias",
-                      "oriented depth bias (after FFXVI 2023): the tangent plane's largest rise "
-                      "over half a texel along each map axis, plus the depth precision");
+SO_REGISTER_TECHNIQUE_ALIAS(OrientedBiasAlias, "oriented-bias",
+                            "oriented depth bias (after FFXVI 2023): the tangent plane's largest "
+                            "rise over half a texel along each map axis, plus the depth precision",
+                            "basic", {"bias=oriented"}, {});
 
 }  // namespace so

@@ -1,7 +1,8 @@
 // pcf: percentage-closer filtering: the binary depth test averaged over a kernel x kernel grid of
 // texels around the lookup (the tests are averaged, never the depths), or over a 16-tap Poisson
-// disk of radius kernel / 2 + 1/2, with the slope-scaled bias of slope-bias times
-// (1 + kernel / 2): the outer taps see the receiver's plane that many texels away. With
+// disk of radius kernel / 2 + 1/2, each tap compared at the depth its bias gives (`bias`, biases/;
+// by default the slope-scaled bias of slope-bias times (1 + kernel / 2): the outer taps see the
+// receiver's plane that many texels away, BIAS_SPREAD). With
 // temporal=on (docs/techniques.md#temporal) the same number of taps lie on a Vogel disk turned
 // per pixel and frame by interleaved gradient noise, over the area of the pattern it replaces
 // (the grid's square: radius (2 (kernel / 2) + 1) / sqrt(pi) texels; the Poisson disk's radius),
@@ -23,7 +24,7 @@ class Pcf final : public ShadowMapTechnique {
             {"kernel", 3, 1, 15, true, "grid side in texels, odd", {1, 3, 5, 7, 9, 11, 13, 15}},
             methodParam("pattern", 0, {"grid", "poisson"},
                         "grid: kernel x kernel taps; poisson: a 16-tap Poisson disk")};
-        for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
+        own = withBiasAxis(std::move(own), "slope");
         for (const ParamSpec& s : TemporalTaps::params()) own.push_back(s);
         return shadowMapParams(own);
     }
@@ -31,12 +32,12 @@ class Pcf final : public ShadowMapTechnique {
         : ShadowMapTechnique(v),
           radius_(v.integer("kernel") / 2),
           poisson_(v.integer("pattern") == 1),
-          bias_(v),
           temporal_(v) {}
     const char* glsl() const override { return shaders::pcf_glsl; }
     std::string shaderDefines() const override {
         std::string d = std::string(poisson_ ? "#define POISSON\n" : "") + "#define PCF_RADIUS " +
-                        std::to_string(radius_) + "\n" + bias_.defines() + temporal_.defines();
+                        std::to_string(radius_) +
+                        "\n#define BIAS_SPREAD (1.0 + float(PCF_RADIUS))\n" + temporal_.defines();
         if (!temporal_.on) return d;  // off: the defines it always had, the same shader
         const int side = 2 * radius_ + 1;
         const int taps = poisson_ ? 16 : side * side;
@@ -49,14 +50,15 @@ class Pcf final : public ShadowMapTechnique {
   private:
     int radius_;  // texels from the centre tap
     bool poisson_;
-    SlopeBias bias_;
     TemporalTaps temporal_;
 };
 
 }  // namespace
 
-SO_REGISTER_TECHNIQUE(Pcf, "pcf",
-                      "percentage-closer filtering: the depth test averaged over a kernel x kernel "
-                      "grid or 16 Poisson-disk taps, the slope bias times (1 + kernel / 2)");
+SO_REGISTER_TECHNIQUE(
+    Pcf, "pcf",
+    "percentage-closer filtering: the depth test averaged over a kernel x kernel "
+    "grid or 16 Poisson-disk taps, each at its bias (by default the slope bias times (1 + "
+    "kernel / 2))");
 
 }  // namespace so

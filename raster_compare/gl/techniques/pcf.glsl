@@ -1,5 +1,6 @@
 // pcf (pcf.cpp): the depth test averaged over a grid of (2 PCF_RADIUS + 1)^2 texels, or over a
-// 16-tap Poisson disk (POISSON), with the slope bias spread over the kernel; with TEMPORAL, as many
+// 16-tap Poisson disk (POISSON), each tap at the depth its bias gives (BIAS_SPREAD: the slope
+// bias spread over the kernel); with TEMPORAL, as many
 // taps (PCF_TAPS) on a Vogel disk of PCF_DISK_TEXELS texels turned per pixel and frame.
 #ifdef POISSON
 // 16 points of a Poisson disk in the unit disk.
@@ -12,21 +13,28 @@ const vec2 kPoisson[16] = vec2[](vec2(-0.94201624, -0.39906216), vec2(0.94558609
 #endif
 
 float techniqueVisibility(Receiver r) {
+    r.p = biasedPoint(r);
     MapPoint m = mapPoint(r.p);
     if (m.outside) return 1.0;
-    float dRef = m.d - slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0 + float(PCF_RADIUS));
+    BiasState b = biasState(r, m);
     float lit = 0.0;
 #if defined(TEMPORAL)
     float turn = tapRotation();
-    for (int k = 0; k < PCF_TAPS; ++k)
-        lit += depthTapAt(m, vogelTap(k, PCF_TAPS, turn) * PCF_DISK_TEXELS, dRef);
+    for (int k = 0; k < PCF_TAPS; ++k) {
+        vec2 o = vogelTap(k, PCF_TAPS, turn) * PCF_DISK_TEXELS;
+        lit += depthTapAt(m, o, biasedDepth(b, r, m, o, m.d));
+    }
     return lit / float(PCF_TAPS);
 #elif defined(POISSON)
-    for (int k = 0; k < 16; ++k) lit += depthTapAt(m, kPoisson[k] * (float(PCF_RADIUS) + 0.5), dRef);
+    for (int k = 0; k < 16; ++k) {
+        vec2 o = kPoisson[k] * (float(PCF_RADIUS) + 0.5);
+        lit += depthTapAt(m, o, biasedDepth(b, r, m, o, m.d));
+    }
     return lit / 16.0;
 #else
     for (int dy = -PCF_RADIUS; dy <= PCF_RADIUS; ++dy)
-        for (int dx = -PCF_RADIUS; dx <= PCF_RADIUS; ++dx) lit += depthTap(m, ivec2(dx, dy), dRef);
+        for (int dx = -PCF_RADIUS; dx <= PCF_RADIUS; ++dx)
+            lit += depthTap(m, ivec2(dx, dy), biasedDepth(b, r, m, vec2(dx, dy), m.d));
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
 #endif
 }

@@ -8,8 +8,9 @@
 // at any resolution and scene size (directional lights: down to the scene's top); texel caps made
 // the result depend on both (issues 29 and 42, docs/techniques.md "At real-scene scale"). Each tap
 // is tested against the receiver's plane where the tap's ray meets it (Isidoro's receiver-plane
-// depth) with the slope bias of one texel, so the bias does not grow with the filter's width (a
-// bias spread over the filter lit walls in an umbra). Taps on a golden-angle spiral
+// depth) less its bias (`bias`, biases/; by default the slope bias of one texel), so the bias does
+// not grow with the filter's width (a bias spread over the filter lit walls in an umbra). Taps on a
+// golden-angle spiral
 // (`blocker_samples`, `filter_samples`), the same for every pixel (no noise) or turned per pixel
 // (`pattern`). The light's size is the side of a square of its area (rect: sqrt(|u x v|), disk and
 // sphere: r sqrt(pi)), or `light_size` world units when >= 0 (for directional lights: the tangent
@@ -49,7 +50,7 @@ class Pcss final : public ShadowMapTechnique {
              "largest penumbra half-width at the receiver, in half-widths of the light: blockers "
              "count no nearer the light than d_receiver / (1 + penumbra_max); directional lights "
              "ignore it"}};
-        for (const ParamSpec& s : SlopeBias::params()) own.push_back(s);
+        own = withBiasAxis(std::move(own), "slope");
         for (const ParamSpec& s : TemporalTaps::params()) own.push_back(s);
         return shadowMapParams(own);
     }
@@ -60,15 +61,13 @@ class Pcss final : public ShadowMapTechnique {
           filterSamples_(v.integer("filter_samples")),
           rotated_(v.integer("pattern") == 1),
           penumbraMax_(v.real("penumbra_max")),
-          bias_(v),
           temporal_(v) {}
     const char* glsl() const override { return shaders::pcss_glsl; }
     std::string shaderDefines() const override {
         return "#define BLOCKER_SAMPLES " + std::to_string(blockerSamples_) +
                "\n#define FILTER_SAMPLES " + std::to_string(filterSamples_) + "\n" +
                glslDefine("PENUMBRA_MAX", penumbraMax_) +
-               (rotated_ ? "#define PATTERN_ROTATED\n" : "") + bias_.defines() +
-               temporal_.defines();
+               (rotated_ ? "#define PATTERN_ROTATED\n" : "") + temporal_.defines();
     }
     std::optional<HistorySettings> history() const override { return temporal_.history(); }
     void setLightUniforms(GLuint program, const Light& light,
@@ -83,7 +82,6 @@ class Pcss final : public ShadowMapTechnique {
     int blockerSamples_, filterSamples_;
     bool rotated_;
     double penumbraMax_;
-    SlopeBias bias_;
     TemporalTaps temporal_;
 };
 

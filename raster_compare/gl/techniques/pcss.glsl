@@ -54,6 +54,7 @@ float planeDepthAt(Receiver r, MapPoint m, vec2 o) {
 }
 
 float techniqueVisibility(Receiver r) {
+    r.p = biasedPoint(r);
     MapPoint m = mapPoint(r.p);
     if (m.outside) return 1.0;
     float dR = m.d;
@@ -67,9 +68,9 @@ float techniqueVisibility(Receiver r) {
 #endif
     float mapSide = float(MAP_SIZE.x);
     float searchTexels = min(texelsThrough(r, dR, dMin), mapSide);
-    // The base bias of one tap (the texel's own footprint on the slope); the receiver's plane
-    // does the rest.
-    float bias = slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0);
+    // Each tap at the receiver's plane along the tap's ray, less its bias (biases/; by default the
+    // slope bias of one texel: the texel's own footprint on the slope; the plane does the rest).
+    BiasState b = biasState(r, m);
     float blockerSum = 0.0;
     int blockers = 0;
     for (int k = 0; k < BLOCKER_SAMPLES; ++k) {
@@ -77,7 +78,7 @@ float techniqueVisibility(Receiver r) {
         float plane = planeDepthAt(r, m, o);
         if (plane < 0.0) continue;
         float d = storedDepthAt(m, o);
-        if (d < plane - bias) {
+        if (d < biasedDepth(b, r, m, o, plane)) {
             blockerSum += d;
             ++blockers;
         }
@@ -85,14 +86,15 @@ float techniqueVisibility(Receiver r) {
     if (blockers == 0) return 1.0;
     float dB = max(blockerSum / float(blockers), dMin);
     float filterTexels = min(texelsThrough(r, dR, dB), mapSide);
-    if (filterTexels < 0.5) return depthTapAt(m, vec2(0.0), dR - bias);
+    float own = biasedDepth(b, r, m, vec2(0.0), dR);
+    if (filterTexels < 0.5) return depthTapAt(m, vec2(0.0), own);
     float lit = 0.0, taps = 0.0;
     for (int k = 0; k < FILTER_SAMPLES; ++k) {
         vec2 o = spiral(k, FILTER_SAMPLES) * filterTexels;
         float plane = planeDepthAt(r, m, o);
         if (plane < 0.0) continue;
-        lit += depthTapAt(m, o, plane - bias);
+        lit += depthTapAt(m, o, biasedDepth(b, r, m, o, plane));
         taps += 1.0;
     }
-    return taps > 0.0 ? lit / taps : depthTapAt(m, vec2(0.0), dR - bias);
+    return taps > 0.0 ? lit / taps : depthTapAt(m, vec2(0.0), own);
 }

@@ -1,35 +1,12 @@
-// receiver-plane: receiver plane depth bias (Isidoro, "Shadow Mapping: GPU-based Tips and
-// Techniques", GDC 2006). The receiver's depth gradient in the map, per texel, from its
-// screen-space derivatives (where the pixels to its right and above fall in the map, and how deep
-// they lie: the chain rule through the map's projection), and the depth compared at the centre of
-// the texel the lookup reads, where the map sampled what it holds: there a receiver that is its own
-// occluder has exactly the depth the map stored, so no slope factor is tuned. What is left is the
-// depth buffer's rounding (`epsilon`, DepthPrecision). The derivatives see neighbouring pixels: at
-// a triangle's edge or a silhouette they span two surfaces (adaptive-bias takes the plane from the
-// geometric normal instead).
-#include "raster_compare/gl/shaders.h"
-#include "raster_compare/gl/shadow_maps/shadow_map.h"
+// receiver-plane: basic with the receiver plane depth bias (bias=receiver-plane,
+// biases/receiver_plane_bias.cpp).
+#include "raster_compare/gl/technique.h"
 
 namespace so {
-namespace {
 
-class ReceiverPlaneBias final : public ShadowMapTechnique {
-  public:
-    static ParamTable params() { return shadowMapParams(DepthPrecision::params()); }
-    explicit ReceiverPlaneBias(const ParamValues& v) : ShadowMapTechnique(v), precision_(v) {}
-    const char* glsl() const override { return shaders::receiver_plane_bias_glsl; }
-    std::string shaderDefines() const override {
-        return precision_.defines(depthBits()) + "#define SCREEN_DERIVATIVES\n";
-    }
-
-  private:
-    DepthPrecision precision_;
-};
-
-}  // namespace
-
-SO_REGISTER_TECHNIQUE(ReceiverPlaneBias, "receiver-plane",
-                      "receiver plane depth bias (Isidoro 2006): the depth gradient from "
-                      "screen-space derivatives, compared at the texel's centre");
+SO_REGISTER_TECHNIQUE_ALIAS(ReceiverPlaneAlias, "receiver-plane",
+                            "receiver plane depth bias (Isidoro 2006): the depth gradient from "
+                            "screen-space derivatives, compared at the texel's centre",
+                            "basic", {"bias=receiver-plane"}, {});
 
 }  // namespace so

@@ -15,5 +15,5 @@ float mapDepth(vec3 q) { return receiverDepth(q); }
 
 float techniqueVisibility(Receiver r) {
     if (mapPoint(r.p).outside) return 1.0;
-    return smrtVisibility(r.p, slopeBias(r, SLOPE_ALPHA, SLOPE_MIN, SLOPE_MAX, 1.0), r.texel);
+    return smrtVisibility(r.p, slopeBias(r, SLOPE_FACTOR, SLOPE_MIN, SLOPE_MAX, 1.0), r.texel);
 }

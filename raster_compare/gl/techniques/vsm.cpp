@@ -13,10 +13,11 @@ namespace {
 class Vsm final : public ShadowMapTechnique {
   public:
     static ParamTable params() {
-        return shadowMapParams(
+        return shadowMapParams(withBiasAxis(
             {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},
              {"min_variance", 1e-6, 0.0, 0.01, false, "variance floor (normalised depth^2)"},
-             {"bleed_reduction", 0.2, 0.0, 0.99, false, "light-bleeding cut-off"}});
+             {"bleed_reduction", 0.2, 0.0, 0.99, false, "light-bleeding cut-off"}},
+            "none"));
     }
     explicit Vsm(const ParamValues& v)
         : ShadowMapTechnique(v),

@@ -1,0 +1,21 @@
+// bias=none: no bias at all; the receiver compared at its own depth (basic's default). Shows acne
+// wherever depth quantisation or the texel footprint puts the receiver behind its own stored
+// surface.
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_maps/depth_bias.h"
+
+namespace so {
+namespace {
+
+class NoDepthBias final : public DepthBias {
+  public:
+    static ParamTable params() { return {}; }
+    explicit NoDepthBias(const ParamValues&) {}
+    const char* glsl() const override { return shaders::no_bias_glsl; }
+};
+
+}  // namespace
+
+SO_REGISTER_BIAS(NoDepthBias, "none", "no bias: lit where receiver depth <= stored depth");
+
+}  // namespace so

@@ -1,0 +1,35 @@
+// bias=oriented: a depth bias set by the receiver's orientation to the map's texel grid, after
+// Final Fantasy XVI's oriented depth bias (Square Enix, "FINAL FANTASY XVI Shadow Techniques",
+// 2023, p. 28, as bevyengine/bevy 16075 cites it; our reconstruction: the talk was not read). The
+// receiver's tangent plane (its geometric normal) gives its depth gradient per texel along each of
+// the map's axes; the texel a tap reads sampled that plane at most half a texel away along each,
+// so the bias is the most the plane can rise over that distance, |g_u| / 2 + |g_v| / 2, plus the
+// depth buffer's rounding (DepthPrecision): the least bias that is never acne on a plane, with no
+// slope factor to tune. Unlike adaptive it does not use where the texel's centre lies, only how the
+// plane is oriented: on a curved surface, whose stored texel need not lie on the receiver's tangent
+// plane, it keeps that half-texel margin.
+#include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/shadow_maps/depth_bias.h"
+#include "raster_compare/gl/shadow_maps/shadow_map.h"
+
+namespace so {
+namespace {
+
+class OrientedDepthBias final : public DepthBias {
+  public:
+    static ParamTable params() { return DepthPrecision::params(); }
+    explicit OrientedDepthBias(const ParamValues& v) : precision_(v) {}
+    const char* glsl() const override { return shaders::oriented_bias_glsl; }
+    std::string defines(int depthBits) const override { return precision_.defines(depthBits); }
+
+  private:
+    DepthPrecision precision_;
+};
+
+}  // namespace
+
+SO_REGISTER_BIAS(OrientedDepthBias, "oriented",
+                 "oriented depth bias (after FFXVI 2023): the tangent plane's largest rise over "
+                 "half a texel along each map axis, plus the depth precision");
+
+}  // namespace so
