@@ -257,4 +257,27 @@ int GltfAlpha::decodedTexture(size_t image) {
     return textureOfImage_[image] = int(textures_.size() - 1);
 }
 
+void alphaWarnings(const GltfAlpha& alpha, const tinygltf::Model& model, GltfContent& out) {
+    if (!alpha.imagesNotRead().empty()) {
+        std::string names;
+        size_t listed = 0;
+        for (size_t i : alpha.imagesNotRead()) {
+            if (listed++ == 4) {
+                names += ", and " + std::to_string(alpha.imagesNotRead().size() - 4) + " more";
+                break;
+            }
+            const std::string& uri = model.images[i].uri;
+            names += (names.empty() ? "" : ", ") + idx("images", i) +
+                     (uri.empty() ? "" : " " + quoted(printable(uri, 60)));
+        }
+        out.warnings.push_back(std::to_string(alpha.imagesNotRead().size()) +
+                               " image(s) of alpha-tested materials not read (effects lacks "
+                               "\"alpha\"): " +
+                               names);
+    }
+    if (alpha.fromBlend() > 0)
+        out.warnings.push_back(std::to_string(alpha.fromBlend()) +
+                               " primitive(s) with alphaMode BLEND read as MASK at cutoff 0.5");
+}
+
 }  // namespace so::gltf_detail

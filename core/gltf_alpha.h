@@ -62,4 +62,8 @@ class GltfAlpha {
     size_t masked_ = 0, fromBlend_ = 0;
 };
 
+// The warnings for `alpha`'s work on the file: the images of alpha-tested materials not read, and
+// the BLEND materials read as MASK.
+void alphaWarnings(const GltfAlpha& alpha, const tinygltf::Model& model, GltfContent& out);
+
 }  // namespace so::gltf_detail

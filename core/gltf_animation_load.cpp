@@ -1,5 +1,6 @@
 #include "core/gltf_animation_load.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace so::gltf_detail {
@@ -182,6 +183,45 @@ std::vector<std::shared_ptr<const AnimatedNode>> playedAnimations(const Context&
             addChannel(ctx, model, doc, ai, ci, nodes, keys);
     }
     return {nodes.begin(), nodes.end()};
+}
+
+std::shared_ptr<MeshAnimation> meshAnimation(
+    const Context& ctx, const tinygltf::Model& model, const std::vector<ChainLink>& links,
+    const Instance& inst, const glm::dmat4& wsFromFile,
+    std::vector<std::shared_ptr<const AnimatedNode>>& still) {
+    if (inst.link < 0 || !links[size_t(inst.link)].moving) return nullptr;
+    if (model.nodes[inst.node].skin >= 0)
+        fail(ctx, idx("nodes", inst.node) + ".skin",
+             "an animation moves this skinned mesh: skinning and morph targets are not supported "
+             "yet");
+    auto animation = std::make_shared<MeshAnimation>();
+    animation->wsFromFile = wsFromFile;
+    for (int64_t l = inst.link; l >= 0; l = links[size_t(l)].parent) {
+        const size_t node = links[size_t(l)].node;
+        if (ctx.animates(node)) {
+            animation->chain.push_back(ctx.animatedNodes[node]);
+            continue;
+        }
+        if (!still[node]) {
+            auto n = std::make_shared<AnimatedNode>();
+            n->restLocal = localTransform(ctx, model.nodes[node], node);
+            still[node] = std::move(n);
+        }
+        animation->chain.push_back(still[node]);
+    }
+    std::reverse(animation->chain.begin(), animation->chain.end());
+    return animation;
+}
+
+void readAnimations(Context& ctx, const tinygltf::Model& model, const Json& doc) {
+    if (!ctx.playAnimations) return;
+    GltfContent& out = *ctx.out;
+    out.animationNames = animationNames(model);
+    out.animationClipFound =
+        ctx.animationClip.empty() ||
+        std::any_of(model.animations.begin(), model.animations.end(),
+                    [&](const tinygltf::Animation& a) { return a.name == ctx.animationClip; });
+    ctx.animatedNodes = playedAnimations(ctx, model, doc, ctx.animationClip);
 }
 
 }  // namespace so::gltf_detail

@@ -7,8 +7,11 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
+
 #include "core/gltf_animation.h"
 #include "core/gltf_detail.h"
+#include "core/gltf_nodes.h"
 
 namespace so::gltf_detail {
 
@@ -24,5 +27,17 @@ std::vector<std::shared_ptr<const AnimatedNode>> playedAnimations(const Context&
 // The names of the file's animations ("animations[i]" for an unnamed one), for the error that
 // lists them.
 std::vector<std::string> animationNames(const tinygltf::Model& model);
+
+// The chain of a node instance under a moving node: every node from its root down, the still
+// ones (made once, in `still`) at their own local transform. A skinned mesh there is refused:
+// rigid motion would move its bind pose, not what its author animated.
+std::shared_ptr<MeshAnimation> meshAnimation(
+    const Context& ctx, const tinygltf::Model& model, const std::vector<ChainLink>& links,
+    const Instance& inst, const glm::dmat4& wsFromFile,
+    std::vector<std::shared_ptr<const AnimatedNode>>& still);
+
+// A scene with a sequence: the played clips' nodes (into ctx.animatedNodes), and whether the clip
+// named is in the file (with the file's clip names, into ctx.out). Nothing without a sequence.
+void readAnimations(Context& ctx, const tinygltf::Model& model, const Json& doc);
 
 }  // namespace so::gltf_detail

@@ -1,7 +1,9 @@
 // A sweep (docs/sweep.md): the spec a user writes (scenes, oracle options, techniques with
 // parameter grids), expanded once into a plan of tasks (scene x technique setting) with stable ids,
 // kept as DIR/sweep.json so that every later step (a local job, a Slurm array task, the merge)
-// reads the same list, whatever the globs would match by then.
+// reads the same list, whatever the globs would match by then. A spec is read by sweep_spec.cpp
+// with its internal parts (sweep_spec_json, sweep_settings, sweep_grid, sweep_images); the plan's
+// folder is sweep_plan_file.cpp's.
 #pragma once
 
 #include <cstddef>

@@ -3,7 +3,8 @@
 
 Reads the tables of docs/architecture.md's section "The rules as the test reads them" (the one
 source: the document shows what this enforces) and checks every C++ file's includes and every
-library's target_link_libraries against them. Prints one line per failure, naming the file and
+library's target_link_libraries against them, and every .cpp of the libraries and the program
+against a size limit (MAX_CPP_LINES). Prints one line per failure, naming the file and
 line, and exits 1; exits 0 with a summary when every rule holds.
 
     check_architecture.py [--root DIR] [--doc FILE]
@@ -28,6 +29,11 @@ COMMAND_RE = re.compile(
 LINK_KEYWORDS = {"PUBLIC", "PRIVATE", "INTERFACE", "LINK_PUBLIC", "LINK_PRIVATE"}
 # Targets of ours that carry only compile options, not code.
 IGNORED_TARGETS = {"so_warnings"}
+# A source file past this many lines holds more than one concept (issue 62: split them by what
+# they read or do, one concept per .h/.cpp, at most about 600 lines each); the rule covers the
+# .cpp files of the libraries and the program.
+MAX_CPP_LINES = 800
+SIZE_FOLDERS = ("core", "oracle", "raster_compare", "api", "cli")
 
 
 class RulesError(Exception):
@@ -246,6 +252,18 @@ def check_cycles(graph, failures):
         failures.append("include cycle: " + " <-> ".join(c))
 
 
+def check_sizes(root, failures):
+    """Every .cpp under SIZE_FOLDERS at most MAX_CPP_LINES lines."""
+    for path in source_files(root):
+        if path.split("/", 1)[0] not in SIZE_FOLDERS or not path.endswith(".cpp"):
+            continue
+        with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
+            count = sum(1 for _ in f)
+        if count > MAX_CPP_LINES:
+            failures.append(f"{path}: {count} lines, over {MAX_CPP_LINES}: split it by concept "
+                            "(one concept per .h/.cpp, at most about 600 lines each)")
+
+
 def strip_cmake_comments(text):
     """CMake line comments dropped (a '#' at a line's start or after a space, outside quotes)."""
     out = []
@@ -383,6 +401,7 @@ def check(root, doc):
     graph = check_includes(root, rules, failures)
     check_cycles(graph, failures)
     check_links(root, rules, failures)
+    check_sizes(root, failures)
     for e in rules.exceptions:
         if not e["used"]:
             failures.append(f"docs/architecture.md: the exception '{e['where']}: {e['breaks']}' "

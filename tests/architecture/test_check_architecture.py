@@ -134,6 +134,15 @@ class CheckArchitecture(unittest.TestCase):
         f = self.tree({"api/trace.cpp": "#include <string>\n"})
         self.assertOneFailure(f, "api/trace.cpp", "no row")
 
+    def test_cpp_over_the_size_limit(self):
+        limit = check_architecture.MAX_CPP_LINES
+        body = '#include "core/scene.h"\n' + "// a line\n" * (limit - 1)
+        self.assertEqual(self.tree({"core/scene.cpp": body}), [])
+        f = self.tree({"core/scene.cpp": body + "// one more\n"})
+        self.assertOneFailure(f, "core/scene.cpp", f"{limit + 1} lines, over {limit}")
+        # The limit is on the .cpp files of the library folders only.
+        self.assertEqual(self.tree({"core/scene.h": "#pragma once\n" * (limit + 1)}), [])
+
     def test_include_cycle(self):
         f = self.tree({"core/a.h": '#include "core/b.h"\n', "core/b.h": '#include "core/a.h"\n'})
         self.assertOneFailure(f, "include cycle", "core/a.h <-> core/b.h")
