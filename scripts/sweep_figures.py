@@ -4,11 +4,11 @@ runs the shipped bias sweep, and writes both tables into a markdown file between
 import argparse, csv, json, os, shutil, subprocess, sys, time
 from doc_markers import replace_between_markers
 
-OVERHEAD_SETTINGS = [f"slope-bias:alpha={a},min={m}" for a in (0.5, 1, 2) for m in (0.1, 0.5)]
+OVERHEAD_SETTINGS = [f"slope-bias:slope_factor={a},min={m}" for a in (0.5, 1, 2) for m in (0.1, 0.5)]
 SIZE = (320, 180)
 FRAMES = 9
 REPEATS = 3
-SLOPE_DEFAULT = {"alpha": 1, "min": 0.1}  # `shadow-oracle techniques`
+SLOPE_DEFAULT = {"slope_factor": 1, "min": 0.1}  # `shadow-oracle techniques`
 
 
 def run(cmd):
@@ -27,7 +27,7 @@ def overhead(tool, out):
     json.dump({"sweep_format": 1, "name": "overhead", "scenes": [scene], "width": SIZE[0],
                "height": SIZE[1], "frames": FRAMES,
                "techniques": [{"name": "slope-bias",
-                               "params": {"alpha": [0.5, 1, 2], "min": [0.1, 0.5]}}]},
+                               "params": {"slope_factor": [0.5, 1, 2], "min": [0.1, 0.5]}}]},
               open(spec, "w"))
     sweep_dir = os.path.join(out, "sweep")
     run([tool, "sweep", spec, "--out", sweep_dir, "--quiet"])  # traces the oracle once
@@ -141,7 +141,7 @@ def bias(out):
     return (f"{command}: {m['tasks']} tasks ({m['finished']} finished) in {run['seconds']:.0f} s "
             f"on {gl}, over the shipped scenes (`scenes/*.scene.json`) and the real ones "
             "(`scenes/real/*/*.scene.json`). The report (out/sweeps/bias/report.html) draws the "
-            "whole alpha x min grid; here its answer, ties on peter-panning to the first setting "
+            "whole slope_factor x min grid; here its answer, ties on peter-panning to the first setting "
             "in the spec's order.\n\n" + "\n".join(rows) + "\n" + untuned(defaults))
 
 
@@ -189,7 +189,7 @@ def untuned(defaults):
     with_pp = sorted({k[0].split("/")[-1].split(".")[0] for k, by in defaults.items()
                       if any(v.get("peter_panning_rate") is not None for v in by.values())})
     return ("\nThe biases that need no tuning (docs/techniques.md#biases-that-need-no-tuning) and "
-            "slope-bias (alpha=1, min=0.1), each at its default, in the same sweep. Free of both "
+            "slope-bias (slope_factor=1, min=0.1), each at its default, in the same sweep. Free of both "
             "acne (not one pixel) and peter-panning on every shipped and real scene and light: "
             + (", ".join(none) if none else "none of them") + ". Peter-panning is measured only "
             "where the scene has the `contact` effect (" + ", ".join(with_pp) + "; n/a "

@@ -60,7 +60,8 @@ void validate(const std::string& file, const ParamSpec& spec, double v) {
     }
 }
 
-// Whether the values meet spec.needs ("key=a|b": any of the values will do); true without needs.
+}  // namespace
+
 bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values) {
     if (spec.needs.empty()) return true;
     const size_t eq = spec.needs.find('=');
@@ -85,6 +86,8 @@ bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues&
     }
     return true;
 }
+
+namespace {
 
 // Every given parameter whose table entry needs another setting has it (ParamSpec::needs).
 void checkNeeds(const std::string& file, const ParamTable& table, const ParamValues& values) {

@@ -78,6 +78,9 @@ class ParamValues {
     std::set<std::string> given_;
 };
 
+// Whether the values meet spec.needs ("key=a|b": any of them); true for a spec that needs none.
+bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values);
+
 // Parses "key=value" settings against the table; unknown keys, non-numbers, non-integers and
 // values out of range are InputErrors naming the technique, the key and what is valid.
 ParamValues parseParams(const std::string& technique, const ParamTable& table,

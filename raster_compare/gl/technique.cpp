@@ -126,8 +126,9 @@ std::unique_ptr<Technique> createTechnique(const std::string& name,
         return t;
     }
     // Checked against the alias's own table first, so that errors name its keys; then its
-    // settings under the target's names, with the fixed ones.
-    parseParams(info.name, info.params, settings);
+    // settings under the target's names, with the fixed ones. Its values, which raster.json and
+    // metrics.json list, are under its own names (bias:bias=2, not depth_texels), as its table.
+    ParamValues own = parseParams(info.name, info.params, settings);
     std::vector<std::string> expanded = info.alias->fixed;
     for (const std::string& setting : settings) {
         auto [key, value] = splitSetting(setting);
@@ -138,6 +139,7 @@ std::unique_ptr<Technique> createTechnique(const std::string& name,
     const TechniqueInfo& target = findTechnique(info.alias->target);
     std::unique_ptr<Technique> t = target.create(parseParams(info.name, target.params, expanded));
     t->name_ = info.name;
+    t->values_ = std::move(own);
     return t;
 }
 

@@ -33,6 +33,11 @@ IGNORED_TARGETS = {"so_warnings"}
 # they read or do, one concept per .h/.cpp, at most about 600 lines each); the rule covers the
 # .cpp files of the libraries and the program.
 MAX_CPP_LINES = 800
+# The raster path is kept in rooms (issue 62): sub-folders by concern, each in the room table with
+# the other rooms (and the folder's own files) it may include; its own folder keeps at most this
+# many C++ files: the plug-in interface, not the plumbing.
+ROOMED = "raster_compare/gl/"
+MAX_TOP_FILES = 12
 SIZE_FOLDERS = ("core", "oracle", "raster_compare", "api", "cli")
 
 
@@ -96,6 +101,7 @@ class Rules:
                 "never_includes": self.dep_set(row["never includes"], folder),
                 "never_links": self.dep_set(row["never links"], folder),
             })
+        self.rooms = {names(r["room"])[0]: names(r["may include"]) for r in tables.get("room", [])}
         self.exceptions = [{"where": names(r["where"])[0], "breaks": r["breaks"].strip(),
                             "used": False} for r in tables["where"]]
 
@@ -264,6 +270,56 @@ def check_sizes(root, failures):
                             "(one concept per .h/.cpp, at most about 600 lines each)")
 
 
+def room_of(path):
+    """The room of a file under ROOMED ("shadow_maps/"), "" for the folder's own files."""
+    rel = path[len(ROOMED):]
+    return rel.split("/", 1)[0] + "/" if "/" in rel else ""
+
+
+def check_rooms(root, rules, failures):
+    """Every room of ROOMED has a row of the room table and each row a room; a file includes from
+    ROOMED only its own room and what its room's row lists; the folder's own files are at most
+    MAX_TOP_FILES."""
+    base = os.path.join(root, ROOMED)
+    if not os.path.isdir(base):
+        return
+    rooms = sorted(d + "/" for d in os.listdir(base) if os.path.isdir(os.path.join(base, d)))
+    if not rooms and not rules.rooms:
+        return
+    if not rules.rooms:
+        failures.append(f"docs/architecture.md: no room table ('| room | holds | may include |') "
+                        f"for the rooms of {ROOMED}")
+        return
+    for room in rooms:
+        if room not in rules.rooms:
+            failures.append(f"{ROOMED}{room}: a room with no row in docs/architecture.md's room "
+                            "table")
+    for room in rules.rooms:
+        if room != "(own files)" and room not in rooms:
+            failures.append(f"docs/architecture.md: the room table names {ROOMED}{room}, which "
+                            "does not exist")
+    own = sorted(f for f in os.listdir(base) if f.endswith(CPP_SUFFIXES))
+    if len(own) > MAX_TOP_FILES:
+        failures.append(f"{ROOMED}: {len(own)} C++ files directly in it, over {MAX_TOP_FILES}: "
+                        "move the plumbing into its room")
+    for path in source_files(root):
+        if not path.startswith(ROOMED):
+            continue
+        room = room_of(path)
+        allowed = rules.rooms.get(room or "(own files)", [])
+        for number, _, inc in includes_of(root, path):
+            if not inc.startswith(ROOMED):
+                continue
+            rel = inc[len(ROOMED):]
+            same_room = rel.startswith(room) if room else "/" not in rel
+            if same_room or any(
+                    rel == a or (a.endswith("/") and rel.startswith(a)) for a in allowed):
+                continue
+            where = f"{ROOMED}{room}" if room else f"{ROOMED}'s own files"
+            failures.append(f"{path}:{number}: includes {inc}: {where} may include only "
+                            f"{', '.join(allowed) or 'its own room'} of {ROOMED}")
+
+
 def strip_cmake_comments(text):
     """CMake line comments dropped (a '#' at a line's start or after a space, outside quotes)."""
     out = []
@@ -402,6 +458,7 @@ def check(root, doc):
     check_cycles(graph, failures)
     check_links(root, rules, failures)
     check_sizes(root, failures)
+    check_rooms(root, rules, failures)
     for e in rules.exceptions:
         if not e["used"]:
             failures.append(f"docs/architecture.md: the exception '{e['where']}: {e['breaks']}' "

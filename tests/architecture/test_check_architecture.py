@@ -170,5 +170,39 @@ class CheckArchitecture(unittest.TestCase):
             check_architecture.check(root, doc)
 
 
+    ROOMS = ("\n| room | holds | may include |\n|---|---|---|\n"
+             "| (own files) | the interface | `context/x.h` |\n"
+             "| `context/` | plumbing | |\n"
+             "| `maps/` | maps | `context/` |\n")
+
+    def rooms_tree(self, files, rooms=None):
+        """A tree whose raster path has the rooms context/ and maps/ and the table ROOMS."""
+        base = {"raster_compare/gl/context/x.h": "#pragma once\n",
+                "raster_compare/gl/maps/m.h": '#pragma once\n#include "raster_compare/gl/context/x.h"\n'}
+        base.update(files)
+        doc_rooms = self.ROOMS if rooms is None else rooms
+        return self.tree(files=base, extra_rows=doc_rooms)
+
+    def test_rooms_hold(self):
+        self.assertEqual(self.rooms_tree({}), [])
+
+    def test_a_room_including_another_not_in_its_row(self):
+        f = self.rooms_tree({"raster_compare/gl/context/y.h":
+                             '#pragma once\n#include "raster_compare/gl/maps/m.h"\n'})
+        self.assertOneFailure(f, "raster_compare/gl/context/y.h:2", "may include only")
+
+    def test_a_room_without_a_row(self):
+        f = self.rooms_tree({"raster_compare/gl/time/t.h": "#pragma once\n"})
+        self.assertOneFailure(f, "raster_compare/gl/time/", "no row")
+
+    def test_a_row_without_its_room(self):
+        f = self.rooms_tree({}, rooms=self.ROOMS + "| `gone/` | nothing | |\n")
+        self.assertOneFailure(f, "gone/", "does not exist")
+
+    def test_too_many_files_in_the_folder_itself(self):
+        many = {f"raster_compare/gl/f{i}.h": "#pragma once\n" for i in range(12)}
+        f = self.rooms_tree(many)  # 12 here and renderer.h, .cpp: 14
+        self.assertOneFailure(f, "14 C++ files directly in it")
+
 if __name__ == "__main__":
     unittest.main()

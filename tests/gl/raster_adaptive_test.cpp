@@ -251,7 +251,7 @@ TEST(Adaptive, PointLightsFallBackToACubeMapOfThePoolsMemory) {
     REQUIRE_GL();
     Scene s = makeSquareOccluderScene(200, 150).scene;
     s.lights = {s.lights[0]};
-    RasterResult a = renderOneFrame(s, "adaptive", {"pool_mb=6", "alpha=2"});
+    RasterResult a = renderOneFrame(s, "adaptive", {"pool_mb=6", "slope_factor=2"});
     const RasterLightStats& st = lightStats(a, "point");
     // sqrt(6 MiB / 24) = 512 texels a face.
     EXPECT_EQ(st.counts.at("cube_fallback"), 1);
@@ -259,7 +259,7 @@ TEST(Adaptive, PointLightsFallBackToACubeMapOfThePoolsMemory) {
     EXPECT_EQ(st.map, "cube");
     EXPECT_EQ(st.passes, (std::vector<std::string>{"shadow_map", "visibility"}));
     RasterResult b =
-        renderOneFrame(s, "slope-bias", {"resolution=512", "depth_format=32", "alpha=2"});
+        renderOneFrame(s, "slope-bias", {"resolution=512", "depth_format=32", "slope_factor=2"});
     EXPECT_EQ(differing(a.image, b.image, "point"), 0u);
 }
 

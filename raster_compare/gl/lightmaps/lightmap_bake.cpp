@@ -190,7 +190,9 @@ void Baker::buildPrograms() {
         "#define MAP_TEXEL_BYTES 4\n#define MAP_FILTER_TEXELS 1\n" +
             pointKind + bias.defines(),
         shaders::lightmap_bake_vert,
-        {shaders::alpha_test_glsl, shaders::shadow_map_frag, shaders::slope_bias_glsl});
+        // slope-bias's lookup: basic with the slope bias (biases/slope_bias.glsl).
+        {shaders::alpha_test_glsl, shaders::shadow_map_frag, shaders::slope_bias_glsl,
+         shaders::basic_glsl});
     const std::string emitter = !areaSampled_ ? std::string("#define EMITTER_POINT\n")
                                               : rasterLightKind(light_.type).emitterDefine();
     // What its fetches read (the work counts' SO_TAP): the texels' positions and normals and the
