@@ -961,9 +961,9 @@ TEST(Raster, PlanarShadowsWithAndWithoutStencil) {
     std::printf("[ planar ] contact_box agreement %.5f of %zu\n", c.agreement(), c.counted);
     EXPECT_GE(c.agreement(), 0.99);
     const std::vector<float> once =
-        shadowValuesOn(o, raster(s, "planar", {"alpha=0.5"}), "key", 0.0f);
+        shadowValuesOn(o, raster(s, "planar", {"opacity=0.5"}), "key", 0.0f);
     const std::vector<float> twice =
-        shadowValuesOn(o, raster(s, "planar", {"alpha=0.5", "stencil=0"}), "key", 0.0f);
+        shadowValuesOn(o, raster(s, "planar", {"opacity=0.5", "stencil=0"}), "key", 0.0f);
     ASSERT_GT(once.size(), 500u);
     size_t onceExact = 0, twiceDarker = 0;
     for (float v : once) onceExact += v == 0.5f;
