@@ -128,6 +128,7 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
     }
     if (valid.empty()) valid = "none, the technique has no parameters";
     const std::string file = "technique " + technique;
+    std::map<std::string, std::string> spelledAs;  // parameter -> the key that set it
     for (const std::string& setting : settings) {
         const auto eq = setting.find('=');
         if (eq == std::string::npos || eq == 0)
@@ -148,13 +149,18 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
                             spec->names.empty() ? "\"" + printable(text, 40) + "\" is not a number"
                                                 : "unknown value \"" + printable(text, 40) +
                                                       "\" (valid: " + namesOf(*spec) + ")");
-        if (values.given(spec->name))
+        // The same key twice: the last one holds, as ever; a name and its former name: an error.
+        const auto spelled = spelledAs.emplace(spec->name, key).first;
+        if (spelled->second != key)
             throwInputError(file, key,
                             "given twice (`" + spec->former->name + "` is the former name of `" +
                                 spec->name + "`)");
         if (former && spec->former->toCurrent) v = spec->former->toCurrent(v);
         validate(file, *spec, v, former ? key : "");
-        if (former) values.deprecations_.push_back(deprecationNotice(file, *spec));
+        std::vector<std::string>& notices = values.deprecations_;
+        if (former && std::find(notices.begin(), notices.end(), deprecationNotice(file, *spec)) ==
+                          notices.end())
+            notices.push_back(deprecationNotice(file, *spec));  // once per former name
         values.values_[spec->name] = v;
         values.given_.insert(spec->name);
     }

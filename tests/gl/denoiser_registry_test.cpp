@@ -97,6 +97,14 @@ TEST(FormerNames, RaytracedAlphaIsHistoryWithANotice) {
               "accepted until format 7");
     EXPECT_THROW(createTechnique("raytraced", {"denoiser=svgf", "alpha=0.3", "history=0.7"}),
                  InputError);
+    EXPECT_THROW(createTechnique("raytraced", {"denoiser=svgf", "history=0.7", "alpha=0.3"}),
+                 InputError);
+    // One key twice is no former name: the last holds, as before.
+    const std::unique_ptr<Technique> twice =
+        createTechnique("raytraced", {"denoiser=svgf", "alpha=0.3", "alpha=0.5"});
+    EXPECT_EQ(twice->values().real("history"), 0.5);
+    EXPECT_EQ(twice->values().deprecations().size(), 1u);
+    EXPECT_EQ(createTechnique("pcf", {"kernel=3", "kernel=5"})->values().integer("kernel"), 5);
     EXPECT_THROW(createTechnique("raytraced", {"alpha=0.3"}), InputError);  // needs a denoiser
     try {
         createTechnique("raytraced", {"denoiser=temporal", "alpha=0.001"});
