@@ -40,7 +40,8 @@ RenderResult render(const Scene& scene, const std::string& technique, const Para
         RenderResult out;
         out.frameMs = r.stats.timings.wallMs.median;
         out.statsJson = so::toJson(r.stats).dump();
-        out.warnings = gl.takeWarnings();
+        out.warnings = t->values().deprecations();  // a former parameter name
+        for (std::string& w : gl.takeWarnings()) out.warnings.push_back(std::move(w));
         out.data = std::make_shared<const RenderResult::Data>(
             RenderResult::Data{t->name(), r.image, r.stats});  // writeRenderOutput's copy
         out.image = detail::toApi(std::move(r.image));

@@ -14,6 +14,7 @@ int runRasterCommand(const RasterCommandOptions& options) {
     // Every setting is validated before the scene is read or a context made.
     const std::unique_ptr<Technique> technique =
         createTechniqueOfFlag("command line", "--technique", options.technique, options.settings);
+    printWarnings(technique->values().deprecations());  // a former parameter name, said once
     const Scene scene = loadScene(options.scenePath);
     printSceneWarnings(options.scenePath, scene);
     const std::filesystem::path out = makeOutputDir(options.outDir, "--out");

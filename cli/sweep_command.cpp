@@ -1,6 +1,7 @@
 #include "cli/sweep_command.h"
 
 #include <iostream>
+#include <set>
 
 #include "cli/output.h"
 #include "cli/progress_bar.h"
@@ -97,9 +98,13 @@ int submitToSlurm(const SweepPlan& plan, const fs::path& dir, const SweepOptions
 
 int runSweepCommand(const SweepOptions& options) {
     if (options.jobs < 1) throwInputError("command line", "--jobs", "must be at least 1");
-    const SweepPlan plan =
-        planSweep(options.specPath, [](const std::string& name, const std::vector<std::string>& s) {
-            return createTechnique(name, s)->values().all();
+    std::set<std::string> said;  // a former parameter name's notice, once per sweep
+    const SweepPlan plan = planSweep(
+        options.specPath, [&said](const std::string& name, const std::vector<std::string>& s) {
+            const std::unique_ptr<Technique> t = createTechnique(name, s);
+            for (const std::string& notice : t->values().deprecations())
+                if (said.insert(notice).second) printWarnings({notice});
+            return t->values().all();
         });
     const fs::path dir = fs::absolute(makeOutputDir(options.outDir, "--out"));
     keepPlan(dir, plan);

@@ -16,8 +16,14 @@ import subprocess
 
 from doc_markers import write_between_markers
 
-DENOISERS = ["none", "temporal", "svgf", "ffx", "penumbra"]
 AREA_SCENES = ["penumbra_square", "polygon_softbox", "sphere_light", "soft_chair", "alpha_grate"]
+
+
+def denoisers(cli):
+    """The denoiser plug-ins by number, as `techniques --json` lists them (its "axes")."""
+    listing = json.loads(subprocess.run([cli, "techniques", "--json"], check=True,
+                                        capture_output=True, text=True).stdout)
+    return [p["name"] for p in listing["axes"]["denoiser"]["plugins"]]
 
 
 def still_sequence(scene_path, frames):
@@ -33,7 +39,8 @@ def still_sequence(scene_path, frames):
 
 
 def measure(cli, scene_path, out, args):
-    labels = [f"raytraced:spp={s},denoiser={d}" for d in DENOISERS for s in args.spp] + ["pcss"]
+    labels = [f"raytraced:spp={s},denoiser={d}" for d in args.denoisers for s in args.spp]
+    labels += ["pcss"]
     copy = still_sequence(scene_path, args.frames)
     try:
         cmd = [cli, "compare", str(copy), "--sequence", "--width", str(args.width), "--height",
@@ -58,8 +65,9 @@ def table(scene, metrics, args):
     for r in metrics["results"]:
         p = r["parameters"]
         for light, row in r["lights"].items():
-            key = (DENOISERS[int(p["denoiser"])], int(p["spp"])) if r["technique"] == "raytraced" \
-                else ("pcss", None)
+            d = p.get("denoiser")
+            name = d if isinstance(d, str) else args.denoisers[int(d or 0)]
+            key = (name, int(p["spp"])) if r["technique"] == "raytraced" else ("pcss", None)
             by.setdefault(light, {})[key] = row
     out = []
     for light, rows in sorted(by.items()):
@@ -71,7 +79,7 @@ def table(scene, metrics, args):
                    f"frames, {args.width} x {args.height}\n")
         out.append(f"| denoiser | {head} |")
         out.append("|---|" + "---|" * len(args.spp))
-        for d in DENOISERS:
+        for d in args.denoisers:
             cells = " | ".join(fmt(rows.get((d, s), {}).get("penumbra_mae")) for s in args.spp)
             out.append(f"| {d} | {cells} |")
         pcss = rows.get(("pcss", None), {}).get("penumbra_mae")
@@ -92,6 +100,7 @@ def main():
     ap.add_argument("--spp", default="1,2,4")
     args = ap.parse_args()
     args.spp = [int(s) for s in args.spp.split(",")]
+    args.denoisers = denoisers(args.cli)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     root = pathlib.Path(__file__).resolve().parent.parent

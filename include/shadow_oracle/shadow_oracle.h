@@ -197,7 +197,7 @@ struct RenderResult {
     Image image;                        // raster.exr's channels (NAME.V per light and the geometry)
     double frameMs = 0.0;               // median over the timed frames
     std::string statsJson;              // raster.json: passes, times, memory per light
-    std::vector<std::string> warnings;  // the GL driver's, one line each
+    std::vector<std::string> warnings;  // the GL driver's, settings' deprecations; a line each
 
     struct Data;  // what writeRenderOutput writes: the image as rendered, the typed stats
     std::shared_ptr<const Data> data;
@@ -262,7 +262,7 @@ struct ComparedRow {
 struct CompareResult {
     std::vector<ComparedRow> rows;      // the techniques in order, then the images
     std::string metricsJson;            // metrics.json, as the compare command writes it
-    std::vector<std::string> warnings;  // the GL driver's, one line each
+    std::vector<std::string> warnings;  // the GL driver's, settings' deprecations; a line each
 
     struct Data;  // what writeCompareOutput needs beyond the metrics
     std::shared_ptr<const Data> data;

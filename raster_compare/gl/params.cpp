@@ -45,18 +45,22 @@ std::string namesOf(const ParamSpec& spec) {
     return s + ", or their numbers 0.." + std::to_string(spec.names.size() - 1);
 }
 
-void validate(const std::string& file, const ParamSpec& spec, double v) {
-    if (spec.integer && v != std::floor(v)) throwInputError(file, spec.name, "must be an integer");
+// v, converted to the parameter's current meaning where it was given under `formerKey`.
+void validate(const std::string& file, const ParamSpec& spec, double v,
+              const std::string& formerKey) {
+    const std::string field = formerKey.empty() ? spec.name : formerKey;
+    if (spec.integer && v != std::floor(v)) throwInputError(file, field, "must be an integer");
+    std::ostringstream os;
+    if (!formerKey.empty()) os << "gives " << spec.name << " = ";
     if (v < spec.min || v > spec.max || (spec.maxExclusive && v == spec.max)) {
-        std::ostringstream os;
-        os << v << " is out of range [" << spec.min << ", " << spec.max
-           << (spec.maxExclusive ? ")" : "]");
-        throwInputError(file, spec.name, os.str());
+        os << v << (formerKey.empty() ? " is" : ",") << " out of range [" << spec.min << ", "
+           << spec.max << (spec.maxExclusive ? ")" : "]");
+        throwInputError(file, field, os.str());
     }
     if (!spec.allowed.empty()) {
         for (double a : spec.allowed)
             if (a == v) return;
-        throwInputError(file, spec.name, "must be one of " + listOf(spec.allowed));
+        throwInputError(file, field, "must be one of " + listOf(spec.allowed));
     }
 }
 
@@ -96,6 +100,28 @@ void checkNeeds(const std::string& file, const ParamTable& table, const ParamVal
             throwInputError(file, s.name, "has no effect without " + s.needs);
 }
 
+// The spec a key names: its own name, else a former name (`former` set then); null: none.
+const ParamSpec* specOfKey(const ParamTable& table, const std::string& key, bool& former) {
+    former = false;
+    for (const ParamSpec& s : table)
+        if (s.name == key) return &s;
+    for (const ParamSpec& s : table)
+        if (s.former && s.former->name == key) {
+            former = true;
+            return &s;
+        }
+    return nullptr;
+}
+
+// "technique raytraced: `alpha` is deprecated, use `history` (history = 1 - alpha); accepted
+// until format 7".
+std::string deprecationNotice(const std::string& file, const ParamSpec& spec) {
+    const FormerName& f = *spec.former;
+    return file + ": `" + f.name + "` is deprecated, use `" + spec.name + "`" +
+           (f.relation.empty() ? "" : " (" + f.relation + ")") + "; accepted until format " +
+           std::to_string(f.untilFormat);
+}
+
 }  // namespace
 
 ParamValues parseParams(const std::string& technique, const ParamTable& table,
@@ -109,35 +135,46 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
     }
     if (valid.empty()) valid = "none, the technique has no parameters";
     const std::string file = "technique " + technique;
+    std::map<std::string, std::string> spelledAs;  // parameter -> the key that set it
     for (const std::string& setting : settings) {
         const auto eq = setting.find('=');
         if (eq == std::string::npos || eq == 0)
             throwInputError(file, printable(setting, 40),
                             "expected key=value (valid keys: " + valid + ")");
         const std::string key = setting.substr(0, eq), text = setting.substr(eq + 1);
-        const ParamSpec* spec = nullptr;
-        for (const ParamSpec& s : table)
-            if (s.name == key) spec = &s;
+        bool former = false;
+        const ParamSpec* spec = specOfKey(table, key, former);
         if (!spec)
             throwInputError(file, printable(key, 40), "unknown parameter (valid: " + valid + ")");
         const auto named = std::find(spec->names.begin(), spec->names.end(), text);
         char* end = nullptr;
-        const double v = named != spec->names.end() ? double(named - spec->names.begin())
-                                                    : std::strtod(text.c_str(), &end);
+        double v = named != spec->names.end() ? double(named - spec->names.begin())
+                                              : std::strtod(text.c_str(), &end);
         if (named == spec->names.end() && (text.empty() || *end != '\0' || !std::isfinite(v)))
             // A name not in the list in the JSON reader's words (docs/scene-format.md).
             throwInputError(file, key,
                             spec->names.empty() ? "\"" + printable(text, 40) + "\" is not a number"
                                                 : "unknown value \"" + printable(text, 40) +
                                                       "\" (valid: " + namesOf(*spec) + ")");
-        validate(file, *spec, v);
-        values.values_[key] = v;
-        values.given_.insert(key);
+        // The same key twice: the last one holds, as ever; a name and its former name: an error.
+        const auto spelled = spelledAs.emplace(spec->name, key).first;
+        if (spelled->second != key)
+            throwInputError(file, key,
+                            "given twice (`" + spec->former->name + "` is the former name of `" +
+                                spec->name + "`)");
+        if (former && spec->former->toCurrent) v = spec->former->toCurrent(v);
+        validate(file, *spec, v, former ? key : "");
+        std::vector<std::string>& notices = values.deprecations_;
+        if (former && std::find(notices.begin(), notices.end(), deprecationNotice(file, *spec)) ==
+                          notices.end())
+            notices.push_back(deprecationNotice(file, *spec));  // once per former name
+        values.values_[spec->name] = v;
+        values.given_.insert(spec->name);
     }
     checkNeeds(file, table, values);
     // The parameters of the axes' plug-ins that were not chosen.
     for (const ParamSpec& s : table)
-        if (s.axisParam && !needsMet(s, table, values)) {
+        if (s.pluginParam && !needsMet(s, table, values)) {
             values.values_.erase(s.name);
             values.integer_.erase(s.name);
         }
@@ -166,6 +203,11 @@ ParamSpec methodParam(std::string name, int defaultIndex, std::vector<std::strin
                 std::move(doc)};
     p.names = std::move(names);
     return p;
+}
+
+ParamSpec renamedFrom(ParamSpec spec, FormerName former) {
+    spec.former = std::move(former);
+    return spec;
 }
 
 std::string paramValueText(const ParamSpec& spec, double v) {

@@ -5,12 +5,26 @@
 // at the receiver, so the same setting means the same thing at any scene scale or resolution.
 #pragma once
 
+#include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 namespace so {
+
+// A name a parameter had before (raytraced's `alpha`, now `history`): a setting that gives it is
+// still accepted, converted and said once as a deprecation notice, for one version.
+struct FormerName {
+    std::string name;
+    // The value under the former name to the current one (history = 1 - alpha); empty: the same.
+    std::function<double(double)> toCurrent = {};
+    // How the two relate, for the notice ("history = 1 - alpha"); empty: the same meaning.
+    std::string relation = {};
+    // The `techniques --json` format_version that stops accepting it.
+    int untilFormat = 0;
+};
 
 struct ParamSpec {
     std::string name;
@@ -34,13 +48,17 @@ struct ParamSpec {
     // A parameter of one plug-in of an axis (a bias's, depth_bias.h): while another plug-in is
     // chosen (its `needs` unmet) it is left out of the values, so raster.json and metrics.json list
     // only the chosen plug-in's parameters.
-    bool axisParam = false;
+    bool pluginParam = false;
+    // Its former name, still accepted with a deprecation notice (renamedFrom).
+    std::optional<FormerName> former = {};
 };
 using ParamTable = std::vector<ParamSpec>;
 
 // A parameter that picks one of `names`: value k is names[k], the default names[defaultIndex].
 ParamSpec methodParam(std::string name, int defaultIndex, std::vector<std::string> names,
                       std::string doc);
+// `spec`, which was called `former.name` before.
+ParamSpec renamedFrom(ParamSpec spec, FormerName former);
 // The name of value v of a method parameter, or its number ("2048", "0.5") for any other.
 std::string paramValueText(const ParamSpec& spec, double v);
 
@@ -69,6 +87,10 @@ class ParamValues {
     // Whether the setting named the parameter (else it holds its default): for a parameter that
     // means nothing unless another is on, which is then an error rather than silently ignored.
     bool given(const std::string& name) const { return given_.count(name) > 0; }
+    // One notice per former name the setting used ("technique raytraced: `alpha` is deprecated,
+    // use `history` (history = 1 - alpha); accepted until format 7"), for the caller to say once:
+    // on stderr (the CLI), as a warning (compare's callbacks, the API's warnings).
+    const std::vector<std::string>& deprecations() const { return deprecations_; }
 
   private:
     friend ParamValues parseParams(const std::string&, const ParamTable&,
@@ -76,13 +98,16 @@ class ParamValues {
     std::map<std::string, double> values_;
     std::map<std::string, bool> integer_;
     std::set<std::string> given_;
+    std::vector<std::string> deprecations_;
 };
 
 // Whether the values meet spec.needs ("key=a|b": any of them); true for a spec that needs none.
 bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values);
 
 // Parses "key=value" settings against the table; unknown keys, non-numbers, non-integers and
-// values out of range are InputErrors naming the technique, the key and what is valid.
+// values out of range are InputErrors naming the technique, the key and what is valid. A key that
+// is a parameter's former name sets that parameter (converted) and adds a deprecation notice;
+// giving both names is an InputError.
 ParamValues parseParams(const std::string& technique, const ParamTable& table,
                         const std::vector<std::string>& settings);
 

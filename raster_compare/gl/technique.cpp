@@ -47,7 +47,7 @@ ParamTable aliasTable(const TechniqueAlias& alias, const ParamTable& target) {
             fixedHere = fixedHere || splitSetting(f).first == s.name;
         const std::optional<bool> met = needsMetBy(s, alias.fixed);
         if (fixedHere || met == false) continue;
-        if (met == true) s.needs.clear(), s.axisParam = false;
+        if (met == true) s.needs.clear(), s.pluginParam = false;
         for (const auto& [old, current] : alias.renames)
             if (s.name == current) s.name = old;
         table.push_back(std::move(s));

@@ -120,7 +120,7 @@ class Technique {
     const std::string& name() const { return name_; }
     // Every parameter with its value, defaults included (for raster.json and metrics.json); an
     // alias's under its own table's names. The parameters of an axis's plug-ins that were not
-    // chosen are left out (ParamSpec::axisParam).
+    // chosen are left out (ParamSpec::pluginParam).
     const ParamValues& values() const { return values_; }
     // V is a filtered estimate (moments), so light bleeding is measured (docs/metrics.md).
     virtual bool filtered() const { return false; }

@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raster_compare/gl/denoisers/denoiser.h"
+#include "raster_compare/gl/shadow_maps/depth_bias.h"
 #include "raster_compare/gl/technique.h"
 
 namespace so {
@@ -33,7 +35,53 @@ std::string range(const ParamSpec& p) {
            (p.integer ? " (integer)" : "");
 }
 
-std::string markdown() {
+// " (was `alpha`: history = 1 - alpha, until format 7)" for a renamed parameter.
+std::string formerNote(const ParamSpec& p) {
+    if (!p.former) return "";
+    return " (was `" + p.former->name + "`" +
+           (p.former->relation.empty() ? "" : ": " + p.former->relation) + ", until format " +
+           std::to_string(p.former->untilFormat) + ")";
+}
+
+// A technique's table leaves out the parameters of its axes' plug-ins that are listed with the
+// axis (ParamSpec::pluginParam: the biases'), and says so once.
+bool hasPluginParams(const ParamTable& params) {
+    for (const ParamSpec& p : params)
+        if (p.pluginParam) return true;
+    return false;
+}
+
+void markdownTable(std::ostringstream& o, const ParamTable& params) {
+    o << "| parameter | default | range | meaning |\n|---|---|---|---|\n";
+    for (const ParamSpec& p : params)
+        if (!p.pluginParam)
+            o << "| `" << p.name << "`" << (p.quality ? " (quality)" : "") << " | "
+              << paramValueText(p, p.defaultValue) << " | " << range(p) << " | " << p.doc
+              << formerNote(p) << " |\n";
+    if (hasPluginParams(params))
+        o << "\nAnd the parameters of the bias it is given, each valid only with it: "
+          << "[bias plug-ins](#bias-plug-ins).\n";
+}
+
+// One section per axis: its plug-ins, each with its summary and own table.
+void markdownAxes(std::ostringstream& o, const std::vector<PluginAxis>& axes) {
+    for (const PluginAxis& axis : axes) {
+        o << "\n### " << axis.name << " plug-ins\n\nThe " << axis.family << " family's `"
+          << axis.parameter << "=NAME` picks one; its parameters are valid "
+          << "only with it.\n\n| " << axis.name << " | what it does |\n|---|---|\n";
+        for (const AxisPlugin& p : axis.plugins)
+            o << "| `" << p.name << "` | " << p.summary << " |\n";
+        for (const AxisPlugin& p : axis.plugins) {
+            o << "\n#### " << axis.name << " " << p.name << "\n\n" << p.summary << ".\n\n";
+            if (p.params.empty())
+                o << "No parameters.\n";
+            else
+                markdownTable(o, p.params);
+        }
+    }
+}
+
+std::string markdown(const std::vector<PluginAxis>& axes) {
     std::ostringstream o;
     o << "| technique | family | what it does |\n|---|---|---|\n";
     for (const TechniqueInfo* t : allTechniques())
@@ -45,55 +93,89 @@ std::string markdown() {
             o << "No parameters.\n";
             continue;
         }
-        o << "| parameter | default | range | meaning |\n|---|---|---|---|\n";
-        for (const ParamSpec& p : t->params)
-            o << "| `" << p.name << "`" << (p.quality ? " (quality)" : "") << " | "
-              << paramValueText(p, p.defaultValue) << " | " << range(p) << " | " << p.doc << " |\n";
+        markdownTable(o, t->params);
     }
+    markdownAxes(o, axes);
     return o.str();
 }
 
-std::string text() {
+void textTable(std::ostringstream& o, const ParamTable& params, const char* indent) {
+    for (const ParamSpec& p : params)
+        if (!p.pluginParam)
+            o << indent << p.name << " = " << paramValueText(p, p.defaultValue) << "  [" << range(p)
+              << "]  " << p.doc << formerNote(p) << "\n";
+    if (hasPluginParams(params))
+        o << indent << "(and the parameters of the bias it is given: bias plug-ins, below)\n";
+}
+
+std::string text(const std::vector<PluginAxis>& axes) {
     std::ostringstream o;
     for (const TechniqueInfo* t : allTechniques()) {
         o << t->name << " (" << t->family << "): " << t->summary << "\n";
-        for (const ParamSpec& p : t->params)
-            o << "    " << p.name << " = " << paramValueText(p, p.defaultValue) << "  [" << range(p)
-              << "]  " << p.doc << "\n";
+        textTable(o, t->params, "    ");
+    }
+    for (const PluginAxis& axis : axes) {
+        o << "\n"
+          << axis.name << " plug-ins (" << axis.family << ", " << axis.parameter << "=NAME):\n";
+        for (const AxisPlugin& p : axis.plugins) {
+            o << "  " << p.name << ": " << p.summary << "\n";
+            textTable(o, p.params, "      ");
+        }
     }
     return o.str();
 }
 
-std::string json() {
+nlohmann::json jsonTable(const ParamTable& table) {
+    nlohmann::json params = nlohmann::json::array();
+    for (const ParamSpec& p : table) {
+        nlohmann::json j = {{"name", p.name}, {"default", p.defaultValue}, {"min", p.min},
+                            {"max", p.max},   {"integer", p.integer},      {"doc", p.doc}};
+        if (!p.allowed.empty()) j["allowed"] = p.allowed;
+        if (!p.names.empty()) j["names"] = p.names;  // value k is names[k]
+        if (p.quality) j["quality"] = true;
+        if (p.maxExclusive) j["max_exclusive"] = true;  // max itself is out of range
+        if (!p.needs.empty()) j["needs"] = p.needs;     // "key=value" it needs
+        if (p.former)  // the name it had, still accepted with a notice until that format
+            j["former"] = {{"name", p.former->name},
+                           {"relation", p.former->relation},
+                           {"until_format", p.former->untilFormat}};
+        params.push_back(j);
+    }
+    return params;
+}
+
+std::string json(const std::vector<PluginAxis>& axes) {
     nlohmann::json all = nlohmann::json::array();
-    for (const TechniqueInfo* t : allTechniques()) {
-        nlohmann::json params = nlohmann::json::array();
-        for (const ParamSpec& p : t->params) {
-            nlohmann::json j = {{"name", p.name}, {"default", p.defaultValue}, {"min", p.min},
-                                {"max", p.max},   {"integer", p.integer},      {"doc", p.doc}};
-            if (!p.allowed.empty()) j["allowed"] = p.allowed;
-            if (!p.names.empty()) j["names"] = p.names;  // value k is names[k]
-            if (p.quality) j["quality"] = true;
-            if (p.maxExclusive) j["max_exclusive"] = true;  // max itself is out of range
-            if (!p.needs.empty()) j["needs"] = p.needs;     // "key=value" it needs
-            params.push_back(j);
-        }
+    for (const TechniqueInfo* t : allTechniques())
         all.push_back({{"name", t->name},
                        {"family", t->family},
                        {"summary", t->summary},
-                       {"parameters", params}});
+                       {"parameters", jsonTable(t->params)}});
+    nlohmann::json byName = nlohmann::json::object();
+    for (const PluginAxis& axis : axes) {
+        nlohmann::json plugins = nlohmann::json::array();
+        for (const AxisPlugin& p : axis.plugins)
+            plugins.push_back(
+                {{"name", p.name}, {"summary", p.summary}, {"parameters", jsonTable(p.params)}});
+        byName[axis.name] = {
+            {"family", axis.family}, {"parameter", axis.parameter}, {"plugins", plugins}};
     }
-    return nlohmann::json({{"format_version", kTechniquesJsonFormat}, {"techniques", all}})
+    return nlohmann::json(
+               {{"format_version", kTechniquesJsonFormat}, {"techniques", all}, {"axes", byName}})
                .dump(2) +
            "\n";
 }
 
 }  // namespace
 
-std::string techniquesListing(ListingFormat format) {
-    return format == ListingFormat::Json       ? json()
-           : format == ListingFormat::Markdown ? markdown()
-                                               : text();
+std::vector<PluginAxis> registeredAxes() {
+    return {biasAxis(), denoiserAxis()};
+}
+
+std::string techniquesListing(ListingFormat format, const std::vector<PluginAxis>& axes) {
+    return format == ListingFormat::Json       ? json(axes)
+           : format == ListingFormat::Markdown ? markdown(axes)
+                                               : text(axes);
 }
 
 }  // namespace so

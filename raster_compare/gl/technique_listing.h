@@ -1,17 +1,28 @@
 // Every registered technique with its family, summary and parameter table (names, defaults,
-// ranges, meaning), as text, JSON (`techniques --json`, format_version 5) or the Markdown of
-// docs/techniques.md (generated from the tables; a test fails when the document differs).
+// ranges, meaning), and every axis of plug-ins (plugin_axis.h: the ray-tracing family's
+// denoisers) with each plug-in's summary and table, as text, JSON (`techniques --json`,
+// format_version 6) or the Markdown of docs/techniques.md (generated from the tables; a test
+// fails when the document differs).
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "raster_compare/gl/plugin_axis.h"
 
 namespace so {
 
 enum class ListingFormat { Text, Json, Markdown };
 
 // `techniques --json`'s format_version (its --help says it from here).
-inline constexpr int kTechniquesJsonFormat = 5;
+// 6 (issue 62): "axes", and `former` on a renamed parameter.
+inline constexpr int kTechniquesJsonFormat = 6;
 
-std::string techniquesListing(ListingFormat format);
+// Every axis of plug-ins the registered families have (the denoisers), in the order listed.
+std::vector<PluginAxis> registeredAxes();
+
+// The registered techniques and `axes`.
+std::string techniquesListing(ListingFormat format,
+                              const std::vector<PluginAxis>& axes = registeredAxes());
 
 }  // namespace so

@@ -272,6 +272,15 @@ std::vector<TechniqueRun> createTechniques(const std::vector<TechniqueSpec>& spe
     return runs;
 }
 
+// The settings' notices of a parameter's former name (ParamValues::deprecations), once each.
+std::vector<std::string> deprecationsOf(const std::vector<TechniqueRun>& runs) {
+    std::vector<std::string> notices;
+    for (const TechniqueRun& run : runs)
+        for (const std::string& notice : run.technique->values().deprecations())
+            notices.push_back(notice);
+    return notices;
+}
+
 void checkImages(const std::vector<ImageInput>& images, const Scene& scene,
                  const ChannelImage& oracle) {
     const size_t pixels = oracle.pixelCount();
@@ -378,6 +387,8 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
     for (const ImageInput& in : images) out.rows.push_back(compareImage(job, in));
     if (out.path) out.warnings = out.path->warnings;
     if (out.sequence) out.warnings = out.sequence->warnings;
+    const std::vector<std::string> deprecations = deprecationsOf(runs);  // said first
+    out.warnings.insert(out.warnings.begin(), deprecations.begin(), deprecations.end());
     if (gl)
         for (std::string& w : gl->takeWarnings()) out.warnings.push_back(std::move(w));
     return out;

@@ -113,7 +113,8 @@ struct Comparison {
     std::optional<PathFlicker> path;         // pathFrames > 0
     std::optional<SequenceResult> sequence;  // ComparisonOptions::sequence
     std::optional<GlInfo> gl;                // when a technique was rendered
-    // The GL driver's and the camera path's oracle cache's warnings, for the caller to print.
+    // The GL driver's and the camera path's oracle cache's warnings, and the techniques'
+    // deprecation notices (a parameter's former name), for the caller to print.
     std::vector<std::string> warnings;
 };
 

@@ -754,7 +754,7 @@ TEST(Raster, RegistryListsEveryTechniqueWithItsTable) {
         // Every parameter but those of an axis's plug-ins not chosen (depth_bias.h).
         size_t listed = 0;
         for (const ParamSpec& p : t->params) {
-            if (p.axisParam && !needsMet(p, t->params, created->values())) {
+            if (p.pluginParam && !needsMet(p, t->params, created->values())) {
                 EXPECT_EQ(created->values().all().count(p.name), 0u) << t->name << " " << p.name;
                 continue;
             }
@@ -970,9 +970,9 @@ TEST(Raster, PlanarShadowsWithAndWithoutStencil) {
     std::printf("[ planar ] contact_box agreement %.5f of %zu\n", c.agreement(), c.counted);
     EXPECT_GE(c.agreement(), 0.99);
     const std::vector<float> once =
-        shadowValuesOn(o, raster(s, "planar", {"alpha=0.5"}), "key", 0.0f);
+        shadowValuesOn(o, raster(s, "planar", {"opacity=0.5"}), "key", 0.0f);
     const std::vector<float> twice =
-        shadowValuesOn(o, raster(s, "planar", {"alpha=0.5", "stencil=0"}), "key", 0.0f);
+        shadowValuesOn(o, raster(s, "planar", {"opacity=0.5", "stencil=0"}), "key", 0.0f);
     ASSERT_GT(once.size(), 500u);
     size_t onceExact = 0, twiceDarker = 0;
     for (float v : once) onceExact += v == 0.5f;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "core/error.h"
 
@@ -28,35 +29,26 @@ const std::vector<BiasInfo>& allBiases() {
     return all;
 }
 
+PluginAxis biasAxis() {
+    PluginAxis axis{"bias", "shadow map", "bias", {}};
+    for (const BiasInfo& b : allBiases()) axis.plugins.push_back({b.name, b.summary, b.params});
+    return axis;
+}
+
 ParamTable biasAxisParams(const std::string& defaultBias) {
-    const std::vector<BiasInfo>& biases = allBiases();
-    std::vector<std::string> names;
+    const PluginAxis axis = biasAxis();
     int defaultIndex = -1;
-    for (const BiasInfo& b : biases) {
-        if (b.name == defaultBias) defaultIndex = int(names.size());
-        names.push_back(b.name);
-    }
+    for (size_t i = 0; i < axis.plugins.size(); ++i)
+        if (axis.plugins[i].name == defaultBias) defaultIndex = int(i);
     if (defaultIndex < 0)
         throw std::invalid_argument("biasAxisParams: no bias \"" + defaultBias + "\"");
-    ParamTable table = {methodParam("bias", defaultIndex, names,
-                                    "the depth bias (biases/, `shadow-oracle techniques` lists "
-                                    "each with its parameters)")};
-    for (const BiasInfo& b : biases)
-        for (ParamSpec s : b.params) {
-            const auto same = std::find_if(table.begin(), table.end(),
-                                           [&](const ParamSpec& t) { return t.name == s.name; });
-            if (same != table.end()) {
-                // Shared with an earlier bias (epsilon): one parameter, needing either.
-                if (same->defaultValue != s.defaultValue || same->doc != s.doc)
-                    throw std::invalid_argument("bias parameter \"" + s.name +
-                                                "\" has two meanings");
-                same->needs += "|" + b.name;
-                continue;
-            }
-            s.needs = "bias=" + b.name;
-            s.axisParam = true;
-            table.push_back(std::move(s));
-        }
+    ParamTable table = {axisParam(axis, defaultIndex,
+                                  "the depth bias (biases/; `shadow-oracle techniques` lists each "
+                                  "with its parameters)")};
+    for (ParamSpec& s : axisParams(axis)) {
+        s.pluginParam = true;  // left out of the values unless its bias is chosen
+        table.push_back(std::move(s));
+    }
     return table;
 }
 

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "raster_compare/gl/params.h"
+#include "raster_compare/gl/plugin_axis.h"
 
 namespace so {
 
@@ -68,8 +69,11 @@ extern const size_t kBuiltInBiasCount;
 
 // Every registered bias, in the order of the `bias` parameter's names (none first, then by name).
 const std::vector<BiasInfo>& allBiases();
+// The axis (plugin_axis.h), as `shadow-oracle techniques` lists it.
+PluginAxis biasAxis();
 // The `bias` parameter, defaulting to `defaultBias`, then every bias's parameters, each needing
-// its bias (parameters that several biases share, with the same meaning, need any of them).
+// its bias (parameters that several biases share, with the same meaning, need any of them) and
+// left out of the values while another bias is chosen (ParamSpec::pluginParam).
 ParamTable biasAxisParams(const std::string& defaultBias);
 // The bias the values chose (values of a table made with biasAxisParams).
 std::unique_ptr<DepthBias> createDepthBias(const ParamValues& values);

@@ -67,9 +67,11 @@ ShadowMapTechnique::ShadowMapTechnique(const ParamValues& v)
       bias_(v.all().count("bias") ? createDepthBias(v) : nullptr) {}
 
 ParamTable SlopeBias::params() {
-    return {{"slope_factor", 1.0, 0.0, 100.0, false, "slope factor"},
-            {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
-            {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
+    // Was `alpha`, the name left to alpha masks (issue 62).
+    return {
+        renamedFrom({"slope_factor", 1.0, 0.0, 100.0, false, "slope factor"}, {"alpha", {}, "", 7}),
+        {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
+        {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
 }
 
 SlopeBias::SlopeBias(const ParamValues& v)

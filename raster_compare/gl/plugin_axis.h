@@ -1,0 +1,38 @@
+// An axis of a technique family: one of the family's parameters whose values are plug-ins (the
+// ray-tracing family's `denoiser`), each plug-in with its own summary and parameter table. The
+// family's technique takes the axis's method parameter and the union of the plug-ins' parameters,
+// each valid only with the plug-ins that declare it (ParamSpec::needs, generated here, not written
+// by hand); `shadow-oracle techniques` lists the axes with their plug-ins (technique_listing.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "raster_compare/gl/params.h"
+
+namespace so {
+
+struct AxisPlugin {
+    std::string name, summary;
+    ParamTable params;
+};
+
+struct PluginAxis {
+    std::string name;       // "denoiser"
+    std::string family;     // the technique family it belongs to: "ray tracing"
+    std::string parameter;  // the family's parameter that picks a plug-in: "denoiser"
+    // By their numbers: value k of the parameter is plugins[k] (a setting may give the number).
+    std::vector<AxisPlugin> plugins;
+};
+
+// The parameter that picks a plug-in by name (methodParam over the plug-ins' names), its default
+// plugins[defaultIndex].
+ParamSpec axisParam(const PluginAxis& axis, int defaultIndex, std::string doc);
+
+// Every plug-in's parameters, once each, in the order the plug-ins first declare them; each needs
+// "parameter=a|b" of the plug-ins that declare it and its doc is said as "a, b: <doc>". Plug-ins
+// sharing a name must agree on its default, range and kind (else std::invalid_argument: a slip in
+// their code).
+ParamTable axisParams(const PluginAxis& axis);
+
+}  // namespace so
