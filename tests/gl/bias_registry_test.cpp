@@ -67,13 +67,22 @@ TEST(BiasAxis, BiasTechniquesAreNamesForBasicWithABias) {
             }
         EXPECT_EQ(createTechnique(name, {})->name(), name);
     }
-    // The old names of their parameters, under the target's: the same values.
+    // The old names of their parameters are their tables' and their values' (raster.json and
+    // metrics.json list them so), and reach the target under its names (the rendered check:
+    // tests/cli/bias_axis_cli_test.cpp).
     const std::unique_ptr<Technique> bias = createTechnique("bias", {"bias=2.5"});
-    EXPECT_EQ(bias->values().real("depth_texels"), 2.5);
+    EXPECT_EQ(bias->values().real("bias"), 2.5);
+    EXPECT_EQ(bias->values().all().count("depth_texels"), 0u);
     const std::unique_ptr<Technique> normal = createTechnique("normal-offset", {"k=3", "bias=0.5"});
-    EXPECT_EQ(normal->values().real("normal_texels"), 3.0);
-    EXPECT_EQ(normal->values().real("normal_depth_texels"), 0.5);
-    EXPECT_EQ(createTechnique("back-faces", {"bias=1"})->values().real("back_depth_texels"), 1.0);
+    EXPECT_EQ(normal->values().real("k"), 3.0);
+    EXPECT_EQ(normal->values().real("bias"), 0.5);
+    EXPECT_EQ(createTechnique("back-faces", {"bias=1"})->values().real("bias"), 1.0);
+    // The slope factor's former name, alpha (left to alpha masks), still runs, with its notice.
+    const std::unique_ptr<Technique> old = createTechnique("slope-bias", {"alpha=2"});
+    EXPECT_EQ(old->values().real("slope_factor"), 2.0);
+    ASSERT_EQ(old->values().deprecations().size(), 1u);
+    EXPECT_NE(old->values().deprecations()[0].find("slope_factor"), std::string::npos);
+    EXPECT_EQ(createTechnique("pcf", {"alpha=3"})->values().real("slope_factor"), 3.0);
     // The fixed bias is no parameter of the alias, nor another bias's parameters.
     EXPECT_THROW(createTechnique("slope-bias", {"bias=constant"}), InputError);
     EXPECT_THROW(createTechnique("receiver-plane", {"min=2"}), InputError);
