@@ -20,9 +20,15 @@ using nlohmann::json;
 const std::vector<const MetricInfo*>& baselineMetricTable() {
     static const std::vector<const MetricInfo*> table = [] {
         std::vector<const MetricInfo*> out;
-        for (const BaselineRule::Use use : {BaselineRule::ByDefault, BaselineRule::WhenNamed})
+        for (const MetricInfo& m : allMetrics())
+            if (m.baseline.use == BaselineRule::ByDefault) out.push_back(&m);
+        // The costs as the reports order their axes: frame time, the passes' times, the other
+        // times (camera, bake), memory, work.
+        using A = CostAxis;
+        for (const A kind : {A::Frame, A::Pass, A::None, A::Memory, A::Work})
             for (const MetricInfo& m : allMetrics())
-                if (m.baseline.use == use) out.push_back(&m);
+                if (m.baseline.use == BaselineRule::WhenNamed && m.costAxis == kind)
+                    out.push_back(&m);
         return out;
     }();
     return table;

@@ -14,8 +14,9 @@
 
 namespace so {
 
-// The metrics the baseline can compare: those compared by default, then the costs compared when
-// named, each in the metric table's order; those whose BaselineRule is not Never (the others, such
+// The metrics the baseline can compare: those compared by default in the metric table's order,
+// then the costs compared when named, in the order of the cost axes (frame time, the passes, the
+// other times, memory, work); those whose BaselineRule is not Never (the others, such
 // as counted_pixels, excluded_share, the predicted aliasing, the oracle's costs and the cost
 // quartiles, are not quality metrics and are never compared). Their tolerances and oracle noise are
 // the table's.

@@ -9,10 +9,12 @@
 // metrics by these names from typed rows (result_row.h), which metrics.json is read back into.
 //
 // A new metric is its row here plus its computation: the struct field and where it is measured
-// (metrics.h/.cpp, or the cost's source) and its line in that struct's toJson. Nothing else lists
-// metrics: `grep -rn rays_traced raster_compare/compare` finds this table, the cost's toJson and
-// nothing more. A test checks that every name a full row has is here and every entry here is in
-// some row.
+// (metrics.h/.cpp, or the cost's source) and its line in that struct's toJson. A cost axis then
+// reaches compare's chart, budget tables and all-metrics table, the sweep's fronts and budget
+// tables and the baseline from its row alone: `grep -rln rays_traced raster_compare/compare` finds
+// this table and metrics.cpp's toJson. (An error metric the reports should show is also a line in
+// their own choice of columns: report_tables.cpp, index_page.cpp.) A test checks that every name
+// a full row has is here and every entry here is in some row.
 #pragma once
 
 #include <span>

@@ -25,42 +25,43 @@ struct Column {
     bool charted;
 };
 
+// The report's columns in its order. After memory come the metric table's work axes, in its order
+// (a new one is shown without a line here), fragments and bytes moved in the summary.
 const std::vector<Column>& columns() {
     static const std::vector<Column> cols = [] {
-        const auto column = [](const char* name, bool inSummary, bool charted) {
-            return Column{&metricInfo(name), inSummary, charted};
+        std::vector<Column> out;
+        const auto add = [&](const char* name, bool inSummary, bool charted) {
+            out.push_back({&metricInfo(name), inSummary, charted});
         };
-        return std::vector<Column>{
-            column("mae", true, true),
-            column("acne_rate", true, true),
-            column("penumbra_spread_rate", true, false),
-            column("peter_panning_rate", true, true),
-            column("boundary_displacement_px.p95", true, true),
-            column("aliasing_rate", false, false),
-            column("light_bleeding_rate", true, true),
-            column("penumbra_mae", true, true),
-            column("penumbra_bias", true, false),
-            column("penumbra_width_error_px.mean", true, false),
-            column("temporal_flicker_rate", true, true),
-            column("sequence.mae_mean", true, false),
-            column("sequence.flicker_rate", true, false),
-            column("sequence.lag_mae", true, false),
-            column("false_shadow_rate", false, false),
-            column("false_lit_rate", false, false),
-            column("cost.frame_ms", true, false),
-            column("cost.shadow_map_ms", true, false),
-            column("cost.visibility_ms", true, false),
-            column("cost.camera_ms", true, false),
-            column("cost.memory_bytes", true, false),
-            column("cost.work.fragments", true, false),
-            column("cost.work.texture_taps", false, false),
-            column("cost.work.texels_written", false, false),
-            column("cost.work.bytes_moved", true, false),
-            column("cost.work.draw_calls", false, false),
-            column("cost.work.passes", false, false),
-            column("cost.work.rays_traced", false, false),
-            column("cost.oracle_ms_at_equal_error", false, false),
-        };
+        add("mae", true, true);
+        add("acne_rate", true, true);
+        add("penumbra_spread_rate", true, false);
+        add("peter_panning_rate", true, true);
+        add("boundary_displacement_px.p95", true, true);
+        add("aliasing_rate", false, false);
+        add("light_bleeding_rate", true, true);
+        add("penumbra_mae", true, true);
+        add("penumbra_bias", true, false);
+        add("penumbra_width_error_px.mean", true, false);
+        add("temporal_flicker_rate", true, true);
+        add("sequence.mae_mean", true, false);
+        add("sequence.flicker_rate", true, false);
+        add("sequence.lag_mae", true, false);
+        add("false_shadow_rate", false, false);
+        add("false_lit_rate", false, false);
+        add("cost.frame_ms", true, false);
+        add("cost.shadow_map_ms", true, false);
+        add("cost.visibility_ms", true, false);
+        add("cost.camera_ms", true, false);
+        add("cost.memory_bytes", true, false);
+        for (const MetricInfo* m : costAxes(true))
+            if (m->costAxis == CostAxis::Work)
+                out.push_back({m,
+                               m == &metricInfo("cost.work.fragments") ||
+                                   m == &metricInfo("cost.work.bytes_moved"),
+                               false});
+        add("cost.oracle_ms_at_equal_error", false, false);
+        return out;
     }();
     return cols;
 }
