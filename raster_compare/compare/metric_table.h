@@ -8,20 +8,26 @@
 // generated from it (scripts/update-docs; a test fails when they differ). The reports read
 // metrics by these names from typed rows (result_row.h), which metrics.json is read back into.
 //
-// A new metric is its row here plus its computation: the struct field and where it is measured
-// (metrics.h/.cpp, or the cost's source) and its line in that struct's toJson. A cost axis then
-// reaches compare's chart, budget tables and all-metrics table, the sweep's fronts and budget
-// tables and the baseline from its row alone: `grep -rln rays_traced raster_compare/compare` finds
-// this table and metrics.cpp's toJson. (An error metric the reports should show is also a line in
-// their own choice of columns: report_tables.cpp, index_page.cpp.) A test checks that every name
-// a full row has is here and every entry here is in some row.
+// A new metric is its row here plus its computation. A cost's row holds how to read it from
+// TechniqueCost (MetricInfo::cost), which TechniqueCost::toJson writes from this table, so a new
+// cost is its row and the field where it is measured; it then reaches metrics.json, the CSVs,
+// compare's chart, budget tables and all-metrics table, the sweep's fronts and budget tables and
+// the baseline from its row alone: `grep -rln rays_traced raster_compare/compare` finds this table
+// only. An error metric is its row, its field and computation in metrics.h/.cpp and its line in
+// LightMetrics::toJson (and, where a report should show it, a line in that report's own choice of
+// columns: report_tables.cpp, index_page.cpp). A test checks that every name a full row has is
+// here and every entry here is in some row.
 #pragma once
 
 #include <span>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace so {
+
+struct TechniqueCost;
 
 // Which way a metric gets better.
 enum class Better {
@@ -104,6 +110,9 @@ struct MetricInfo {
     const char* label = nullptr;
     BaselineRule baseline = {};
     CostAxis costAxis = CostAxis::None;
+    // A cost ("cost." names): its value in a row as metrics.json writes it (its JSON type: an
+    // integer, a boolean, null where unknown). TechniqueCost::toJson writes every one it has.
+    nlohmann::json (*cost)(const TechniqueCost&) = nullptr;
 };
 
 // Every public metric, in the order of docs/metrics.md. metrics.json and metrics.csv order their
