@@ -114,10 +114,10 @@ CompareResult compare(const Scene& scene, const TraceResult& oracle,
         out.metricsJson =
             so::metricsJson(s, s.path.string(), o, comparison, options.boundaryRadius).dump();
         for (const so::ComparedRow& row : comparison.rows) {
-            ComparedRow r{row.report.label,
+            ComparedRow r{row.report.row.label,
                           row.source,
                           row.technique,
-                          row.report.family,
+                          row.report.row.family,
                           {},
                           {},
                           detail::toApi(so::errorImage(row.report))};

@@ -11,64 +11,31 @@
 #include "core/json_reader.h"
 #include "raster_compare/compare/gate.h"
 #include "raster_compare/compare/metrics.h"
+#include "raster_compare/compare/result_row.h"
 
 namespace so {
 
 using nlohmann::json;
 
-const std::vector<BaselineMetric>& baselineMetricTable() {
-    // Tolerances: "V" and "share" metrics abs 0.001 + rel 5% (the limits file's baseline.default
-    // replaces both); pixel distances a quarter pixel (the penumbra profiles' step) + 5%; costs,
-    // compared only when asked, 0.5 ms + 50% (timings of one frame on a shared machine), and
-    // memory and work, which are exact, 1%.
-    constexpr Tolerance kFine{0.001, 0.05}, kPixels{0.25, 0.05}, kTime{0.5, 0.5}, kExact{0.0, 0.01};
-    using N = OracleNoise;
-    // The metric table's entry of a name; a name missing there is a bug, found by any test.
-    const auto m = [](const char* name) {
-        const MetricInfo* info = so::findMetric(name);
-        SO_CHECK(info != nullptr);
-        return info;
-    };
-    static const std::vector<BaselineMetric> table = {
-        {m("mae"), true, kFine, N::MeanHalfWidth},
-        {m("rmse"), true, kFine, N::MeanHalfWidth},
-        {m("max_abs"), true, kFine, N::WorstHalfWidth},
-        {m("false_shadow_rate"), true, kFine, N::None},
-        {m("false_lit_rate"), true, kFine, N::None},
-        {m("acne_rate"), true, kFine, N::None},
-        {m("penumbra_spread_rate"), true, kFine, N::None},
-        {m("peter_panning_rate"), true, kFine, N::None},
-        {m("light_leak_distance"), true, kFine, N::None},
-        {m("boundary_displacement_px.mean"), true, kPixels, N::None},
-        {m("boundary_displacement_px.p95"), true, kPixels, N::None},
-        {m("boundary_displacement_px.max"), true, kPixels, N::None},
-        {m("boundary_band_mae"), true, kFine, N::MeanHalfWidth},
-        {m("aliasing_rate"), true, kFine, N::None},
-        {m("other_false_shadow_rate"), true, kFine, N::None},
-        {m("other_false_lit_rate"), true, kFine, N::None},
-        {m("light_bleeding_rate"), true, kFine, N::None},
-        {m("penumbra_mae"), true, kFine, N::MeanHalfWidth},
-        {m("penumbra_bias"), true, kFine, N::MeanHalfWidth},
-        {m("umbra_mae"), true, kFine, N::MeanHalfWidth},
-        {m("lit_mae"), true, kFine, N::MeanHalfWidth},
-        {m("penumbra_width_error_px.mean"), true, kPixels, N::None},
-        {m("penumbra_width_error_px.p95"), true, kPixels, N::None},
-        {m("temporal_flicker_rate"), true, kFine, N::None},
-        {m("cost.frame_ms"), false, kTime, N::None},
-        {m("cost.shadow_map_ms"), false, kTime, N::None},
-        {m("cost.visibility_ms"), false, kTime, N::None},
-        {m("cost.camera_ms"), false, kTime, N::None},
-        {m("cost.bake_ms"), false, kTime, N::None},
-        {m("cost.memory_bytes"), false, kExact, N::None},
-        {m("cost.work.fragments"), false, kExact, N::None},
-        {m("cost.work.texture_taps"), false, kExact, N::None},
-        {m("cost.work.texels_written"), false, kExact, N::None},
-        {m("cost.work.bytes_moved"), false, kExact, N::None},
-        {m("cost.work.draw_calls"), false, kExact, N::None},
-        {m("cost.work.passes"), false, kExact, N::None},
-        {m("cost.work.rays_traced"), false, kExact, N::None},
-    };
+const std::vector<const MetricInfo*>& baselineMetricTable() {
+    static const std::vector<const MetricInfo*> table = [] {
+        std::vector<const MetricInfo*> out;
+        for (const MetricInfo& m : allMetrics())
+            if (m.baseline.use == BaselineRule::ByDefault) out.push_back(&m);
+        // The costs as the reports order their axes: frame time, the passes' times, the other
+        // times (camera, bake), memory, work.
+        using A = CostAxis;
+        for (const A kind : {A::Frame, A::Pass, A::None, A::Memory, A::Work})
+            for (const MetricInfo& m : allMetrics())
+                if (m.baseline.use == BaselineRule::WhenNamed && m.costAxis == kind)
+                    out.push_back(&m);
+        return out;
+    }();
     return table;
+}
+
+bool takesFileDefault(const MetricInfo& m) {
+    return m.unit == MetricUnit::V || m.unit == MetricUnit::Share;
 }
 
 namespace {
@@ -105,9 +72,9 @@ size_t BaselineComparison::regressions() const {
 
 namespace {
 
-const BaselineMetric* findCompared(const std::string& name) {
-    for (const BaselineMetric& m : baselineMetricTable())
-        if (name == m.metric->name) return &m;
+const MetricInfo* findCompared(const std::string& name) {
+    for (const MetricInfo* m : baselineMetricTable())
+        if (name == m->name) return m;
     return nullptr;
 }
 
@@ -136,28 +103,28 @@ BaselineSettings readBaselineSettings(const json* limits, const std::string& lf)
     std::optional<Tolerance> fileDefault;
     if (b->contains("default"))
         fileDefault = readTolerance((*b)["default"], lf, "baseline.default", {0.001, 0.05});
-    std::map<const BaselineMetric*, Tolerance> named;
+    std::map<const MetricInfo*, Tolerance> named;
     if (b->contains("metrics")) {
         const json& ms = (*b)["metrics"];
         r.requireObject(ms, "baseline.metrics");
         for (auto it = ms.begin(); it != ms.end(); ++it) {
             const std::string f = "baseline.metrics." + printable(it.key(), 60);
-            const BaselineMetric* m = findCompared(it.key());
+            const MetricInfo* m = findCompared(it.key());
             if (!m)
                 throwInputError(lf, f,
                                 "not a metric the baseline compares (docs/gate.md#baseline)");
-            Tolerance t = m->tolerance;
-            if (fileDefault && m->takesFileDefault()) t = *fileDefault;
+            Tolerance t = m->baseline.tolerance;
+            if (fileDefault && takesFileDefault(*m)) t = *fileDefault;
             named[m] = readTolerance(*it, lf, f, t);
         }
     }
-    std::set<const BaselineMetric*> ignored;
+    std::set<const MetricInfo*> ignored;
     if (b->contains("ignore")) {
         const json& ig = (*b)["ignore"];
         r.requireArray(ig, "baseline.ignore");
         for (size_t i = 0; i < ig.size(); ++i) {
             const std::string f = JsonReader::index("baseline.ignore", i);
-            const BaselineMetric* m = findCompared(r.string(ig[i], f));
+            const MetricInfo* m = findCompared(r.string(ig[i], f));
             if (!m)
                 throwInputError(lf, f,
                                 "not a metric the baseline compares (docs/gate.md#baseline)");
@@ -167,13 +134,13 @@ BaselineSettings readBaselineSettings(const json* limits, const std::string& lf)
         }
     }
     BaselineSettings s;
-    for (const BaselineMetric& m : baselineMetricTable()) {
-        if (ignored.count(&m)) continue;
-        if (named.count(&m)) {
-            s.compared.emplace_back(&m, named[&m]);
-        } else if (m.byDefault) {
+    for (const MetricInfo* m : baselineMetricTable()) {
+        if (ignored.count(m)) continue;
+        if (named.count(m)) {
+            s.compared.emplace_back(m, named[m]);
+        } else if (m->baseline.use == BaselineRule::ByDefault) {
             s.compared.emplace_back(
-                &m, fileDefault && m.takesFileDefault() ? *fileDefault : m.tolerance);
+                m, fileDefault && takesFileDefault(*m) ? *fileDefault : m->baseline.tolerance);
         }
     }
     return s;
@@ -232,7 +199,7 @@ std::map<std::string, OracleUncertainty> oracleUncertainty(const json& metrics,
 using RowKey = std::tuple<std::string, std::string, std::string>;  // scene file name, light, label
 
 struct Run {
-    std::map<RowKey, std::map<std::string, json>> rows;
+    std::map<RowKey, LightRow> rows;
     std::vector<RowKey> order;
     std::map<RowKey, int> seen;  // rows so far with that (scene, light, label)
     std::map<std::string, OracleUncertainty> uncertainty;
@@ -248,18 +215,18 @@ Run readRun(const json& metrics, const std::string& path) {
             .filename()
             .string();
     const json& results = metrics["results"];
+    const JsonReader r(path);
     for (size_t i = 0; i < results.size(); ++i) {
-        const json& r = results[i];
-        const std::string technique = r.value("technique", ""), label = r.value("label", technique);
-        for (const auto& [light, m] : r["lights"].items()) {
+        ResultRow row = readResultRow(results[i], r, JsonReader::index("results", i));
+        for (LightRow& light : row.lights) {
             // The same label twice in one run (compare --technique basic --technique basic): the
             // n-th matches the other run's n-th, shown as LABEL#n.
-            const int first = ++run.seen[{scene, light, label}];
-            RowKey key{scene, light, first == 1 ? label : label + "#" + std::to_string(first)};
+            const int first = ++run.seen[{scene, light.light, row.label}];
+            const std::string l = light.light;
+            RowKey key{scene, l, first == 1 ? row.label : row.label + "#" + std::to_string(first)};
             for (int n = first + 1; run.rows.count(key); ++n)  // past a label "basic#2" itself
-                key = {scene, light, label + "#" + std::to_string(n)};
-            std::map<std::string, json>& flat = run.rows[key];
-            for (auto& [name, value] : flatMetrics(m)) flat[name] = std::move(value);
+                key = {scene, l, row.label + "#" + std::to_string(n)};
+            run.rows[key] = std::move(light);
             run.order.push_back(key);
         }
     }
@@ -273,15 +240,6 @@ Run readRun(const json& metrics, const std::string& path) {
 // cause).
 int64_t metricsEpoch(int64_t version) {
     return version == 5 ? 4 : version == 7 ? 6 : version;
-}
-
-std::optional<double> numberOrNull(const std::map<std::string, json>& row, const std::string& name,
-                                   bool* present) {
-    const auto it = row.find(name);
-    if (it == row.end()) return std::nullopt;
-    *present = true;
-    if (!it->second.is_number()) return std::nullopt;
-    return it->second.get<double>();
 }
 
 }  // namespace
@@ -306,27 +264,27 @@ BaselineComparison compareToBaseline(const json& metrics, const std::string& met
             out.added.push_back({scene, light, label});
             continue;
         }
-        const std::map<std::string, json>& rowNew = now.rows.at(key);
+        const LightRow& rowNew = now.rows.at(key);
         const auto uNew = now.uncertainty.find(light), uOld = before.uncertainty.find(light);
         const OracleUncertainty un = uNew == now.uncertainty.end() ? OracleUncertainty{}
                                                                    : uNew->second,
                                 uo = uOld == before.uncertainty.end() ? OracleUncertainty{}
                                                                       : uOld->second;
         for (const auto& [metric, tolerance] : settings.compared) {
-            bool present = false;
+            // In neither run: a temporal metric without a camera path.
+            if (!old->second.has(*metric) && !rowNew.has(*metric)) continue;
             BaselineCheck c{scene,
                             light,
                             label,
-                            metric->metric->name,
-                            numberOrNull(old->second, metric->metric->name, &present),
-                            numberOrNull(rowNew, metric->metric->name, &present),
-                            metric->metric->better,
+                            metric->name,
+                            old->second.value(*metric),
+                            rowNew.value(*metric),
+                            metric->better,
                             tolerance,
                             0.0};
-            if (!present) continue;  // in neither run (a temporal metric without a camera path)
-            if (metric->noise == OracleNoise::MeanHalfWidth)
+            if (metric->baseline.noise == OracleNoise::MeanHalfWidth)
                 c.noise = std::hypot(un.meanHalfWidth, uo.meanHalfWidth);
-            else if (metric->noise == OracleNoise::WorstHalfWidth)
+            else if (metric->baseline.noise == OracleNoise::WorstHalfWidth)
                 c.noise = std::hypot(un.worstHalfWidth, uo.worstHalfWidth);
             out.checks.push_back(std::move(c));
         }

@@ -14,36 +14,16 @@
 
 namespace so {
 
-// What widens a metric's tolerance by the sampled oracle's stated uncertainty (area lights).
-enum class OracleNoise {
-    None,           // shares of pixels, pixel distances, costs: the tolerance covers it
-    MeanHalfWidth,  // means of V errors: the mean stated 95% half-width over the penumbra
-    WorstHalfWidth  // max_abs: the largest stated 95% half-width
-};
+// The metrics the baseline can compare: those compared by default in the metric table's order,
+// then the costs compared when named, in the order of the cost axes (frame time, the passes, the
+// other times, memory, work); those whose BaselineRule is not Never (the others, such
+// as counted_pixels, excluded_share, the predicted aliasing, the oracle's costs and the cost
+// quartiles, are not quality metrics and are never compared). Their tolerances and oracle noise are
+// the table's.
+const std::vector<const MetricInfo*>& baselineMetricTable();
 
-struct Tolerance {
-    double abs = 0.0;  // in the metric's unit
-    double rel = 0.0;  // of the baseline's |value|
-};
-
-// One row of the table of metrics the baseline compares (docs/gate.md#baseline repeats it). The
-// metric's name, unit and which way it gets better are the metric table's (metric_table.h); this
-// adds what only the baseline needs.
-struct BaselineMetric {
-    const MetricInfo* metric;
-    bool byDefault;       // false: compared only when the limits file's baseline.metrics names it
-    Tolerance tolerance;  // built-in default
-    OracleNoise noise;
-    // V and share metrics take the limits file's baseline.default; the others keep their own.
-    bool takesFileDefault() const {
-        return metric->unit == MetricUnit::V || metric->unit == MetricUnit::Share;
-    }
-};
-
-// Every metric the baseline can compare; the others (counts such as counted_pixels,
-// excluded_share, the predicted aliasing, the oracle's costs, the cost quartiles) are not quality
-// metrics and are never compared.
-const std::vector<BaselineMetric>& baselineMetricTable();
+// V and share metrics take the limits file's baseline.default; the others keep their own.
+bool takesFileDefault(const MetricInfo& m);
 
 struct BaselineCheck {
     std::string scene, light, label, metric;
@@ -78,7 +58,7 @@ struct BaselineComparison {
 // What the limits file's `baseline` object (limits_format 2) says: per compared metric its
 // tolerance, in the order of the table.
 struct BaselineSettings {
-    std::vector<std::pair<const BaselineMetric*, Tolerance>> compared;
+    std::vector<std::pair<const MetricInfo*, Tolerance>> compared;
 };
 
 // Reads `limits`'s `baseline` object (null limits, or none there: the built-in defaults). Throws

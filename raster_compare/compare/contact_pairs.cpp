@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "raster_compare/compare/html.h"
-#include "raster_compare/compare/metrics.h"
+#include "raster_compare/compare/result_row.h"
 
 namespace so {
 
@@ -14,10 +14,10 @@ bool isContactParameter(const std::string& name) {
     return name == "contact" || name.rfind("contact_", 0) == 0;
 }
 
-bool sameOtherParameters(const ContactSetting& a, const ContactSetting& b) {
+bool sameOtherParameters(const ResultRow& a, const ResultRow& b) {
     if (a.technique != b.technique) return false;
-    auto other = [](const std::map<std::string, double>& p) {
-        std::map<std::string, double> r;
+    auto other = [](const RowParameters& p) {
+        RowParameters r;
         for (const auto& [k, v] : p)
             if (!isContactParameter(k)) r.emplace(k, v);
         return r;
@@ -25,20 +25,16 @@ bool sameOtherParameters(const ContactSetting& a, const ContactSetting& b) {
     return other(a.parameters) == other(b.parameters);
 }
 
-std::optional<bool> contactOn(const ContactSetting& s) {
+// contact=on or off (the method's index: off 0, on 1); none without the parameter.
+std::optional<bool> contactOn(const ResultRow& s) {
     const auto it = s.parameters.find("contact");
     if (it == s.parameters.end()) return std::nullopt;
-    return it->second != 0.0;
+    return it->second.number != 0.0;
 }
 
 std::optional<double> difference(std::optional<double> a, std::optional<double> b) {
     if (!a || !b) return std::nullopt;
     return *a - *b;
-}
-
-std::optional<double> metricOf(const std::map<std::string, double>& m, const char* key) {
-    const auto it = m.find(key);
-    return it == m.end() ? std::nullopt : std::optional<double>(it->second);
 }
 
 std::string rate(std::optional<double> v) {
@@ -54,13 +50,9 @@ std::string change(std::optional<double> off, std::optional<double> on) {
 
 }  // namespace
 
-ContactRates contactRatesOf(const LightMetrics& m) {
-    return {m.peterPanningRate, m.screenBleedRate, m.falseShadowRate, m.acneRate};
-}
-
-ContactRates contactRatesOf(const std::map<std::string, double>& metrics) {
-    return {metricOf(metrics, "peter_panning_rate"), metricOf(metrics, "screen_bleed_rate"),
-            metricOf(metrics, "false_shadow_rate"), metricOf(metrics, "acne_rate")};
+ContactRates contactRatesOf(const LightRow& l) {
+    return {l.value("peter_panning_rate"), l.value("screen_bleed_rate"),
+            l.value("false_shadow_rate"), l.value("acne_rate")};
 }
 
 std::optional<double> ContactPair::peterPanningClosed() const {
@@ -81,10 +73,12 @@ std::optional<double> ContactPair::acneAdded() const {
 std::vector<ContactPair> pairContactSettings(const std::vector<ContactSetting>& settings) {
     std::vector<ContactPair> pairs;
     for (const ContactSetting& on : settings) {
-        if (contactOn(on) != true) continue;
+        if (contactOn(*on.setting) != true) continue;
         for (const ContactSetting& off : settings) {
-            if (contactOn(off) != false || !sameOtherParameters(on, off)) continue;
-            pairs.push_back({off.label, on.label, off.rates, on.rates});
+            if (contactOn(*off.setting) != false || !sameOtherParameters(*on.setting, *off.setting))
+                continue;
+            pairs.push_back({off.setting->label, on.setting->label, contactRatesOf(*off.light),
+                             contactRatesOf(*on.light)});
             break;
         }
     }

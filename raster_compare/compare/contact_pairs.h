@@ -5,7 +5,6 @@
 // compare report and the sweep report draw the same table from it.
 #pragma once
 
-#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -13,7 +12,8 @@
 
 namespace so {
 
-struct LightMetrics;
+struct LightRow;
+struct ResultRow;
 
 // The rates contact=on moves (docs/metrics.md, "Contact shadows"), each over counted pixels.
 struct ContactRates {
@@ -22,18 +22,14 @@ struct ContactRates {
     std::optional<double> falseShadow;
     std::optional<double> acne;
 };
-ContactRates contactRatesOf(const LightMetrics& m);
-// From flattened metric keys (a sweep row's): peter_panning_rate, screen_bleed_rate, ...
-ContactRates contactRatesOf(const std::map<std::string, double>& metrics);
+ContactRates contactRatesOf(const LightRow& light);
 
-// One technique setting's result on one light.
+// One technique setting's result on one light: the row's label, technique and typed parameters
+// (every one, defaults included; a setting without `contact`, not a shadow map or an image, is
+// never paired) and that light's metrics.
 struct ContactSetting {
-    std::string label;      // as given: "pcf:contact=on"
-    std::string technique;  // its name: "pcf"
-    // Every parameter, defaults included, as numbers (a method parameter's index: contact off 0,
-    // on 1); a setting without `contact` (not a shadow map, an image) is never paired.
-    std::map<std::string, double> parameters;
-    ContactRates rates;
+    const ResultRow* setting;
+    const LightRow* light;
 };
 
 struct ContactPair {

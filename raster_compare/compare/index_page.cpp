@@ -24,27 +24,6 @@ namespace {
 
 // ---- metrics.json -> structs ----
 
-// The index shows what compare measured; a metric that is null or absent simply has no cell, but
-// a value of another type is a broken file, and a silently empty cell would hide it.
-std::optional<double> optionalNumber(const json& object, const std::string& key,
-                                     const JsonReader& r, const std::string& field) {
-    const json* v = JsonReader::find(object, key);
-    if (!v) return std::nullopt;
-    const double x = r.nullableNumber(*v, field + "." + key);
-    return std::isnan(x) ? std::nullopt : std::optional(x);
-}
-
-// An object that may be null or absent (boundary_displacement_px, cost): an empty one then, so
-// its members read as null.
-const json& optionalObject(const json& object, const std::string& key, const JsonReader& r,
-                           const std::string& field) {
-    static const json empty = json::object();
-    const json* v = JsonReader::find(object, key);
-    if (!v || v->is_null()) return empty;
-    r.requireObject(*v, field + "." + key);
-    return *v;
-}
-
 std::string optionalString(const json& object, const std::string& key, const JsonReader& r,
                            const std::string& field) {
     const json* v = JsonReader::find(object, key);
@@ -52,73 +31,24 @@ std::string optionalString(const json& object, const std::string& key, const Jso
     return r.string(*v, field + "." + key);
 }
 
-IndexLightMetrics parseLight(const json& m, const std::string& light, const JsonReader& r,
-                             const std::string& field) {
-    r.requireObject(m, field);
-    IndexLightMetrics out;
-    out.light = light;
-    out.mae = optionalNumber(m, "mae", r, field);
-    out.acneRate = optionalNumber(m, "acne_rate", r, field);
-    out.peterPanningRate = optionalNumber(m, "peter_panning_rate", r, field);
-    const std::string bdField = field + ".boundary_displacement_px";
-    out.boundaryDisplacementP95Px =
-        optionalNumber(optionalObject(m, "boundary_displacement_px", r, field), "p95", r, bdField);
-    out.lightBleedingRate = optionalNumber(m, "light_bleeding_rate", r, field);
-    out.penumbraMae = optionalNumber(m, "penumbra_mae", r, field);
-    out.frameMs =
-        optionalNumber(optionalObject(m, "cost", r, field), "frame_ms", r, field + ".cost");
-    const json& sequence = optionalObject(m, "sequence", r, field);
-    out.sequenceMaeMean = optionalNumber(sequence, "mae_mean", r, field + ".sequence");
-    out.sequenceLagMae = optionalNumber(sequence, "lag_mae", r, field + ".sequence");
-    return out;
-}
-
-IndexResult parseResult(const json& j, const JsonReader& r, size_t i) {
-    const std::string field = JsonReader::index("results", i);
-    r.requireObject(j, field);
-    IndexResult out;
-    out.technique = optionalString(j, "technique", r, field);
-    out.family = optionalString(j, "family", r, field);
-    // The label is the row of every matrix; schema_version 1 files may name only the technique.
-    out.label = optionalString(j, "label", r, field);
-    if (out.label.empty()) out.label = out.technique;
-    if (out.label.empty()) r.fail(field + ".label", "missing");
-    const json& lights = r.at(j, field, "lights");
-    r.requireObject(lights, field + ".lights");
-    for (const auto& [light, m] : lights.items())
-        out.lights.push_back(parseLight(m, light, r, field + ".lights." + printable(light, 60)));
-    return out;
-}
-
 // ---- the page ----
 
+// A matrix: its metric (name as in metrics.csv, which way is better, its meaning) and its title.
 struct MetricSpec {
-    const MetricInfo* metric;  // its name (as in metrics.csv) and which way is better
-    const char* title;         // its meaning is the metric table's description
-    std::optional<double> IndexLightMetrics::*value;
+    const MetricInfo* metric;
+    const char* title;
 };
-
-// The metric table's entry of a name; a name missing there is a bug, found by any test.
-const MetricInfo* tableEntry(const char* name) {
-    const MetricInfo* info = findMetric(name);
-    SO_CHECK(info != nullptr);
-    return info;
-}
 
 const std::vector<MetricSpec>& metricSpecs() {
     static const std::vector<MetricSpec> specs = {
-        {tableEntry("mae"), "Mean absolute error", &IndexLightMetrics::mae},
-        {tableEntry("acne_rate"), "Shadow acne", &IndexLightMetrics::acneRate},
-        {tableEntry("peter_panning_rate"), "Peter-panning", &IndexLightMetrics::peterPanningRate},
-        {tableEntry("boundary_displacement_px.p95"), "Shadow boundary displacement (p95, pixels)",
-         &IndexLightMetrics::boundaryDisplacementP95Px},
-        {tableEntry("light_bleeding_rate"), "Light bleeding",
-         &IndexLightMetrics::lightBleedingRate},
-        {tableEntry("penumbra_mae"), "Penumbra error", &IndexLightMetrics::penumbraMae},
-        {tableEntry("sequence.mae_mean"), "Error over a sequence (mean of its frames)",
-         &IndexLightMetrics::sequenceMaeMean},
-        {tableEntry("sequence.lag_mae"), "Lag and ghosting in a sequence",
-         &IndexLightMetrics::sequenceLagMae},
+        {&metricInfo("mae"), "Mean absolute error"},
+        {&metricInfo("acne_rate"), "Shadow acne"},
+        {&metricInfo("peter_panning_rate"), "Peter-panning"},
+        {&metricInfo("boundary_displacement_px.p95"), "Shadow boundary displacement (p95, pixels)"},
+        {&metricInfo("light_bleeding_rate"), "Light bleeding"},
+        {&metricInfo("penumbra_mae"), "Penumbra error"},
+        {&metricInfo("sequence.mae_mean"), "Error over a sequence (mean of its frames)"},
+        {&metricInfo("sequence.lag_mae"), "Lag and ghosting in a sequence"},
     };
     return specs;
 }
@@ -150,14 +80,14 @@ struct Grid {
     std::vector<std::string> rows;
     std::vector<Column> columns;
     // [entry][label]: that run's result of the label (a run may lack a label: no cell).
-    std::vector<std::map<std::string, const IndexResult*>> byLabel;
+    std::vector<std::map<std::string, const ResultRow*>> byLabel;
 };
 
 Grid gridOf(const std::vector<IndexEntry>& entries) {
     Grid g;
     for (size_t e = 0; e < entries.size(); ++e) {
         g.byLabel.emplace_back();
-        for (const IndexResult& r : entries[e].metrics.results) {
+        for (const ResultRow& r : entries[e].metrics.results) {
             if (!g.byLabel[e].emplace(r.label, &r).second) continue;  // the first one counts
             if (std::find(g.rows.begin(), g.rows.end(), r.label) == g.rows.end())
                 g.rows.push_back(r.label);
@@ -168,20 +98,17 @@ Grid gridOf(const std::vector<IndexEntry>& entries) {
     return g;
 }
 
-const IndexLightMetrics* cellOf(const Grid& g, const std::string& row, const Column& c) {
+const LightRow* cellOf(const Grid& g, const std::string& row, const Column& c) {
     const auto it = g.byLabel[c.entry].find(row);
-    if (it == g.byLabel[c.entry].end()) return nullptr;
-    for (const IndexLightMetrics& m : it->second->lights)
-        if (m.light == c.light) return &m;
-    return nullptr;
+    return it == g.byLabel[c.entry].end() ? nullptr : it->second->light(c.light);
 }
 
 std::vector<double> valuesOf(const Grid& g, const MetricSpec& spec) {
     std::vector<double> values;
     for (const std::string& row : g.rows)
         for (const Column& c : g.columns)
-            if (const IndexLightMetrics* m = cellOf(g, row, c); m && m->*spec.value)
-                values.push_back(*(m->*spec.value));
+            if (const LightRow* m = cellOf(g, row, c))
+                if (const std::optional<double> v = m->value(*spec.metric)) values.push_back(*v);
     return values;
 }
 
@@ -214,19 +141,21 @@ void writeHeader(std::ostream& o, const std::vector<IndexEntry>& entries, const 
     o << "</tr></thead>";
 }
 
-void writeCell(std::ostream& o, const IndexLightMetrics* m, const MetricSpec& spec,
-               const ColourScale& scale, const Column& c, const std::string& href) {
+void writeCell(std::ostream& o, const LightRow* m, const MetricSpec& spec, const ColourScale& scale,
+               const Column& c, const std::string& href) {
     const char* rule = c.firstOfScene ? " s" : "";
-    if (!m || !(m->*spec.value)) {
+    const std::optional<double> value = m ? m->value(*spec.metric) : std::nullopt;
+    if (!value) {
         o << "<td class=\"na" << rule << "\"></td>";
         return;
     }
-    const double v = *(m->*spec.value);
+    const double v = *value;
+    const std::optional<double> frameMs = m->value("cost.frame_ms");
     const std::array<int, 3> bg = rampColour(scalePosition(scale, v));
-    const std::string cost = m->frameMs ? " · " + num(*m->frameMs) + " ms" : "";
+    const std::string cost = frameMs ? " · " + num(*frameMs) + " ms" : "";
     o << "<td class=\"v" << rule << "\" style=\"background:" << hexColour(bg)
       << ";color:" << textColour(bg) << "\" title=\"" << spec.metric->name << " " << v
-      << (m->frameMs ? ", frame " + num(*m->frameMs) + " ms" : "") << "\"><a href=\"" << html(href)
+      << (frameMs ? ", frame " + num(*frameMs) + " ms" : "") << "\"><a href=\"" << html(href)
       << "\">" << num(v) << cost << "</a></td>";
 }
 
@@ -322,8 +251,8 @@ SceneMetrics parseSceneMetrics(const json& metrics, const std::string& path) {
     const json& results = r.at(metrics, "", "results");
     r.requireArray(results, "results");
     for (size_t i = 0; i < results.size(); ++i) {
-        out.results.push_back(parseResult(results[i], r, i));
-        for (const IndexLightMetrics& m : out.results.back().lights)
+        out.results.push_back(readResultRow(results[i], r, JsonReader::index("results", i)));
+        for (const LightRow& m : out.results.back().lights)
             if (std::find(out.lights.begin(), out.lights.end(), m.light) == out.lights.end())
                 out.lights.push_back(m.light);
     }

@@ -1,39 +1,17 @@
 // The index page over many compare runs (`shadow-oracle index`): per artifact metric one matrix,
 // techniques against scene x light, each cell coloured by its error and linked to the run's
-// report. metrics.json is read once into the plain structs below; the page is written from them,
+// report. metrics.json is read once into typed rows (result_row.h); the page is written from them,
 // so the HTML never looks a key up in JSON. Self-contained: inline CSS, no script, no network.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "raster_compare/compare/result_row.h"
+
 namespace so {
-
-// One light of one result: the metrics the index shows, null (none) where metrics.json has null
-// (the metric does not apply there, docs/metrics.md) or lacks the key (an older schema_version).
-struct IndexLightMetrics {
-    std::string light;
-    std::optional<double> mae;
-    std::optional<double> acneRate;
-    std::optional<double> peterPanningRate;
-    std::optional<double> boundaryDisplacementP95Px;  // boundary_displacement_px.p95
-    std::optional<double> lightBleedingRate;
-    std::optional<double> penumbraMae;
-    std::optional<double> frameMs;  // cost.frame_ms: median over the timed frames
-    // compare --sequence only (docs/metrics.md#sequence): sequence.mae_mean, sequence.lag_mae.
-    std::optional<double> sequenceMaeMean, sequenceLagMae;
-};
-
-// One technique setting of a compare run.
-struct IndexResult {
-    std::string label;      // e.g. "pcss:filter_samples=8": the row of the matrices
-    std::string technique;  // e.g. "pcss"
-    std::string family;     // empty before schema_version 3
-    std::vector<IndexLightMetrics> lights;
-};
 
 // What the index needs of one metrics.json.
 struct SceneMetrics {
@@ -42,7 +20,10 @@ struct SceneMetrics {
     int schemaVersion = 0;
     std::string timedOn;              // gl.renderer, empty when absent
     std::vector<std::string> lights;  // every light of the results, in first-seen order
-    std::vector<IndexResult> results;
+    // The technique settings, read into typed rows (result_row.h): a label is the row of every
+    // matrix; a metric that is null (does not apply there) or absent (an older schema_version)
+    // has no cell.
+    std::vector<ResultRow> results;
 };
 
 // Throws InputError naming `path` and the field (e.g. "results[2].lights.key.mae") on anything

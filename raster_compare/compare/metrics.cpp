@@ -8,6 +8,7 @@
 
 #include "core/channels.h"
 #include "core/percentile.h"
+#include "raster_compare/compare/metric_table.h"
 
 namespace so {
 
@@ -507,29 +508,19 @@ std::vector<std::pair<std::string, nlohmann::json>> flatMetrics(const nlohmann::
     return out;
 }
 
+// Every cost of the metric table at its name after "cost." (a work count inside "work", which is
+// one null where the counts are unknown: an image's).
 nlohmann::json TechniqueCost::toJson() const {
-    nlohmann::json j = {
-        {"memory_bytes", memoryBytes ? nlohmann::json(*memoryBytes) : nlohmann::json(nullptr)},
-        {"bake_ms", bakeMs ? nlohmann::json(*bakeMs) : nlohmann::json(nullptr)},
-        {"oracle_seconds", oracleSeconds},
-        {"oracle_ms_at_equal_error",
-         oracleMsAtEqualError ? nlohmann::json(*oracleMsAtEqualError) : nlohmann::json(nullptr)},
-        {"noisy", noisy()},
-        {"work", work ? nlohmann::json{{"fragments", work->fragments},
-                                       {"texture_taps", work->textureTaps},
-                                       {"texels_written", work->texelsWritten},
-                                       {"bytes_moved", work->bytesMoved},
-                                       {"draw_calls", work->drawCalls},
-                                       {"passes", work->passes},
-                                       {"rays_traced", work->raysTraced}}
-                      : nlohmann::json(nullptr)}};
-    for (const auto& [key, t] :
-         {std::pair{"shadow_map", shadowMapMs}, std::pair{"visibility", visibilityMs},
-          std::pair{"camera", cameraMs}, std::pair{"frame", frameMs}}) {
-        const bool q = t && quartiles;
-        j[std::string(key) + "_ms"] = t ? nlohmann::json(t->median) : nlohmann::json(nullptr);
-        j[std::string(key) + "_ms_p25"] = q ? nlohmann::json(t->p25) : nlohmann::json(nullptr);
-        j[std::string(key) + "_ms_p75"] = q ? nlohmann::json(t->p75) : nlohmann::json(nullptr);
+    nlohmann::json j = nlohmann::json::object();
+    if (!work) j["work"] = nullptr;
+    const std::string prefix = "cost.", workPrefix = "work.";
+    for (const MetricInfo& m : allMetrics()) {
+        if (!m.cost) continue;
+        const std::string name = std::string(m.name).substr(prefix.size());
+        if (name.rfind(workPrefix, 0) != 0)
+            j[name] = m.cost(*this);
+        else if (work)
+            j["work"][name.substr(workPrefix.size())] = m.cost(*this);
     }
     return j;
 }

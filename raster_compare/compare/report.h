@@ -8,7 +8,6 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -18,16 +17,15 @@
 
 #include "core/image.h"
 #include "raster_compare/compare/metrics.h"
+#include "raster_compare/compare/result_row.h"
 
 namespace so {
 
 struct ReportTechnique {
-    std::string label;
-    std::string family;     // TechniqueInfo::family: the report groups by it
-    std::string technique;  // its name ("pcf"); empty for an image
-    // Every parameter, defaults included, as numbers (a method's index): the contact pairs'
-    // (contact_pairs.h); empty for an image.
-    std::map<std::string, double> settings;
+    // Its row of metrics.json read back (result_row.h): label, family (the report groups by it),
+    // technique, typed parameters, and per light every metric and cost the tables and the chart
+    // show.
+    ResultRow row;
     // Settings that differ only in the technique's quality parameter share `curve` (TradeoffPoint);
     // `quality` is its value, none for a technique without one.
     std::string curve;
@@ -35,7 +33,9 @@ struct ReportTechnique {
     std::string fileLabel;   // its folder and files beside the report (compare's --out)
     std::string parameters;  // every parameter "k=v ...", defaults included
     ChannelImage image;      // raster.exr
-    std::vector<LightComparison> lights;  // per light, in scene order
+    // Per light, in scene order: what metrics.json does not hold (the error maps the images
+    // section draws, the sequence's error per frame).
+    std::vector<LightComparison> lights;
 };
 
 // compare --frames-path: for one light, the technique with the highest temporal_flicker_rate at

@@ -6,10 +6,11 @@
 // their logs. Self-contained: style and script inline, no images, no network.
 #pragma once
 
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "raster_compare/compare/result_row.h"
 
 namespace so {
 
@@ -17,19 +18,14 @@ namespace so {
 struct SweepRow {
     std::string task;   // the task's stable id
     std::string scene;  // the scene as the spec names it (path)
-    std::string light;
-    std::string technique;  // its name: "slope-bias"
-    std::string label;      // the setting as compare takes it: "slope-bias:alpha=2,min=0.5"
+    // The task's row of compare's metrics.json, read back (result_row.h): its label
+    // ("slope-bias:alpha=2,min=0.5"), technique and typed parameters (defaults included: what the
+    // contact pairs compare, contact_pairs.h), and in `lights` this row's one light.
+    ResultRow result;
     // The parameters the spec swept for this technique (more than one value), in the spec's order,
-    // with this task's values.
-    std::vector<std::pair<std::string, double>> swept;
-    // Every numeric metric of the light's row in compare's metrics.json, flattened with dots
-    // (docs/metrics.md): "acne_rate", "peter_panning_rate", "mae", "cost.frame_ms",
-    // "cost.memory_bytes", ... A metric that is null (not applicable) is absent.
-    std::map<std::string, double> metrics;
-    // Every parameter of the setting, defaults included, as numbers (compare's metrics.json
-    // `parameters`): what the contact pairs compare (contact_pairs.h).
-    std::map<std::string, double> parameters;
+    // with this task's values typed as `result.parameters` are ("denoiser=svgf" a name).
+    std::vector<std::pair<std::string, ParamValue>> swept;
+    const LightRow& light() const { return result.lights.front(); }
 };
 
 struct SweepFailure {

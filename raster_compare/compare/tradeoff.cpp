@@ -46,6 +46,13 @@ std::optional<size_t> cheapestWithin(const std::vector<TradeoffPoint>& points, d
     return best;
 }
 
+std::vector<std::optional<size_t>> cheapestAtBudgets(const std::vector<TradeoffPoint>& points,
+                                                     const std::vector<double>& budgets) {
+    std::vector<std::optional<size_t>> out;
+    for (double budget : budgets) out.push_back(cheapestWithin(points, budget));
+    return out;
+}
+
 std::optional<double> oracleMsAtError(const std::vector<std::pair<double, double>>& curve,
                                       double error) {
     if (curve.empty() || !(error > 0.0)) return std::nullopt;

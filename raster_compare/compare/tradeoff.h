@@ -32,8 +32,12 @@ struct TradeoffCurve {
 // The curves with at least two points, in the order their first point appears.
 std::vector<TradeoffCurve> qualityCurves(const std::vector<TradeoffPoint>& points);
 
-// The cheapest point whose error is at most `budget`; none when none is.
+// The cheapest point whose error is at most `budget` (the first of equal costs); none when none is.
 std::optional<size_t> cheapestWithin(const std::vector<TradeoffPoint>& points, double budget);
+// The budget table that compare's report and the sweep report both draw: per budget, in order,
+// cheapestWithin.
+std::vector<std::optional<size_t>> cheapestAtBudgets(const std::vector<TradeoffPoint>& points,
+                                                     const std::vector<double>& budgets);
 
 // `curve`: the oracle's (ms, stated mean 95% half-width) as its run went, by time. The time at
 // which the half-width came down to `error`, interpolated log-log between the points around it;

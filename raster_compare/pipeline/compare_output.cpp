@@ -56,7 +56,7 @@ void writeRowFiles(const fs::path& out, const ComparedRow& row, bool images) {
     const fs::path dir = out / row.report.fileLabel;
     std::error_code ec;
     fs::create_directories(dir, ec);
-    ExrAttributes attributes = {{"shadowOracle/technique", row.report.label}};
+    ExrAttributes attributes = {{"shadowOracle/technique", row.report.row.label}};
     if (row.source == "external") {
         attributes.emplace_back("shadowOracle/image", row.imagePath);
         writeJsonFile(dir / "raster.json", {{"source", "external"},

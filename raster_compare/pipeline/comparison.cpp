@@ -9,9 +9,11 @@
 #include "core/camera_path.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "core/tool_info.h"
 #include "raster_compare/compare/tradeoff.h"
 #include "raster_compare/gl/context/gl_context.h"
+#include "raster_compare/pipeline/row_parameters.h"
 
 namespace so {
 
@@ -135,26 +137,37 @@ std::string shortest(double value) {
 }
 
 // The curve key and quality value of a setting (TradeoffPoint): the name and every parameter but
-// the quality one; and every parameter as the report shows it.
-void describeSetting(ReportTechnique& rt, const TechniqueRun& run) {
-    const ParamTable& table = findTechnique(run.spec.name).params;
-    const ParamSpec* q = qualityParam(table);
+// the quality one.
+void describeCurve(ReportTechnique& rt, const TechniqueRun& run) {
+    const ParamSpec* q = qualityParam(findTechnique(run.spec.name).params);
     rt.curve = run.spec.name;
     for (const auto& [key, value] : run.technique->values().all()) {
-        char text[48];
-        std::snprintf(text, sizeof text, "%.10g", value);
-        // A parameter that picks a method by name is written by its name ("contact=on", not 1).
-        const auto spec = std::find_if(table.begin(), table.end(),
-                                       [&](const ParamSpec& p) { return p.name == key; });
-        const bool named =
-            spec != table.end() && value >= 0.0 && value < double(spec->names.size());
-        rt.parameters += (rt.parameters.empty() ? "" : " ") + key + "=" +
-                         (named ? spec->names[size_t(value)] : std::string(text));
         if (q && key == q->name)
             rt.quality = value;
         else
             rt.curve += " " + key + "=" + shortest(value);
     }
+}
+
+// Every parameter as the report shows it, "k=v ..." from the typed row: a method by its name
+// ("contact=on"), a number to 10 significant digits.
+std::string parametersText(const RowParameters& parameters) {
+    std::string text;
+    for (const auto& [key, value] : parameters) {
+        char number[48];
+        std::snprintf(number, sizeof number, "%.10g", value.number);
+        text += (text.empty() ? "" : " ") + key + "=" +
+                (value.kind == ParamValue::Kind::Name ? value.name : std::string(number));
+    }
+    return text;
+}
+
+// The row as metrics.json holds it, read back (result_row.h) with its parameters typed by the
+// technique's table (row_parameters.h): what the report reads.
+ResultRow typedRow(const ComparedRow& row) {
+    ResultRow r = readResultRow(rowJson(row), JsonReader("metrics.json"), "results");
+    r.parameters = typedParameters(row.technique, row.parameters);
+    return r;
 }
 
 // Every light of one row measured against the oracle.
@@ -183,12 +196,11 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     row.technique = run.spec.name;
     row.parameters = toJson(run.technique->values().settings());
     ReportTechnique& rt = row.report;
-    rt.label = run.spec.label;
-    rt.family = findTechnique(run.spec.name).family;
-    rt.technique = run.spec.name;
-    rt.settings = run.technique->values().all();
+    rt.row.label = run.spec.label;
+    rt.row.family = findTechnique(run.spec.name).family;
+    rt.row.technique = run.spec.name;
     rt.fileLabel = run.spec.fileLabel;
-    describeSetting(rt, run);
+    describeCurve(rt, run);
     job.metricOptions.filteredTechnique = run.technique->filtered();
     // In a sequence the row judges its last frame as the sequence saw it, history resolved; the
     // timed render gave the costs.
@@ -200,6 +212,8 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
         job.sequence ? &job.sequence->metrics[index] : nullptr);
     rt.image = std::move(r.image);
     row.stats = std::move(r.stats);
+    rt.row = typedRow(row);
+    rt.parameters = parametersText(rt.row.parameters);
     return row;
 }
 
@@ -242,8 +256,9 @@ ComparedRow compareImage(Job job, const ImageInput& in) {
     row.renderer = in.image.cost ? in.image.cost->renderer : "";
     row.parameters = in.image.cost ? in.image.cost->params : nlohmann::json::object();
     ReportTechnique& rt = row.report;
-    rt.label = in.spec.label;
-    rt.family = "external";
+    rt.row.label = in.spec.label;
+    rt.row.family = "external";
+    rt.row.technique = "external";
     rt.curve = "external " + in.spec.label;  // no quality parameter: a point of its own
     rt.fileLabel = in.spec.fileLabel;
     rt.parameters = row.renderer.empty() ? "image " + in.spec.path : row.renderer;
@@ -255,6 +270,7 @@ ComparedRow compareImage(Job job, const ImageInput& in) {
         job, rt, image, [&](size_t, double oracleSeconds) { return imageCost(in, oracleSeconds); },
         nullptr, nullptr);
     rt.image = std::move(image);
+    rt.row = typedRow(row);
     return row;
 }
 
@@ -399,13 +415,13 @@ nlohmann::json rowJson(const ComparedRow& row) {
     for (const LightComparison& lc : row.report.lights) lights[lc.light] = lc.toJson();
     if (row.source == "external")
         return {
-            {"source", "external"},         {"technique", "external"}, {"family", "external"},
-            {"label", row.report.label},    {"image", row.imagePath},  {"renderer", row.renderer},
-            {"parameters", row.parameters}, {"timings", nullptr},      {"lights", lights}};
+            {"source", "external"},          {"technique", "external"}, {"family", "external"},
+            {"label", row.report.row.label}, {"image", row.imagePath},  {"renderer", row.renderer},
+            {"parameters", row.parameters},  {"timings", nullptr},      {"lights", lights}};
     return {{"source", "technique"},
             {"technique", row.technique},
-            {"family", row.report.family},
-            {"label", row.report.label},
+            {"family", row.report.row.family},
+            {"label", row.report.row.label},
             {"parameters", row.parameters},
             {"timings", row.stats ? toJson(row.stats->timings) : nlohmann::json(nullptr)},
             {"lights", lights}};

@@ -10,6 +10,7 @@
 #include "raster_compare/compare/metrics.h"
 #include "raster_compare/compare/sweep_report.h"
 #include "raster_compare/pipeline/csv_table.h"
+#include "raster_compare/pipeline/row_parameters.h"
 #include "raster_compare/pipeline/sweep_spec.h"
 
 namespace so {
@@ -113,7 +114,7 @@ struct Tables {
 // One light of one task's row into the long and wide tables and the report's rows.
 void addLight(Tables& t, const SweepPlan& plan, const std::vector<std::string>& swept,
               const SweepTask& task, const nlohmann::json& parameters, const std::string& light,
-              const nlohmann::json& metrics) {
+              const nlohmann::json& metrics, const JsonReader& in) {
     const std::string& scene = plan.scenes[task.scene].name;
     std::vector<std::pair<std::string, std::string>> wide = {{"task", task.id},
                                                              {"scene", scene},
@@ -130,16 +131,21 @@ void addLight(Tables& t, const SweepPlan& plan, const std::vector<std::string>& 
     // The wide table as compare's: every parameter of the setting, defaults included.
     for (const auto& [name, value] : parameters.items())
         wide.emplace_back("param." + name, value.dump());
-    SweepRow row{task.id, scene, light, task.technique, task.label, task.swept, {}, {}};
-    for (const auto& [name, value] : parameters.items())
-        if (value.is_number()) row.parameters[name] = value.get<double>();
+    // The report's row: the task's setting and this light's metrics, read back typed.
+    SweepRow row{task.id, scene, {}, {}};
+    row.result.label = task.label;
+    row.result.technique = task.technique;
+    row.result.parameters = typedParameters(task.technique, parameters);
+    row.result.lights.push_back(
+        readLightRow(metrics, light, in, "result.lights." + printable(light, 60)));
+    for (const auto& [name, value] : task.swept)
+        row.swept.emplace_back(name, typedParamValue(task.technique, name, value));
     for (const auto& [metric, value] : flatMetrics(metrics)) {
         const std::string text = value.is_null() ? "" : value.dump();
         t.csv << csvField(scene) << ',' << csvField(light) << ',' << csvField(task.technique) << ','
               << csvField(task.label) << ',' << metric << ',' << text << ',' << task.id << params
               << "\n";
         wide.emplace_back(metric, text);
-        if (value.is_number()) row.metrics[metric] = value.get<double>();
     }
     t.wide.add(wide);
     t.report.rows.push_back(std::move(row));
@@ -156,7 +162,7 @@ void addRow(Tables& t, const SweepPlan& plan, const std::vector<std::string>& sw
     const nlohmann::json& parameters = in.at(result, "result", "parameters");
     in.requireObject(parameters, "result.parameters");
     for (const auto& [light, metrics] : lights.items())
-        addLight(t, plan, swept, task, parameters, light, metrics);
+        addLight(t, plan, swept, task, parameters, light, metrics, in);
     nlohmann::json r = result;
     r["task"] = {{"index", index}, {"id", task.id}, {"scene", plan.scenes[task.scene].name}};
     r["swept"] = in.at(in.at(row, "", "task"), "task", "swept");

@@ -2,6 +2,7 @@
 // what contact=on closes and adds, and the sweep report's section with and without pairs.
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -9,19 +10,45 @@
 #include <gtest/gtest.h>
 
 #include "raster_compare/compare/contact_pairs.h"
+#include "raster_compare/compare/result_row.h"
 #include "raster_compare/compare/sweep_report.h"
 
 namespace so::test {
 namespace {
 
-ContactSetting setting(const std::string& label, const std::string& technique,
-                       std::map<std::string, double> parameters, double pp, double acne,
-                       std::optional<double> bleed, double falseShadow) {
-    return {label, technique, std::move(parameters), {pp, bleed, falseShadow, acne}};
+// A setting's row and its one light, as metrics.json is read back (result_row.h): `contact` a
+// method (off 0, on 1), the other parameters numbers.
+struct Setting {
+    ResultRow row;
+    LightRow light;
+};
+
+Setting setting(const std::string& label, const std::string& technique,
+                std::map<std::string, double> parameters, std::optional<double> pp, double acne,
+                std::optional<double> bleed, double falseShadow) {
+    Setting s;
+    s.row.label = label;
+    s.row.technique = technique;
+    for (const auto& [name, v] : parameters)
+        s.row.parameters[name] = name == "contact"
+                                     ? ParamValue{ParamValue::Kind::Name, v, v != 0 ? "on" : "off"}
+                                     : ParamValue{ParamValue::Kind::Number, v, ""};
+    s.light.light = "sun";
+    s.light.set(metricInfo("peter_panning_rate"), pp);
+    s.light.set(metricInfo("acne_rate"), acne);
+    s.light.set(metricInfo("screen_bleed_rate"), bleed);
+    s.light.set(metricInfo("false_shadow_rate"), falseShadow);
+    return s;
+}
+
+std::vector<ContactPair> pairs(const std::vector<Setting>& s) {
+    std::vector<ContactSetting> settings;
+    for (const Setting& x : s) settings.push_back({&x.row, &x.light});
+    return pairContactSettings(settings);
 }
 
 TEST(ContactPairs, PairsOnWithOffAtOtherwiseEqualSettings) {
-    const std::vector<ContactSetting> s = {
+    const std::vector<Setting> s = {
         setting("pcf", "pcf", {{"contact", 0}, {"resolution", 2048}}, 0.03, 0.001, {}, 0.01),
         setting("pcf:resolution=512", "pcf", {{"contact", 0}, {"resolution", 512}}, 0.05, 0, {},
                 0.02),
@@ -33,9 +60,9 @@ TEST(ContactPairs, PairsOnWithOffAtOtherwiseEqualSettings) {
         setting("pcss:contact=on", "pcss", {{"contact", 1}, {"resolution", 2048}}, 0.0, 0, 0, 0),
         setting("raytraced", "raytraced", {{"spp", 1}}, 0.0, 0, {}, 0),
     };
-    const std::vector<ContactPair> pairs = pairContactSettings(s);
-    ASSERT_EQ(pairs.size(), 1u);
-    const ContactPair& p = pairs[0];
+    const std::vector<ContactPair> found = pairs(s);
+    ASSERT_EQ(found.size(), 1u);
+    const ContactPair& p = found[0];
     EXPECT_EQ(p.offLabel, "pcf");
     EXPECT_EQ(p.onLabel, "pcf:contact=on,contact_steps=8");
     EXPECT_NEAR(*p.peterPanningClosed(), 0.03 - 0.01, 1e-12);
@@ -45,16 +72,14 @@ TEST(ContactPairs, PairsOnWithOffAtOtherwiseEqualSettings) {
 }
 
 TEST(ContactPairs, PeterPanningNotMeasuredStaysNull) {
-    std::vector<ContactSetting> s = {
-        setting("pcf", "pcf", {{"contact", 0}}, 0, 0, {}, 0),
-        setting("pcf:contact=on", "pcf", {{"contact", 1}}, 0, 0, 0.001, 0.001)};
-    s[0].rates.peterPanning.reset();
-    s[1].rates.peterPanning.reset();
-    const std::vector<ContactPair> pairs = pairContactSettings(s);
-    ASSERT_EQ(pairs.size(), 1u);
-    EXPECT_FALSE(pairs[0].peterPanningClosed());
+    const std::vector<Setting> s = {
+        setting("pcf", "pcf", {{"contact", 0}}, std::nullopt, 0, {}, 0),
+        setting("pcf:contact=on", "pcf", {{"contact", 1}}, std::nullopt, 0, 0.001, 0.001)};
+    const std::vector<ContactPair> found = pairs(s);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_FALSE(found[0].peterPanningClosed());
     std::ostringstream html;
-    writeContactTable(html, pairs);
+    writeContactTable(html, found);
     EXPECT_NE(html.str().find("data-on=\"pcf:contact=on\""), std::string::npos);
     EXPECT_EQ(html.str().find("data-peter-panning-closed"), std::string::npos);
     std::ostringstream none;
@@ -66,12 +91,11 @@ SweepRow sweepRow(const std::string& label, double contact, double pp, double re
     SweepRow r;
     r.task = "t-" + label;
     r.scene = "scenes/bunny.scene.json";
-    r.light = "sun";
-    r.technique = "pcf";
-    r.label = label;
-    r.swept = {{"contact", contact}};
-    r.metrics = {{"acne_rate", 0.0}, {"peter_panning_rate", pp}, {"false_shadow_rate", 0.01}};
-    r.parameters = {{"contact", contact}, {"resolution", resolution}};
+    const Setting s = setting(label, "pcf", {{"contact", contact}, {"resolution", resolution}}, pp,
+                              0.0, std::nullopt, 0.01);
+    r.result = s.row;
+    r.result.lights = {s.light};
+    r.swept = {{"contact", s.row.parameters.at("contact")}};
     return r;
 }
 

@@ -198,13 +198,13 @@ TEST(IndexPage, ReadsAllFieldsAndNulls) {
     EXPECT_EQ(m.sceneFile, "scenes/beta.scene.json");
     EXPECT_EQ(m.lights, (std::vector<std::string>{"area lamp", "sun"}));
     ASSERT_EQ(m.results.size(), 2u);
-    const IndexLightMetrics& lamp = m.results[1].lights[0];
+    const LightRow& lamp = m.results[1].lights[0];
     EXPECT_EQ(lamp.light, "area lamp");
-    EXPECT_EQ(*lamp.penumbraMae, 0.03);
-    EXPECT_EQ(*lamp.boundaryDisplacementP95Px, 2.5);
-    EXPECT_FALSE(lamp.acneRate);
-    EXPECT_FALSE(lamp.frameMs);
-    EXPECT_EQ(*m.results[1].lights[1].frameMs, 7.25);
+    EXPECT_EQ(*lamp.value("penumbra_mae"), 0.03);
+    EXPECT_EQ(*lamp.value("boundary_displacement_px.p95"), 2.5);
+    EXPECT_FALSE(lamp.value("acne_rate"));
+    EXPECT_FALSE(lamp.value("cost.frame_ms"));
+    EXPECT_EQ(*m.results[1].lights[1].value("cost.frame_ms"), 7.25);
     EXPECT_EQ(sceneStem("scenes/terrain_sun.scene.json"), "terrain_sun");
     EXPECT_EQ(sceneStem("models/bunny.glb"), "bunny");
 }

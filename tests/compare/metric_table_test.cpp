@@ -148,8 +148,7 @@ TEST(MetricTable, MetricsOutsideTheirScopeAreNull) {
 
 // The baseline compares only metrics that have a better direction.
 TEST(MetricTable, TheBaselineComparesMetricsWithADirection) {
-    for (const BaselineMetric& b : baselineMetricTable())
-        EXPECT_NE(b.metric->better, Better::None) << b.metric->name;
+    for (const MetricInfo* b : baselineMetricTable()) EXPECT_NE(b->better, Better::None) << b->name;
     EXPECT_EQ(findMetric("penumbra_bias")->better, Better::SmallerMagnitude);
 }
 

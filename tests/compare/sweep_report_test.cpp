@@ -18,21 +18,30 @@ namespace {
 
 constexpr double kMiB = 1048576.0;
 
+ParamValue number(double v) {
+    return {ParamValue::Kind::Number, v, ""};
+}
+
+void setMetric(SweepRow& r, const std::string& name, double v) {
+    r.result.lights.front().set(metricInfo(name), v);
+}
+
 SweepRow row(const std::string& light, const std::string& technique, const std::string& label,
-             std::vector<std::pair<std::string, double>> swept, double acne, double pp, double mae,
-             double ms, double mib) {
+             std::vector<std::pair<std::string, ParamValue>> swept, double acne, double pp,
+             double mae, double ms, double mib) {
     SweepRow r;
     r.task = "t-" + label;
     r.scene = "scenes/box.scene.json";
-    r.light = light;
-    r.technique = technique;
-    r.label = label;
+    r.result.technique = technique;
+    r.result.label = label;
+    r.result.lights.emplace_back();
+    r.result.lights.front().light = light;
     r.swept = std::move(swept);
-    r.metrics = {{"acne_rate", acne},
-                 {"peter_panning_rate", pp},
-                 {"mae", mae},
-                 {"cost.frame_ms", ms},
-                 {"cost.memory_bytes", mib * kMiB}};
+    setMetric(r, "acne_rate", acne);
+    setMetric(r, "peter_panning_rate", pp);
+    setMetric(r, "mae", mae);
+    setMetric(r, "cost.frame_ms", ms);
+    setMetric(r, "cost.memory_bytes", mib * kMiB);
     return r;
 }
 
@@ -40,8 +49,8 @@ SweepRow slopeBias(const std::string& light, double alpha, double min, double ac
                    double mae, double ms, double mib = 4.0) {
     std::ostringstream label;
     label << "slope-bias:alpha=" << alpha << ",min=" << min;
-    return row(light, "slope-bias", label.str(), {{"alpha", alpha}, {"min", min}}, acne, pp, mae,
-               ms, mib);
+    return row(light, "slope-bias", label.str(), {{"alpha", number(alpha)}, {"min", number(min)}},
+               acne, pp, mae, ms, mib);
 }
 
 // Light "key": slope-bias alpha {0, 1, 2} x min {0, 0.5}, pcf over kernel {3, 5}, and basic.
@@ -64,8 +73,8 @@ SweepReportInput sweep() {
                slopeBias(k, 1, 0.5, 0.0, 0.004, 0.02, 1.3),
                slopeBias(k, 2, 0, 0.0, 0.003, 0.025, 1.3, 2.0),
                slopeBias(k, 2, 0.5, 0.0, 0.008, 0.04, 1.5),
-               row(k, "pcf", "pcf:kernel=3", {{"kernel", 3}}, 0.001, 0.01, 0.05, 2.0, 8.0),
-               row(k, "pcf", "pcf:kernel=5", {{"kernel", 5}}, 0.0, 0.02, 0.015, 3.0, 8.0)};
+               row(k, "pcf", "pcf:kernel=3", {{"kernel", number(3)}}, 0.001, 0.01, 0.05, 2.0, 8.0),
+               row(k, "pcf", "pcf:kernel=5", {{"kernel", number(5)}}, 0.0, 0.02, 0.015, 3.0, 8.0)};
     for (double alpha : {0.0, 1.0})
         for (double min : {0.0, 0.5})
             in.rows.push_back(slopeBias("fill", alpha, min, 0.01 + alpha, 0.0, 0.1, 1.0));
@@ -137,10 +146,11 @@ TEST(SweepReport, FrontTableListsExactlyTheUnbeatenSettings) {
 TEST(SweepReport, FrontsAndBudgetsAgainstTheWorkOfAFrame) {
     SweepReportInput in = sweep();
     for (SweepRow& r : in.rows)
-        r.metrics["cost.work.bytes_moved"] = (r.technique == "pcf"     ? 1.0
-                                              : r.technique == "basic" ? 3.0
-                                                                       : 2.0) *
-                                             kMiB;
+        setMetric(r, "cost.work.bytes_moved",
+                  (r.result.technique == "pcf"     ? 1.0
+                   : r.result.technique == "basic" ? 3.0
+                                                   : 2.0) *
+                      kMiB);
     const std::string key = section(writeAndRead(in), 0);
     const std::string front = between(
         key, "<table class=\"front\" data-metric=\"mae\" data-cost=\"cost.work.bytes_moved\">",
@@ -212,14 +222,16 @@ TEST(SweepReport, NamesTheAcneFreeSettingWithTheLeastPeterPanning) {
         << "nothing swept: no sentence";
 }
 
-// A parameter that picks a method by name is swept as its index: the sentence and the table
-// write the name the label has.
+// A parameter that picks a method is typed by its name where the row is made (metrics.json holds
+// its index): the sentence and the table write that name, as the label does.
 TEST(SweepReport, NamedParametersAreWrittenByName) {
     SweepReportInput in = sweep();
-    in.rows.push_back(row("key", "raytraced", "raytraced:denoiser=none,spp=1", {{"denoiser", 0}},
-                          0.0, 0.01, 0.05, 1.0, 1.0));
-    in.rows.push_back(row("key", "raytraced", "raytraced:denoiser=svgf,spp=1", {{"denoiser", 2}},
-                          0.0, 0.002, 0.03, 2.0, 1.0));
+    in.rows.push_back(row("key", "raytraced", "raytraced:denoiser=none,spp=1",
+                          {{"denoiser", {ParamValue::Kind::Name, 0, "none"}}}, 0.0, 0.01, 0.05, 1.0,
+                          1.0));
+    in.rows.push_back(row("key", "raytraced", "raytraced:denoiser=svgf,spp=1",
+                          {{"denoiser", {ParamValue::Kind::Name, 2, "svgf"}}}, 0.0, 0.002, 0.03,
+                          2.0, 1.0));
     const std::string key = section(writeAndRead(in), 0);
     EXPECT_NE(key.find("raytraced: denoiser=svgf has no acne and the least peter-panning"),
               std::string::npos);
