@@ -23,14 +23,6 @@ namespace {
 // above float rounding of the positions the camera pass interpolated.
 constexpr double kOriginOffset = 2e-4;
 
-// The light's sample k of the pixel's sequence, local frame; `lsEmitNormal` the emitter's normal
-// there (zero for lights that are a point or a direction). A sphere's samples are uniform by area
-// over the cap the point p sees (the same ratio estimate as over the whole sphere, whose other
-// samples have G = 0: at one ray a pixel most pixels would otherwise get none).
-struct LightSample {
-    glm::dvec3 lsPoint{0.0}, lsEmitNormal{0.0};
-};
-
 // The BVH of the shadow rays: Embree's plain build (no robust mode, medium quality, triangles
 // kept as the scene gives them), as a GPU's RT cores would take the raster path's own meshes,
 // not the oracle's watertight one; alpha-tested meshes cut their masks' holes as the oracle's
@@ -69,40 +61,20 @@ struct PixelTrace {
     uint32_t rays = 0;
 };
 
-// The light's sample for the pixel's own scrambled sequence at index `index`.
-LightSample sampleLight(const Light& light, const LocalFrame& frame, const glm::dvec3& lsP,
-                        uint32_t index, uint32_t seed) {
-    LightSample s;
-    const RasterAreaLightKind* area = rasterAreaLightKind(light.type);
-    if (!area) {
-        s.lsPoint = frame.lsFromWs(light.wsPosition);
-        return s;
-    }
+// The light's sample for the pixel's own scrambled sequence at index `index`, as the point lsP
+// sees the light (its kind says how: raster_light_kind.h, pointSeenFrom), local frame.
+// lsEmitNormal is the emitter's normal there (zero for lights that are a point or a direction): a
+// direction, the same in both frames (the local frame only scales by a power of two and moves).
+struct LightSample {
+    glm::dvec3 lsPoint{0.0}, lsEmitNormal{0.0};
+};
+
+LightSample sampleLight(const RasterLightKind& kind, const Light& light, const LocalFrame& frame,
+                        const glm::dvec3& lsP, uint32_t index, uint32_t seed) {
     float u = 0.0f, v = 0.0f;
     sobol2D(index, seed, u, v);
-    glm::dvec3 ws = area->samplePoint(light, double(u), double(v));
-    if (!isOneSided(light)) {
-        // cos(theta) from the axis towards p, uniform over the sphere, mapped affinely onto
-        // [r / D, 1]: uniform by area over the cap that p sees (inside the sphere, none: the
-        // oracle's V is 0 there, and so is G here).
-        const glm::dvec3 toP = frame.wsFromLs(lsP) - light.wsPosition;
-        const double D = glm::length(toP), r = light.radius;
-        if (D > r && r > 0.0) {
-            const glm::dvec3 axis = toP / D;
-            const glm::dvec3 radial = (ws - light.wsPosition) / r;
-            const double cosT = glm::dot(radial, axis);
-            glm::dvec3 tangent = radial - cosT * axis;
-            const double sinT = glm::length(tangent);
-            tangent = sinT > 1e-12 ? tangent / sinT : glm::dvec3(0.0);
-            const double k = r / D, cosCap = k + (1.0 - k) * std::abs(cosT);
-            const double sinCap = std::sqrt(std::max(0.0, 1.0 - cosCap * cosCap));
-            ws = light.wsPosition + r * (cosCap * axis + sinCap * tangent);
-        }
-    }
-    s.lsPoint = frame.lsFromWs(ws);
-    s.lsEmitNormal =
-        isOneSided(light) ? light.wsEmitNormal() : glm::normalize(ws - light.wsPosition);
-    return s;
+    const LightPoint p = kind.pointSeenFrom(light, frame.wsFromLs(lsP), double(u), double(v));
+    return {frame.lsFromWs(p.wsPoint), p.wsNormal};
 }
 
 // One pixel: spp rays from the offset point, V = sum(v G) / sum(G).
@@ -110,15 +82,16 @@ PixelTrace tracePixel(RTCScene scene, const Light& light, const LocalFrame& fram
                       const glm::dvec3& lsP, const glm::dvec3& lsN, uint32_t pixelSeed,
                       const ShadowRaySettings& settings) {
     PixelTrace out;
+    const RasterLightKind& kind = rasterLightKind(light.type);
     const bool directional = isDirectional(light);
-    const bool area = rasterAreaLightKind(light.type) != nullptr;
+    const bool area = kind.area() != nullptr;
     const glm::dvec3 origin = lsP + kOriginOffset * lsN;
     double sumG = 0.0, sumVG = 0.0, sumHit = 0.0;
     int hits = 0;
     for (int s = 0; s < settings.spp; ++s) {
         const LightSample ls = sampleLight(
-            light, frame, lsP, uint32_t(settings.frameIndex) * uint32_t(settings.spp) + uint32_t(s),
-            pixelSeed);
+            kind, light, frame, lsP,
+            uint32_t(settings.frameIndex) * uint32_t(settings.spp) + uint32_t(s), pixelSeed);
         glm::dvec3 d = directional ? -light.wsDirection : ls.lsPoint - origin;
         const double dist = directional ? std::numeric_limits<double>::infinity() : glm::length(d);
         if (!directional) d /= dist;
