@@ -14,7 +14,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "oracle/embree_handles.h"
+#include "embree/embree_handles.h"
 #include "oracle/surface_buffer.h"
 
 namespace so::bench {

@@ -1,6 +1,8 @@
 // The Embree scene the oracle traces: built once from the scene model, in the local frame
-// (local_frame.h), robust mode, one Embree geometry per drawn mesh primitive with geomID = id.mesh.
-// Keeps the double-precision local vertices so hit points and normals are rebuilt exactly.
+// (local_frame.h), robust mode, high build quality, one Embree geometry per drawn mesh primitive
+// with geomID = id.mesh (embree/triangle_scene.h, the build it shares with the raster path's
+// shadow rays). Keeps the double-precision local vertices so hit points and normals are rebuilt
+// exactly.
 //
 // Shadow rays skip the triangle they leave from: a query whose ShadowContext has the origin filter
 // on rejects a hit on the triangle whose global index is the ray's `id` (kNoOriginTriangle: skip
@@ -11,20 +13,15 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
-#include <vector>
 
-#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/local_frame.h"
 #include "core/scene.h"
-#include "oracle/embree_handles.h"
+#include "embree/embree_handles.h"
+#include "embree/triangle_scene.h"
 
 namespace so {
-
-// The ray `id` of rays that leave from no surface (primary rays).
-inline constexpr unsigned kNoOriginTriangle = 0xFFFFFFFFu;
 
 // The intersect context of the oracle's shadow queries: Embree's, and what the origin filter reads
 // (Embree hands the context to the filter; rtc must stay the first member).
@@ -49,7 +46,7 @@ class Accel {
     Accel(const Accel&) = delete;
     Accel& operator=(const Accel&) = delete;
 
-    RTCScene rtcScene() const { return rtcScene_.get(); }
+    RTCScene rtcScene() const { return triangles_.rtcScene(); }
     // A context for shadow queries on this scene (coherent: the packets of one tile or pixel), the
     // origin filter off.
     ShadowContext shadowContext(bool coherent) const;
@@ -57,59 +54,41 @@ class Accel {
 
     // Triangle `prim` of mesh `mesh`, vertices in the local frame, double.
     void triangle(unsigned mesh, unsigned prim, glm::dvec3& a, glm::dvec3& b, glm::dvec3& c) const {
-        const MeshData& m = meshes_[mesh];
-        a = m.lsPositions[m.indices[3 * prim]];
-        b = m.lsPositions[m.indices[3 * prim + 1]];
-        c = m.lsPositions[m.indices[3 * prim + 2]];
+        triangles_.lsTriangle(mesh, prim, a, b, c);
     }
     // The same triangle as the scene gives it: world space, double (the geometry the oracle's
     // exact decisions answer for, exact_facing.h).
     void wsTriangle(unsigned mesh, unsigned prim, glm::dvec3& a, glm::dvec3& b,
                     glm::dvec3& c) const {
-        const MeshData& m = meshes_[mesh];
-        a = m.wsPositions[m.indices[3 * prim]];
-        b = m.wsPositions[m.indices[3 * prim + 1]];
-        c = m.wsPositions[m.indices[3 * prim + 2]];
+        triangles_.wsTriangle(mesh, prim, a, b, c);
     }
     // The ray id that makes a shadow ray skip triangle `prim` of mesh `mesh` (< 2^28 by the
     // loader's limits, so it never equals kNoOriginTriangle).
-    unsigned originId(unsigned mesh, unsigned prim) const { return meshBase_[mesh] + prim; }
+    unsigned originId(unsigned mesh, unsigned prim) const {
+        return triangles_.globalIndex(mesh, prim);
+    }
     // Whether its queries may run the origin filter (and the passes decide near fields): false
     // for the benchmarks' plain scene, whose passes then trace bare.
     bool filters() const { return filters_; }
     // Whether some mesh is alpha-tested: its geometry filter reads every ray's id, on every query.
-    bool alphaTested() const { return !alphaGeometries_.empty(); }
+    bool alphaTested() const { return triangles_.alphaTested(); }
 
     // Alpha tests (core/alpha_mask.h) run by this thread's filter calls so far, over all Accels:
     // a pass reads it before and after its work on each thread (alpha_tests in oracle.json).
-    static uint64_t alphaTestsOnThisThread();
+    static uint64_t alphaTestsOnThisThread() { return TriangleScene::alphaTestsOnThisThread(); }
 
     // What the filter of an alpha-tested geometry reads (its Embree user data).
-    struct AlphaGeometry {
-        unsigned base = 0;  // global index of the mesh's first triangle
-        bool skipOrigin = false;
-        const AlphaMask* mask = nullptr;
-        const AlphaTexture* texture = nullptr;  // null: constant alpha
-        const glm::vec2* uvs = nullptr;         // per vertex
-        const uint32_t* indices = nullptr;      // 3 per triangle
-    };
+    using AlphaGeometry = so::AlphaGeometry;
 
     // What an alpha-tested mesh's filter reads; null for other meshes.
-    const AlphaGeometry* alphaGeometry(unsigned mesh) const { return alphaByMesh_[mesh]; }
+    const AlphaGeometry* alphaGeometry(unsigned mesh) const {
+        return triangles_.alphaGeometry(mesh);
+    }
 
   private:
-    struct MeshData {
-        std::vector<glm::dvec3> lsPositions;
-        const std::vector<glm::dvec3>& wsPositions;  // the scene's (it outlives the Accel)
-        const std::vector<uint32_t>& indices;
-    };
     LocalFrame frame_;
-    EmbreeScene rtcScene_;
-    std::vector<MeshData> meshes_;
-    std::vector<unsigned> meshBase_;  // global index of each mesh's first triangle
-    std::vector<const AlphaGeometry*> alphaByMesh_;
     bool filters_ = true;
-    std::vector<std::unique_ptr<AlphaGeometry>> alphaGeometries_;
+    TriangleScene triangles_;
 };
 
 }  // namespace so

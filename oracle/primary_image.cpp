@@ -8,8 +8,8 @@
 #include "core/channels.h"
 #include "core/geometry_channels.h"
 #include "core/progress.h"
+#include "embree/embree_handles.h"
 #include "oracle/accel.h"
-#include "oracle/embree_handles.h"
 #include "oracle/surface_buffer.h"
 #include "oracle/thread_arena.h"
 

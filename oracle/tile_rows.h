@@ -9,8 +9,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "embree/embree_handles.h"
 #include "oracle/accel.h"
-#include "oracle/embree_handles.h"
 
 namespace so {
 

@@ -12,7 +12,7 @@
 #include "core/process_clock.h"
 #include "core/progress.h"
 #include "core/tool_info.h"
-#include "oracle/embree_handles.h"
+#include "embree/embree_handles.h"
 #include "oracle/oracle_cache.h"
 #include "oracle/points.h"
 

@@ -18,8 +18,8 @@ import sys
 SECTION = "## The rules as the test reads them"
 # The folders whose C++ files every rule covers, and the first path components that make an
 # include ours (shadow_oracle/ is the public header's folder, include/shadow_oracle/).
-SOURCE_FOLDERS = ("core", "oracle", "raster_compare", "api", "include", "python", "cli")
-OUR_TOPS = {"core", "oracle", "raster_compare", "api", "cli", "python", "tests", "bench",
+SOURCE_FOLDERS = ("core", "embree", "oracle", "raster_compare", "api", "include", "python", "cli")
+OUR_TOPS = {"core", "embree", "oracle", "raster_compare", "api", "cli", "python", "tests", "bench",
             "include", "shadow_oracle"}
 CPP_SUFFIXES = (".h", ".hpp", ".cpp", ".cc", ".inl")
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
@@ -191,7 +191,7 @@ def check_includes(root, rules, failures):
                 continue
             if bracket == '"':
                 failures.append(f"{at}: a quoted include is written from the repository root "
-                                "(core/..., oracle/..., raster_compare/...)")
+                                "(core/..., embree/..., oracle/..., raster_compare/...)")
                 continue
             dep = dep_of_header(rules, inc)
             never = row["never_includes"]

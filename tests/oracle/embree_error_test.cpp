@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "embree/embree_handles.h"
 #include "oracle/accel.h"
-#include "oracle/embree_handles.h"
 #include "oracle/oracle.h"
 #include "test_scenes.h"
 

@@ -16,8 +16,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/scene.h"
+#include "embree/embree_handles.h"
 #include "oracle/accel.h"
-#include "oracle/embree_handles.h"
 #include "oracle/exact_tracer.h"
 #include "oracle/near_field.h"
 #include "oracle/offset.h"

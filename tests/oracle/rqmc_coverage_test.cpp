@@ -17,10 +17,10 @@
 
 #include "core/channels.h"
 #include "core/lights/make_light.h"
+#include "embree/embree_handles.h"
 #include "lambert.h"
 #include "oracle/accel.h"
 #include "oracle/area_shadow.h"
-#include "oracle/embree_handles.h"
 #include "oracle/exact_penumbra.h"
 #include "oracle/reference_light.h"
 #include "test_scenes.h"

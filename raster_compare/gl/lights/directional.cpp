@@ -9,6 +9,9 @@ class DirectionalRasterLightKind final : public RasterLightKind {
   public:
     LightType type() const override { return LightType::Directional; }
     LightCamera::Kind cameraKind() const override { return LightCamera::Kind::Ortho; }
+    RasterLightShape shape(const Light& l) const override {
+        return {RasterLightShape::Kind::Direction, l.wsPosition, {}, {}, 0.0};
+    }
 };
 
 }  // namespace

@@ -8,6 +8,9 @@ namespace {
 class PointRasterLightKind final : public RasterLightKind {
   public:
     LightType type() const override { return LightType::Point; }
+    RasterLightShape shape(const Light& l) const override {
+        return {RasterLightShape::Kind::Point, l.wsPosition, {}, {}, 0.0};
+    }
 };
 
 }  // namespace

@@ -24,6 +24,9 @@ std::vector<double> fanAreas(const Light& l) {
 class PolygonRasterLightKind final : public RasterAreaLightKind {
   public:
     LightType type() const override { return LightType::Polygon; }
+    RasterLightShape shape(const Light& l) const override {
+        return {RasterLightShape::Kind::Polygon, l.wsPosition, {}, {}, 0.0};
+    }
     double width(const Light& l) const override {
         double twice = 0.0;
         for (double a : fanAreas(l)) twice += a;

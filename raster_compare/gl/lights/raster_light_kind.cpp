@@ -30,6 +30,16 @@ std::vector<const RasterLightKind*> buildTable() {
 
 }  // namespace
 
+LightPoint RasterLightKind::pointSeenFrom(const Light& light, const glm::dvec3&, double,
+                                          double) const {
+    return {light.wsPosition, glm::dvec3(0.0)};
+}
+
+LightPoint RasterAreaLightKind::pointSeenFrom(const Light& light, const glm::dvec3&, double u,
+                                              double v) const {
+    return {samplePoint(light, u, v), light.wsEmitNormal()};
+}
+
 const RasterLightKind& rasterLightKind(LightType type) {
     static const std::vector<const RasterLightKind*> table = buildTable();
     const size_t i = size_t(type);

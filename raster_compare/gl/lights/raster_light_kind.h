@@ -5,10 +5,12 @@
 // SO_REGISTER_RASTER_LIGHT_KIND(Class), which raster_compare/gl/CMakeLists.txt finds to generate
 // the list (cmake/so_registry.cmake), as techniques register. It says which shadow camera the
 // light takes (light_camera.h, which also makes the shaders' LIGHT_* defines from it) and what the
-// soft techniques' weight passes integrate over (the EMITTER_* defines); an area light's kind adds
-// its width (PCSS-like techniques) and its sample points (the soft techniques). Every area light's
-// shadow camera is the cube from its centre and its facing the one-sided or sphere emitter's
-// (light_facing.h), so those need nothing per type.
+// soft techniques' weight passes integrate over (the EMITTER_* defines), its shape (issue 62: the
+// techniques ask it, never guess it from which of Light's fields are set) and its points as a
+// receiver samples them (shadow rays); an area light's kind adds its width (PCSS-like techniques)
+// and its sample points (the soft techniques). Every area light's shadow camera is the cube from
+// its centre and its facing the one-sided or sphere emitter's (light_facing.h), so those need
+// nothing per type.
 #pragma once
 
 #include <vector>
@@ -21,6 +23,30 @@
 namespace so {
 
 class RasterAreaLightKind;
+
+// What a light is as the raster path's techniques sample it (smrt's rays, the shadow rays): the
+// kind's answer, world space. A new shape is a value here, and the switches on it (smrt.cpp) fail
+// to compile (-Wswitch) until they say how they take it.
+struct RasterLightShape {
+    enum class Kind {
+        Point,      // one point, wsCentre (point and spot lights)
+        Direction,  // a direction, Light::wsDirection (directional lights)
+        Rect,       // the parallelogram wsCentre + s wsU + t wsV, s and t in [-1/2, 1/2]
+        Disk,       // the ellipse wsCentre + x wsU + y wsV, x^2 + y^2 <= 1 (a disk: equal axes)
+        Sphere,     // the sphere of `radius` about wsCentre
+        Polygon,    // the planar polygon Light::wsVertices
+    };
+    Kind kind = Kind::Point;
+    glm::dvec3 wsCentre{0.0};
+    glm::dvec3 wsU{0.0}, wsV{0.0};  // Rect: its full edges; Disk: its perpendicular semi-axes
+    double radius = 0.0;            // Sphere
+};
+
+// A point on a light and the emitter's normal there (zero for a point or a direction), world
+// space.
+struct LightPoint {
+    glm::dvec3 wsPoint{0.0}, wsNormal{0.0};
+};
 
 class RasterLightKind {
   public:
@@ -35,6 +61,14 @@ class RasterLightKind {
     virtual const char* emitterDefine() const { return "#define EMITTER_POINT\n"; }
     // Area lights: their part; null for punctual lights.
     virtual const RasterAreaLightKind* area() const { return nullptr; }
+    // Its shape: every kind answers, from the fields its own type reads.
+    virtual RasterLightShape shape(const Light& light) const = 0;
+    // The point for (u, v) in [0, 1)^2 as a receiver at wsFrom samples the light, and the
+    // emitter's normal there: a punctual light's one point (normal zero; a directional light's
+    // rays take its direction instead); an area light's samplePoint (uniform by area) with its
+    // emitting normal; a sphere's visible cap (sphere.cpp).
+    virtual LightPoint pointSeenFrom(const Light& light, const glm::dvec3& wsFrom, double u,
+                                     double v) const;
 };
 
 class RasterAreaLightKind : public RasterLightKind {
@@ -47,6 +81,8 @@ class RasterAreaLightKind : public RasterLightKind {
     // The point for (u, v) in [0, 1)^2, uniform by area over the light (sphere: the whole sphere),
     // world space: the soft techniques' light samples (light_samples.h).
     virtual glm::dvec3 samplePoint(const Light& light, double u, double v) const = 0;
+    LightPoint pointSeenFrom(const Light& light, const glm::dvec3& wsFrom, double u,
+                             double v) const override;
 };
 
 // The registered kind of a light type; every type has one (checked at the first call).

@@ -12,6 +12,9 @@ namespace {
 class RectRasterLightKind final : public RasterAreaLightKind {
   public:
     LightType type() const override { return LightType::Rect; }
+    RasterLightShape shape(const Light& l) const override {
+        return {RasterLightShape::Kind::Rect, l.wsPosition, l.wsU, l.wsV, 0.0};
+    }
     double width(const Light& l) const override {
         return std::sqrt(glm::length(glm::cross(l.wsU, l.wsV)));
     }

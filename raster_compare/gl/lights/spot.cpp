@@ -9,6 +9,9 @@ class SpotRasterLightKind final : public RasterLightKind {
   public:
     LightType type() const override { return LightType::Spot; }
     LightCamera::Kind cameraKind() const override { return LightCamera::Kind::Perspective; }
+    RasterLightShape shape(const Light& l) const override {
+        return {RasterLightShape::Kind::Point, l.wsPosition, {}, {}, 0.0};
+    }
 };
 
 }  // namespace

@@ -11,8 +11,10 @@
 // sum(G), G = cos(receiver) cos(emitter) / r^2 (one-sided for rect, disk and polygon lights),
 // samples uniform by area (raster_compare/gl/lights/). Point, spot and directional lights: every
 // ray goes to the light's one point (direction), V = 0 where the surface faces away (and outside
-// a spot's cone), as the oracle's hard shadow. Alpha-tested meshes cut their masks' holes (an
-// Embree filter evaluating core/alpha_mask.h at each candidate hit, as the oracle's).
+// a spot's cone), as the oracle's hard shadow. Where a ray goes on the light its kind says
+// (raster_light_kind.h, pointSeenFrom: a sphere's visible cap). Alpha-tested meshes cut their
+// masks' holes: the BVH is built by the Embree library the oracle's is (embree/triangle_scene.h,
+// whose filter evaluates core/alpha_mask.h at each candidate hit), never through the oracle.
 #pragma once
 
 #include <cstdint>

@@ -26,14 +26,10 @@
 // and area lights fall back, as adaptive's do, to a cube map of 32-bit depth in the pool's memory,
 // here smrt with map=plain (counts cube_fallback = 1, cube_resolution). The march itself is one
 // file for both (techniques/smrt_rays.glsl).
-#include <cmath>
-
-#include <glm/geometric.hpp>
-
 #include "core/error.h"
-#include "core/lights/light_kind.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
+#include "raster_compare/gl/lights/raster_light_kind.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
@@ -148,27 +144,33 @@ std::unique_ptr<LightTechnique> Smrt::setUp(const LightSetup& setup) const {
     return setUpVirtualShadowMap(map_, bias_, std::move(visibility), setup, plain, true);
 }
 
-// The light's shape, local units: u_smrtShape 0 none, 1 the rectangle u_lsLightU x u_lsLightV
-// (full edges), 2 the disk spanned by them (radius half of each), 3 a disk of diameter
-// u_smrtWidth facing the receiver.
+// The light's shape as smrt_rays.glsl takes it, world space: u_smrtShape 0 none, 1 the rectangle
+// u_lsLightU x u_lsLightV (full edges), 2 the ellipse spanned by them (semi-axes half of each), 3
+// a disk of diameter u_smrtWidth facing the receiver (a sphere, a polygon). The light's kind says
+// its shape (raster_light_kind.h), so no field a light happens to hold is taken for another shape.
+int smrtShape(const RasterLightShape& shape, glm::dvec3& wsU, glm::dvec3& wsV) {
+    using Kind = RasterLightShape::Kind;
+    switch (shape.kind) {
+        case Kind::Point:
+        case Kind::Direction:
+            return 0;
+        case Kind::Rect:
+            wsU = shape.wsU, wsV = shape.wsV;
+            return 1;
+        case Kind::Disk:
+            wsU = 2.0 * shape.wsU, wsV = 2.0 * shape.wsV;
+            return 2;
+        case Kind::Sphere:
+        case Kind::Polygon:
+            return 3;
+    }
+    return 0;
+}
+
 void Smrt::setLightUniforms(GLuint program, const Light& light, const LocalFrame& frame) const {
     const double toLocal = frame.lsLength(1.0);
     glm::dvec3 u(0.0), v(0.0);
-    int shape = 0;
-    // Told apart by what the light holds (no module names a LightType): a rect has its edges, a
-    // disk its radius and normal; a sphere or polygon is taken as a disk of its width.
-    if (glm::length(light.wsU) > 0.0 && glm::length(light.wsV) > 0.0) {
-        shape = 1, u = light.wsU, v = light.wsV;
-    } else if (light.radius > 0.0 && glm::length(light.wsNormal) > 0.0 &&
-               light.wsVertices.empty()) {
-        const glm::dvec3 n = glm::normalize(light.wsNormal);
-        const glm::dvec3 h = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-        u = 2.0 * light.radius * glm::normalize(glm::cross(n, h));
-        v = 2.0 * light.radius * glm::cross(n, glm::normalize(u));
-        shape = 2;
-    } else if (isAreaLight(light)) {
-        shape = 3;
-    }
+    const int shape = smrtShape(rasterLightKind(light.type).shape(light), u, v);
     setInt(program, "u_smrtShape", shape);
     setVec3(program, "u_lsLightU", u * toLocal);
     setVec3(program, "u_lsLightV", v * toLocal);

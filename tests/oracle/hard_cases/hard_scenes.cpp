@@ -11,8 +11,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/channels.h"
+#include "embree/embree_handles.h"
 #include "oracle/accel.h"
-#include "oracle/embree_handles.h"
 #include "oracle/hard_shadow.h"
 #include "oracle/offset.h"
 #include "oracle/surface_buffer.h"

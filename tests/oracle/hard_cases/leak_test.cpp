@@ -15,9 +15,9 @@
 
 #include "case_scenes.h"
 #include "core/channels.h"
+#include "embree/embree_handles.h"
 #include "hard_scenes.h"
 #include "oracle/accel.h"
-#include "oracle/embree_handles.h"
 #include "test_scenes.h"
 
 namespace so::test::hard {

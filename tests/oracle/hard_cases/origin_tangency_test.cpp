@@ -19,7 +19,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
-#include "oracle/embree_handles.h"
+#include "embree/embree_handles.h"
 #include "oracle/offset.h"
 
 namespace so::test::hard {

@@ -1,4 +1,4 @@
-#include "oracle/embree_handles.h"
+#include "embree/embree_handles.h"
 
 #include <pmmintrin.h>
 #include <xmmintrin.h>

@@ -1,8 +1,16 @@
-// RAII for Embree handles. Every Embree error is fatal to the result (an oracle that silently lost
-// geometry would be wrong without saying so), but not to the caller's process: Embree's error
-// callback runs inside Embree's C code, where an exception must not pass, so it only records the
-// error in the device, and the wrappers' calls below throw EmbreeError after the Embree call that
-// reported it. Call throwIfError() after any Embree call made directly on get().
+// RAII for Embree handles, the one Embree library of the product (issue 62): the oracle (oracle/)
+// and the raster path's shadow rays (raster_compare/gl/rays/) both make their devices, scenes and
+// geometries through these classes, and the scene of a Scene's meshes through triangle_scene.h.
+// The single-device rule: Embree's devices are made by EmbreeDevice's constructor
+// (embree_handles.cpp) and in no other file of the product, so every device gets the same error
+// callback and the same checks (ray masks); a caller chooses only its configuration string. The
+// raster path links this library, never the oracle's (docs/architecture.md, rule 3).
+//
+// Every Embree error is fatal to the result (an oracle that silently lost geometry would be wrong
+// without saying so), but not to the caller's process: Embree's error callback runs inside
+// Embree's C code, where an exception must not pass, so it only records the error in the device,
+// and the wrappers' calls below throw EmbreeError after the Embree call that reported it. Call
+// throwIfError() after any Embree call made directly on get().
 #pragma once
 
 #include <memory>
