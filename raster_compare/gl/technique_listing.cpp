@@ -89,6 +89,9 @@ std::string markdown(const std::vector<PluginAxis>& axes) {
           << " |\n";
     for (const TechniqueInfo* t : allTechniques()) {
         o << "\n### " << t->name << "\n\n" << t->summary << " (" << t->family << ").\n\n";
+        if (t->alias)
+            o << "A name for `" << aliasExpansion(*t) << "`: its parameters are that "
+              << "technique's, under the names they had before the bias axis.\n\n";
         if (t->params.empty()) {
             o << "No parameters.\n";
             continue;
@@ -146,11 +149,14 @@ nlohmann::json jsonTable(const ParamTable& table) {
 
 std::string json(const std::vector<PluginAxis>& axes) {
     nlohmann::json all = nlohmann::json::array();
-    for (const TechniqueInfo* t : allTechniques())
-        all.push_back({{"name", t->name},
-                       {"family", t->family},
-                       {"summary", t->summary},
-                       {"parameters", jsonTable(t->params)}});
+    for (const TechniqueInfo* t : allTechniques()) {
+        nlohmann::json j = {{"name", t->name},
+                            {"family", t->family},
+                            {"summary", t->summary},
+                            {"parameters", jsonTable(t->params)}};
+        if (t->alias) j["alias_of"] = aliasExpansion(*t);  // "basic:bias=slope"
+        all.push_back(j);
+    }
     nlohmann::json byName = nlohmann::json::object();
     for (const PluginAxis& axis : axes) {
         nlohmann::json plugins = nlohmann::json::array();

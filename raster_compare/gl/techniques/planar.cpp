@@ -32,7 +32,7 @@ class Planar final : public Technique {
         settings_.receiver = v.integer("receiver");
         settings_.lift = v.real("lift");
         settings_.stencil = v.integer("stencil") == 1;
-        settings_.alpha = v.real("opacity");  // PlanarSettings::alpha: the opacity
+        settings_.opacity = v.real("opacity");
     }
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override {
         return setUpPlanarShadow(settings_, setup);

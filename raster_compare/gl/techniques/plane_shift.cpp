@@ -21,7 +21,10 @@ class PlaneShift final : public Technique {
                  "between the planes, towards the light, in units of the scene's diagonal"},
                 {"lift", 1e-4, 0.0, 0.1, false,
                  "the receiver's plane raised towards the light, in scene diagonals"},
-                {"alpha", 1.0, 0.0, 1.0, false, "shadow opacity under all planes' shadows"}};
+                // `alpha` before issue 62, a name now left to alpha masks.
+                renamedFrom(
+                    {"opacity", 1.0, 0.0, 1.0, false, "shadow opacity under all planes' shadows"},
+                    {"alpha", {}, "", 7})};
     }
     explicit PlaneShift(const ParamValues& v) : Technique(v) {
         settings_.technique = "plane-shift";
@@ -29,7 +32,7 @@ class PlaneShift final : public Technique {
         settings_.planes = v.integer("planes");
         settings_.spacing = v.real("spacing");
         settings_.lift = v.real("lift");
-        settings_.alpha = v.real("alpha");
+        settings_.opacity = v.real("opacity");
     }
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override {
         return setUpPlanarShadow(settings_, setup);

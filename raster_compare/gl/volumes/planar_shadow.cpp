@@ -73,7 +73,7 @@ PlanarLight::PlanarLight(const PlanarSettings& settings, const LightSetup& setup
     // One projection darkens by alpha (V times 1 - alpha); several are averaged, each taking off
     // alpha / planes once per pixel (the stencil is on).
     setFloat(sp, "u_alpha",
-             settings.planes > 1 ? settings.alpha / settings.planes : settings.alpha);
+             settings.planes > 1 ? settings.opacity / settings.planes : settings.opacity);
 }
 
 void PlanarLight::drawProjected() const {

@@ -19,7 +19,7 @@ struct PlanarSettings {
     int receiver = -1;      // mesh index, -1: the largest planar mesh
     double lift = 1e-4;     // the receiver's plane raised towards the light (scene diagonals)
     bool stencil = true;    // each projection darkens a receiver pixel once
-    double alpha = 1.0;     // the shadow's opacity
+    double opacity = 1.0;   // the shadow's opacity
     int planes = 1;         // projections averaged
     double spacing = 0.0;   // between the shifted planes (scene diagonals)
 };
