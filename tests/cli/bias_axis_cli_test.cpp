@@ -5,7 +5,8 @@
 //    pcf on every shipped scene at 64 x 48, as the tree before the axis (commit 3fb3dd8, where each
 //    bias was a technique of its own with its own shader) computed them with
 //        shadow-oracle compare scenes/NAME.scene.json --width 64 --height 48 --frames 1
-//            --warmup 0 --no-cache --technique slope-bias --technique receiver-plane --technique pcf
+//            --warmup 0 --no-cache --technique slope-bias --technique receiver-plane --technique
+//            pcf
 //    and compare must give them again, exactly (llvmpipe is deterministic: two runs of that tree
 //    gave the same bytes).
 // 2. Any filter takes any bias: pcf:bias=receiver-plane, pcss:bias=normal-offset and
@@ -45,7 +46,8 @@ void flatten(const Json& row, const std::string& prefix, std::map<std::string, J
 Json compareScene(const fs::path& dir, const std::string& scene, const std::string& techniques) {
     const RunResult r = run("compare " + std::string(SO_SCENES_DIR) + "/" + scene +
                             " --width 64 --height 48 --frames 1 --warmup 0 --no-cache --quiet "
-                            "--out " + dir.string() + " " + techniques);
+                            "--out " +
+                            dir.string() + " " + techniques);
     EXPECT_EQ(r.exitCode, 0) << scene << "\n" << r.stdoutText << r.stderrText;
     std::ifstream in(dir / "metrics.json");
     return in ? Json::parse(in) : Json::object();
@@ -77,8 +79,8 @@ TEST(BiasAxisCli, BiasTechniquesAndPcfGiveTheMetricsTheyGaveBeforeTheAxis) {
                 const Json& expected = rows.at(label).at(light);
                 EXPECT_EQ(metrics.size(), expected.size()) << scene << " " << label << " " << light;
                 for (const auto& [name, value] : expected.items())
-                    EXPECT_EQ(metrics[name], value) << scene << " " << label << " " << light
-                                                    << " " << name;
+                    EXPECT_EQ(metrics[name], value)
+                        << scene << " " << label << " " << light << " " << name;
             }
         }
     }
@@ -97,11 +99,10 @@ TEST(BiasAxisCli, AnyFilterTakesAnyBias) {
     REQUIRE_GL();
     const fs::path dir = scratch("so_bias_axis_filters");
     // terrain_sun: a low sun over rolling ground, where a map without a bias is all acne.
-    const Json m = compareScene(
-        dir, "terrain_sun.scene.json",
-        "--technique pcf:bias=none --technique pcf:bias=receiver-plane "
-        "--technique pcss:bias=none --technique pcss:bias=normal-offset "
-        "--technique vsm --technique vsm:bias=slope");
+    const Json m = compareScene(dir, "terrain_sun.scene.json",
+                                "--technique pcf:bias=none --technique pcf:bias=receiver-plane "
+                                "--technique pcss:bias=none --technique pcss:bias=normal-offset "
+                                "--technique vsm --technique vsm:bias=slope");
     ASSERT_EQ(m["results"].size(), 6u);
     for (const Json& r : m["results"]) EXPECT_EQ(r["parameters"].count("bias"), 1u) << r["label"];
     const double pcfNone = acneOf(m, "pcf:bias=none", "sun");

@@ -27,8 +27,8 @@ TEST(BiasRegistry, EveryBiasFileIsRegistered) {
 }
 
 TEST(BiasAxis, EveryFilterTakesEveryBiasAndOnlyItsParameters) {
-    for (const char* filter : {"basic", "pcf", "hw-pcf", "pcss", "vsm", "esm", "evsm", "msm",
-                               "cascades"})
+    for (const char* filter :
+         {"basic", "pcf", "hw-pcf", "pcss", "vsm", "esm", "evsm", "msm", "cascades"})
         for (const BiasInfo& b : allBiases()) {
             const std::unique_ptr<Technique> t = createTechnique(filter, {"bias=" + b.name});
             // The chosen bias's parameters are the values' (with their defaults); another's not.
