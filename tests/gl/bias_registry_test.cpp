@@ -21,6 +21,10 @@ TEST(BiasRegistry, EveryBiasFileIsRegistered) {
     for (const BiasInfo& b : allBiases()) EXPECT_TRUE(names.insert(b.name).second) << b.name;
     EXPECT_EQ(names.size(), kBuiltInBiasCount);
     EXPECT_EQ(allBiases().front().name, "none");
+    // Numbers are the biases' own (kNumber), fixed once given: bias=2 is slope for good.
+    for (size_t i = 0; i < allBiases().size(); ++i) EXPECT_EQ(allBiases()[i].number, int(i));
+    EXPECT_EQ(biasName(createTechnique("pcf", {"bias=2"})->values()), "slope");
+    EXPECT_EQ(biasName(createTechnique("pcf", {"bias=0"})->values()), "none");
     BiasRegistry twice;
     registerBuiltInBiases(twice);
     EXPECT_THROW(registerBuiltInBiases(twice), std::invalid_argument);

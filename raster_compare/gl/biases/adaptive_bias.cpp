@@ -14,6 +14,7 @@ namespace {
 
 class AdaptiveDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 7;  // bias=7 means it, fixed once given
     static ParamTable params() { return DepthPrecision::params(); }
     explicit AdaptiveDepthBias(const ParamValues& v) : precision_(v) {}
     const char* glsl() const override { return shaders::adaptive_bias_glsl; }

@@ -13,6 +13,7 @@ namespace {
 
 class BackFacesDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 5;  // bias=5 means it, fixed once given
     static ParamTable params() {
         return {{"back_depth_texels", 0.0, 0.0, 1000.0, false, "constant bias in texels"}};
     }

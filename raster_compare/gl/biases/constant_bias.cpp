@@ -8,6 +8,7 @@ namespace {
 
 class ConstantDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 1;  // bias=1 means it, fixed once given
     static ParamTable params() {
         return {
             {"depth_texels", 1.0, 0.0, 1000.0, false, "constant bias in texels at the receiver"}};

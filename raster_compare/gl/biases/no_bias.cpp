@@ -9,6 +9,7 @@ namespace {
 
 class NoDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 0;  // bias=0 means it, fixed once given
     static ParamTable params() { return {}; }
     explicit NoDepthBias(const ParamValues&) {}
     const char* glsl() const override { return shaders::no_bias_glsl; }

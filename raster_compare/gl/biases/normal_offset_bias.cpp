@@ -9,6 +9,7 @@ namespace {
 
 class NormalOffsetDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 3;  // bias=3 means it, fixed once given
     static ParamTable params() {
         return {{"normal_texels", 1.5, 0.0, 100.0, false,
                  "offset along the normal in texels, times (1 - n.l)"},

@@ -17,6 +17,7 @@ namespace {
 
 class OrientedDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 8;  // bias=8 means it, fixed once given
     static ParamTable params() { return DepthPrecision::params(); }
     explicit OrientedDepthBias(const ParamValues& v) : precision_(v) {}
     const char* glsl() const override { return shaders::oriented_bias_glsl; }

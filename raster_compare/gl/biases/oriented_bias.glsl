@@ -3,11 +3,7 @@
 struct BiasState {
     vec2 g;  // the tangent plane's depth change per texel of offset
 };
-BiasState biasState(Receiver r, MapPoint m) {
-    vec3 e1, e2;
-    planeTangents(r, e1, e2);
-    return BiasState(receiverPlaneGradient(m, r.p, e1, e2));
-}
+BiasState biasState(Receiver r, MapPoint m) { return BiasState(tangentPlaneGradient(r, m)); }
 vec3 biasedPoint(Receiver r) { return r.p; }
 float biasedDepth(BiasState b, Receiver r, MapPoint m, vec2 o, float planeDepth) {
     return m.d + dot(b.g, o) - 0.5 * (abs(b.g.x) + abs(b.g.y)) - depthPrecision(m.d, b.g);

@@ -13,6 +13,7 @@ namespace {
 
 class PolygonOffsetDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 4;  // bias=4 means it, fixed once given
     static ParamTable params() {
         return {{"factor", 1.5, -100.0, 100.0, false, "glPolygonOffset factor"},
                 {"units", 4.0, -1e6, 1e6, false, "glPolygonOffset units"}};

@@ -16,6 +16,7 @@ namespace {
 
 class ReceiverPlaneDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 6;  // bias=6 means it, fixed once given
     static ParamTable params() { return DepthPrecision::params(); }
     explicit ReceiverPlaneDepthBias(const ParamValues& v) : precision_(v) {}
     const char* glsl() const override { return shaders::receiver_plane_bias_glsl; }

@@ -12,6 +12,7 @@ namespace {
 
 class SlopeDepthBias final : public DepthBias {
   public:
+    static constexpr int kNumber = 2;  // bias=2 means it, fixed once given
     static ParamTable params() { return SlopeBias::params(); }
     explicit SlopeDepthBias(const ParamValues& v) : slope_(v) {}
     const char* glsl() const override { return shaders::slope_bias_glsl; }

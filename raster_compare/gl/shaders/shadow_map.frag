@@ -284,6 +284,13 @@ void planeTangents(Receiver r, out vec3 e1, out vec3 e2) {
     e1 = normalize(cross(r.n, h)) * r.texel;
     e2 = cross(r.n, e1);
 }
+// The depth gradient of the receiver's tangent plane (its geometric normal), per texel of offset
+// (the adaptive and oriented biases).
+vec2 tangentPlaneGradient(Receiver r, MapPoint m) {
+    vec3 e1, e2;
+    planeTangents(r, e1, e2);
+    return receiverPlaneGradient(m, r.p, e1, e2);
+}
 // The rounding of what a receiver-plane comparison compares, as a length at linear depth d on a
 // plane of gradient g (per texel): the stored depth (DEPTH_BITS, a 32-bit float's mantissa
 // counting 24, through linearDepth's slope there), the receiver's own depth (a float: 2^-23 of

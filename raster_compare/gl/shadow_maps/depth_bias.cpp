@@ -20,11 +20,15 @@ const std::vector<BiasInfo>& allBiases() {
     static const std::vector<BiasInfo> all = [] {
         BiasRegistry r;
         registerBuiltInBiases(r);
-        std::vector<BiasInfo> sorted = r.all();
-        std::sort(sorted.begin(), sorted.end(), [](const BiasInfo& a, const BiasInfo& b) {
-            return (a.name != "none") != (b.name != "none") ? a.name == "none" : a.name < b.name;
-        });
-        return sorted;
+        std::vector<BiasInfo> byNumber = r.all();
+        std::sort(byNumber.begin(), byNumber.end(),
+                  [](const BiasInfo& a, const BiasInfo& b) { return a.number < b.number; });
+        for (size_t i = 0; i < byNumber.size(); ++i)
+            if (byNumber[i].number != int(i))
+                throw std::invalid_argument("bias \"" + byNumber[i].name + "\": number " +
+                                            std::to_string(byNumber[i].number) + ", expected " +
+                                            std::to_string(i) + " (no gaps, none twice)");
+        return byNumber;
     }();
     return all;
 }

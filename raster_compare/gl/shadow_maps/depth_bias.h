@@ -47,6 +47,9 @@ class DepthBias {
 };
 
 struct BiasInfo {
+    // Its number (Class::kNumber): the value of `bias` a setting may give instead of its name,
+    // fixed once given, so a new bias never changes what an old number means.
+    int number;
     std::string name, summary;
     ParamTable params;
     std::function<std::unique_ptr<DepthBias>(const ParamValues&)> create;
@@ -67,7 +70,8 @@ class BiasRegistry {
 void registerBuiltInBiases(BiasRegistry& registry);
 extern const size_t kBuiltInBiasCount;
 
-// Every registered bias, in the order of the `bias` parameter's names (none first, then by name).
+// Every registered bias by its number, the order of the `bias` parameter's names (a gap or a
+// number taken twice is std::invalid_argument: a slip in the biases' code).
 const std::vector<BiasInfo>& allBiases();
 // The axis (plugin_axis.h), as `shadow-oracle techniques` lists it.
 PluginAxis biasAxis();
@@ -82,7 +86,7 @@ std::string biasName(const ParamValues& values);
 
 #define SO_REGISTER_BIAS(Class, name, summary)                                             \
     void soRegisterBias_##Class(::so::BiasRegistry& registry) {                            \
-        registry.add({name, summary, Class::params(),                                      \
+        registry.add({Class::kNumber, name, summary, Class::params(),                      \
                       [](const ::so::ParamValues& v) -> std::unique_ptr<::so::DepthBias> { \
                           return std::make_unique<Class>(v);                               \
                       }});                                                                 \
