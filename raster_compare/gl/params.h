@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "raster_compare/gl/provenance.h"
+
 namespace so {
 
 // A name a parameter had before (raytraced's `alpha`, now `history`): a setting that gives it is
@@ -51,6 +53,10 @@ struct ParamSpec {
     bool pluginParam = false;
     // Its former name, still accepted with a deprecation notice (renamedFrom).
     std::optional<FormerName> former = {};
+    // A method parameter whose values are named designs (pattern=three, contact_method=bevy):
+    // each name's provenance, parallel to `names`, so a row that picks one says whose design it
+    // grades (provenance.h). Empty where the values are the technique's own choices.
+    std::vector<Provenance> provenances = {};
 };
 using ParamTable = std::vector<ParamSpec>;
 

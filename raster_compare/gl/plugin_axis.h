@@ -15,6 +15,7 @@ namespace so {
 struct AxisPlugin {
     std::string name, summary;
     ParamTable params;
+    Provenance provenance = {};  // whose design it is (provenance.h)
 };
 
 struct PluginAxis {
