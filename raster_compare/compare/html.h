@@ -39,4 +39,13 @@ inline std::string urlEncode(const std::string& s, const std::string& keep) {
     return o;
 }
 
+// The mark the reports put after a row's label when the design it grades is not its anchor's as
+// published (issue 63): "variant" or "own", its provenance (sources and deviations) as the
+// tooltip; nothing for a faithful row, an image or a file written before provenance.
+inline std::string fidelityMark(const std::string& fidelity, const std::string& provenance) {
+    if (fidelity != "variant" && fidelity != "own") return "";
+    return " <sup class=\"fidelity\" data-fidelity=\"" + fidelity + "\" title=\"" +
+           htmlEscape(provenance) + "\">" + fidelity + "</sup>";
+}
+
 }  // namespace so

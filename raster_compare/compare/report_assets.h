@@ -9,7 +9,7 @@ namespace so::report_assets {
 inline constexpr const char* kStyle = R"css(
 body{font-family:system-ui,sans-serif;margin:20px 24px;background:#f6f6f4;color:#222;font-size:14px}
 h1{font-size:21px;margin:0 0 6px}h2{font-size:18px;margin:28px 0 8px}h3{font-size:15px;margin:18px 0 6px}
-a{color:#0062a0}.muted{color:#666;font-size:12px}nav a{margin-right:12px}
+a{color:#0062a0}.muted{color:#666;font-size:12px}sup.fidelity{color:#9a4d00;font-size:11px;cursor:help}nav a{margin-right:12px}
 .top{display:flex;flex-wrap:wrap;gap:18px;align-items:flex-start}
 table{border-collapse:collapse;background:#fff;font-size:13px}th,td{padding:3px 7px;border-bottom:1px solid #ddd;text-align:right;white-space:nowrap}
 th{background:#eee;position:sticky;top:0;z-index:1}th[data-col]{cursor:pointer}th[data-col]::after{content:" \2195";color:#aaa}

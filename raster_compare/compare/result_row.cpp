@@ -99,6 +99,31 @@ LightRow readLightRow(const json& metrics, const std::string& light, const JsonR
     return row;
 }
 
+// "provenance": {"fidelity", "parts": [{"of", "anchor", "fidelity", "deviations"?}]}, absent
+// before issue 63 and for images.
+void readProvenance(ResultRow& row, const json& result, const JsonReader& r,
+                    const std::string& field) {
+    const json* p = JsonReader::find(result, "provenance");
+    if (!p || p->is_null()) return;
+    const std::string f = field + ".provenance";
+    r.requireObject(*p, f);
+    row.fidelity = optionalString(*p, "fidelity", r, f);
+    const json* parts = JsonReader::find(*p, "parts");
+    if (!parts) return;
+    if (!parts->is_array()) r.fail(f + ".parts", "not an array");
+    for (size_t i = 0; i < parts->size(); ++i) {
+        const json& part = (*parts)[i];
+        const std::string pf = f + ".parts[" + std::to_string(i) + "]";
+        r.requireObject(part, pf);
+        row.provenanceText +=
+            (row.provenanceText.empty() ? "" : "\n") + optionalString(part, "of", r, pf) + ": " +
+            optionalString(part, "fidelity", r, pf) + ", " + optionalString(part, "anchor", r, pf);
+        if (const json* d = JsonReader::find(part, "deviations"); d && d->is_array())
+            for (const json& line : *d)
+                if (line.is_string()) row.provenanceText += "\n  - " + line.get<std::string>();
+    }
+}
+
 ResultRow readResultRow(const json& result, const JsonReader& r, const std::string& field) {
     r.requireObject(result, field);
     ResultRow row;
@@ -111,6 +136,7 @@ ResultRow readResultRow(const json& result, const JsonReader& r, const std::stri
     if (const json* p = JsonReader::find(result, "parameters"); p && p->is_object())
         for (auto it = p->begin(); it != p->end(); ++it)
             row.parameters[it.key()] = paramValueOfJson(*it);
+    readProvenance(row, result, r, field);
     const json& lights = r.at(result, field, "lights");
     r.requireObject(lights, field + ".lights");
     for (const auto& [light, m] : lights.items())

@@ -63,6 +63,13 @@ struct ResultRow {
     std::string family;        // empty before schema_version 3
     RowParameters parameters;  // every parameter, defaults included; an image's: its cost file's
     std::vector<LightRow> lights;  // in the file's order
+    // Whose designs the row grades (metrics.json's "provenance", issue 63): its combined fidelity,
+    // "faithful", "variant" or "own" (empty for an image, or a file before it), and each part as
+    // "of: fidelity, anchor" with a variant's deviations, one per line (the reports' tooltips).
+    std::string fidelity;
+    std::string provenanceText;
+    // Whether the reports mark it: a variant or a design of our own under its name.
+    bool notFaithful() const { return fidelity == "variant" || fidelity == "own"; }
     const LightRow* light(const std::string& name) const;
 };
 

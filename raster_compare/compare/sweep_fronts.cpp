@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "raster_compare/compare/html.h"
 #include "raster_compare/compare/result_row.h"
 #include "raster_compare/compare/sweep_sections.h"
 #include "raster_compare/compare/tradeoff.h"
@@ -160,9 +161,11 @@ std::string frontTable(const Points& p, const std::vector<size_t>& front, const 
       << html(cost.name) << " (" << cost.unit << ")</th><th>" << html(metric)
       << "</th></tr></thead><tbody>";
     for (size_t i : front)
-        s << "<tr><td class=\"text label\">" << html(p.points[i].label) << "</td><td data-v=\""
-          << exact(p.points[i].cost) << "\">" << num(p.points[i].cost) << "</td><td data-v=\""
-          << exact(p.points[i].error) << "\">" << num(p.points[i].error) << "</td></tr>";
+        s << "<tr><td class=\"text label\">" << html(p.points[i].label)
+          << fidelityMark(p.rows[i]->result.fidelity, p.rows[i]->result.provenanceText)
+          << "</td><td data-v=\"" << exact(p.points[i].cost) << "\">" << num(p.points[i].cost)
+          << "</td><td data-v=\"" << exact(p.points[i].error) << "\">" << num(p.points[i].error)
+          << "</td></tr>";
     s << "</tbody></table>";
     return s.str();
 }
@@ -271,8 +274,10 @@ std::string budgetRow(const std::vector<const SweepRow*>& ranked, const std::str
             continue;
         }
         s << "<td class=\"text\" title=\"" << html(p.points[*best].label) << "\">"
-          << html(shortLabel(*p.rows[*best])) << " <span class=\"muted\">"
-          << num(p.points[*best].cost) << " " << cost.unit << "</span></td>";
+          << html(shortLabel(*p.rows[*best]))
+          << fidelityMark(p.rows[*best]->result.fidelity, p.rows[*best]->result.provenanceText)
+          << " <span class=\"muted\">" << num(p.points[*best].cost) << " " << cost.unit
+          << "</span></td>";
     }
     return s.str();
 }

@@ -55,6 +55,7 @@ body{font-family:system-ui,sans-serif;margin:1.5em;color:#222}
 h1{font-size:1.4em}h2{font-size:1.2em;margin-top:2em;border-top:1px solid #ccc;padding-top:.6em}
 h3{font-size:1.05em;margin-top:1.4em}h4{font-size:.95em;margin:1em 0 .3em}
 .muted{color:#666;font-size:.9em}
+sup.fidelity{color:#9a4d00;font-size:.75em;cursor:help}
 table{border-collapse:collapse;font-size:12px}
 th,td{padding:2px 6px;text-align:right;font-variant-numeric:tabular-nums}
 .text{text-align:left}

@@ -114,7 +114,7 @@ const ParamSpec* specOfKey(const ParamTable& table, const std::string& key, bool
 }
 
 // "technique raytraced: `alpha` is deprecated, use `history` (history = 1 - alpha); accepted
-// until format 7".
+// until format 8".
 std::string deprecationNotice(const std::string& file, const ParamSpec& spec) {
     const FormerName& f = *spec.former;
     return file + ": `" + f.name + "` is deprecated, use `" + spec.name + "`" +

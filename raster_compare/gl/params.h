@@ -94,7 +94,7 @@ class ParamValues {
     // means nothing unless another is on, which is then an error rather than silently ignored.
     bool given(const std::string& name) const { return given_.count(name) > 0; }
     // One notice per former name the setting used ("technique raytraced: `alpha` is deprecated,
-    // use `history` (history = 1 - alpha); accepted until format 7"), for the caller to say once:
+    // use `history` (history = 1 - alpha); accepted until format 8"), for the caller to say once:
     // on stderr (the CLI), as a warning (compare's callbacks, the API's warnings).
     const std::vector<std::string>& deprecations() const { return deprecations_; }
 

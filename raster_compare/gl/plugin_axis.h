@@ -26,8 +26,8 @@ struct PluginAxis {
     std::vector<AxisPlugin> plugins;
 };
 
-// The parameter that picks a plug-in by name (methodParam over the plug-ins' names), its default
-// plugins[defaultIndex].
+// The parameter that picks a plug-in by name (methodParam over the plug-ins' names, each with its
+// provenance), its default plugins[defaultIndex].
 ParamSpec axisParam(const PluginAxis& axis, int defaultIndex, std::string doc);
 
 // Every plug-in's parameters, once each, in the order the plug-ins first declare them; each needs

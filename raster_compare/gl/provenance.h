@@ -7,9 +7,11 @@
 //
 // Each class gives it beside its parameter table:
 //     static Provenance provenance() {
-//         return {"three.js r182, src/renderers/shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js"
+//         return {"three.js r182,
+//         src/renderers/shaders/ShaderChunk/shadowmap_pars_fragment.glsl.js"
 //                 " (PCFShadowMap)",
-//                 Fidelity::Variant, {"point-sampled taps where three.js compares 2x2 in hardware"}};
+//                 Fidelity::Variant, {"point-sampled taps where three.js compares 2x2 in
+//                 hardware"}};
 //     }
 // The anchor names the source as a reader would find it: the engine and its version or commit,
 // the file (and function) or the paper and its section. `own` designs name what they build on.
@@ -33,11 +35,38 @@ struct Provenance {
     std::vector<std::string> deviations = {};
 };
 
+// One source a row's design draws on: its technique's, or a plug-in's or named method value's it
+// chose ("technique pcf", "bias=receiver-plane", "pattern=three").
+struct ProvenancePart {
+    std::string of;
+    Provenance provenance;
+};
+
+// The class's provenance(), or an empty one where it has none (the registry tests then fail on its
+// missing anchor): the registration macros call it so that a class is registered before it is
+// given one.
+template <class Class>
+auto provenanceOf(int) -> decltype(Class::provenance()) {
+    return Class::provenance();
+}
+template <class Class>
+Provenance provenanceOf(long) {
+    return {};
+}
+
 // "faithful", "variant", "own".
 const char* fidelityName(Fidelity f);
 // Throws std::invalid_argument (a slip in the code, caught by the registry tests) when the anchor
 // is empty, a variant lists no deviation or a faithful or own design lists some; `who` names the
 // technique or plug-in in the message.
 void checkProvenance(const Provenance& p, const std::string& who);
+
+// The row's fidelity: the farthest of its parts' from their sources (own > variant > faithful);
+// faithful for none.
+Fidelity combinedFidelity(const std::vector<ProvenancePart>& parts);
+// The parts as one provenance (an alias's: basic's and its bias's): the anchors joined by "; ",
+// the combined fidelity, and for a variant the variant parts' deviations, each prefixed by its
+// part ("bias=receiver-plane: ...") where there are several parts.
+Provenance combinedProvenance(const std::vector<ProvenancePart>& parts);
 
 }  // namespace so

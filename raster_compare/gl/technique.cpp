@@ -55,6 +55,31 @@ ParamTable aliasTable(const TechniqueAlias& alias, const ParamTable& target) {
     return table;
 }
 
+// The named design a fixed setting ("bias=receiver-plane") or a value chooses, if its parameter's
+// values are named designs.
+std::optional<ProvenancePart> chosenPart(const ParamSpec& spec, double value) {
+    const size_t k = size_t(value);
+    if (spec.provenances.empty() || value < 0 || k >= spec.provenances.size() ||
+        k >= spec.names.size())
+        return std::nullopt;
+    return ProvenancePart{spec.name + "=" + spec.names[k], spec.provenances[k]};
+}
+
+// An alias's target and what its fixed settings choose.
+std::vector<ProvenancePart> aliasParts(const TechniqueAlias& alias, const TechniqueInfo& target) {
+    std::vector<ProvenancePart> parts = {{"technique " + target.name, target.provenance}};
+    for (const std::string& f : alias.fixed) {
+        const auto [key, value] = splitSetting(f);
+        for (const ParamSpec& s : target.params) {
+            if (s.name != key) continue;
+            for (size_t k = 0; k < s.names.size(); ++k)
+                if (s.names[k] == value)
+                    if (auto part = chosenPart(s, double(k))) parts.push_back(*part);
+        }
+    }
+    return parts;
+}
+
 // Fills in every alias's family, table and create from its target (an alias of an alias, or of
 // a name not registered, is a slip in the code: std::invalid_argument).
 void resolveAliases(std::map<std::string, TechniqueInfo>& byName) {
@@ -67,6 +92,7 @@ void resolveAliases(std::map<std::string, TechniqueInfo>& byName) {
         info.family = target->second.family;
         info.params = aliasTable(*info.alias, target->second.params);
         info.create = target->second.create;
+        info.provenance = combinedProvenance(aliasParts(*info.alias, target->second));
     }
 }
 
@@ -115,6 +141,18 @@ std::string aliasExpansion(const TechniqueInfo& info) {
     for (size_t i = 0; i < info.alias->fixed.size(); ++i)
         s += (i ? "," : ":") + info.alias->fixed[i];
     return s;
+}
+
+std::vector<ProvenancePart> provenanceParts(const Technique& technique) {
+    const TechniqueInfo& info = findTechnique(technique.name());
+    std::vector<ProvenancePart> parts =
+        info.alias ? aliasParts(*info.alias, findTechnique(info.alias->target))
+                   : std::vector<ProvenancePart>{{"technique " + info.name, info.provenance}};
+    const ParamValues& values = technique.values();
+    for (const ParamSpec& spec : info.params)
+        if (values.all().count(spec.name) && needsMet(spec, info.params, values))
+            if (auto part = chosenPart(spec, values.real(spec.name))) parts.push_back(*part);
+    return parts;
 }
 
 std::unique_ptr<Technique> createTechnique(const std::string& name,

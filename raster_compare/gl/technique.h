@@ -159,6 +159,9 @@ struct TechniqueInfo {
     std::function<std::unique_ptr<Technique>(const ParamValues&)> create;
     // An alias's expansion; its create is the target's, given the target's values.
     std::optional<TechniqueAlias> alias = {};
+    // Whose design it is (Class::provenance(), provenance.h); an alias's is its target's with the
+    // plug-ins its fixed settings choose (combinedProvenance).
+    Provenance provenance = {};
 };
 
 // Techniques by name.
@@ -181,6 +184,12 @@ extern const size_t kBuiltInTechniqueCount;
 // Its expansion: "basic:bias=slope" for slope-bias; empty for a technique that is no alias.
 std::string aliasExpansion(const TechniqueInfo& info);
 
+// Whose designs a technique's setting grades: the technique's (an alias's target's) and, for every
+// method parameter whose values are named designs (the bias and denoiser axes, pattern=three),
+// the chosen value's, where its `needs` are met (provenance.h). Reports mark a row whose
+// combinedFidelity is not faithful.
+std::vector<ProvenancePart> provenanceParts(const Technique& technique);
+
 // Every registered technique, by family and then name. The first call builds the registry (a
 // duplicate name throws std::invalid_argument here, and again on every later call).
 std::vector<const TechniqueInfo*> allTechniques();
@@ -199,7 +208,8 @@ std::unique_ptr<Technique> createTechnique(const std::string& name,
         registry.add({name, summary, Class::kFamily, Class::params(),                      \
                       [](const ::so::ParamValues& v) -> std::unique_ptr<::so::Technique> { \
                           return std::make_unique<Class>(v);                               \
-                      }});                                                                 \
+                      },                                                                   \
+                      std::nullopt, ::so::provenanceOf<Class>(0)});                        \
     }                                                                                      \
     void soRegister_##Class(::so::TechniqueRegistry& registry)
 

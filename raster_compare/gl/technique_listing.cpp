@@ -35,12 +35,37 @@ std::string range(const ParamSpec& p) {
            (p.integer ? " (integer)" : "");
 }
 
-// " (was `alpha`: history = 1 - alpha, until format 7)" for a renamed parameter.
+// " (was `alpha`: history = 1 - alpha, until format 8)" for a renamed parameter.
 std::string formerNote(const ParamSpec& p) {
     if (!p.former) return "";
     return " (was `" + p.former->name + "`" +
            (p.former->relation.empty() ? "" : ": " + p.former->relation) + ", until format " +
            std::to_string(p.former->untilFormat) + ")";
+}
+
+nlohmann::json provenanceJson(const Provenance& p) {
+    nlohmann::json j = {{"anchor", p.anchor}, {"fidelity", fidelityName(p.fidelity)}};
+    if (p.fidelity == Fidelity::Variant) j["deviations"] = p.deviations;
+    return j;
+}
+
+// "**Provenance:** variant of <anchor>. Deviations: ..." for the Markdown and text listings.
+std::string provenanceLine(const Provenance& p, const std::string& deviationIndent) {
+    std::string s = p.fidelity == Fidelity::Faithful ? "faithful to " + p.anchor
+                    : p.fidelity == Fidelity::Variant
+                        ? "a variant of " + p.anchor + "; it differs:"
+                        : "our own design (builds on " + p.anchor + ")";
+    for (const std::string& d : p.deviations) s += "\n" + deviationIndent + d;
+    return s;
+}
+
+// The named designs a method parameter's values are, one line each.
+std::string namedValues(const ParamSpec& p, const std::string& indent) {
+    std::string s;
+    for (size_t k = 0; k < p.provenances.size() && k < p.names.size(); ++k)
+        s += indent + "`" + p.name + "=" + p.names[k] +
+             "`: " + provenanceLine(p.provenances[k], indent + "  - ") + "\n";
+    return s;
 }
 
 // A technique's table leaves out the parameters of its axes' plug-ins that are listed with the
@@ -61,6 +86,12 @@ void markdownTable(std::ostringstream& o, const ParamTable& params) {
     if (hasPluginParams(params))
         o << "\nAnd the parameters of the bias it is given, each valid only with it: "
           << "[bias plug-ins](#bias-plug-ins).\n";
+    bool named = false;
+    for (const ParamSpec& p : params)
+        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser") {
+            o << (named ? "" : "\nIts named designs:\n\n") << namedValues(p, "- ");
+            named = true;
+        }
 }
 
 // One section per axis: its plug-ins, each with its summary and own table.
@@ -72,7 +103,9 @@ void markdownAxes(std::ostringstream& o, const std::vector<PluginAxis>& axes) {
         for (const AxisPlugin& p : axis.plugins)
             o << "| `" << p.name << "` | " << p.summary << " |\n";
         for (const AxisPlugin& p : axis.plugins) {
-            o << "\n#### " << axis.name << " " << p.name << "\n\n" << p.summary << ".\n\n";
+            o << "\n#### " << axis.name << " " << p.name << "\n\n"
+              << p.summary << ".\n\n"
+              << "**Provenance:** " << provenanceLine(p.provenance, "- ") << "\n\n";
             if (p.params.empty())
                 o << "No parameters.\n";
             else
@@ -83,12 +116,14 @@ void markdownAxes(std::ostringstream& o, const std::vector<PluginAxis>& axes) {
 
 std::string markdown(const std::vector<PluginAxis>& axes) {
     std::ostringstream o;
-    o << "| technique | family | what it does |\n|---|---|---|\n";
+    o << "| technique | family | fidelity | what it does |\n|---|---|---|---|\n";
     for (const TechniqueInfo* t : allTechniques())
-        o << "| [`" << t->name << "`](#" << t->name << ") | " << t->family << " | " << t->summary
-          << " |\n";
+        o << "| [`" << t->name << "`](#" << t->name << ") | " << t->family << " | "
+          << fidelityName(t->provenance.fidelity) << " | " << t->summary << " |\n";
     for (const TechniqueInfo* t : allTechniques()) {
-        o << "\n### " << t->name << "\n\n" << t->summary << " (" << t->family << ").\n\n";
+        o << "\n### " << t->name << "\n\n"
+          << t->summary << " (" << t->family << ").\n\n"
+          << "**Provenance:** " << provenanceLine(t->provenance, "- ") << "\n\n";
         if (t->alias)
             o << "A name for `" << aliasExpansion(*t) << "`: its parameters are that "
               << "technique's, under the names they had before the bias axis.\n\n";
@@ -109,19 +144,24 @@ void textTable(std::ostringstream& o, const ParamTable& params, const char* inde
               << "]  " << p.doc << formerNote(p) << "\n";
     if (hasPluginParams(params))
         o << indent << "(and the parameters of the bias it is given: bias plug-ins, below)\n";
+    for (const ParamSpec& p : params)
+        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser")
+            o << namedValues(p, indent);
 }
 
 std::string text(const std::vector<PluginAxis>& axes) {
     std::ostringstream o;
     for (const TechniqueInfo* t : allTechniques()) {
-        o << t->name << " (" << t->family << "): " << t->summary << "\n";
+        o << t->name << " (" << t->family << "): " << t->summary
+          << "\n    provenance: " << provenanceLine(t->provenance, "      - ") << "\n";
         textTable(o, t->params, "    ");
     }
     for (const PluginAxis& axis : axes) {
         o << "\n"
           << axis.name << " plug-ins (" << axis.family << ", " << axis.parameter << "=NAME):\n";
         for (const AxisPlugin& p : axis.plugins) {
-            o << "  " << p.name << ": " << p.summary << "\n";
+            o << "  " << p.name << ": " << p.summary
+              << "\n      provenance: " << provenanceLine(p.provenance, "        - ") << "\n";
             textTable(o, p.params, "      ");
         }
     }
@@ -142,6 +182,10 @@ nlohmann::json jsonTable(const ParamTable& table) {
             j["former"] = {{"name", p.former->name},
                            {"relation", p.former->relation},
                            {"until_format", p.former->untilFormat}};
+        if (!p.provenances.empty()) {  // value k is the design provenances[k]
+            j["provenances"] = nlohmann::json::array();
+            for (const Provenance& v : p.provenances) j["provenances"].push_back(provenanceJson(v));
+        }
         params.push_back(j);
     }
     return params;
@@ -153,6 +197,7 @@ std::string json(const std::vector<PluginAxis>& axes) {
         nlohmann::json j = {{"name", t->name},
                             {"family", t->family},
                             {"summary", t->summary},
+                            {"provenance", provenanceJson(t->provenance)},
                             {"parameters", jsonTable(t->params)}};
         if (t->alias) j["alias_of"] = aliasExpansion(*t);  // "basic:bias=slope"
         all.push_back(j);
@@ -161,8 +206,10 @@ std::string json(const std::vector<PluginAxis>& axes) {
     for (const PluginAxis& axis : axes) {
         nlohmann::json plugins = nlohmann::json::array();
         for (const AxisPlugin& p : axis.plugins)
-            plugins.push_back(
-                {{"name", p.name}, {"summary", p.summary}, {"parameters", jsonTable(p.params)}});
+            plugins.push_back({{"name", p.name},
+                               {"summary", p.summary},
+                               {"provenance", provenanceJson(p.provenance)},
+                               {"parameters", jsonTable(p.params)}});
         byName[axis.name] = {
             {"family", axis.family}, {"parameter", axis.parameter}, {"plugins", plugins}};
     }

@@ -195,6 +195,7 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     row.source = "technique";
     row.technique = run.spec.name;
     row.parameters = toJson(run.technique->values().settings());
+    row.provenance = provenanceParts(*run.technique);
     ReportTechnique& rt = row.report;
     rt.row.label = run.spec.label;
     rt.row.family = findTechnique(run.spec.name).family;
@@ -418,10 +419,21 @@ nlohmann::json rowJson(const ComparedRow& row) {
             {"source", "external"},          {"technique", "external"}, {"family", "external"},
             {"label", row.report.row.label}, {"image", row.imagePath},  {"renderer", row.renderer},
             {"parameters", row.parameters},  {"timings", nullptr},      {"lights", lights}};
+    nlohmann::json parts = nlohmann::json::array();
+    for (const ProvenancePart& p : row.provenance) {
+        nlohmann::json part = {{"of", p.of},
+                               {"anchor", p.provenance.anchor},
+                               {"fidelity", fidelityName(p.provenance.fidelity)}};
+        if (p.provenance.fidelity == Fidelity::Variant)
+            part["deviations"] = p.provenance.deviations;
+        parts.push_back(part);
+    }
     return {{"source", "technique"},
             {"technique", row.technique},
             {"family", row.report.row.family},
             {"label", row.report.row.label},
+            {"provenance",
+             {{"fidelity", fidelityName(combinedFidelity(row.provenance))}, {"parts", parts}}},
             {"parameters", row.parameters},
             {"timings", row.stats ? toJson(row.stats->timings) : nlohmann::json(nullptr)},
             {"lights", lights}};

@@ -18,6 +18,7 @@
 #include "core/visibility_image.h"
 #include "oracle/oracle_cache.h"
 #include "raster_compare/compare/report.h"
+#include "raster_compare/gl/provenance.h"
 #include "raster_compare/gl/render/raster_result.h"
 #include "raster_compare/gl/render/renderer.h"
 #include "raster_compare/pipeline/path_flicker.h"
@@ -98,6 +99,9 @@ struct ComparedRow {
     // image's its cost file's params.
     nlohmann::json parameters = nlohmann::json::object();
     std::optional<RasterStats> stats;  // a technique's render: what raster.json holds
+    // A technique's: whose designs it grades (technique.h provenanceParts), metrics.json's
+    // "provenance"; empty for an image.
+    std::vector<ProvenancePart> provenance;
     // label, family, curve, every light's metrics, costs and error maps, and the image judged.
     ReportTechnique report;
 };

@@ -169,7 +169,7 @@ TEST(Docs, TechniqueTablesMatchTheCode) {
 // The listing as JSON: every technique with its parameters, ranges and defaults.
 TEST(Cli, TechniquesListingAsJson) {
     const nlohmann::json j = nlohmann::json::parse(runStdout("techniques --json"));
-    EXPECT_EQ(j["format_version"], 6);
+    EXPECT_EQ(j["format_version"], 7);
     EXPECT_TRUE(j["axes"].contains("denoiser"));
     std::vector<std::string> names;
     for (const auto& t : j["techniques"]) {

@@ -40,7 +40,7 @@ size_t count(const std::string& text, const std::string& what) {
 }
 
 const char* const kNotice =
-    "warning: technique planar: `alpha` is deprecated, use `opacity`; accepted until format 7\n";
+    "warning: technique planar: `alpha` is deprecated, use `opacity`; accepted until format 8\n";
 
 TEST(FormerNames, RasterAndCompareSayTheNoticeOnce) {
     REQUIRE_GL();

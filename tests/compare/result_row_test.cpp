@@ -110,3 +110,37 @@ TEST(ResultRow, TheTableCarriesTolerancesAndCostAxes) {
 
 }  // namespace
 }  // namespace so::test
+
+namespace so::test {
+namespace {
+
+// metrics.json's "provenance" (issue 63): the row's fidelity and its parts as the reports' tooltip;
+// none for an older file; a malformed one names its field.
+TEST(ResultRow, ReadsProvenance) {
+    json j = row();
+    EXPECT_EQ(readResultRow(j, JsonReader("m.json"), "results[0]").fidelity, "");
+    j["provenance"] = {
+        {"fidelity", "variant"},
+        {"parts",
+         {{{"of", "technique pcf"}, {"anchor", "Reeves 1987"}, {"fidelity", "faithful"}},
+          {{"of", "bias=x"},
+           {"anchor", "paper"},
+           {"fidelity", "variant"},
+           {"deviations", {"one"}}}}}};
+    const ResultRow r = readResultRow(j, JsonReader("m.json"), "results[0]");
+    EXPECT_EQ(r.fidelity, "variant");
+    EXPECT_TRUE(r.notFaithful());
+    EXPECT_EQ(r.provenanceText,
+              "technique pcf: faithful, Reeves 1987\nbias=x: variant, paper\n  - one");
+    j["provenance"]["parts"] = 3;
+    try {
+        readResultRow(j, JsonReader("m.json"), "results[0]");
+        FAIL() << "parts of the wrong type";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("results[0].provenance.parts"), std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace so::test

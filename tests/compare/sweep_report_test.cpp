@@ -265,3 +265,30 @@ TEST(SweepReport, NoFailedBoxWhenEveryTaskFinished) {
 
 }  // namespace
 }  // namespace so::test
+
+namespace so::test {
+namespace {
+
+// A row that grades a variant or a design of our own is marked after its label on the fronts
+// (issue 63); a faithful row, or one without provenance, is not.
+TEST(SweepReport, MarksRowsThatAreNotTheirAnchorsDesign) {
+    SweepReportInput in = sweep();
+    for (SweepRow& r : in.rows)
+        if (r.result.label == "pcf:kernel=5") {
+            r.result.fidelity = "variant";
+            r.result.provenanceText = "technique pcf: variant, <Reeves>";
+        } else if (r.result.technique == "basic") {
+            r.result.fidelity = "faithful";
+        }
+    const std::string key = section(writeAndRead(in), 0);
+    const std::string byTime = between(
+        key, "<table class=\"front\" data-metric=\"mae\" data-cost=\"cost.frame_ms\">", "</table>");
+    EXPECT_NE(byTime.find("pcf:kernel=5 <sup class=\"fidelity\" data-fidelity=\"variant\" "
+                          "title=\"technique pcf: variant, &lt;Reeves&gt;\">variant</sup>"),
+              std::string::npos)
+        << byTime;
+    EXPECT_EQ(matches(byTime, "data-fidelity=\"([a-z]*)\"").size(), 1u) << byTime;
+}
+
+}  // namespace
+}  // namespace so::test

@@ -94,7 +94,7 @@ TEST(FormerNames, RaytracedAlphaIsHistoryWithANotice) {
     ASSERT_EQ(old->values().deprecations().size(), 1u);
     EXPECT_EQ(old->values().deprecations()[0],
               "technique raytraced: `alpha` is deprecated, use `history` (history = 1 - alpha); "
-              "accepted until format 7");
+              "accepted until format 8");
     EXPECT_THROW(createTechnique("raytraced", {"denoiser=svgf", "alpha=0.3", "history=0.7"}),
                  InputError);
     EXPECT_THROW(createTechnique("raytraced", {"denoiser=svgf", "history=0.7", "alpha=0.3"}),
@@ -120,7 +120,7 @@ TEST(FormerNames, PlanarAlphaIsOpacityWithANotice) {
     EXPECT_EQ(old->values().real("opacity"), 0.5);
     ASSERT_EQ(old->values().deprecations().size(), 1u);
     EXPECT_EQ(old->values().deprecations()[0],
-              "technique planar: `alpha` is deprecated, use `opacity`; accepted until format 7");
+              "technique planar: `alpha` is deprecated, use `opacity`; accepted until format 8");
     EXPECT_EQ(specOf(findTechnique("planar").params, "alpha"), nullptr);
     EXPECT_NE(specOf(findTechnique("planar").params, "opacity"), nullptr);
 }
@@ -129,7 +129,7 @@ TEST(FormerNames, PlanarAlphaIsOpacityWithANotice) {
 // renamed parameter's former name.
 TEST(Denoisers, ListedAsAnAxis) {
     const nlohmann::json j = nlohmann::json::parse(techniquesListing(ListingFormat::Json));
-    EXPECT_EQ(j["format_version"], 6);
+    EXPECT_EQ(j["format_version"], 7);
     const nlohmann::json& axis = j["axes"]["denoiser"];
     EXPECT_EQ(axis["family"], findTechnique("raytraced").family);
     EXPECT_EQ(axis["parameter"], "denoiser");
@@ -143,7 +143,7 @@ TEST(Denoisers, ListedAsAnAxis) {
     EXPECT_EQ(names, (std::vector<std::string>{"history", "levels", "sigma_luminance",
                                                "sigma_normal", "sigma_depth"}));
     EXPECT_EQ(svgf["parameters"][0]["former"]["name"], "alpha");
-    EXPECT_EQ(svgf["parameters"][0]["former"]["until_format"], 7);
+    EXPECT_EQ(svgf["parameters"][0]["former"]["until_format"], 8);
     const std::string text = techniquesListing(ListingFormat::Text);
     EXPECT_NE(text.find("denoiser plug-ins (ray tracing, denoiser=NAME)"), std::string::npos);
 }

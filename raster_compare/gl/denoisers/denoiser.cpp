@@ -51,7 +51,7 @@ const std::vector<const DenoiserInfo*>& allDenoisers() {
 PluginAxis denoiserAxis() {
     PluginAxis axis{"denoiser", kRayTracingFamily, "denoiser", {}};
     for (const DenoiserInfo* d : allDenoisers())
-        axis.plugins.push_back({d->name, d->summary, d->params});
+        axis.plugins.push_back({d->name, d->summary, d->params, d->provenance});
     return axis;
 }
 
@@ -67,7 +67,7 @@ ParamSpec historyParam() {
          "4.1: 0.8, its alpha 0.2 being the new frame's weight; pcf's and pcss's "
          "`history` means the same); a history younger than 1 / (1 - history) "
          "frames averages them equally"},
-        {"alpha", [](double alpha) { return 1.0 - alpha; }, "history = 1 - alpha", 7});
+        {"alpha", [](double alpha) { return 1.0 - alpha; }, "history = 1 - alpha", 8});
 }
 
 ParamSpec sigmaLuminanceParam() {

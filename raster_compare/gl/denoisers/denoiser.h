@@ -59,6 +59,7 @@ struct DenoiserInfo {
     int number;  // its value as a number: `denoiser=<number>`
     ParamTable params;
     std::function<std::unique_ptr<Denoiser>(const ParamValues&)> create;
+    Provenance provenance = {};  // Class::provenance() (provenance.h)
 };
 
 // Denoisers by number.
@@ -98,7 +99,8 @@ ParamSpec sigmaDepthParam();
         registry.add({name, summary, Class::kNumber, Class::params(),                     \
                       [](const ::so::ParamValues& v) -> std::unique_ptr<::so::Denoiser> { \
                           return std::make_unique<Class>(v);                              \
-                      }});                                                                \
+                      },                                                                  \
+                      ::so::provenanceOf<Class>(0)});                                     \
     }                                                                                     \
     void soRegisterDenoiser_##Class(::so::DenoiserRegistry& registry)
 

@@ -53,6 +53,7 @@ struct BiasInfo {
     std::string name, summary;
     ParamTable params;
     std::function<std::unique_ptr<DepthBias>(const ParamValues&)> create;
+    Provenance provenance = {};  // Class::provenance() (provenance.h)
 };
 
 class BiasRegistry {
@@ -89,7 +90,8 @@ std::string biasName(const ParamValues& values);
         registry.add({Class::kNumber, name, summary, Class::params(),                      \
                       [](const ::so::ParamValues& v) -> std::unique_ptr<::so::DepthBias> { \
                           return std::make_unique<Class>(v);                               \
-                      }});                                                                 \
+                      },                                                                   \
+                      ::so::provenanceOf<Class>(0)});                                      \
     }                                                                                      \
     void soRegisterBias_##Class(::so::BiasRegistry& registry)
 

@@ -69,7 +69,7 @@ ShadowMapTechnique::ShadowMapTechnique(const ParamValues& v)
 ParamTable SlopeBias::params() {
     // Was `alpha`, the name left to alpha masks (issue 62).
     return {
-        renamedFrom({"slope_factor", 1.0, 0.0, 100.0, false, "slope factor"}, {"alpha", {}, "", 7}),
+        renamedFrom({"slope_factor", 1.0, 0.0, 100.0, false, "slope factor"}, {"alpha", {}, "", 8}),
         {"min", 0.1, 0.0, 1000.0, false, "smallest bias in texels"},
         {"max", 10.0, 0.0, 1000.0, false, "largest bias in texels"}};
 }

@@ -55,6 +55,12 @@ class AccumulateLight final : public LightTechnique {
 class Accumulate final : public Technique {
   public:
     static constexpr const char* kFamily = "accumulation";
+    static Provenance provenance() {
+        return {
+            "Heckbert and Herf, \"Simulating Soft Shadows with Graphics Hardware\", CMU-CS-97-104 "
+            "(1997): a soft shadow as the average of hard shadows from points on the light",
+            Fidelity::Own};
+    }
     static ParamTable params() {
         return {{"samples", 64, 1, 1024, true, "points on the light, each a hard shadow", {}, true},
                 methodParam("method", 1, {"map", "volume"},

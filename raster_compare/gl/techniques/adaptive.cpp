@@ -32,6 +32,22 @@ class Adaptive final : public Technique {
     // Its own family: the registry test holds every "shadow map" technique to be a
     // ShadowMapTechnique, whose single-map setUp this does not share.
     static constexpr const char* kFamily = "virtual shadow map";
+    static Provenance provenance() {
+        return {
+            "Fernando, Fernandez, Bala and Greenberg, \"Adaptive Shadow Maps\", SIGGRAPH 2001, "
+            "section 4 (a hierarchy of pages refined where the camera needs them)",
+            Fidelity::Variant,
+            {"pages are asked for by a GPU mark pass whose counts are read back each frame, not by "
+             "the paper's software traversal of the camera image",
+             "a fixed physical pool allocated greedily every frame: no page cache across frames, "
+             "so every resident page is re-rendered each frame",
+             "at most one edge refinement pass (refine=1), where the paper refines until the error "
+             "bound is met",
+             "the lookup takes the finest resident page with a slope-scaled bias in that level's "
+             "texels (slope-bias's parameters)",
+             "point and area lights fall back to a plain cube map (the paper is for spot and "
+             "directional projections only)"}};
+    }
     static ParamTable params();
     explicit Adaptive(const ParamValues& v)
         : Technique(v), map_(v, "adaptive"), bias_(v), fit_(v.integer("fit") == 1) {}

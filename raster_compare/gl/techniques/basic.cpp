@@ -11,6 +11,12 @@ namespace {
 
 class Basic final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Williams, \"Casting Curved Shadows on Curved Surfaces\", SIGGRAPH 1978: one depth "
+            "comparison at the receiver's texel",
+            Fidelity::Faithful};
+    }
     static ParamTable params() { return shadowMapParams(withBiasAxis({}, "none")); }
     explicit Basic(const ParamValues& v) : ShadowMapTechnique(v) {}
     const char* glsl() const override { return shaders::basic_glsl; }

@@ -55,6 +55,12 @@ class BlurLight final : public LightTechnique {
 class Blur final : public Technique {
   public:
     static constexpr const char* kFamily = "screen-space blur";
+    static Provenance provenance() {
+        return {
+            "a hard shadow map blurred in screen space (the post-process soft shadow of the shadow "
+            "course notes the seeds follow)",
+            Fidelity::Own};
+    }
     static ParamTable params() {
         return {
             {"radius", 4, 0, 64, true, "Gaussian radius in pixels (sigma = radius / 2)", {}, true},

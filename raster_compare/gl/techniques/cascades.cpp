@@ -12,6 +12,15 @@ namespace {
 
 class Cascades final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Zhang, Sun, Xu and Lun, \"Parallel-Split Shadow Maps for Large-scale Virtual "
+            "Environments\", VRCIA 2006, section 3 (the practical split scheme, split_lambda)",
+            Fidelity::Variant,
+            {"options engines add, not in the paper: a bounding-sphere fit with texel snapping and "
+             "a blend band between cascades",
+             "the lookup in each cascade is basic's with the depth bias axis (slope by default)"}};
+    }
     static ParamTable params() {
         ParamTable table = shadowMapParams(withBiasAxis({}, "slope"));
         for (ParamSpec& p : table)

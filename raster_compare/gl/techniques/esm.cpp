@@ -11,6 +11,16 @@ namespace {
 
 class Esm final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Annen, Mertens, Seidel, Flerackers and Kautz, \"Exponential Shadow Maps\", Graphics "
+            "Interface 2008, section 3",
+            Fidelity::Variant,
+            {"the exponent c and the Gaussian blur radius are defaults chosen here (c = 80, blur 2 "
+             "texels)",
+             "the map holds depth normalised over the light's range, linear in eye distance",
+             "the estimate is clamped to [0, 1] where the paper leaves over-darkening to c"}};
+    }
     static ParamTable params() {
         return shadowMapParams(
             withBiasAxis({{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},

@@ -12,6 +12,14 @@ namespace {
 
 class Evsm final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Lauritzen and McCool, \"Layered Variance Shadow Maps\", Graphics Interface 2008, "
+            "section 4 (exponential warps of VSM)",
+            Fidelity::Variant,
+            {"warp exponents, blur radius and bleeding reduction are defaults chosen here",
+             "bleeding reduction by linstep as in vsm (GPU Gems 3 ch. 8), applied to both bounds"}};
+    }
     static ParamTable params() {
         return shadowMapParams(withBiasAxis(
             {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},

@@ -11,6 +11,12 @@ namespace {
 
 class HwPcf final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "OpenGL 4.5 core specification, section 8.22 (texture comparison with GL_LINEAR "
+            "filtering: the driver's own percentage-closer filter)",
+            Fidelity::Faithful};
+    }
     static ParamTable params() { return shadowMapParams(withBiasAxis({}, "slope")); }
     explicit HwPcf(const ParamValues& v) : ShadowMapTechnique(v) {}
     MapStorage storage() const override { return MapStorage::DepthHardwareCompare; }

@@ -15,6 +15,12 @@ namespace {
 class Lightmap final : public Technique {
   public:
     static constexpr const char* kFamily = "lightmap";
+    static Provenance provenance() {
+        return {
+            "baked lightmaps over a UV atlas (TEXCOORD_1), as engines bake static shadows; the "
+            "bake is a high-resolution shadow map of ours",
+            Fidelity::Own};
+    }
     static ParamTable params() {
         return {{"texels_per_unit",
                  32,

@@ -14,6 +14,15 @@ namespace {
 
 class Msm final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Peters and Klein, \"Moment Shadow Mapping\", I3D 2015, algorithm 3 (Hamburger 4MSM) "
+            "and section 5.1 (moment bias 3e-5 for 32-bit floats)",
+            Fidelity::Variant,
+            {"moments stored as 32-bit floats without the paper's optimised 16-bit quantisation",
+             "the Gaussian blur radius is a default chosen here",
+             "bleeding reduction (linstep, as vsm) added on top of the bound"}};
+    }
     static ParamTable params() {
         return shadowMapParams(withBiasAxis(
             {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},

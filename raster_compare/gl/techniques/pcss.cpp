@@ -35,6 +35,19 @@ namespace {
 
 class Pcss final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Fernando, \"Percentage-Closer Soft Shadows\", SIGGRAPH 2005 sketch and NVIDIA "
+            "whitepaper (blocker search, similar-triangle penumbra estimate, variable-width PCF)",
+            Fidelity::Variant,
+            {"blocker search and penumbra bounded by penumbra_max half-widths of the light (issues "
+             "29 and 42), not by texel counts",
+             "taps on a golden-angle spiral (optionally turned per pixel) where the whitepaper "
+             "uses a fixed Poisson disk",
+             "each tap compared against the receiver's plane along the tap's ray, less the depth "
+             "bias axis's bias",
+             "the light size is the side of a square of the light's area, or light_size"}};
+    }
     static ParamTable params() {
         ParamTable own = {
             {"light_size", -1, -1, 1e6, false,

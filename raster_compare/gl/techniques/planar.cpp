@@ -16,6 +16,12 @@ namespace {
 class Planar final : public Technique {
   public:
     static constexpr const char* kFamily = "planar projection";
+    static Provenance provenance() {
+        return {
+            "Blinn, \"Me and My (Fake) Shadow\", IEEE CG&A 1988: casters flattened onto the "
+            "receiver's plane from the light",
+            Fidelity::Faithful};
+    }
     static ParamTable params() {
         return {receiverParam(),
                 {"lift", 1e-4, 0.0, 0.1, false,
@@ -25,7 +31,7 @@ class Planar final : public Technique {
                             "no stencil"),
                 renamedFrom({"opacity", 1.0, 0.0, 1.0, false,
                              "the shadow's opacity: V = 1 - opacity in shadow"},
-                            {"alpha", {}, "", 7})};
+                            {"alpha", {}, "", 8})};
     }
     explicit Planar(const ParamValues& v) : Technique(v) {
         settings_.technique = "planar";

@@ -14,6 +14,12 @@ namespace {
 class PlaneShift final : public Technique {
   public:
     static constexpr const char* kFamily = "planar projection";
+    static Provenance provenance() {
+        return {
+            "Gooch, Gooch, Shirley and Cohen, \"Interactive Technical Illustration\", I3D 1999, "
+            "section 4.3 (soft shadows from projections onto planes shifted towards the light)",
+            Fidelity::Faithful};
+    }
     static ParamTable params() {
         return {receiverParam(),
                 {"planes", 8, 1, 64, true, "projection planes averaged", {}, true},
@@ -24,7 +30,7 @@ class PlaneShift final : public Technique {
                 // `alpha` before issue 62, a name now left to alpha masks.
                 renamedFrom(
                     {"opacity", 1.0, 0.0, 1.0, false, "shadow opacity under all planes' shadows"},
-                    {"alpha", {}, "", 7})};
+                    {"alpha", {}, "", 8})};
     }
     explicit PlaneShift(const ParamValues& v) : Technique(v) {
         settings_.technique = "plane-shift";

@@ -271,6 +271,16 @@ RasterLightStats PlateauLight::describe() const {
 class Plateaus final : public Technique {
   public:
     static constexpr const char* kFamily = "planar projection";
+    static Provenance provenance() {
+        return {
+            "Haines, \"Soft Planar Shadows Using Plateaus\", Journal of Graphics Tools 6(1), 2001",
+            Fidelity::Variant,
+            {"the least attenuation wins by a MIN blend where Haines draws cones and quads into "
+             "the depth buffer",
+             "quads drawn on both sides of every silhouette edge (inside the hard shadow they lose "
+             "to its 0)",
+             "the light's width is the side of a square of its area (pcss's rule), or light_size"}};
+    }
     static ParamTable params() {
         return {receiverParam(),
                 {"light_size", -1, -1, 1e6, false,

@@ -17,6 +17,13 @@ namespace {
 class ShadowTexture final : public ShadowMapTechnique {
   public:
     static constexpr const char* kFamily = "shadow texture";
+    static Provenance provenance() {
+        return {
+            "Segal, Korobkin, van Widenfelt, Foran and Haeberli, \"Fast Shadows and Lighting "
+            "Effects Using Texture Mapping\", SIGGRAPH 1992 (the casters' image projected onto the "
+            "receiver)",
+            Fidelity::Faithful};
+    }
     static ParamTable params() {
         return shadowMapParams(
             {methodParam("filter", 1, {"point", "bilinear"},

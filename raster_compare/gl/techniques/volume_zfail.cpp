@@ -11,6 +11,12 @@ namespace {
 
 class VolumeZFail final : public ShadowVolumeTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Everitt and Kilgard, \"Practical and Robust Stenciled Shadow Volumes for "
+            "Hardware-Accelerated Rendering\", NVIDIA 2002 (z-fail with caps at infinity)",
+            Fidelity::Faithful};
+    }
     static ParamTable params() { return {}; }
     explicit VolumeZFail(const ParamValues& v) : ShadowVolumeTechnique(v) {}
     bool zFail() const override { return true; }

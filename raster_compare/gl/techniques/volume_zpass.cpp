@@ -14,6 +14,12 @@ namespace {
 
 class VolumeZPass final : public ShadowVolumeTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Heidmann, \"Real Shadows, Real Time\", IRIS Universe 18, 1991 (z-pass stencil "
+            "counting)",
+            Fidelity::Faithful};
+    }
     static ParamTable params() {
         return {methodParam("init_count", 1, {"zero", "eye"},
                             "eye: start the count at the volumes containing the eye (CPU); zero: "

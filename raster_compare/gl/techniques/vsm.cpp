@@ -12,6 +12,12 @@ namespace {
 
 class Vsm final : public ShadowMapTechnique {
   public:
+    static Provenance provenance() {
+        return {
+            "Donnelly and Lauritzen, \"Variance Shadow Maps\", I3D 2006, and the light-bleeding "
+            "reduction of GPU Gems 3 chapter 8 (Lauritzen, \"Summed-Area Variance Shadow Maps\")",
+            Fidelity::Faithful};
+    }
     static ParamTable params() {
         return shadowMapParams(withBiasAxis(
             {{"blur", 2, 0, 16, true, "Gaussian radius in texels (sigma = blur / 2)"},
