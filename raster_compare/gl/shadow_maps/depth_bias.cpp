@@ -35,7 +35,8 @@ const std::vector<BiasInfo>& allBiases() {
 
 PluginAxis biasAxis() {
     PluginAxis axis{"bias", "shadow map", "bias", {}};
-    for (const BiasInfo& b : allBiases()) axis.plugins.push_back({b.name, b.summary, b.params, b.provenance});
+    for (const BiasInfo& b : allBiases())
+        axis.plugins.push_back({b.name, b.summary, b.params, b.provenance});
     return axis;
 }
 
