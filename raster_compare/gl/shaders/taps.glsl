@@ -3,8 +3,10 @@
 // the virtual map (shaders/smrt_virtual.frag). Comes before them.
 // Taps that turn per pixel (pcss's pattern=rotated) and, with TEMPORAL (temporal=on of pcf and
 // pcss, docs/techniques.md#temporal), per frame: interleaved gradient noise (Jimenez 2014) at the
-// pixel, the pixel moved by 5.588238 per frame (u_frameIndex, the sequence's frame) as three.js
-// r182 does, as an angle in [0, 2 pi).
+// pixel, the pixel moved by 5.588238 per frame (u_frameIndex, the sequence's frame), the frame
+// term Bevy (utils.wesl interleaved_gradient_noise, frame % 64) and Godot 4 (quick_hash with
+// taa_frame_count) add, as an angle in [0, 2 pi). three.js r182+ (PCFShadowMap) turns its taps by
+// the pixel's noise alone, with no frame term, and accumulates nothing (pcf's pattern=three).
 uniform int u_frameIndex;
 float interleavedGradientNoise(vec2 pixel) {
     return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));

@@ -1,7 +1,9 @@
 // temporal=on|off, history and clamp (docs/techniques.md#temporal): the parameters of a filtering
-// technique whose taps turn every frame (interleaved gradient noise over a Vogel disk, as three.js
-// r182 does for PCF and PCSS), its jittered V resolved over frames by a ShadowHistory. Shared by
-// pcf and pcss, as SlopeBias is.
+// technique whose taps turn every frame (interleaved gradient noise over a Vogel disk, with the
+// frame term Bevy and Godot 4 add; three.js r182+ turns its PCF taps per pixel only, never per
+// frame, and accumulates nothing), its jittered V resolved over frames by a ShadowHistory: a
+// resolve of our own, where Bevy and Godot leave it to a TAA of the lit image. Shared by pcf and
+// pcss, as SlopeBias is.
 #pragma once
 
 #include <optional>
