@@ -57,7 +57,7 @@ std::vector<int> penumbraRow(const ChannelImage& oracle, int& row) {
 
 // A fixed set of light points for every pixel gives a staircase: across a straight penumbra V
 // climbs through its 8 levels (7 rays), each level one run of pixels. Per-pixel points break it:
-// neighbouring pixels see different points, so the levels interleave (many more runs than levels)
+// neighbouring pixels see different points, so the levels interleave (53 runs of 6 levels here)
 // while the row's mean still follows the oracle.
 TEST(SmrtRays, PerPixelLightPointsBreakTheStaircase) {
     REQUIRE_GL();
@@ -81,7 +81,7 @@ TEST(SmrtRays, PerPixelLightPointsBreakTheStaircase) {
         "%.3f)\n",
         row, xs.size(), levels.size(), runs, meanV, meanOracle);
     EXPECT_GE(levels.size(), 5u);
-    EXPECT_GE(runs, 2 * int(levels.size()));
+    EXPECT_GE(runs, 4 * int(levels.size()));  // fixed points: 9 runs of 5 levels here
     EXPECT_NEAR(meanV, meanOracle, 0.1);
 }
 
