@@ -32,35 +32,44 @@ LightMetrics penumbraMetrics(const Scene& s, const ChannelImage& oracle, const s
                              const std::vector<std::string>& settings = {}) {
     const RasterResult r = renderOneFrame(s, t, settings, false);
     const LightMetrics m = computeLightMetrics(oracle, r.image, "panel", {});
-    const std::string label = t + (settings.empty() ? "" : ":" + settings[0]);
+    std::string label = t;
+    for (size_t i = 0; i < settings.size(); ++i) label += (i ? "," : ":") + settings[i];
     EXPECT_TRUE(m.penumbraMae && m.penumbraWidth) << label;
-    std::printf("[ smrt ] %-17s penumbra_mae %.4f penumbra width error %.2f px (oracle %.2f)\n",
+    std::printf("[ smrt ] %-40s penumbra_mae %.4f penumbra width error %.2f px (oracle %.2f)\n",
                 label.c_str(), m.penumbraMae.value_or(-1),
                 m.penumbraWidth ? m.penumbraWidth->mean : -1.0,
                 m.penumbraWidth ? m.penumbraWidth->oracleMeanWidth : -1.0);
     return m;
 }
 
-// At two sizes: before smrt's crossing test (smrt_rays.glsl) it passed at 128 x 96 (1.46 times
-// pcss) and failed at 160 x 120 (1.51).
+// At two sizes, the rays not cut by an angle (max_ray_angle=1.5: Unreal's 0.03 keeps this light's
+// penumbra to a sliver, raster_smrt_rays_test.cpp). With 7 rays on light points jittered per
+// pixel (issue 63) each pixel's V is a 7-ray estimate, so its penumbra_mae holds the estimate's
+// noise (0.089 here, 1.55 times pcss's) and only beats the hard shadow; with 64 rays the noise
+// is small and what is left is the trace's own error: close to pcss's, which Fernando derived for
+// exactly these parallel planes. (Before smrt's crossing test of issue 54, with one set of points
+// for every pixel, it was 1.46 times pcss at 128 x 96 and 1.51 at 160 x 120.)
 TEST(Smrt, PenumbraOfARectLightOverAParallelOccluder) {
     REQUIRE_GL();
     for (const auto& [width, height] : {std::pair{128, 96}, std::pair{160, 120}}) {
         SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height));
         const Scene s = makePenumbraScene(width, height).scene;
         const ChannelImage o = runQuiet(s);
-        const LightMetrics smrt = penumbraMetrics(s, o, "smrt"),
-                           adaptive = penumbraMetrics(s, o, "smrt", {"map=adaptive"}),
+        const LightMetrics smrt = penumbraMetrics(s, o, "smrt", {"max_ray_angle=1.5"}),
+                           many = penumbraMetrics(s, o, "smrt", {"max_ray_angle=1.5", "rays=64"}),
+                           adaptive = penumbraMetrics(
+                               s, o, "smrt", {"max_ray_angle=1.5", "rays=64", "map=adaptive"}),
                            hard = penumbraMetrics(s, o, "slope-bias"),
                            pcss = penumbraMetrics(s, o, "pcss");
         ASSERT_TRUE(hard.penumbraMae && pcss.penumbraMae && hard.penumbraWidth);
-        for (const LightMetrics* m : {&smrt, &adaptive}) {
-            const char* map = m == &smrt ? "plain" : "adaptive";
-            ASSERT_TRUE(m->penumbraMae && m->penumbraWidth) << map;
-            EXPECT_LT(*m->penumbraMae, *hard.penumbraMae) << map;
-            EXPECT_LT(m->penumbraWidth->mean, hard.penumbraWidth->mean) << map;
-            EXPECT_LE(*m->penumbraMae, 1.5 * *pcss.penumbraMae) << map;
+        for (const LightMetrics* m : {&smrt, &many, &adaptive}) {
+            ASSERT_TRUE(m->penumbraMae && m->penumbraWidth);
+            EXPECT_LT(*m->penumbraMae, 0.5 * *hard.penumbraMae);
+            EXPECT_LT(m->penumbraWidth->mean, 0.5 * hard.penumbraWidth->mean);
         }
+        for (const LightMetrics* m : {&many, &adaptive})
+            EXPECT_LE(*m->penumbraMae, 1.5 * *pcss.penumbraMae)
+                << (m == &many ? "plain" : "adaptive");
     }
 }
 

@@ -1,20 +1,22 @@
-// smrt: shadow-map ray tracing, the soft shadows of Unreal 5's virtual shadow maps, written from
-// the published description (Unreal's documentation of r.Shadow.Virtual.SMRT.*; the idea only).
-// Per pixel `rays` rays leave the receiver toward points on the light (rect: a low-discrepancy set
+// smrt: shadow-map ray tracing, the soft shadows of Unreal 5's virtual shadow maps (SMRT). Unreal's
+// shaders are not public: its defaults are its documented cvars (r.Shadow.Virtual.SMRT.*, cited
+// beside each parameter in params()), its hit test EEVEE-Next's public one, which traces the same
+// way (blender/blender
+// source/blender/draw/engines/eevee_next/shaders/eevee_shadow_tracing_lib.glsl,
+// shadow_map_trace_hit_check, lines 110-161 at 01a65b6; techniques/smrt_rays.glsl).
+// Per pixel `rays` rays leave the receiver toward points on the light (rect: a Fibonacci lattice
 // over the rectangle; disk: a Vogel disk on it; sphere and polygon: a disk of the light's width
-// facing the receiver; point, spot and directional lights have no size: one ray to the centre or
-// along the direction). Each is sampled `samples_per_ray` times through the plain depth map
-// rendered from the light's centre, as a height field: the samples crowd toward the receiver
-// (t = ((j + h) / n)^2 of the way, h a per-ray fraction), and a sample is blocked where it lies
-// behind the depth the map holds by less than the depth its last step covered (the ray crossed
-// the height field there; further behind, it passed beside the occluder, which the map from the
-// centre cannot tell from a thick one), less the slope bias at the sample. V is the share of rays
-// with no blocked sample. Directional rays are `ray_length_scale` times the receiver's distance
-// to the camera long (Unreal's RayLengthScaleDirectional, "scaled by distance to the camera");
-// rays to a local light run all the way to it. Defaults are Unreal's for directional lights:
-// RayCountDirectional 7, SamplesPerRayDirectional 8, RayLengthScaleDirectional 1.5. With
-// temporal=on the light points and the samples' fraction turn per frame (interleaved gradient
-// noise offset by the frame index, as pcf's taps) and a ShadowHistory resolves them.
+// facing the receiver; point, spot and directional lights have no size: one direction), the set
+// shifted per pixel by interleaved gradient noise (Unreal's per-pixel random light sample points;
+// with temporal=on it also moves per frame and a ShadowHistory resolves it). A local light's ray
+// is cut where, seen from the light's centre, it spans `max_ray_angle` (MaxRayAngleFromLight); a
+// sun's is `ray_length_scale` times the receiver's distance to the camera long
+// (RayLengthScaleDirectional). Each is traced from its light end toward the receiver through
+// `samples_per_ray` + 1 samples of the depth map, crowding toward the receiver: the first covered
+// sample is a plain depth test; after it a sample that lies behind the map's occluder by more than
+// the ray's own step is tested against the last occluder in front of the ray, extrapolated along
+// its depth slope clamped to `extrapolate_slope` (ExtrapolateMaxSlope*); V is the share of rays
+// that hit nothing. Every depth is less the slope bias at the sample.
 // map=plain (the default) marches through the family's one map (techniques/smrt.glsl; cascades
 // and contact=on as for any of the family). map=adaptive marches through the adaptive technique's
 // virtual shadow map (virtual_shadow_map_light.h, its parameters virtual_size, page_size, pool_mb,
@@ -26,10 +28,13 @@
 // and area lights fall back, as adaptive's do, to a cube map of 32-bit depth in the pool's memory,
 // here smrt with map=plain (counts cube_fallback = 1, cube_resolution). The march itself is one
 // file for both (techniques/smrt_rays.glsl).
+#include <cmath>
+
 #include "core/error.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
 #include "raster_compare/gl/lights/raster_light_kind.h"
+#include "raster_compare/gl/provenance.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/light_camera.h"
 #include "raster_compare/gl/shadow_maps/shadow_map.h"
@@ -51,11 +56,37 @@ bool plainMapOnly(const std::string& name) {
 class Smrt final : public ShadowMapTechnique {
   public:
     static ParamTable params();
+    // Where its design comes from (provenance.h), every deviation from Unreal listed.
+    static Provenance provenance() {
+        return {
+            "Unreal Engine 5 virtual shadow maps, shadow-map ray tracing (the documented "
+            "r.Shadow.Virtual.SMRT.* cvars); hit test: Blender EEVEE-Next "
+            "eevee_shadow_tracing_lib.glsl (shadow_map_trace_hit_check, 01a65b6)",
+            Fidelity::Variant,
+            {"Unreal's shader is not public: the hit test is EEVEE-Next's, its 1.05 step threshold "
+             "and first-sample plain test included",
+             "the slope is in occluder depth per unit of the ray's linear depth, clamped to "
+             "Unreal's numbers (5.0, 0.05) whose unit is not published (EEVEE: per ray time, "
+             "+-100)",
+             "light points: a low-discrepancy set (Fibonacci lattice, Vogel disk) shifted per "
+             "pixel by interleaved gradient noise, not Unreal's random sequence",
+             "max_ray_angle cuts the ray at the angle seen from the light's centre; Unreal's "
+             "exact rule is not published",
+             "no TexelDitherScale dither (2.0): the slope bias of SlopeBias instead",
+             "no AdaptiveRayCount: every pixel traces all its rays",
+             "suns have no angular size here: every ray of a pixel has one direction",
+             "map=plain marches one (or a cascaded) depth map; map=adaptive our virtual map: "
+             "no page cache, receivers' pages only, our page layout and levels",
+             "no screen-space trace before the lookup (r.Shadow.Virtual.ScreenRayLength "
+             "0.015) unless contact=on"}};
+    }
     explicit Smrt(const ParamValues& v)
         : ShadowMapTechnique(v),
           rays_(v.integer("rays")),
           samples_(v.integer("samples_per_ray")),
           lengthScale_(v.real("ray_length_scale")),
+          maxRayAngle_(v.real("max_ray_angle")),
+          extrapolateSlope_(v.real("extrapolate_slope")),
           adaptive_(v.integer("map") == 1),
           map_(v, "smrt"),
           bias_(v),
@@ -84,21 +115,54 @@ class Smrt final : public ShadowMapTechnique {
                temporal_.defines();
     }
     std::vector<std::string> plainSettings(int cubeResolution) const;
+    void setRayLimitUniforms(GLuint program, bool directional) const;
 
     int rays_, samples_;
     double lengthScale_;
-    bool adaptive_;           // map=adaptive
-    VirtualMapSettings map_;  // map=adaptive's pages (read, and checked, either way)
+    double maxRayAngle_;       // radians; local lights only
+    double extrapolateSlope_;  // negative: the light type's default (kExtrapolateMaxSlope*)
+    bool adaptive_;            // map=adaptive
+    VirtualMapSettings map_;   // map=adaptive's pages (read, and checked, either way)
     SlopeBias bias_;
     TemporalTaps temporal_;
 };
 
+// Unreal's defaults for r.Shadow.Virtual.SMRT.ExtrapolateMaxSlopeDirectional and ...Local
+// (documented: indxzero.github.io/ue544cvarwiki, articles r.shadow.virtual.smrt.
+// extrapolatemaxslopedirectional and ...local; "Maximum depth slope when extrapolating behind
+// occluders"), taken where extrapolate_slope is left negative.
+constexpr double kExtrapolateMaxSlopeDirectional = 5.0;
+constexpr double kExtrapolateMaxSlopeLocal = 0.05;
+
 ParamTable Smrt::params() {
+    // Defaults: Unreal 5's documented cvars (r.Shadow.Virtual.SMRT.*; the UE 5.4 cvar pages at
+    // indxzero.github.io/ue544cvarwiki/articles/r.shadow.virtual.smrt.<name>, and their
+    // declarations in VirtualShadowMapProjection.cpp): RayCountDirectional and RayCountLocal 7,
+    // SamplesPerRayDirectional and SamplesPerRayLocal 8, RayLengthScaleDirectional 1.5,
+    // MaxRayAngleFromLight 0.03 (local lights only).
     ParamTable own = {
-        {"rays", 7, 1, 64, true, "rays per pixel toward points on the light", {}, true},
-        {"samples_per_ray", 8, 1, 64, true, "depth-map samples along each ray"},
+        {"rays",
+         7,
+         1,
+         64,
+         true,
+         "rays per pixel toward points on the light (Unreal RayCountDirectional/Local 7)",
+         {},
+         true},
+        {"samples_per_ray", 8, 1, 64, true,
+         "depth-map samples along each ray, plus one at the receiver (Unreal SamplesPerRay 8)"},
         {"ray_length_scale", 1.5, 0.0, 1000.0, false,
-         "directional lights: ray length in receiver-to-camera distances"},
+         "directional lights: ray length in receiver-to-camera distances (Unreal "
+         "RayLengthScaleDirectional 1.5)"},
+        {"max_ray_angle", 0.03, 0.0, 1.5, false,
+         "local lights: the most angle (radians) a ray may span seen from the light's centre, "
+         "the rest of it cut (Unreal MaxRayAngleFromLight 0.03; 0: a hard shadow). Suns: no "
+         "limit, as in Unreal, whose directional rays ray_length_scale bounds"},
+        {"extrapolate_slope", -1, -1, 1000.0, false,
+         "the most occluder depth slope (occluder depth per unit of the ray's depth) extrapolated "
+         "behind an occluder; 0: flat. Negative: Unreal's default for the light's type "
+         "(ExtrapolateMaxSlopeDirectional 5.0 for suns, ExtrapolateMaxSlopeLocal 0.05 for the "
+         "rest)"},
         methodParam("map", 0, {"plain", "adaptive"},
                     "the depth map the rays are marched through: plain (resolution, cascades, "
                     "contact) or adaptive, the virtual shadow map's pages (adaptive's parameters; "
@@ -112,6 +176,15 @@ ParamTable Smrt::params() {
     for (ParamSpec& s : p)
         if (plainMapOnly(s.name)) s.doc = "map=plain: " + s.doc;
     return p;
+}
+
+// The ray limits of one light: tan(max_ray_angle) for local lights (-1: none, for suns) and the
+// extrapolated slope's bound, a negative extrapolate_slope taking the light type's default.
+void Smrt::setRayLimitUniforms(GLuint program, bool directional) const {
+    setFloat(program, "u_smrtTanMaxRayAngle", directional ? -1.0 : std::tan(maxRayAngle_));
+    const double typeDefault =
+        directional ? kExtrapolateMaxSlopeDirectional : kExtrapolateMaxSlopeLocal;
+    setFloat(program, "u_smrtMaxSlope", extrapolateSlope_ < 0.0 ? typeDefault : extrapolateSlope_);
 }
 
 // map=plain's settings for a point or area light's fallback: every one given except the virtual
@@ -170,8 +243,10 @@ int smrtShape(const RasterLightShape& shape, glm::dvec3& wsU, glm::dvec3& wsV) {
 void Smrt::setLightUniforms(GLuint program, const Light& light, const LocalFrame& frame) const {
     const double toLocal = frame.lsLength(1.0);
     glm::dvec3 u(0.0), v(0.0);
-    const int shape = smrtShape(rasterLightKind(light.type).shape(light), u, v);
+    const RasterLightShape lightShape = rasterLightKind(light.type).shape(light);
+    const int shape = smrtShape(lightShape, u, v);
     setInt(program, "u_smrtShape", shape);
+    setRayLimitUniforms(program, lightShape.kind == RasterLightShape::Kind::Direction);
     setVec3(program, "u_lsLightU", u * toLocal);
     setVec3(program, "u_lsLightV", v * toLocal);
     setFloat(program, "u_smrtWidth", frame.lsLength(lightWidth(light)));

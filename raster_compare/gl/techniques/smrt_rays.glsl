@@ -1,22 +1,23 @@
 // smrt's rays (smrt.cpp), whatever map they are marched through: SMRT_RAYS rays from the receiver
-// toward points on the light, each sampled SMRT_SAMPLES times as a height field; V the share with
-// no blocked sample. The frame that includes it defines, after it, where a sample falls:
-// heightSample (the plain map: techniques/smrt.glsl; the virtual map's pages:
+// toward points on the light, each traced from its light end toward the receiver through
+// SMRT_SAMPLES + 1 samples of the map (EEVEE-Next's shadow_map_trace, whose hit check this is);
+// V the share of rays that hit nothing. The frame that includes it defines, after it, where a
+// sample falls: heightSample (the plain map: techniques/smrt.glsl; the virtual map's pages:
 // shaders/smrt_virtual.frag) and mapDepth; and before it u_lsLightPosition, u_lsLightDirection,
 // u_lsEye and shaders/taps.glsl.
 uniform int u_smrtShape;  // 0 none, 1 rectangle, 2 disk (u, v), 3 disk of u_smrtWidth facing p
 uniform vec3 u_lsLightU;
 uniform vec3 u_lsLightV;
 uniform float u_smrtWidth;
-// How far deeper than the ray the surface at its crossing point may lie and still be the surface it
-// crossed, in the step's climb: a sloped occluder's surface there is not at the sample's depth,
-// which rayBlocked extrapolates flat; the ground beside an occluder's edge lies far deeper. (0 and
-// 0.5 gave the same penumbra on the rect light's closed-form scene.)
-#define SMRT_CROSS_TOLERANCE 0.5
+// tan(max_ray_angle) for a local light (a negative value: no limit, as for a sun), and the bound
+// on the occluder's depth slope extrapolated behind it (extrapolate_slope, the light's type's
+// default resolved on the CPU).
+uniform float u_smrtTanMaxRayAngle;
+uniform float u_smrtMaxSlope;
 
 // What the map holds where a sample falls: `covered` false where nothing was rendered that could
-// shadow it (beyond the map); else the sample's linear depth along the map's axis, the depth
-// stored there and the world size of the texel that was read.
+// shadow it (beyond the map, a page not resident); else the sample's linear depth along the map's
+// axis, the depth stored there and the world size of the texel that was read.
 struct HeightSample {
     bool covered;
     float d;
@@ -26,17 +27,27 @@ struct HeightSample {
 HeightSample heightSample(vec3 q);
 float mapDepth(vec3 q);  // a point's linear depth along the map's axis
 
-// Point k of the light's shape for a ray, `turn` in [0, 1) turning the set per pixel and frame.
-vec3 lightPoint(vec3 p, int k, float turn) {
+// The pixel's two random numbers in [0, 1): interleaved gradient noise (shaders/taps.glsl) at the
+// pixel and at a far-off pixel, each pixel its own light points and step offset (Unreal's
+// per-pixel random sample points); with TEMPORAL (temporal=on) they also move per frame.
+vec2 pixelRandom() {
+    const float inverseTwoPi = 0.15915494;
+    float a = tapRotation() * inverseTwoPi;
+    float b = fract(a + interleavedGradientNoise(gl_FragCoord.xy + vec2(113.0, 71.0)));
+    return vec2(a, b);
+}
+
+// Point k of the light's shape for a ray, the set shifted by the pixel's random pair.
+vec3 lightPoint(vec3 p, int k, vec2 random) {
     vec3 centre = u_lsLightPosition;
     if (u_smrtShape == 1) {
         // A Fibonacci lattice over the square (k / n along u, the golden ratio's multiples along
-        // v: n distinct, even steps on either edge's axis), shifted round the torus by the turn.
+        // v: n distinct, even steps on either axis), shifted round the torus (Cranley-Patterson).
         vec2 s = fract(vec2((float(k) + 0.5) / float(SMRT_RAYS), (float(k) + 0.5) * 0.618034) +
-                       vec2(turn, 0.618034 * turn)) - 0.5;
+                       random) - 0.5;
         return centre + s.x * u_lsLightU + s.y * u_lsLightV;
     }
-    vec2 d = vogelTap(k, SMRT_RAYS, 6.28318531 * turn);
+    vec2 d = vogelTap(k, SMRT_RAYS, 6.28318531 * random.x);
     if (u_smrtShape == 2) return centre + 0.5 * (d.x * u_lsLightU + d.y * u_lsLightV);
     if (u_smrtShape == 3) {
         vec3 w = normalize(p - centre);
@@ -46,59 +57,78 @@ vec3 lightPoint(vec3 p, int k, float turn) {
     return centre;
 }
 
-// Whether the segment from p to `target` crosses the height field: a sample behind the stored
-// depth by less than the ray climbs to the next sample (the ray may have passed through the
-// occluder's surface in that step; further behind, it ran under the occluder's shadow from the
-// centre and came out beside it), and where the ray reaches that surface's depth the map holds it
-// there (the crossing; Unreal's "occluder slope extrapolated behind it", flat here). The crossing
-// took the rect light's penumbra over a parallel square from 1.46-1.51 times pcss's mae to
-// 1.07-1.13 (96 x 72 to 320 x 240) and lowered it on 7 of 9 other area lights; a thick occluder
-// that a near-horizontal ray enters through one side and leaves through another it misses
-// (soft_chair's window: 0.078 -> 0.088; alpha_grate's panel too: 0.094 -> 0.115, docs/techniques.md).
-// The slope bias is `bias` (a length) at the receiver, whose texel is `texel`, and scales with the
-// texel each sample reads.
-bool rayBlocked(vec3 p, vec3 target, float h, float bias, float texel) {
-    vec3 w = target - p;
-    for (int j = 0; j < SMRT_SAMPLES; ++j) {
-        float t = (float(j) + h) / float(SMRT_SAMPLES);
-        float tNext = min((float(j + 1) + h) / float(SMRT_SAMPLES), 1.0);
+// The fraction of the segment p -> q that a local light's ray keeps: seen from the light's centre
+// c, the ray from p may span at most max_ray_angle (Unreal's MaxRayAngleFromLight). With a = p - c
+// and d = q - p split along and across a, the angle at s is atan(s |d_across| / (|a| + s d_along)).
+float rayFractionWithinAngle(vec3 p, vec3 q) {
+    if (u_smrtTanMaxRayAngle < 0.0) return 1.0;
+    vec3 a = p - u_lsLightPosition, d = q - p;
+    float lengthA = length(a);
+    float along = dot(d, a) / max(lengthA, 1e-12);
+    float across = length(d - along * a / max(lengthA, 1e-12));
+    float denominator = across - u_smrtTanMaxRayAngle * along;
+    if (denominator <= 0.0) return 1.0;
+    return clamp(u_smrtTanMaxRayAngle * lengthA / denominator, 0.0, 1.0);
+}
+
+// EEVEE-Next's hit check (eevee_shadow_tracing_lib.glsl, shadow_map_trace_hit_check): the ray is
+// traced from its light end toward the receiver p, the samples crowding toward p (the fraction
+// ((n - i - h) / n)^2 of the way, i = 0..n, the last at p itself). The first covered sample is a
+// plain depth test. After it, a sample whose ray lies behind the map's occluder by more than the
+// ray's own step (1.05 times it) is behind that occluder, not crossing it: it is tested against
+// the last occluder seen in front of the ray, extrapolated along that occluder's depth slope
+// (clamped to +-u_smrtMaxSlope, in occluder depth per unit of the ray's depth); otherwise it is
+// tested against the map and the slope is updated. Depths are the map's linear depths, the ray's
+// less the slope bias (`bias` at the receiver whose texel is `texel`, scaled with each sample's).
+bool rayBlocked(vec3 p, vec3 end, float h, float bias, float texel) {
+    vec3 w = end - p;
+    bool started = false;
+    float rayBefore = 0.0;      // the ray's depth at the last sample it was not blocked at
+    float occluderBefore = 0.0; // the last occluder depth seen in front of the ray
+    float timeBefore = 0.0;     // the ray's unbiased depth there (EEVEE's ray time, in depth)
+    float slope = 0.0;
+    for (int i = 0; i <= SMRT_SAMPLES; ++i) {
+        float t = clamp(1.0 - (float(i) + h) / float(SMRT_SAMPLES), 0.0, 1.0);
         HeightSample s = heightSample(p + w * (t * t));
-        if (!s.covered) continue;
-        float climb = abs(s.d - mapDepth(p + w * (tNext * tNext)));
-        float behind = s.d - bias * (s.texel / texel) - s.stored;
-        if (!(behind > 0.0 && behind < climb + s.texel)) continue;
-        // The ray crosses the surface the sample sees within this step: where, taking that surface
-        // on at the sample's depth (its slope extrapolated flat), and is it there? A sample just
-        // inside an occluder's edge whose ray crosses the occluder's plane just outside sees the
-        // ground there: the ray passes beside the edge.
-        float u = mix(t * t, tNext * tNext, clamp(behind / max(climb, 1e-12), 0.0, 1.0));
-        HeightSample x = heightSample(p + w * u);
-        if (!x.covered) return true;
-        if (x.d - bias * (x.texel / texel) - x.stored > -(x.texel + SMRT_CROSS_TOLERANCE * climb))
-            return true;
+        if (!s.covered) continue;  // EEVEE: skip_sample (the slope history stays)
+        float ray = s.d - bias * (s.texel / texel);
+        float occluder = s.stored;
+        if (!started) {
+            if (occluder < ray) return true;
+            started = true;
+            rayBefore = ray, occluderBefore = occluder, timeBefore = s.d;
+            continue;
+        }
+        if (occluder < ray - 1.05 * abs(ray - rayBefore)) {
+            occluder = occluderBefore + slope * (s.d - timeBefore);
+        } else {
+            float step = s.d - timeBefore;
+            slope = abs(step) > 1e-12 ? (occluder - occluderBefore) / step : 0.0;
+            slope = clamp(slope, -u_smrtMaxSlope, u_smrtMaxSlope);
+            occluderBefore = occluder, timeBefore = s.d;
+        }
+        if (occluder < ray) return true;
+        rayBefore = ray;
     }
     return false;
 }
 
 // V at the receiver p (covered by the map), its slope bias `bias` for its own texel `texel`.
 float smrtVisibility(vec3 p, float bias, float texel) {
-    // One set of light points for every pixel (a smooth, stepped penumbra, as pcss's spiral); with
-    // TEMPORAL turned per pixel and frame, the history resolving the noise.
-#ifdef TEMPORAL
-    float turn = tapRotation() / 6.28318531;
-#else
-    float turn = 0.0;
-#endif
+    vec2 random = pixelRandom();
     int lit = 0;
     for (int k = 0; k < SMRT_RAYS; ++k) {
 #ifdef LIGHT_ORTHO
-        vec3 target = p - u_lsLightDirection * (SMRT_LENGTH_SCALE * distance(p, u_lsEye));
+        // A sun: rays ray_length_scale times the receiver's distance to the camera long; Unreal
+        // bounds no angle for directional lights (MaxRayAngleFromLight is for local lights).
+        vec3 end = p - u_lsLightDirection * (SMRT_LENGTH_SCALE * distance(p, u_lsEye));
 #else
-        vec3 target = lightPoint(p, k, turn);
+        vec3 q = lightPoint(p, k, random);
+        vec3 end = p + (q - p) * rayFractionWithinAngle(p, q);
 #endif
-        // Each ray its own fraction of a step (a golden-ratio walk from the pixel's turn).
-        float h = fract(turn + 0.618034 * float(k)) * 0.999 + 0.0005;
-        if (!rayBlocked(p, target, h, bias, texel)) ++lit;
+        // Each ray its own step offset (a golden-ratio walk from the pixel's second number).
+        float h = fract(random.y + 0.618034 * float(k)) * 0.999 + 0.0005;
+        if (!rayBlocked(p, end, h, bias, texel)) ++lit;
     }
     return float(lit) / float(SMRT_RAYS);
 }
