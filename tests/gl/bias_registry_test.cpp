@@ -43,9 +43,9 @@ TEST(BiasAxis, EveryFilterTakesEveryBiasAndOnlyItsParameters) {
     EXPECT_THROW(createTechnique("pcf", {"bias=receiver-plane", "slope_factor=2"}), InputError);
     EXPECT_THROW(createTechnique("vsm", {"epsilon=3"}), InputError);  // vsm's default: none
     EXPECT_NO_THROW(createTechnique("vsm", {"bias=half-texel", "epsilon=3"}));
-    // receiver-plane (issue 63: Isidoro's form, MJP's margin) has no depth-precision epsilon;
-    // texel-plane, the texel-centre form it had before, keeps it.
-    EXPECT_THROW(createTechnique("pcf", {"bias=receiver-plane", "epsilon=3"}), InputError);
+    // receiver-plane (issue 63: Isidoro's form, MJP's margin) and texel-plane (the texel-centre
+    // form it had before) share the depth-precision epsilon; the margin is receiver-plane's alone.
+    EXPECT_NO_THROW(createTechnique("pcf", {"bias=receiver-plane", "epsilon=3"}));
     EXPECT_NO_THROW(createTechnique("pcf", {"bias=texel-plane", "epsilon=3"}));
     const std::unique_ptr<Technique> rp = createTechnique("pcss", {"bias=receiver-plane"});
     EXPECT_EQ(rp->values().real("margin_texels"), 1.0);  // Mesh.hlsl:131

@@ -3,13 +3,16 @@
 // Mesh.hlsl:130-132 and :190-193).
 struct BiasState {
     vec2 g;        // the plane's depth change per texel of offset (receiverPlaneDepthBias)
-    float margin;  // min(fractionalSamplingError, cap), a length
+    float margin;  // min(fractionalSamplingError, cap) + the depth precision, a length
 };
 BiasState biasState(Receiver r, MapPoint m) {
     vec2 g = screenPlaneGradient(r, m);
     // dot(texelSize, abs(receiverPlaneDepthBias)): the plane's rise over a texel along each axis.
     float fractionalSamplingError = MARGIN_TEXELS * (abs(g.x) + abs(g.y));
-    return BiasState(g, min(fractionalSamplingError, windowDepthLength(m.d, MARGIN_CAP)));
+    float margin = min(fractionalSamplingError, windowDepthLength(m.d, MARGIN_CAP));
+    // Plus the depth buffer's rounding, which a perspective map's window depth needs (MJP's
+    // orthographic cascades have none to speak of).
+    return BiasState(g, margin + depthPrecision(m.d, g));
 }
 vec3 biasedPoint(Receiver r) { return r.p; }
 float biasedDepth(BiasState b, Receiver r, MapPoint m, vec2 o, float planeDepth) {
