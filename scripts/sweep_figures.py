@@ -147,7 +147,7 @@ def bias(out):
 
 # The biases that need no tuning at their defaults (and slope-bias's): acne and peter-panning per
 # scene and light, and which of them has neither on every one; where none does, what breaks each.
-ACNE_BAR = 0.01  # issue 54's bar for receiver-plane and oriented-bias on its hidden scene
+ACNE_BAR = 0.01  # issue 54's bar for receiver-plane and oriented-bias (now half-texel-bias)
 
 
 def verdict(method, defaults):

@@ -42,7 +42,22 @@ TEST(BiasAxis, EveryFilterTakesEveryBiasAndOnlyItsParameters) {
     // A parameter of a bias not chosen is an error naming it, not silently ignored.
     EXPECT_THROW(createTechnique("pcf", {"bias=receiver-plane", "slope_factor=2"}), InputError);
     EXPECT_THROW(createTechnique("vsm", {"epsilon=3"}), InputError);  // vsm's default: none
-    EXPECT_NO_THROW(createTechnique("vsm", {"bias=oriented", "epsilon=3"}));
+    EXPECT_NO_THROW(createTechnique("vsm", {"bias=half-texel", "epsilon=3"}));
+    // receiver-plane (issue 63: Isidoro's form, MJP's margin) and texel-plane (the texel-centre
+    // form it had before) share the depth-precision epsilon; the margin is receiver-plane's alone.
+    EXPECT_NO_THROW(createTechnique("pcf", {"bias=receiver-plane", "epsilon=3"}));
+    EXPECT_NO_THROW(createTechnique("pcf", {"bias=texel-plane", "epsilon=3"}));
+    const std::unique_ptr<Technique> rp = createTechnique("pcss", {"bias=receiver-plane"});
+    EXPECT_EQ(rp->values().real("margin_texels"), 1.0);  // Mesh.hlsl:131
+    EXPECT_EQ(rp->values().real("margin_cap"), 1.0);     // uncapped (Mesh.hlsl:132: 0.01)
+    EXPECT_THROW(createTechnique("pcf", {"bias=texel-plane", "margin_cap=0.1"}), InputError);
+    // The numbers are fixed: 6 stays receiver-plane, 8 the renamed half-texel, 9 texel-plane.
+    EXPECT_EQ(biasName(createTechnique("pcf", {"bias=6"})->values()), "receiver-plane");
+    EXPECT_EQ(biasName(createTechnique("pcf", {"bias=8"})->values()), "half-texel");
+    EXPECT_EQ(biasName(createTechnique("pcf", {"bias=9"})->values()), "texel-plane");
+    // `oriented` claimed a talk nobody read: renamed, the old name is an error (it lists the new).
+    EXPECT_THROW(createTechnique("pcf", {"bias=oriented"}), InputError);
+    EXPECT_THROW(createTechnique("oriented-bias", {}), InputError);
     EXPECT_THROW(createTechnique("pcf", {"bias=no-such-bias"}), InputError);
     // Unchosen biases' parameters are left out of the values (raster.json, metrics.json).
     const std::unique_ptr<Technique> pcf = createTechnique("pcf", {});
@@ -59,7 +74,7 @@ TEST(BiasAxis, BiasTechniquesAreNamesForBasicWithABias) {
         {"back-faces", "basic:bias=back-faces"},
         {"receiver-plane", "basic:bias=receiver-plane"},
         {"adaptive-bias", "basic:bias=adaptive"},
-        {"oriented-bias", "basic:bias=oriented"}};
+        {"half-texel-bias", "basic:bias=half-texel"}};
     for (const auto& [name, expansion] : expansions) {
         const TechniqueInfo& info = findTechnique(name);
         EXPECT_EQ(aliasExpansion(info), expansion);

@@ -5,6 +5,7 @@
 // facing the light is culled and casts no shadow at all. Plus a constant bias (back_depth_texels).
 #include <epoxy/gl.h>
 
+#include "raster_compare/gl/provenance.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/depth_bias.h"
 
@@ -16,6 +17,15 @@ class BackFacesDepthBias final : public DepthBias {
     static constexpr int kNumber = 5;  // bias=5 means it, fixed once given
     static ParamTable params() {
         return {{"back_depth_texels", 0.0, 0.0, 1000.0, false, "constant bias in texels"}};
+    }
+    static Provenance provenance() {
+        return {
+            "Wang, Molnar, \"Second-Depth Shadow Mapping\", UNC TR94-019, 1994: the map "
+            "holds the faces turned away from the light (front faces culled)",
+            Fidelity::Variant,
+            {"the nearest back face (front-face culling), not the second depth layer: the same "
+             "for closed meshes only",
+             "plus a constant bias (back_depth_texels, 0 by default)"}};
     }
     explicit BackFacesDepthBias(const ParamValues& v) : texels_(v.real("back_depth_texels")) {}
     // The shader is the constant bias's.

@@ -1,6 +1,7 @@
 // bias=normal-offset: the lookup point moves along the geometric normal by
 // normal_texels * texel * (1 - n.l) before it is projected into the map (Holbert, "Normal Offset
 // Shadows", GDC 2011), plus a small constant bias (normal_depth_texels).
+#include "raster_compare/gl/provenance.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/depth_bias.h"
 
@@ -15,6 +16,14 @@ class NormalOffsetDepthBias final : public DepthBias {
                  "offset along the normal in texels, times (1 - n.l)"},
                 {"normal_depth_texels", 0.1, 0.0, 1000.0, false,
                  "constant bias in texels after the offset"}};
+    }
+    static Provenance provenance() {
+        return {
+            "after Holbert, \"Normal Offset Shadows\" (GDC 2011 poster \"Saying Goodbye to "
+            "Shadow Acne\"); the (1 - n.l) scale as Unity URP Shadows.hlsl ApplyShadowBias "
+            "writes it on the caster side. Ours offsets the receiver's lookup, in texels, plus "
+            "a constant bias; the talk's own constants were not read",
+            Fidelity::Own};
     }
     explicit NormalOffsetDepthBias(const ParamValues& v)
         : normalTexels_(v.real("normal_texels")), depthTexels_(v.real("normal_depth_texels")) {}

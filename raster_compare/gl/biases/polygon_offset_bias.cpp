@@ -5,6 +5,7 @@
 // the offset one: with them it changes nothing.
 #include <epoxy/gl.h>
 
+#include "raster_compare/gl/provenance.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/shadow_maps/depth_bias.h"
 
@@ -17,6 +18,12 @@ class PolygonOffsetDepthBias final : public DepthBias {
     static ParamTable params() {
         return {{"factor", 1.5, -100.0, 100.0, false, "glPolygonOffset factor"},
                 {"units", 4.0, -1e6, 1e6, false, "glPolygonOffset units"}};
+    }
+    static Provenance provenance() {
+        return {
+            "OpenGL 4.5 core profile 14.6.5, glPolygonOffset(factor, units): offset = factor * "
+            "DZ + r * units in the shadow pass",
+            Fidelity::Faithful};
     }
     explicit PolygonOffsetDepthBias(const ParamValues& v)
         : factor_(float(v.real("factor"))), units_(float(v.real("units"))) {}

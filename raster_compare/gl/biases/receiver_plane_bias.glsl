@@ -1,16 +1,20 @@
-// bias=receiver-plane (receiver_plane_bias.cpp): the receiver's depth at each tap's texel centre,
-// on the plane its screen-space derivatives span, less the depth buffer's rounding.
+// bias=receiver-plane (receiver_plane_bias.cpp): each tap at the receiver's depth plus the plane's
+// rise to the tap (Isidoro 2006), less the fractional sampling error, capped (TheRealMJP/Shadows
+// Mesh.hlsl:130-132 and :190-193).
 struct BiasState {
-    vec2 g;  // the plane's depth change per texel of offset
+    vec2 g;        // the plane's depth change per texel of offset (receiverPlaneDepthBias)
+    float margin;  // min(fractionalSamplingError, cap) + the depth precision, a length
 };
 BiasState biasState(Receiver r, MapPoint m) {
-    // A pixel's step can span many texels: the same plane, a texel long, keeps the projection's
-    // curvature (perspective maps) out of the differences.
-    vec3 e1 = g_dpdx * (r.texel / max(length(g_dpdx), 1e-30));
-    vec3 e2 = g_dpdy * (r.texel / max(length(g_dpdy), 1e-30));
-    return BiasState(receiverPlaneGradient(m, r.p, e1, e2));
+    vec2 g = screenPlaneGradient(r, m);
+    // dot(texelSize, abs(receiverPlaneDepthBias)): the plane's rise over a texel along each axis.
+    float fractionalSamplingError = MARGIN_TEXELS * (abs(g.x) + abs(g.y));
+    float margin = min(fractionalSamplingError, windowDepthLength(m.d, MARGIN_CAP));
+    // Plus the depth buffer's rounding, which a perspective map's window depth needs (MJP's
+    // orthographic cascades have none to speak of).
+    return BiasState(g, margin + depthPrecision(m.d, g));
 }
 vec3 biasedPoint(Receiver r) { return r.p; }
 float biasedDepth(BiasState b, Receiver r, MapPoint m, vec2 o, float planeDepth) {
-    return m.d + dot(b.g, tapTexelCentre(m, o)) - depthPrecision(m.d, b.g);
+    return m.d + dot(b.g, o) - b.margin;
 }

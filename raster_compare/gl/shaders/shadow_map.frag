@@ -225,8 +225,15 @@ float chebyshev(vec2 m, float t, float minVariance) {
 float reduceBleeding(float p, float amount) { return clamp((p - amount) / (1.0 - amount), 0.0, 1.0); }
 #endif
 
+#ifdef SCREEN_DERIVATIVES
+// The receiver's position one pixel right and one up, less its own (receiver-plane, texel-plane):
+// taken in main before any branch, where derivatives are defined.
+vec3 g_dpdx, g_dpdy;
+#endif
+
 #ifdef RECEIVER_PLANE
-// ---- The receiver's plane in the map (the receiver-plane, adaptive and oriented biases) ----
+// ---- The receiver's plane in the map (the receiver-plane, texel-plane, adaptive and oriented
+// biases) ----
 // Where q falls in m's map, in texels from m's own point, in the frame storedDepthAt's offsets
 // use (2D maps: the map's texel grid; cube maps: m's face plane along m.t1, m.t2, m.step apart).
 vec2 texelOffsetOf(MapPoint m, vec3 q) {
@@ -291,6 +298,21 @@ vec2 tangentPlaneGradient(Receiver r, MapPoint m) {
     planeTangents(r, e1, e2);
     return receiverPlaneGradient(m, r.p, e1, e2);
 }
+#ifdef SCREEN_DERIVATIVES
+// The depth gradient, per texel of offset, of the plane the receiver's screen-space derivatives
+// span (Isidoro 2006; TheRealMJP/Shadows Mesh.hlsl:102-109, ComputeReceiverPlaneDepthBias, solves
+// the same 2x2 system). A pixel's step can span many texels: the same plane, a texel long, keeps
+// the projection's curvature (perspective maps) out of the differences.
+vec2 screenPlaneGradient(Receiver r, MapPoint m) {
+    vec3 e1 = g_dpdx * (r.texel / max(length(g_dpdx), 1e-30));
+    vec3 e2 = g_dpdy * (r.texel / max(length(g_dpdy), 1e-30));
+    return receiverPlaneGradient(m, r.p, e1, e2);
+}
+#endif
+// The linear length at linear depth d that `w` of the map's window depth ([0, 1] from near to far,
+// what the hardware stores and compares) spans toward the light: w (far - near) for an
+// orthographic map, more the nearer d lies to the far plane for a perspective one.
+float windowDepthLength(float d, float w) { return d - linearDepth(max(windowDepth(d) - w, 0.0)); }
 // The rounding of what a receiver-plane comparison compares, as a length at linear depth d on a
 // plane of gradient g (per texel): the stored depth (DEPTH_BITS, a 32-bit float's mantissa
 // counting 24, through linearDepth's slope there), the receiver's own depth (a float: 2^-23 of
@@ -347,12 +369,6 @@ float cascadedVisibility(vec3 p, vec3 n, float ndotl, float pixel) {
     float next = techniqueVisibility(Receiver(p, n, ndotl, u_cascadeTexel[i + 1]));
     return mix(v, next, clamp((depth - (end - band)) / band, 0.0, 1.0));
 }
-#endif
-
-#ifdef SCREEN_DERIVATIVES
-// The receiver's position one pixel right and one up, less its own (receiver-plane): taken before
-// any branch, where derivatives are defined.
-vec3 g_dpdx, g_dpdy;
 #endif
 
 void main() {

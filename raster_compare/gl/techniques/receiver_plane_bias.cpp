@@ -6,7 +6,8 @@ namespace so {
 
 SO_REGISTER_TECHNIQUE_ALIAS(ReceiverPlaneAlias, "receiver-plane",
                             "receiver plane depth bias (Isidoro 2006): the depth gradient from "
-                            "screen-space derivatives, compared at the texel's centre",
+                            "screen-space derivatives, less the plane's rise over a texel "
+                            "(TheRealMJP/Shadows' margin, uncapped)",
                             "basic", {"bias=receiver-plane"}, {});
 
 }  // namespace so

@@ -1,4 +1,4 @@
-// bias=oriented (oriented_bias.cpp): the tangent plane's depth at the tap, less the rise it needs
+// bias=half-texel (half_texel_bias.cpp): the tangent plane's depth at the tap, less the rise it needs
 // over half a texel along each map axis and the depth buffer's rounding.
 struct BiasState {
     vec2 g;  // the tangent plane's depth change per texel of offset
