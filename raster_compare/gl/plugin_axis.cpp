@@ -17,7 +17,9 @@ bool sameValues(const ParamSpec& a, const ParamSpec& b) {
 ParamSpec axisParam(const PluginAxis& axis, int defaultIndex, std::string doc) {
     std::vector<std::string> names;
     for (const AxisPlugin& p : axis.plugins) names.push_back(p.name);
-    return methodParam(axis.parameter, defaultIndex, std::move(names), std::move(doc));
+    ParamSpec spec = methodParam(axis.parameter, defaultIndex, std::move(names), std::move(doc));
+    spec.formerValues = axis.formerValues;
+    return spec;
 }
 
 ParamTable axisParams(const PluginAxis& axis) {
