@@ -85,8 +85,8 @@ class Ffx final : public Denoiser {
   public:
     static constexpr int kNumber = 3;
     static ParamTable params() {
-        return {{"depth_similarity_sigma", 1.0, 1e-3, 1e6, false,
-                 "the filters' depth stop exp(-|z - z'| / sigma) on view depth, in scene units "
+        return {{"depth_similarity_sigma", 1.0, 1e-3, 1000, false,
+                 "the filters' depth stop exp(-abs(z - z') / sigma) on view depth, in scene units "
                  "(FidelityFX SDK 1.1.4, ffx_denoiser.h:126 \"defaults to 1.0f\"; its "
                  "hybridshadows sample sets 1, hybridshadowsrendermodule.cpp:683)"}};
     }
