@@ -146,7 +146,17 @@ ParamValues parseParams(const std::string& technique, const ParamTable& table,
         const ParamSpec* spec = specOfKey(table, key, former);
         if (!spec)
             throwInputError(file, printable(key, 40), "unknown parameter (valid: " + valid + ")");
-        const auto named = std::find(spec->names.begin(), spec->names.end(), text);
+        auto named = std::find(spec->names.begin(), spec->names.end(), text);
+        for (const FormerValue& f : spec->formerValues)
+            if (named == spec->names.end() && f.name == text) {
+                named = std::find(spec->names.begin(), spec->names.end(), f.current);
+                const std::string notice =
+                    file + ": `" + key + "=" + f.name + "` is deprecated, use `" + key + "=" +
+                    f.current + "`; accepted until format " + std::to_string(f.untilFormat);
+                std::vector<std::string>& notices = values.deprecations_;
+                if (std::find(notices.begin(), notices.end(), notice) == notices.end())
+                    notices.push_back(notice);
+            }
         char* end = nullptr;
         double v = named != spec->names.end() ? double(named - spec->names.begin())
                                               : std::strtod(text.c_str(), &end);

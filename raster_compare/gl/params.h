@@ -28,6 +28,16 @@ struct FormerName {
     int untilFormat = 0;
 };
 
+// A name one of a method parameter's values had before (`denoiser=penumbra`, now `hitdist`): a
+// setting that gives it is still accepted as the current value and said once as a deprecation
+// notice, until that format.
+struct FormerValue {
+    std::string name;     // "penumbra"
+    std::string current;  // "hitdist": one of the parameter's names
+    // The `techniques --json` format_version that stops accepting it.
+    int untilFormat = 0;
+};
+
 struct ParamSpec {
     std::string name;
     double defaultValue;
@@ -57,6 +67,8 @@ struct ParamSpec {
     // each name's provenance, parallel to `names`, so a row that picks one says whose design it
     // grades (provenance.h). Empty where the values are the technique's own choices.
     std::vector<Provenance> provenances = {};
+    // A method parameter's former value names, still accepted with a deprecation notice.
+    std::vector<FormerValue> formerValues = {};
 };
 using ParamTable = std::vector<ParamSpec>;
 

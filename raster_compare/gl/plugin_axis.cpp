@@ -19,6 +19,7 @@ ParamSpec axisParam(const PluginAxis& axis, int defaultIndex, std::string doc) {
     for (const AxisPlugin& p : axis.plugins) names.push_back(p.name);
     ParamSpec spec = methodParam(axis.parameter, defaultIndex, std::move(names), std::move(doc));
     for (const AxisPlugin& p : axis.plugins) spec.provenances.push_back(p.provenance);
+    spec.formerValues = axis.formerValues;
     return spec;
 }
 

@@ -24,6 +24,8 @@ struct PluginAxis {
     std::string parameter;  // the family's parameter that picks a plug-in: "denoiser"
     // By their numbers: value k of the parameter is plugins[k] (a setting may give the number).
     std::vector<AxisPlugin> plugins;
+    // Former names of plug-ins, still accepted (ParamSpec::formerValues).
+    std::vector<FormerValue> formerValues = {};
 };
 
 // The parameter that picks a plug-in by name (methodParam over the plug-ins' names, each with its

@@ -26,7 +26,7 @@ const ParamSpec* specOf(const ParamTable& table, const std::string& name) {
 // The numbers are the values settings and rows gave before the names: fixed.
 TEST(Denoisers, EveryFileIsRegisteredWithItsNumber) {
     EXPECT_EQ(kBuiltInDenoiserCount, 5u);
-    const std::vector<std::string> expected = {"none", "temporal", "svgf", "ffx", "penumbra"};
+    const std::vector<std::string> expected = {"none", "temporal", "svgf", "ffx", "hitdist"};
     ASSERT_EQ(allDenoisers().size(), expected.size());
     for (size_t k = 0; k < expected.size(); ++k) {
         EXPECT_EQ(allDenoisers()[k]->name, expected[k]);
@@ -48,18 +48,19 @@ TEST(Denoisers, RaytracedTableIsGeneratedFromThePlugins) {
     const ParamSpec* denoiser = specOf(table, "denoiser");
     ASSERT_NE(denoiser, nullptr);
     EXPECT_EQ(denoiser->names,
-              (std::vector<std::string>{"none", "temporal", "svgf", "ffx", "penumbra"}));
+              (std::vector<std::string>{"none", "temporal", "svgf", "ffx", "hitdist"}));
     EXPECT_EQ(specOf(table, "alpha"), nullptr);
     const std::vector<std::pair<std::string, std::string>> needs = {
-        {"history", "denoiser=temporal|svgf|penumbra"},
+        {"history", "denoiser=temporal|svgf|hitdist"},
         {"levels", "denoiser=svgf"},
-        {"sigma_luminance", "denoiser=svgf|ffx"},
-        {"sigma_normal", "denoiser=svgf|ffx|penumbra"},
-        {"sigma_depth", "denoiser=svgf|ffx"},
-        {"max_radius", "denoiser=penumbra"},
-        {"radius_scale", "denoiser=penumbra"},
-        {"taps", "denoiser=penumbra"},
-        {"search_radius", "denoiser=penumbra"}};
+        {"sigma_luminance", "denoiser=svgf"},
+        {"sigma_normal", "denoiser=svgf|hitdist"},
+        {"sigma_depth", "denoiser=svgf"},
+        {"depth_similarity_sigma", "denoiser=ffx"},
+        {"max_radius", "denoiser=hitdist"},
+        {"radius_scale", "denoiser=hitdist"},
+        {"taps", "denoiser=hitdist"},
+        {"search_radius", "denoiser=hitdist"}};
     ASSERT_EQ(table.size(), 2 + needs.size());
     for (size_t i = 0; i < needs.size(); ++i) {
         EXPECT_EQ(table[2 + i].name, needs[i].first);
@@ -113,6 +114,27 @@ TEST(FormerNames, RaytracedAlphaIsHistoryWithANotice) {
         EXPECT_NE(std::string(e.what()).find("alpha"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("history = 0.999"), std::string::npos) << e.what();
     }
+}
+
+// A former value name (issue 63): `denoiser=penumbra` is `hitdist` (its number, 4, unchanged),
+// said once; an unknown name stays an error.
+TEST(FormerNames, PenumbraDenoiserIsHitdistWithANotice) {
+    const std::unique_ptr<Technique> old =
+        createTechnique("raytraced", {"denoiser=penumbra", "taps=8"});
+    const std::unique_ptr<Technique> now =
+        createTechnique("raytraced", {"denoiser=hitdist", "taps=8"});
+    EXPECT_EQ(old->values().all(), now->values().all());
+    EXPECT_EQ(now->values().integer("denoiser"), 4);
+    EXPECT_TRUE(now->values().deprecations().empty());
+    ASSERT_EQ(old->values().deprecations().size(), 1u);
+    EXPECT_EQ(old->values().deprecations()[0],
+              "technique raytraced: `denoiser=penumbra` is deprecated, use `denoiser=hitdist`; "
+              "accepted until format 8");
+    const std::unique_ptr<Technique> byNumber =
+        createTechnique("raytraced", {"denoiser=4", "taps=8"});
+    EXPECT_EQ(byNumber->values().all(), now->values().all());
+    EXPECT_TRUE(byNumber->values().deprecations().empty());
+    EXPECT_THROW(createTechnique("raytraced", {"denoiser=umbra"}), InputError);
 }
 
 TEST(FormerNames, PlanarAlphaIsOpacityWithANotice) {

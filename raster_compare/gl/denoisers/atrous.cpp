@@ -7,10 +7,8 @@
 
 namespace so {
 
-AtrousFilter::AtrousFilter(RayFrame& frame, const EdgeStops& stops, bool ffx)
-    : frame_(frame),
-      program_(frame.program("PASS_ATROUS", ffx ? "#define TILE_SKIP\n#define KERNEL_3X3\n" : "",
-                             {shaders::atrous_glsl})) {
+AtrousFilter::AtrousFilter(RayFrame& frame, const EdgeStops& stops)
+    : frame_(frame), program_(frame.program("PASS_ATROUS", "", {shaders::atrous_glsl})) {
     const GLuint ap = program_.get();
     setFloat(ap, "u_sigmaLuminance", stops.luminance);
     setFloat(ap, "u_sigmaNormal", stops.normal);

@@ -1,11 +1,7 @@
-// One a-trous level (atrous.cpp) over V and its variance, step u_step, with SVGF's edge stops:
-// svgf's 5 x 5 B3-spline kernel; with KERNEL_3X3 ffx's 3 x 3 one, with TILE_SKIP ffx's skipped
-// tiles passing their rays through.
+// One a-trous level (atrous.cpp) over V and its variance, step u_step, with SVGF's edge stops and
+// its 5 x 5 B3-spline kernel.
 uniform sampler2D u_filter;  // RG: V and its variance
 uniform int u_step;
-#ifdef TILE_SKIP
-uniform sampler2D u_tiles;
-#endif
 uniform float u_sigmaLuminance, u_sigmaNormal, u_sigmaDepth;
 layout(location = 0) out vec2 o_filter;
 void main() {
@@ -19,13 +15,6 @@ void main() {
     vec3 n = normalAt(ij);
     SO_TAP(1, FILTER_TEXEL_BYTES);
     vec2 c = texelFetch(u_filter, ij, 0).xy;
-#ifdef TILE_SKIP
-    SO_TAP(1, TILE_TEXEL_BYTES);
-    if (texelFetch(u_tiles, ij / ivec2(8, 4), 0).r > 0.5) {
-        o_filter = c;
-        return;
-    }
-#endif
     // The luminance stop's scale: the variance blurred over 3 x 3 (SVGF 4.2, eq. 5).
     float var = 0.0;
     for (int dy = -1; dy <= 1; ++dy)
@@ -39,13 +28,8 @@ void main() {
     // one pixel's footprint per pixel of distance would make (SVGF's depth gradient, in world
     // terms).
     float footprint = footprintAt(pos.xyz);
-#ifdef KERNEL_3X3
-    const int R = 1;
-    const float h[3] = float[3](1.0 / 2.0, 1.0 / 4.0, 0.0);
-#else
     const int R = 2;
     const float h[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
-#endif
     vec2 sum = vec2(c.x, c.y);
     float wsum = 1.0;
     for (int dy = -R; dy <= R; ++dy)

@@ -1,4 +1,4 @@
-// The a-trous levels (atrous.glsl) that svgf and ffx end with: V and its variance filtered at
+// The a-trous levels (atrous.glsl) that svgf ends with: V and its variance filtered at
 // steps 1, 2, 4, ... with SVGF's edge stops on the normal, the depth and V (Schied et al.,
 // "Spatiotemporal Variance-Guided Filtering", HPG 2017, section 4.2).
 #pragma once
@@ -15,9 +15,7 @@ struct EdgeStops {
 
 class AtrousFilter {
   public:
-    // ffx: FidelityFX's 3 x 3 kernel, its skipped tiles (frame.tiles on unit 5) passed through;
-    // else SVGF's 5 x 5 B3-spline kernel.
-    AtrousFilter(RayFrame& frame, const EdgeStops& stops, bool ffx);
+    AtrousFilter(RayFrame& frame, const EdgeStops& stops);
     // `levels` levels over frame.filterA, each timed as "atrous"; keeps the first level's output
     // as the history's V (RayFrame::keepHistory). Returns the texture holding the result.
     GLuint run(PassClock& clock, int levels);

@@ -50,6 +50,9 @@ const std::vector<const DenoiserInfo*>& allDenoisers() {
 
 PluginAxis denoiserAxis() {
     PluginAxis axis{"denoiser", kRayTracingFamily, "denoiser", {}};
+    // The blocker-distance blur was `penumbra` until format 8 (issue 63: it is not the Ray Tracing
+    // Gems chapter 13 design it was credited to, which is `rtg`).
+    axis.formerValues = {{"penumbra", "hitdist", 8}};
     for (const DenoiserInfo* d : allDenoisers())
         axis.plugins.push_back({d->name, d->summary, d->params, d->provenance});
     return axis;

@@ -87,8 +87,8 @@ std::unique_ptr<Denoiser> createDenoiser(const ParamValues& values);
 
 // Parameters more than one denoiser takes: each is one spec, declared by every denoiser that reads
 // it, so the family's table says which denoisers take it.
-ParamSpec historyParam();         // the exponential history's weight (temporal, svgf, penumbra)
-ParamSpec sigmaLuminanceParam();  // the a-trous edge stops (svgf, ffx; penumbra's normal stop)
+ParamSpec historyParam();         // the exponential history's weight (temporal, svgf, hitdist)
+ParamSpec sigmaLuminanceParam();  // svgf's a-trous edge stops (hitdist's normal stop)
 ParamSpec sigmaNormalParam();
 ParamSpec sigmaDepthParam();
 

@@ -17,6 +17,12 @@ class NoDenoiser final : public Denoiser {
   public:
     static constexpr int kNumber = 0;
     static ParamTable params() { return {}; }
+    static Provenance provenance() {
+        return {
+            "no denoiser: the rays' Monte Carlo estimate as traced (the baseline every "
+            "denoiser is measured against)",
+            Fidelity::Faithful};
+    }
     explicit NoDenoiser(const ParamValues& /*v*/) {}
     std::vector<std::string> passNames() const override { return {}; }
     RayTarget result() const override { return RayTarget::Raw; }

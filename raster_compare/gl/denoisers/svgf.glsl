@@ -1,8 +1,8 @@
 // svgf (svgf.cpp): V and its variance for the a-trous levels (atrous.glsl), after the temporal
-// pass (temporal.glsl): the variance from the temporal moments, or over 7 x 7 neighbours while
-// the history is young.
+// pass (temporal.glsl): the variance from the temporal moments, or V and the variance filtered over
+// 7 x 7 neighbours while the history is young.
 uniform sampler2D u_accum;
-uniform float u_sigmaNormal;
+uniform float u_sigmaNormal, u_sigmaLuminance, u_sigmaDepth;
 layout(location = 0) out vec2 o_filter;
 void main() {
     ivec2 ij = ivec2(gl_FragCoord.xy);
@@ -17,21 +17,33 @@ void main() {
         o_filter = vec2(acc.x, max(acc.z - acc.y * acc.y, 0.0));
         return;
     }
-    // SVGF 4.2: too young a history for temporal moments: the moments over 7 x 7 neighbours on
-    // the same surface (normal stop), and the variance from them, boosted as the history is short.
+    // SVGF 4.2 as Falcor's SVGFFilterMoments.ps.slang (51-123) writes it: too young a history
+    // for temporal moments, V and its moments cross-bilaterally filtered over 7 x 7 neighbours
+    // (kernel 1; Falcor's computeWeight, SVGFCommon.slang: the normal stop, the depth stop at 3
+    // depth gradients a pixel of distance, V's stop `sigma_luminance` unscaled by the variance),
+    // the variance from those moments boosted by 4 / length.
     vec3 n = normalAt(ij);
+    float footprint = footprintAt(pos.xyz);
     ivec2 size = textureSize(u_accum, 0);
-    vec2 m = vec2(0.0);
+    vec3 sum = vec3(0.0);  // V, first and second moments
     float wsum = 0.0;
     for (int dy = -3; dy <= 3; ++dy)
         for (int dx = -3; dx <= 3; ++dx) {
             ivec2 q = ij + ivec2(dx, dy);
-            if (!inside(q, size) || positionAt(q).w == 0.0) continue;
-            float w = pow(max(dot(n, normalAt(q)), 0.0), u_sigmaNormal);
+            if (!inside(q, size)) continue;
+            vec4 pq = positionAt(q);
+            if (pq.w == 0.0) continue;  // Falcor's depth stop leaves the sky next to nothing
             SO_TAP(1, ACCUM_TEXEL_BYTES);
-            m += w * texelFetch(u_accum, q, 0).yz;
+            vec3 a = texelFetch(u_accum, q, 0).xyz;
+            float wz = dx == 0 && dy == 0
+                           ? 0.0
+                           : abs(dot(n, pq.xyz - pos.xyz)) /
+                                 (u_sigmaDepth * 3.0 * footprint * length(vec2(dx, dy)));
+            float w = pow(clamp(dot(n, normalAt(q)), 0.0, 1.0), u_sigmaNormal) *
+                      exp(-abs(acc.x - a.x) / u_sigmaLuminance - wz);
+            sum += w * a;
             wsum += w;
         }
-    m /= max(wsum, 1e-6);
-    o_filter = vec2(acc.x, max(m.y - m.x * m.x, 0.0) * 4.0 / acc.w);
+    sum /= max(wsum, 1e-6);
+    o_filter = vec2(sum.x, (sum.z - sum.y * sum.y) * 4.0 / acc.w);
 }

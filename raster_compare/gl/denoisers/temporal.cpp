@@ -9,12 +9,13 @@
 
 namespace so {
 
-ExponentialHistory::ExponentialHistory(RayFrame& frame, double history)
+ExponentialHistory::ExponentialHistory(RayFrame& frame, double history, double maxLength)
     : frame_(frame),
       program_(frame.program("PASS_TEMPORAL", "",
                              {shaders::reprojection_glsl, shaders::temporal_glsl})) {
     // The new frame's weight, in double: the float the shader gets is the one `alpha` gave.
     setFloat(program_.get(), "u_newWeight", 1.0 - history);
+    setFloat(program_.get(), "u_maxLength", maxLength);
 }
 
 void ExponentialHistory::run(PassClock& clock) {
@@ -44,6 +45,13 @@ class Temporal final : public Denoiser {
   public:
     static constexpr int kNumber = 1;
     static ParamTable params() { return {historyParam()}; }
+    static Provenance provenance() {
+        return {
+            "our own: SVGF's temporal accumulation alone (Schied et al. HPG 2017, 4.1; "
+            "reprojection.glsl as Falcor's SVGFReproject) as a denoiser, its history's length "
+            "capped at 1024 where SVGF's is 32",
+            Fidelity::Own};
+    }
     explicit Temporal(const ParamValues& v) : history(v.real("history")) {}
     std::vector<std::string> passNames() const override { return {"temporal"}; }
     RayTarget result() const override { return RayTarget::Accum; }

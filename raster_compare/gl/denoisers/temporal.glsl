@@ -2,6 +2,7 @@
 // with the history length (reprojection.glsl's reprojected()); svgf and penumbra run it first.
 uniform sampler2D u_raw;
 uniform float u_newWeight;  // 1 - history: the new frame's weight
+uniform float u_maxLength;  // the history length's cap: svgf 32 as Falcor (SVGFReproject 216)
 layout(location = 0) out vec4 o_accum;
 
 void main() {
@@ -19,7 +20,7 @@ void main() {
         return;
     }
     // SVGF 4.1: an exponential moving average, the first frames of a history averaged equally.
-    float len = min(round(hist.w) + 1.0, 1024.0);
+    float len = min(round(hist.w) + 1.0, u_maxLength);
     float a = max(u_newWeight, 1.0 / len);
     o_accum = vec4(mix(hist.x, v, a), mix(hist.y, v, a), mix(hist.z, v * v, a), len);
 }

@@ -11,7 +11,9 @@ class PassClock;
 
 class ExponentialHistory {
   public:
-    ExponentialHistory(RayFrame& frame, double history);
+    // `maxLength` caps the history's length, and so how far 1 / length lowers the new frame's
+    // weight below 1 - history.
+    ExponentialHistory(RayFrame& frame, double history, double maxLength = 1024);
     // Timed as "temporal": the accumulation into frame.accum.
     void run(PassClock& clock);
 

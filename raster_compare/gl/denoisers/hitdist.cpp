@@ -1,8 +1,9 @@
-// penumbra: Ray Tracing Gems, chapter 13 (Boksansky, Wimmer, Bittner, "Ray Traced Shadows:
-// Maintaining Real-Time Frame Rates", 2019): the temporal history (temporal.h), filtered over a
-// disk whose radius is the penumbra's estimated half-width in pixels: w = light size x d_blocker /
-// (d_light - d_blocker) by similar triangles, d_blocker the mean distance of the blocked rays
-// around the pixel (the rays trace closest hits for it), at most `max_radius` pixels.
+// hitdist: a design of ours (called `penumbra` before format 8, and wrongly credited to Ray Tracing
+// Gems chapter 13, whose design is `rtg`): the temporal history (temporal.h), filtered over a disk
+// whose radius is the penumbra's estimated half-width in pixels: w = light size x d_blocker /
+// (d_light - d_blocker) by similar triangles (PCSS's estimate, Fernando 2005), d_blocker the mean
+// distance of the blocked rays around the pixel (the rays trace closest hits for it), at most
+// `max_radius` pixels.
 #include <string>
 
 #include "core/lights/light_kind.h"
@@ -16,20 +17,20 @@
 namespace so {
 namespace {
 
-struct PenumbraFilter {
+struct HitDistanceFilter {
     double maxRadius, radiusScale, sigmaNormal;
     int taps, searchRadius;
 };
 
-class PenumbraLight final : public LightDenoiser {
+class HitDistanceLight final : public LightDenoiser {
   public:
-    PenumbraLight(RayFrame& frame, double history, const PenumbraFilter& f)
+    HitDistanceLight(RayFrame& frame, double history, const HitDistanceFilter& f)
         : frame_(frame),
           history_(frame, history),
-          program_(frame.program("PASS_PENUMBRA",
+          program_(frame.program("PASS_HITDIST",
                                  "#define SEARCH_RADIUS " + std::to_string(f.searchRadius) +
                                      "\n#define PENUMBRA_TAPS " + std::to_string(f.taps) + "\n",
-                                 {shaders::penumbra_glsl})) {
+                                 {shaders::hitdist_glsl})) {
         const GLuint pp = program_.get();
         setInt(pp, "u_raw", 3);  // beside the accumulation on unit 0
         const Light& light = frame.light();
@@ -42,7 +43,7 @@ class PenumbraLight final : public LightDenoiser {
     }
     GLuint denoise(PassClock& clock) override {
         history_.run(clock);
-        clock.begin("penumbra");
+        clock.begin("hitdist");
         glBindTextureUnit(0, frame_.accum.texture.get());
         glBindTextureUnit(3, frame_.raw.texture.get());
         frame_.draw(frame_.filterA, program_);
@@ -57,15 +58,14 @@ class PenumbraLight final : public LightDenoiser {
     GlProgram program_;
 };
 
-class Penumbra final : public Denoiser {
+class HitDistance final : public Denoiser {
   public:
     static constexpr int kNumber = 4;
     static ParamTable params() {
         return {historyParam(),
                 sigmaNormalParam(),
                 {"max_radius", 16, 0, 64, false,
-                 "the filter's largest radius in pixels (Ray Tracing Gems 13: the kernel is "
-                 "bounded for its cost)"},
+                 "the filter's largest radius in pixels (bounded for its cost)"},
                 {"radius_scale", 0.25, 0.01, 4, false,
                  "the filter's radius in half-widths of the estimated penumbra (a disk as wide "
                  "as the penumbra blurs its ends: 0.25 measured best on lambert.h's rect light "
@@ -75,25 +75,32 @@ class Penumbra final : public Denoiser {
                  "half-width in pixels of the window whose blocked rays give the blocker "
                  "distance (every other pixel)"}};
     }
-    explicit Penumbra(const ParamValues& v)
+    static Provenance provenance() {
+        return {
+            "our own: the blocker-distance penumbra estimate of PCSS (Fernando, \"Percentage-"
+            "Closer Soft Shadows\", SIGGRAPH 2005 sketch) from the rays' hit distances, over "
+            "SVGF's temporal accumulation (Schied et al. HPG 2017, 4.1)",
+            Fidelity::Own};
+    }
+    explicit HitDistance(const ParamValues& v)
         : history(v.real("history")),
           filter{v.real("max_radius"), v.real("radius_scale"), v.real("sigma_normal"),
                  v.integer("taps"), v.integer("search_radius")} {}
-    std::vector<std::string> passNames() const override { return {"temporal", "penumbra"}; }
+    std::vector<std::string> passNames() const override { return {"temporal", "hitdist"}; }
     bool needsHitDistance() const override { return true; }
     RayTarget result() const override { return RayTarget::Filter; }
     std::unique_ptr<LightDenoiser> setUp(RayFrame& frame) const override {
-        return std::make_unique<PenumbraLight>(frame, history, filter);
+        return std::make_unique<HitDistanceLight>(frame, history, filter);
     }
 
     double history;
-    PenumbraFilter filter;
+    HitDistanceFilter filter;
 };
 
 }  // namespace
 
-SO_REGISTER_DENOISER(Penumbra, "penumbra",
-                     "the temporal history filtered over a disk as wide as the penumbra "
-                     "estimated from the blocker distance (Ray Tracing Gems chapter 13)");
+SO_REGISTER_DENOISER(HitDistance, "hitdist",
+                     "ours: the temporal history filtered over a disk as wide as the penumbra "
+                     "estimated from the rays' blocker distance (called penumbra before format 8)");
 
 }  // namespace so

@@ -1,4 +1,4 @@
-// penumbra (penumbra.cpp): the temporal history (temporal.glsl) filtered over a disk as wide as
+// hitdist (hitdist.cpp): the temporal history (temporal.glsl) filtered over a disk as wide as
 // the penumbra; SEARCH_RADIUS and PENUMBRA_TAPS defined.
 uniform sampler2D u_accum;  // x: V accumulated over time
 uniform sampler2D u_raw;    // y: this frame's mean blocker distance (0: no ray was blocked)
@@ -8,9 +8,8 @@ uniform float u_maxRadius;
 uniform float u_radiusScale;
 uniform float u_sigmaNormal;
 layout(location = 0) out vec2 o_filter;
-// Ray Tracing Gems, chapter 13 (Boksansky, Wimmer, Bittner 2019): the penumbra's size from the
-// blocker distance by similar triangles, w = light size x d_blocker / (d_light - d_blocker), sets
-// the filter's radius. The blocker distance is the mean of the blocked rays' distances over the
+// The penumbra's size from the blocker distance by similar triangles (PCSS's estimate), w = light
+// size x d_blocker / (d_light - d_blocker), sets the filter's radius. The blocker distance is the mean of the blocked rays' distances over the
 // pixels around (a penumbra's lit side has none of its own), the filter a disk of PENUMBRA_TAPS
 // taps on a golden-angle spiral with a normal and tangent-plane stop.
 void main() {
