@@ -37,13 +37,13 @@ struct ShadowRayGBuffer {
 struct ShadowRaySettings {
     int spp = 1;
     int frameIndex = 0;
+    bool hitDistance = false;  // trace closest hits (slower) for the mean blocker distance
+    int threads = 0;           // 0: the hardware's
     // Per pixel, in the G-buffer's order, how many of the `spp` rays to trace (0 to spp): an
     // adaptive denoiser's counts (denoisers/rtg.cpp). Null: spp everywhere. Pixel p's ray s uses
     // the sequence's index frameIndex * spp + s either way, so a pixel given n rays traces the
     // first n of the rays it would trace at the full count.
     const std::vector<uint8_t>* samplesPerPixel = nullptr;
-    bool hitDistance = false;  // trace closest hits (slower) for the mean blocker distance
-    int threads = 0;           // 0: the hardware's
 };
 
 struct ShadowRayFrame {
