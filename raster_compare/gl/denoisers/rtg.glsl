@@ -6,7 +6,7 @@
 // PASS_FILTER the two filtering passes.
 uniform sampler2D u_prevHistory;   // the visibility cache: V of the last 4 frames, newest in R
 uniform sampler2D u_prevPosition;  // the previous frame's local positions (its frame)
-uniform sampler2D u_prevVariation;  // its variation and sample-count cache (utils 135-144)
+uniform sampler2D u_prevVariation;  // its variation and sample-count cache (utils 135-145)
 uniform sampler2D u_prevFiltered;   // its filtered variation (R)
 uniform mat4 u_prevClipFromLocal;
 uniform float u_prevScale;  // previous local = local * u_prevScale + u_prevOffset
@@ -34,7 +34,7 @@ bool reproject(vec3 lsP, out vec2 px) {
     return abs(1.0 - clip.w / prevDepth) <= u_reprojectionDepth;
 }
 
-// utils 141-144: the caches of variation (fraction) and sample counts (integer part, plus one).
+// utils 140-144: the caches of variation (fraction) and sample counts (integer part, plus one).
 vec4 decodeVariation(vec4 encoded, out ivec4 counts) {
     counts = ivec4(trunc(encoded)) - ivec4(1);
     return fract(encoded) / 0.99;
@@ -151,6 +151,7 @@ void main() {
     vec4 variationHistory = decodeVariation(cacheAt(u_prevVariation, ij), past);
     // rt.hlsl 450-453 as written: G, B and A all take the old R before R takes the new value.
     variationHistory = vec4(variation, variationHistory.rrr);
+    // utils 135-138: counts in the integer part (plus one, so that 0 rays is kept).
     o_variationCache = variationHistory * 0.99 + vec4(ivec4(count, past.rgb)) + vec4(1.0);
     o_variation = variation;
 }
@@ -158,7 +159,7 @@ void main() {
 #elif defined(PASS_VARIATION)
 uniform sampler2D u_input;
 uniform ivec2 u_step;  // (1, 0) horizontal, (0, 1) vertical
-uniform int u_maximum;  // 1: distributeMaxPass (variation 52-74), 0: blurPass (variation 27-50)
+uniform int u_maximum;  // 1: distributeMaxPass (variation 53-74), 0: blurPass (variation 29-51)
 layout(location = 0) out float o_variation;
 
 // A tap out of the image is 0, as D3D's Load reads it.
@@ -188,7 +189,7 @@ uniform float u_maxVariation;  // maxVariationLevel
 uniform float u_depthEpsilonMin, u_depthEpsilonMax, u_normalEpsilon;
 layout(location = 0) out vec2 o_visibility;
 
-// visibility 37-49: Gaussians of 1, 3, 5, 7 and 9 taps.
+// visibility 37-53: Gaussians of 1, 3, 5, 7 and 9 taps.
 const float kGauss[45] = float[45](
     0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
     0.0, 0.0, 0.0, 0.196842, 0.606316, 0.196842, 0.0, 0.0, 0.0,
@@ -201,7 +202,8 @@ float linearDepth(vec3 lsP) {
     return (u_clipFromLocal * vec4(lsP, 1.0)).w;
 }
 
-// visibility 54-71: a binary test, the depth ratio's tolerance by the normal's view-space z.
+// visibility 55-71 (isValidTap): a binary test, the depth ratio's tolerance by the normal's
+// view-space z.
 bool validTap(float tapDepth, float centerDepth, vec3 tapNormal, vec3 centerNormal) {
     vec3 viewAxis = normalize(vec3(u_clipFromLocal[0][3], u_clipFromLocal[1][3],
                                    u_clipFromLocal[2][3]));
@@ -210,7 +212,7 @@ bool validTap(float tapDepth, float centerDepth, vec3 tapNormal, vec3 centerNorm
     return dot(tapNormal, centerNormal) >= u_normalEpsilon;
 }
 
-// visibility 74-127 (selectBlurPassSize, blurPass): the kernel picked, and blended with the next
+// visibility 73-128 (blurPass, selectBlurPassSize): the kernel picked, and blended with the next
 // larger, by the filtered variation; taps that fail the test leave the normalisation.
 void main() {
     ivec2 ij = ivec2(gl_FragCoord.xy);
