@@ -25,8 +25,8 @@ const ParamSpec* specOf(const ParamTable& table, const std::string& name) {
 
 // The numbers are the values settings and rows gave before the names: fixed.
 TEST(Denoisers, EveryFileIsRegisteredWithItsNumber) {
-    EXPECT_EQ(kBuiltInDenoiserCount, 5u);
-    const std::vector<std::string> expected = {"none", "temporal", "svgf", "ffx", "hitdist"};
+    EXPECT_EQ(kBuiltInDenoiserCount, 6u);
+    const std::vector<std::string> expected = {"none", "temporal", "svgf", "ffx", "hitdist", "rtg"};
     ASSERT_EQ(allDenoisers().size(), expected.size());
     for (size_t k = 0; k < expected.size(); ++k) {
         EXPECT_EQ(allDenoisers()[k]->name, expected[k]);
@@ -48,7 +48,7 @@ TEST(Denoisers, RaytracedTableIsGeneratedFromThePlugins) {
     const ParamSpec* denoiser = specOf(table, "denoiser");
     ASSERT_NE(denoiser, nullptr);
     EXPECT_EQ(denoiser->names,
-              (std::vector<std::string>{"none", "temporal", "svgf", "ffx", "hitdist"}));
+              (std::vector<std::string>{"none", "temporal", "svgf", "ffx", "hitdist", "rtg"}));
     EXPECT_EQ(specOf(table, "alpha"), nullptr);
     const std::vector<std::pair<std::string, std::string>> needs = {
         {"history", "denoiser=temporal|svgf|hitdist"},
@@ -60,7 +60,10 @@ TEST(Denoisers, RaytracedTableIsGeneratedFromThePlugins) {
         {"max_radius", "denoiser=hitdist"},
         {"radius_scale", "denoiser=hitdist"},
         {"taps", "denoiser=hitdist"},
-        {"search_radius", "denoiser=hitdist"}};
+        {"search_radius", "denoiser=hitdist"},
+        {"variation_threshold", "denoiser=rtg"},
+        {"max_variation", "denoiser=rtg"},
+        {"sampling_matrix", "denoiser=rtg"}};
     ASSERT_EQ(table.size(), 2 + needs.size());
     for (size_t i = 0; i < needs.size(); ++i) {
         EXPECT_EQ(table[2 + i].name, needs[i].first);
@@ -155,7 +158,7 @@ TEST(Denoisers, ListedAsAnAxis) {
     const nlohmann::json& axis = j["axes"]["denoiser"];
     EXPECT_EQ(axis["family"], findTechnique("raytraced").family);
     EXPECT_EQ(axis["parameter"], "denoiser");
-    ASSERT_EQ(axis["plugins"].size(), 5u);
+    ASSERT_EQ(axis["plugins"].size(), 6u);
     EXPECT_EQ(axis["plugins"][0]["name"], "none");
     EXPECT_TRUE(axis["plugins"][0]["parameters"].empty());
     const nlohmann::json& svgf = axis["plugins"][2];

@@ -289,6 +289,56 @@ TEST(ShadowRays, SameAtAnyThreadCountAndAdvancesWithTheFrame) {
     EXPECT_LT(err, 0.01);
 }
 
+// Per-pixel ray counts (denoiser=rtg's): a count of spp everywhere traces the same bits as none
+// given; counts 0 to 4 trace exactly their sum (every ray of this floor reaches the light's side),
+// leave the pixels given 0 untraced, and give a pixel of one ray a V of 0 or 1.
+TEST(ShadowRays, PerPixelCountsTraceWhatTheyAsk) {
+    const PenumbraScene p = makePenumbraScene(8, 8);
+    const LocalFrame frame = LocalFrame::fit(p.scene.wsBounds);
+    const int W = 20, H = 12;
+    std::vector<float> position(4 * W * H), normal(4 * W * H);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const glm::dvec3 ls =
+                frame.lsFromWs({-2.0 + 4.0 * (x + 0.5) / W, 0.0, -1.5 + 3.0 * (y + 0.5) / H});
+            const size_t i = size_t(y * W + x);
+            for (int c = 0; c < 3; ++c) position[4 * i + c] = float(ls[c]);
+            position[4 * i + 3] = 1.0f;
+            normal[4 * i + 1] = 1.0f;
+        }
+    const ShadowRayTracer tracer(p.scene, frame);
+    const ShadowRayGBuffer g{W, H, position.data(), normal.data()};
+    ShadowRaySettings uniform{4, 5, false, 2};
+    const ShadowRayFrame all = tracer.trace(g, p.scene.lights[0], uniform);
+    const std::vector<uint8_t> four(size_t(W * H), 4);
+    ShadowRaySettings given = uniform;
+    given.samplesPerPixel = &four;
+    const ShadowRayFrame same = tracer.trace(g, p.scene.lights[0], given);
+    EXPECT_EQ(same.visibilityAndHit, all.visibilityAndHit);
+    EXPECT_EQ(same.raysTraced, all.raysTraced);
+    std::vector<uint8_t> counts(size_t(W * H));
+    uint64_t sum = 0, nonZero = 0;
+    for (size_t i = 0; i < counts.size(); ++i) {
+        counts[i] = uint8_t(i % 5);
+        sum += counts[i];
+        nonZero += counts[i] > 0 ? 1 : 0;
+    }
+    given.samplesPerPixel = &counts;
+    const ShadowRayFrame mixed = tracer.trace(g, p.scene.lights[0], given);
+    EXPECT_EQ(mixed.raysTraced, sum);
+    EXPECT_EQ(mixed.pixelsTraced, nonZero);
+    for (size_t i = 0; i < counts.size(); ++i) {
+        const float v = mixed.visibilityAndHit[2 * i];
+        if (counts[i] == 0) {
+            EXPECT_EQ(v, 0.0f) << i;
+        } else if (counts[i] == 1) {
+            EXPECT_TRUE(v == 0.0f || v == 1.0f) << i << ": " << v;
+        } else if (counts[i] == 4) {
+            EXPECT_EQ(v, all.visibilityAndHit[2 * i]) << i;
+        }
+    }
+}
+
 // A sphere light over an open floor: every ray reaches it, so one ray a pixel must give V = 1
 // everywhere. Sampled over the whole sphere, the part each point cannot see (G = 0) left most
 // pixels without a sample, V = 0: the samples are uniform over the cap the point sees.

@@ -13,6 +13,7 @@
 // valid only with the denoisers that declare it.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -39,14 +40,23 @@ class LightDenoiser {
     // Returns the texture whose R holds the denoised V. Entered with the depth test off and the
     // G-buffer bound on units 1 and 2.
     virtual GLuint denoise(PassClock& clock) = 0;
+    // Before the rays: how many of the technique's `spp` rays each pixel traces this frame (0 to
+    // spp, in the G-buffer's order), decided from what frame f - 1 left; its passes timed under
+    // the first Denoiser::passesBeforeTrace of passNames. Empty (the default): spp everywhere.
+    // Entered as denoise is. Only an adaptive denoiser (rtg) overrides it.
+    virtual std::vector<uint8_t> sampleCounts(PassClock& /*clock*/, int /*spp*/) { return {}; }
+    // The GL memory of targets of its own (beyond RayFrame's).
+    virtual uint64_t memoryBytes() const { return 0; }
 };
 
 // One setting's denoiser.
 class Denoiser {
   public:
     virtual ~Denoiser() = default;
-    // Its passes, in order, between the rays' "trace" and the light's "resolve".
+    // Its passes, in order, between the rays' "trace" and the light's "resolve", but for the
+    // first passesBeforeTrace(), run before the trace (LightDenoiser::sampleCounts).
     virtual std::vector<std::string> passNames() const = 0;
+    virtual size_t passesBeforeTrace() const { return 0; }
     // Whether its passes read the rays' mean distance to their blockers (raw's G).
     virtual bool needsHitDistance() const { return false; }
     // The target its result lands in.

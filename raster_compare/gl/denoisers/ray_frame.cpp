@@ -89,15 +89,23 @@ void RayFrame::draw(const ScreenTarget& target, const GlProgram& p) const {
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+const RayHistoryFrame* RayFrame::previous() {
+    if (!loaded_) before_ = store_.before(light_.name, frameIndex_, W_, H_), loaded_ = true;
+    return before_ ? &*before_ : nullptr;
+}
+
 void RayFrame::bindHistory(const GlProgram& p) {
-    const std::optional<RayHistoryFrame> before = store_.before(light_.name, frameIndex_, W_, H_);
+    const RayHistoryFrame* before = previous();
     const GLuint tp = p.get();
     setInt(tp, "u_haveHistory", before ? 1 : 0);
     if (before) {
-        glTextureSubImage2D(prevHistory.texture.get(), 0, 0, 0, W_, H_, GL_RGBA, GL_FLOAT,
-                            before->history.data());
-        glTextureSubImage2D(prevPosition.texture.get(), 0, 0, 0, W_, H_, GL_RGBA, GL_FLOAT,
-                            before->lsPosition.data());
+        if (!uploaded_) {
+            glTextureSubImage2D(prevHistory.texture.get(), 0, 0, 0, W_, H_, GL_RGBA, GL_FLOAT,
+                                before->history.data());
+            glTextureSubImage2D(prevPosition.texture.get(), 0, 0, 0, W_, H_, GL_RGBA, GL_FLOAT,
+                                before->lsPosition.data());
+            uploaded_ = true;
+        }
         // previous local = (ws - c') 2^-e' with ws = ls 2^e + c: a scale and an offset.
         const LocalFrame& now = scene_.frame();
         setFloat(tp, "u_prevScale", std::ldexp(1.0, now.exponent - before->frame.exponent));
@@ -111,7 +119,7 @@ void RayFrame::bindHistory(const GlProgram& p) {
     glBindTextureUnit(4, prevPosition.texture.get());
 }
 
-void RayFrame::keepHistory(GLuint firstLevel) {
+void RayFrame::keepHistory(GLuint firstLevel, const std::vector<GLuint>& extra) {
     RayHistoryFrame f;
     f.width = W_;
     f.height = H_;
@@ -124,6 +132,12 @@ void RayFrame::keepHistory(GLuint firstLevel) {
         glGetTextureImage(firstLevel, 0, GL_RG, GL_FLOAT, GLsizei(rg.size() * sizeof(float)),
                           rg.data());
         for (size_t i = 0; i < texels; ++i) f.history[4 * i] = rg[2 * i];
+    }
+    for (GLuint texture : extra) {
+        std::vector<float> rgba(4 * texels);
+        glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)),
+                          rgba.data());
+        f.extra.push_back(std::move(rgba));
     }
     f.lsPosition = position;
     f.clipFromLocal = camera_.clipFromLocal();

@@ -33,6 +33,9 @@ struct RayHistoryFrame {
     int width = 0, height = 0;
     std::vector<float> history;     // RGBA, GL row order: V, first and second moments, length
     std::vector<float> lsPosition;  // RGBA, the camera pass's positions in `frame`
+    // A denoiser's own state beyond `history` (rtg's variation and sample-count caches): RGBA
+    // each, in the order keepHistory was given them.
+    std::vector<std::vector<float>> extra;
     glm::dmat4 clipFromLocal{1.0};
     LocalFrame frame;
 };
@@ -71,6 +74,7 @@ class RayFrame {
     const CameraPass& camera() const { return camera_; }
     int width() const { return W_; }
     int height() const { return H_; }
+    int frameIndex() const { return frameIndex_; }
 
     // A program of one pass: `pass` and `defines` defined, the targets' texel bytes defined
     // (RAW_, ACCUM_, FILTER_, TILE_, RESULT_TEXEL_BYTES and the camera pass's), then
@@ -85,10 +89,14 @@ class RayFrame {
     // if so it is uploaded into prevHistory and prevPosition and `p`'s reprojection set
     // (u_prevScale, u_prevOffset, u_prevClipFromLocal). Binds raw, the G-buffer and the two
     // previous targets on units 0 to 4.
+    // The store is read and the textures uploaded once a frame, however many passes bind them.
     void bindHistory(const GlProgram& p);
+    // What frame f - 1 left (null: nothing of this size), read from the store once a frame.
+    const RayHistoryFrame* previous();
     // What the next frame reprojects: accum's moments and length, with V from `firstLevel` (SVGF
-    // feeds the first a-trous level back) or accum's own (0).
-    void keepHistory(GLuint firstLevel);
+    // feeds the first a-trous level back) or accum's own (0); and each of `extra` (RGBA32F
+    // textures of the frame's size, read back as RGBA) as RayHistoryFrame::extra.
+    void keepHistory(GLuint firstLevel, const std::vector<GLuint>& extra = {});
     // The GL memory of the targets.
     uint64_t memoryBytes() const;
 
@@ -100,6 +108,8 @@ class RayFrame {
     RayHistoryStore& store_;
     RayTarget result_;
     int W_, H_;
+    bool loaded_ = false, uploaded_ = false;
+    std::optional<RayHistoryFrame> before_;
 
   public:
     // raw: V of this frame's rays and their blockers' mean distance (RG32F); accum: the temporal

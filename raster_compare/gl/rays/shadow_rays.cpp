@@ -77,9 +77,9 @@ LightSample sampleLight(const RasterLightKind& kind, const Light& light, const L
     return {frame.lsFromWs(p.wsPoint), p.wsNormal};
 }
 
-// One pixel: spp rays from the offset point, V = sum(v G) / sum(G).
+// One pixel: `count` of the spp rays from the offset point, V = sum(v G) / sum(G).
 PixelTrace tracePixel(RTCScene scene, const Light& light, const LocalFrame& frame,
-                      const glm::dvec3& lsP, const glm::dvec3& lsN, uint32_t pixelSeed,
+                      const glm::dvec3& lsP, const glm::dvec3& lsN, uint32_t pixelSeed, int count,
                       const ShadowRaySettings& settings) {
     PixelTrace out;
     const RasterLightKind& kind = rasterLightKind(light.type);
@@ -88,7 +88,7 @@ PixelTrace tracePixel(RTCScene scene, const Light& light, const LocalFrame& fram
     const glm::dvec3 origin = lsP + kOriginOffset * lsN;
     double sumG = 0.0, sumVG = 0.0, sumHit = 0.0;
     int hits = 0;
-    for (int s = 0; s < settings.spp; ++s) {
+    for (int s = 0; s < count; ++s) {
         const LightSample ls = sampleLight(
             kind, light, frame, lsP,
             uint32_t(settings.frameIndex) * uint32_t(settings.spp) + uint32_t(s), pixelSeed);
@@ -154,11 +154,15 @@ ShadowRayFrame ShadowRayTracer::trace(const ShadowRayGBuffer& gbuffer, const Lig
                 const size_t i = size_t(y) * size_t(W) + size_t(x);
                 const float* p = gbuffer.lsPosition + 4 * i;
                 if (p[3] == 0.0f) continue;
+                const int count = settings.samplesPerPixel
+                                      ? std::min(int((*settings.samplesPerPixel)[i]), settings.spp)
+                                      : settings.spp;
+                if (count == 0) continue;
                 const float* n = gbuffer.lsNormal + 4 * i;
                 const glm::dvec3 lsN = glm::normalize(glm::dvec3(n[0], n[1], n[2]));
                 const PixelTrace r = tracePixel(impl_->triangles.rtcScene(), light, impl_->frame,
                                                 glm::dvec3(p[0], p[1], p[2]), lsN,
-                                                hashCombine(0x5eedu, uint32_t(i)), settings);
+                                                hashCombine(0x5eedu, uint32_t(i)), count, settings);
                 out.visibilityAndHit[2 * i] = r.v;
                 out.visibilityAndHit[2 * i + 1] = r.hit;
                 rays[i] = r.rays;

@@ -39,13 +39,18 @@ struct ShadowRaySettings {
     int frameIndex = 0;
     bool hitDistance = false;  // trace closest hits (slower) for the mean blocker distance
     int threads = 0;           // 0: the hardware's
+    // Per pixel, in the G-buffer's order, how many of the `spp` rays to trace (0 to spp): an
+    // adaptive denoiser's counts (denoisers/rtg.cpp). Null: spp everywhere. Pixel p's ray s uses
+    // the sequence's index frameIndex * spp + s either way, so a pixel given n rays traces the
+    // first n of the rays it would trace at the full count.
+    const std::vector<uint8_t>* samplesPerPixel = nullptr;
 };
 
 struct ShadowRayFrame {
     // Per pixel, in the G-buffer's order: RG, the V estimate and the mean distance (local units)
     // from the point to the blockers its occluded rays hit (0 where none was hit or not asked).
     std::vector<float> visibilityAndHit;
-    uint64_t raysTraced = 0;  // every ray traced (spp per pixel that sees the light's side)
+    uint64_t raysTraced = 0;  // every ray traced (up to spp per pixel that sees the light's side)
     uint64_t pixelsTraced = 0;
 };
 

@@ -4,9 +4,11 @@
 // a GPU; an Owen-scrambled Sobol sequence per pixel advanced with the sequence's frame index); the
 // estimate is uploaded as a texture and denoised by full-screen GLSL passes (fragment passes, so
 // the counted frame counts their fragments, taps and bytes as every other family's). The
-// denoisers are plug-ins (denoisers/denoiser.h: none, temporal, svgf, ffx, penumbra), picked by
-// `denoiser=NAME`, each with its own parameters; the history they keep across a sequence's frames
-// is denoisers/ray_frame.h's.
+// denoisers are plug-ins (denoisers/denoiser.h: none, temporal, svgf, ffx, penumbra, rtg), picked
+// by `denoiser=NAME`, each with its own parameters; the history they keep across a sequence's
+// frames is denoisers/ray_frame.h's. An adaptive denoiser (rtg) decides before the trace how many
+// of the `spp` rays each pixel traces (LightDenoiser::sampleCounts); the others trace spp
+// everywhere. rays_traced counts the rays traced.
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gl_program.h"
 #include "raster_compare/gl/context/gpu_scene.h"
@@ -31,7 +33,8 @@ class Raytraced final : public Technique {
              256,
              true,
              "shadow rays per pixel and frame, to points of a per-pixel scrambled Sobol sequence "
-             "on the light (issue 53: 1, 2, 4 ...; FidelityFX's denoiser is built for 1)",
+             "on the light (issue 53: 1, 2, 4 ...; FidelityFX's denoiser is built for 1); with "
+             "denoiser=rtg the most a pixel traces (it adapts each pixel's count down to 1)",
              {},
              true},
             axisParam(denoisers, 0, denoiserDoc(denoisers))};
@@ -69,10 +72,12 @@ class RaytracedLight final : public LightTechnique {
     void renderLightPasses(PassClock& /*clock*/) override {}
     void renderVisibility(PassClock& clock) override;
     RasterLightStats describe() const override;
-    uint64_t memoryBytes() const override { return frame_.memoryBytes(); }
+    uint64_t memoryBytes() const override {
+        return frame_.memoryBytes() + denoiser_->memoryBytes();
+    }
 
   private:
-    void trace(PassClock& clock);
+    void trace(PassClock& clock, const std::vector<uint8_t>& counts);
 
     const Raytraced& t_;
     const Light& light_;
@@ -108,14 +113,18 @@ RaytracedLight::RaytracedLight(const Raytraced& technique, const LightSetup& set
 }
 
 std::vector<std::string> RaytracedLight::passNames() const {
-    std::vector<std::string> names = {"trace"};
-    for (const std::string& n : t_.denoiser->passNames()) names.push_back(n);
+    const std::vector<std::string> own = t_.denoiser->passNames();
+    const auto beforeTrace = own.begin() + std::ptrdiff_t(t_.denoiser->passesBeforeTrace());
+    std::vector<std::string> names(own.begin(), beforeTrace);
+    names.push_back("trace");
+    names.insert(names.end(), beforeTrace, own.end());
     names.push_back("resolve");
     return names;
 }
 
-// The G-buffer read back, the rays traced, their estimate uploaded.
-void RaytracedLight::trace(PassClock& clock) {
+// The G-buffer read back, the rays traced (`counts` of them per pixel, or spp where empty), their
+// estimate uploaded.
+void RaytracedLight::trace(PassClock& clock, const std::vector<uint8_t>& counts) {
     clock.begin("trace");
     const int W = frame_.width(), H = frame_.height();
     const size_t texels = size_t(W) * size_t(H);
@@ -129,6 +138,7 @@ void RaytracedLight::trace(PassClock& clock) {
     settings.spp = t_.spp;
     settings.frameIndex = frameIndex_;
     settings.hitDistance = t_.denoiser->needsHitDistance();
+    if (!counts.empty()) settings.samplesPerPixel = &counts;
     const ShadowRayFrame frame = tracer_->tracer.trace(
         {W, H, frame_.position.data(), frame_.normal.data()}, light_, settings);
     glTextureSubImage2D(frame_.raw.texture.get(), 0, 0, 0, W, H, GL_RG, GL_FLOAT,
@@ -142,8 +152,10 @@ void RaytracedLight::trace(PassClock& clock) {
 void RaytracedLight::renderVisibility(PassClock& clock) {
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-    trace(clock);
     glDisable(GL_DEPTH_TEST);
+    glBindTextureUnit(1, camera_.positionTexture());
+    glBindTextureUnit(2, camera_.normalTexture());
+    trace(clock, denoiser_->sampleCounts(clock, t_.spp));
     glBindTextureUnit(1, camera_.positionTexture());
     glBindTextureUnit(2, camera_.normalTexture());
     const GLuint result = denoiser_->denoise(clock);
