@@ -129,6 +129,13 @@ std::vector<const TechniqueInfo*> allTechniques() {
 const TechniqueInfo& findTechnique(const std::string& name) {
     const auto it = registry().find(name);
     if (it != registry().end()) return it->second;
+    // Names that claimed a source they did not follow (issue 63): said, not just listed.
+    static const std::map<std::string, std::string> renamed = {
+        {"oriented-bias",
+         "half-texel-bias (basic:bias=half-texel): the FFXVI talk it claimed "
+         "was never read, so it is a design of our own"}};
+    if (const auto r = renamed.find(name); r != renamed.end())
+        throwInputError("technique", "name", "technique \"" + name + "\" is now " + r->second);
     std::string valid;
     for (const TechniqueInfo* t : allTechniques()) valid += (valid.empty() ? "" : ", ") + t->name;
     throwInputError("technique", "name",

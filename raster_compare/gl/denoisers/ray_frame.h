@@ -117,7 +117,7 @@ class RayFrame {
     // filterB: V and its variance, filtered back and forth (RG32F); prevHistory and prevPosition:
     // frame f - 1's accumulation and positions (RGBA32F).
     ScreenTarget raw, accum, prevHistory, prevPosition, filterA, filterB;
-    // ffx: one texel per 8 x 4 tile (R32F).
+    // ffx: one texel per 8 x 8 tile (R32F), its tile classification.
     int tilesW, tilesH;
     ScreenTarget tiles;
     // This frame's G-buffer read back (RGBA32F, GL row order): the rays' origins.

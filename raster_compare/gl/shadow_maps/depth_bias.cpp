@@ -37,6 +37,8 @@ PluginAxis biasAxis() {
     PluginAxis axis{"bias", "shadow map", "bias", {}};
     for (const BiasInfo& b : allBiases())
         axis.plugins.push_back({b.name, b.summary, b.params, b.provenance});
+    // Issue 63: `oriented` claimed FFXVI's talk, which was not read; the same bias, our own.
+    axis.formerValues = {{"oriented", "half-texel", 8}};
     return axis;
 }
 

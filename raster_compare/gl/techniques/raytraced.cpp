@@ -4,7 +4,7 @@
 // a GPU; an Owen-scrambled Sobol sequence per pixel advanced with the sequence's frame index); the
 // estimate is uploaded as a texture and denoised by full-screen GLSL passes (fragment passes, so
 // the counted frame counts their fragments, taps and bytes as every other family's). The
-// denoisers are plug-ins (denoisers/denoiser.h: none, temporal, svgf, ffx, penumbra, rtg), picked
+// denoisers are plug-ins (denoisers/denoiser.h: none, temporal, svgf, ffx, hitdist, rtg), picked
 // by `denoiser=NAME`, each with its own parameters; the history they keep across a sequence's
 // frames is denoisers/ray_frame.h's. An adaptive denoiser (rtg) decides before the trace how many
 // of the `spp` rays each pixel traces (LightDenoiser::sampleCounts); the others trace spp
@@ -24,6 +24,16 @@ namespace {
 class Raytraced final : public Technique {
   public:
     static constexpr const char* kFamily = kRayTracingFamily;
+    // The named design is the denoiser's (its own provenance); the rays are the common hybrid
+    // design, from a G-buffer to points on the light.
+    static Provenance provenance() {
+        return {
+            "hybrid ray-traced shadows as engines ship them: shadow rays from the G-buffer to "
+            "points on the light (Ray Tracing Gems, chapter 13, section 13.2), here traced by "
+            "Embree on the CPU over the read-back G-buffer, light points from a per-pixel "
+            "Owen-scrambled Sobol sequence",
+            Fidelity::Own};
+    }
     static ParamTable params() {
         const PluginAxis denoisers = denoiserAxis();
         ParamTable table = {
@@ -179,6 +189,6 @@ RasterLightStats RaytracedLight::describe() const {
 
 SO_REGISTER_TECHNIQUE(Raytraced, "raytraced",
                       "shadow rays from the G-buffer traced by Embree (spp a frame), denoised: "
-                      "none, temporal, svgf, ffx or penumbra");
+                      "none, temporal, svgf, ffx, hitdist or rtg");
 
 }  // namespace so
