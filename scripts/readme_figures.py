@@ -15,7 +15,9 @@ COLUMNS = [
     ("soft_chair", "window", "cost.work.bytes_moved", "MB moved a frame, soft_chair window"),
 ]
 ROWS = ["basic", "slope-bias", "pcf:kernel=5", "vsm", "volume-zfail", "pcss",
-        "accumulate:samples=64", "lightmap"]
+        "accumulate:samples=64", "lightmap",
+        # What engines ship now (issue 63).
+        "pcf:pattern=three,bias=back-faces", "pcf:contact=on", "smrt", "raytraced:spp=1,denoiser=ffx"]
 
 
 def value(row, name):
@@ -41,10 +43,14 @@ def main(demo, readme):
     runs = {p.parent.name: json.loads(p.read_text())
             for p in sorted(pathlib.Path(demo).glob("*/metrics.json"))}
     renderer = next(iter(runs.values()))["gl"]["renderer"]
-    lines = ["| technique | " + " | ".join(c[3] for c in COLUMNS) + " |",
-             "|---" * (len(COLUMNS) + 1) + "|"]
+    lines = ["| technique | fidelity | " + " | ".join(c[3] for c in COLUMNS) + " |",
+             "|---" * (len(COLUMNS) + 2) + "|"]
     for label in ROWS:
-        cells = []
+        # Whose design the row grades (docs/metrics.md, Provenance), from any scene's row.
+        fidelity = next((r.get("provenance", {}).get("fidelity", "–")
+                         for run in runs.values() for r in run.get("results", [])
+                         if r["label"] == label), "–")
+        cells = [fidelity]
         for scene, light, metric, _ in COLUMNS:
             rows = [r for r in runs.get(scene, {}).get("results", []) if r["label"] == label]
             cells.append(cell(value(rows[0]["lights"].get(light, {}), metric), metric)
@@ -52,7 +58,9 @@ def main(demo, readme):
         lines.append("| `%s` | %s |" % (label, " | ".join(cells)))
     table = "\n".join(lines)
     note = ("Made by `scripts/readme-figures` from `scripts/demo`'s output (480 x 360, times on %s; "
-            "lower is better everywhere).") % renderer
+            "lower is better everywhere). Fidelity: whether the row is its source's design as "
+            "published (`faithful`), a `variant` with its deviations listed, or a design of our "
+            "`own` ([docs/techniques.md](docs/techniques.md), `shadow-oracle techniques`).") % renderer
     bakes = [value(r["lights"].get("window", {}), "cost.bake_ms")
              for r in runs.get("soft_chair", {}).get("results", []) if r["label"] == "lightmap"]
     if bakes and bakes[0] is not None:
