@@ -45,7 +45,7 @@ struct ParamSpec {
     bool maxExclusive = false;
     // "key=value": the setting this parameter means nothing without (history and clamp need
     // temporal=on); "key=a|b": any of those values. Given without it, an InputError rather than
-    // silently doing nothing.
+    // silently doing nothing. Needs chain: the key's own needs must hold too.
     std::string needs = {};
     // A parameter of one plug-in of an axis (a bias's, depth_bias.h): while another plug-in is
     // chosen (its `needs` unmet) it is left out of the values, so raster.json and metrics.json list
@@ -107,7 +107,9 @@ class ParamValues {
     std::vector<std::string> deprecations_;
 };
 
-// Whether the values meet spec.needs ("key=a|b": any of them); true for a spec that needs none.
+// Whether the values meet spec.needs ("key=a|b": any of them) and, in turn, what that key's own
+// spec needs (contact_steps needs contact_method=bevy|guarded, which needs contact=on); true for a
+// spec that needs none.
 bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values);
 
 // Parses "key=value" settings against the table; unknown keys, non-numbers, non-integers and

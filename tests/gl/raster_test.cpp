@@ -452,9 +452,12 @@ TEST(Compare, EndToEndOnTheContactScene) {
     EXPECT_EQ(count("<table class=\"sortable summary\">"), 1u);
     // The two slope-bias settings differ only in the shadow maps' quality parameter, resolution:
     // one curve key, two quality values, in the data the chart is drawn from.
-    EXPECT_EQ(count("\"curve\":\"slope-bias blend=0.1 cascades=1 contact=0 contact_distance=0.3 "
-                    "contact_steps=16 contact_thickness=0.1 depth_format=24 fit=0 max=10 min=0.1 "
-                    "slope_factor=1 snap=1 split_lambda=0.5"),
+    EXPECT_EQ(count("\"curve\":\"slope-bias blend=0.1 cascades=1 contact=0 "
+                    "contact_bilinear_threshold=0.02 contact_contrast=4 contact_distance=0.3 "
+                    "contact_fade_samples=8 contact_hard_samples=4 contact_ignore_edges=0 "
+                    "contact_method=0 contact_samples=60 contact_steps=16 "
+                    "contact_surface_thickness=0.005 contact_thickness=0.1 depth_format=24 fit=0 "
+                    "max=10 min=0.1 slope_factor=1 snap=1 split_lambda=0.5"),
               2u);
     EXPECT_EQ(count("\"quality\":512"), 1u);
     // A budget table per cost axis (times, memory, work), frame time's shown.
