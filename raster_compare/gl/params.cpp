@@ -235,6 +235,19 @@ std::string neededSetting(const ParamSpec& spec) {
     return spec.needs.substr(0, spec.needs.find('|'));
 }
 
+std::vector<std::string> neededSettings(const ParamSpec& spec, const ParamTable& table) {
+    std::vector<std::string> settings;
+    for (const ParamSpec* s = &spec; s && !s->needs.empty();) {
+        settings.insert(settings.begin(), neededSetting(*s));
+        const std::string key = s->needs.substr(0, s->needs.find('='));
+        const ParamSpec* next = nullptr;
+        for (const ParamSpec& other : table)
+            if (other.name == key) next = &other;
+        s = next;
+    }
+    return settings;
+}
+
 const ParamSpec* qualityParam(const ParamTable& table) {
     for (const ParamSpec& p : table)
         if (p.quality) return &p;

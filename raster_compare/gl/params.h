@@ -71,6 +71,9 @@ std::string paramValueText(const ParamSpec& spec, double v);
 // A setting that meets spec.needs: its first alternative ("denoiser=svgf" of
 // "denoiser=svgf|ffx"); empty when it needs none.
 std::string neededSetting(const ParamSpec& spec);
+// Every setting spec needs along its chain (ParamSpec::needs), each need's first alternative, the
+// outermost first: {"contact=on", "contact_method=bevy"} for contact_steps.
+std::vector<std::string> neededSettings(const ParamSpec& spec, const ParamTable& table);
 
 // The table's quality parameter, or null.
 const ParamSpec* qualityParam(const ParamTable& table);

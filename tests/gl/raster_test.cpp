@@ -689,7 +689,8 @@ TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
             // (Unless the defaults meet it: pcf's slope_factor needs bias=slope, its default.)
             if (!needsMet(p, t->params, create({})->values())) {
                 EXPECT_THROW(create(settings), InputError) << t->name << " " << p.name;
-                settings.insert(settings.begin(), neededSetting(p));
+                const std::vector<std::string> needed = neededSettings(p, t->params);
+                settings.insert(settings.begin(), needed.begin(), needed.end());
             }
             EXPECT_NO_THROW(create(settings)) << t->name << " " << p.name;
         }
@@ -718,8 +719,9 @@ TEST(Raster, MethodParametersTakeNamesAndTheirNumbers) {
             EXPECT_EQ(p.min, 0.0) << t->name << " " << p.name;
             EXPECT_EQ(p.max, double(p.names.size() - 1)) << t->name << " " << p.name;
             const auto with = [&](const std::string& setting) {
-                return p.needs.empty() ? std::vector<std::string>{setting}
-                                       : std::vector<std::string>{neededSetting(p), setting};
+                std::vector<std::string> settings = neededSettings(p, t->params);
+                settings.push_back(setting);
+                return settings;
             };
             for (size_t k = 0; k < p.names.size(); ++k) {
                 const auto byName = createTechnique(t->name, with(p.name + "=" + p.names[k]));
