@@ -66,8 +66,14 @@ void validate(const std::string& file, const ParamSpec& spec, double v,
 
 }  // namespace
 
-bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values) {
-    if (spec.needs.empty()) return true;
+namespace {
+
+// The first need along spec's chain that the values do not meet ("contact=on" for a parameter that
+// needs contact_method=bevy, whose contact_method needs contact=on); empty when all are met. A
+// parameter needs what the setting it needs needs: a method's own parameter means nothing while
+// the method parameter itself means nothing.
+std::string unmetNeed(const ParamSpec& spec, const ParamTable& table, const ParamValues& values) {
+    if (spec.needs.empty()) return "";
     const size_t eq = spec.needs.find('=');
     const std::string key = spec.needs.substr(0, eq);
     std::vector<std::string> texts;
@@ -86,9 +92,15 @@ bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues&
                                                              : std::strtod(text.c_str(), nullptr);
             met = met || values.real(key) == wanted;
         }
-        return met;
+        return met ? unmetNeed(other, table, values) : spec.needs;
     }
-    return true;
+    return "";
+}
+
+}  // namespace
+
+bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values) {
+    return unmetNeed(spec, table, values).empty();
 }
 
 namespace {
@@ -96,8 +108,9 @@ namespace {
 // Every given parameter whose table entry needs another setting has it (ParamSpec::needs).
 void checkNeeds(const std::string& file, const ParamTable& table, const ParamValues& values) {
     for (const ParamSpec& s : table)
-        if (values.given(s.name) && !needsMet(s, table, values))
-            throwInputError(file, s.name, "has no effect without " + s.needs);
+        if (const std::string unmet = values.given(s.name) ? unmetNeed(s, table, values) : "";
+            !unmet.empty())
+            throwInputError(file, s.name, "has no effect without " + unmet);
 }
 
 // The spec a key names: its own name, else a former name (`former` set then); null: none.
@@ -230,6 +243,19 @@ std::string paramValueText(const ParamSpec& spec, double v) {
 
 std::string neededSetting(const ParamSpec& spec) {
     return spec.needs.substr(0, spec.needs.find('|'));
+}
+
+std::vector<std::string> neededSettings(const ParamSpec& spec, const ParamTable& table) {
+    std::vector<std::string> settings;
+    for (const ParamSpec* s = &spec; s && !s->needs.empty();) {
+        settings.insert(settings.begin(), neededSetting(*s));
+        const std::string key = s->needs.substr(0, s->needs.find('='));
+        const ParamSpec* next = nullptr;
+        for (const ParamSpec& other : table)
+            if (other.name == key) next = &other;
+        s = next;
+    }
+    return settings;
 }
 
 const ParamSpec* qualityParam(const ParamTable& table) {

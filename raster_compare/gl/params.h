@@ -55,7 +55,7 @@ struct ParamSpec {
     bool maxExclusive = false;
     // "key=value": the setting this parameter means nothing without (history and clamp need
     // temporal=on); "key=a|b": any of those values. Given without it, an InputError rather than
-    // silently doing nothing.
+    // silently doing nothing. Needs chain: the key's own needs must hold too.
     std::string needs = {};
     // A parameter of one plug-in of an axis (a bias's, depth_bias.h): while another plug-in is
     // chosen (its `needs` unmet) it is left out of the values, so raster.json and metrics.json list
@@ -83,6 +83,9 @@ std::string paramValueText(const ParamSpec& spec, double v);
 // A setting that meets spec.needs: its first alternative ("denoiser=svgf" of
 // "denoiser=svgf|ffx"); empty when it needs none.
 std::string neededSetting(const ParamSpec& spec);
+// Every setting spec needs along its chain (ParamSpec::needs), each need's first alternative, the
+// outermost first: {"contact=on", "contact_method=bevy"} for contact_steps.
+std::vector<std::string> neededSettings(const ParamSpec& spec, const ParamTable& table);
 
 // The table's quality parameter, or null.
 const ParamSpec* qualityParam(const ParamTable& table);
@@ -119,7 +122,9 @@ class ParamValues {
     std::vector<std::string> deprecations_;
 };
 
-// Whether the values meet spec.needs ("key=a|b": any of them); true for a spec that needs none.
+// Whether the values meet spec.needs ("key=a|b": any of them) and, in turn, what that key's own
+// spec needs (contact_steps needs contact_method=bevy|guarded, which needs contact=on); true for a
+// spec that needs none.
 bool needsMet(const ParamSpec& spec, const ParamTable& table, const ParamValues& values);
 
 // Parses "key=value" settings against the table; unknown keys, non-numbers, non-integers and

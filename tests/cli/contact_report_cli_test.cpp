@@ -52,8 +52,9 @@ TEST(ContactReport, PairedSettingsGetTheSectionWithItsSigns) {
     EXPECT_LE(rowValue(page, on, "data-acne-added"), 0.01);  // issue 54's bar
     EXPECT_GE(rowValue(page, on, "data-screen-bleed-added"), 0.0);
     // Each row's parameters name a method's value by its name, as the setting was written.
-    EXPECT_NE(page.find(" contact=on contact_distance=0.3 "), std::string::npos);
-    EXPECT_NE(page.find(" contact=off contact_distance=0.3 "), std::string::npos);
+    EXPECT_NE(page.find(" contact=on contact_bilinear_threshold=0.02 "), std::string::npos);
+    EXPECT_NE(page.find(" contact=off contact_bilinear_threshold=0.02 "), std::string::npos);
+    EXPECT_NE(page.find(" contact_method=bevy "), std::string::npos);
     // slope-bias has no contact=on partner, so only the one row.
     EXPECT_EQ(page.find("<tr data-on=", page.find("<tr data-on=") + 1), std::string::npos);
 

@@ -452,9 +452,12 @@ TEST(Compare, EndToEndOnTheContactScene) {
     EXPECT_EQ(count("<table class=\"sortable summary\">"), 1u);
     // The two slope-bias settings differ only in the shadow maps' quality parameter, resolution:
     // one curve key, two quality values, in the data the chart is drawn from.
-    EXPECT_EQ(count("\"curve\":\"slope-bias blend=0.1 cascades=1 contact=0 contact_distance=0.3 "
-                    "contact_steps=16 contact_thickness=0.1 depth_format=24 fit=0 max=10 min=0.1 "
-                    "slope_factor=1 snap=1 split_lambda=0.5"),
+    EXPECT_EQ(count("\"curve\":\"slope-bias blend=0.1 cascades=1 contact=0 "
+                    "contact_bilinear_threshold=0.02 contact_contrast=4 contact_distance=0.3 "
+                    "contact_fade_samples=8 contact_hard_samples=4 contact_ignore_edges=0 "
+                    "contact_method=0 contact_samples=60 contact_steps=16 "
+                    "contact_surface_thickness=0.005 contact_thickness=0.1 depth_format=24 fit=0 "
+                    "max=10 min=0.1 slope_factor=1 snap=1 split_lambda=0.5"),
               2u);
     EXPECT_EQ(count("\"quality\":512"), 1u);
     // A budget table per cost axis (times, memory, work), frame time's shown.
@@ -686,7 +689,8 @@ TEST(Raster, TechniquesRejectUnknownKeysAndOutOfRangeValues) {
             // (Unless the defaults meet it: pcf's slope_factor needs bias=slope, its default.)
             if (!needsMet(p, t->params, create({})->values())) {
                 EXPECT_THROW(create(settings), InputError) << t->name << " " << p.name;
-                settings.insert(settings.begin(), neededSetting(p));
+                const std::vector<std::string> needed = neededSettings(p, t->params);
+                settings.insert(settings.begin(), needed.begin(), needed.end());
             }
             EXPECT_NO_THROW(create(settings)) << t->name << " " << p.name;
         }
@@ -715,8 +719,9 @@ TEST(Raster, MethodParametersTakeNamesAndTheirNumbers) {
             EXPECT_EQ(p.min, 0.0) << t->name << " " << p.name;
             EXPECT_EQ(p.max, double(p.names.size() - 1)) << t->name << " " << p.name;
             const auto with = [&](const std::string& setting) {
-                return p.needs.empty() ? std::vector<std::string>{setting}
-                                       : std::vector<std::string>{neededSetting(p), setting};
+                std::vector<std::string> settings = neededSettings(p, t->params);
+                settings.push_back(setting);
+                return settings;
             };
             for (size_t k = 0; k < p.names.size(); ++k) {
                 const auto byName = createTechnique(t->name, with(p.name + "=" + p.names[k]));

@@ -12,8 +12,8 @@
 //   the depth bias's file (biases/*.glsl, bias=NAME: shadow_maps/depth_bias.h) follows this one,
 //   before the technique's; BIAS_SPREAD, how far the filter's taps reach (texels);
 //   SCREEN_DERIVATIVES: g_dpdx, g_dpdy;
-//   CONTACT: screen-space contact shadows (shaders/contact_shadow.glsl, after the technique's
-//   file), V the minimum of the map's and theirs.
+//   CONTACT: screen-space contact shadows (contact_method's shaders/contact_*.glsl, after the
+//   technique's file), V the map's times theirs (as Bevy multiplies them).
 // Depths are compared as linear distances along the map's view axis, so biases are lengths:
 // in texels, the world size of one shadow-map texel at the receiver.
 in vec3 v_lsPosition;
@@ -72,7 +72,7 @@ struct Receiver {
 float techniqueVisibility(Receiver r);  // the technique's file
 #ifdef CONTACT
 // 0 where the march toward the light (l, at most maxLength) meets a surface the camera saw.
-float contactVisibility(vec3 p, vec3 l, float maxLength);  // shaders/contact_shadow.glsl
+float contactVisibility(vec3 p, vec3 l, float maxLength);  // shaders/contact_<method>.glsl
 #endif
 
 // Turning taps (tapRotation, vogelTap, u_frameIndex): shaders/taps.glsl, before this file.
@@ -421,7 +421,7 @@ void main() {
 #endif
     o_visibility = mapVisibility;
 #ifdef CONTACT
-    if (mapVisibility > 0.0) o_visibility = min(mapVisibility, contactVisibility(p, l, toLight));
+    if (mapVisibility > 0.0) o_visibility = mapVisibility * contactVisibility(p, l, toLight);
 #endif
 #ifdef DEPTH_PROBE
     writeDepthProbe(p, texel, mapVisibility);

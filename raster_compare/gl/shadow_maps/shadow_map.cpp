@@ -411,7 +411,7 @@ GlProgram ShadowMapLight::createVisibilityProgram(const CameraPass& camera, bool
                                         shaders::shadow_map_frag};
     if (technique_.depthBias()) sources.push_back(technique_.depthBias()->glsl());
     sources.push_back(technique_.glsl());
-    if (technique_.contact().on) sources.push_back(shaders::contact_shadow_glsl);
+    for (const char* s : technique_.contact().sources()) sources.push_back(s);
     GlProgram program = buildProgram(defines, shaders::scene_vert, sources);
     const GLuint vp = program.get();
     technique_.contact().setUniforms(vp, scene_.frame());

@@ -1,8 +1,9 @@
-// Screen-space contact shadows (contact=on, contact_shadows.h; docs/techniques.md#contact), after
-// shaders/shadow_map.frag and the technique's file. CONTACT_STEPS samples along the ray from the
-// receiver toward the light, u_contactDistance long (local units), the first one a per-pixel
-// fraction of a step out (interleaved gradient noise, turned per frame with TEMPORAL) so that the
-// steps' banding becomes noise. Each sample is projected into the camera pass's image: the
+// Screen-space contact shadows, contact_method=guarded: our own design (contact_shadows.h;
+// docs/techniques.md#contact), after shaders/shadow_map.frag and the technique's file. It reads
+// the camera pass's mesh ids, which no engine's depth buffer has. CONTACT_STEPS samples along the
+// ray from the receiver toward the light, u_contactDistance long (local units), the first one a
+// per-pixel fraction of a step out (interleaved gradient noise, turned per frame with TEMPORAL) so
+// that the steps' banding becomes noise. Each sample is projected into the camera pass's image: the
 // surface seen there (u_contactPosition, w 1 where one was hit) shadows the sample when the sample
 // lies behind it along the camera's ray by less than u_contactThickness (the depth buffer is
 // taken to be that thick) and, where that surface is of the receiver's own mesh (the camera pass's
@@ -10,8 +11,10 @@
 // a plane, or on a lit curved surface, is never shadowed by its own neighbouring pixels, whose
 // centres lie at another depth than the sample's projection (the steep-slope self-shadowing of
 // bevyengine/bevy 25355); another mesh's surface, the caster at a contact, shadows by depth alone
-// (its tangent plane at a curved foot would turn the sample away). A sample beyond the image has no surface
-// to be compared with: the march stops there, lit (a caster off screen casts no contact shadow).
+// (its tangent plane at a curved foot would turn the sample away). A sample beyond the image has
+// no surface to be compared with: the march stops there, lit (a caster off screen casts no
+// contact shadow).
+// The ray stops at the light (maxLength). Binary: 0 or 1.
 uniform sampler2D u_contactPosition;
 uniform sampler2D u_contactNormal;
 uniform float u_contactThickness;
