@@ -182,6 +182,9 @@ nlohmann::json jsonTable(const ParamTable& table) {
             j["former"] = {{"name", p.former->name},
                            {"relation", p.former->relation},
                            {"until_format", p.former->untilFormat}};
+        for (const FormerValue& f : p.formerValues)  // a value's former name, still accepted
+            j["former_values"].push_back(
+                {{"name", f.name}, {"current", f.current}, {"until_format", f.untilFormat}});
         if (!p.provenances.empty()) {  // value k is the design provenances[k]
             j["provenances"] = nlohmann::json::array();
             for (const Provenance& v : p.provenances) j["provenances"].push_back(provenanceJson(v));

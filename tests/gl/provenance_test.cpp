@@ -104,14 +104,31 @@ TEST(Provenance, ListedInTechniquesJson) {
         }
 }
 
+// A value's former name (`denoiser=penumbra`) is listed with what it now means.
+TEST(Provenance, FormerValuesListed) {
+    const nlohmann::json j = nlohmann::json::parse(techniquesListing(ListingFormat::Json));
+    bool penumbra = false;
+    for (const nlohmann::json& t : j["techniques"])
+        if (t["name"] == "raytraced")
+            for (const nlohmann::json& p : t["parameters"])
+                if (p["name"] == "denoiser" && p.contains("former_values"))
+                    for (const nlohmann::json& f : p["former_values"])
+                        penumbra =
+                            penumbra || (f["name"] == "penumbra" && f["current"] == "hitdist");
+    EXPECT_TRUE(penumbra);
+}
+
 TEST(Provenance, FormerNamesOutliveThisFormat) {
     // A former name announced "accepted until format N" must still be accepted at every format
     // below N; when kTechniquesJsonFormat reaches N, this fails until the name is removed.
     for (const TechniqueInfo* t : allTechniques())
-        for (const ParamSpec& p : t->params)
+        for (const ParamSpec& p : t->params) {
             if (p.former) {
                 EXPECT_GT(p.former->untilFormat, kTechniquesJsonFormat) << t->name << " " << p.name;
             }
+            for (const FormerValue& f : p.formerValues)
+                EXPECT_GT(f.untilFormat, kTechniquesJsonFormat) << t->name << " " << f.name;
+        }
 }
 
 }  // namespace
