@@ -20,7 +20,10 @@ Provenance bevyProvenance() {
         "Bevy 0.19 (PR 22382): crates/bevy_pbr/src/render/pbr_functions.wesl "
         "(calculate_contact_shadow) over crates/bevy_pbr/src/ssr/raymarch.wesl "
         "(depth_ray_march_march), defaults ContactShadows::default (contact_shadows.rs)",
-        Fidelity::Faithful};
+        Fidelity::Variant,
+        {"each depth is recomputed from the surface point the camera pass stored (16 bytes a "
+         "read, counted so in the work) where Bevy samples its 4-byte depth buffer: the same "
+         "depth up to float rounding"}};
 }
 
 Provenance bendProvenance() {
