@@ -80,7 +80,13 @@ def table(scene, metrics, args):
         out.append(f"| denoiser | {head} |")
         out.append("|---|" + "---|" * len(args.spp))
         for d in args.denoisers:
-            cells = " | ".join(fmt(rows.get((d, s), {}).get("penumbra_mae")) for s in args.spp)
+            def cell(s):
+                row = rows.get((d, s), {})
+                text = fmt(row.get("penumbra_mae"))
+                # An adaptive denoiser (rtg) traces fewer rays than the column's: said beside it.
+                own = row.get("cost", {}).get("work", {}).get("rays_traced")
+                return text if own is None or own == rays[s] else f"{text} ({own:,} rays)"
+            cells = " | ".join(cell(s) for s in args.spp)
             out.append(f"| {d} | {cells} |")
         pcss = rows.get(("pcss", None), {}).get("penumbra_mae")
         out.append(f"| pcss (no rays) | {fmt(pcss)}" + " |" * len(args.spp))
