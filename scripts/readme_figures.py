@@ -46,11 +46,13 @@ def main(demo, readme):
     lines = ["| technique | fidelity | " + " | ".join(c[3] for c in COLUMNS) + " |",
              "|---" * (len(COLUMNS) + 2) + "|"]
     for label in ROWS:
-        # Whose design the row grades (docs/metrics.md, Provenance), from any scene's row.
-        fidelity = next((r.get("provenance", {}).get("fidelity", "–")
-                         for run in runs.values() for r in run.get("results", [])
-                         if r["label"] == label), "–")
-        cells = [fidelity]
+        # Whose designs the row grades (docs/metrics.md, Provenance), from any scene's row: each
+        # part's fidelity ("pcss variant, bias=slope own"), the row's being the farthest.
+        parts = next((r.get("provenance", {}).get("parts", [])
+                      for run in runs.values() for r in run.get("results", [])
+                      if r["label"] == label), [])
+        cells = [", ".join("%s %s" % (p["of"].replace("technique ", ""), p["fidelity"])
+                           for p in parts) or "–"]
         for scene, light, metric, _ in COLUMNS:
             rows = [r for r in runs.get(scene, {}).get("results", []) if r["label"] == label]
             cells.append(cell(value(rows[0]["lights"].get(light, {}), metric), metric)
@@ -58,9 +60,10 @@ def main(demo, readme):
         lines.append("| `%s` | %s |" % (label, " | ".join(cells)))
     table = "\n".join(lines)
     note = ("Made by `scripts/readme-figures` from `scripts/demo`'s output (480 x 360, times on %s; "
-            "lower is better everywhere). Fidelity: whether the row is its source's design as "
-            "published (`faithful`), a `variant` with its deviations listed, or a design of our "
-            "`own` ([docs/techniques.md](docs/techniques.md), `shadow-oracle techniques`).") % renderer
+            "lower is better everywhere). Fidelity: for the technique and each named design its "
+            "settings choose, whether it is its source's as published (`faithful`), a `variant` "
+            "with its deviations listed, or a design of our `own` "
+            "([docs/techniques.md](docs/techniques.md#provenance), `shadow-oracle techniques`).") % renderer
     bakes = [value(r["lights"].get("window", {}), "cost.bake_ms")
              for r in runs.get("soft_chair", {}).get("results", []) if r["label"] == "lightmap"]
     if bakes and bakes[0] is not None:
