@@ -278,14 +278,15 @@ void writeHead(std::ostream& o, const ReportInput& in) {
          "href=\"oracle.exr\">oracle.exr</a>.</p><nav>Lights:";
     for (size_t li = 0; li < in.lights.size(); ++li)
         o << " <a href=\"#" << html(lightId(in, li)) << "\">" << html(in.lights[li]) << "</a>";
-    o << " <a href=\"#all-metrics\">all metrics</a> <a href=\"#provenance\">provenance</a></nav>";
+    o << " <a href=\"#all-metrics\">all metrics</a> <a href=\"#provenance\">run "
+         "provenance</a></nav>";
 }
 
 // `lightsData`: every light's lightData, in order.
 void writeTail(std::ostream& o, const ReportInput& in, const nlohmann::json& lightsData) {
     o << "<h2 id=\"all-metrics\">All metrics</h2>";
     writeAllMetrics(o, in);
-    o << "<h2 id=\"provenance\">Provenance</h2><table class=\"provenance\">";
+    o << "<h2 id=\"provenance\">Run provenance</h2><table class=\"provenance\">";
     for (const auto& [key, value] : in.provenance)
         o << "<tr><th class=\"text\">" << html(key) << "</th><td class=\"text\">" << html(value)
           << "</td></tr>";

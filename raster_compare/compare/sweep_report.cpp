@@ -153,7 +153,7 @@ void writeHead(std::ostream& o, const SweepReportInput& in, const std::vector<Gr
     for (size_t gi = 0; gi < groups.size(); ++gi)
         o << "<li><a href=\"#" << groupId(gi) << "\">" << html(groups[gi].scene) << " &mdash; "
           << html(groups[gi].light) << "</a></li>";
-    o << "<li><a href=\"#provenance\">provenance</a></li></ol></nav>";
+    o << "<li><a href=\"#provenance\">run provenance</a></li></ol></nav>";
 }
 
 void writeGroup(std::ostream& o, const Group& g, size_t gi, const SweepReportInput& in,
@@ -172,7 +172,7 @@ void writeGroup(std::ostream& o, const Group& g, size_t gi, const SweepReportInp
 }
 
 void writeTail(std::ostream& o, const SweepReportInput& in) {
-    o << "<h2 id=\"provenance\">Provenance</h2><table class=\"provenance\">";
+    o << "<h2 id=\"provenance\">Run provenance</h2><table class=\"provenance\">";
     for (const auto& [key, value] : in.provenance)
         o << "<tr><th class=\"text\">" << html(key) << "</th><td class=\"text\">" << html(value)
           << "</td></tr>";
