@@ -29,13 +29,14 @@
 #include "core/scene.h"
 #include "raster_compare/gl/params.h"
 #include "raster_compare/gl/render/raster_result.h"
-#include "raster_compare/gl/time/shadow_history.h"
 
 namespace so {
 
 class GpuScene;
 class CameraPass;
 class PassClock;
+class Resolve;
+class TemporalState;
 
 // What one light's set-up made that another instance of the same technique may take over in the
 // same render: the counted frame's instance and the timed one (renderer.cpp) share the lightmap's
@@ -59,9 +60,12 @@ struct LightSetup {
     // the counted frame (the probe is a diagnostic, no part of a technique's work). The light's
     // target then has one if the technique probesDepth().
     bool depthProbe = false;
-    // The sequence's frame (RasterOptions::frameIndex): what techniques with temporal=on turn
-    // their taps by (u_frameIndex); 0 outside a sequence.
+    // The frame's index (RasterOptions::frameIndex): what techniques with temporal=on turn
+    // their taps by (u_frameIndex); 0 for a single frame.
     int frameIndex = 0;
+    // The caller's temporal state (time/temporal_state.h), where a technique keeps what it builds
+    // over frames (the ray-traced denoisers' history); null: a cold start.
+    TemporalState* temporal = nullptr;
 };
 
 class LightTarget;
@@ -129,9 +133,9 @@ class Technique {
     // Its visibility pass can write what its own depth comparison saw into the light's target
     // (location 2), when LightSetup::depthProbe asks (LightTechnique::probeDepth).
     virtual bool probesDepth() const { return false; }
-    // A technique that builds its shadow over frames (temporal=on): the history that resolves its
-    // jittered V across a sequence (shadow_history.h); none where every frame stands alone.
-    virtual std::optional<HistorySettings> history() const { return std::nullopt; }
+    // How its frames are resolved over time (temporal=on: resolves/resolve.h, `resolve=NAME`);
+    // null where every frame stands alone.
+    virtual const Resolve* resolve() const { return nullptr; }
     virtual std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const = 0;
 
   private:

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raster_compare/gl/denoisers/denoiser.h"
+#include "raster_compare/gl/resolves/resolve.h"
 #include "raster_compare/gl/shadow_maps/depth_bias.h"
 #include "raster_compare/gl/technique.h"
 
@@ -88,7 +89,8 @@ void markdownTable(std::ostringstream& o, const ParamTable& params) {
           << "[bias plug-ins](#bias-plug-ins).\n";
     bool named = false;
     for (const ParamSpec& p : params)
-        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser") {
+        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser" &&
+            p.name != "resolve") {
             o << (named ? "" : "\nIts named designs:\n\n") << namedValues(p, "- ");
             named = true;
         }
@@ -145,7 +147,8 @@ void textTable(std::ostringstream& o, const ParamTable& params, const char* inde
     if (hasPluginParams(params))
         o << indent << "(and the parameters of the bias it is given: bias plug-ins, below)\n";
     for (const ParamSpec& p : params)
-        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser")
+        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser" &&
+            p.name != "resolve")
             o << namedValues(p, indent);
 }
 
@@ -225,7 +228,7 @@ std::string json(const std::vector<PluginAxis>& axes) {
 }  // namespace
 
 std::vector<PluginAxis> registeredAxes() {
-    return {biasAxis(), denoiserAxis()};
+    return {biasAxis(), denoiserAxis(), resolveAxis()};
 }
 
 std::string techniquesListing(ListingFormat format, const std::vector<PluginAxis>& axes) {

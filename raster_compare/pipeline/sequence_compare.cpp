@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/scene_pose.h"
 #include "raster_compare/compare/sequence_judge.h"
-#include "raster_compare/gl/time/shadow_history.h"
+#include "raster_compare/gl/time/temporal_state.h"
 #include "raster_compare/pipeline/frame_images.h"
 
 namespace so {
@@ -43,49 +43,39 @@ SequenceResult measureSequence(const Scene& scene, const std::vector<const Techn
     const Sequence& sequence = *scene.sequence;
     SequenceResult out;
     out.frames = sequence.frames;
-    // Per technique and light: its judge, and its history where the technique has one.
+    // Per technique and light: its judge.
     std::vector<std::vector<SequenceJudge>> judges(techniques.size());
-    std::vector<std::vector<std::unique_ptr<ShadowHistory>>> histories(techniques.size());
     for (size_t k = 0; k < techniques.size(); ++k) {
         MetricOptions m = metricOptions;
         m.filteredTechnique = techniques[k]->filtered();
-        const std::optional<HistorySettings> history = techniques[k]->history();
-        for (const Light& light : scene.lights) {
-            judges[k].emplace_back(light.name, m);
-            histories[k].push_back(history ? std::make_unique<ShadowHistory>(*history, light.name)
-                                           : nullptr);
-        }
+        for (const Light& light : scene.lights) judges[k].emplace_back(light.name, m);
     }
+    // What every technique builds over the frames: its resolves' and denoisers' histories, on the
+    // GPU inside each frame's render (timed and counted there).
+    TemporalState temporal;
     std::array<SequenceFrameImages, 2> slots;
     Progress progress("sequence frames", uint64_t(sequence.frames), progressCallback);
     for (int f = 0; f < sequence.frames; ++f) {
         SequenceFrameImages& frame = slots[size_t(f) % 2];
         frame.t = sequenceTime(sequence, f);
+        const std::optional<MeshMotions> motion =
+            f > 0 ? std::optional(motionSince(scene, frame.t, slots[size_t(f + 1) % 2].t))
+                  : std::nullopt;
+        temporal.beginFrame(f, motion ? *motion : MeshMotions{});
         // The posed scene's camera is the frame's (its camera_path moved it): no other camera.
         OracleOptions o = oracle;
         o.camera.reset();
         RasterOptions r = raster;
         r.camera.reset();
         r.frameIndex = f;
+        r.temporal = &temporal;
         static_cast<FrameImages&>(frame) =
             renderFrameImages(sceneAtTime(scene, frame.t), techniques, o, cache, r, gl,
                               out.warnings, f == sequence.frames - 1 ? lastOracle : nullptr);
-        const std::optional<MeshMotions> motion =
-            f > 0 ? std::optional(motionSince(scene, frame.t, slots[size_t(f + 1) % 2].t))
-                  : std::nullopt;
         for (size_t k = 0; k < techniques.size(); ++k)
-            for (size_t li = 0; li < scene.lights.size(); ++li) {
-                ChannelImage& image = frame.rasters[k];
-                if (histories[k][li]) {
-                    const std::vector<float> resolved =
-                        histories[k][li]->resolve(scene, {&image, frame.camera, frame.t});
-                    std::copy(resolved.begin(), resolved.end(),
-                              image.channel(channels::lightChannel(scene.lights[li].name,
-                                                                   channels::kVisibility)));
-                }
-                judges[k][li].add(
-                    {{frame.camera, &frame.oracle, &image}, motion ? &*motion : nullptr});
-            }
+            for (size_t li = 0; li < scene.lights.size(); ++li)
+                judges[k][li].add({{frame.camera, &frame.oracle, &frame.rasters[k]},
+                                   motion ? &*motion : nullptr});
         progress.advance(1);
     }
     SequenceFrameImages& last = slots[size_t(sequence.frames - 1) % 2];

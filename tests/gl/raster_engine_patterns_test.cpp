@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/scene.h"
 #include "gl_test_context.h"
+#include "raster_compare/gl/resolves/resolve.h"
 #include "raster_compare/gl/technique.h"
 #include "test_scenes.h"
 
@@ -85,16 +86,20 @@ TEST(EnginePatterns, BevyTurnsWithTheFrameModulo64) {
     EXPECT_EQ(visibilityAt(s, bevy, 3 + 64), v3) << "frame % 64: frame 67 is frame 3";
 }
 
-TEST(EnginePatterns, GodotTurnsWithTheFrameWithoutAPeriod) {
+// Godot 4.6 turns its soft shadows by taa_frame_count = frame_number % jitter_phase_count, 16 with
+// TAA, and by nothing (0) without TAA or FSR2 (renderer_scene_cull.cpp): pcf:pattern=godot turns
+// per frame only with its TAA (temporal=on, resolve=taa), with a period of 16 frames.
+TEST(EnginePatterns, GodotTurnsWithTheFrameModulo16UnderItsTaaOnly) {
     REQUIRE_GL();
     const Scene s = smallPenumbraSquare();
-    const std::vector<std::string> godot = {"resolution=64", "pattern=godot"};
-    const std::vector<float> v3 = visibilityAt(s, godot, 3);
-    const Difference next = differenceOf(v3, visibilityAt(s, godot, 4));
-    const Difference later = differenceOf(v3, visibilityAt(s, godot, 3 + 64));
+    const std::vector<std::string> still = {"resolution=64", "pattern=godot"},
+                                   taa = {"resolution=64", "pattern=godot", "temporal=on"};
+    EXPECT_EQ(visibilityAt(s, still, 4), visibilityAt(s, still, 3)) << "no TAA: no frame term";
+    const std::vector<float> v3 = visibilityAt(s, taa, 3);
+    const Difference next = differenceOf(v3, visibilityAt(s, taa, 4));
     ASSERT_GT(next.penumbra, 50u);
     EXPECT_GT(next.differ, next.penumbra / 2);
-    EXPECT_GT(later.differ, later.penumbra / 2) << "Godot's taa_frame_count term has no % 64";
+    EXPECT_EQ(visibilityAt(s, taa, 3 + 16), v3) << "frame % 16: frame 19 is frame 3";
 }
 
 const RasterLightStats& light(const RasterResult& r, const std::string& name) {
@@ -140,16 +145,22 @@ TEST(EnginePatterns, EachPatternNamesItsSource) {
     EXPECT_NE(spec->provenances[4].anchor.find("Godot"), std::string::npos);
 }
 
-// The engines turn their own taps: temporal=on of ours with them is an error naming the key.
-TEST(EnginePatterns, TemporalOnIsAnErrorWithAnEnginePattern) {
-    for (const char* pattern : {"pattern=three", "pattern=bevy", "pattern=godot"}) {
-        try {
-            createTechnique("pcf", {pattern, "temporal=on"});
-            ADD_FAILURE() << pattern << ": no error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(e.field(), "temporal") << pattern;
-        }
-        EXPECT_FALSE(createTechnique("pcf", {pattern})->history()) << pattern;
+// three.js's taps have no frame term and nothing resolves them: temporal=on with them is an error
+// naming the key. Bevy's and Godot's turn per frame as the engines turn them; temporal=on resolves
+// them over frames (`resolve`) and changes nothing in their shader.
+TEST(EnginePatterns, TemporalOnResolvesTheTurningEnginePatternsOnly) {
+    try {
+        createTechnique("pcf", {"pattern=three", "temporal=on"});
+        ADD_FAILURE() << "pattern=three: no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "temporal");
+    }
+    for (const char* pattern : {"pattern=three", "pattern=bevy", "pattern=godot"})
+        EXPECT_EQ(createTechnique("pcf", {pattern})->resolve(), nullptr) << pattern;
+    for (const char* pattern : {"pattern=bevy", "pattern=godot"}) {
+        const auto on = createTechnique("pcf", {pattern, "temporal=on"});
+        ASSERT_NE(on->resolve(), nullptr) << pattern;
+        EXPECT_EQ(on->resolve()->name(), "taa") << pattern;
     }
     EXPECT_NO_THROW(createTechnique("pcf", {"pattern=poisson", "temporal=on"}));
 }

@@ -37,10 +37,15 @@ glm::dmat4 cameraClipFromLocal(const GpuScene& scene, const Camera& camera,
 
 }  // namespace
 
-CameraPass::CameraPass(const GpuScene& scene, const CameraDesc& desc)
-    : scene_(scene), camera_(desc) {
+CameraPass::CameraPass(const GpuScene& scene, const CameraDesc& desc, glm::dvec2 jitterPixels)
+    : scene_(scene), camera_(desc), jitterPixels_(jitterPixels) {
     lsEye_ = scene.frame().lsFromWs(camera_.wsEye());
-    clipFromLocal_ = cameraClipFromLocal(scene, camera_, lsEye_);
+    unjitteredClipFromLocal_ = cameraClipFromLocal(scene, camera_, lsEye_);
+    // clip.xy += (2 jitter / size) clip.w: the image moves by `jitterPixels`.
+    glm::dmat4 jitter(1.0);
+    jitter[3][0] = 2.0 * jitterPixels.x / double(camera_.width());
+    jitter[3][1] = 2.0 * jitterPixels.y / double(camera_.height());
+    clipFromLocal_ = jitter * unjitteredClipFromLocal_;
     pixelScale_ =
         2.0 * std::tan(0.5 * desc.vfovDeg * 3.14159265358979323846 / 180.0) / double(height());
     program_ = buildGeometryProgram();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 #include "core/camera.h"
 #include "core/image.h"
@@ -18,12 +19,17 @@ namespace so {
 
 class CameraPass {
   public:
-    CameraPass(const GpuScene& scene, const CameraDesc& desc);
+    // `jitterPixels`: a sub-pixel offset of the projection (a TAA's camera jitter,
+    // resolves/resolve.h), in pixels, +y up; every pass drawn with clipFromLocal() moves with it.
+    CameraPass(const GpuScene& scene, const CameraDesc& desc, glm::dvec2 jitterPixels = {});
 
     int width() const { return camera_.width(); }
     int height() const { return camera_.height(); }
     const Camera& camera() const { return camera_; }
     const glm::dmat4& clipFromLocal() const { return clipFromLocal_; }
+    // Without the jitter: what the next frame's reprojection projects into.
+    const glm::dmat4& unjitteredClipFromLocal() const { return unjitteredClipFromLocal_; }
+    const glm::dvec2& jitterPixels() const { return jitterPixels_; }
     const glm::dvec3& lsEye() const { return lsEye_; }
     // The camera pixel's size per unit of distance (2 tan(vfov / 2) / height).
     double pixelScale() const { return pixelScale_; }
@@ -55,7 +61,8 @@ class CameraPass {
 
     const GpuScene& scene_;
     Camera camera_;
-    glm::dmat4 clipFromLocal_{1.0};
+    glm::dmat4 clipFromLocal_{1.0}, unjitteredClipFromLocal_{1.0};
+    glm::dvec2 jitterPixels_{0.0};
     glm::dvec3 lsEye_{0.0};
     double pixelScale_ = 0.0;
     GlProgram program_;

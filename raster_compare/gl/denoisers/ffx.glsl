@@ -87,7 +87,7 @@ vec2 localNeighbourhood(ivec2 ij) {
 // against the previous depth at the texel it lands in, apart by at least 1% to 10% as the surface
 // turns from the eye (TC 116-128). `prevTexel` gets that texel (TC 122, 348).
 bool disoccluded(vec3 lsP, vec3 n, out ivec2 prevTexel) {
-    vec3 prevLs = lsP * u_prevScale + u_prevOffset;
+    vec3 prevLs = previousLocal(lsP);
     vec4 clip = u_prevClipFromLocal * vec4(prevLs, 1.0);
     prevTexel = ivec2(0);
     if (clip.w <= 0.0) return true;
@@ -106,7 +106,7 @@ bool disoccluded(vec3 lsP, vec3 n, out ivec2 prevTexel) {
 // TC 395 (FFX_DNSR_Shadows_ReadHistory: a bilinear, clamp-to-edge sample) of the previous
 // frame's first filter pass, where its uv lands (no surface test: the clamp bounds it).
 float previousShadow(vec3 lsP, float current) {
-    vec4 clip = u_prevClipFromLocal * vec4(lsP * u_prevScale + u_prevOffset, 1.0);
+    vec4 clip = u_prevClipFromLocal * vec4(previousLocal(lsP), 1.0);
     if (clip.w <= 0.0) return current;
     ivec2 size = textureSize(u_prevHistory, 0);
     vec2 px = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5;

@@ -7,6 +7,7 @@
 #include "raster_compare/gl/context/gpu_scene.h"
 #include "raster_compare/gl/context/work_counter.h"
 #include "raster_compare/gl/shaders.h"
+#include "raster_compare/gl/time/temporal_state.h"
 
 namespace so {
 
@@ -34,13 +35,16 @@ ScreenTarget::ScreenTarget(GLenum format, int width, int height)
 }
 
 RayFrame::RayFrame(const Light& light, const GpuScene& scene, const CameraPass& camera,
-                   int frameIndex, RayHistoryStore& store, RayTarget result)
+                   int frameIndex, RayHistoryStore& store, RayTarget result,
+                   const TemporalState* temporal)
     : light_(light),
       scene_(scene),
       camera_(camera),
       frameIndex_(frameIndex),
       store_(store),
       result_(result),
+      temporal_(temporal),
+      motion_(makeBuffer()),
       W_(camera.width()),
       H_(camera.height()),
       raw(GL_RG32F, W_, H_),
@@ -104,13 +108,17 @@ void RayFrame::bindHistory(const GlProgram& p) {
                                 before->history.data());
             glTextureSubImage2D(prevPosition.texture.get(), 0, 0, 0, W_, H_, GL_RGBA, GL_FLOAT,
                                 before->lsPosition.data());
+            const std::vector<float> motion = previousFromLocalPerMesh(
+                temporal_, scene_.scene().meshes.size(), scene_.frame(), before->frame);
+            glNamedBufferData(motion_.get(), GLsizeiptr(motion.size() * sizeof(float)),
+                              motion.data(), GL_DYNAMIC_DRAW);
             uploaded_ = true;
         }
-        // previous local = (ws - c') 2^-e' with ws = ls 2^e + c: a scale and an offset.
+        // The frame before's local unit over this frame's (ls = (ws - c) 2^-e).
         const LocalFrame& now = scene_.frame();
         setFloat(tp, "u_prevScale", std::ldexp(1.0, now.exponent - before->frame.exponent));
-        setVec3(tp, "u_prevOffset", before->frame.lsFromWs(now.wsCenter));
         setMat4(tp, "u_prevClipFromLocal", before->clipFromLocal);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, motion_.get());
     }
     glBindTextureUnit(0, raw.texture.get());
     glBindTextureUnit(1, camera_.positionTexture());
@@ -140,7 +148,7 @@ void RayFrame::keepHistory(GLuint firstLevel, const std::vector<GLuint>& extra) 
         f.extra.push_back(std::move(rgba));
     }
     f.lsPosition = position;
-    f.clipFromLocal = camera_.clipFromLocal();
+    f.clipFromLocal = camera_.unjitteredClipFromLocal();
     f.frame = scene_.frame();
     store_.keep(light_.name, frameIndex_, std::move(f));
 }

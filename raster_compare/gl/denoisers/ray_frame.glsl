@@ -20,6 +20,23 @@ vec3 normalAt(ivec2 q) {
 float footprintAt(vec3 lsP) {
     return u_pixelScale * length(lsP - u_lsEye);
 }
+// Per mesh, this frame's local point to where it stood in the frame before, in that frame's local
+// frame: the camera's frames and the mesh's exact motion (RayFrame::bindHistory, from the caller's
+// temporal state; without motion, the local frames' scale and offset alone).
+layout(std430, binding = 0) readonly buffer PrevLocalFromLocal {
+    mat4 u_prevLocalFromLocal[];
+};
+mat4 previousFromLocal() {
+    SO_TAP(1, NORMAL_TEXEL_BYTES);
+    return u_prevLocalFromLocal[int(texelFetch(u_normal, ivec2(gl_FragCoord.xy), 0).w)];
+}
+// This pixel's point lsP (or its normal n) where it stood in the frame before.
+vec3 previousLocal(vec3 lsP) {
+    return (previousFromLocal() * vec4(lsP, 1.0)).xyz;
+}
+vec3 previousNormal(vec3 n) {
+    return normalize(mat3(previousFromLocal()) * n);
+}
 bool inside(ivec2 q, ivec2 size) {
     return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
 }

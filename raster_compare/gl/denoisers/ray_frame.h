@@ -5,8 +5,8 @@
 //
 // The history lives across the renders of a sequence (RasterOptions::frameIndex): frame f reads
 // what frame f - 1 left, so a repeated render of a frame (warm-up, timed frames) gives the same
-// image. Moving meshes restart their history (the raster path is not given their motion); a
-// moving camera reprojects.
+// image. The history follows the camera and every mesh's exact motion (the caller's temporal
+// state, time/temporal_state.h, which also keeps the store).
 #pragma once
 
 #include <cstdint>
@@ -27,6 +27,7 @@ namespace so {
 struct Light;
 class GpuScene;
 class CameraPass;
+class TemporalState;
 
 // What frame f of a light left for frame f + 1, on the CPU (GL objects do not outlive a render).
 struct RayHistoryFrame {
@@ -66,8 +67,9 @@ enum class RayTarget { Raw, Accum, Filter };
 // One light's targets and passes. Every texture is in GL's row order.
 class RayFrame {
   public:
+    // `temporal`: where the meshes' motion since the frame before is (null: nothing moved).
     RayFrame(const Light& light, const GpuScene& scene, const CameraPass& camera, int frameIndex,
-             RayHistoryStore& store, RayTarget result);
+             RayHistoryStore& store, RayTarget result, const TemporalState* temporal = nullptr);
 
     const Light& light() const { return light_; }
     const GpuScene& scene() const { return scene_; }
@@ -87,7 +89,8 @@ class RayFrame {
     void draw(const ScreenTarget& target, const GlProgram& p) const;
     // The temporal passes' inputs: whether frame f - 1 left a history of this size (u_haveHistory);
     // if so it is uploaded into prevHistory and prevPosition and `p`'s reprojection set
-    // (u_prevScale, u_prevOffset, u_prevClipFromLocal). Binds raw, the G-buffer and the two
+    // (u_prevScale, u_prevClipFromLocal, and per mesh the motion into the frame before's local
+    // frame on SSBO binding 0, ray_frame.glsl's previousLocal). Binds raw, the G-buffer and the two
     // previous targets on units 0 to 4.
     // The store is read and the textures uploaded once a frame, however many passes bind them.
     void bindHistory(const GlProgram& p);
@@ -107,6 +110,8 @@ class RayFrame {
     int frameIndex_;
     RayHistoryStore& store_;
     RayTarget result_;
+    const TemporalState* temporal_;
+    GlBuffer motion_;  // per mesh, ray_frame.glsl's u_prevLocalFromLocal
     int W_, H_;
     bool loaded_ = false, uploaded_ = false;
     std::optional<RayHistoryFrame> before_;

@@ -6,8 +6,7 @@
 uniform sampler2D u_prevHistory;   // RGBA: V, first moment, second moment, history length
 uniform sampler2D u_prevPosition;  // the previous frame's local positions (its frame)
 uniform mat4 u_prevClipFromLocal;
-uniform float u_prevScale;  // previous local = local * u_prevScale + u_prevOffset
-uniform vec3 u_prevOffset;
+uniform float u_prevScale;  // the frame before's local unit over this frame's
 uniform int u_haveHistory;
 
 // Whether previous texel q saw the surface through prevLs (normal n): within one pixel footprint
@@ -25,7 +24,8 @@ bool sameSurface(ivec2 q, vec3 prevLs, vec3 n, float footprint) {
 // (its 3 x 3 cross-bilateral fallback, 141-169); w 0 where none did. The history length is the
 // nearest texel's (Falcor 171-175).
 vec4 reprojected(vec3 lsP, vec3 n) {
-    vec3 prevLs = lsP * u_prevScale + u_prevOffset;
+    vec3 prevLs = previousLocal(lsP);
+    n = previousNormal(n);
     float footprint = footprintAt(lsP) * u_prevScale;
     vec4 clip = u_prevClipFromLocal * vec4(prevLs, 1.0);
     if (clip.w <= 0.0) return vec4(0.0);

@@ -9,8 +9,6 @@ uniform sampler2D u_prevPosition;  // the previous frame's local positions (its 
 uniform sampler2D u_prevVariation;  // its variation and sample-count cache (utils 135-145)
 uniform sampler2D u_prevFiltered;   // its filtered variation (R)
 uniform mat4 u_prevClipFromLocal;
-uniform float u_prevScale;  // previous local = local * u_prevScale + u_prevOffset
-uniform vec3 u_prevOffset;
 uniform int u_haveHistory;
 uniform float u_reprojectionDepth;  // motion 50: maxReprojectionDepthDifference
 
@@ -20,7 +18,7 @@ uniform float u_reprojectionDepth;  // motion 50: maxReprojectionDepthDifference
 bool reproject(vec3 lsP, out vec2 px) {
     px = vec2(-10.0);
     if (u_haveHistory == 0) return false;
-    vec4 clip = u_prevClipFromLocal * vec4(lsP * u_prevScale + u_prevOffset, 1.0);
+    vec4 clip = u_prevClipFromLocal * vec4(previousLocal(lsP), 1.0);
     if (clip.w <= 0.0) return false;
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;

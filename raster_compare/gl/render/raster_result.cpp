@@ -128,6 +128,7 @@ nlohmann::json toJson(const RasterStats& s) {
                         {"timings", toJson(s.timings)}};
     if (s.frameWork && s.cameraWork)
         j["work"] = {{"frame", toJson(*s.frameWork)}, {"camera", toJson(*s.cameraWork)}};
+    if (s.historyFrames) j["history_frames"] = *s.historyFrames;
     return j;
 }
 

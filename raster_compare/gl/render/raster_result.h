@@ -88,6 +88,10 @@ struct RasterStats {
     // The counted frame's camera pass (shared by the lights) and the whole frame: every light's
     // passes and the camera pass. None when the render counted no work.
     std::optional<PassWork> cameraWork, frameWork;
+    // A technique that resolves its frames over time (Technique::resolve, a resolve that runs
+    // passes): how many frames its V holds, this one included; 0 on a cold start (no history:
+    // a single frame, or the first of a sequence). None for a technique whose frames stand alone.
+    std::optional<int> historyFrames;
 };
 
 struct RasterResult {

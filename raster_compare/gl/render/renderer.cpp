@@ -16,16 +16,19 @@
 #include "raster_compare/gl/context/gpu_scene.h"
 #include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/context/work_counter.h"
+#include "raster_compare/gl/resolves/resolve.h"
 
 namespace so {
 
 namespace {
 
-// One light in the frame: its target and the technique's passes for it.
+// One light in the frame: its target, the technique's passes for it and, where the technique
+// resolves its frames over time, the light's resolve (resolves/resolve.h), which runs after them.
 struct FrameLight {
     const Light* light;
     LightTarget target;
     std::unique_ptr<LightTechnique> passes;
+    std::unique_ptr<LightResolve> resolve = nullptr;
 };
 
 // The frame: every light's own passes, the camera pass, every light's visibility pass, recorded
@@ -51,6 +54,7 @@ double renderFrame(const CameraPass& camera, std::vector<FrameLight>& lights,
         PassClock clock(recorder, l.light->name);
         l.target.bindAndClear();
         l.passes->renderVisibility(clock);
+        if (l.resolve) l.resolve->resolve(clock);
     }
     glFinish();
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -72,17 +76,23 @@ std::optional<Bounds3d> receiverBounds(const CameraPass& camera,
 std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camera,
                                     const Technique& technique,
                                     const std::optional<Bounds3d>& lsReceivers, SetUpShares& shared,
-                                    int frameIndex) {
+                                    const RasterOptions& options) {
     static const std::optional<Bounds3d> notAsked;
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     // The depth probe is a diagnostic, no part of the technique's work: not in the counted frame.
     const bool probe = !countingBuildActive();
     std::vector<FrameLight> lights;
-    for (const Light& light : gpu.scene().lights)
+    // The resolves hold their light's target: no element moves once made.
+    lights.reserve(gpu.scene().lights.size());
+    for (const Light& light : gpu.scene().lights) {
         lights.push_back({&light, LightTarget(camera, probe && technique.probesDepth()),
                           technique.setUp({light, gpu, camera,
                                            technique.needsReceiverBounds() ? lsReceivers : notAsked,
-                                           &shared, probe, frameIndex})});
+                                           &shared, probe, options.frameIndex, options.temporal})});
+        if (const Resolve* resolve = technique.resolve())
+            lights.back().resolve = resolve->setUp(
+                {light, gpu, camera, lights.back().target, options.temporal, &technique});
+    }
     return lights;
 }
 
@@ -93,12 +103,12 @@ std::vector<FrameLight> setUpLights(const GpuScene& gpu, const CameraPass& camer
 std::map<std::string, PassWork> countWork(const GpuScene& gpu, const CameraPass& camera,
                                           const Technique& technique,
                                           const std::optional<Bounds3d>& lsReceivers,
-                                          SetUpShares& shared, int frameIndex,
+                                          SetUpShares& shared, const RasterOptions& options,
                                           const GlContext& gl) {
     std::vector<FrameLight> lights;
     {
         const CountingBuild counting;
-        lights = setUpLights(gpu, camera, technique, lsReceivers, shared, frameIndex);
+        lights = setUpLights(gpu, camera, technique, lsReceivers, shared, options);
     }
     gl.throwIfError("technique " + technique.name() + ", counting build set-up");
     WorkCounter counter;
@@ -152,10 +162,16 @@ RasterStats collectStats(const TechniqueFrames& t, const CameraPass& camera,
         ls.type = lightTypeName(l.light->type);
         ls.family = findTechnique(t.technique->name()).family;
         ls.passes = l.passes->passNames();
-        for (const std::string& pass : ls.passes)
-            ls.passMs[pass] = t.timer.stats(l.light->name + "." + pass);
         ls.memoryBytes = l.passes->memoryBytes() +
                          uint64_t(camera.width()) * uint64_t(camera.height()) * 8;  // V, aliasing
+        if (l.resolve) {
+            for (const std::string& pass : t.technique->resolve()->passNames())
+                ls.passes.push_back(pass);
+            ls.memoryBytes += l.resolve->memoryBytes();
+            s.historyFrames = l.resolve->historyFrames();
+        }
+        for (const std::string& pass : ls.passes)
+            ls.passMs[pass] = t.timer.stats(l.light->name + "." + pass);
         s.lights.push_back(std::move(ls));
     }
     s.timings = {options.frames, options.warmup, t.timer.stats("camera"), timingStats(t.wallMs),
@@ -246,7 +262,12 @@ void renderGroup(const CameraPass& camera, const LocalFrame& localFrame,
             t.timer.endFrame(frame >= options.warmup);
             if (frame >= options.warmup) t.wallMs.push_back(ms);
         }
-    for (TechniqueFrames& t : group) renderProbedFrame(camera, t, gl);
+    for (TechniqueFrames& t : group) {
+        renderProbedFrame(camera, t, gl);
+        // What the next frame's resolves read (the caller's temporal state).
+        for (FrameLight& l : t.lights)
+            if (l.resolve) l.resolve->keep();
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     // Every technique's camera pass drew the same surfaces: one readback serves all.
     ChannelImage geometry(camera.width(), camera.height());
@@ -260,6 +281,47 @@ void renderGroup(const CameraPass& camera, const LocalFrame& localFrame,
     group.clear();
 }
 
+// Renders the techniques `indices` of the list with one camera pass.
+void renderWithCamera(const GpuScene& gpu, const CameraPass& camera,
+                      const std::vector<const Technique*>& techniques,
+                      const std::vector<size_t>& indices, const RasterOptions& options,
+                      const GlContext& gl, const InterleavedCallbacks& callbacks) {
+    const std::optional<Bounds3d> lsReceivers = receiverBounds(camera, techniques);
+    std::vector<TechniqueFrames> group;
+    uint64_t groupBytes = 0;
+    for (const size_t i : indices) {
+        std::map<std::string, PassWork> work;
+        SetUpShares shared;  // the counted instance's set-up, for the timed one
+        if (options.countWork)
+            work = countWork(gpu, camera, *techniques[i], lsReceivers, shared, options, gl);
+        TechniqueFrames t{i,
+                          techniques[i],
+                          setUpLights(gpu, camera, *techniques[i], lsReceivers, shared, options),
+                          {},
+                          {},
+                          0,
+                          std::move(work)};
+        // The scene's upload and camera pass (first technique), then this technique's set-up.
+        gl.throwIfError("technique " + techniques[i]->name() + ", set-up");
+        for (const FrameLight& l : t.lights)
+            t.memoryBytes += l.passes->memoryBytes() + (l.resolve ? l.resolve->memoryBytes() : 0);
+        // A full group renders first; this technique's objects exist already and start the next.
+        if (!group.empty() && groupBytes + t.memoryBytes > options.interleaveBudgetBytes) {
+            renderGroup(camera, gpu.frame(), group, options, gl, callbacks);
+            groupBytes = 0;
+        }
+        groupBytes += t.memoryBytes;
+        group.push_back(std::move(t));
+    }
+    renderGroup(camera, gpu.frame(), group, options, gl, callbacks);
+}
+
+// A technique's camera jitter in this frame, in pixels: its resolve's (a TAA's), else none.
+glm::dvec2 jitterOf(const Technique& technique, int frameIndex) {
+    const Resolve* resolve = technique.resolve();
+    return resolve ? resolve->jitterPixels(frameIndex) : glm::dvec2(0.0);
+}
+
 }  // namespace
 
 void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& techniques,
@@ -270,36 +332,20 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
     if (options.height > 0) camDesc.height = options.height;
     GpuScene gpu(scene);
     gpu.bind();
-    CameraPass camera(gpu, camDesc);
-    const std::optional<Bounds3d> lsReceivers = receiverBounds(camera, techniques);
-    std::vector<TechniqueFrames> group;
-    uint64_t groupBytes = 0;
+    // Techniques whose camera is jittered (a TAA's) render with a camera pass of their jitter;
+    // the others, in the list's order, with the unjittered one.
+    std::vector<std::pair<glm::dvec2, std::vector<size_t>>> byJitter;
     for (size_t i = 0; i < techniques.size(); ++i) {
-        std::map<std::string, PassWork> work;
-        SetUpShares shared;  // the counted instance's set-up, for the timed one
-        if (options.countWork)
-            work =
-                countWork(gpu, camera, *techniques[i], lsReceivers, shared, options.frameIndex, gl);
-        TechniqueFrames t{
-            i,
-            techniques[i],
-            setUpLights(gpu, camera, *techniques[i], lsReceivers, shared, options.frameIndex),
-            {},
-            {},
-            0,
-            std::move(work)};
-        // The scene's upload and camera pass (first technique), then this technique's set-up.
-        gl.throwIfError("technique " + techniques[i]->name() + ", set-up");
-        for (const FrameLight& l : t.lights) t.memoryBytes += l.passes->memoryBytes();
-        // A full group renders first; this technique's objects exist already and start the next.
-        if (!group.empty() && groupBytes + t.memoryBytes > options.interleaveBudgetBytes) {
-            renderGroup(camera, gpu.frame(), group, options, gl, callbacks);
-            groupBytes = 0;
-        }
-        groupBytes += t.memoryBytes;
-        group.push_back(std::move(t));
+        const glm::dvec2 jitter = jitterOf(*techniques[i], options.frameIndex);
+        size_t k = 0;
+        while (k < byJitter.size() && byJitter[k].first != jitter) ++k;
+        if (k == byJitter.size()) byJitter.push_back({jitter, {}});
+        byJitter[k].second.push_back(i);
     }
-    renderGroup(camera, gpu.frame(), group, options, gl, callbacks);
+    for (const auto& [jitter, indices] : byJitter) {
+        const CameraPass camera(gpu, camDesc, jitter);
+        renderWithCamera(gpu, camera, techniques, indices, options, gl, callbacks);
+    }
 }
 
 RasterResult renderRaster(const Scene& scene, const Technique& technique,

@@ -17,15 +17,21 @@
 namespace so {
 
 class GlContext;
+class TemporalState;
 
 struct RasterOptions {
     int width = 0, height = 0;  // 0: the scene camera's
     // Another camera than the scene's (a frame of compare --frames-path); width and height above
     // still override its size.
     std::optional<CameraDesc> camera;
-    // A sequence's frame (compare --sequence): techniques with temporal=on rotate their taps by it
-    // (docs/techniques.md#temporal); 0 outside a sequence.
+    // The frame's index in the caller's frames (compare --sequence, --converge): techniques with
+    // temporal=on rotate their taps by it (docs/techniques.md#temporal) and a TAA jitters the
+    // camera by it; 0 for a single frame.
     int frameIndex = 0;
+    // The caller's temporal state (time/temporal_state.h), begun for frameIndex: what the frame
+    // before left for every resolve and denoiser, and where this frame's is kept. Null: a cold
+    // start (history_frames 0).
+    TemporalState* temporal = nullptr;
     int frames = kDefaultFrames;  // timed frames (median and quartiles reported)
     int warmup = kDefaultWarmup;  // untimed frames first
     // Before its timed frames, each technique's work is counted in one frame of its counting

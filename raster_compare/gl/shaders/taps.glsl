@@ -14,7 +14,8 @@ float interleavedGradientNoise(vec2 pixel) {
 float tapRotation() {
     vec2 pixel = gl_FragCoord.xy;
 #ifdef TEMPORAL
-    pixel += 5.588238 * float(u_frameIndex);
+    // The frame wraps where Bevy wraps it (utils.wgsl:73, frame % 64): this frame term is Bevy's.
+    pixel += 5.588238 * float(u_frameIndex % 64);
 #endif
     return 6.28318531 * interleavedGradientNoise(pixel);
 }

@@ -51,7 +51,9 @@ std::vector<Provenance> patternProvenances() {
           "point lights: the spiral on the cube face's axes at the major-axis depth, scaled "
           "0.0015 / texel angle (Bevy: POINT_SHADOW_SCALE 0.003 x 0.5 of the distance on an "
           "orthonormal basis)",
-          "no TAA resolve (Bevy documents Temporal for use with TemporalAntiAliasing)"}},
+          "its TAA (Bevy documents Temporal for use with TemporalAntiAliasing) only with "
+          "temporal=on (resolve=taa, Bevy 0.19.1's, issue 64); without, the noise as it "
+          "falls"}},
         {"Godot 4 master, servers/rendering/renderer_rd/shaders/scene_forward_lights_inc.glsl "
          "sample_directional_pcf_shadow, sample_pcf_shadow; renderer_scene_render_rd.cpp "
          "directional_soft_shadow_filter_set_quality (SOFT_LOW, the project default 2: 4 taps, "
@@ -62,7 +64,8 @@ std::vector<Provenance> patternProvenances() {
           "the reference depth is our `bias` axis's, not Godot's depth and normal biases",
           "one cascade's radius: Godot scales later cascades by their size ratio (blur_factor)",
           "point lights: the disk on a cube face, where Godot samples a dual paraboloid",
-          "no TAA or FSR resolve"}},
+          "its frame term and TAA only with temporal=on,resolve=taa, and that TAA is Bevy's "
+          "constants (Godot 4.6's differ: docs/techniques.md#resolve); no FSR"}},
     };
 }
 
@@ -94,16 +97,19 @@ class Pcf final : public ShadowMapTechnique {
             "PCFShadowMap (5 Vogel taps of radius kernel / 2 texels turned per pixel, no frame "
             "term); bevy: Bevy's Temporal filter (8 spiral taps, turned per pixel and frame "
             "% 64); godot: Godot 4's soft shadows at their default quality (4 Vogel taps of "
-            "radius 2 texels, turned per pixel and frame); the engines' taps are hardware 2x2 "
-            "compares and nothing is accumulated (bevy and godot leave that to a TAA)");
+            "radius 2 texels, turned per pixel, and per frame % 16 only under its TAA: "
+            "temporal=on,resolve=taa); the engines' taps are hardware 2x2 compares; bevy and "
+            "godot leave the noise to a TAA (temporal=on resolves them, `resolve`)");
         pattern.provenances = patternProvenances();
         ParamTable own = {
             {"kernel", 3, 1, 15, true, "grid side in texels, odd", {1, 3, 5, 7, 9, 11, 13, 15}},
             pattern};
         own = withBiasAxis(std::move(own), "slope");
         for (ParamSpec s : TemporalTaps::params()) {
-            // The engines' patterns turn as the engines turn them: no temporal=on of ours.
-            if (s.name == "temporal") s.needs = "pattern=grid|poisson";
+            // three.js's taps have no frame term and nothing resolves them over frames; Bevy's
+            // and Godot's turn as the engines turn them, and temporal=on resolves them
+            // (`resolve`) without turning them again.
+            if (s.name == "temporal") s.needs = "pattern=grid|poisson|bevy|godot";
             own.push_back(s);
         }
         return shadowMapParams(own);
@@ -127,8 +133,15 @@ class Pcf final : public ShadowMapTechnique {
         const bool poisson = pattern_ == Pattern::Poisson;
         std::string d = std::string(poisson ? "#define POISSON\n" : "") + "#define PCF_RADIUS " +
                         std::to_string(radius_) +
-                        "\n#define BIAS_SPREAD (1.0 + float(PCF_RADIUS))\n" + temporal_.defines();
-        if (engine()) return d + enginePatternDefines(pattern_, radius_);
+                        "\n#define BIAS_SPREAD (1.0 + float(PCF_RADIUS))\n";
+        if (engine()) {
+            // Godot turns its pattern per frame only under its TAA (taa_frame_count is 0
+            // without): with resolve=taa.
+            const Resolve* r = temporal_.resolve();
+            if (pattern_ == Pattern::Godot && r && r->name() == "taa") d += "#define GODOT_TAA\n";
+            return d + enginePatternDefines(pattern_, radius_);
+        }
+        d += temporal_.defines();
         if (!temporal_.on) return d;  // off: the defines it always had, the same shader
         const int side = 2 * radius_ + 1;
         const int taps = poisson ? 16 : side * side;
@@ -136,7 +149,7 @@ class Pcf final : public ShadowMapTechnique {
         return d + "#define PCF_TAPS " + std::to_string(taps) + "\n" +
                glslDefine("PCF_DISK_TEXELS", diskTexels);
     }
-    std::optional<HistorySettings> history() const override { return temporal_.history(); }
+    const Resolve* resolve() const override { return temporal_.resolve(); }
 
   private:
     bool engine() const { return pattern_ != Pattern::Grid && pattern_ != Pattern::Poisson; }

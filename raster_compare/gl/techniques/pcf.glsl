@@ -60,7 +60,14 @@ vec2 enginePatternTap(int k) {
     return turnedBack(kBevySpiral[k], turn) * bevyTexels();
 #else
     // quick_hash(gl_FragCoord.xy + taa_frame_count * 5.588238); get_vogel_disk's golden angle 2.4.
-    float turn = 6.28318531 * interleavedGradientNoise(gl_FragCoord.xy + 5.588238 * float(u_frameIndex));
+    // taa_frame_count = frame_number % jitter_phase_count: % 16 with TAA (Godot 4.6
+    // renderer_scene_cull.cpp, the TAA's 16 jitter phases).
+    // Without TAA (or FSR2) taa_frame_count is 0: the pattern turns per pixel only.
+#ifdef GODOT_TAA
+    float turn = 6.28318531 * interleavedGradientNoise(gl_FragCoord.xy + 5.588238 * float(u_frameIndex % 16));
+#else
+    float turn = 6.28318531 * interleavedGradientNoise(gl_FragCoord.xy);
+#endif
     float a = float(k) * 2.4;
     vec2 disk = sqrt((float(k) + 0.5) / float(PCF_TAPS)) * vec2(cos(a), sin(a));
     return turnedBack(disk, turn) * PATTERN_TEXELS;

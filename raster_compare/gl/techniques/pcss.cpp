@@ -82,7 +82,7 @@ class Pcss final : public ShadowMapTechnique {
                glslDefine("PENUMBRA_MAX", penumbraMax_) +
                (rotated_ ? "#define PATTERN_ROTATED\n" : "") + temporal_.defines();
     }
-    std::optional<HistorySettings> history() const override { return temporal_.history(); }
+    const Resolve* resolve() const override { return temporal_.resolve(); }
     void setLightUniforms(GLuint program, const Light& light,
                           const LocalFrame& frame) const override {
         const double size = lightSize_ >= 0.0 ? lightSize_ : lightWidth(light);

@@ -17,6 +17,7 @@
 #include "raster_compare/gl/rays/shadow_rays.h"
 #include "raster_compare/gl/shaders.h"
 #include "raster_compare/gl/technique.h"
+#include "raster_compare/gl/time/temporal_state.h"
 
 namespace so {
 namespace {
@@ -57,7 +58,6 @@ class Raytraced final : public Technique {
 
     int spp;
     std::unique_ptr<const Denoiser> denoiser;
-    mutable RayHistoryStore store;
 
   private:
     // "none: the rays' estimate; temporal: ..." from the plug-ins' summaries.
@@ -94,6 +94,8 @@ class RaytracedLight final : public LightTechnique {
     const CameraPass& camera_;
     int frameIndex_;
     std::shared_ptr<const SharedTracer> tracer_;
+    // Without the caller's temporal state, a cold start: a store of its own, empty.
+    RayHistoryStore coldStore_;
     RayFrame frame_;
     std::unique_ptr<LightDenoiser> denoiser_;
     GlProgram resolveProg_;
@@ -109,8 +111,9 @@ RaytracedLight::RaytracedLight(const Raytraced& technique, const LightSetup& set
       light_(setup.light),
       camera_(setup.camera),
       frameIndex_(setup.frameIndex),
-      frame_(setup.light, setup.scene, setup.camera, setup.frameIndex, technique.store,
-             technique.denoiser->result()) {
+      frame_(setup.light, setup.scene, setup.camera, setup.frameIndex,
+             setup.temporal ? setup.temporal->rayHistory(&technique) : coldStore_,
+             technique.denoiser->result(), setup.temporal) {
     const std::string key = "raytraced.bvh";
     if (setup.shared && setup.shared->count(key))
         tracer_ = std::static_pointer_cast<const SharedTracer>(setup.shared->at(key));

@@ -103,7 +103,7 @@ class Smrt final : public ShadowMapTechnique {
         return source.c_str();
     }
     std::string shaderDefines() const override { return rayDefines() + bias_.defines(); }
-    std::optional<HistorySettings> history() const override { return temporal_.history(); }
+    const Resolve* resolve() const override { return temporal_.resolve(); }
     void setLightUniforms(GLuint program, const Light& light,
                           const LocalFrame& frame) const override;
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override;
