@@ -22,7 +22,7 @@ int runRasterCommand(const RasterCommandOptions& options) {
     GlContext gl;  // GlUnavailable propagates: main reports it
     RasterResult r;
     try {
-        r = renderRaster(scene, *technique, options.raster, gl);
+        r = renderConverged(scene, *technique, options.raster, gl);
     } catch (const std::exception&) {
         printWarnings(gl.takeWarnings());  // the driver's warnings may explain a GlError
         throw;

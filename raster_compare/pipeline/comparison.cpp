@@ -203,9 +203,12 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     rt.fileLabel = run.spec.fileLabel;
     describeCurve(rt, run);
     job.metricOptions.filteredTechnique = run.technique->filtered();
-    // In a sequence the row judges its last frame as the sequence saw it, history resolved; the
-    // timed render gave the costs.
-    if (job.sequence) r.image = job.sequence->lastImages[index];
+    // In a sequence the row judges its last frame as the sequence saw it, history resolved, and its
+    // costs are that frame's, timed and counted with the history the frames before built.
+    if (job.sequence) {
+        r.image = job.sequence->lastImages[index];
+        r.stats = job.sequence->lastStats[index];
+    }
     measureLights(
         job, rt, r.image,
         [&](size_t li, double oracleSeconds) { return techniqueCost(r.stats, li, oracleSeconds); },

@@ -7,7 +7,8 @@ namespace so {
 FrameImages renderFrameImages(const Scene& scene, const std::vector<const Technique*>& techniques,
                               const OracleOptions& oracle, const OracleCacheOptions& cache,
                               RasterOptions raster, const GlContext& gl,
-                              std::vector<std::string>& warnings, const ChannelImage* traced) {
+                              std::vector<std::string>& warnings, const ChannelImage* traced,
+                              bool timed) {
     FrameImages frame;
     frame.camera = effectiveCamera(scene, oracle);
     if (traced) {
@@ -18,12 +19,16 @@ FrameImages renderFrameImages(const Scene& scene, const std::vector<const Techni
         frame.oracle = std::move(loaded.image);
         for (std::string& w : loaded.warnings) warnings.push_back(std::move(w));
     }
-    raster.frames = 1;
-    raster.warmup = 0;
-    raster.countWork = false;  // V only: the work is counted by the ordinary comparison
+    if (!timed) {
+        raster.frames = 1;
+        raster.warmup = 0;
+        raster.countWork = false;  // V only: the work is counted by the ordinary comparison
+    }
     frame.rasters.resize(techniques.size());
+    frame.stats.resize(techniques.size());
     renderInterleaved(scene, techniques, raster, gl, {nullptr, [&](size_t i, RasterResult&& r) {
                                                           frame.rasters[i] = std::move(r.image);
+                                                          frame.stats[i] = std::move(r.stats);
                                                       }});
     return frame;
 }

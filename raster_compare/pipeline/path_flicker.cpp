@@ -3,6 +3,7 @@
 #include "core/camera_path.h"
 #include "core/channels.h"
 #include "core/error.h"
+#include "raster_compare/gl/time/temporal_state.h"
 #include "raster_compare/pipeline/frame_images.h"
 
 namespace so {
@@ -25,14 +26,19 @@ struct WorstPair {
     std::optional<FlickerStrip> strip;
 };
 
+// Frame f of the path: a sequence whose only motion is the camera's, so the techniques that
+// resolve their frames over time do it through `temporal` as in compare --sequence.
 PathFrame renderFrame(const Scene& scene, const std::vector<const Technique*>& techniques,
                       const OracleOptions& oracle, const OracleCacheOptions& cache,
                       const RasterOptions& raster, const GlContext& gl, const CameraDesc& pose,
-                      std::vector<std::string>& warnings) {
+                      int f, TemporalState& temporal, std::vector<std::string>& warnings) {
     OracleOptions o = oracle;
     o.camera = pose;
     RasterOptions r = raster;
     r.camera = pose;
+    r.frameIndex = f;
+    r.temporal = &temporal;
+    temporal.beginFrame(f);
     return renderFrameImages(scene, techniques, o, cache, r, gl, warnings);
 }
 
@@ -81,10 +87,11 @@ PathFlicker measurePathFlicker(const Scene& scene, const std::vector<const Techn
     std::vector<std::vector<WorstPair>> worst(techniques.size(),
                                               std::vector<WorstPair>(scene.lights.size()));
     PathFrame prev;
+    TemporalState temporal;
     Progress progress("camera path frames", uint64_t(frames), progressCallback);
     for (int f = 0; f < frames; ++f) {
         PathFrame next = renderFrame(scene, techniques, oracle, cache, raster, gl, poses[size_t(f)],
-                                     out.warnings);
+                                     f, temporal, out.warnings);
         if (f > 0) measurePair(prev, next, scene, labels, f - 1, out, worst);
         prev = std::move(next);
         progress.advance(1);

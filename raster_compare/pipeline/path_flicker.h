@@ -1,7 +1,9 @@
 // Temporal flicker (compare --frames-path N): the scene's camera path (scene_format 2) rendered in
 // N frames, the oracle and every technique once per frame, measured for temporal flicker
-// (temporal.h, docs/metrics.md#temporal-flicker). A comparison's other metrics stay on the scene
-// camera.
+// (temporal.h, docs/metrics.md#temporal-flicker). The frames are a sequence whose only motion is
+// the camera's: each is rendered with its index and one temporal state, so that what a technique
+// resolves over frames (its `resolve`, a denoiser's history) builds along the path as in
+// compare --sequence. A comparison's other metrics stay on the scene camera.
 #pragma once
 
 #include <optional>

@@ -69,9 +69,9 @@ SequenceResult measureSequence(const Scene& scene, const std::vector<const Techn
         r.camera.reset();
         r.frameIndex = f;
         r.temporal = &temporal;
-        static_cast<FrameImages&>(frame) =
-            renderFrameImages(sceneAtTime(scene, frame.t), techniques, o, cache, r, gl,
-                              out.warnings, f == sequence.frames - 1 ? lastOracle : nullptr);
+        static_cast<FrameImages&>(frame) = renderFrameImages(
+            sceneAtTime(scene, frame.t), techniques, o, cache, r, gl, out.warnings,
+            f == sequence.frames - 1 ? lastOracle : nullptr, f == sequence.frames - 1);
         for (size_t k = 0; k < techniques.size(); ++k)
             for (size_t li = 0; li < scene.lights.size(); ++li)
                 judges[k][li].add({{frame.camera, &frame.oracle, &frame.rasters[k]},
@@ -83,6 +83,7 @@ SequenceResult measureSequence(const Scene& scene, const std::vector<const Techn
     for (size_t k = 0; k < techniques.size(); ++k) {
         for (const SequenceJudge& judge : judges[k]) out.metrics[k].push_back(judge.metrics());
         out.lastImages.push_back(std::move(last.rasters[k]));
+        out.lastStats.push_back(std::move(last.stats[k]));
     }
     return out;
 }

@@ -25,6 +25,9 @@ struct SequenceResult {
     // Per technique, the last frame's image as judged (V resolved where the technique has a
     // history): the image the row's ordinary metrics measure (docs/metrics.md#sequence).
     std::vector<ChannelImage> lastImages;
+    // Per technique, the last frame's timings and work, rendered with the comparison's raster
+    // options and the temporal state of the frames before it: the row's costs.
+    std::vector<RasterStats> lastStats;
     std::vector<std::string> warnings;  // the frames' oracle cache's (CachedOracle::warnings)
 };
 

@@ -77,5 +77,30 @@ TEST(ResolveHistory, TheGpuHistoryIsTheCpuReferenceOnTheSlidingBox) {
     EXPECT_LE(apart, compared / 1000);
 }
 
+// raster --converge N (renderConverged): N still frames with one temporal state, the last returned;
+// history_frames says how many frames its V holds: N for a resolve that keeps a history, 0 on a
+// cold start, none for a technique that resolves nothing.
+TEST(ResolveHistory, ConvergedRendersSayHowManyFramesTheirVHolds) {
+    REQUIRE_GL();
+    Scene scene = loadScene(std::string(SO_TEST_DATA_DIR) + "/anim/sliding_box.scene.json");
+    scene.camera.width = 64;
+    scene.camera.height = 48;
+    RasterOptions o;
+    o.frames = 1;
+    o.warmup = 0;
+    o.countWork = false;
+    for (const char* resolve : {"resolve=taa", "resolve=history"}) {
+        const auto t = createTechnique("pcf", {"temporal=on", resolve});
+        o.converge = 1;
+        EXPECT_EQ(renderConverged(scene, *t, o, *gl).stats.historyFrames, 0) << resolve;
+        o.converge = 8;
+        EXPECT_EQ(renderConverged(scene, *t, o, *gl).stats.historyFrames, 8) << resolve;
+    }
+    EXPECT_FALSE(renderConverged(scene, *createTechnique("pcf", {}), o, *gl).stats.historyFrames);
+    EXPECT_FALSE(
+        renderConverged(scene, *createTechnique("pcf", {"temporal=on", "resolve=none"}), o, *gl)
+            .stats.historyFrames);
+}
+
 }  // namespace
 }  // namespace so::test

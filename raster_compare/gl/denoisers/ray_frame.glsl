@@ -30,12 +30,9 @@ mat4 previousFromLocal() {
     SO_TAP(1, NORMAL_TEXEL_BYTES);
     return u_prevLocalFromLocal[int(texelFetch(u_normal, ivec2(gl_FragCoord.xy), 0).w)];
 }
-// This pixel's point lsP (or its normal n) where it stood in the frame before.
+// This pixel's point lsP where it stood in the frame before.
 vec3 previousLocal(vec3 lsP) {
     return (previousFromLocal() * vec4(lsP, 1.0)).xyz;
-}
-vec3 previousNormal(vec3 n) {
-    return normalize(mat3(previousFromLocal()) * n);
 }
 bool inside(ivec2 q, ivec2 size) {
     return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));

@@ -24,8 +24,9 @@ bool sameSurface(ivec2 q, vec3 prevLs, vec3 n, float footprint) {
 // (its 3 x 3 cross-bilateral fallback, 141-169); w 0 where none did. The history length is the
 // nearest texel's (Falcor 171-175).
 vec4 reprojected(vec3 lsP, vec3 n) {
-    vec3 prevLs = previousLocal(lsP);
-    n = previousNormal(n);
+    mat4 prevFromLocal = previousFromLocal();
+    vec3 prevLs = (prevFromLocal * vec4(lsP, 1.0)).xyz;
+    n = normalize(mat3(prevFromLocal) * n);
     float footprint = footprintAt(lsP) * u_prevScale;
     vec4 clip = u_prevClipFromLocal * vec4(prevLs, 1.0);
     if (clip.w <= 0.0) return vec4(0.0);

@@ -13,7 +13,7 @@
 namespace so {
 
 // raster.json's format_version (docs/cli.md lists what each version added).
-inline constexpr int kRasterJsonFormatVersion = 6;
+inline constexpr int kRasterJsonFormatVersion = 7;
 
 struct RasterOutputFiles {
     std::filesystem::path exr, json;

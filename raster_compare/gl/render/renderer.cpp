@@ -17,6 +17,7 @@
 #include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/context/work_counter.h"
 #include "raster_compare/gl/resolves/resolve.h"
+#include "raster_compare/gl/time/temporal_state.h"
 
 namespace so {
 
@@ -353,6 +354,22 @@ RasterResult renderRaster(const Scene& scene, const Technique& technique,
     RasterResult result;
     renderInterleaved(scene, {&technique}, options, gl,
                       {nullptr, [&](size_t, RasterResult&& r) { result = std::move(r); }});
+    return result;
+}
+
+RasterResult renderConverged(const Scene& scene, const Technique& technique,
+                             const RasterOptions& options, const GlContext& gl) {
+    if (options.converge <= 1) return renderRaster(scene, technique, options, gl);
+    TemporalState state;
+    RasterResult result;
+    for (int f = 0; f < options.converge; ++f) {
+        state.beginFrame(f);
+        RasterOptions o = options;
+        o.frameIndex = f;
+        o.temporal = &state;
+        if (f + 1 < options.converge) o.frames = 1, o.warmup = 0, o.countWork = false;
+        result = renderRaster(scene, technique, o, gl);
+    }
     return result;
 }
 

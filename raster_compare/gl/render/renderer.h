@@ -34,6 +34,8 @@ struct RasterOptions {
     TemporalState* temporal = nullptr;
     int frames = kDefaultFrames;  // timed frames (median and quartiles reported)
     int warmup = kDefaultWarmup;  // untimed frames first
+    // renderConverged: still frames rendered in order with one temporal state, the last returned.
+    int converge = 1;
     // Before its timed frames, each technique's work is counted in one frame of its counting
     // build (work_counter.h; docs/metrics.md, "Work"), which never runs in the timed frames.
     bool countWork = true;
@@ -59,5 +61,12 @@ void renderInterleaved(const Scene& scene, const std::vector<const Technique*>& 
 // One technique alone.
 RasterResult renderRaster(const Scene& scene, const Technique& technique,
                           const RasterOptions& options, const GlContext& gl);
+
+// `raster --converge N` and the API's: options.converge still frames (frame index 0 to N - 1) of
+// one technique rendered in order with a temporal state of its own, so that what it resolves over
+// frames builds; the last frame is the result, timed and counted as `options` says (the frames
+// before it one untimed, uncounted frame each). N = 1 is renderRaster: a cold start.
+RasterResult renderConverged(const Scene& scene, const Technique& technique,
+                             const RasterOptions& options, const GlContext& gl);
 
 }  // namespace so
