@@ -319,9 +319,9 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
     {"sequence.lag_pixels", U::Count, B::None, S::Sequence,
      "pixel-frames lag_mae is the mean over"},
     {"sequence.ghosting_rate", U::Share, B::Lower, S::Sequence,
-     "among lag_mae's pixel-frames more than r pixels from the frame's oracle shadow boundary, "
-     "the share that are false shadow or false lit: an old shadow or light kept (null where the "
-     "truth never changed away from an edge)",
+     "among lag_mae's pixel-frames more than r pixels from the frame's oracle shadow boundary "
+     "(on area lights, outside its penumbra), the share that are false shadow or false lit: an "
+     "old shadow or light kept (null where the truth never changed away from an edge)",
      "ghosting"},
     {"sequence.ghosting_pixels", U::Count, B::None, S::Sequence,
      "pixel-frames counted as ghosting, summed over the frames"},

@@ -299,20 +299,21 @@ size_t drawnClass(bool fs, bool fl, std::array<bool, kArtifactCount>& is, Tally&
     return 1 + size_t(other);
 }
 
-// The classes of a false shadow that no edge explains (docs/metrics.md): ghosting where the truth
-// has just changed, acne (on fully lit pixels away from the oracle's boundary) and screen-space
-// bleed, into `is` and the tally.
+// The classes of a wrong pixel that no edge explains (docs/metrics.md), into `is` and the tally:
+// ghosting (false shadow or false lit where the truth has just changed), acne (false shadow on
+// fully lit pixels away from the oracle's boundary) and screen-space bleed.
 void ownShadowClasses(const Planes& p, size_t i, bool awayFromBoundary, bool spread,
                       const MetricOptions& options, Tally& t,
                       std::array<bool, kArtifactCount>& is) {
     const PixelError e = pixelError(p, i);
     const bool fs = e.falseShadow, fl = e.falseLit, fullyLit = p.Vo[i] == 1.0f;
     auto set = [&](Artifact a, bool v) { is[size_t(a)] = v; };
-    // In a sequence, where the truth has just changed: away from the oracle's boundary (where an
-    // edge's own error is aliasing or penumbra whatever came before), a wrong pixel shows a truth
-    // that is gone: ghosting (docs/metrics.md#sequence).
+    // In a sequence, where the truth has just changed: away from the oracle's boundary and outside
+    // its penumbra (where an edge's own error is aliasing or penumbra whatever came before), a
+    // wrong pixel shows a truth that is gone: ghosting (docs/metrics.md#sequence).
+    const bool inPenumbra = p.area && p.Vo[i] > 0.0f && p.Vo[i] < 1.0f;
     bool ghost = false;
-    if (options.truthChanged && (*options.truthChanged)[i] && awayFromBoundary) {
+    if (options.truthChanged && (*options.truthChanged)[i] && awayFromBoundary && !inPenumbra) {
         ++t.ghostEligible;
         ghost = fs || fl;
         t.ghost += ghost;

@@ -93,7 +93,8 @@ struct LightMetrics {
     // correlation of its log with the boundary displacement at the raster's boundary pixels.
     std::optional<double> predictedAliasingMean, aliasingCorrelation;
     // With MetricOptions::truthChanged: counted pixels whose truth changed, away (more than r)
-    // from the oracle's boundary, and those of them that are wrong (false shadow or false lit):
+    // from the oracle's boundary and outside its penumbra (area lights), and those of them that
+    // are wrong (false shadow or false lit):
     // the ghosting class. Summed over a sequence's frames into sequence.ghosting_rate; not in
     // toJson (a row's own metrics describe one frame).
     size_t ghostingEligible = 0, ghostingPixels = 0;

@@ -33,7 +33,8 @@ struct SequenceMetrics {
     size_t lagPixels = 0;             // counted pixel-frames whose truth just changed
     double lagAbsSum = 0.0;           // their error (ErrorMaps::error) summed
     // Of those pixel-frames, the ones more than r (boundary_radius) from the frame's oracle
-    // boundary, and those of them that are wrong: ghosting (LightMetrics::ghostingPixels).
+    // boundary and outside its penumbra, and those of them that are wrong: ghosting
+    // (LightMetrics::ghostingPixels).
     size_t ghostingEligible = 0, ghostingPixels = 0;
     // The last frame's mask of pixels whose truth changed within the kLagFrames frames before it
     // (MetricOptions::truthChanged): the row's own metrics of the last frame class its ghosting

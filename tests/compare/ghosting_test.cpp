@@ -127,6 +127,28 @@ TEST(Ghosting, AFalseShadowWhereTheTruthJustChangedIsGhostingNotAcne) {
     EXPECT_EQ(maps.of(Artifact::Ghosting)[speckle], 0.0f);
 }
 
+// On an area light a pixel of the oracle's penumbra (0 < O < 1) is judged by the penumbra's
+// metrics, whatever came before: no ghosting there, even where its truth changed.
+TEST(Ghosting, InTheOraclesPenumbraAWrongPixelIsNotGhosting) {
+    std::vector<float> o = columns({10, 18}), r = o;
+    for (int x = 18; x < 26; ++x) o[size_t(x)] = 0.25f;  // a penumbra, r lit there
+    Frame f = makeFrame(o, r);
+    f.oracle.addChannel(ch::lightChannel("key", ch::kStdErr), 0.0f);
+    for (int x = 30; x < 34; ++x)  // and a trail on lit pixels
+        for (int y = 0; y < kH; ++y)
+            f.raster.channel(ch::lightChannel("key", ch::kVisibility))[size_t(y) * kW + x] = 0.5f;
+    const std::vector<uint8_t> changed = maskOfColumns(18, 40);
+    MetricOptions options;
+    options.truthChanged = &changed;
+    ErrorMaps maps;
+    const LightMetrics m = computeLightMetrics(f.oracle, f.raster, "key", options, &maps);
+    // The lit boundary pixel is x = 26: of [18, 40), [29, 40) are more than 2 away and lit.
+    EXPECT_EQ(m.ghostingEligible, size_t(11 * kH));
+    EXPECT_EQ(m.ghostingPixels, size_t(4 * kH));
+    EXPECT_EQ(maps.shown[size_t(2) * kW + 20], 1 + size_t(Artifact::Penumbra));
+    EXPECT_EQ(maps.of(Artifact::Ghosting)[size_t(2) * kW + 20], 0.0f);
+}
+
 TEST(Ghosting, AFamilyWithoutDepthComparisonHasNoAcne) {
     EXPECT_FALSE(familyComparesDepth("ray tracing"));
     EXPECT_FALSE(familyComparesDepth("shadow texture"));
