@@ -5,7 +5,6 @@
 // the command's one-line errors.
 #include <sys/wait.h>
 #include <unistd.h>
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +18,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/image.h"
 #include "gl_test_context.h"
 #include "raster_compare/pipeline/compare_scene.h"
 
@@ -193,48 +191,6 @@ TEST(CompareSequence, FfxLagsLessThanItsFormerReading) {
     EXPECT_LT(ffx["lag_mae"].get<double>(), 0.8 * 0.2603);
     // One ray to the sun is exact: what ffx adds to none's error is its lag.
     EXPECT_LT(none["lag_mae"].get<double>(), ffx["lag_mae"].get<double>());
-}
-
-// Issue 64: a ray-traced shadow has no depth comparison to acne with, so no denoiser has acne;
-// what svgf's history leaves behind the sliding box is ghosting, drawn in the last frame's error
-// map (its EXR layer, the report's legend). One ray to the sun is exact: without a denoiser
-// there is no trail. (Before, the geometric rule called temporal's, hitdist's and rtg's trail
-// acne on scenes/sliding_box at 160 x 120: 0.0021 to 0.0034.)
-TEST(CompareSequence, RayTracedDenoisersHaveNoAcneAndTheirTrailIsGhosting) {
-    REQUIRE_GL();
-    const fs::path out = fs::temp_directory_path() / ("so_seq_ghost_" + std::to_string(::getpid()));
-    std::vector<std::string> techniques;
-    for (const char* d : {"none", "temporal", "svgf", "ffx", "hitdist", "rtg"})
-        techniques.push_back(std::string("raytraced:spp=1,denoiser=") + d);
-    const json m = compareSequence(kAnim / "sliding_box.scene.json", techniques, out);
-    const std::map<std::string, json> rows = sunRows(m);
-    for (const std::string& t : techniques) {
-        const json& row = rows.at(t);
-        EXPECT_EQ(row["acne_rate"].get<double>(), 0.0) << t;
-        ASSERT_TRUE(row["sequence"]["ghosting_rate"].is_number()) << t << row["sequence"];
-        std::printf("[ sequence ] sliding box, sun: %s ghosting_rate %.4f (%d pixel-frames)\n",
-                    t.c_str(), row["sequence"]["ghosting_rate"].get<double>(),
-                    row["sequence"]["ghosting_pixels"].get<int>());
-    }
-    const json& svgf = rows.at("raytraced:spp=1,denoiser=svgf")["sequence"];
-    EXPECT_GT(svgf["ghosting_rate"].get<double>(), 0.0);
-    EXPECT_GT(svgf["ghosting_pixels"].get<size_t>(), 0u);
-    EXPECT_EQ(rows.at("raytraced:spp=1,denoiser=none")["sequence"]["ghosting_pixels"], 0);
-    // The last frame's ghosting layer, beside its other classes.
-    bool ghostDrawn = false;
-    for (const auto& entry : fs::directory_iterator(out)) {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind("error_", 0) != 0 || name.find("svgf") == std::string::npos) continue;
-        const ChannelImage errors = readExr(entry.path().string());
-        ASSERT_TRUE(errors.has("sun.ghosting")) << name;
-        const float* g = errors.channel("sun.ghosting");
-        ghostDrawn = std::any_of(g, g + errors.pixelCount(), [](float v) { return v == 1.0f; });
-    }
-    EXPECT_TRUE(ghostDrawn) << "svgf's last frame has a trail";
-    std::ifstream page(out / "report.html");
-    const std::string html(std::istreambuf_iterator<char>(page), {});
-    EXPECT_NE(html.find("</i>ghosting</span>"), std::string::npos);
-    fs::remove_all(out);
 }
 
 TEST(CompareSequence, OnTheStillBoxTheHistoryFlickersLessThanTheJitterAlone) {
