@@ -14,8 +14,8 @@
 
 namespace so {
 
-inline constexpr int kDefaultFrames = 9;  // timed frames
-inline constexpr int kDefaultWarmup = 2;  // untimed frames before them
+inline constexpr int kDefaultFrames = 9;        // timed frames
+inline constexpr int kDefaultWarmup = 2;        // untimed frames before them
 inline constexpr int kMaxConvergeFrames = 256;  // still frames resolved over (`converge`)
 
 const OptionTable& rasterOptionTable();

@@ -9,8 +9,11 @@ namespace so {
 
 // In the order of precedence: a wrong pixel that several classes explain is drawn (and counted by
 // the error map) as the first of them; a wrong pixel that none of the named classes explains is
-// "other" (docs/metrics.md).
+// "other" (docs/metrics.md). Ghosting comes first: on a pixel whose truth has just changed, a
+// history that has not caught up explains a wrong pixel before any cause a single frame has. It
+// is only ever set where the caller says where the truth changed (MetricOptions::truthChanged).
 enum class Artifact {
+    Ghosting,
     PeterPanning,
     LightBleeding,
     PenumbraSpread,
@@ -21,7 +24,7 @@ enum class Artifact {
     OtherFalseShadow,
     OtherFalseLit
 };
-inline constexpr size_t kArtifactCount = 9;
+inline constexpr size_t kArtifactCount = 10;
 
 struct ArtifactClass {
     Artifact id;
@@ -32,10 +35,14 @@ struct ArtifactClass {
     // the eighth, which has no hue to confuse; Okabe-Ito's own eighth, black, would vanish on the
     // dimmed truth the maps draw beneath. The ninth, screen-space bleed, is magenta: far brighter
     // than the reddish purple of peter-panning for every colour vision, and apart from white.
+    // The tenth, ghosting (compare --sequence only), is cyan: the lightest hue left, well above
+    // sky blue's lightness (0.79 against 0.64 in Rec. 709 luma), so that it stays apart from it
+    // where the hue alone would not.
     float rgb[3];
 };
 
 inline constexpr std::array<ArtifactClass, kArtifactCount> kArtifactClasses = {{
+    {Artifact::Ghosting, "ghosting", "sequence.ghosting_rate", "ghosting", {0.0f, 1.0f, 1.0f}},
     {Artifact::PeterPanning,
      "peter_panning",
      "peter_panning_rate",

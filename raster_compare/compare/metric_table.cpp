@@ -77,7 +77,8 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
     {"acne_rate", U::Share, B::Lower, S::All,
      "among fully lit pixels more than r pixels from an oracle shadow boundary, the share that "
      "are false shadow (on area lights, not penumbra spread; with the raster's depth channels, "
-     "only where its own depth comparison shadowed the pixel by its own surface)",
+     "only where its own depth comparison shadowed the pixel by its own surface; never for a "
+     "family that compares no depth; in a sequence, not ghosting)",
      "acne", kShare},
     {"screen_bleed_rate", U::Share, B::Lower, S::ScreenSpaceFilter,
      "share of counted pixels, fully lit in the oracle, that are false shadow though their own "
@@ -317,6 +318,13 @@ constexpr auto kMetrics = std::to_array<MetricInfo>({
      "lag mae"},
     {"sequence.lag_pixels", U::Count, B::None, S::Sequence,
      "pixel-frames lag_mae is the mean over"},
+    {"sequence.ghosting_rate", U::Share, B::Lower, S::Sequence,
+     "among lag_mae's pixel-frames more than r pixels from the frame's oracle shadow boundary "
+     "(on area lights, outside its penumbra), the share that are false shadow or false lit: an "
+     "old shadow or light kept (null where the truth never changed away from an edge)",
+     "ghosting"},
+    {"sequence.ghosting_pixels", U::Count, B::None, S::Sequence,
+     "pixel-frames counted as ghosting, summed over the frames"},
 });
 
 // Levenshtein distance, for suggestions on a misspelled limit.

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/channels.h"
@@ -282,6 +284,7 @@ struct Tally {
     double umbraAbs = 0.0, litAbs = 0.0;
     size_t band = 0, otherShadow = 0, otherLit = 0;
     double bandAbs = 0.0;
+    size_t ghostEligible = 0, ghost = 0;
 };
 
 // The class a wrong pixel is drawn as (1 + its Artifact; 0: not a wrong pixel): the first, in
@@ -296,6 +299,47 @@ size_t drawnClass(bool fs, bool fl, std::array<bool, kArtifactCount>& is, Tally&
     return 1 + size_t(other);
 }
 
+// The classes of a wrong pixel that no edge explains (docs/metrics.md), into `is` and the tally:
+// ghosting (false shadow or false lit where the truth has just changed), acne (false shadow on
+// fully lit pixels away from the oracle's boundary) and screen-space bleed.
+void ownShadowClasses(const Planes& p, size_t i, bool awayFromBoundary, bool spread,
+                      const MetricOptions& options, Tally& t,
+                      std::array<bool, kArtifactCount>& is) {
+    const PixelError e = pixelError(p, i);
+    const bool fs = e.falseShadow, fl = e.falseLit, fullyLit = p.Vo[i] == 1.0f;
+    auto set = [&](Artifact a, bool v) { is[size_t(a)] = v; };
+    // In a sequence, where the truth has just changed: away from the oracle's boundary and outside
+    // its penumbra (where an edge's own error is aliasing or penumbra whatever came before), a
+    // wrong pixel shows a truth that is gone: ghosting (docs/metrics.md#sequence).
+    const bool inPenumbra = p.area && p.Vo[i] > 0.0f && p.Vo[i] < 1.0f;
+    bool ghost = false;
+    if (options.truthChanged && (*options.truthChanged)[i] && awayFromBoundary && !inPenumbra) {
+        ++t.ghostEligible;
+        ghost = fs || fl;
+        t.ghost += ghost;
+        set(Artifact::Ghosting, ghost);
+    }
+    // Where the raster says what its own depth comparison saw: a false shadow that its comparison
+    // gave (the map at its texel holding its own surface) is acne; one its comparison did not
+    // give, but a screen-space pass carried over from a neighbour, is screen-space bleed. The pass
+    // must have darkened the pixel: a filtered map's own partial V (pcf's kernel) above 0.5, which
+    // no pass touched, is judged as it is without V_unfiltered (contact=on keeps acne as off).
+    const bool ownLit = p.VU && p.VU[i] > 0.5f && p.Vr[i] < p.VU[i];
+    if (fullyLit && awayFromBoundary) {
+        ++t.acneEligible;
+        // A penumbra reaching too far, or an old shadow kept, is not a surface shadowing itself;
+        // nor can a technique that compares no depth shadow a surface by its own.
+        const bool acne = fs && !spread && !ghost && options.comparesDepth &&
+                          (!p.depthCause || (!ownLit && ownSurfaceInMap(p, i)));
+        t.acne += acne;
+        set(Artifact::Acne, acne);
+    }
+    if (fullyLit && fs && !spread && ownLit) {
+        ++t.screenBleed;
+        set(Artifact::ScreenBleed, true);
+    }
+}
+
 // One counted pixel into the tally and the error maps. Each class marks where the pixel counts
 // as that class's error (the classes may overlap); a wrong pixel (false shadow or false lit) is
 // also drawn as exactly one class (drawnClass). `spread`: penumbraSpread's verdict on the pixel.
@@ -308,28 +352,12 @@ void classify(const Planes& p, size_t i, float toOracleBoundary, bool spread,
     m.maxAbs = std::max(m.maxAbs, err);
     t.falseShadow += fs;
     t.falseLit += fl;
-    const bool fullyLit = o == 1.0;
     const bool inUmbra = p.area ? o <= hw : o == 0.0;
     std::array<bool, kArtifactCount> is{};
     auto set = [&](Artifact a, bool v) { is[size_t(a)] = v; };
-    // Where the raster says what its own depth comparison saw: a false shadow that its comparison
-    // gave (the map at its texel holding its own surface) is acne; one its comparison did not
-    // give, but a screen-space pass carried over from a neighbour, is screen-space bleed. The pass
-    // must have darkened the pixel: a filtered map's own partial V (pcf's kernel) above 0.5, which
-    // no pass touched, is judged as it is without V_unfiltered (contact=on keeps acne as off).
-    const bool ownLit = p.VU && p.VU[i] > 0.5f && p.Vr[i] < p.VU[i];
-    if (fullyLit && toOracleBoundary > float(options.boundaryRadius)) {
-        ++t.acneEligible;
-        // A penumbra reaching too far is not a surface shadowing itself.
-        const bool acne = fs && !spread && (!p.depthCause || (!ownLit && ownSurfaceInMap(p, i)));
-        t.acne += acne;
-        set(Artifact::Acne, acne);
-    }
-    if (fullyLit && fs && !spread && ownLit) {
-        ++t.screenBleed;
-        set(Artifact::ScreenBleed, true);
-    }
-    if (toOracleBoundary <= float(options.boundaryRadius)) {
+    const bool awayFromBoundary = toOracleBoundary > float(options.boundaryRadius);
+    ownShadowClasses(p, i, awayFromBoundary, spread, options, t, is);
+    if (!awayFromBoundary) {
         ++t.band;
         t.bandAbs += err;
         if (!p.area) {
@@ -386,6 +414,8 @@ void setRates(const Tally& t, const Planes& p, const MetricOptions& options, Lig
     if (t.band) m.boundaryBandMae = t.bandAbs / double(t.band);
     m.otherFalseShadowRate = share(t.otherShadow, m.counted);
     m.otherFalseLitRate = share(t.otherLit, m.counted);
+    m.ghostingEligible = t.ghostEligible;
+    m.ghostingPixels = t.ghost;
     if (p.D) {
         m.peterPanningRate = share(t.pp, t.ppEligible);
         m.lightLeakDistance = t.leak;
@@ -465,6 +495,10 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
                                  const std::string& light, const MetricOptions& options,
                                  ErrorMaps* maps) {
     const Planes p(oracle, raster, light);
+    if (options.truthChanged && options.truthChanged->size() != p.n)
+        throw std::invalid_argument("computeLightMetrics: truthChanged has " +
+                                    std::to_string(options.truthChanged->size()) +
+                                    " pixels, the images " + std::to_string(p.n));
     if (maps) {
         for (std::vector<float>& v : maps->classes) v.assign(p.n, 0.0f);
         maps->error.assign(p.n, 0.0f);
@@ -487,6 +521,13 @@ LightMetrics computeLightMetrics(const ChannelImage& oracle, const ChannelImage&
     predictedAliasing(raster, light, counted, br, toOracleBoundary, m);
     if (p.area) m.penumbraWidth = penumbraWidthError(p.w, p.h, p.Vo, p.Vr, counted);
     return m;
+}
+
+bool familyComparesDepth(const std::string& family) {
+    static const std::array<const char*, 3> kNoDepthComparison = {"ray tracing", "shadow texture",
+                                                                  "planar projection"};
+    return std::none_of(kNoDepthComparison.begin(), kNoDepthComparison.end(),
+                        [&](const char* f) { return family == f; });
 }
 
 namespace {

@@ -21,18 +21,35 @@
 
 namespace so {
 
-// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 8 classes
-// acne by its cause where the raster says what its depth comparison saw, and adds
-// screen_bleed_rate (7 added cost.work; 6 added penumbra_spread_rate, and on area lights acne_rate
+// The schema_version of the metrics.json compare and sweep-merge write (docs/metrics.md): 9 gives
+// the families that compare no depth no acne, and in a sequence classes ghosting apart (8 classed
+// acne by its cause where the raster says what its depth comparison saw, and added
+// screen_bleed_rate; 7 added cost.work; 6 added penumbra_spread_rate, and on area lights acne_rate
 // and other_false_*_rate no longer count the pixels of a penumbra too wide or shifted).
-inline constexpr int kMetricsSchemaVersion = 8;
+inline constexpr int kMetricsSchemaVersion = 9;
 
 struct MetricOptions {
     int boundaryRadius = kDefaultBoundaryRadius;  // r: pixels from an oracle shadow boundary
     double contactThreshold =
         0.0;  // occluder distance below which a shadow is "at contact" (world units)
     bool filteredTechnique = false;  // light bleeding is only measured for filtered techniques
+    // Whether the technique compares depths at all (familyComparesDepth): acne is a surface
+    // shadowed by its own depth, so a technique that compares none has no acne.
+    bool comparesDepth = true;
+    // In a sequence: 1 per pixel where the oracle's V changed by more than kLagJump within the
+    // kLagFrames frames before (SequenceJudge::truthChanged). A wrong pixel there, away from the
+    // oracle's boundary, is ghosting, not acne (docs/metrics.md#sequence). Null for a single frame:
+    // no ghosting class, every other class as without it. Its size is the images' pixel count.
+    const std::vector<uint8_t>* truthChanged = nullptr;
 };
+
+// Whether a technique family's shadows come from a depth comparison (docs/metrics.md, acne): not
+// ray tracing (a ray finds its occluder or not), the shadow texture (an occluder's opacity
+// projected) or the planar projections (casters flattened onto the receiver); every other family
+// compares depths (shadow maps, virtual maps, their accumulation and blur, the lightmap's bake
+// from a shadow map, the volumes' depth test against the camera's depth). By family name
+// (TechniqueInfo::family), so that judging needs no raster code.
+bool familyComparesDepth(const std::string& family);
 
 // Distances in pixels between the two images' shadow boundaries (the V = 0.5 isoline), both ways.
 struct BoundaryDisplacement {
@@ -75,6 +92,12 @@ struct LightMetrics {
     // With the raster's NAME.aliasing_pred: its mean over counted pixels, and the Pearson
     // correlation of its log with the boundary displacement at the raster's boundary pixels.
     std::optional<double> predictedAliasingMean, aliasingCorrelation;
+    // With MetricOptions::truthChanged: counted pixels whose truth changed, away (more than r)
+    // from the oracle's boundary and outside its penumbra (area lights), and those of them that
+    // are wrong (false shadow or false lit):
+    // the ghosting class. Summed over a sequence's frames into sequence.ghosting_rate; not in
+    // toJson (a row's own metrics describe one frame).
+    size_t ghostingEligible = 0, ghostingPixels = 0;
     nlohmann::json toJson() const;
 };
 

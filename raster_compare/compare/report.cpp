@@ -68,13 +68,15 @@ namespace {
 namespace ch = channels;
 using namespace report_parts;
 
-// The classes' colours, beside the error maps.
-std::string classLegend() {
+// The classes' colours, beside the error maps; ghosting only where a sequence can have it.
+std::string classLegend(bool sequence) {
     std::ostringstream o;
     o << "<div class=\"legend\">";
     for (const ArtifactClass& c : kArtifactClasses)
-        o << "<span><i style=\"background:rgb(" << int(c.rgb[0] * 255) << "," << int(c.rgb[1] * 255)
-          << "," << int(c.rgb[2] * 255) << ")\"></i>" << c.legend << "</span>";
+        if (sequence || c.id != Artifact::Ghosting)
+            o << "<span><i style=\"background:rgb(" << int(c.rgb[0] * 255) << ","
+              << int(c.rgb[1] * 255) << "," << int(c.rgb[2] * 255) << ")\"></i>" << c.legend
+              << "</span>";
     o << "<span>grey: right (the truth, dimmed)</span></div>";
     return o.str();
 }
@@ -162,7 +164,7 @@ void writeImages(std::ostream& o, const ReportInput& in, size_t li, ImageSink& s
     const std::string oracleId = "oracle-" + std::to_string(li);
     o << "<table class=\"images\"><thead><tr><th class=\"text\">technique</th><th "
          "class=\"text\">render</th><th class=\"text\">errors by class"
-      << classLegend() << "</th><th class=\"text\">"
+      << classLegend(in.sequenceFrames > 0) << "</th><th class=\"text\">"
       << (area ? "error beyond the oracle's interval" + magnitudeBar() : std::string())
       << "</th><th class=\"text\">worst region</th></tr></thead><tbody>";
     const std::string& light = in.lights[li];

@@ -48,6 +48,7 @@ const std::vector<Column>& columns() {
         add("sequence.mae_mean", true, false);
         add("sequence.flicker_rate", true, false);
         add("sequence.lag_mae", true, false);
+        add("sequence.ghosting_rate", true, false);
         add("false_shadow_rate", false, false);
         add("false_lit_rate", false, false);
         add("cost.frame_ms", true, false);

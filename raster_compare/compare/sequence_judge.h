@@ -1,8 +1,10 @@
 // Adds up a sequence's frames, in order, into one technique's and light's SequenceMetrics
 // (docs/metrics.md#sequence): mae per frame as computeLightMetrics counts it, the flicker between
-// consecutive frames through the known motion (compareFramePair), and lag_mae's pixels.
+// consecutive frames through the known motion (compareFramePair), lag_mae's pixels, and the
+// ghosting class on the pixels whose truth just changed (MetricOptions::truthChanged).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,11 +27,15 @@ struct SequenceFrame {
 class SequenceJudge {
   public:
     SequenceJudge(std::string light, MetricOptions options);
-    // Measures the frame: its mae, its flicker against the frame before, its lag pixels.
+    // Measures the frame: its mae, its flicker against the frame before, its lag pixels, its
+    // ghosting; keeps its truth-changed mask (SequenceMetrics::lastTruthChanged).
     void add(const SequenceFrame& frame);
     const SequenceMetrics& metrics() const { return metrics_; }
 
   private:
+    // 1 where `now` (the truth's V, NaN where it missed) differs by more than kLagJump from one of
+    // the kLagFrames frames before.
+    std::vector<uint8_t> truthChanged(const std::vector<float>& now) const;
     std::string light_;
     MetricOptions options_;
     SequenceMetrics metrics_;

@@ -19,6 +19,11 @@ std::optional<double> SequenceMetrics::lagMae() const {
     return lagAbsSum / double(lagPixels);
 }
 
+std::optional<double> SequenceMetrics::ghostingRate() const {
+    if (ghostingEligible == 0) return std::nullopt;
+    return double(ghostingPixels) / double(ghostingEligible);
+}
+
 nlohmann::json SequenceMetrics::toJson() const {
     const auto opt = [](const std::optional<double>& v) {
         return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -31,7 +36,9 @@ nlohmann::json SequenceMetrics::toJson() const {
             {"tracked_pairs", flicker.tracked},
             {"flickering_pairs", flicker.flickering},
             {"lag_mae", opt(lagMae())},
-            {"lag_pixels", lagPixels}};
+            {"lag_pixels", lagPixels},
+            {"ghosting_rate", opt(ghostingRate())},
+            {"ghosting_pixels", ghostingPixels}};
 }
 
 }  // namespace so

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -31,12 +32,22 @@ struct SequenceMetrics {
     TemporalFlicker flicker;          // consecutive frames, tracked through the known motion
     size_t lagPixels = 0;             // counted pixel-frames whose truth just changed
     double lagAbsSum = 0.0;           // their error (ErrorMaps::error) summed
+    // Of those pixel-frames, the ones more than r (boundary_radius) from the frame's oracle
+    // boundary and outside its penumbra, and those of them that are wrong: ghosting
+    // (LightMetrics::ghostingPixels).
+    size_t ghostingEligible = 0, ghostingPixels = 0;
+    // The last frame's mask of pixels whose truth changed within the kLagFrames frames before it
+    // (MetricOptions::truthChanged): the row's own metrics of the last frame class its ghosting
+    // with it. Not in the JSON.
+    std::vector<uint8_t> lastTruthChanged;
     int frames() const { return int(maePerFrame.size()); }
     double maeMean() const;                // 0 without frames
     double maeLast() const;                // 0 without frames
     std::optional<double> lagMae() const;  // none where no pixel's truth changed
+    // ghostingPixels / ghostingEligible; none where no pixel's truth changed away from an edge
+    std::optional<double> ghostingRate() const;
     // {"frames", "mae_per_frame", "mae_mean", "mae_last", "flicker_rate", "tracked_pairs",
-    //  "flickering_pairs", "lag_mae", "lag_pixels"}
+    //  "flickering_pairs", "lag_mae", "lag_pixels", "ghosting_rate", "ghosting_pixels"}
     nlohmann::json toJson() const;
 };
 

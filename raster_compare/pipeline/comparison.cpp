@@ -178,8 +178,11 @@ void measureLights(const Job& job, ReportTechnique& rt, const ChannelImage& imag
     for (size_t li = 0; li < job.scene.lights.size(); ++li) {
         LightComparison lc;
         lc.light = job.scene.lights[li].name;
-        lc.metrics =
-            computeLightMetrics(job.oracle.image, image, lc.light, job.metricOptions, &lc.maps);
+        // In a sequence the last frame's ghosting is classed where its truth just changed.
+        MetricOptions options = job.metricOptions;
+        if (sequence && (*sequence)[li].lastTruthChanged.size() == image.pixelCount())
+            options.truthChanged = &(*sequence)[li].lastTruthChanged;
+        lc.metrics = computeLightMetrics(job.oracle.image, image, lc.light, options, &lc.maps);
         lc.cost = costOf(li, job.oracle.stats.lights[li].seconds());
         if (temporal) lc.temporal = (*temporal)[li];
         if (sequence) lc.sequence = (*sequence)[li];
@@ -203,6 +206,7 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     rt.fileLabel = run.spec.fileLabel;
     describeCurve(rt, run);
     job.metricOptions.filteredTechnique = run.technique->filtered();
+    job.metricOptions.comparesDepth = familyComparesDepth(rt.row.family);
     // In a sequence the row judges its last frame as the sequence saw it, history resolved, and its
     // costs are that frame's, timed and counted with the history the frames before built.
     if (job.sequence) {

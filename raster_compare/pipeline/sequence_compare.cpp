@@ -48,6 +48,7 @@ SequenceResult measureSequence(const Scene& scene, const std::vector<const Techn
     for (size_t k = 0; k < techniques.size(); ++k) {
         MetricOptions m = metricOptions;
         m.filteredTechnique = techniques[k]->filtered();
+        m.comparesDepth = familyComparesDepth(findTechnique(techniques[k]->name()).family);
         for (const Light& light : scene.lights) judges[k].emplace_back(light.name, m);
     }
     // What every technique builds over the frames: its resolves' and denoisers' histories, on the

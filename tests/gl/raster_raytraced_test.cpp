@@ -177,9 +177,10 @@ std::vector<double> fingerprintOfV(const ChannelImage& image) {
 // 63: ffx as AMD ships it and svgf with Falcor's fallbacks give new images; temporal and hitdist
 // the same ones with one more tap a pixel (the history's length read from the nearest texel, as
 // Falcor reads it). Issue 64: the same images, with one more tap a pixel for each reprojection
-// (the pixel's mesh id, whose motion it follows; ffx reprojects twice). Held to 1e-6 (the values are printed to 9 digits). Another driver rounds its
-// own way, and one rounding may flip a reprojection's or an edge stop's test at a pixel (a
-// quadrant's mean moves 3e-4 per pixel changed by 0.1): there the values are printed, not held.
+// (the pixel's mesh id, whose motion it follows; ffx reprojects twice). Held to 1e-6 (the values
+// are printed to 9 digits). Another driver rounds its own way, and one rounding may flip a
+// reprojection's or an edge stop's test at a pixel (a quadrant's mean moves 3e-4 per pixel changed
+// by 0.1): there the values are printed, not held.
 TEST(Raytraced, EveryDenoiserGivesItsRecordedImage) {
     REQUIRE_GL();
     const bool recordingDriver = gl->renderer().find("llvmpipe") != std::string::npos;
