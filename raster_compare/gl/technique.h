@@ -132,6 +132,10 @@ class Technique {
     // A technique that builds its shadow over frames (temporal=on): the history that resolves its
     // jittered V across a sequence (shadow_history.h); none where every frame stands alone.
     virtual std::optional<HistorySettings> history() const { return std::nullopt; }
+    // Whether its V depends on the frames before (a history of its own, or a denoiser's): such a
+    // row says how many frames built it (metrics.json's history_frames, docs/metrics.md), 0 for a
+    // single-frame compare (a cold start).
+    virtual bool buildsOverFrames() const { return history().has_value(); }
     virtual std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const = 0;
 
   private:
