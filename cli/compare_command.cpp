@@ -43,6 +43,8 @@ CompareCallbacks printingCallbacks(bool progress) {
             std::cerr << "camera path: frame " << u.done << " of " << u.total << "\n";
         if (u.stage == "sequence frames")
             std::cerr << "sequence: frame " << u.done << " of " << u.total << "\n";
+        if (u.stage == "converge frames")
+            std::cerr << "converge: frame " << u.done << " of " << u.total << "\n";
         return true;
     };
     c.renderingGroup = [](const std::vector<std::string>& labels) {
@@ -67,8 +69,8 @@ int printCompareSummary(const CompareOptions& options, const CompareRun& run,
 
 // The command's errors name its flags.
 const CompareOptionNames kCompareFlags = {
-    "command line", "--technique",          "--image", "--points",  "--frames-path",
-    "--verify",     "--width and --height", "--out",   "--sequence"};
+    "command line", "--technique",          "--image", "--points",   "--frames-path",
+    "--verify",     "--width and --height", "--out",   "--sequence", "--converge"};
 
 int runCompareCommand(CompareOptions options, bool progress) {
     options.names = kCompareFlags;

@@ -22,7 +22,7 @@ std::vector<OptionSpec> makeTable() {
                       "oracle and every technique once per frame, for `temporal_flicker_rate` "
                       "([metrics.md](metrics.md)); techniques only, not `--image`"),
         "0 (off)"));
-    t.back().excludes = {"sequence"};
+    t.back().excludes = {"sequence", "converge"};
     t.push_back(flagOption(
         "sequence", kSurfaceCompare | kSurfaceSweep,
         "judge the scene's sequence frame by frame: every technique over its frames, each against "
@@ -33,7 +33,20 @@ std::vector<OptionSpec> makeTable() {
         "other metrics describe the last frame; techniques only, not `--image`; in a sweep spec "
         "`true` or "
         "`false`"));
-    t.back().excludes = {"frames_path"};
+    t.back().excludes = {"frames_path", "converge"};
+    t.push_back(zeroMeans(
+        integerOption(
+            "converge", 0, 1, kMaxConvergeFrames, kSurfaceCompare | kSurfaceSweep,
+            "render N still frames, the frame index turning, and judge the last: a technique that "
+            "builds over frames converged, not cold (history_frames, docs/metrics.md)",
+            "render N still frames of the scene (nothing moves; the frame index runs 0 to N - 1, "
+            "so jittered taps turn and histories fill) and judge the last: a technique that builds "
+            "over frames graded converged instead of cold (metrics.json's `history_frames` says "
+            "which, [metrics.md](metrics.md#history-frames)); 1 is the single frame; the still "
+            "frames' flicker and error per frame are metrics.json's `sequence`; techniques only, "
+            "not `--image`"),
+        "0 (one frame)"));
+    t.back().excludes = {"sequence", "frames_path"};
     return t;
 }
 

@@ -15,6 +15,9 @@
 namespace so {
 
 inline constexpr int kDefaultBoundaryRadius = 2;  // r of docs/metrics.md, in pixels
+// compare --converge N: the most still frames (docs/limits.md); a bound on the run's time, which
+// grows as N renders of every technique.
+inline constexpr int kMaxConvergeFrames = 256;
 
 const OptionTable& compareOptionTable();
 // The row of `key`; std::invalid_argument for a key not in the table (a bug, not input).

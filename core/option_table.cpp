@@ -182,7 +182,11 @@ std::string optionsMarkdown(const OptionTable& table) {
         std::string doc = s.doc;
         if (!s.excludes.empty()) {
             doc += "; not with";
-            for (const std::string& k : s.excludes) doc += " `" + table.at(k).cli + "`";
+            for (size_t i = 0; i < s.excludes.size(); ++i)
+                doc += std::string(i == 0                       ? " "
+                                   : i + 1 == s.excludes.size() ? " or "
+                                                                : ", ") +
+                       "`" + table.at(s.excludes[i]).cli + "`";
         }
         out << "| `" << s.cli << "` | `" << s.key << "` | " << optionDefaultText(s) << " | "
             << rangeText(s) << " | " << doc << " |";

@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <string>
 #include <tuple>
+#include <utility>
 
 #include "core/error.h"
 #include "core/json_reader.h"
@@ -202,6 +204,8 @@ struct Run {
     std::map<RowKey, LightRow> rows;
     std::vector<RowKey> order;
     std::map<RowKey, int> seen;  // rows so far with that (scene, light, label)
+    // Rows that build over frames: history_frames and where the file says it ("results[2]").
+    std::map<RowKey, std::pair<int, std::string>> history;
     std::map<std::string, OracleUncertainty> uncertainty;
 };
 
@@ -226,12 +230,32 @@ Run readRun(const json& metrics, const std::string& path) {
             RowKey key{scene, l, first == 1 ? row.label : row.label + "#" + std::to_string(first)};
             for (int n = first + 1; run.rows.count(key); ++n)  // past a label "basic#2" itself
                 key = {scene, l, row.label + "#" + std::to_string(n)};
+            if (row.historyFrames)
+                run.history[key] = {*row.historyFrames, JsonReader::index("results", i)};
             run.rows[key] = std::move(light);
             run.order.push_back(key);
         }
     }
     run.uncertainty = oracleUncertainty(metrics, path);
     return run;
+}
+
+// A row that builds over frames judged after as many frames in both runs: a converged image
+// against a cold one is another image, not a regression or an improvement (docs/gate.md#baseline).
+void checkSameHistory(const Run& now, const std::string& metricsPath, const Run& before,
+                      const std::string& baselinePath) {
+    for (const auto& [key, frames] : now.history) {
+        const auto old = before.history.find(key);
+        if (old == before.history.end() || old->second.first == frames.first) continue;
+        const auto said = [](int n) {
+            return n == 0 ? std::string("0 (a cold start)") : std::to_string(n);
+        };
+        throwInputError(metricsPath, frames.second + ".history_frames",
+                        said(frames.first) + " for \"" + printable(std::get<2>(key), 60) + "\", " +
+                            said(old->second.first) + " in the baseline " + baselinePath +
+                            ": cold and converged images differ; run both with the same "
+                            "compare --converge N");
+    }
 }
 
 // Versions whose metrics mean the same (docs/metrics.md, Versions): 4 and 5 (5 adds rows of
@@ -256,6 +280,7 @@ BaselineComparison compareToBaseline(const json& metrics, const std::string& met
                             " define the metrics differently (docs/metrics.md, Versions): rerun "
                             "the baseline with this version");
     const BaselineSettings settings = readBaselineSettings(limits, limitsPath);
+    checkSameHistory(now, metricsPath, before, baselinePath);
     BaselineComparison out;
     for (const RowKey& key : now.order) {
         const auto old = before.rows.find(key);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace so {
@@ -46,6 +47,21 @@ inline std::string fidelityMark(const std::string& fidelity, const std::string& 
     if (fidelity != "variant" && fidelity != "own") return "";
     return " <sup class=\"fidelity\" data-fidelity=\"" + fidelity + "\" title=\"" +
            htmlEscape(provenance) + "\">" + fidelity + "</sup>";
+}
+
+// The note the reports put after the label of a row that builds over frames (metrics.json's
+// history_frames, docs/metrics.md#history-frames): "cold start (no history)" where one frame was
+// judged, else how many frames built it; nothing for the other rows.
+inline std::string historyMark(const std::optional<int>& historyFrames) {
+    if (!historyFrames) return "";
+    const std::string text = *historyFrames == 0
+                                 ? "cold start (no history)"
+                                 : "history of " + std::to_string(*historyFrames) + " frames";
+    return " <span class=\"history muted\" data-history-frames=\"" +
+           std::to_string(*historyFrames) +
+           "\" title=\"it builds over frames: judged after this many (compare --converge N, "
+           "--sequence)\">" +
+           text + "</span>";
 }
 
 }  // namespace so

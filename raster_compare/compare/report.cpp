@@ -133,12 +133,13 @@ void writeTechniqueRow(std::ostream& o, const ReportInput& in, size_t li, size_t
     const Rgb render =
         shadedImage(in.oracle, t.image.channel(ch::lightChannel(light, ch::kVisibility)), light);
     o << "<tr id=\"" << rowId(li, k) << "\"><td><b>" << html(t.row.label) << "</b>"
-      << fidelityMark(t.row.fidelity, t.row.provenanceText) << "<br><span class=\"muted\">"
-      << html(t.row.family) << "<br>" << html(t.parameters) << "<br>mae " << num(row.value("mae"))
-      << ", frame " << (frameMs ? withUnit(metricInfo("cost.frame_ms"), *frameMs) : "unknown")
-      << "<br><a href=\"" << html(t.fileLabel) << "/raster.exr\">raster.exr</a> · <a href=\""
-      << html(t.fileLabel) << "/raster.json\">raster.json</a> · <a href=\"error_"
-      << html(t.fileLabel) << ".exr\">errors</a></span></td><td>"
+      << fidelityMark(t.row.fidelity, t.row.provenanceText) << historyMark(t.row.historyFrames)
+      << "<br><span class=\"muted\">" << html(t.row.family) << "<br>" << html(t.parameters)
+      << "<br>mae " << num(row.value("mae")) << ", frame "
+      << (frameMs ? withUnit(metricInfo("cost.frame_ms"), *frameMs) : "unknown") << "<br><a href=\""
+      << html(t.fileLabel) << "/raster.exr\">raster.exr</a> · <a href=\"" << html(t.fileLabel)
+      << "/raster.json\">raster.json</a> · <a href=\"error_" << html(t.fileLabel)
+      << ".exr\">errors</a></span></td><td>"
       << zoomable(sink.src(key + "_render", w, h, render), t.row.label, "", oracleId) << "</td><td>"
       << zoomable(sink.src(key + "_classes", w, h, classMap(in.oracle, lc.maps, light)),
                   t.row.label + " errors by class", "", oracleId)

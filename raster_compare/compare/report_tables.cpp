@@ -242,7 +242,8 @@ void writeMetricTable(std::ostream& o, const std::string& attrs,
             o << "<tr><td class=\"text\" title=\"" << html(t->parameters) << "\"><a href=\"#"
               << rowId(li, size_t(t - in.techniques.data())) << "\">" << html(t->row.label)
               << "</a>" << fidelityMark(t->row.fidelity, t->row.provenanceText)
-              << "</td><td class=\"text\">" << html(t->row.family) << "</td>";
+              << historyMark(t->row.historyFrames) << "</td><td class=\"text\">"
+              << html(t->row.family) << "</td>";
             if (lights.size() > 1) o << "<td class=\"text\">" << html(in.lights[li]) << "</td>";
             for (size_t c = 0; c < cols.size(); ++c) o << cells[c][r];
             const bool noisy = rows[r]->value("cost.noisy").value_or(0.0) != 0.0;

@@ -137,6 +137,8 @@ ResultRow readResultRow(const json& result, const JsonReader& r, const std::stri
         for (auto it = p->begin(); it != p->end(); ++it)
             row.parameters[it.key()] = paramValueOfJson(*it);
     readProvenance(row, result, r, field);
+    if (const json* h = JsonReader::find(result, "history_frames"); h && !h->is_null())
+        row.historyFrames = r.integer(*h, field + ".history_frames", 0, 1 << 20);
     const json& lights = r.at(result, field, "lights");
     r.requireObject(lights, field + ".lights");
     for (const auto& [light, m] : lights.items())

@@ -68,6 +68,9 @@ struct ResultRow {
     // "of: fidelity, anchor" with a variant's deviations, one per line (the reports' tooltips).
     std::string fidelity;
     std::string provenanceText;
+    // A technique that builds over frames: how many frames built the judged image (metrics.json's
+    // "history_frames"; 0: a cold start); none for the other rows and files before it.
+    std::optional<int> historyFrames;
     // Whether the reports mark it: a variant or a design of our own under its name.
     bool notFaithful() const { return fidelity == "variant" || fidelity == "own"; }
     const LightRow* light(const std::string& name) const;

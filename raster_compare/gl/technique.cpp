@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "raster_compare/gl/resolves/resolve.h"
 
 namespace so {
 
@@ -186,6 +187,11 @@ std::unique_ptr<Technique> createTechnique(const std::string& name,
     t->name_ = info.name;
     t->values_ = std::move(own);
     return t;
+}
+
+bool Technique::buildsOverFrames() const {
+    const Resolve* r = resolve();
+    return r && !r->passNames().empty();  // resolve=none keeps nothing
 }
 
 }  // namespace so

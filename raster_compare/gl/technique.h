@@ -136,6 +136,10 @@ class Technique {
     // How its frames are resolved over time (temporal=on: resolves/resolve.h, `resolve=NAME`);
     // null where every frame stands alone.
     virtual const Resolve* resolve() const { return nullptr; }
+    // Whether its V depends on the frames before (a resolve that keeps a history, a denoiser's):
+    // such a row says how many frames built it (metrics.json's history_frames, docs/metrics.md),
+    // 0 for a single-frame compare (a cold start).
+    virtual bool buildsOverFrames() const;
     virtual std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const = 0;
 
   private:

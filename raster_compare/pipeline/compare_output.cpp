@@ -37,6 +37,9 @@ void writeCsvs(const fs::path& out, const std::string& scenePath, const nlohmann
         for (const auto& [light, row] : result["lights"].items()) {
             std::vector<std::pair<std::string, std::string>> cells = {
                 {"scene", scenePath}, {"light", light}, {"technique", technique}, {"label", label}};
+            // A technique that builds over frames: how many built the image (0: a cold start).
+            if (result.contains("history_frames"))
+                cells.emplace_back("history_frames", result["history_frames"].dump());
             for (const auto& [name, value] : result["parameters"].items())
                 cells.emplace_back("param." + name, value.dump());
             for (const auto& [metric, value] : flatMetrics(row)) {

@@ -46,6 +46,14 @@ void checkOptions(const CompareOptions& options, const std::vector<TechniqueSpec
         throwInputError(
             n.source, n.sequence,
             "an image is one frame: " + n.sequence + " works with " + n.technique + " only");
+    if (options.convergeFrames > 0 && (options.sequence || options.pathFrames > 0))
+        throwInputError(n.source, n.converge,
+                        "one or the other: " + n.converge + " judges still frames, " + n.sequence +
+                            " the scene's sequence and " + n.framesPath + " its camera path");
+    if (options.convergeFrames > 0 && (!options.images.empty() || !options.pointsPath.empty()))
+        throwInputError(
+            n.source, n.converge,
+            "an image is one frame: " + n.converge + " works with " + n.technique + " only");
     if (options.pathFrames > 0 && !options.images.empty())
         throwInputError(
             n.source, n.framesPath,
@@ -98,6 +106,10 @@ ComparisonOptions comparisonOptions(const CompareOptions& options,
         c.raster.frameIndex = lastFrame(scene);  // the timed frames are the last frame's
         c.sequence = &scene;
     }
+    if (options.convergeFrames > 0) {
+        c.raster.frameIndex = options.convergeFrames - 1;  // the timed frames are the last's
+        c.convergeFrames = options.convergeFrames;
+    }
     c.progress = callbacks.progress;
     c.renderingGroup = callbacks.renderingGroup;
     return c;
@@ -113,6 +125,8 @@ const std::map<std::string, CompareSetter>& compareSetters() {
         {"frames_path",
          [](CompareOptions& o, const OptionValue& v) { o.pathFrames = int(v.number); }},
         {"sequence", [](CompareOptions& o, const OptionValue& v) { o.sequence = v.number != 0.0; }},
+        {"converge",
+         [](CompareOptions& o, const OptionValue& v) { o.convergeFrames = int(v.number); }},
     };
     return kSetters;
 }

@@ -33,6 +33,7 @@ struct CompareOptionNames {
     std::string size;        // "--width and --height"
     std::string out;         // "--out"
     std::string sequence;    // "--sequence"
+    std::string converge;    // "--converge"
 };
 
 struct CompareOptions {
@@ -59,6 +60,10 @@ struct CompareOptions {
     // --sequence: the scene's sequence judged frame by frame (sequence_compare.h); the comparison's
     // other metrics describe its last frame, the scene posed there. Not with pathFrames.
     bool sequence = false;
+    // --converge N (1 to kMaxConvergeFrames): N still frames of the scene, the frame index turning,
+    // the last one judged (ComparisonOptions::convergeFrames); 0: a single frame. Not with
+    // pathFrames or sequence.
+    int convergeFrames = 0;
     // report.html and the copy of the oracle it shows; a sweep's task writes neither (its report
     // is sweep-merge's, docs/sweep.md).
     bool writeReport = true;

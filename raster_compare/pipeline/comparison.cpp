@@ -199,6 +199,10 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     row.technique = run.spec.name;
     row.parameters = toJson(run.technique->values().settings());
     row.provenance = provenanceParts(*run.technique);
+    // Built over the sequence's (or the convergence's) frames, else a cold start (one frame holds
+    // no history: 0, as raster.json's history_frames).
+    if (run.technique->buildsOverFrames())
+        row.historyFrames = job.sequence && job.sequence->frames > 1 ? job.sequence->frames : 0;
     ReportTechnique& rt = row.report;
     rt.row.label = run.spec.label;
     rt.row.family = findTechnique(run.spec.name).family;
@@ -282,6 +286,49 @@ ComparedRow compareImage(Job job, const ImageInput& in) {
     return row;
 }
 
+// compare --converge N: the scene standing still for N frames, as measureSequence takes a scene
+// that moves: a Sequence of N frames with nothing on its clock (no animated mesh, no light or
+// camera path), so that every frame poses the same scene (sceneAtTime returns it unchanged, its
+// oracle cached once) and only the frame index turns the techniques' jittered taps.
+Scene stillSequence(const Scene& scene, int frames) {
+    Scene still = scene;
+    still.sequence = Sequence{frames, 1.0, ""};
+    still.cameraPath.reset();
+    still.lightPaths.clear();
+    for (MeshPrimitive& mesh : still.meshes) mesh.animation.reset();
+    return still;
+}
+
+// The sequence's frames reported as the convergence's ("converge frames", the CLI's
+// "converge: frame k of N").
+ProgressCallback convergeProgress(const ProgressCallback& progress) {
+    if (!progress) return progress;
+    return [progress](const ProgressUpdate& u) {
+        static const std::string kStage = "converge frames";
+        return u.stage == "sequence frames" ? progress({kStage, u.done, u.total}) : progress(u);
+    };
+}
+
+// compare --sequence (the scene's own frames) or --converge N (N still frames of `scene`): every
+// technique over the frames, each row then judging the last.
+SequenceResult measureFrames(const Scene& scene, const CachedOracle& oracle,
+                             const std::vector<TechniqueRun>& runs,
+                             const ComparisonOptions& options, const MetricOptions& metricOptions,
+                             const GlContext& gl) {
+    std::vector<const Technique*> list;
+    for (const TechniqueRun& run : runs) list.push_back(run.technique.get());
+    // The comparison's oracle is the last frame's where it was traced as the frames are: not
+    // at a G-buffer's points, and with the posed scene's own camera.
+    const bool sameAsLast = !oracle.atPoints && !options.pathOracle.camera;
+    const ChannelImage* last = sameAsLast ? &oracle.image : nullptr;
+    if (options.sequence)
+        return measureSequence(*options.sequence, list, options.pathOracle, options.pathCache,
+                               options.raster, metricOptions, gl, options.progress, last);
+    return measureSequence(stillSequence(scene, options.convergeFrames), list, options.pathOracle,
+                           options.pathCache, options.raster, metricOptions, gl,
+                           convergeProgress(options.progress), last);
+}
+
 // Techniques created (so validated) and labels checked (checkRowLabels) before any work starts.
 std::vector<TechniqueRun> createTechniques(const std::vector<TechniqueSpec>& specs,
                                            const std::vector<ImageInput>& images) {
@@ -360,6 +407,11 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
         // Degenerate interpolated poses are input errors too: found before any work.
         sampleCameraPath(*scene.cameraPath, scene.camera, options.pathFrames);
     }
+    if (options.convergeFrames > 0 &&
+        (!images.empty() || options.pathFrames > 0 || options.sequence))
+        throwInputError("comparison", "converge",
+                        "still frames are judged with techniques only (no images, no camera path "
+                        "frames, no sequence)");
     if (options.sequence) {
         if (!images.empty() || options.pathFrames > 0)
             throwInputError("comparison", "sequence",
@@ -391,15 +443,9 @@ Comparison compareWithOracle(const Scene& scene, const CachedOracle& oracle,
         out.path = measurePathFlicker(scene, list, labels, options.pathOracle, options.pathCache,
                                       options.raster, *gl, options.pathFrames, options.progress);
     }
-    if (options.sequence) {
-        std::vector<const Technique*> list;
-        for (const TechniqueRun& run : runs) list.push_back(run.technique.get());
-        // The comparison's oracle is the last frame's where it was traced as the frames are: not
-        // at a G-buffer's points, and with the posed scene's own camera.
-        const bool sameAsLast = !oracle.atPoints && !options.pathOracle.camera;
-        out.sequence = measureSequence(*options.sequence, list, options.pathOracle,
-                                       options.pathCache, options.raster, out.metricOptions, *gl,
-                                       options.progress, sameAsLast ? &oracle.image : nullptr);
+    if (options.sequence || options.convergeFrames > 0) {
+        out.sequence = measureFrames(scene, oracle, runs, options, out.metricOptions, *gl);
+        out.convergeFrames = options.convergeFrames;
     }
     const Job job{scene,
                   oracle,
@@ -435,15 +481,18 @@ nlohmann::json rowJson(const ComparedRow& row) {
             part["deviations"] = p.provenance.deviations;
         parts.push_back(part);
     }
-    return {{"source", "technique"},
-            {"technique", row.technique},
-            {"family", row.report.row.family},
-            {"label", row.report.row.label},
-            {"provenance",
-             {{"fidelity", fidelityName(combinedFidelity(row.provenance))}, {"parts", parts}}},
-            {"parameters", row.parameters},
-            {"timings", row.stats ? toJson(row.stats->timings) : nlohmann::json(nullptr)},
-            {"lights", lights}};
+    nlohmann::json j = {
+        {"source", "technique"},
+        {"technique", row.technique},
+        {"family", row.report.row.family},
+        {"label", row.report.row.label},
+        {"provenance",
+         {{"fidelity", fidelityName(combinedFidelity(row.provenance))}, {"parts", parts}}},
+        {"parameters", row.parameters},
+        {"timings", row.stats ? toJson(row.stats->timings) : nlohmann::json(nullptr)},
+        {"lights", lights}};
+    if (row.historyFrames) j["history_frames"] = *row.historyFrames;
+    return j;
 }
 
 nlohmann::json metricsHeaderJson(const Scene& scene, const std::string& sceneFile,
@@ -452,7 +501,9 @@ nlohmann::json metricsHeaderJson(const Scene& scene, const std::string& sceneFil
     nlohmann::json options = {{"boundary_radius_px", boundaryRadius},
                               {"contact_threshold", comparison.metricOptions.contactThreshold}};
     if (comparison.path) options["frames_path"] = comparison.path->frames;
-    if (comparison.sequence) options["sequence_frames"] = comparison.sequence->frames;
+    if (comparison.sequence)
+        options[comparison.convergeFrames > 0 ? "converge_frames" : "sequence_frames"] =
+            comparison.sequence->frames;
     return {{"schema_version", kMetricsSchemaVersion},
             {"tool", toolJson()},
             {"scene",

@@ -83,6 +83,11 @@ struct ComparisonOptions {
     // oracle from `pathOracle` and `pathCache`; each row's image is the sequence's last frame as
     // judged (its history resolved). Not with pathFrames or images. Null: no sequence.
     const Scene* sequence = nullptr;
+    // compare --converge N (>= 1; 0: off): every technique also over N still frames of `scene`
+    // (a Sequence with nothing moving, its frame index 0 .. N - 1, sequence_compare.h), each row's
+    // image the last of them; `sequence` in Comparison holds their metrics. Not with pathFrames,
+    // sequence or images.
+    int convergeFrames = 0;
     // Before each group of techniques is rendered together: their labels (the CLI says so).
     std::function<void(const std::vector<std::string>&)> renderingGroup;
     // The camera path's frames ("camera path frames") and the techniques rendered
@@ -102,6 +107,10 @@ struct ComparedRow {
     // A technique's: whose designs it grades (technique.h provenanceParts), metrics.json's
     // "provenance"; empty for an image.
     std::vector<ProvenancePart> provenance;
+    // A technique that builds over frames (Technique::buildsOverFrames): how many frames built the
+    // judged image (metrics.json's "history_frames"): 0 for a single frame (a cold start), the
+    // frames of --converge or --sequence; none for every other row.
+    std::optional<int> historyFrames;
     // label, family, curve, every light's metrics, costs and error maps, and the image judged.
     ReportTechnique report;
 };
@@ -115,7 +124,8 @@ struct Comparison {
     std::vector<std::optional<OracleExactPoint>> oracleExact;
     MetricOptions metricOptions;  // what the metrics used (the contact threshold in world units)
     std::optional<PathFlicker> path;         // pathFrames > 0
-    std::optional<SequenceResult> sequence;  // ComparisonOptions::sequence
+    std::optional<SequenceResult> sequence;  // ComparisonOptions::sequence or convergeFrames
+    int convergeFrames = 0;                  // ComparisonOptions::convergeFrames
     std::optional<GlInfo> gl;                // when a technique was rendered
     // The GL driver's and the camera path's oracle cache's warnings, and the techniques'
     // deprecation notices (a parameter's former name), for the caller to print.

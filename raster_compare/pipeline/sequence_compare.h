@@ -1,10 +1,12 @@
 // A sequence judged frame by frame (compare --sequence, docs/metrics.md#sequence): for frame k of
 // the scene's sequence, at t_k = sequenceTime(k), the scene posed at t_k (core/scene_pose.h), its
 // oracle traced or read from the oracle cache (each frame cached on its own, as the camera path's
-// frames of path_flicker.h), every technique rendered on it with RasterOptions::frameIndex = k and,
-// where the technique carries a history (Technique::history()), each light's V resolved by that
-// technique's ShadowHistory, in place, so that every metric sees the resolved shadow. Each
-// technique and light is judged by a SequenceJudge (sequence_judge.h).
+// frames of path_flicker.h), every technique rendered on it with RasterOptions::frameIndex = k and
+// one temporal state for the whole sequence (time/temporal_state.h, with each mesh's motion since
+// the frame before), so that what a technique resolves over frames (its resolve, a denoiser's
+// history) builds inside each frame's render, on the GPU. The last frame is rendered timed and
+// counted: the rows' costs. Each technique and light is judged by a SequenceJudge
+// (sequence_judge.h).
 #pragma once
 
 #include <string>

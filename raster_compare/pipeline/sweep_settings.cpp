@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "core/compare_option_table.h"
+#include "core/error.h"
 #include "core/raster_option_table.h"
 #include "core/trace_option_table.h"
 
@@ -23,6 +24,23 @@ void parseOracle(const Json& o, const std::string& file, SweepOracleSettings& or
     checkKeys(o, keys, file, "oracle");
     for (const auto& [key, value] : o.items())
         oracle.values[key] = optionValue(traceOption(key), value, file, "oracle." + key);
+}
+
+// Whether the spec asks for the option: given, and for a flag `true`.
+bool asks(const OptionTable& table, const OptionValues& values, const std::string& key) {
+    const auto it = values.find(key);
+    return it != values.end() &&
+           (table.at(key).type != OptionType::Flag || it->second.number != 0.0);
+}
+
+// The table's exclusions (OptionSpec::excludes, the command line's), by the spec's keys:
+// "converge": 8 with "sequence": true is one or the other.
+void checkExclusions(const OptionTable& table, const OptionValues& values,
+                     const std::string& file) {
+    for (const auto& [key, value] : values)
+        for (const std::string& other : table.at(key).excludes)
+            if (asks(table, values, key) && asks(table, values, other))
+                throwInputError(file, key, "not with " + other + ": one or the other");
 }
 
 }  // namespace
@@ -49,6 +67,8 @@ SweepSettings parseSettings(const Json& spec, const std::string& file) {
         for (const OptionSpec& row : table->rows)
             if ((row.surfaces & kSurfaceSweep) && spec.contains(row.key))
                 (*values)[row.key] = optionValue(row, spec[row.key], file, row.key);
+    checkExclusions(compareOptionTable(), s.compare, file);
+    checkExclusions(rasterOptionTable(), s.raster, file);
     if (spec.contains("keep_outputs"))
         s.keepOutputs = boolean(spec["keep_outputs"], file, "keep_outputs");
     if (spec.contains("oracle")) parseOracle(spec["oracle"], file, s.oracle);

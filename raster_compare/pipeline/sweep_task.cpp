@@ -93,7 +93,7 @@ CompareOptions taskCompareOptions(const fs::path& dir, const SweepPlan& plan, co
     // Errors name the spec's keys: a task runs what the spec says, not a command line.
     c.names = {spec,          "techniques",    "images",           "points",
                "frames_path", "oracle.verify", "width and height", "keep_outputs",
-               "sequence"};
+               "sequence",    "converge"};
     return c;
 }
 

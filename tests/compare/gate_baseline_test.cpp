@@ -149,6 +149,28 @@ TEST(GateBaseline, SchemaVersionsThatDefineMetricsDifferentlyAreAnInputError) {
     EXPECT_EQ(once.missing[0].label, "a#2");
 }
 
+TEST(GateBaseline, AColdRowAgainstAConvergedOneIsAnInputError) {
+    const json rows = {{"pcf:temporal=on", {{"l", {{"mae", 0.1}}}}},
+                       {"pcf", {{"l", {{"mae", 0.1}}}}}};
+    json cold = run(rows, 8), converged = run(rows, 8);
+    cold["results"][1]["history_frames"] = 0;  // the rows are in label order: pcf, pcf:temporal=on
+    converged["results"][1]["history_frames"] = 8;
+    EXPECT_NO_THROW(compare(cold, cold));
+    EXPECT_NO_THROW(compare(converged, converged));
+    EXPECT_NO_THROW(compare(converged, run(rows, 8))) << "a baseline from before the key";
+    try {
+        compare(converged, cold);
+        ADD_FAILURE() << "a converged row compared with a cold one";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), "new.json");
+        EXPECT_EQ(e.field(), "results[1].history_frames");
+        EXPECT_NE(std::string(e.what()).find("8 for \"pcf:temporal=on\", 0 (a cold start) in the "
+                                             "baseline old.json"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(GateBaseline, TheOracleNoiseOfBothRunsWidensAreaLightErrors) {
     // An area light whose oracle states a mean half-width of 0.01 over the penumbra in each run:
     // a V metric may move by hypot(0.01, 0.01) more; a share of pixels may not.

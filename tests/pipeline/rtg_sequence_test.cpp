@@ -56,8 +56,8 @@ std::map<std::string, json> panelRows(const fs::path& scene,
     o.useCache = false;
     o.raster.frames = 1;
     o.raster.warmup = 0;
-    o.names = {"test",   "technique", "image", "points",  "frames_path",
-               "verify", "size",      "out",   "sequence"};
+    o.names = {"test",   "technique", "image", "points",   "frames_path",
+               "verify", "size",      "out",   "sequence", "converge"};
     CompareRun run = compareScene(o);
     const json metrics =
         metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);

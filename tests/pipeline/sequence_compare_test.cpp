@@ -65,8 +65,8 @@ json compareSequence(const fs::path& scene, const std::vector<std::string>& tech
     o.useCache = false;
     o.raster.frames = 1;
     o.raster.warmup = 0;
-    o.names = {"test",   "technique", "image", "points",  "frames_path",
-               "verify", "size",      "out",   "sequence"};
+    o.names = {"test",   "technique", "image", "points",   "frames_path",
+               "verify", "size",      "out",   "sequence", "converge"};
     o.outDir = out.string();
     o.embedImages = true;
     CompareRun run = compareScene(o);

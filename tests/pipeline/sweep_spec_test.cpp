@@ -408,7 +408,17 @@ TEST_F(SweepSpec, RasterAndCompareTableSweepKeysAreTheSpecsKeys) {
             ASSERT_EQ(values.count(s.key), 1u) << s.key;
             EXPECT_EQ(values.at(s.key).number, s.max) << s.key;
         }
-    EXPECT_GE(offered, 3u);  // frames, boundary_radius, sequence
+    EXPECT_GE(offered, 4u);  // frames, boundary_radius, sequence, converge
+}
+
+// What the command line refuses together (OptionSpec::excludes) a spec refuses too, by its keys.
+TEST_F(SweepSpec, ConvergeWithASequenceIsOneOrTheOther) {
+    const std::string head = R"({"sweep_format": 1, "scenes": ["scenes/a.scene.json"], )"
+                             R"("techniques": [{"name": "shadow"}], "converge": 8)";
+    EXPECT_EQ(error(head + "}"), "");
+    EXPECT_EQ(error(head + R"(, "sequence": false})"), "");
+    const std::string e = error(head + R"(, "sequence": true})");
+    EXPECT_NE(e.find(": converge: not with sequence"), std::string::npos) << e;
 }
 
 }  // namespace

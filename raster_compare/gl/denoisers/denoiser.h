@@ -59,6 +59,9 @@ class Denoiser {
     virtual size_t passesBeforeTrace() const { return 0; }
     // Whether its passes read the rays' mean distance to their blockers (raw's G).
     virtual bool needsHitDistance() const { return false; }
+    // Whether it keeps a history across frames (RayFrame::keepHistory): a single frame is then a
+    // cold start (Technique::buildsOverFrames).
+    virtual bool keepsHistory() const { return true; }
     // The target its result lands in.
     virtual RayTarget result() const = 0;
     virtual std::unique_ptr<LightDenoiser> setUp(RayFrame& frame) const = 0;

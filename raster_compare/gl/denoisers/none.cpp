@@ -25,6 +25,7 @@ class NoDenoiser final : public Denoiser {
     }
     explicit NoDenoiser(const ParamValues& /*v*/) {}
     std::vector<std::string> passNames() const override { return {}; }
+    bool keepsHistory() const override { return false; }
     RayTarget result() const override { return RayTarget::Raw; }
     std::unique_ptr<LightDenoiser> setUp(RayFrame& frame) const override {
         return std::make_unique<NoneLight>(frame);

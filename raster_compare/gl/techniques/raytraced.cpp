@@ -55,6 +55,7 @@ class Raytraced final : public Technique {
     explicit Raytraced(const ParamValues& v)
         : Technique(v), spp(v.integer("spp")), denoiser(createDenoiser(v)) {}
     std::unique_ptr<LightTechnique> setUp(const LightSetup& setup) const override;
+    bool buildsOverFrames() const override { return denoiser->keepsHistory(); }
 
     int spp;
     std::unique_ptr<const Denoiser> denoiser;
