@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "core/compare_option_table.h"  // kMaxConvergeFrames, compare --converge's bound too
+
 namespace so {
 
 namespace {

@@ -14,9 +14,8 @@
 
 namespace so {
 
-inline constexpr int kDefaultFrames = 9;        // timed frames
-inline constexpr int kDefaultWarmup = 2;        // untimed frames before them
-inline constexpr int kMaxConvergeFrames = 256;  // still frames resolved over (`converge`)
+inline constexpr int kDefaultFrames = 9;  // timed frames
+inline constexpr int kDefaultWarmup = 2;  // untimed frames before them
 
 const OptionTable& rasterOptionTable();
 // The row of `key`; std::invalid_argument for a key not in the table (a bug, not input).

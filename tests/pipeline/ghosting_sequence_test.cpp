@@ -68,8 +68,8 @@ std::map<std::string, json> lightRows(const fs::path& scene, const std::string& 
     o.useCache = false;
     o.raster.frames = 1;
     o.raster.warmup = 0;
-    o.names = {"test",   "technique", "image", "points",  "frames_path",
-               "verify", "size",      "out",   "sequence"};
+    o.names = {"test",   "technique", "image", "points",   "frames_path",
+               "verify", "size",      "out",   "sequence", "converge"};
     o.outDir = out.string();
     o.embedImages = true;
     CompareRun run = compareScene(o);
