@@ -210,9 +210,15 @@ static Runner addRaster(CLI::App& app) {
     addImageSize(rasterCmd, o->raster.width, o->raster.height);
     const std::shared_ptr<OptionFlags> rasterOptions =
         addTableOptions(rasterCmd, so::rasterOptionTable(), so::kSurfaceRaster);
+    // --converge: the comparison table's row, which `raster` shares.
+    const std::shared_ptr<OptionFlags> frameOptions =
+        addTableOptions(rasterCmd, so::compareOptionTable(), so::kSurfaceRaster);
 
-    return [o, rasterOptions] {
+    return [o, rasterOptions, frameOptions] {
         so::applyRasterOptions(rasterOptions->values, kCliNaming, o->raster);
+        so::checkOptions(so::compareOptionTable(), frameOptions->values, kCliNaming);
+        if (const auto it = frameOptions->values.find("converge"); it != frameOptions->values.end())
+            o->raster.converge = int(it->second.number);
         return so::runRasterCommand(*o);
     };
 }

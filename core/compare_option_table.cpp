@@ -36,7 +36,7 @@ std::vector<OptionSpec> makeTable() {
     t.back().excludes = {"frames_path", "converge"};
     t.push_back(zeroMeans(
         integerOption(
-            "converge", 0, 1, kMaxConvergeFrames, kSurfaceCompare | kSurfaceSweep,
+            "converge", 0, 1, kMaxConvergeFrames, kSurfaceCompare | kSurfaceSweep | kSurfaceRaster,
             "render N still frames, the frame index turning, and judge the last: a technique that "
             "builds over frames converged, not cold (history_frames, docs/metrics.md)",
             "render N still frames of the scene (nothing moves; the frame index runs 0 to N - 1, "

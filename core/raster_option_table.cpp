@@ -2,8 +2,6 @@
 
 #include <vector>
 
-#include "core/compare_option_table.h"  // kMaxConvergeFrames, compare --converge's bound too
-
 namespace so {
 
 namespace {
@@ -26,13 +24,6 @@ std::vector<OptionSpec> makeTable() {
                               "untimed frames before the timed ones",
                               "untimed frames rendered before the timed ones (shader compilation, "
                               "first-use allocations)"));
-    t.push_back(integerOption(
-        "converge", 1, 1, kMaxConvergeFrames, kSurfaceRaster,
-        "still frames rendered in order, the techniques' histories building, the last returned",
-        "still frames of the scene rendered in order with one temporal state, so that a technique "
-        "that resolves its frames over time (`temporal=on`, a ray-traced denoiser) builds its "
-        "history; the last frame is the result, timed and counted, with `history_frames` in "
-        "raster.json ([techniques.md](techniques.md#resolve)); 1: a cold start, no history"));
     return t;
 }
 

@@ -20,19 +20,16 @@ TEST(RasterOptionTable, EveryRowHasItsSetterAndTheStructTheDefaults) {
     EXPECT_EQ(appliedRasterOptionKeys(), keys);
     const RasterOptions defaults;
     RasterOptions fromTable;
-    fromTable.frames = fromTable.warmup = fromTable.converge = -1;
+    fromTable.frames = fromTable.warmup = -1;
     for (const OptionSpec& s : rasterOptionTable().rows)
         applyRasterOptions({{s.key, s.defaultValue}}, {"t", false, "", false}, fromTable);
     EXPECT_EQ(fromTable.frames, defaults.frames);
     EXPECT_EQ(fromTable.warmup, defaults.warmup);
-    EXPECT_EQ(fromTable.converge, defaults.converge);
     // Each row's setter writes its own field: its maximum changes the options.
     for (const OptionSpec& s : rasterOptionTable().rows) {
         RasterOptions o;
         applyRasterOptions({{s.key, {s.max, ""}}}, {"t", false, "", false}, o);
-        EXPECT_TRUE(o.frames != defaults.frames || o.warmup != defaults.warmup ||
-                    o.converge != defaults.converge)
-            << s.key;
+        EXPECT_TRUE(o.frames != defaults.frames || o.warmup != defaults.warmup) << s.key;
     }
 }
 

@@ -13,7 +13,6 @@ const std::map<std::string, Setter>& setters() {
     static const std::map<std::string, Setter> kSetters = {
         {"frames", [](RasterOptions& o, const OptionValue& v) { o.frames = int(v.number); }},
         {"warmup", [](RasterOptions& o, const OptionValue& v) { o.warmup = int(v.number); }},
-        {"converge", [](RasterOptions& o, const OptionValue& v) { o.converge = int(v.number); }},
     };
     return kSetters;
 }

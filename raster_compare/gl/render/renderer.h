@@ -34,7 +34,8 @@ struct RasterOptions {
     TemporalState* temporal = nullptr;
     int frames = kDefaultFrames;  // timed frames (median and quartiles reported)
     int warmup = kDefaultWarmup;  // untimed frames first
-    // renderConverged: still frames rendered in order with one temporal state, the last returned.
+    // renderConverged (raster --converge, the compare option table's row): still frames rendered in
+    // order with one temporal state, the last returned; 0 or 1: a single frame.
     int converge = 1;
     // Before its timed frames, each technique's work is counted in one frame of its counting
     // build (work_counter.h; docs/metrics.md, "Work"), which never runs in the timed frames.
