@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include "api/api_internal.h"
+#include "core/compare_option_table.h"
 #include "core/trace_option_table.h"
 #include "raster_compare/gl/context/gl_context.h"
 #include "raster_compare/gl/render/raster_options.h"
@@ -33,10 +34,15 @@ RenderResult render(const Scene& scene, const std::string& technique, const Para
         std::vector<std::string> settings;
         for (const auto& [key, value] : parameters) settings.push_back(key + "=" + value);
         const std::unique_ptr<so::Technique> t = so::createTechnique(technique, settings);
-        const so::RasterOptions o = detail::rasterOptions(
-            options.width, options.height, options.frames, options.warmup, "render options");
+        so::RasterOptions o = detail::rasterOptions(options.width, options.height, options.frames,
+                                                    options.warmup, "render options");
+        if (options.converge != 0)  // 0: not given, one frame (the row's default)
+            so::checkOptions(so::compareOptionTable(),
+                             {{"converge", {double(options.converge), ""}}},
+                             {"render options", false, "", false});
+        o.converge = options.converge;
         so::GlContext gl;
-        so::RasterResult r = so::renderRaster(scene.data().scene, *t, o, gl);
+        so::RasterResult r = so::renderConverged(scene.data().scene, *t, o, gl);
         RenderResult out;
         out.frameMs = r.stats.timings.wallMs.median;
         out.statsJson = so::toJson(r.stats).dump();

@@ -432,8 +432,8 @@ void bindRender(py::module_& m) {
     m.def(
         "render",
         [](const so::Scene& scene, const std::string& technique, int width, int height, int frames,
-           int warmup, const py::kwargs& kwargs) {
-            so::RenderOptions o{width, height, frames, warmup};
+           int warmup, int converge, const py::kwargs& kwargs) {
+            so::RenderOptions o{width, height, frames, warmup, converge};
             const so::Parameters parameters = parametersFrom(kwargs);
             PyRender out;
             out.result = interruptible<so::RenderResult>(
@@ -448,6 +448,7 @@ void bindRender(py::module_& m) {
         py::arg("scene"), py::arg("technique"), py::kw_only(), py::arg("width") = 0,
         py::arg("height") = 0, py::arg("frames") = so::RenderOptions{}.frames,
         py::arg("warmup") = so::RenderOptions{}.warmup,
+        py::arg("converge") = so::RenderOptions{}.converge,
         "A built-in technique through the GL path, its parameters as keywords by the names of "
         "docs/techniques.md: render(scene, \"pcf\", kernel=5, pattern=\"poisson\").");
     m.def(

@@ -31,7 +31,7 @@
 namespace shadow_oracle {
 
 // This header's version: a change that breaks a caller raises it (docs/api.md).
-inline constexpr int kApiVersion = 3;
+inline constexpr int kApiVersion = 4;
 // "<tool version> <git revision>", as in every file the tool writes.
 SHADOW_ORACLE_API std::string version();
 
@@ -191,6 +191,10 @@ using Parameters = std::vector<std::pair<std::string, std::string>>;
 struct RenderOptions {
     int width = 0, height = 0;   // 0: the scene camera's
     int frames = 9, warmup = 2;  // timed frames (their median is frameMs) after untimed ones
+    // As `raster --converge N`: N still frames rendered in order with one temporal state, the
+    // last returned, resolved (a technique with temporal=on, a ray-traced denoiser); 0 or 1: one
+    // frame, a cold start (raster.json's history_frames says which, docs/techniques.md#resolve).
+    int converge = 0;
 };
 
 struct RenderResult {

@@ -112,6 +112,7 @@ def render(
     frames: int = 9,
     warmup: int = 2,
     # END raster-options
+    converge: int = 0,
     **parameters: Union[float, int, str, bool],
 ) -> Render: ...
 def techniques() -> dict[str, Any]: ...

@@ -114,6 +114,20 @@ def test_render_takes_the_cli_parameters_by_name():
     assert {"pcf", "pcss", "vsm", "basic"} <= names
 
 
+def test_render_converges_as_raster_does():
+    # render(converge=N) is `raster --converge N`: N still frames, the last resolved (issue 64).
+    scene = so.load_scene(scene_path("contact_box"))
+    cold = so.render(scene, "pcf", temporal="on", width=32, height=24, frames=1, warmup=0)
+    warm = so.render(scene, "pcf", temporal="on", width=32, height=24, frames=1, warmup=0,
+                     converge=4)
+    assert cold.stats["history_frames"] == 0
+    assert warm.stats["history_frames"] == 4
+    assert "history_frames" not in so.render(scene, "pcf", width=32, height=24, frames=1,
+                                             warmup=0).stats
+    with pytest.raises(so.Error, match="converge"):
+        so.render(scene, "pcf", width=32, height=24, converge=1000)
+
+
 def test_bad_inputs_raise_one_line_errors(tmp_path):
     with pytest.raises(so.Error, match="no such file") as e:
         so.load_scene(str(tmp_path / "missing.scene.json"))
