@@ -5,6 +5,8 @@
 // by hand); `shadow-oracle techniques` lists the axes with their plug-ins (technique_listing.h).
 #pragma once
 
+#include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,42 @@ struct PluginAxis {
     std::vector<AxisPlugin> plugins;
     // Former names of plug-ins, still accepted (ParamSpec::formerValues).
     std::vector<FormerValue> formerValues = {};
+};
+
+// The plug-ins of an axis by number (the denoisers, the resolves), as the generated list of their
+// registration lines adds them; Info has `name`, `number` and `static constexpr const char* kKind`
+// ("denoiser"), which the errors name.
+template <class Info>
+class NumberedRegistry {
+  public:
+    // A number or name already there is std::invalid_argument (two files registering one).
+    void add(Info info) {
+        for (const auto& [number, other] : byNumber_)
+            if (other.name == info.name)
+                throw std::invalid_argument(std::string(Info::kKind) + " \"" + info.name +
+                                            "\" registered twice");
+        const int number = info.number;
+        const std::string name = info.name;
+        if (!byNumber_.emplace(number, std::move(info)).second)
+            throw std::invalid_argument(std::string(Info::kKind) + " \"" + name + "\": number " +
+                                        std::to_string(number) + " taken by another");
+    }
+    const std::map<int, Info>& byNumber() const { return byNumber_; }
+    // Every plug-in by number: 0, 1, ...; a gap is std::invalid_argument.
+    std::vector<const Info*> inOrder() const {
+        std::vector<const Info*> all;
+        for (const auto& [number, info] : byNumber_) {
+            if (number != int(all.size()))
+                throw std::invalid_argument(std::string(Info::kKind) + " \"" + info.name +
+                                            "\": number " + std::to_string(number) + ", expected " +
+                                            std::to_string(all.size()) + " (no gaps)");
+            all.push_back(&info);
+        }
+        return all;
+    }
+
+  private:
+    std::map<int, Info> byNumber_;
 };
 
 // The parameter that picks a plug-in by name (methodParam over the plug-ins' names, each with its

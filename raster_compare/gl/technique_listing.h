@@ -17,7 +17,8 @@ enum class ListingFormat { Text, Json, Markdown };
 // `techniques --json`'s format_version (its --help says it from here).
 // 6 (issue 62): "axes", and `former` on a renamed parameter.
 // 7 (issue 63): `provenance` ({anchor, fidelity, deviations}) on every technique and plug-in, and
-// `provenances` (one per name) on a method parameter whose values are named designs.
+// `provenances` (one per name) on a method parameter whose values are named designs. Issue 64
+// added the `resolve` axis to "axes" within format 7 (an entry added, none changed).
 inline constexpr int kTechniquesJsonFormat = 7;
 
 // Every axis of plug-ins the registered families have (the denoisers), in the order listed.

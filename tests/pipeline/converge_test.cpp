@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
+#include "compare_run.h"
 #include "core/error.h"
 #include "gl_test_context.h"
 #include "raster_compare/gl/technique.h"
@@ -32,27 +34,13 @@ const std::string kTemporal = "pcf:temporal=on";
 
 CompareOptions options(const std::vector<std::string>& techniques, int converge,
                        const fs::path& cache) {
-    CompareOptions o;
-    o.scenePath = kScene.string();
-    o.techniques = techniques;
+    CompareOptions o = quickCompareOptions(kScene, techniques);
     o.convergeFrames = converge;
+    o.useCache = true;
     o.cacheDir = cache;  // the cold and the converged run share the oracle
     o.oracle.width = o.raster.width = 96;
     o.oracle.height = o.raster.height = 72;
-    o.raster.frames = 1;
-    o.raster.warmup = 0;
-    o.names = {"test",   "technique", "image", "points",   "frames_path",
-               "verify", "size",      "out",   "sequence", "converge"};
     return o;
-}
-
-// metrics.json of the comparison; with `out`, its output folder written there too.
-json compare(const CompareOptions& o) {
-    CompareRun run = compareScene(o);
-    const json metrics =
-        metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
-    if (!o.outDir.empty()) writeCompareRun(o, run);
-    return metrics;
 }
 
 std::map<std::string, json> rowsByLabel(const json& metrics) {
@@ -82,7 +70,7 @@ TEST(Converge, ASingleFrameIsAColdStartAndSaysSo) {
     CompareOptions o = options({kTemporal, "pcf"}, 0, dir / "cache");
     o.outDir = (dir / "out").string();
     o.embedImages = true;
-    const std::map<std::string, json> rows = rowsByLabel(compare(o));
+    const std::map<std::string, json> rows = rowsByLabel(compareMetrics(o));
     EXPECT_EQ(rows.at(kTemporal).at("history_frames"), 0);
     EXPECT_FALSE(rows.at("pcf").contains("history_frames")) << "nothing to build over frames";
     std::ifstream page(dir / "out" / "report.html");
@@ -104,8 +92,8 @@ const std::string kWideFew = "pcf:temporal=on,pattern=poisson,kernel=15,resoluti
 TEST(Converge, EightStillFramesResolveThePenumbraBetterThanOne) {
     REQUIRE_GL();
     const fs::path dir = tempDir("eight");
-    const json cold = compare(options({kWideFew}, 0, dir / "cache"));
-    const json warm = compare(options({kWideFew, kTemporal, "pcf"}, 8, dir / "cache"));
+    const json cold = compareMetrics(options({kWideFew}, 0, dir / "cache"));
+    const json warm = compareMetrics(options({kWideFew, kTemporal, "pcf"}, 8, dir / "cache"));
     EXPECT_EQ(warm["options"]["converge_frames"], 8);
     EXPECT_FALSE(warm["options"].contains("sequence_frames"));
     const std::map<std::string, json> rows = rowsByLabel(warm);
@@ -129,23 +117,13 @@ TEST(Converge, EightStillFramesResolveThePenumbraBetterThanOne) {
 TEST(Converge, OneFrameIsTheSingleFrameCompare) {
     REQUIRE_GL();
     const fs::path dir = tempDir("one");
-    const json single = compare(options({kTemporal}, 0, dir / "cache"));
-    const json one = compare(options({kTemporal}, 1, dir / "cache"));
+    const json single = compareMetrics(options({kTemporal}, 0, dir / "cache"));
+    const json one = compareMetrics(options({kTemporal}, 1, dir / "cache"));
     const json &a = single["results"][0], &b = one["results"][0];
     EXPECT_EQ(b.at("history_frames"), 0) << "one frame holds no history";
     EXPECT_EQ(a["lights"]["panel"]["mae"], b["lights"]["panel"]["mae"]);
     EXPECT_EQ(a["lights"]["panel"]["penumbra_mae"], b["lights"]["panel"]["penumbra_mae"]);
     fs::remove_all(dir);
-}
-
-int runCli(const std::string& args, std::string* output) {
-    const std::string log = "/tmp/so_converge_" + std::to_string(::getpid()) + ".log";
-    const int status =
-        std::system((std::string(SO_CLI_PATH) + " " + args + " > " + log + " 2>&1").c_str());
-    std::ifstream in(log);
-    output->assign(std::istreambuf_iterator<char>(in), {});
-    fs::remove(log);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 TEST(Converge, OutOfBoundsOrWithAnotherTimeIsAOneLineError) {
@@ -155,13 +133,13 @@ TEST(Converge, OutOfBoundsOrWithAnotherTimeIsAOneLineError) {
     std::string log;
     // The range is checked as every table option's is (CLI11's line, then its --help hint).
     for (const char* n : {"0", "1000", "-1"}) {
-        EXPECT_NE(runCli(compare + " --converge " + n, &log), 0) << n;
+        EXPECT_NE(runMerged(compare + " --converge " + n, &log), 0) << n;
         EXPECT_EQ(log.substr(0, log.find('\n')),
                   "--converge: Value " + std::string(n) + " not in range 1 to 256")
             << log;
     }
     for (const char* other : {"--sequence", "--frames-path 3"}) {
-        EXPECT_NE(runCli(compare + " --converge 4 " + other, &log), 0) << other;
+        EXPECT_NE(runMerged(compare + " --converge 4 " + other, &log), 0) << other;
         EXPECT_NE(log.find("--converge"), std::string::npos) << log;
         EXPECT_NE(log.find(std::string(other).substr(0, std::string(other).find(' '))),
                   std::string::npos)

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "compare_run.h"
 #include "core/image.h"
 #include "gl_test_context.h"
 #include "raster_compare/pipeline/compare_scene.h"
@@ -61,21 +62,11 @@ fs::path writeRectScene(const fs::path& dir) {
 // The rows of `light`, by label, from `compare SCENE --sequence` written to `out`.
 std::map<std::string, json> lightRows(const fs::path& scene, const std::string& light,
                                       const fs::path& out) {
-    CompareOptions o;
-    o.scenePath = scene.string();
-    o.techniques = denoisers();
+    CompareOptions o = quickCompareOptions(scene, denoisers());
     o.sequence = true;
-    o.useCache = false;
-    o.raster.frames = 1;
-    o.raster.warmup = 0;
-    o.names = {"test",   "technique", "image", "points",   "frames_path",
-               "verify", "size",      "out",   "sequence", "converge"};
     o.outDir = out.string();
     o.embedImages = true;
-    CompareRun run = compareScene(o);
-    const json metrics =
-        metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
-    writeCompareRun(o, run);
+    const json metrics = compareMetrics(o);
     std::map<std::string, json> rows;
     for (const json& r : metrics["results"]) rows[r["label"]] = r["lights"][light];
     return rows;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "compare_run.h"
 #include "gl_test_context.h"
 #include "raster_compare/pipeline/compare_scene.h"
 
@@ -49,18 +50,9 @@ fs::path writeStillRectScene(const fs::path& dir) {
 // The panel's row of each technique, by label, from `compare SCENE --sequence`.
 std::map<std::string, json> panelRows(const fs::path& scene,
                                       const std::vector<std::string>& techniques) {
-    CompareOptions o;
-    o.scenePath = scene.string();
-    o.techniques = techniques;
+    CompareOptions o = quickCompareOptions(scene, techniques);
     o.sequence = true;
-    o.useCache = false;
-    o.raster.frames = 1;
-    o.raster.warmup = 0;
-    o.names = {"test",   "technique", "image", "points",   "frames_path",
-               "verify", "size",      "out",   "sequence", "converge"};
-    CompareRun run = compareScene(o);
-    const json metrics =
-        metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
+    const json metrics = compareMetrics(o);
     std::map<std::string, json> rows;
     for (const json& r : metrics["results"]) rows[r["label"]] = r["lights"]["panel"];
     return rows;

@@ -18,6 +18,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
+#include "compare_run.h"
 #include "gl_test_context.h"
 #include "raster_compare/pipeline/compare_scene.h"
 
@@ -58,23 +60,11 @@ fs::path writeStillScene(const fs::path& dir) {
 // `out`, its output folder written there too.
 json compareSequence(const fs::path& scene, const std::vector<std::string>& techniques,
                      const fs::path& out = {}) {
-    CompareOptions o;
-    o.scenePath = scene.string();
-    o.techniques = techniques;
+    CompareOptions o = quickCompareOptions(scene, techniques);
     o.sequence = true;
-    o.useCache = false;
-    o.raster.frames = 1;
-    o.raster.warmup = 0;
-    o.names = {"test",   "technique", "image", "points",   "frames_path",
-               "verify", "size",      "out",   "sequence", "converge"};
     o.outDir = out.string();
     o.embedImages = true;
-    CompareRun run = compareScene(o);
-    // Before the output is written: writing it takes the rows' images.
-    const json metrics =
-        metricsJson(run.scene, o.scenePath, run.oracle, run.comparison, o.boundaryRadius);
-    if (!out.empty()) writeCompareRun(o, run);
-    return metrics;
+    return compareMetrics(o);
 }
 
 // The sun's row of each technique, by label.
@@ -242,31 +232,21 @@ TEST(CompareSequence, OnTheStillBoxTheResolvesFlickerLessAndTheirPassesAreCounte
     fs::remove_all(dir);
 }
 
-int runCli(const std::string& args, std::string* output) {
-    const std::string log = "/tmp/so_seq_" + std::to_string(::getpid()) + ".log";
-    const int status =
-        std::system((std::string(SO_CLI_PATH) + " " + args + " > " + log + " 2>&1").c_str());
-    std::ifstream in(log);
-    output->assign(std::istreambuf_iterator<char>(in), {});
-    fs::remove(log);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 TEST(CompareSequence, WithoutASequenceOrWithFramesPathIsAOneLineError) {
     const fs::path dir = fs::temp_directory_path() / ("so_seq_err_" + std::to_string(::getpid()));
     const fs::path file = writeScene(dir, "no_sequence.scene.json", {"floor.gltf"}, false);
     std::string log;
-    EXPECT_EQ(runCli("compare " + file.string() + " --sequence --technique pcf --out " +
-                         (dir / "out").string(),
-                     &log),
+    EXPECT_EQ(runMerged("compare " + file.string() + " --sequence --technique pcf --out " +
+                            (dir / "out").string(),
+                        &log),
               2);
     EXPECT_EQ(log, file.string() +
                        ": sequence: missing: --sequence needs the scene's sequence (scene_format "
                        "5, docs/scene-format.md)\n");
     EXPECT_EQ(
-        runCli("compare " + (kAnim / "sliding_box.scene.json").string() +
-                   " --sequence --frames-path 3 --technique pcf --out " + (dir / "out").string(),
-               &log),
+        runMerged("compare " + (kAnim / "sliding_box.scene.json").string() +
+                      " --sequence --frames-path 3 --technique pcf --out " + (dir / "out").string(),
+                  &log),
         2);
     EXPECT_NE(log.find("--frames-path"), std::string::npos) << log;
     EXPECT_NE(log.find("--sequence"), std::string::npos) << log;

@@ -40,4 +40,11 @@ inline RunResult run(const std::string& args) {
     return r;
 }
 
+// Runs `shadow-oracle ARGS`: its exit code, and its standard output then error in `output`.
+inline int runMerged(const std::string& args, std::string* output) {
+    const RunResult r = run(args);
+    *output = r.stdoutText + r.stderrText;
+    return r.exitCode;
+}
+
 }  // namespace so::test

@@ -8,41 +8,18 @@ namespace so {
 
 namespace {
 
-// Built on first use from the generated list (thread-safe: a function-local static), never
-// modified afterwards.
+// Built on first use from the generated list (a function-local static), never modified after.
 const std::vector<const DenoiserInfo*>& registry() {
     static const DenoiserRegistry r = [] {
         DenoiserRegistry built;
         registerBuiltInDenoisers(built);
         return built;
     }();
-    static const std::vector<const DenoiserInfo*> byNumber = [] {
-        std::vector<const DenoiserInfo*> all;
-        for (const auto& [number, info] : r.byNumber()) {
-            if (number != int(all.size()))
-                throw std::invalid_argument("denoiser \"" + info.name + "\": number " +
-                                            std::to_string(number) + ", expected " +
-                                            std::to_string(all.size()) + " (no gaps)");
-            all.push_back(&info);
-        }
-        return all;
-    }();
+    static const std::vector<const DenoiserInfo*> byNumber = r.inOrder();
     return byNumber;
 }
 
 }  // namespace
-
-void DenoiserRegistry::add(DenoiserInfo info) {
-    for (const auto& [number, other] : byNumber_)
-        if (other.name == info.name)
-            throw std::invalid_argument("denoiser \"" + printable(info.name) +
-                                        "\" registered twice");
-    const int number = info.number;
-    const std::string name = info.name;
-    if (!byNumber_.emplace(number, std::move(info)).second)
-        throw std::invalid_argument("denoiser \"" + printable(name) + "\": number " +
-                                    std::to_string(number) + " taken by another");
-}
 
 const std::vector<const DenoiserInfo*>& allDenoisers() {
     return registry();

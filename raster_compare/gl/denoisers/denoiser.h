@@ -68,6 +68,7 @@ class Denoiser {
 };
 
 struct DenoiserInfo {
+    static constexpr const char* kKind = "denoiser";
     std::string name, summary;
     int number;  // its value as a number: `denoiser=<number>`
     ParamTable params;
@@ -76,15 +77,7 @@ struct DenoiserInfo {
 };
 
 // Denoisers by number.
-class DenoiserRegistry {
-  public:
-    // A number or name already there is std::invalid_argument (two files registering one).
-    void add(DenoiserInfo info);
-    const std::map<int, DenoiserInfo>& byNumber() const { return byNumber_; }
-
-  private:
-    std::map<int, DenoiserInfo> byNumber_;
-};
+using DenoiserRegistry = NumberedRegistry<DenoiserInfo>;
 
 // Generated (denoiser_list.cpp): calls soRegisterDenoiser_<Class> of every registration line in
 // denoisers/*.cpp, and how many lines there are.

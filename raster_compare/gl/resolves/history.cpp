@@ -3,7 +3,6 @@
 // per-light history): the ideal upper bound of a temporal resolve, with the camera's and every
 // mesh's exact motion and a same-surface test no motion vector gives. It was temporal=on's only
 // resolve until issue 64.
-#include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/resolves/resolve.h"
 #include "raster_compare/gl/resolves/resolve_frame.h"
 #include "raster_compare/gl/shaders.h"
@@ -42,33 +41,11 @@ class History final : public Resolve {
     bool clamp;
 };
 
-class HistoryLight final : public LightResolve {
-  public:
-    HistoryLight(const History& h, const ResolveSetup& setup) : frame_(setup) {
-        program_ = frame_.program(
-            glslDefine("HISTORY_WEIGHT", h.weight) + (h.clamp ? "#define HISTORY_CLAMP\n" : ""),
-            {shaders::history_glsl});
-    }
-    void resolve(PassClock& clock) override {
-        clock.begin("history");
-        frame_.bindInputs(program_);
-        frame_.draw(program_);
-        clock.end();
-        const ResolvedFrame* before = frame_.previous();
-        frames_ = before ? before->historyFrames + 1 : 0;
-    }
-    void keep() override { frame_.keep(frames_ == 0 ? 1 : frames_); }
-    int historyFrames() const override { return frames_; }
-    uint64_t memoryBytes() const override { return frame_.memoryBytes(); }
-
-  private:
-    ResolveFrame frame_;
-    GlProgram program_;
-    int frames_ = 0;
-};
-
 std::unique_ptr<LightResolve> History::setUp(const ResolveSetup& setup) const {
-    return std::make_unique<HistoryLight>(*this, setup);
+    return std::make_unique<OnePassResolve>(
+        setup, "history",
+        glslDefine("HISTORY_WEIGHT", weight) + (clamp ? "#define HISTORY_CLAMP\n" : ""),
+        std::vector<const char*>{shaders::history_glsl});
 }
 
 }  // namespace

@@ -15,33 +15,11 @@ const std::vector<const ResolveInfo*>& registry() {
         registerBuiltInResolves(built);
         return built;
     }();
-    static const std::vector<const ResolveInfo*> byNumber = [] {
-        std::vector<const ResolveInfo*> all;
-        for (const auto& [number, info] : r.byNumber()) {
-            if (number != int(all.size()))
-                throw std::invalid_argument("resolve \"" + info.name + "\": number " +
-                                            std::to_string(number) + ", expected " +
-                                            std::to_string(all.size()) + " (no gaps)");
-            all.push_back(&info);
-        }
-        return all;
-    }();
+    static const std::vector<const ResolveInfo*> byNumber = r.inOrder();
     return byNumber;
 }
 
 }  // namespace
-
-void ResolveRegistry::add(ResolveInfo info) {
-    for (const auto& [number, other] : byNumber_)
-        if (other.name == info.name)
-            throw std::invalid_argument("resolve \"" + printable(info.name) +
-                                        "\" registered twice");
-    const int number = info.number;
-    const std::string name = info.name;
-    if (!byNumber_.emplace(number, std::move(info)).second)
-        throw std::invalid_argument("resolve \"" + printable(name) + "\": number " +
-                                    std::to_string(number) + " taken by another");
-}
 
 const std::vector<const ResolveInfo*>& allResolves() {
     return registry();

@@ -78,6 +78,7 @@ class Resolve {
 };
 
 struct ResolveInfo {
+    static constexpr const char* kKind = "resolve";
     std::string name, summary;
     int number;
     ParamTable params;
@@ -85,15 +86,7 @@ struct ResolveInfo {
     Provenance provenance = {};
 };
 
-class ResolveRegistry {
-  public:
-    // A number or name already there is std::invalid_argument (two files registering one).
-    void add(ResolveInfo info);
-    const std::map<int, ResolveInfo>& byNumber() const { return byNumber_; }
-
-  private:
-    std::map<int, ResolveInfo> byNumber_;
-};
+using ResolveRegistry = NumberedRegistry<ResolveInfo>;
 
 // Generated (resolve_list.cpp).
 void registerBuiltInResolves(ResolveRegistry& registry);

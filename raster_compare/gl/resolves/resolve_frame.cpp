@@ -5,6 +5,7 @@
 #include "core/scene.h"
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gpu_scene.h"
+#include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/context/work_counter.h"
 #include "raster_compare/gl/shaders.h"
 
@@ -135,6 +136,21 @@ void ResolveFrame::keep(int historyFrames) {
     f.frame = setup_.scene.frame();
     f.historyFrames = historyFrames;
     setup_.state->keep(setup_.owner, setup_.light.name, std::move(f));
+}
+
+OnePassResolve::OnePassResolve(const ResolveSetup& setup, std::string pass,
+                               const std::string& defines, const std::vector<const char*>& sources)
+    : frame_(setup), pass_(std::move(pass)), program_(frame_.program(defines, sources)) {}
+
+void OnePassResolve::resolve(PassClock& clock) {
+    clock.begin(pass_);
+    frame_.bindInputs(program_);
+    bindOwn();
+    frame_.draw(program_);
+    unbindOwn();
+    clock.end();
+    const ResolvedFrame* before = frame_.previous();
+    frames_ = before ? before->historyFrames + 1 : 0;
 }
 
 uint64_t ResolveFrame::memoryBytes() const {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "raster_compare/gl/context/gl_object.h"
@@ -49,6 +50,32 @@ class ResolveFrame {
     GlTexture history_, resolvedV_, prevHistory_, prevPosition_;
     GlFramebuffer fbo_;
     GlBuffer motion_;
+};
+
+// A light's resolve of one full-screen pass over a ResolveFrame (history's and taa's): its program
+// (`sources` after resolve_frame.glsl, with `defines`), timed and counted as `pass`.
+class OnePassResolve : public LightResolve {
+  public:
+    OnePassResolve(const ResolveSetup& setup, std::string pass, const std::string& defines,
+                   const std::vector<const char*>& sources);
+    void resolve(PassClock& clock) override;
+    void keep() override { frame_.keep(frames_ == 0 ? 1 : frames_); }
+    int historyFrames() const override { return frames_; }
+    uint64_t memoryBytes() const override { return frame_.memoryBytes(); }
+
+  protected:
+    // What the pass reads beyond the frame's inputs (units 5 and up): bound after bindInputs,
+    // unbound after the draw.
+    virtual void bindOwn() {}
+    virtual void unbindOwn() {}
+    GLuint program() const { return program_.get(); }
+    const ResolveFrame& frame() const { return frame_; }
+
+  private:
+    ResolveFrame frame_;
+    std::string pass_;
+    GlProgram program_;
+    int frames_ = 0;
 };
 
 }  // namespace so

@@ -10,7 +10,6 @@
 #include "core/scene.h"
 #include "raster_compare/gl/context/camera_pass.h"
 #include "raster_compare/gl/context/gpu_scene.h"
-#include "raster_compare/gl/context/pass_timer.h"
 #include "raster_compare/gl/resolves/resolve.h"
 #include "raster_compare/gl/resolves/resolve_frame.h"
 #include "raster_compare/gl/shaders.h"
@@ -58,11 +57,12 @@ class Taa final : public Resolve {
     std::unique_ptr<LightResolve> setUp(const ResolveSetup& setup) const override;
 };
 
-class TaaLight final : public LightResolve {
+// Taa's pass: the frame's inputs, the light, and the history bilinear on unit 5.
+class TaaLight final : public OnePassResolve {
   public:
-    explicit TaaLight(const ResolveSetup& setup) : frame_(setup), linear_(makeSampler()) {
-        program_ = frame_.program("", {shaders::taa_glsl});
-        const GLuint p = program_.get();
+    explicit TaaLight(const ResolveSetup& setup)
+        : OnePassResolve(setup, "taa", "", {shaders::taa_glsl}), linear_(makeSampler()) {
+        const GLuint p = program();
         setInt(p, "u_prevHistoryLinear", 5);
         setMat4(p, "u_unjitteredClipFromLocal", setup.camera.unjitteredClipFromLocal());
         setVec3(p, "u_lsEye", setup.camera.lsEye());
@@ -76,26 +76,15 @@ class TaaLight final : public LightResolve {
         glSamplerParameteri(linear_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glSamplerParameteri(linear_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
-    void resolve(PassClock& clock) override {
-        clock.begin("taa");
-        frame_.bindInputs(program_);
-        glBindTextureUnit(5, frame_.previousHistoryTexture());
-        glBindSampler(5, linear_.get());
-        frame_.draw(program_);
-        glBindSampler(5, 0);
-        clock.end();
-        const ResolvedFrame* before = frame_.previous();
-        frames_ = before ? before->historyFrames + 1 : 0;
-    }
-    void keep() override { frame_.keep(frames_ == 0 ? 1 : frames_); }
-    int historyFrames() const override { return frames_; }
-    uint64_t memoryBytes() const override { return frame_.memoryBytes(); }
 
   private:
-    ResolveFrame frame_;
-    GlProgram program_;
+    void bindOwn() override {
+        glBindTextureUnit(5, frame().previousHistoryTexture());
+        glBindSampler(5, linear_.get());
+    }
+    void unbindOwn() override { glBindSampler(5, 0); }
+
     GlSampler linear_;
-    int frames_ = 0;
 };
 
 std::unique_ptr<LightResolve> Taa::setUp(const ResolveSetup& setup) const {
