@@ -47,6 +47,7 @@ ParamTable axisParams(const PluginAxis& axis) {
         }
         merged[i].needs = axis.parameter + "=" + alternatives;
         merged[i].doc = names + ": " + merged[i].doc;
+        merged[i].pluginParam = true;  // left out of the values unless its plug-in is chosen
     }
     return merged;
 }

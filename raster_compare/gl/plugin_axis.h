@@ -71,7 +71,9 @@ class NumberedRegistry {
 ParamSpec axisParam(const PluginAxis& axis, int defaultIndex, std::string doc);
 
 // Every plug-in's parameters, once each, in the order the plug-ins first declare them; each needs
-// "parameter=a|b" of the plug-ins that declare it and its doc is said as "a, b: <doc>". Plug-ins
+// "parameter=a|b" of the plug-ins that declare it, its doc is said as "a, b: <doc>", and it is a
+// ParamSpec::pluginParam (a setting's values hold it only where one of those plug-ins is chosen;
+// the listings give it with the axis). Plug-ins
 // sharing a name must agree on its default, range and kind (else std::invalid_argument: a slip in
 // their code).
 ParamTable axisParams(const PluginAxis& axis);

@@ -1,5 +1,6 @@
 #include "raster_compare/gl/technique_listing.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -69,12 +70,24 @@ std::string namedValues(const ParamSpec& p, const std::string& indent) {
     return s;
 }
 
-// A technique's table leaves out the parameters of its axes' plug-ins that are listed with the
-// axis (ParamSpec::pluginParam: the biases'), and says so once.
-bool hasPluginParams(const ParamTable& params) {
-    for (const ParamSpec& p : params)
-        if (p.pluginParam) return true;
-    return false;
+// A technique's table leaves out the parameters of its axes' plug-ins, which are listed with the
+// axis (ParamSpec::pluginParam), and says so once per axis: the axes whose plug-ins' parameters it
+// has, by their parameter (the key its `needs` name: "bias" of "bias=slope|constant"), in order.
+std::vector<std::string> pluginAxesOf(const ParamTable& params) {
+    std::vector<std::string> axes;
+    for (const ParamSpec& p : params) {
+        if (!p.pluginParam) continue;
+        const std::string axis = p.needs.substr(0, p.needs.find('='));
+        if (std::find(axes.begin(), axes.end(), axis) == axes.end()) axes.push_back(axis);
+    }
+    return axes;
+}
+
+// Whose designs a method parameter's named values are, said beside the table, unless an axis's
+// section says it.
+bool listsNamedValues(const ParamSpec& p) {
+    return !p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser" &&
+           p.name != "resolve";
 }
 
 void markdownTable(std::ostringstream& o, const ParamTable& params) {
@@ -84,13 +97,12 @@ void markdownTable(std::ostringstream& o, const ParamTable& params) {
             o << "| `" << p.name << "`" << (p.quality ? " (quality)" : "") << " | "
               << paramValueText(p, p.defaultValue) << " | " << range(p) << " | " << p.doc
               << formerNote(p) << " |\n";
-    if (hasPluginParams(params))
-        o << "\nAnd the parameters of the bias it is given, each valid only with it: "
-          << "[bias plug-ins](#bias-plug-ins).\n";
+    for (const std::string& axis : pluginAxesOf(params))
+        o << "\nAnd the parameters of the " << axis << " it is given, each valid only with it: "
+          << "[" << axis << " plug-ins](#" << axis << "-plug-ins).\n";
     bool named = false;
     for (const ParamSpec& p : params)
-        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser" &&
-            p.name != "resolve") {
+        if (listsNamedValues(p)) {
             o << (named ? "" : "\nIts named designs:\n\n") << namedValues(p, "- ");
             named = true;
         }
@@ -144,12 +156,11 @@ void textTable(std::ostringstream& o, const ParamTable& params, const char* inde
         if (!p.pluginParam)
             o << indent << p.name << " = " << paramValueText(p, p.defaultValue) << "  [" << range(p)
               << "]  " << p.doc << formerNote(p) << "\n";
-    if (hasPluginParams(params))
-        o << indent << "(and the parameters of the bias it is given: bias plug-ins, below)\n";
+    for (const std::string& axis : pluginAxesOf(params))
+        o << indent << "(and the parameters of the " << axis << " it is given: " << axis
+          << " plug-ins, below)\n";
     for (const ParamSpec& p : params)
-        if (!p.provenances.empty() && !p.pluginParam && p.name != "bias" && p.name != "denoiser" &&
-            p.name != "resolve")
-            o << namedValues(p, indent);
+        if (listsNamedValues(p)) o << namedValues(p, indent);
 }
 
 std::string text(const std::vector<PluginAxis>& axes) {

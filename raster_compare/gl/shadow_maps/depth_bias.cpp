@@ -52,10 +52,7 @@ ParamTable biasAxisParams(const std::string& defaultBias) {
     ParamTable table = {axisParam(axis, defaultIndex,
                                   "the depth bias (biases/; `shadow-oracle techniques` lists each "
                                   "with its parameters)")};
-    for (ParamSpec& s : axisParams(axis)) {
-        s.pluginParam = true;  // left out of the values unless its bias is chosen
-        table.push_back(std::move(s));
-    }
+    for (ParamSpec& s : axisParams(axis)) table.push_back(std::move(s));
     return table;
 }
 
