@@ -53,13 +53,13 @@ struct ParamSpec {
     std::vector<std::string> names = {};
     // The range is [min, max): max itself is out of range (a blend weight below 1).
     bool maxExclusive = false;
-    // "key=value": the setting this parameter means nothing without (history and clamp need
-    // temporal=on); "key=a|b": any of those values. Given without it, an InputError rather than
+    // "key=value": the setting this parameter means nothing without (resolve needs temporal=on);
+    // "key=a|b": any of those values. Given without it, an InputError rather than
     // silently doing nothing. Needs chain: the key's own needs must hold too.
     std::string needs = {};
-    // A parameter of one plug-in of an axis (a bias's, depth_bias.h): while another plug-in is
-    // chosen (its `needs` unmet) it is left out of the values, so raster.json and metrics.json list
-    // only the chosen plug-in's parameters.
+    // A parameter of one plug-in of an axis (a bias's, a denoiser's, a resolve's: plugin_axis.h's
+    // axisParams marks them): while another plug-in is chosen (its `needs` unmet) it is left out of
+    // the values, so raster.json and metrics.json list only the chosen plug-in's parameters.
     bool pluginParam = false;
     // Its former name, still accepted with a deprecation notice (renamedFrom).
     std::optional<FormerName> former = {};

@@ -8,7 +8,7 @@
 //
 // Each resolve lives in one file here (plus its GLSL file) and registers itself in one line, at
 // the start of a line in namespace so (after the file's anonymous namespace):
-//     SO_REGISTER_RESOLVE(Taa, "taa", "Bevy 0.16's TAA of the lit image ...");
+//     SO_REGISTER_RESOLVE(Taa, "taa", "Bevy's TAA of the lit image ...");
 // CMake generates resolve_list.cpp from those lines (cmake/so_registry.cmake), as it does for
 // techniques and denoisers. The class gives its number (kNumber, fixed once given), its parameter
 // table (`static ParamTable params()`), its provenance and a constructor taking the technique's

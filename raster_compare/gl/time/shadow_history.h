@@ -1,10 +1,11 @@
-// A shadow-only history (docs/techniques.md#temporal): what a technique that builds its shadow over
-// frames (temporal=on) resolves its jittered V with. Each frame, the history of the light's V is
-// reprojected into the new frame through the known motion (the camera's, and each mesh's rigid
-// motion, core/scene_pose.h's meshMotion), optionally clamped to the new frame's neighbourhood,
-// and blended: resolved = weight * history + (1 - weight) * current. Pixels whose history does not
-// land on the same mesh and surface (disocclusion, off screen) start again from the current V.
-// Ray-traced shadows with a denoiser plug into the same reprojection.
+// A shadow-only history (docs/techniques.md#temporal), on the CPU: the reference of
+// resolve=history, which resolves/history.glsl runs on the GPU step for step
+// (tests/gl/resolve_history_test.cpp holds the two together). Each frame, the history of the
+// light's V is reprojected into the new frame through the known motion (the camera's, and each
+// mesh's rigid motion, core/scene_pose.h's meshMotion), optionally clamped to the new frame's
+// neighbourhood, and blended: resolved = weight * history + (1 - weight) * current. Pixels whose
+// history does not land on the same mesh and surface (disocclusion, off screen) start again from
+// the current V.
 #pragma once
 
 #include <optional>
