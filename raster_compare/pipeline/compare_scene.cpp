@@ -102,14 +102,8 @@ ComparisonOptions comparisonOptions(const CompareOptions& options,
     c.pathFrames = options.pathFrames;
     c.pathOracle = oracleOptions;
     c.pathCache = {options.cacheDir, options.useCache};
-    if (options.sequence) {
-        c.raster.frameIndex = lastFrame(scene);  // the timed frames are the last frame's
-        c.sequence = &scene;
-    }
-    if (options.convergeFrames > 0) {
-        c.raster.frameIndex = options.convergeFrames - 1;  // the timed frames are the last's
-        c.convergeFrames = options.convergeFrames;
-    }
+    if (options.sequence) c.sequence = &scene;
+    c.convergeFrames = options.convergeFrames;
     c.progress = callbacks.progress;
     c.renderingGroup = callbacks.renderingGroup;
     return c;

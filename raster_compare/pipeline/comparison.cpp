@@ -211,12 +211,6 @@ ComparedRow compareTechnique(Job job, size_t index, const TechniqueRun& run, Ras
     describeCurve(rt, run);
     job.metricOptions.filteredTechnique = run.technique->filtered();
     job.metricOptions.comparesDepth = familyComparesDepth(rt.row.family);
-    // In a sequence the row judges its last frame as the sequence saw it, history resolved, and its
-    // costs are that frame's, timed and counted with the history the frames before built.
-    if (job.sequence) {
-        r.image = job.sequence->lastImages[index];
-        r.stats = job.sequence->lastStats[index];
-    }
     measureLights(
         job, rt, r.image,
         [&](size_t li, double oracleSeconds) { return techniqueCost(r.stats, li, oracleSeconds); },
@@ -385,6 +379,13 @@ void renderAll(const Job& job, const std::vector<TechniqueRun>& runs,
         rows[i] = compareTechnique(job, i, runs[i], std::move(r));
         progress.advance(1);
     };
+    // In a sequence (or still frames) the rows judge its last frame as the sequence rendered it,
+    // timed and counted with the history the frames before built: nothing is rendered again.
+    if (job.sequence) {
+        for (size_t i = 0; i < runs.size(); ++i)
+            done(i, {job.sequence->lastImages[i], job.sequence->lastStats[i]});
+        return;
+    }
     renderInterleaved(job.scene, techniques, options.raster, gl, {groupStarts, done});
 }
 
